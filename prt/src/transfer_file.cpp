@@ -1,1 +1,561 @@
-// placeholder: being written
+// transfer_file.cpp — coefficient file encoding, decoding and validation.
+// See prt/transfer_file.h and docs/FORMAT.md.
+#include "prt/transfer_file.h"
+
+#include <algorithm>
+#include <array>
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <limits>
+#include <new>
+#include <sstream>
+
+#include "prt/crc32c.h"
+#include "prt/geometry_check.h"
+#include "prt/half.h"
+#include "transfer_format.h"
+
+#if defined(_WIN32)
+#include <process.h>
+#define PRT_GETPID _getpid
+#else
+#include <unistd.h>
+#define PRT_GETPID getpid
+#endif
+
+#if defined(__BYTE_ORDER__) && __BYTE_ORDER__ != __ORDER_LITTLE_ENDIAN__
+#error "prt coefficient files are little-endian; this reader copies arrays directly"
+#endif
+
+namespace prt {
+namespace detail {
+
+bool blocked_coefficient_bytes(uint64_t vertex_count, uint64_t channels, uint64_t k_count,
+                               uint64_t bytes_per_value, uint64_t* out) {
+  const uint64_t blocks = vertex_count / kVertexBlock + (vertex_count % kVertexBlock ? 1 : 0);
+  uint64_t n = blocks;
+  return !__builtin_mul_overflow(n, channels, &n) && !__builtin_mul_overflow(n, k_count, &n) &&
+         !__builtin_mul_overflow(n, uint64_t{kVertexBlock}, &n) &&
+         !__builtin_mul_overflow(n, bytes_per_value, &n) && (*out = n, true);
+}
+
+}  // namespace detail
+
+namespace {
+
+using namespace detail;
+
+std::string fail_text(const std::string& name, const std::string& problem) {
+  return name + ": " + problem;
+}
+
+Status fail(const std::string& name, const std::string& problem) {
+  return Status::Error(fail_text(name, problem));
+}
+
+uint32_t load_u32(const unsigned char* p) {
+  return uint32_t{p[0]} | uint32_t{p[1]} << 8 | uint32_t{p[2]} << 16 | uint32_t{p[3]} << 24;
+}
+uint64_t load_u64(const unsigned char* p) {
+  return uint64_t{load_u32(p)} | uint64_t{load_u32(p + 4)} << 32;
+}
+void store_u32(unsigned char* p, uint32_t v) {
+  for (int i = 0; i < 4; ++i) p[i] = static_cast<unsigned char>(v >> (8 * i));
+}
+void store_u64(unsigned char* p, uint64_t v) {
+  store_u32(p, static_cast<uint32_t>(v));
+  store_u32(p + 4, static_cast<uint32_t>(v >> 32));
+}
+
+uint64_t align_up(uint64_t x) {
+  return (x + kSectionAlignment - 1) / kSectionAlignment * kSectionAlignment;
+}
+
+const char* section_name(int s) {
+  static const char* const names[kSectionCount] = {
+      "primitive table", "positions", "normals", "coefficients", "ao", "bent normals", "metadata"};
+  return names[s];
+}
+
+// Index of the first non-finite value, or n.
+std::size_t find_non_finite(const float* v, std::size_t n) {
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!std::isfinite(v[i])) return i;
+  }
+  return n;
+}
+
+Status check_finite_array(const std::string& name, const char* what, const float* v, std::size_t n,
+                          std::size_t per_vertex) {
+  const std::size_t bad = find_non_finite(v, n);
+  if (bad == n) return Status::Ok();
+  std::ostringstream os;
+  os << what << " of vertex " << bad / per_vertex << " is not finite (" << v[bad] << ")";
+  return fail(name, os.str());
+}
+
+// CRC-32C of the file with the checksum field taken as zero.
+uint32_t file_checksum(const unsigned char* bytes, std::size_t size) {
+  static const unsigned char zeros[4] = {0, 0, 0, 0};
+  uint32_t crc = crc32c(bytes, kOffChecksum);
+  crc = crc32c(zeros, 4, crc);
+  return crc32c(bytes + kOffChecksum + 4, size - kOffChecksum - 4, crc);
+}
+
+}  // namespace
+
+Status validate_transfer_data(const TransferData& d, const std::string& name) {
+  if (static_cast<uint32_t>(d.kind) > static_cast<uint32_t>(TransferKind::Haar)) {
+    return fail(name, "unknown transfer kind " + std::to_string(static_cast<uint32_t>(d.kind)));
+  }
+  if (d.storage != Precision::F32 && d.storage != Precision::F16) {
+    return fail(name,
+                "unknown storage precision " + std::to_string(static_cast<uint32_t>(d.storage)));
+  }
+  if (d.order < 1 || d.order > kMaxTransferOrder) {
+    return fail(name, "SH order " + std::to_string(d.order) + " is outside [1, " +
+                          std::to_string(kMaxTransferOrder) + "]");
+  }
+  if (d.channels != 1 && d.channels != 3) {
+    return fail(name, "channel count " + std::to_string(d.channels) + " is not 1 or 3");
+  }
+  if (d.vertex_count > kMaxTransferVertices) {
+    return fail(name, "vertex count " + std::to_string(d.vertex_count) + " exceeds " +
+                          std::to_string(kMaxTransferVertices));
+  }
+  const uint64_t v = d.vertex_count;
+  const uint64_t k = uint64_t{d.order} * d.order;
+  auto size_error = [&](const char* what, std::size_t have, uint64_t want) {
+    std::ostringstream os;
+    os << what << " holds " << have << " floats, expected " << want << " for " << v << " vertices";
+    return fail(name, os.str());
+  };
+  if (d.positions.size() != 3 * v) return size_error("positions", d.positions.size(), 3 * v);
+  if (d.normals.size() != 3 * v) return size_error("normals", d.normals.size(), 3 * v);
+  if (d.coefficients.size() != v * d.channels * k) {
+    return size_error("coefficients", d.coefficients.size(), v * d.channels * k);
+  }
+  if (!d.ao.empty() && d.ao.size() != v) return size_error("ao", d.ao.size(), v);
+  if (!d.bent_normals.empty() && d.bent_normals.size() != 3 * v) {
+    return size_error("bent normals", d.bent_normals.size(), 3 * v);
+  }
+  for (std::size_t i = 0; i < d.primitives.size(); ++i) {
+    const PrimitiveRange& p = d.primitives[i];
+    if (p.first_vertex > v || p.vertex_count > v - p.first_vertex) {
+      std::ostringstream os;
+      os << "primitive " << i << " (\"" << p.name << "\") covers vertices [" << p.first_vertex
+         << ", +" << p.vertex_count << ") beyond the " << v << " vertices";
+      return fail(name, os.str());
+    }
+  }
+  Status s = check_finite_array(name, "position", d.positions.data(), d.positions.size(), 3);
+  if (s.ok()) s = check_finite_array(name, "normal", d.normals.data(), d.normals.size(), 3);
+  if (s.ok()) s = check_finite_array(name, "ao", d.ao.data(), d.ao.size(), 1);
+  if (s.ok()) {
+    s = check_finite_array(name, "bent normal", d.bent_normals.data(), d.bent_normals.size(), 3);
+  }
+  if (s.ok()) {
+    s = check_finite_array(name, "a coefficient", d.coefficients.data(), d.coefficients.size(),
+                           d.channels * k);
+  }
+  if (!s.ok()) return s;
+  if (d.storage == Precision::F16) {
+    const std::size_t n = d.coefficients.size();
+    const std::size_t bad = find_half_overflow(d.coefficients.data(), n);
+    if (bad != n) {
+      std::ostringstream os;
+      os.precision(9);
+      os << "coefficient " << d.coefficients[bad] << " of vertex " << bad / (d.channels * k)
+         << " (channel " << (bad / k) % d.channels << ", index " << bad % k
+         << ") overflows float16 (largest 65504); store it as F32";
+      return fail(name, os.str());
+    }
+  }
+  if (d.fingerprint != 0 &&
+      d.fingerprint != geometry_fingerprint(d.positions.data(), static_cast<std::size_t>(v))) {
+    return fail(name, "fingerprint does not match the positions (leave it 0 to have it computed)");
+  }
+  return Status::Ok();
+}
+
+Result<std::vector<unsigned char>> encode_transfer_file(const TransferData& d,
+                                                        const std::string& name) {
+  Status valid = validate_transfer_data(d, name);
+  if (!valid.ok()) return valid;
+  try {
+    const uint64_t v = d.vertex_count;
+    const uint64_t k = uint64_t{d.order} * d.order;
+    const uint64_t bytes_per_value = d.storage == Precision::F16 ? 2 : 4;
+    // Primitive table: records, then the names.
+    uint64_t names_size = 0;
+    for (const PrimitiveRange& p : d.primitives) names_size += p.name.size();
+    std::array<uint64_t, kSectionCount> sizes{};
+    sizes[kPrimitives] = d.primitives.size() * kPrimitiveRecordSize + names_size;
+    sizes[kPositions] = 12 * v;
+    sizes[kNormals] = 12 * v;
+    if (!blocked_coefficient_bytes(v, d.channels, k, bytes_per_value, &sizes[kCoefficients])) {
+      return fail(name, "coefficient section size overflows");
+    }
+    sizes[kAo] = 4 * uint64_t{d.ao.size()};
+    sizes[kBentNormals] = 4 * uint64_t{d.bent_normals.size()};
+    sizes[kMetadata] = d.metadata_json.size();
+    std::array<uint64_t, kSectionCount> offsets{};
+    uint64_t end = kHeaderSize;
+    for (int s = 0; s < kSectionCount; ++s) {
+      if (sizes[s] == 0) continue;
+      offsets[s] = end;
+      end = align_up(end + sizes[s]);
+    }
+    if (end > std::numeric_limits<std::size_t>::max()) return fail(name, "file too large");
+    std::vector<unsigned char> out(static_cast<std::size_t>(end), 0);
+    unsigned char* h = out.data();
+    std::memcpy(h + kOffMagic, "PRTC", 4);
+    store_u32(h + kOffVersion, kTransferFileVersion);
+    store_u32(h + kOffHeaderSize, kHeaderSize);
+    store_u32(h + kOffKind, static_cast<uint32_t>(d.kind));
+    store_u32(h + kOffOrder, d.order);
+    store_u32(h + kOffChannels, d.channels);
+    store_u32(h + kOffStorage, static_cast<uint32_t>(d.storage));
+    const uint32_t flags = (d.albedo_folded ? kFlagAlbedoFolded : 0u) |
+                           (d.ao.empty() ? 0u : kFlagHasAo) |
+                           (d.bent_normals.empty() ? 0u : kFlagHasBentNormals);
+    store_u32(h + kOffFlags, flags);
+    store_u64(h + kOffVertexCount, v);
+    store_u64(h + kOffPrimitiveCount, d.primitives.size());
+    store_u64(h + kOffFingerprint,
+              geometry_fingerprint(d.positions.data(), static_cast<std::size_t>(v)));
+    store_u64(h + kOffFileSize, end);
+    for (int s = 0; s < kSectionCount; ++s) {
+      store_u64(h + kOffSections + 16 * s, offsets[s]);
+      store_u64(h + kOffSections + 16 * s + 8, sizes[s]);
+    }
+    // Primitive table.
+    unsigned char* prim = h + offsets[kPrimitives];
+    uint64_t name_at = d.primitives.size() * kPrimitiveRecordSize;
+    for (std::size_t i = 0; i < d.primitives.size(); ++i) {
+      const PrimitiveRange& p = d.primitives[i];
+      unsigned char* r = prim + i * kPrimitiveRecordSize;
+      store_u64(r, p.first_vertex);
+      store_u64(r + 8, p.vertex_count);
+      store_u64(r + 16, name_at);
+      store_u64(r + 24, p.name.size());
+      if (!p.name.empty()) std::memcpy(prim + name_at, p.name.data(), p.name.size());
+      name_at += p.name.size();
+    }
+    auto copy_floats = [&](int s, const std::vector<float>& src) {
+      if (!src.empty()) std::memcpy(h + offsets[s], src.data(), src.size() * sizeof(float));
+    };
+    copy_floats(kPositions, d.positions);
+    copy_floats(kNormals, d.normals);
+    copy_floats(kAo, d.ao);
+    copy_floats(kBentNormals, d.bent_normals);
+    if (!d.metadata_json.empty()) {
+      std::memcpy(h + offsets[kMetadata], d.metadata_json.data(), d.metadata_json.size());
+    }
+    // Coefficients: vertex-major floats -> blocked layout (padding stays zero).
+    unsigned char* coeffs = h + offsets[kCoefficients];
+    const std::size_t vk = d.channels * static_cast<std::size_t>(k);
+    for (std::size_t vi = 0; vi < v; ++vi) {
+      for (std::size_t c = 0; c < d.channels; ++c) {
+        const float* src = d.coefficients.data() + vi * vk + c * k;
+        for (std::size_t ki = 0; ki < k; ++ki) {
+          const std::size_t at = blocked_coefficient_index(vi, c, ki, d.channels, k);
+          if (d.storage == Precision::F16) {
+            const uint16_t half = float_to_half(src[ki]);
+            std::memcpy(coeffs + 2 * at, &half, 2);
+          } else {
+            std::memcpy(coeffs + 4 * at, src + ki, 4);
+          }
+        }
+      }
+    }
+    store_u32(h + kOffChecksum, file_checksum(h, out.size()));
+    return out;
+  } catch (const std::bad_alloc&) {
+    return fail(name, "out of memory while encoding");
+  } catch (const std::length_error&) {
+    return fail(name, "out of memory while encoding");
+  }
+}
+
+Status write_transfer_file(const std::string& path, const TransferData& data) {
+  Result<std::vector<unsigned char>> bytes = encode_transfer_file(data, path);
+  if (!bytes.ok()) return bytes.status();
+  std::string tmp;
+  try {
+    tmp = path + ".tmp-" + std::to_string(PRT_GETPID());
+  } catch (const std::bad_alloc&) {
+    return fail(path, "out of memory");
+  }
+  std::FILE* f = std::fopen(tmp.c_str(), "wb");
+  if (f == nullptr) return fail(path, "cannot create " + tmp + ": " + std::strerror(errno));
+  const std::vector<unsigned char>& b = bytes.value();
+  bool ok = std::fwrite(b.data(), 1, b.size(), f) == b.size();
+  int saved_errno = errno;
+  ok = (std::fflush(f) == 0) && ok;
+  if (ok) saved_errno = errno;
+  ok = (std::fclose(f) == 0) && ok;
+  if (!ok) {
+    std::remove(tmp.c_str());
+    return fail(path, std::string("cannot write ") + tmp + ": " + std::strerror(saved_errno));
+  }
+  if (std::rename(tmp.c_str(), path.c_str()) != 0) {
+    saved_errno = errno;
+    std::remove(tmp.c_str());
+    return fail(path, std::string("cannot rename ") + tmp + ": " + std::strerror(saved_errno));
+  }
+  return Status::Ok();
+}
+
+namespace detail {
+
+Status parse_transfer_file(const void* bytes_in, std::size_t size, const std::string& name,
+                           ParsedTransferFile* out) {
+  const auto* b = static_cast<const unsigned char*>(bytes_in);
+  if (b == nullptr && size != 0) return fail(name, "null buffer");
+  if (size < kHeaderSize) {
+    return fail(name, "truncated: " + std::to_string(size) + " bytes, less than the " +
+                          std::to_string(kHeaderSize) + "-byte header");
+  }
+  if (std::memcmp(b, "PRTC", 4) != 0) return fail(name, "not a prt coefficient file (bad magic)");
+  const uint32_t version = load_u32(b + kOffVersion);
+  if (version != kTransferFileVersion) {
+    return fail(name, "unsupported format version " + std::to_string(version) +
+                          " (this library reads version " + std::to_string(kTransferFileVersion) +
+                          ")");
+  }
+  if (load_u32(b + kOffHeaderSize) != kHeaderSize) {
+    return fail(name, "header size " + std::to_string(load_u32(b + kOffHeaderSize)) + " is not " +
+                          std::to_string(kHeaderSize));
+  }
+  const uint64_t file_size = load_u64(b + kOffFileSize);
+  if (file_size > size) {
+    return fail(name, "truncated: header says " + std::to_string(file_size) + " bytes, only " +
+                          std::to_string(size) + " present");
+  }
+  if (file_size < size) {
+    return fail(name, std::to_string(size - file_size) + " unexpected bytes after the " +
+                          std::to_string(file_size) + " the header announces");
+  }
+  const uint32_t stored_crc = load_u32(b + kOffChecksum);
+  const uint32_t actual_crc = file_checksum(b, size);
+  if (stored_crc != actual_crc) {
+    char text[96];
+    std::snprintf(text, sizeof text, "checksum mismatch (stored 0x%08x, computed 0x%08x)",
+                  stored_crc, actual_crc);
+    return fail(name, text);
+  }
+  // The bytes are what the writer wrote; now check that the writer was consistent.
+  const uint32_t kind = load_u32(b + kOffKind);
+  const uint32_t order = load_u32(b + kOffOrder);
+  const uint32_t channels = load_u32(b + kOffChannels);
+  const uint32_t storage = load_u32(b + kOffStorage);
+  const uint32_t flags = load_u32(b + kOffFlags);
+  const uint64_t v = load_u64(b + kOffVertexCount);
+  const uint64_t primitive_count = load_u64(b + kOffPrimitiveCount);
+  if (kind > static_cast<uint32_t>(TransferKind::Haar)) {
+    return fail(name, "unknown transfer kind " + std::to_string(kind));
+  }
+  if (order < 1 || order > kMaxTransferOrder) {
+    return fail(name, "SH order " + std::to_string(order) + " is outside [1, " +
+                          std::to_string(kMaxTransferOrder) + "]");
+  }
+  if (channels != 1 && channels != 3) {
+    return fail(name, "channel count " + std::to_string(channels) + " is not 1 or 3");
+  }
+  if (storage > 1) return fail(name, "unknown storage precision " + std::to_string(storage));
+  if (flags & ~kKnownFlags) return fail(name, "unknown flags " + std::to_string(flags));
+  if (load_u32(b + kOffReserved0) != 0 || load_u64(b + kOffReserved1) != 0) {
+    return fail(name, "reserved header fields are not zero");
+  }
+  if (v > kMaxTransferVertices) {
+    return fail(name, "vertex count " + std::to_string(v) + " exceeds " +
+                          std::to_string(kMaxTransferVertices));
+  }
+  const uint64_t k = uint64_t{order} * order;
+  // Expected section sizes (all products bounded: v < 2^32, k <= 4096).
+  std::array<uint64_t, kSectionCount> offsets{}, sizes{};
+  for (int s = 0; s < kSectionCount; ++s) {
+    offsets[s] = load_u64(b + kOffSections + 16 * s);
+    sizes[s] = load_u64(b + kOffSections + 16 * s + 8);
+  }
+  uint64_t coefficient_bytes = 0;
+  blocked_coefficient_bytes(v, channels, k, storage == 1 ? 2 : 4, &coefficient_bytes);
+  const bool has_ao = flags & kFlagHasAo, has_bent = flags & kFlagHasBentNormals;
+  const std::array<uint64_t, kSectionCount> expected = {
+      0, 12 * v, 12 * v, coefficient_bytes, has_ao ? 4 * v : 0, has_bent ? 12 * v : 0, 0};
+  for (int s = 0; s < kSectionCount; ++s) {
+    if (s != kPrimitives && s != kMetadata && sizes[s] != expected[s]) {
+      return fail(name, std::string(section_name(s)) + " section holds " +
+                            std::to_string(sizes[s]) + " bytes, expected " +
+                            std::to_string(expected[s]) + " for " + std::to_string(v) +
+                            " vertices");
+    }
+    if (sizes[s] == 0) {
+      if (offsets[s] != 0) {
+        return fail(name, std::string("empty ") + section_name(s) + " section has an offset");
+      }
+      continue;
+    }
+    if (offsets[s] % kSectionAlignment != 0 || offsets[s] < kHeaderSize || offsets[s] > file_size ||
+        sizes[s] > file_size - offsets[s]) {
+      return fail(name, std::string(section_name(s)) + " section [" + std::to_string(offsets[s]) +
+                            ", +" + std::to_string(sizes[s]) + ") lies outside the " +
+                            std::to_string(file_size) + "-byte file or is misaligned");
+    }
+  }
+  // Sections must not overlap.
+  std::array<int, kSectionCount> order_by_offset{};
+  for (int s = 0; s < kSectionCount; ++s) order_by_offset[s] = s;
+  std::sort(order_by_offset.begin(), order_by_offset.end(),
+            [&](int a, int c) { return offsets[a] < offsets[c]; });
+  uint64_t previous_end = kHeaderSize;
+  for (int s : order_by_offset) {
+    if (sizes[s] == 0) continue;
+    if (offsets[s] < previous_end) {
+      return fail(name, std::string(section_name(s)) + " section overlaps another");
+    }
+    previous_end = offsets[s] + sizes[s];
+  }
+  if (primitive_count > sizes[kPrimitives] / kPrimitiveRecordSize) {
+    return fail(name, "primitive count " + std::to_string(primitive_count) +
+                          " does not fit in the " + std::to_string(sizes[kPrimitives]) +
+                          "-byte primitive table");
+  }
+  try {
+    TransferData& d = out->data;
+    d = TransferData{};
+    d.kind = static_cast<TransferKind>(kind);
+    d.order = order;
+    d.channels = channels;
+    d.storage = static_cast<Precision>(storage);
+    d.albedo_folded = flags & kFlagAlbedoFolded;
+    d.vertex_count = v;
+    d.fingerprint = load_u64(b + kOffFingerprint);
+    const unsigned char* prim = b + offsets[kPrimitives];
+    const uint64_t table_size = primitive_count * kPrimitiveRecordSize;
+    d.primitives.resize(static_cast<std::size_t>(primitive_count));
+    for (std::size_t i = 0; i < d.primitives.size(); ++i) {
+      const unsigned char* r = prim + i * kPrimitiveRecordSize;
+      PrimitiveRange& p = d.primitives[i];
+      p.first_vertex = load_u64(r);
+      p.vertex_count = load_u64(r + 8);
+      const uint64_t name_offset = load_u64(r + 16), name_size = load_u64(r + 24);
+      if (name_offset < table_size || name_offset > sizes[kPrimitives] ||
+          name_size > sizes[kPrimitives] - name_offset) {
+        return fail(name,
+                    "name of primitive " + std::to_string(i) + " lies outside the primitive table");
+      }
+      if (p.first_vertex > v || p.vertex_count > v - p.first_vertex) {
+        return fail(name, "primitive " + std::to_string(i) + " covers vertices beyond the " +
+                              std::to_string(v) + " vertices");
+      }
+      p.name.assign(reinterpret_cast<const char*>(prim + name_offset),
+                    static_cast<std::size_t>(name_size));
+    }
+    auto read_floats = [&](int s, std::vector<float>& dst) {
+      dst.resize(static_cast<std::size_t>(sizes[s] / 4));
+      if (!dst.empty()) std::memcpy(dst.data(), b + offsets[s], dst.size() * sizeof(float));
+    };
+    read_floats(kPositions, d.positions);
+    read_floats(kNormals, d.normals);
+    read_floats(kAo, d.ao);
+    read_floats(kBentNormals, d.bent_normals);
+    d.metadata_json.assign(reinterpret_cast<const char*>(b + offsets[kMetadata]),
+                           static_cast<std::size_t>(sizes[kMetadata]));
+    Status s = check_finite_array(name, "position", d.positions.data(), d.positions.size(), 3);
+    if (s.ok()) s = check_finite_array(name, "normal", d.normals.data(), d.normals.size(), 3);
+    if (s.ok()) s = check_finite_array(name, "ao", d.ao.data(), d.ao.size(), 1);
+    if (s.ok()) {
+      s = check_finite_array(name, "bent normal", d.bent_normals.data(), d.bent_normals.size(), 3);
+    }
+    if (!s.ok()) return s;
+    out->coefficients = b + offsets[kCoefficients];
+    out->coefficient_bytes = static_cast<std::size_t>(sizes[kCoefficients]);
+    // Finite coefficients (padding included: it must be zero, which is finite).
+    if (storage == 1) {
+      for (std::size_t i = 0; i < out->coefficient_bytes; i += 2) {
+        const unsigned exponent = out->coefficients[i + 1] & 0x7cu;  // high byte: s eeeee mm
+        if (exponent == 0x7cu) {
+          return fail(name, "a float16 coefficient is Inf or NaN");
+        }
+      }
+    } else {
+      for (std::size_t i = 0; i < out->coefficient_bytes; i += 4) {
+        float f;
+        std::memcpy(&f, out->coefficients + i, 4);
+        if (!std::isfinite(f)) return fail(name, "a coefficient is Inf or NaN");
+      }
+    }
+    if (d.fingerprint != geometry_fingerprint(d.positions.data(), static_cast<std::size_t>(v))) {
+      return fail(name, "stored fingerprint does not match the stored positions");
+    }
+  } catch (const std::bad_alloc&) {
+    return fail(name, "out of memory while reading");
+  } catch (const std::length_error&) {
+    return fail(name, "out of memory while reading");
+  }
+  return Status::Ok();
+}
+
+}  // namespace detail
+
+Result<TransferData> read_transfer_data(const void* bytes, std::size_t size,
+                                        const std::string& name) {
+  try {
+    ParsedTransferFile parsed;
+    Status s = parse_transfer_file(bytes, size, name, &parsed);
+    if (!s.ok()) return s;
+    TransferData& d = parsed.data;
+    const std::size_t v = static_cast<std::size_t>(d.vertex_count);
+    const std::size_t k = d.coefficients_per_channel();
+    const std::size_t c_count = d.channels;
+    d.coefficients.resize(v * c_count * k);
+    const unsigned char* src = parsed.coefficients;
+    for (std::size_t vi = 0; vi < v; ++vi) {
+      for (std::size_t c = 0; c < c_count; ++c) {
+        float* dst = d.coefficients.data() + (vi * c_count + c) * k;
+        for (std::size_t ki = 0; ki < k; ++ki) {
+          const std::size_t at = blocked_coefficient_index(vi, c, ki, c_count, k);
+          if (d.storage == Precision::F16) {
+            uint16_t h;
+            std::memcpy(&h, src + 2 * at, 2);
+            dst[ki] = half_to_float(h);
+          } else {
+            std::memcpy(dst + ki, src + 4 * at, 4);
+          }
+        }
+      }
+    }
+    return std::move(parsed.data);
+  } catch (const std::bad_alloc&) {
+    return fail(name, "out of memory while reading");
+  } catch (const std::length_error&) {
+    return fail(name, "out of memory while reading");
+  }
+}
+
+Result<TransferData> read_transfer_file(const std::string& path) {
+  std::FILE* f = std::fopen(path.c_str(), "rb");
+  if (f == nullptr) return fail(path, std::string("cannot open: ") + std::strerror(errno));
+  std::vector<unsigned char> bytes;
+  bool read_error = std::fseek(f, 0, SEEK_END) != 0;
+  const long length = read_error ? -1 : std::ftell(f);
+  read_error = read_error || length < 0 || std::fseek(f, 0, SEEK_SET) != 0;
+  if (!read_error) {
+    try {
+      bytes.resize(static_cast<std::size_t>(length));
+    } catch (const std::exception&) {
+      std::fclose(f);
+      return fail(path, "out of memory while reading " + std::to_string(length) + " bytes");
+    }
+    read_error = std::fread(bytes.data(), 1, bytes.size(), f) != bytes.size();
+  }
+  std::fclose(f);
+  if (read_error) return fail(path, "read error");
+  return read_transfer_data(bytes.data(), bytes.size(), path);
+}
+
+}  // namespace prt

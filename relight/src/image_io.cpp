@@ -1,1 +1,238 @@
-// placeholder: being written
+// relight/src/image_io.cpp — environment-map reading and atomic image writing with OpenImageIO.
+#include "relight/image_io.h"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <system_error>
+
+#include <OpenImageIO/imageio.h>
+
+namespace prt::relight {
+namespace {
+
+// One line: OpenImageIO messages may span several.
+std::string one_line(std::string text) {
+  std::replace(text.begin(), text.end(), '\n', ' ');
+  while (!text.empty() && (text.back() == ' ' || text.back() == '\r')) text.pop_back();
+  return text;
+}
+
+[[noreturn]] void fail(const std::string& path, const std::string& problem) {
+  throw std::runtime_error(path + ": " + one_line(problem));
+}
+
+std::string lower_extension(const std::string& path) {
+  std::string extension = std::filesystem::path(path).extension().string();
+  std::transform(extension.begin(), extension.end(), extension.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return extension;
+}
+
+// Float RGB from an image with any channel count.
+sh::EnvMap to_rgb(const FloatImage& image, sh::EnvLayout layout) {
+  sh::EnvMap env;
+  env.layout = layout;
+  env.width = image.width;
+  env.height = image.height;
+  const std::size_t texels = static_cast<std::size_t>(image.width) * image.height;
+  env.rgb.resize(texels * 3);
+  const int channels = image.channels;
+  for (std::size_t i = 0; i < texels; ++i) {
+    const float* in = &image.pixels[i * channels];
+    float* out = &env.rgb[i * 3];
+    if (channels >= 3) {
+      out[0] = in[0];
+      out[1] = in[1];
+      out[2] = in[2];
+    } else {
+      out[0] = out[1] = out[2] = in[0];
+    }
+  }
+  return env;
+}
+
+std::string temporary_path(const std::string& path) {
+  return path + ".tmp-" + std::to_string(static_cast<long>(::getpid()));
+}
+
+// Writes `format` pixels through OpenImageIO to PATH.tmp-<pid>, then renames onto PATH.
+void write_atomically(const std::string& path, const OIIO::ImageSpec& spec, OIIO::TypeDesc format,
+                      const void* pixels) {
+  // The plugin is chosen from the final name; the temporary name has no useful extension.
+  std::unique_ptr<OIIO::ImageOutput> out = OIIO::ImageOutput::create(path);
+  if (!out) fail(path, "no image writer for this extension (" + OIIO::geterror() + ")");
+  const std::string temporary = temporary_path(path);
+  auto remove_temporary = [&]() {
+    std::error_code ignored;
+    std::filesystem::remove(temporary, ignored);
+  };
+  if (!out->open(temporary, spec)) {
+    const std::string why = out->geterror();
+    remove_temporary();
+    fail(path, "cannot write: " + why);
+  }
+  if (!out->write_image(format, pixels)) {
+    const std::string why = out->geterror();
+    out->close();
+    remove_temporary();
+    fail(path, "cannot write: " + why);
+  }
+  if (!out->close()) {
+    const std::string why = out->geterror();
+    remove_temporary();
+    fail(path, "cannot write: " + why);
+  }
+  std::error_code error;
+  std::filesystem::rename(temporary, path, error);
+  if (error) {
+    remove_temporary();
+    fail(path, "cannot rename the temporary file into place: " + error.message());
+  }
+}
+
+}  // namespace
+
+FloatImage read_image(const std::string& path) {
+  std::error_code error;
+  if (!std::filesystem::exists(path, error)) fail(path, "no such file");
+  if (std::filesystem::is_directory(path, error)) fail(path, "is a directory, not an image");
+  std::unique_ptr<OIIO::ImageInput> in = OIIO::ImageInput::open(path);
+  if (!in) fail(path, "cannot read the image: " + OIIO::geterror());
+  const OIIO::ImageSpec& spec = in->spec();
+  if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0)
+    fail(path, "the image has zero size (" + std::to_string(spec.width) + "x" +
+                   std::to_string(spec.height) + ")");
+  FloatImage image;
+  image.width = spec.width;
+  image.height = spec.height;
+  image.channels = spec.nchannels;
+  image.pixels.resize(static_cast<std::size_t>(image.width) * image.height * image.channels);
+  if (!in->read_image(0, 0, 0, image.channels, OIIO::TypeDesc::FLOAT, image.pixels.data()))
+    fail(path, "cannot read the pixels: " + in->geterror());
+  in->close();
+  return image;
+}
+
+sh::EnvMap read_environment(const std::string& path, std::optional<sh::EnvLayout> layout,
+                            std::string* chosen_note) {
+  const bool is_pattern = path.find("%s") != std::string::npos;
+  if (is_pattern && (!layout || *layout == sh::EnvLayout::Faces)) {
+    if (chosen_note) *chosen_note = "layout faces (six files from the pattern)";
+    return read_environment_faces_pattern(path);
+  }
+  const FloatImage image = read_image(path);
+  sh::EnvLayout chosen;
+  if (layout) {
+    chosen = *layout;
+    std::string why;
+    if (!sh::validate_layout(chosen, image.width, image.height, &why))
+      fail(path, std::to_string(image.width) + "x" + std::to_string(image.height) +
+                     " does not fit the " + sh::layout_name(chosen) + " layout: " + why);
+    if (chosen_note) *chosen_note = std::string("layout ") + sh::layout_name(chosen);
+  } else {
+    bool ok = false;
+    chosen = sh::guess_layout(image.width, image.height, &ok);
+    if (!ok)
+      fail(path,
+           "cannot tell the layout from the size " + std::to_string(image.width) + "x" +
+               std::to_string(image.height) +
+               " (expected 2:1 lat-long, 1:1 angular, 3:4 cross or 1:6 faces); pass a layout");
+    if (chosen_note) {
+      static const char* const kRatios[] = {"2:1", "1:1", "3:4", "1:6"};
+      *chosen_note = std::string("layout ") + sh::layout_name(chosen) +
+                     " (auto: " + std::to_string(image.width) + "x" + std::to_string(image.height) +
+                     " is " + kRatios[static_cast<int>(chosen)] + ")";
+    }
+  }
+  return to_rgb(image, chosen);
+}
+
+sh::EnvMap read_environment_faces(const std::vector<std::string>& six_paths) {
+  if (six_paths.size() != 6)
+    throw std::runtime_error("faces: expected 6 files (+X, -X, +Y, -Y, +Z, -Z), got " +
+                             std::to_string(six_paths.size()));
+  sh::EnvMap env;
+  env.layout = sh::EnvLayout::Faces;
+  for (std::size_t face = 0; face < 6; ++face) {
+    const std::string& path = six_paths[face];
+    const FloatImage image = read_image(path);
+    if (image.width != image.height)
+      fail(path, "a cube face must be square, not " + std::to_string(image.width) + "x" +
+                     std::to_string(image.height));
+    if (face == 0) {
+      env.width = image.width;
+      env.height = 6 * image.width;
+      env.rgb.reserve(static_cast<std::size_t>(env.width) * env.height * 3);
+    } else if (image.width != env.width) {
+      fail(path, "face size " + std::to_string(image.width) + " differs from the first face's " +
+                     std::to_string(env.width));
+    }
+    const sh::EnvMap face_map = to_rgb(image, sh::EnvLayout::Faces);
+    env.rgb.insert(env.rgb.end(), face_map.rgb.begin(), face_map.rgb.end());
+  }
+  return env;
+}
+
+sh::EnvMap read_environment_faces_pattern(const std::string& pattern) {
+  const std::size_t at = pattern.find("%s");
+  if (at == std::string::npos) fail(pattern, "a faces pattern needs %s (replaced by px, nx, ...)");
+  std::vector<std::string> paths;
+  for (const char* suffix : kFaceSuffixes)
+    paths.push_back(pattern.substr(0, at) + suffix + pattern.substr(at + 2));
+  return read_environment_faces(paths);
+}
+
+void write_image(const std::string& path, int width, int height, int channels, const float* pixels,
+                 const ImageWriteOptions& options) {
+  if (width <= 0 || height <= 0) fail(path, "cannot write an empty image");
+  if (channels < 1 || channels > 4)
+    fail(path, "cannot write " + std::to_string(channels) + " channels (1 to 4 supported)");
+  const std::string extension = lower_extension(path);
+  const std::size_t texels = static_cast<std::size_t>(width) * height;
+  if (extension == ".png") {
+    std::vector<unsigned char> bytes(texels * channels);
+    for (std::size_t i = 0; i < bytes.size(); ++i) {
+      const float v = pixels[i];
+      const float clamped = std::isnan(v) ? 0.0f : std::clamp(v, 0.0f, 1.0f);
+      bytes[i] = static_cast<unsigned char>(std::lround(clamped * 255.0f));
+    }
+    OIIO::ImageSpec spec(width, height, channels, OIIO::TypeDesc::UINT8);
+    write_atomically(path, spec, OIIO::TypeDesc::UINT8, bytes.data());
+  } else if (extension == ".hdr") {
+    std::vector<float> rgb(texels * 3);
+    for (std::size_t i = 0; i < texels; ++i)
+      for (int c = 0; c < 3; ++c) rgb[i * 3 + c] = pixels[i * channels + (channels >= 3 ? c : 0)];
+    OIIO::ImageSpec spec(width, height, 3, OIIO::TypeDesc::FLOAT);
+    write_atomically(path, spec, OIIO::TypeDesc::FLOAT, rgb.data());
+  } else if (extension == ".exr") {
+    OIIO::ImageSpec spec(width, height, channels,
+                         options.exr_half ? OIIO::TypeDesc::HALF : OIIO::TypeDesc::FLOAT);
+    if (channels == 1) spec.channelnames = {"Y"};
+    if (options.exr_half) {
+      constexpr float kHalfMax = 65504.0f;
+      std::vector<float> clamped(pixels, pixels + texels * channels);
+      for (float& v : clamped)
+        if (!std::isnan(v)) v = std::clamp(v, -kHalfMax, kHalfMax);
+      write_atomically(path, spec, OIIO::TypeDesc::FLOAT, clamped.data());
+    } else {
+      write_atomically(path, spec, OIIO::TypeDesc::FLOAT, pixels);
+    }
+  } else {
+    fail(path, "unsupported output extension '" + extension + "' (use .exr, .hdr or .png)");
+  }
+}
+
+void write_png_rgba8(const std::string& path, int width, int height, const unsigned char* rgba) {
+  if (width <= 0 || height <= 0) fail(path, "cannot write an empty image");
+  if (lower_extension(path) != ".png") fail(path, "write_png_rgba8 writes .png files only");
+  OIIO::ImageSpec spec(width, height, 4, OIIO::TypeDesc::UINT8);
+  write_atomically(path, spec, OIIO::TypeDesc::UINT8, rgba);
+}
+
+}  // namespace prt::relight

@@ -1,0 +1,68 @@
+// bake/interreflection_solver.h — the diffuse interreflection system of Sloan, Kautz & Snyder,
+// "Precomputed Radiance Transfer for Real-Time Rendering in Dynamic, Low-Frequency Lighting
+// Environments", SIGGRAPH 2002, §6 (interreflected transfer), solved per colour channel c:
+//
+//     (I − diag(ρ_c) H) T_c = D_c
+//
+// T_c, D_c: V × K blocks (V vertices, K = order² SH coefficients), vertex-major (row v holds
+// the K coefficients of vertex v). D = shadowed (direct) transfer, which already includes the
+// receiver's albedo/π. H is the sparse "gather" matrix built by the baker: row p holds, for
+// every cosine-distributed sample ray of p that hits a front face, the hit triangle's vertex
+// indices with weights b_i / N (Embree barycentrics over N samples), duplicates merged.
+// Row sums of H are the hit fraction of p, ≤ 1, so with ρ_max < 1 the max-norm of ρH is ≤ ρ_max
+// and the Neumann series (Jacobi bounces) contracts by at least ρ_max per bounce.
+//
+// Memory: CSR, 4-byte column + 4-byte weight = 8 bytes per stored entry (≤ 3 per hit ray before
+// merging), plus 8 bytes per row. The Krylov solver holds 7 V × K double blocks.
+// Determinism: row-parallel mat-vecs; dot products reduce fixed 512-row blocks in block order,
+// so results are bit-identical for any thread count.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace prt::bake {
+
+class ProgressSink;
+
+// Compressed sparse rows of H (see above).
+struct SparseTransferMatrix {
+  std::vector<uint64_t> row_offsets{0};  // rows + 1 entries
+  std::vector<uint32_t> columns;
+  std::vector<float> weights;
+
+  std::size_t rows() const { return row_offsets.size() - 1; }
+  std::size_t entries() const { return columns.size(); }
+  std::size_t bytes() const {
+    return row_offsets.size() * sizeof(uint64_t) + columns.size() * sizeof(uint32_t) +
+           weights.size() * sizeof(float);
+  }
+};
+
+struct SolveOptions {
+  int bounces = -1;           // ≥ 0: exactly that many Jacobi bounces; −1: Krylov to tolerance
+  double tolerance = 1e-4;    // relative residual target of the Krylov solve
+  int warmup_bounces = 3;     // Jacobi bounces that seed the Krylov solve
+  int max_iterations = 2000;  // BiCGSTAB iteration cap (per channel)
+};
+
+struct SolveReport {
+  int jacobi_bounces = 0;     // Jacobi bounces run (explicit or warm-up)
+  int krylov_iterations = 0;  // BiCGSTAB iterations (0 for explicit bounces)
+  double relative_residual = 0;  // max over columns of ‖D − A T‖₂ / ‖D‖₂ (see .cpp for floor)
+  bool converged = true;  // false when the iteration cap was hit first
+  // Max-norm of the radiance each Jacobi bounce adds, ‖(ρH)^i D‖_max, i = 1 .. bounces.
+  std::vector<double> bounce_energy;
+};
+
+// y = diag(rho) · H · x for V × K blocks (rho has V entries).
+void multiply_gather(const SparseTransferMatrix& h, const std::vector<double>& rho, const double* x,
+                     int columns, double* y);
+
+// Solves (I − diag(rho) H) T = D for one channel; `t` (V × K) receives the solution.
+SolveReport solve_interreflection(const SparseTransferMatrix& h, const std::vector<double>& rho,
+                                  const double* d, int columns, double* t,
+                                  const SolveOptions& options, ProgressSink* progress = nullptr);
+
+}  // namespace prt::bake

@@ -1,0 +1,439 @@
+// bake/src/transfer_baker.cpp — the per-vertex sampling pass, the gather matrix and the
+// assembly of TransferData (see transfer_baker.h).
+//
+// Interreflection estimator (Sloan, Kautz & Snyder 2002, §6), derived:
+//   the exit radiance of a diffuse vertex p with albedo ρ_p is
+//     B_p = (ρ_p/π) ∫_{H(n)} L_in(ω) cos θ dω,
+//   and L_in(ω) = V(ω)·L_env(ω) + B_q(ω), q(ω) the point the ray p→ω hits (exit radiance of a
+//   diffuse surface is the same in every direction). With N directions of pdf cos θ/π,
+//     ∫ f cos θ dω ≈ (1/N) Σ_s f(ω_s) · cos θ_s / (cos θ_s/π) = (π/N) Σ_s f(ω_s),
+//   so B_p ≈ (ρ_p/π)(π/N) Σ_s [V L_env + B_q] = (ρ_p/N) Σ_s V(ω_s) L_env(ω_s)
+//                                             + (ρ_p/N) Σ_{s hits} B_q(ω_s).
+//   Writing L_env = Σ_k L_k Y_k and B_q = Σ_k T_q,k L_k, with T_q interpolated from the hit
+//   triangle's vertices with barycentrics b_i (T_{v_i} already includes ρ_{v_i}/π):
+//     T_p = D_p + ρ_p Σ_j H_pj T_j,  D_p,k = (ρ_p/N) Σ_s V(ω_s) Y_k(ω_s),
+//     H_pj = (1/N) Σ_{s hits} Σ_{i : v_i = j} b_i(s).
+//   The ρ_p/N weight is thus the receiver's albedo × the estimator weight π/N × the BRDF's 1/π.
+// Back faces occlude but reflect nothing: the transfer stored for q describes only the side
+// its vertex normals point to. The side is judged with the hit triangle's flat geometric
+// normal, oriented by the sum of its vertex normals (front: dot(n_g, ω) < 0). Hits and occlusion
+// come from the same ray (intersect instead of occluded), so D and H are consistent: every sample
+// is visible, a front hit or a back hit. H memory: ≤ 3 (column, weight) pairs of 8 bytes per hit
+// ray before merging; rows merge duplicate columns, so a row costs 8 bytes × distinct vertices hit
+// (typically far fewer than 3·hits at high sample counts).
+#include "bake/transfer_baker.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <optional>
+#include <utility>
+
+#include <tbb/global_control.h>
+#include <tbb/parallel_for.h>
+#include <nlohmann/json.hpp>
+
+#include "bake/interreflection_solver.h"
+#include "bake/progress.h"
+#include "bake/ray_caster.h"
+#include "bake/sampling.h"
+#include "prt/geometry_check.h"
+#include "sh/basis.h"
+#include "sh/zonal.h"
+
+namespace prt::bake {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr std::size_t kVertexBlock = 64;  // vertices per parallel task (fixed: determinism)
+constexpr const char* kBasisConvention =
+    "real orthonormal SH, no Condon-Shortley phase, index k = l(l+1)+m, Y(x,y,z) with polar "
+    "axis +z, scene frame glTF (+Y up)";
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point t) {
+  return std::chrono::duration<double>(Clock::now() - t).count();
+}
+
+std::string label(const Scene& scene) {
+  return scene.source_path.empty() ? std::string("scene") : scene.source_path;
+}
+
+std::string primitive_of(const Scene& scene, std::size_t v) {
+  for (const ScenePrimitive& p : scene.primitives)
+    if (v >= p.first_vertex && v < static_cast<std::size_t>(p.first_vertex) + p.vertex_count)
+      return "primitive '" + p.name + "'";
+  return "vertex " + std::to_string(v);
+}
+
+bool is_grey(const glm::vec3& a) {
+  return a.x == a.y && a.y == a.z;
+}
+
+// The rows of H produced by one block of vertices.
+struct BlockRows {
+  std::vector<uint32_t> lengths;
+  std::vector<uint32_t> columns;
+  std::vector<float> weights;
+};
+
+// Per-vertex results of the sampling pass.
+struct VertexSums {
+  std::vector<double> visibility_sh;  // V × K: (1/N) Σ V Y_k (grey; albedo applied later)
+  std::vector<float> ao;              // V
+  std::vector<float> bent;            // 3V
+};
+
+}  // namespace
+
+const char* transfer_kind_name(prt::TransferKind kind) {
+  switch (kind) {
+    case prt::TransferKind::Unshadowed:
+      return "unshadowed";
+    case prt::TransferKind::Shadowed:
+      return "shadowed";
+    case prt::TransferKind::Interreflected:
+      return "interreflected";
+    case prt::TransferKind::Haar:
+      return "haar";
+  }
+  return "unknown";
+}
+
+void validate_bake_inputs(const Scene& scene, const BakeOptions& o) {
+  const std::string name = label(scene);
+  if (o.kind != prt::TransferKind::Unshadowed && o.kind != prt::TransferKind::Shadowed &&
+      o.kind != prt::TransferKind::Interreflected)
+    throw BakeError(name + ": transfer kind '" + transfer_kind_name(o.kind) +
+                    "' is not supported by the SH baker");
+  if (o.order < 1 || o.order > kMaxBakeOrder)
+    throw BakeError(name + ": SH order " + std::to_string(o.order) + " is outside [1, " +
+                    std::to_string(kMaxBakeOrder) + "]");
+  if (o.samples < 1 || o.samples > kMaxBakeSamples)
+    throw BakeError(name + ": " + std::to_string(o.samples) +
+                    " samples per vertex is outside [1, " + std::to_string(kMaxBakeSamples) + "]");
+  if (o.bounces < -1) throw BakeError(name + ": bounces must be >= 0, or -1 (until converged)");
+  if (!(o.bounce_tolerance > 0.0) || !std::isfinite(o.bounce_tolerance) || o.bounce_tolerance >= 1)
+    throw BakeError(name + ": bounce tolerance must be in (0, 1)");
+  if (o.max_solver_iterations < 1) throw BakeError(name + ": solver iteration cap must be >= 1");
+  if (o.threads < 0) throw BakeError(name + ": thread count must be >= 0");
+  if (scene.positions.empty()) throw BakeError(name + ": the scene has no vertices");
+  if (scene.normals.size() != scene.positions.size())
+    throw BakeError(name + ": " + std::to_string(scene.normals.size()) + " normals for " +
+                    std::to_string(scene.positions.size()) + " vertices");
+  if (scene.albedo.size() != scene.positions.size())
+    throw BakeError(name + ": " + std::to_string(scene.albedo.size()) + " albedo values for " +
+                    std::to_string(scene.positions.size()) + " vertices");
+  if (scene.positions.size() > 0xffffffffull) throw BakeError(name + ": too many vertices");
+  for (std::size_t v = 0; v < scene.positions.size(); ++v) {
+    const glm::vec3 p = scene.positions[v], n = scene.normals[v], a = scene.albedo[v];
+    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
+      throw BakeError(name + ": vertex " + std::to_string(v) + " has a non-finite position");
+    const float len = glm::length(n);
+    if (!std::isfinite(len) || std::fabs(len - 1.f) > 1e-3f)
+      throw BakeError(name + ": vertex " + std::to_string(v) + " of " + primitive_of(scene, v) +
+                      " has a normal that is not unit length");
+    for (int c = 0; c < 3; ++c) {
+      if (!(a[c] >= 0.f && a[c] < 1.f)) {
+        char buf[160];
+        std::snprintf(buf, sizeof buf, "albedo (%g, %g, %g) of %s is outside [0, 1)",
+                      static_cast<double>(a.x), static_cast<double>(a.y), static_cast<double>(a.z),
+                      primitive_of(scene, v).c_str());
+        throw BakeError(name + ": " + buf + " (energy would not be conserved)");
+      }
+    }
+  }
+  for (const glm::uvec3& t : scene.triangles)
+    if (t.x >= scene.positions.size() || t.y >= scene.positions.size() ||
+        t.z >= scene.positions.size())
+      throw BakeError(name + ": a triangle index is out of range");
+}
+
+BakeResult bake_transfer(const Scene& scene, const BakeOptions& options, ProgressSink* progress) {
+  const Clock::time_point t_start = Clock::now();
+  validate_bake_inputs(scene, options);
+  std::optional<tbb::global_control> thread_limit;
+  if (options.threads > 0)
+    thread_limit.emplace(tbb::global_control::max_allowed_parallelism,
+                         static_cast<std::size_t>(options.threads));
+
+  const std::size_t V = scene.positions.size();
+  const int order = options.order;
+  const int K = order * order;
+  const bool grey = std::all_of(scene.albedo.begin(), scene.albedo.end(), is_grey);
+  const int C = grey ? 1 : 3;
+  const bool need_sh_rays = options.kind != prt::TransferKind::Unshadowed;
+  const bool interreflect = options.kind == prt::TransferKind::Interreflected;
+  const bool need_rays = need_sh_rays || options.ao || options.bent_normals;
+  const int N = round_up_to_packet(options.samples);
+
+  BakeResult result;
+  BakeStatistics& st = result.stats;
+  st.vertices = V;
+  st.triangles = scene.triangles.size();
+  st.samples_per_vertex = need_rays ? N : 0;
+  st.skipped_triangles = scene.skipped_degenerate_triangles;
+
+  // Shadowed/unshadowed transfer goes straight into the float output (T = ρ_c·S); only the
+  // interreflected kind keeps S = (1/N) Σ V Y_k in double for the solve.
+  prt::TransferData& data = result.data;
+  data.coefficients.assign(V * C * K, 0.f);
+  VertexSums sums;
+  if (interreflect) sums.visibility_sh.assign(V * K, 0.0);
+  auto store_direct = [&](std::size_t v, const double* s_k) {
+    if (interreflect) {
+      std::copy(s_k, s_k + K, &sums.visibility_sh[v * K]);
+      return;
+    }
+    for (int c = 0; c < C; ++c) {
+      const double rho_c = scene.albedo[v][c];
+      float* t = &data.coefficients[(v * C + c) * K];
+      for (int k = 0; k < K; ++k) t[k] = static_cast<float>(rho_c * s_k[k]);
+    }
+  };
+  if (need_rays) {
+    sums.ao.assign(V, 0.f);
+    sums.bent.assign(3 * V, 0.f);
+  }
+  SparseTransferMatrix h;
+  double ray_offset = 0.0;
+
+  if (!need_sh_rays) {
+    // Analytic: (1/π) · rotate_zonal(clamped cosine, n); albedo applied below.
+    std::vector<double> zonal(order);
+    for (int l = 0; l < order; ++l) zonal[l] = sh::clamped_cosine_zonal_coefficient(l);
+    tbb::parallel_for(std::size_t(0), V, [&](std::size_t v) {
+      const glm::dvec3 n = glm::normalize(glm::dvec3(scene.normals[v]));
+      std::vector<double> out(K);
+      sh::rotate_zonal(order, zonal.data(), n.x, n.y, n.z, out.data());
+      for (int k = 0; k < K; ++k) out[k] /= kPi;
+      store_direct(v, out.data());
+    });
+  }
+
+  if (need_rays) {
+    const Clock::time_point t_rays = Clock::now();
+    RayCaster caster(scene);
+    ray_offset = caster.offset_scale();
+    const std::size_t blocks = (V + kVertexBlock - 1) / kVertexBlock;
+    std::vector<BlockRows> rows(interreflect ? blocks : 0);
+    std::vector<uint64_t> block_rays(blocks, 0), block_back_hits(blocks, 0);
+    if (progress) progress->start("bake", V);
+    const float tfar = std::numeric_limits<float>::infinity();
+    const double inv_n = 1.0 / N;
+
+    tbb::parallel_for(std::size_t(0), blocks, [&](std::size_t blk) {
+      glm::vec3 dirs[kPacketSize];
+      bool occluded[kPacketSize];
+      RayCaster::Hit hits[kPacketSize];
+      std::vector<float> y(K), packet_sum(K);
+      std::vector<double> acc(K);
+      std::vector<std::pair<uint32_t, float>> gathered;
+      const std::size_t v_end = std::min(V, (blk + 1) * kVertexBlock);
+      uint64_t rays = 0;
+      for (std::size_t v = blk * kVertexBlock; v < v_end; ++v) {
+        const glm::vec3 n = glm::normalize(scene.normals[v]);
+        const glm::vec3 origin = caster.vertex_origin(static_cast<uint32_t>(v));
+        std::fill(acc.begin(), acc.end(), 0.0);
+        gathered.clear();
+        uint32_t visible = 0;
+        glm::dvec3 bent(0.0);
+        for (int first = 0; first < N; first += kPacketSize) {
+          generate_cosine_directions(n, options.seed, v, static_cast<uint32_t>(first), kPacketSize,
+                                     dirs);
+          if (interreflect) {
+            caster.intersect_packet(origin, dirs, kPacketSize, tfar, hits);
+            for (int i = 0; i < kPacketSize; ++i) occluded[i] = hits[i].hit;
+          } else {
+            caster.occluded_packet(origin, dirs, kPacketSize, tfar, occluded);
+          }
+          rays += kPacketSize;
+          // SH of the visible directions: summed in float over the 16 rays of a packet (at
+          // most 16 terms of magnitude ≤ ~3.5), then added to the double accumulator.
+          bool any = false;
+          if (need_sh_rays) std::fill(packet_sum.begin(), packet_sum.end(), 0.f);
+          for (int i = 0; i < kPacketSize; ++i) {
+            if (occluded[i]) continue;
+            ++visible;
+            bent += glm::dvec3(dirs[i]);
+            if (!need_sh_rays) continue;
+            any = true;
+            sh::evaluate(order, dirs[i].x, dirs[i].y, dirs[i].z, y.data());
+            for (int k = 0; k < K; ++k) packet_sum[k] += y[k];
+          }
+          if (any)
+            for (int k = 0; k < K; ++k) acc[k] += static_cast<double>(packet_sum[k]);
+          if (interreflect) {
+            for (int i = 0; i < kPacketSize; ++i) {
+              const RayCaster::Hit& hit = hits[i];
+              if (!hit.hit) continue;
+              const glm::uvec3 tri = scene.triangles[hit.triangle];
+              const float b0 = 1.f - hit.u - hit.v, b1 = hit.u, b2 = hit.v;
+              // The side the ray sees: the flat facet's geometric normal, oriented to agree
+              // with the triangle's vertex normals (so a winding that disagrees with the
+              // normals does not matter). Interpolated smooth normals would misjudge rays
+              // that graze a neighbouring facet of a curved, faceted surface (~1% of rays in
+              // the cavity test), losing their energy.
+              const glm::vec3 p0 = scene.positions[tri.x];
+              const glm::vec3 ng =
+                  glm::cross(scene.positions[tri.y] - p0, scene.positions[tri.z] - p0);
+              const float side =
+                  glm::dot(ng, scene.normals[tri.x] + scene.normals[tri.y] + scene.normals[tri.z]);
+              if (!(glm::dot(ng, dirs[i]) * side < 0.f)) {  // back face: occludes only
+                ++block_back_hits[blk];
+                continue;
+              }
+              gathered.emplace_back(tri.x, b0);
+              gathered.emplace_back(tri.y, b1);
+              gathered.emplace_back(tri.z, b2);
+            }
+          }
+        }
+        if (need_sh_rays)
+          for (int k = 0; k < K; ++k) acc[k] *= inv_n;
+        if (need_sh_rays) store_direct(v, acc.data());
+        sums.ao[v] = static_cast<float>(visible * inv_n);
+        const double bl = glm::length(bent);
+        const glm::vec3 bn = bl > 0 ? glm::vec3(bent / bl) : n;
+        sums.bent[3 * v + 0] = bn.x;
+        sums.bent[3 * v + 1] = bn.y;
+        sums.bent[3 * v + 2] = bn.z;
+        if (interreflect) {
+          BlockRows& br = rows[blk];
+          std::sort(gathered.begin(), gathered.end(),
+                    [](const auto& a, const auto& b) { return a.first < b.first; });
+          uint32_t len = 0;
+          for (std::size_t i = 0; i < gathered.size();) {
+            const uint32_t col = gathered[i].first;
+            double w = 0.0;
+            for (; i < gathered.size() && gathered[i].first == col; ++i) w += gathered[i].second;
+            if (w <= 0.0) continue;
+            br.columns.push_back(col);
+            br.weights.push_back(static_cast<float>(w * inv_n));
+            ++len;
+          }
+          br.lengths.push_back(len);
+        }
+      }
+      block_rays[blk] = rays;
+      if (progress) progress->advance(v_end - blk * kVertexBlock, rays);
+    });
+    if (progress) progress->finish();
+    for (uint64_t r : block_rays) st.rays += r;
+    for (uint64_t b : block_back_hits) st.back_face_hits += b;
+    st.seconds_rays = seconds_since(t_rays);
+    st.bvh_bytes = caster.embree_peak_bytes();
+
+    if (interreflect) {
+      h.row_offsets.assign(1, 0);
+      h.row_offsets.reserve(V + 1);
+      std::size_t total = 0;
+      for (const BlockRows& br : rows) total += br.columns.size();
+      h.columns.reserve(total);
+      h.weights.reserve(total);
+      for (BlockRows& br : rows) {
+        for (uint32_t len : br.lengths) h.row_offsets.push_back(h.row_offsets.back() + len);
+        h.columns.insert(h.columns.end(), br.columns.begin(), br.columns.end());
+        h.weights.insert(h.weights.end(), br.weights.begin(), br.weights.end());
+        br = BlockRows{};
+      }
+      st.matrix_entries = h.entries();
+      st.matrix_bytes = h.bytes();
+    }
+  }
+
+  // Assemble the header arrays, then the interreflection solve per channel.
+  data.kind = options.kind;
+  data.order = static_cast<uint32_t>(order);
+  data.channels = static_cast<uint32_t>(C);
+  data.storage = options.precision;
+  data.albedo_folded = true;
+  data.vertex_count = V;
+  data.positions.resize(3 * V);
+  data.normals.resize(3 * V);
+  for (std::size_t v = 0; v < V; ++v) {
+    const glm::vec3 n = glm::normalize(scene.normals[v]);
+    for (int a = 0; a < 3; ++a) {
+      data.positions[3 * v + a] = scene.positions[v][a];
+      data.normals[3 * v + a] = n[a];
+    }
+  }
+  for (const ScenePrimitive& p : scene.primitives)
+    data.primitives.push_back({p.first_vertex, p.vertex_count, p.name});
+  data.fingerprint = prt::geometry_fingerprint(data.positions.data(), V);
+
+  const Clock::time_point t_solve = Clock::now();
+  std::vector<double> direct(interreflect ? V * K : 0), solved(interreflect ? V * K : 0);
+  std::vector<double> rho(interreflect ? V : 0);
+  for (int c = 0; c < C && interreflect; ++c) {
+    for (std::size_t v = 0; v < V; ++v) rho[v] = scene.albedo[v][c];
+    for (std::size_t v = 0; v < V; ++v)
+      for (int k = 0; k < K; ++k) direct[v * K + k] = rho[v] * sums.visibility_sh[v * K + k];
+    SolveOptions so;
+    so.bounces = options.bounces;
+    so.tolerance = options.bounce_tolerance;
+    so.max_iterations = options.max_solver_iterations;
+    const SolveReport rep =
+        solve_interreflection(h, rho, direct.data(), K, solved.data(), so, progress);
+    st.jacobi_bounces = rep.jacobi_bounces;
+    st.solver_iterations += rep.krylov_iterations;
+    st.solver_residual = std::max(st.solver_residual, rep.relative_residual);
+    st.solver_converged = st.solver_converged && rep.converged;
+    if (st.bounce_energy.size() < rep.bounce_energy.size())
+      st.bounce_energy.resize(rep.bounce_energy.size(), 0.0);
+    for (std::size_t i = 0; i < rep.bounce_energy.size(); ++i)
+      st.bounce_energy[i] = std::max(st.bounce_energy[i], rep.bounce_energy[i]);
+    for (std::size_t v = 0; v < V; ++v)
+      for (int k = 0; k < K; ++k)
+        data.coefficients[(v * C + c) * K + k] = static_cast<float>(solved[v * K + k]);
+  }
+  st.seconds_solve = interreflect ? seconds_since(t_solve) : 0.0;
+  if (options.ao) data.ao = std::move(sums.ao);
+  if (options.bent_normals) data.bent_normals = std::move(sums.bent);
+  st.seconds_total = seconds_since(t_start);
+
+  nlohmann::json meta;
+  meta["generator"] = "prt bake";
+  meta["scene"] = scene.source_path;
+  meta["sh_basis"] = kBasisConvention;
+  meta["transfer"] = transfer_kind_name(options.kind);
+  meta["order"] = order;
+  meta["channels"] = C;
+  meta["albedo_folded"] = true;
+  meta["samples_requested"] = options.samples;
+  meta["samples_per_vertex"] = st.samples_per_vertex;
+  meta["sampling"] = "Owen-scrambled Sobol (0,2)-sequence, cosine-weighted (concentric)";
+  meta["seed"] = options.seed;
+  meta["threads"] = options.threads;
+  meta["precision"] = options.precision == prt::Precision::F16 ? "f16" : "f32";
+  meta["ao"] = options.ao;
+  meta["bent_normals"] = options.bent_normals;
+  meta["vertices"] = V;
+  meta["triangles"] = st.triangles;
+  meta["skipped_triangles"] = st.skipped_triangles;
+  meta["rays"] = st.rays;
+  meta["ray_offset"] = ray_offset;
+  meta["seconds"] = st.seconds_total;
+  meta["seconds_rays"] = st.seconds_rays;
+  if (interreflect) {
+    nlohmann::json s;
+    s["bounces_requested"] = options.bounces;
+    s["tolerance"] = options.bounce_tolerance;
+    s["jacobi_bounces"] = st.jacobi_bounces;
+    s["krylov_iterations"] = st.solver_iterations;
+    s["relative_residual"] = st.solver_residual;
+    s["converged"] = st.solver_converged;
+    s["bounce_energy"] = st.bounce_energy;
+    s["matrix_entries"] = st.matrix_entries;
+    s["back_face_hits"] = st.back_face_hits;
+    s["seconds"] = st.seconds_solve;
+    meta["interreflection"] = s;
+  }
+  data.metadata_json = meta.dump();
+  return result;
+}
+
+}  // namespace prt::bake

@@ -1,0 +1,60 @@
+// Environment projection benchmarks: a 1024×512 lat-long map projected to orders 3 and 10 by the
+// separable path (sh::project) and by the direct texel sum (sh::project_direct), plus a
+// 1000×1000 angular map (direct sum with exact edge-integral solid angles). Results and the
+// command line: docs/BENCHMARKS.md, "## Environment projection".
+#include <random>
+#include <vector>
+
+#include <benchmark/benchmark.h>
+
+#include "sh/env_map.h"
+#include "sh/projection.h"
+
+namespace {
+
+sh::EnvMap make_random_map(sh::EnvLayout layout, int width, int height) {
+  sh::EnvMap env;
+  env.layout = layout;
+  env.width = width;
+  env.height = height;
+  env.rgb.resize(static_cast<std::size_t>(width) * height * 3);
+  std::mt19937 random(7);
+  std::uniform_real_distribution<float> uniform(0.0f, 4.0f);
+  for (float& value : env.rgb) value = uniform(random);
+  return env;
+}
+
+const sh::EnvMap& latlong_map() {
+  static const sh::EnvMap env = make_random_map(sh::EnvLayout::LatLong, 1024, 512);
+  return env;
+}
+
+void BM_ProjectLatLongSeparable(benchmark::State& state) {
+  const int order = static_cast<int>(state.range(0));
+  for (auto _ : state) benchmark::DoNotOptimize(sh::project(latlong_map(), order));
+  state.SetItemsProcessed(state.iterations() * 1024 * 512);
+}
+BENCHMARK(BM_ProjectLatLongSeparable)->Arg(3)->Arg(10)->Unit(benchmark::kMillisecond);
+
+void BM_ProjectLatLongDirect(benchmark::State& state) {
+  const int order = static_cast<int>(state.range(0));
+  for (auto _ : state) benchmark::DoNotOptimize(sh::project_direct(latlong_map(), order));
+  state.SetItemsProcessed(state.iterations() * 1024 * 512);
+}
+BENCHMARK(BM_ProjectLatLongDirect)->Arg(3)->Arg(10)->Unit(benchmark::kMillisecond);
+
+void BM_ProjectAngularDirect(benchmark::State& state) {
+  static const sh::EnvMap env = make_random_map(sh::EnvLayout::Angular, 1000, 1000);
+  for (auto _ : state) benchmark::DoNotOptimize(sh::project(env, 3));
+}
+BENCHMARK(BM_ProjectAngularDirect)->Unit(benchmark::kMillisecond);
+
+void BM_AngularSolidAngles(benchmark::State& state) {
+  for (auto _ : state)
+    benchmark::DoNotOptimize(sh::texel_solid_angles(sh::EnvLayout::Angular, 1000, 1000));
+}
+BENCHMARK(BM_AngularSolidAngles)->Unit(benchmark::kMillisecond);
+
+}  // namespace
+
+BENCHMARK_MAIN();

@@ -1,0 +1,185 @@
+// `prt bake SCENE -o OUT.prt [...]`: bake per-vertex SH transfer (bake/transfer_baker.h) and
+// write a coefficient file (prt/transfer_file.h).
+//
+// Defaults: --transfer shadowed, --order 3 (9 coefficients: what irradiance needs), --samples
+// 256 (cosine-weighted Owen-scrambled Sobol': AO error well under 1% on typical meshes),
+// --bounces -1 (interreflected: BiCGSTAB until --tolerance 1e-4), --seed 1, all threads, f32.
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <unistd.h>
+
+#include <CLI/CLI.hpp>
+
+#include "bake/progress.h"
+#include "bake/scene_loader.h"
+#include "bake/transfer_baker.h"
+#include "command_registry.h"
+#include "prt/transfer_file.h"
+
+namespace prt::cli {
+namespace {
+
+struct BakeArguments {
+  std::string scene, output;
+  std::string transfer = "shadowed";
+  int order = 3;
+  int samples = 256;
+  int bounces = -1;
+  double tolerance = 1e-4;
+  std::string albedo;
+  bool ao = false, bent_normals = false;
+  uint64_t seed = 1;
+  int threads = 0;
+  std::string precision = "f32";
+  bool quiet = false;
+};
+
+// "r,g,b" or a single grey value; each in [0, 1).
+glm::vec3 parse_albedo(const std::string& text) {
+  std::vector<float> values;
+  std::istringstream stream(text);
+  std::string part;
+  while (std::getline(stream, part, ',')) {
+    try {
+      std::size_t used = 0;
+      const float v = std::stof(part, &used);
+      if (used != part.size() || !std::isfinite(v)) throw std::invalid_argument(part);
+      values.push_back(v);
+    } catch (const std::exception&) {
+      throw CommandError("--albedo " + text + ": '" + part + "' is not a number");
+    }
+  }
+  if (values.size() == 1) values = {values[0], values[0], values[0]};
+  if (values.size() != 3) throw CommandError("--albedo " + text + ": expected r,g,b or one value");
+  for (float v : values)
+    if (!(v >= 0.f && v < 1.f))
+      throw CommandError("--albedo " + text + ": every component must be in [0, 1)");
+  return {values[0], values[1], values[2]};
+}
+
+prt::TransferKind parse_kind(const std::string& text) {
+  if (text == "unshadowed") return prt::TransferKind::Unshadowed;
+  if (text == "shadowed") return prt::TransferKind::Shadowed;
+  if (text == "interreflected") return prt::TransferKind::Interreflected;
+  throw CommandError("--transfer " + text + ": expected unshadowed, shadowed or interreflected");
+}
+
+// Fails early (before a long bake) when the output's directory is missing or read-only.
+void check_output_writable(const std::string& output) {
+  namespace fs = std::filesystem;
+  if (output.empty()) throw CommandError("-o: an output path is required");
+  const fs::path path(output);
+  std::error_code ec;
+  if (fs::is_directory(path, ec)) throw CommandError(output + ": is a directory");
+  const fs::path dir = path.has_parent_path() ? path.parent_path() : fs::path(".");
+  if (!fs::is_directory(dir, ec)) throw CommandError(output + ": directory does not exist");
+  if (access(dir.c_str(), W_OK) != 0) throw CommandError(output + ": directory is not writable");
+}
+
+void run(const BakeArguments& args) {
+  bake::BakeOptions options;
+  options.kind = parse_kind(args.transfer);
+  options.order = args.order;
+  options.samples = args.samples;
+  options.bounces = args.bounces;
+  options.bounce_tolerance = args.tolerance;
+  options.seed = args.seed;
+  options.threads = args.threads;
+  options.ao = args.ao;
+  options.bent_normals = args.bent_normals;
+  if (args.precision == "f32")
+    options.precision = prt::Precision::F32;
+  else if (args.precision == "f16")
+    options.precision = prt::Precision::F16;
+  else
+    throw CommandError("--precision " + args.precision + ": expected f32 or f16");
+  if (args.order < 1 || args.order > bake::kMaxBakeOrder)
+    throw CommandError("--order " + std::to_string(args.order) + ": must be in [1, " +
+                       std::to_string(bake::kMaxBakeOrder) + "]");
+  if (args.samples < 1 || args.samples > bake::kMaxBakeSamples)
+    throw CommandError("--samples " + std::to_string(args.samples) + ": must be in [1, " +
+                       std::to_string(bake::kMaxBakeSamples) + "]");
+  if (args.bounces < -1) throw CommandError("--bounces: must be >= 0, or -1 (until converged)");
+  if (!(args.tolerance > 0 && args.tolerance < 1))
+    throw CommandError("--tolerance: must be in (0, 1)");
+  if (args.threads < 0) throw CommandError("--threads: must be >= 0");
+  check_output_writable(args.output);
+
+  bake::LoadOptions load;
+  if (!args.albedo.empty()) load.albedo_override = parse_albedo(args.albedo);
+  const bake::Scene scene = bake::load_scene(args.scene, load);
+
+  bake::ConsoleProgress progress(args.quiet);
+  const bake::BakeResult result = bake::bake_transfer(scene, options, &progress);
+  const prt::Status written = prt::write_transfer_file(args.output, result.data);
+  if (!written.ok()) throw CommandError(written.message());
+
+  const bake::BakeStatistics& st = result.stats;
+  if (options.kind == prt::TransferKind::Interreflected && !st.solver_converged)
+    std::fprintf(stderr,
+                 "prt bake: %s: warning: interreflection solve stopped at relative residual %.3g "
+                 "(tolerance %.3g) after %d iterations\n",
+                 args.scene.c_str(), st.solver_residual, options.bounce_tolerance,
+                 st.solver_iterations);
+  if (args.quiet) return;
+  std::error_code ec;
+  const auto bytes = std::filesystem::file_size(args.output, ec);
+  std::printf(
+      "baked %s transfer of %s: %llu vertices, %llu triangles, order %d (%u channel%s), "
+      "%d samples per vertex; %llu rays in %.2f s (%.2f Mrays/s)",
+      bake::transfer_kind_name(options.kind), args.scene.c_str(),
+      static_cast<unsigned long long>(st.vertices), static_cast<unsigned long long>(st.triangles),
+      options.order, result.data.channels, result.data.channels == 1 ? "" : "s",
+      st.samples_per_vertex, static_cast<unsigned long long>(st.rays), st.seconds_rays,
+      st.mrays_per_second());
+  if (options.kind == prt::TransferKind::Interreflected) {
+    if (options.bounces >= 0)
+      std::printf("; %d bounces", st.jacobi_bounces);
+    else
+      std::printf("; interreflection solved in %d+%d iterations to residual %.2g (%.2f s)",
+                  st.jacobi_bounces, st.solver_iterations, st.solver_residual, st.seconds_solve);
+  }
+  std::printf("; total %.2f s; wrote %s (%llu bytes, %s)", st.seconds_total, args.output.c_str(),
+              static_cast<unsigned long long>(ec ? 0 : bytes), args.precision.c_str());
+  std::printf("; %llu degenerate triangles skipped.\n",
+              static_cast<unsigned long long>(st.skipped_triangles));
+}
+
+void register_bake(CLI::App& app) {
+  auto args = std::make_shared<BakeArguments>();
+  CLI::App* cmd = app.add_subcommand("bake", "Bake per-vertex SH transfer into a .prt file");
+  cmd->add_option("scene", args->scene, "Scene (.glb, .gltf, .obj)")->required();
+  cmd->add_option("-o,--output", args->output, "Coefficient file to write (.prt)")->required();
+  cmd->add_option("--transfer", args->transfer, "unshadowed | shadowed | interreflected")
+      ->capture_default_str();
+  cmd->add_option("--order", args->order, "SH order n (n² coefficients), 1..32")
+      ->capture_default_str();
+  cmd->add_option("--samples", args->samples, "Rays per vertex (rounded up to a multiple of 16)")
+      ->capture_default_str();
+  cmd->add_option("--bounces", args->bounces,
+                  "Interreflected: exactly N Jacobi bounces; -1 = solve until converged")
+      ->capture_default_str();
+  cmd->add_option("--tolerance", args->tolerance, "Relative residual of the interreflection solve")
+      ->capture_default_str();
+  cmd->add_option("--albedo", args->albedo, "Override every material's albedo: r,g,b in [0, 1)");
+  cmd->add_flag("--ao", args->ao, "Also store ambient occlusion per vertex");
+  cmd->add_flag("--bent-normals", args->bent_normals, "Also store bent normals per vertex");
+  cmd->add_option("--seed", args->seed, "Sampling seed")->capture_default_str();
+  cmd->add_option("--threads", args->threads, "Worker threads (0 = all)")->capture_default_str();
+  cmd->add_option("--precision", args->precision, "Coefficient storage: f32 | f16")
+      ->capture_default_str();
+  cmd->add_flag("--quiet", args->quiet, "No progress and no summary");
+  cmd->callback([args] { run(*args); });
+}
+
+}  // namespace
+
+PRT_REGISTER_COMMAND(20, register_bake);
+
+}  // namespace prt::cli

@@ -1,0 +1,102 @@
+// relight/relight_pipeline.h — the steps of `prt relight` (and `prt demo`): load a scene and its
+// coefficient file, project an environment map to SH lighting, window and rotate it, shade every
+// vertex, render, and write images, a vertex-coloured GLB and a CSV.
+//
+// Conventions: SH basis of sh/basis.h (real, orthonormal, no Condon–Shortley phase,
+// k = l(l+1)+m); glTF frame (+Y up); radiance in the units of the environment map.
+// Rotations are row-major 3×3 matrices M acting on column vectors; lighting "rotated by M" is
+// g(ω) = f(Mᵀω) (sh/rotation.h), so its SH coefficients are rotated, never re-projected.
+// The turntable turns the light about +Y by 360°·i/N on top of --rotate: M_i = Ry(360°·i/N)·M.
+// Exit radiance B_p = Σ_k T_p,k L_k (prt/transfer_data.h), linear.
+// Every error throws std::runtime_error (or bake::SceneError) with one line "PATH: problem";
+// run_relight() validates all inputs before it writes anything, and each file is written
+// atomically (temporary + rename) so nothing partial is left behind.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "bake/scene.h"
+#include "prt/lighting.h"
+#include "prt/relighter.h"
+#include "prt/transfer_data.h"
+#include "relight/renderer.h"
+#include "sh/env_map.h"
+#include "sh/window.h"
+
+namespace prt::relight {
+
+// Positions may differ from the baked ones by this fraction of the bounding-box diagonal
+// (a re-export with float noise passes; a different mesh does not).
+constexpr float kGeometryTolerance = 1e-5f;
+
+// Reads a coefficient file and checks that it was baked for `scene` (prt::check_geometry).
+// Throws "PATH: problem" for an unreadable or corrupt file or a geometry mismatch.
+prt::TransferData load_transfer_for_scene(const std::string& transfer_path,
+                                          const bake::Scene& scene);
+
+struct LightingOptions {
+  std::array<double, 3> yaw_pitch_roll_deg{0.0, 0.0, 0.0};  // --rotate
+  sh::Window window = sh::Window::None;
+  double window_strength = -1.0;  // < 0: the window's documented default for the order
+};
+
+// SH lighting of `env` at `order`, windowed (not rotated). `note` (optional) receives a short
+// description of the window applied (for auto: what it chose).
+prt::ShLighting project_lighting(const sh::EnvMap& env, int order, const LightingOptions& options,
+                                 std::string* note = nullptr);
+
+// R = a·b for row-major 3×3 matrices.
+std::array<double, 9> multiply_rotations(const std::array<double, 9>& a,
+                                         const std::array<double, 9>& b);
+
+// The rotation of frame i of an N-frame turntable: Ry(360°·i/N)·base.
+std::array<double, 9> turntable_rotation(const std::array<double, 9>& base, int frame,
+                                         int frame_count);
+
+// A copy of `lighting` rotated by M (SH rotation of the coefficients).
+prt::ShLighting rotate_lighting(const prt::ShLighting& lighting, const std::array<double, 9>& m);
+
+// Exit radiance of all vertices, 3 floats per vertex, shaded in parallel ranges (TBB).
+std::vector<float> shade_all_vertices(const prt::Relighter& relighter,
+                                      const prt::ShLighting& lighting, std::size_t vertex_count);
+
+// Writes an image by extension: .exr and .hdr linear, .png tone mapped (tone_map.h with the
+// exposure). Throws for any other extension.
+void write_rendered_image(const std::string& path, const Image& image, float exposure_ev);
+
+// One row per vertex: index,x,y,z,r,g,b (header row first), written atomically.
+void write_vertex_csv(const std::string& path, const bake::Scene& scene,
+                      const std::vector<float>& radiance_rgb);
+
+// OUT.png → OUT_007.png for frame 7 (three digits at least).
+std::string turntable_frame_path(const std::string& path, int frame);
+
+struct RelightRequest {
+  std::string scene_path, transfer_path, environment_path;
+  std::string output_path;              // .exr, .hdr or .png
+  std::optional<sh::EnvLayout> layout;  // nullopt: guess from the aspect ratio
+  LightingOptions lighting;
+  float exposure_ev = 0.f;
+  RenderOptions render;
+  std::string camera = "auto";
+  std::string vertex_colors_path;  // .glb, optional
+  std::string csv_path;            // optional
+  int turntable_frames = 0;        // 0: one image at output_path
+};
+
+struct RelightSummary {
+  std::size_t vertex_count = 0;
+  int order = 0;
+  double shade_seconds = 0, render_seconds = 0;
+  std::size_t negative_vertices = 0;  // vertices with a negative channel (SH ringing)
+  std::string window_note, layout_note;
+  std::vector<std::string> files_written;
+};
+
+RelightSummary run_relight(const RelightRequest& request);
+
+}  // namespace prt::relight

@@ -1,0 +1,280 @@
+#include "relight/relight_pipeline.h"
+
+#include <unistd.h>
+#include <algorithm>
+#include <cctype>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <stdexcept>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include "bake/glb_writer.h"
+#include "bake/ray_caster.h"
+#include "bake/scene_loader.h"
+#include "prt/geometry_check.h"
+#include "prt/transfer_file.h"
+#include "relight/camera.h"
+#include "relight/image_io.h"
+#include "relight/tone_map.h"
+#include "sh/rotation.h"
+
+namespace prt::relight {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+std::string lower_extension(const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return ext;
+}
+
+void check_image_extension(const std::string& path) {
+  const std::string ext = lower_extension(path);
+  if (ext != ".exr" && ext != ".hdr" && ext != ".png")
+    throw std::runtime_error(path + ": unsupported image type '" + ext +
+                             "' (use .exr, .hdr or .png)");
+}
+
+void check_parent_directory(const std::string& path) {
+  const std::filesystem::path parent = std::filesystem::path(path).parent_path();
+  if (!parent.empty() && !std::filesystem::is_directory(parent))
+    throw std::runtime_error(path + ": directory " + parent.string() + " does not exist");
+}
+
+std::vector<float> flatten_positions(const bake::Scene& scene) {
+  std::vector<float> xyz(3 * scene.vertex_count());
+  for (std::size_t i = 0; i < scene.vertex_count(); ++i)
+    for (int c = 0; c < 3; ++c) xyz[3 * i + c] = scene.positions[i][c];
+  return xyz;
+}
+
+}  // namespace
+
+prt::TransferData load_transfer_for_scene(const std::string& transfer_path,
+                                          const bake::Scene& scene) {
+  prt::Result<prt::TransferData> data = prt::read_transfer_file(transfer_path);
+  if (!data.ok()) {
+    const std::string message = data.status().message();
+    // The runtime names the file already; add it only when it does not.
+    if (message.rfind(transfer_path, 0) == 0) throw std::runtime_error(message);
+    throw std::runtime_error(transfer_path + ": " + message);
+  }
+  const std::vector<float> positions = flatten_positions(scene);
+  const prt::Status match =
+      prt::check_geometry(*data, positions.data(), scene.vertex_count(), kGeometryTolerance);
+  if (!match.ok())
+    throw std::runtime_error(
+        transfer_path + ": was not baked for " +
+        (scene.source_path.empty() ? std::string("this scene") : scene.source_path) + ": " +
+        match.message());
+  return std::move(data).value();
+}
+
+prt::ShLighting project_lighting(const sh::EnvMap& env, int order, const LightingOptions& options,
+                                 std::string* note) {
+  prt::Result<prt::ShLighting> projected = prt::ShLighting::from_env_map(env, order);
+  if (!projected.ok()) throw std::runtime_error(projected.status().message());
+  prt::ShLighting lighting = std::move(projected).value();
+  sh::Window window = options.window;
+  double strength = options.window_strength;
+  char text[160];
+  if (window == sh::Window::Auto) {
+    const int k = lighting.coefficient_count();
+    std::vector<double> coefficients(3 * static_cast<std::size_t>(k));
+    for (int c = 0; c < 3; ++c)
+      std::copy(lighting.coefficients_double(c), lighting.coefficients_double(c) + k,
+                coefficients.begin() + static_cast<std::ptrdiff_t>(c) * k);
+    const sh::WindowChoice choice = sh::choose_window_auto(coefficients.data(), 3, order);
+    window = choice.window;
+    strength = choice.strength;
+    std::snprintf(text, sizeof text,
+                  "window auto: %s, strength %.3g; min irradiance %.3g before, %.3g after",
+                  sh::window_name(window), strength, choice.min_irradiance_before,
+                  choice.min_irradiance_after);
+  } else if (window == sh::Window::None) {
+    std::snprintf(text, sizeof text, "no window");
+  } else {
+    if (!(strength > 0.0)) strength = sh::default_window_strength(window, order);
+    std::snprintf(text, sizeof text, "window %s, strength %.3g", sh::window_name(window), strength);
+  }
+  const prt::Status windowed = lighting.apply_window(window, strength);
+  if (!windowed.ok()) throw std::runtime_error("--window: " + windowed.message());
+  if (note) *note = text;
+  return lighting;
+}
+
+std::array<double, 9> multiply_rotations(const std::array<double, 9>& a,
+                                         const std::array<double, 9>& b) {
+  std::array<double, 9> r{};
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) {
+      double sum = 0;
+      for (int k = 0; k < 3; ++k) sum += a[3 * i + k] * b[3 * k + j];
+      r[3 * i + j] = sum;
+    }
+  return r;
+}
+
+std::array<double, 9> turntable_rotation(const std::array<double, 9>& base, int frame,
+                                         int frame_count) {
+  if (frame_count <= 0) return base;
+  const double yaw = 360.0 * frame / frame_count;
+  return multiply_rotations(sh::rotation_from_yaw_pitch_roll(yaw, 0.0, 0.0), base);
+}
+
+prt::ShLighting rotate_lighting(const prt::ShLighting& lighting, const std::array<double, 9>& m) {
+  prt::ShLighting rotated = lighting;
+  const prt::Status status = rotated.rotate(m);
+  if (!status.ok()) throw std::runtime_error("--rotate: " + status.message());
+  return rotated;
+}
+
+std::vector<float> shade_all_vertices(const prt::Relighter& relighter,
+                                      const prt::ShLighting& lighting, std::size_t vertex_count) {
+  std::vector<float> radiance(3 * vertex_count, 0.f);
+  constexpr std::size_t kRange = 4096;  // a multiple of the kernel's 16-vertex blocks
+  const std::size_t ranges = (vertex_count + kRange - 1) / kRange;
+  std::vector<std::string> errors(ranges);
+  tbb::parallel_for(std::size_t{0}, ranges, [&](std::size_t r) {
+    const std::size_t first = r * kRange;
+    const std::size_t count = std::min(kRange, vertex_count - first);
+    const prt::Status status = relighter.shade(lighting, first, count, &radiance[3 * first]);
+    if (!status.ok()) errors[r] = status.message();
+  });
+  for (const std::string& error : errors)
+    if (!error.empty()) throw std::runtime_error("shading: " + error);
+  return radiance;
+}
+
+void write_rendered_image(const std::string& path, const Image& image, float exposure_ev) {
+  const std::string ext = lower_extension(path);
+  if (ext == ".png") {
+    std::vector<float> encoded(image.rgb.size());
+    tone_map(image.rgb.data(), image.rgb.size(), exposure_ev, encoded.data());
+    write_image(path, image.width, image.height, 3, encoded.data());
+  } else if (ext == ".exr" || ext == ".hdr") {
+    write_image(path, image.width, image.height, 3, image.rgb.data());
+  } else {
+    check_image_extension(path);
+  }
+}
+
+void write_vertex_csv(const std::string& path, const bake::Scene& scene,
+                      const std::vector<float>& radiance_rgb) {
+  if (radiance_rgb.size() != 3 * scene.vertex_count())
+    throw std::runtime_error(path + ": radiance count does not match the scene's vertices");
+  const std::string temporary = path + ".tmp-" + std::to_string(::getpid());
+  {
+    std::FILE* file = std::fopen(temporary.c_str(), "wb");
+    if (!file) throw std::runtime_error(path + ": cannot open for writing");
+    bool ok = std::fputs("index,x,y,z,r,g,b\n", file) >= 0;
+    for (std::size_t i = 0; ok && i < scene.vertex_count(); ++i) {
+      const glm::vec3& p = scene.positions[i];
+      const float* b = &radiance_rgb[3 * i];
+      ok = std::fprintf(file, "%zu,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g\n", i, p.x, p.y, p.z, b[0], b[1],
+                        b[2]) > 0;
+    }
+    ok = (std::fclose(file) == 0) && ok;
+    if (!ok) {
+      std::remove(temporary.c_str());
+      throw std::runtime_error(path + ": write failed");
+    }
+  }
+  if (std::rename(temporary.c_str(), path.c_str()) != 0) {
+    std::remove(temporary.c_str());
+    throw std::runtime_error(path + ": cannot rename the temporary file into place");
+  }
+}
+
+std::string turntable_frame_path(const std::string& path, int frame) {
+  const std::filesystem::path p(path);
+  char index[32];
+  std::snprintf(index, sizeof index, "_%03d", frame);
+  return (p.parent_path() / (p.stem().string() + index + p.extension().string())).string();
+}
+
+RelightSummary run_relight(const RelightRequest& request) {
+  // 1. Validate every input before writing anything.
+  check_image_extension(request.output_path);
+  check_parent_directory(request.output_path);
+  if (!request.vertex_colors_path.empty()) {
+    if (lower_extension(request.vertex_colors_path) != ".glb")
+      throw std::runtime_error(request.vertex_colors_path + ": vertex colours are written as .glb");
+    check_parent_directory(request.vertex_colors_path);
+  }
+  if (!request.csv_path.empty()) check_parent_directory(request.csv_path);
+  if (request.turntable_frames < 0 || request.turntable_frames > 3600)
+    throw std::runtime_error("--turntable " + std::to_string(request.turntable_frames) +
+                             ": frame count must be in 0..3600");
+
+  RelightSummary summary;
+  const bake::Scene scene = bake::load_scene(request.scene_path);
+  const prt::TransferData data = load_transfer_for_scene(request.transfer_path, scene);
+  const sh::EnvMap env =
+      read_environment(request.environment_path, request.layout, &summary.layout_note);
+  const float aspect = static_cast<float>(request.render.width) /
+                       static_cast<float>(std::max(1, request.render.height));
+  const Camera camera = parse_camera(request.camera, scene, aspect);
+  make_camera_basis(camera, aspect);  // throws for a degenerate scene camera
+
+  summary.vertex_count = scene.vertex_count();
+  summary.order = static_cast<int>(data.order);
+  const prt::ShLighting base =
+      project_lighting(env, static_cast<int>(data.order), request.lighting, &summary.window_note);
+  prt::Result<prt::Relighter> relighter = prt::Relighter::create(data);
+  if (!relighter.ok())
+    throw std::runtime_error(request.transfer_path + ": " + relighter.status().message());
+  const std::array<double, 9> rotation = sh::rotation_from_yaw_pitch_roll(
+      request.lighting.yaw_pitch_roll_deg[0], request.lighting.yaw_pitch_roll_deg[1],
+      request.lighting.yaw_pitch_roll_deg[2]);
+  const bake::RayCaster caster(scene);
+
+  // 2. Shade, render, write: one frame, or the turntable's frames.
+  const int frames = std::max(1, request.turntable_frames);
+  for (int frame = 0; frame < frames; ++frame) {
+    const std::array<double, 9> m =
+        request.turntable_frames > 0 ? turntable_rotation(rotation, frame, frames) : rotation;
+    const prt::ShLighting lighting = rotate_lighting(base, m);
+    auto start = Clock::now();
+    const std::vector<float> radiance =
+        shade_all_vertices(*relighter, lighting, scene.vertex_count());
+    summary.shade_seconds += seconds_since(start);
+    if (frame == 0) {
+      for (std::size_t v = 0; v < scene.vertex_count(); ++v)
+        if (radiance[3 * v] < 0.f || radiance[3 * v + 1] < 0.f || radiance[3 * v + 2] < 0.f)
+          ++summary.negative_vertices;
+      if (!request.vertex_colors_path.empty()) {
+        std::vector<glm::vec3> colors(scene.vertex_count());
+        for (std::size_t v = 0; v < colors.size(); ++v)
+          colors[v] = glm::vec3(radiance[3 * v], radiance[3 * v + 1], radiance[3 * v + 2]);
+        bake::write_glb(request.vertex_colors_path, scene, &colors);
+        summary.files_written.push_back(request.vertex_colors_path);
+      }
+      if (!request.csv_path.empty()) {
+        write_vertex_csv(request.csv_path, scene, radiance);
+        summary.files_written.push_back(request.csv_path);
+      }
+    }
+    start = Clock::now();
+    const Image image = render(scene, caster, radiance, &env, m, camera, request.render);
+    summary.render_seconds += seconds_since(start);
+    const std::string path = request.turntable_frames > 0
+                                 ? turntable_frame_path(request.output_path, frame)
+                                 : request.output_path;
+    write_rendered_image(path, image, request.exposure_ev);
+    summary.files_written.push_back(path);
+  }
+  return summary;
+}
+
+}  // namespace prt::relight

@@ -1,0 +1,63 @@
+// sh/rotation.h — rotation of real SH coefficient vectors.
+//
+// Convention: the basis of sh/basis.h (real, orthonormal, no Condon–Shortley phase, polar axis
+// +z, index k = l(l+1) + m). 3×3 matrices are row-major, right-handed, act on column vectors
+// (v' = M·v) and must be proper rotations (orthonormal, det +1); nothing checks this.
+//
+// Semantics: Rotation(order, M) maps the coefficients of f to those of g(ω) = f(Mᵀ·ω), i.e.
+// f rotated by M (a lobe of f pointing along d points along M·d in g). Hence
+// R(A)·R(B) = R(A·B), and R is block diagonal: one orthogonal (2l+1)×(2l+1) matrix per band,
+// with rows/columns indexed by m = −l..l. Band 1 is M itself with axes reordered to (y, z, x),
+// because Y1,−1 ∝ y, Y1,0 ∝ z, Y1,1 ∝ x.
+//
+// Method: the recurrence of J. Ivanic & K. Ruedenberg, "Rotation Matrices for Real Spherical
+// Harmonics. Direct Determination by Recursion", J. Phys. Chem. 100(15):6342–6347, 1996, with
+// the additions and corrections of J. Phys. Chem. A 102(45):9099–9100, 1998. The published V
+// term for m < 0 still carries a sign error; here it reads
+//   V(m < 0) = P(1, m+1)·(1 − δ_{m,−1}) + P(−1, −m−1)·√(1 + δ_{m,−1}).
+// Band l is built from band l − 1 and band 1 in O(l²). Its error grows with l (GUIDE.md warns
+// of ~100× per 20 bands); measured orthogonality error for a generic rotation: 5e-15 at l = 20,
+// 1e-13 at l = 40, 4e-12 at l = 60. The tests require < 1e-10 up to l = 20.
+#pragma once
+
+#include <array>
+#include <vector>
+
+#include "sh/basis.h"
+
+namespace sh {
+
+// Largest order a Rotation accepts (its matrices take order·(4·order²−1)/3 doubles).
+inline constexpr int kMaxRotationOrder = 256;
+
+// M = Ry(yaw)·Rx(pitch)·Rz(roll), angles in degrees, each a right-handed rotation about the
+// named axis of the scene frame (+Y up), row-major, acting on column vectors: roll is applied
+// first, then pitch, then yaw (yaw turns about the up axis).
+std::array<double, 9> rotation_from_yaw_pitch_roll(double yaw_deg, double pitch_deg,
+                                                   double roll_deg) noexcept;
+
+class Rotation {
+ public:
+  // Builds the band matrices of bands 0..order−1 for the 3×3 rotation m (row-major).
+  // order is clamped to [1, kMaxRotationOrder]; accuracy is best below order ≈ 30 (see above).
+  // If the matrices cannot be allocated, order() is 0, apply() writes nothing and
+  // band_matrix() returns nullptr (sh/ never throws).
+  Rotation(int order, const std::array<double, 9>& m) noexcept;
+
+  int order() const noexcept { return order_; }
+
+  // out = R·in for order² coefficients (in and out must not overlap).
+  void apply(const double* in, double* out) const noexcept;
+  // Float version: reads/writes float, accumulates in double.
+  void apply(const float* in, float* out) const noexcept;
+
+  // Band l's (2l+1)×(2l+1) matrix, row-major, row/column i ↔ m = i − l; nullptr if l is out of
+  // range.
+  const double* band_matrix(int l) const noexcept;
+
+ private:
+  int order_;
+  std::vector<double> matrices_;  // band l at offset l(4l²−1)/3
+};
+
+}  // namespace sh

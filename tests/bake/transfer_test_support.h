@@ -1,0 +1,51 @@
+// tests/bake/transfer_test_support.h — small references shared by the baker tests:
+// Lambert's exact polygon form factor (an independent check of AO) and scene helpers.
+#pragma once
+
+#include <cmath>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "bake/scene.h"
+
+namespace prt::test {
+
+inline constexpr double kPi = 3.14159265358979323846;
+
+// Cosine-weighted fraction of the hemisphere around unit n at p that the planar polygon
+// `loop` covers (the differential-area-to-polygon form factor), by Lambert's formula
+//   F = (1/2π) Σ_i γ_i · n·(r_i × r_{i+1}) / |r_i × r_{i+1}|,  r_i = q_i − p,
+// γ_i the angle between r_i and r_{i+1}. The polygon must lie entirely above p's horizon.
+inline double polygon_form_factor(const glm::dvec3& p, const glm::dvec3& n,
+                                  const std::vector<glm::dvec3>& loop) {
+  double sum = 0.0;
+  for (std::size_t i = 0; i < loop.size(); ++i) {
+    const glm::dvec3 a = glm::normalize(loop[i] - p);
+    const glm::dvec3 b = glm::normalize(loop[(i + 1) % loop.size()] - p);
+    const glm::dvec3 c = glm::cross(a, b);
+    const double len = glm::length(c);
+    if (len <= 0) continue;
+    const double gamma = std::atan2(len, glm::dot(a, b));
+    sum += gamma * glm::dot(n, c) / len;
+  }
+  return std::fabs(sum) / (2.0 * kPi);
+}
+
+// Scales every position by s (normals unchanged) and translates by t afterwards.
+inline bake::Scene transformed(bake::Scene scene, float s, glm::vec3 t = glm::vec3(0.f)) {
+  for (glm::vec3& p : scene.positions) p = p * s + t;
+  return scene;
+}
+
+// Sets every vertex normal of a primitive-less scene range to n.
+inline void set_normals(bake::Scene& scene, std::size_t first, std::size_t count, glm::vec3 n) {
+  for (std::size_t v = first; v < first + count; ++v) scene.normals[v] = n;
+}
+
+inline void set_albedo(bake::Scene& scene, glm::vec3 a) {
+  for (glm::vec3& x : scene.albedo) x = a;
+  for (bake::ScenePrimitive& p : scene.primitives) p.albedo = a;
+}
+
+}  // namespace prt::test

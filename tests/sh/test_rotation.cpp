@@ -1,0 +1,176 @@
+// tests/sh/test_rotation.cpp — sh::Rotation against numerical projection and group laws.
+#include <array>
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include <catch2/catch.hpp>
+
+#include "sh/basis.h"
+#include "sh/rotation.h"
+#include "sh_core_quadrature.h"
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+using Matrix3 = std::array<double, 9>;
+
+Matrix3 multiply(const Matrix3& a, const Matrix3& b) {
+  Matrix3 c{};
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 3; ++j) {
+      for (int k = 0; k < 3; ++k) c[i * 3 + j] += a[i * 3 + k] * b[k * 3 + j];
+    }
+  }
+  return c;
+}
+
+// Rotation by `angle` about the unit axis (Rodrigues), right-handed.
+Matrix3 axis_angle(double ax, double ay, double az, double angle) {
+  const double n = std::sqrt(ax * ax + ay * ay + az * az);
+  ax /= n;
+  ay /= n;
+  az /= n;
+  const double c = std::cos(angle), s = std::sin(angle), t = 1.0 - c;
+  return {t * ax * ax + c,      t * ax * ay - s * az, t * ax * az + s * ay,
+          t * ax * ay + s * az, t * ay * ay + c,      t * ay * az - s * ax,
+          t * ax * az - s * ay, t * ay * az + s * ax, t * az * az + c};
+}
+
+Matrix3 random_rotation(std::mt19937_64& rng) {
+  std::normal_distribution<double> g;
+  std::uniform_real_distribution<double> a(0.0, 2.0 * kPi);
+  return axis_angle(g(rng), g(rng), g(rng), a(rng));
+}
+
+std::vector<double> random_coefficients(int n, std::mt19937_64& rng) {
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  std::vector<double> c(n);
+  for (double& v : c) v = u(rng);
+  return c;
+}
+
+}  // namespace
+
+TEST_CASE("band matrices are orthogonal up to l = 20", "[sh][rotation]") {
+  // Ivanic–Ruedenberg error grows with l; at l = 20 it measures ≈ 5e-15 in double. 1e-10 (the
+  // brief's bound) leaves margin and still catches any wrong coefficient (O(1) errors).
+  std::mt19937_64 rng(5);
+  for (int trial = 0; trial < 5; ++trial) {
+    const sh::Rotation r(21, random_rotation(rng));
+    REQUIRE(r.order() == 21);
+    for (int l = 0; l <= 20; ++l) {
+      const int s = 2 * l + 1;
+      const double* b = r.band_matrix(l);
+      REQUIRE(b != nullptr);
+      double worst = 0.0;
+      for (int i = 0; i < s; ++i) {
+        for (int j = 0; j < s; ++j) {
+          double dot = 0.0;
+          for (int k = 0; k < s; ++k) dot += b[i * s + k] * b[j * s + k];
+          worst = std::fmax(worst, std::fabs(dot - (i == j)));
+        }
+      }
+      INFO("l=" << l);
+      REQUIRE(worst < 1e-10);
+    }
+    REQUIRE(r.band_matrix(21) == nullptr);
+    REQUIRE(r.band_matrix(-1) == nullptr);
+  }
+}
+
+TEST_CASE("rotation composes: R(a)R(b) = R(ab), and R(I) = I", "[sh][rotation]") {
+  // 1e-12: products of orthogonal matrices of size ≤ 21 in double.
+  std::mt19937_64 rng(9);
+  const int order = 12, n = order * order;
+  for (int trial = 0; trial < 5; ++trial) {
+    const Matrix3 a = random_rotation(rng), b = random_rotation(rng);
+    const sh::Rotation ra(order, a), rb(order, b), rab(order, multiply(a, b));
+    const std::vector<double> f = random_coefficients(n, rng);
+    std::vector<double> g(n), h(n), direct(n);
+    rb.apply(f.data(), g.data());
+    ra.apply(g.data(), h.data());
+    rab.apply(f.data(), direct.data());
+    for (int k = 0; k < n; ++k) REQUIRE(h[k] == Approx(direct[k]).margin(1e-12));
+  }
+  const sh::Rotation identity(order, {1, 0, 0, 0, 1, 0, 0, 0, 1});
+  for (int l = 0; l < order; ++l) {
+    const int s = 2 * l + 1;
+    for (int i = 0; i < s * s; ++i) {
+      REQUIRE(identity.band_matrix(l)[i] == Approx(i % (s + 1) == 0 ? 1.0 : 0.0).margin(1e-14));
+    }
+  }
+}
+
+TEST_CASE("rotating coefficients equals projecting the rotated function", "[sh][rotation]") {
+  // f = Σ c_k Y_k is band-limited to `order`, so g(ω) = f(Mᵀω) is too, and the product
+  // quadrature (order+1 nodes × 2·order+2 angles) projects it exactly: agreement to 1e-11
+  // (roundoff of ~600-point sums of O(1) terms).
+  std::mt19937_64 rng(21);
+  const int order = 8, n = order * order;
+  const sh_test::Quadrature q = sh_test::make_zone_quadrature(order + 1, 2 * order + 2);
+  for (int trial = 0; trial < 4; ++trial) {
+    const Matrix3 m = random_rotation(rng);
+    const std::vector<double> f = random_coefficients(n, rng);
+    std::vector<double> projected(n, 0.0), y(n), rotated(n);
+    for (std::size_t p = 0; p < q.weights.size(); ++p) {
+      const auto& w = q.directions[p];
+      // Mᵀω
+      const double u[3] = {m[0] * w[0] + m[3] * w[1] + m[6] * w[2],
+                           m[1] * w[0] + m[4] * w[1] + m[7] * w[2],
+                           m[2] * w[0] + m[5] * w[1] + m[8] * w[2]};
+      sh::evaluate(order, u[0], u[1], u[2], y.data());
+      double value = 0.0;
+      for (int k = 0; k < n; ++k) value += f[k] * y[k];
+      sh::evaluate(order, w[0], w[1], w[2], y.data());
+      for (int k = 0; k < n; ++k) projected[k] += q.weights[p] * value * y[k];
+    }
+    sh::Rotation(order, m).apply(f.data(), rotated.data());
+    std::vector<float> ff(f.begin(), f.end()), rf(n);
+    sh::Rotation(order, m).apply(ff.data(), rf.data());
+    for (int k = 0; k < n; ++k) {
+      INFO("k=" << k);
+      REQUIRE(rotated[k] == Approx(projected[k]).margin(1e-11));
+      // Float apply: inputs rounded to float (6e-8) times ‖f‖₁ per band ≲ 20.
+      REQUIRE(double(rf[k]) == Approx(projected[k]).margin(5e-6));
+    }
+  }
+}
+
+TEST_CASE("rotating Y1,0 (z) by 90 degrees about +x gives -y", "[sh][rotation]") {
+  // Rx(90°) maps +z to −y, so g(ω) = f(Mᵀω) = (M·e_z)·ω = −y: coefficient −1 on Y1,−1.
+  const sh::Rotation r(2, axis_angle(1, 0, 0, kPi / 2));
+  const double f[4] = {0.0, 0.0, 1.0, 0.0};
+  double g[4];
+  r.apply(f, g);
+  REQUIRE(g[0] == Approx(0.0).margin(1e-15));
+  REQUIRE(g[1] == Approx(-1.0).margin(1e-15));
+  REQUIRE(g[2] == Approx(0.0).margin(1e-15));
+  REQUIRE(g[3] == Approx(0.0).margin(1e-15));
+  // Band 2: Y2,0 turned by 90° about +y (+z → +x) must equal Y2,0(Mᵀω) pointwise.
+  const sh::Rotation ry(3, axis_angle(0, 1, 0, kPi / 2));
+  double c[9] = {0, 0, 0, 0, 0, 0, 1, 0, 0}, rc[9], y[9], y0[9];
+  ry.apply(c, rc);
+  for (const auto& w : {std::array<double, 3>{0.6, 0.0, 0.8}, std::array<double, 3>{0.0, 0.6, 0.8},
+                        std::array<double, 3>{1.0, 0.0, 0.0}}) {
+    sh::evaluate(3, w[0], w[1], w[2], y);
+    // Mᵀω for M = Ry(90°): Mᵀ(x, y, z) = (−z, y, x).
+    sh::evaluate(3, -w[2], w[1], w[0], y0);
+    double value = 0.0;
+    for (int k = 0; k < 9; ++k) value += rc[k] * y[k];
+    REQUIRE(value == Approx(y0[6]).margin(1e-14));
+  }
+}
+
+TEST_CASE("rotation_from_yaw_pitch_roll is Ry(yaw) Rx(pitch) Rz(roll)", "[sh][rotation]") {
+  const double yaw = 30.0, pitch = -50.0, roll = 110.0, d = kPi / 180.0;
+  const Matrix3 expected =
+      multiply(axis_angle(0, 1, 0, yaw * d),
+               multiply(axis_angle(1, 0, 0, pitch * d), axis_angle(0, 0, 1, roll * d)));
+  const Matrix3 m = sh::rotation_from_yaw_pitch_roll(yaw, pitch, roll);
+  for (int i = 0; i < 9; ++i) REQUIRE(m[i] == Approx(expected[i]).margin(1e-15));
+  // Yaw 90° turns +x toward −z (right-handed about +Y).
+  const Matrix3 y90 = sh::rotation_from_yaw_pitch_roll(90.0, 0.0, 0.0);
+  REQUIRE(y90[0] == Approx(0.0).margin(1e-15));
+  REQUIRE(y90[6] == Approx(-1.0).margin(1e-15));
+}
