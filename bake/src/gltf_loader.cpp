@@ -84,6 +84,9 @@ glm::dmat4 local_transform(const tinygltf::Node& node) {
   return t * r * s;
 }
 
+// Albedo of primitives whose material gives no colour we read (see add_mesh).
+constexpr float kDefaultGltfAlbedo = 0.8f;
+
 class GltfReader {
  public:
   GltfReader(const std::string& path, const tinygltf::Model& model) : path_(path), model_(model) {}
@@ -101,6 +104,12 @@ class GltfReader {
     if (skipped_primitives_ > 0) {
       std::fprintf(stderr, "%s: warning: skipped %zu non-triangle primitive(s)\n", path_.c_str(),
                    skipped_primitives_);
+    }
+    if (defaulted_albedo_primitives_ > 0) {
+      std::fprintf(stderr,
+                   "%s: note: %zu primitive(s) have no material colour (none, or a texture that "
+                   "is not read): albedo %.2f grey (override with --albedo r,g,b)\n",
+                   path_.c_str(), defaulted_albedo_primitives_, double(kDefaultGltfAlbedo));
     }
     return std::move(scene_);
   }
@@ -284,14 +293,25 @@ class GltfReader {
       out.vertex_count = static_cast<uint32_t>(positions.size());
       out.first_triangle = static_cast<uint32_t>(scene_.triangles.size());
       out.triangle_count = static_cast<uint32_t>(indices.size() / 3);
-      out.albedo = glm::vec3(1.f);
+      // Albedo: the material's baseColorFactor. A primitive with no material, or whose colour
+      // comes from a texture we do not read (factor left at its default of 1), would get the
+      // glTF default of white — an albedo of 1 that conserves no energy and that the baker
+      // refuses — so it gets kDefaultGltfAlbedo instead and is counted for a warning.
+      out.albedo = glm::vec3(kDefaultGltfAlbedo);
+      bool known_albedo = false;
       if (primitive.material >= 0 &&
           primitive.material < static_cast<int>(model_.materials.size())) {
-        const std::vector<double>& factor =
-            model_.materials[static_cast<std::size_t>(primitive.material)]
-                .pbrMetallicRoughness.baseColorFactor;
-        if (factor.size() >= 3) out.albedo = glm::vec3(glm::dvec3(factor[0], factor[1], factor[2]));
+        const tinygltf::PbrMetallicRoughness& pbr =
+            model_.materials[static_cast<std::size_t>(primitive.material)].pbrMetallicRoughness;
+        const std::vector<double>& factor = pbr.baseColorFactor;
+        const bool default_factor =
+            factor.size() >= 3 && factor[0] == 1.0 && factor[1] == 1.0 && factor[2] == 1.0;
+        if (factor.size() >= 3 && !(default_factor && pbr.baseColorTexture.index >= 0)) {
+          out.albedo = glm::vec3(glm::dvec3(factor[0], factor[1], factor[2]));
+          known_albedo = true;
+        }
       }
+      if (!known_albedo) ++defaulted_albedo_primitives_;
 
       for (std::size_t v = 0; v < positions.size(); ++v) {
         scene_.positions.emplace_back(glm::vec3(glm::dvec3(world * glm::dvec4(positions[v], 1.0))));
@@ -325,6 +345,7 @@ class GltfReader {
   Scene scene_;
   std::vector<bool> visited_;
   std::size_t skipped_primitives_ = 0;
+  std::size_t defaulted_albedo_primitives_ = 0;
 };
 
 // Lists images whose external file is missing (image pixels are never needed).

@@ -2,8 +2,11 @@
 #include "obj_loader.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <map>
 #include <sstream>
 #include <utility>
@@ -32,6 +35,35 @@ std::string condense(const std::string& text) {
   return out;
 }
 
+// tinyobjloader reads a coordinate it cannot parse ("nan", "inf", "1.0x") as 0 without a word,
+// so every `v` line is checked here first: each of its first three fields must be a finite
+// number, or the file is refused naming the line.
+void check_vertex_lines(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) fail(path, "cannot open");
+  std::string line;
+  std::size_t line_number = 0;
+  while (std::getline(in, line)) {
+    ++line_number;
+    std::size_t i = line.find_first_not_of(" \t");
+    if (i == std::string::npos || line.compare(i, 2, "v ") != 0) {
+      if (i == std::string::npos || line.compare(i, 2, "v\t") != 0) continue;
+    }
+    std::istringstream fields(line.substr(i + 2));
+    for (int axis = 0; axis < 3; ++axis) {
+      std::string token;
+      if (!(fields >> token))
+        fail(path, "line " + std::to_string(line_number) + ": a vertex needs 3 coordinates");
+      char* end = nullptr;
+      const double value = std::strtod(token.c_str(), &end);
+      if (end == token.c_str() || *end != '\0' || !std::isfinite(value)) {
+        fail(path, "line " + std::to_string(line_number) + ": vertex coordinate '" + token +
+                       "' is not a finite number");
+      }
+    }
+  }
+}
+
 }  // namespace
 
 Scene read_obj_scene(const std::string& path) {
@@ -45,8 +77,9 @@ Scene read_obj_scene(const std::string& path) {
     const std::string message = condense(reader.Error());
     fail(path, "cannot load OBJ: " + (message.empty() ? "unknown error" : message));
   }
+  check_vertex_lines(path);
+  // Printed only once the file has been accepted, so a refusal stays a single line.
   const std::string warnings = condense(reader.Warning());
-  if (!warnings.empty()) std::fprintf(stderr, "%s: warning: %s\n", path.c_str(), warnings.c_str());
 
   const tinyobj::attrib_t& attrib = reader.GetAttrib();
   const std::vector<tinyobj::material_t>& materials = reader.GetMaterials();
@@ -154,6 +187,7 @@ Scene read_obj_scene(const std::string& path) {
         "%s: warning: %zu shape(s) use several materials; each takes its first face's material\n",
         path.c_str(), mixed_material_shapes);
   }
+  if (!warnings.empty()) std::fprintf(stderr, "%s: warning: %s\n", path.c_str(), warnings.c_str());
   return scene;
 }
 

@@ -293,7 +293,8 @@ TEST_CASE("glTF materials, albedo override, non-triangle primitives, textures no
   g.doc["textures"] = {{{"source", 0}}, {{"source", 1}}};
   g.doc["images"] = {{{"uri", "not_here.png"}}, {{"uri", "not_an_image.png"}}};
   std::ofstream(prt::test::output_path("not_an_image.png")) << "definitely not a PNG";
-  // A second node whose primitive has no material: the glTF default 1, 1, 1.
+  // A second node whose primitive has no material: not the glTF default of white (an albedo of
+  // 1, which the baker refuses) but the loader's documented default grey, 0.8.
   g.add_mesh_node(kTriangle, {0, 1, 2});
   g.doc["nodes"][1]["translation"] = {0, 0, 1};
   g.doc["scenes"][0]["nodes"] = {0, 1};
@@ -303,9 +304,9 @@ TEST_CASE("glTF materials, albedo override, non-triangle primitives, textures no
   CHECK(s.triangles.size() == 2);
   CHECK(s.primitives[0].name == "m0/0");
   CHECK(s.primitives[0].albedo == glm::vec3(0.25f, 0.5f, 0.75f));
-  CHECK(s.primitives[1].albedo == glm::vec3(1.f));
+  CHECK(s.primitives[1].albedo == glm::vec3(0.8f));
   CHECK(s.albedo[0] == glm::vec3(0.25f, 0.5f, 0.75f));
-  CHECK(s.albedo[3] == glm::vec3(1.f));
+  CHECK(s.albedo[3] == glm::vec3(0.8f));
 
   prt::bake::LoadOptions options;
   options.albedo_override = glm::vec3(0.1f, 0.2f, 0.3f);

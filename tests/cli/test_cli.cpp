@@ -1,0 +1,310 @@
+// tests/cli/test_cli.cpp — the `prt` executable as a user meets it.
+//
+// Runs the built binary (PRT_CLI_PATH) in a shell and checks what the README promises:
+//   * bad input gets ONE line on stderr naming the file and the problem, a non-zero exit, and
+//     no output file left behind (not even a temporary);
+//   * good input works end to end (env → bake → info → relight);
+//   * the engine example (docs/ENGINE.md, built against prt::prt alone) computes the same
+//     radiance as `prt relight --csv` for the same file and lighting.
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <catch2/catch.hpp>
+#include <nlohmann/json.hpp>
+
+#include "relight/image_io.h"
+#include "support/test_data.h"
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct RunResult {
+  int exit_code = 0;
+  std::string out, err;
+};
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// Runs `command` through the shell, capturing stdout and stderr into files.
+RunResult run(const std::string& command) {
+  static int counter = 0;
+  const fs::path dir = prt::test::output_path("cli");
+  fs::create_directories(dir);
+  const fs::path out = dir / ("run" + std::to_string(counter) + ".out");
+  const fs::path err = dir / ("run" + std::to_string(counter++) + ".err");
+  const std::string full = command + " >" + out.string() + " 2>" + err.string();
+  const int status = std::system(full.c_str());
+  RunResult r;
+  r.exit_code = (status == -1) ? -1 : WEXITSTATUS(status);
+  r.out = slurp(out);
+  r.err = slurp(err);
+  return r;
+}
+
+std::string prt_cli() {
+  return PRT_CLI_PATH;
+}
+
+// A fresh, empty scratch directory for one test case.
+fs::path scratch(const std::string& name) {
+  const fs::path dir = prt::test::output_path("cli") / name;
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+std::size_t line_count(const std::string& text) {
+  std::size_t n = 0;
+  for (char c : text) n += (c == '\n');
+  if (!text.empty() && text.back() != '\n') ++n;
+  return n;
+}
+
+// Every file in `dir` (recursively), to show that a failed command wrote nothing.
+std::vector<std::string> files_in(const fs::path& dir) {
+  std::vector<std::string> names;
+  for (const auto& e : fs::recursive_directory_iterator(dir)) names.push_back(e.path().string());
+  return names;
+}
+
+// The shape of a refusal: non-zero exit, a single stderr line that mentions `must_mention`.
+void require_one_line_error(const RunResult& r, const std::string& must_mention) {
+  INFO("stderr: " << r.err);
+  CHECK(r.exit_code != 0);
+  CHECK(line_count(r.err) == 1);
+  CHECK(r.err.find(must_mention) != std::string::npos);
+}
+
+void write_constant_env(const fs::path& path, int width, int height, const float rgb[3]) {
+  std::vector<float> pixels(static_cast<std::size_t>(3 * width * height));
+  for (std::size_t i = 0; i < pixels.size(); ++i) pixels[i] = rgb[i % 3];
+  prt::relight::write_image(path.string(), width, height, 3, pixels.data());
+}
+
+}  // namespace
+
+TEST_CASE("cli: prt env refuses bad input with one line naming the file") {
+  const fs::path dir = scratch("env_errors");
+  SECTION("missing file") {
+    const std::string missing = (dir / "no_such_map.hdr").string();
+    require_one_line_error(run(prt_cli() + " env " + missing), "no_such_map.hdr");
+  }
+  SECTION("not an image") {
+    const fs::path junk = dir / "junk.hdr";
+    std::ofstream(junk) << "this is not an image";
+    require_one_line_error(run(prt_cli() + " env " + junk.string()), "junk.hdr");
+  }
+  SECTION("aspect ratio that fits no layout") {
+    const fs::path odd = dir / "odd.exr";
+    const float c[3] = {1, 1, 1};
+    write_constant_env(odd, 5, 3, c);
+    require_one_line_error(run(prt_cli() + " env " + odd.string()), "odd.exr");
+  }
+  SECTION("absurd order") {
+    const fs::path ok = dir / "ok.exr";
+    const float c[3] = {1, 1, 1};
+    write_constant_env(ok, 16, 8, c);
+    require_one_line_error(run(prt_cli() + " env " + ok.string() + " --order 100000"), "--order");
+  }
+}
+
+TEST_CASE("cli: prt env counts NaN and negative texels, and --strict refuses them") {
+  const fs::path dir = scratch("env_nan");
+  std::vector<float> pixels(3 * 16 * 8, 1.0f);
+  pixels[0] = std::nanf("");
+  pixels[4] = -1.0f;
+  const fs::path map = dir / "bad_texels.exr";
+  prt::relight::write_image(map.string(), 16, 8, 3, pixels.data());
+
+  const RunResult lenient = run(prt_cli() + " env " + map.string() + " --json");
+  REQUIRE(lenient.exit_code == 0);
+  const auto j = nlohmann::json::parse(lenient.out);
+  CHECK(j["skipped_texels"]["nan"] == 1);
+  CHECK(j["skipped_texels"]["negative"] == 1);
+  for (const auto& rgb : j["coefficients"])
+    for (const auto& v : rgb) CHECK(std::isfinite(v.get<double>()));
+
+  require_one_line_error(run(prt_cli() + " env " + map.string() + " --strict"), "bad_texels.exr");
+}
+
+TEST_CASE("cli: prt env --json states the convention and the coefficients") {
+  const fs::path dir = scratch("env_json");
+  const fs::path map = dir / "const.exr";
+  const float c[3] = {0.25f, 0.5f, 1.0f};
+  write_constant_env(map, 64, 32, c);
+  const RunResult r = run(prt_cli() + " env " + map.string() + " --order 4 --json");
+  REQUIRE(r.exit_code == 0);
+  const auto j = nlohmann::json::parse(r.out);
+  CHECK(j["order"] == 4);
+  CHECK(j["layout"] == "latlong");
+  CHECK(j["basis"].get<std::string>().find("no Condon-Shortley") != std::string::npos);
+  REQUIRE(j["coefficients"].size() == 16);
+  // A constant radiance c projects to L00 = c·√(4π) (exact quadrature of a constant).
+  const double root4pi = std::sqrt(4.0 * 3.14159265358979323846);
+  for (int ch = 0; ch < 3; ++ch)
+    CHECK(j["coefficients"][0][ch].get<double>() == Approx(c[ch] * root4pi).epsilon(1e-6));
+}
+
+TEST_CASE("cli: prt bake refuses bad scenes and options, leaving nothing behind") {
+  const fs::path dir = scratch("bake_errors");
+  const fs::path out_dir = dir / "out";
+  fs::create_directories(out_dir);
+  const std::string out = (out_dir / "x.prt").string();
+  SECTION("a file that does not parse") {
+    const fs::path broken = dir / "broken.gltf";
+    std::ofstream(broken) << "{ not json";
+    require_one_line_error(run(prt_cli() + " bake " + broken.string() + " -o " + out),
+                           "broken.gltf");
+  }
+  SECTION("NaN position") {
+    const fs::path obj = dir / "nan.obj";
+    std::ofstream(obj) << "v 0 0 0\nv 1 0 0\nv 0 nan 1\nf 1 2 3\n";
+    require_one_line_error(run(prt_cli() + " bake " + obj.string() + " -o " + out), "nan.obj");
+  }
+  SECTION("index out of range") {
+    const fs::path obj = dir / "range.obj";
+    std::ofstream(obj) << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 7\n";
+    require_one_line_error(run(prt_cli() + " bake " + obj.string() + " -o " + out), "range.obj");
+  }
+  SECTION("empty scene") {
+    const fs::path obj = dir / "empty.obj";
+    std::ofstream(obj) << "# nothing\n";
+    require_one_line_error(run(prt_cli() + " bake " + obj.string() + " -o " + out), "empty.obj");
+  }
+  SECTION("albedo of 1 or more") {
+    require_one_line_error(run(prt_cli() + " bake " + prt::test::project_data("demo.glb").string() +
+                               " -o " + out + " --albedo 1,1,1"),
+                           "albedo");
+  }
+  SECTION("unwritable output") {
+    require_one_line_error(run(prt_cli() + " bake " + prt::test::project_data("demo.glb").string() +
+                               " -o /nonexistent_dir/x.prt --samples 16"),
+                           "x.prt");
+  }
+  CHECK(files_in(out_dir).empty());
+}
+
+TEST_CASE("cli: prt info and prt relight refuse corrupt and mismatched files") {
+  const fs::path dir = scratch("relight_errors");
+  const fs::path scene = dir / "quad.obj";
+  std::ofstream(scene) << "v 0 0 0\nv 1 0 0\nv 1 0 -1\nv 0 0 -1\nf 1 2 3\nf 1 3 4\n";
+  const fs::path other = dir / "other.obj";
+  std::ofstream(other) << "v 0 0 0\nv 2 0 0\nv 2 0 -2\nv 0 0 -2\nf 1 2 3\nf 1 3 4\n";
+  const fs::path prt_file = dir / "quad.prt";
+  REQUIRE(run(prt_cli() + " bake " + scene.string() + " -o " + prt_file.string() +
+              " --samples 16 --quiet")
+              .exit_code == 0);
+  const fs::path env = dir / "sky.exr";
+  const float c[3] = {1, 1, 1};
+  write_constant_env(env, 32, 16, c);
+
+  const fs::path out_dir = dir / "out";
+  fs::create_directories(out_dir);
+  const std::string png = (out_dir / "img.png").string();
+
+  SECTION("mismatched geometry") {
+    require_one_line_error(run(prt_cli() + " relight " + other.string() + " " + prt_file.string() +
+                               " " + env.string() + " -o " + png + " --size 32x32"),
+                           "quad.prt");
+  }
+  SECTION("a flipped byte fails the checksum") {
+    std::string bytes = slurp(prt_file);
+    bytes[bytes.size() / 2] = static_cast<char>(bytes[bytes.size() / 2] ^ 0x5a);
+    const fs::path corrupt = dir / "corrupt.prt";
+    std::ofstream(corrupt, std::ios::binary) << bytes;
+    require_one_line_error(run(prt_cli() + " info " + corrupt.string()), "corrupt.prt");
+    require_one_line_error(run(prt_cli() + " relight " + scene.string() + " " + corrupt.string() +
+                               " " + env.string() + " -o " + png + " --size 32x32"),
+                           "corrupt.prt");
+  }
+  SECTION("a truncated file") {
+    const std::string bytes = slurp(prt_file);
+    const fs::path cut = dir / "cut.prt";
+    std::ofstream(cut, std::ios::binary) << bytes.substr(0, bytes.size() / 3);
+    require_one_line_error(run(prt_cli() + " info " + cut.string()), "cut.prt");
+  }
+  CHECK(files_in(out_dir).empty());
+}
+
+TEST_CASE("cli: bake, info and relight work end to end on the bundled scene") {
+  const fs::path dir = scratch("end_to_end");
+  const std::string scene = prt::test::project_data("demo.glb").string();
+  const std::string sky = prt::test::project_data("sky.hdr").string();
+  const fs::path prt_file = dir / "demo.prt";
+  REQUIRE(run(prt_cli() + " bake " + scene + " -o " + prt_file.string() +
+              " --samples 32 --order 3 --ao --quiet")
+              .exit_code == 0);
+
+  const RunResult info = run(prt_cli() + " info " + prt_file.string() + " --json");
+  REQUIRE(info.exit_code == 0);
+  const auto j = nlohmann::json::parse(info.out);
+  CHECK(j.dump().find("shadowed") != std::string::npos);
+
+  const fs::path png = dir / "demo.png", csv = dir / "demo.csv", glb = dir / "demo_colors.glb";
+  const RunResult relit = run(prt_cli() + " relight " + scene + " " + prt_file.string() + " " +
+                              sky + " -o " + png.string() + " --size 96x54 --spp 1 --csv " +
+                              csv.string() + " --vertex-colors " + glb.string() + " --quiet");
+  INFO(relit.err);
+  REQUIRE(relit.exit_code == 0);
+  CHECK(fs::file_size(png) > 1000);
+  CHECK(fs::file_size(glb) > 1000);
+  // One CSV row per vertex (plus the header): the demo scene's 11,347 vertices.
+  CHECK(line_count(slurp(csv)) == 11347 + 1);
+}
+
+TEST_CASE("cli: the engine example computes what prt relight --csv computes") {
+  // The engine example (docs/ENGINE.md) loads a file, projects a 64×32 constant lat-long sky
+  // of radiance (0.5, 0.7, 1.0), turns it by yaw 30° and applies the auto window, then prints
+  // vertex 0's radiance with 4 decimals. The CLI does the same from an image file. Both use
+  // prt::prt's kernel on the same file, so they must agree to the printed precision.
+  const fs::path dir = scratch("engine_vs_cli");
+  const std::string scene = prt::test::project_data("demo.glb").string();
+  const fs::path prt_file = dir / "demo.prt";
+  REQUIRE(run(prt_cli() + " bake " + scene + " -o " + prt_file.string() +
+              " --samples 32 --order 3 --quiet")
+              .exit_code == 0);
+  const fs::path env = dir / "sky.exr";
+  const float sky[3] = {0.5f, 0.7f, 1.0f};
+  write_constant_env(env, 64, 32, sky);
+  const fs::path csv = dir / "relit.csv";
+  REQUIRE(run(prt_cli() + " relight " + scene + " " + prt_file.string() + " " + env.string() +
+              " -o " + (dir / "img.exr").string() + " --size 16x16 --spp 1 --rotate 30,0,0" +
+              " --window auto --csv " + csv.string() + " --quiet")
+              .exit_code == 0);
+
+  const RunResult example = run(std::string(PRT_ENGINE_EXAMPLE_PATH) + " " + prt_file.string());
+  INFO(example.err);
+  REQUIRE(example.exit_code == 0);
+  // "... vertex 0: RGB r g b"
+  const std::size_t at = example.out.find("RGB");
+  REQUIRE(at != std::string::npos);
+  double engine_rgb[3];
+  std::istringstream(example.out.substr(at + 3)) >> engine_rgb[0] >> engine_rgb[1] >> engine_rgb[2];
+
+  std::istringstream rows(slurp(csv));
+  std::string header, row0;
+  std::getline(rows, header);
+  std::getline(rows, row0);
+  for (char& ch : row0)
+    if (ch == ',') ch = ' ';
+  double index, x, y, z, cli_rgb[3];
+  std::istringstream(row0) >> index >> x >> y >> z >> cli_rgb[0] >> cli_rgb[1] >> cli_rgb[2];
+  REQUIRE(index == 0);
+  for (int c = 0; c < 3; ++c) {
+    // 5e-5: half a unit in the example's 4th printed decimal.
+    CHECK(engine_rgb[c] == Approx(cli_rgb[c]).margin(5e-5));
+    CHECK(engine_rgb[c] > 0.01);  // the vertex is lit, so agreement is not 0 == 0
+  }
+}
