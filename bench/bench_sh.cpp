@@ -78,6 +78,20 @@ void rotate_build_and_apply(benchmark::State& state) {
   }
 }
 
+// The same with the plain recurrence from band 2 (no closed-form band 2): the old path.
+void rotate_build_recurrence_and_apply(benchmark::State& state) {
+  const int order = int(state.range(0));
+  const auto rotations = random_rotations();
+  std::vector<double> in(order * order, 0.5), out(order * order);
+  int i = 0;
+  for (auto _ : state) {
+    const sh::Rotation r = sh::Rotation::build_with_recurrence(order, rotations[i++ & 63]);
+    r.apply(in.data(), out.data());
+    benchmark::DoNotOptimize(out.data());
+    benchmark::ClobberMemory();
+  }
+}
+
 // Apply only (band matrices built once).
 void rotate_apply_only(benchmark::State& state) {
   const int order = int(state.range(0));
@@ -96,6 +110,7 @@ BENCHMARK_TEMPLATE(evaluate_per_direction, double)->Arg(3)->Arg(5)->Arg(10);
 BENCHMARK_TEMPLATE(evaluate_per_direction, float)->Arg(3)->Arg(5)->Arg(10);
 BENCHMARK(evaluate_recurrence_per_direction)->Arg(5)->Arg(10)->Arg(20);
 BENCHMARK(rotate_build_and_apply)->Arg(2)->Arg(3)->Arg(5)->Arg(10);
+BENCHMARK(rotate_build_recurrence_and_apply)->Arg(3)->Arg(5);
 BENCHMARK(rotate_apply_only)->Arg(3)->Arg(5)->Arg(10);
 
 BENCHMARK_MAIN();

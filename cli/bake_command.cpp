@@ -16,11 +16,15 @@
 
 #include <CLI/CLI.hpp>
 
+#include "bake/adaptive_baker.h"
 #include "bake/progress.h"
 #include "bake/scene_loader.h"
 #include "bake/transfer_baker.h"
 #include "command_registry.h"
+#include "haar_cli.h"
 #include "prt/transfer_file.h"
+#include "relight/image_io.h"
+#include "sh/projection.h"
 
 namespace prt::cli {
 namespace {
@@ -38,6 +42,10 @@ struct BakeArguments {
   int threads = 0;
   std::string precision = "f32";
   bool quiet = false;
+  HaarBakeArguments haar;  // --basis haar and its options (haar_cli.h)
+  bool automatic = false;  // --auto (bake/adaptive_baker.h)
+  std::string env;         // --env: lighting that --auto chooses the SH order for
+  bool tolerance_given = false, transfer_given = false;
 };
 
 // "r,g,b" or a single grey value; each in [0, 1).
@@ -82,6 +90,43 @@ void check_output_writable(const std::string& output) {
   if (access(dir.c_str(), W_OK) != 0) throw CommandError(output + ": directory is not writable");
 }
 
+// `--auto`: --tolerance (default 0.01) becomes the accuracy target; without --transfer the
+// most complete kind (interreflected) is requested and the analysis drops what is not needed.
+void run_auto(const BakeArguments& args, const bake::Scene& scene, const bake::BakeOptions& fixed,
+              bake::ProgressSink& progress) {
+  bake::AutoBakeOptions o;
+  o.tolerance = args.tolerance_given ? args.tolerance : 0.01;
+  o.kind = args.transfer_given ? fixed.kind : prt::TransferKind::Interreflected;
+  o.order = fixed.order;
+  o.seed = fixed.seed;
+  o.threads = fixed.threads;
+  o.ao = fixed.ao;
+  o.bent_normals = fixed.bent_normals;
+  o.precision = fixed.precision;
+  if (!args.env.empty()) {
+    const sh::EnvMap env = relight::read_environment(args.env, std::nullopt);
+    o.lighting_order = bake::kMaxBakeOrder;
+    o.lighting = sh::project(env, o.lighting_order);
+    if (o.lighting.empty()) throw CommandError(args.env + ": cannot project the environment");
+  }
+  const bake::AutoBakeResult result = bake::bake_transfer_auto(scene, o, &progress);
+  const prt::Status written = prt::write_transfer_file(args.output, result.bake.data);
+  if (!written.ok()) throw CommandError(written.message());
+  if (args.quiet) return;
+  const bake::AutoBakeReport& r = result.report;
+  const bake::BakeStatistics& st = result.bake.stats;
+  std::printf("prt bake --auto %s: %s transfer, order %d, %u channel%s; %llu rays in %.2f s "
+              "(total %.2f s); predicted error %.3g (truncation %.3g, sampling %.3g; tolerance "
+              "%.3g)\n",
+              args.scene.c_str(), bake::transfer_kind_name(r.stored_kind), r.order,
+              result.bake.data.channels, result.bake.data.channels == 1 ? "" : "s",
+              static_cast<unsigned long long>(st.rays), st.seconds_rays, st.seconds_total,
+              r.predicted_error, r.predicted_truncation_error, r.predicted_sampling_error,
+              o.tolerance);
+  for (const std::string& line : r.left_out) std::printf("  left out: %s\n", line.c_str());
+  std::printf("  wrote %s\n", args.output.c_str());
+}
+
 void run(const BakeArguments& args) {
   bake::BakeOptions options;
   options.kind = parse_kind(args.transfer);
@@ -114,8 +159,14 @@ void run(const BakeArguments& args) {
   bake::LoadOptions load;
   if (!args.albedo.empty()) load.albedo_override = parse_albedo(args.albedo);
   const bake::Scene scene = bake::load_scene(args.scene, load);
+  if (args.haar.basis == "haar") {
+    run_haar_bake(scene, args.output, options.kind, args.haar, args.seed, args.threads,
+                  args.bounces, args.tolerance, args.quiet);
+    return;
+  }
 
   bake::ConsoleProgress progress(args.quiet);
+  if (args.automatic) return run_auto(args, scene, options, progress);
   const bake::BakeResult result = bake::bake_transfer(scene, options, &progress);
   const prt::Status written = prt::write_transfer_file(args.output, result.data);
   if (!written.ok()) throw CommandError(written.message());
@@ -175,7 +226,15 @@ void register_bake(CLI::App& app) {
   cmd->add_option("--precision", args->precision, "Coefficient storage: f32 | f16")
       ->capture_default_str();
   cmd->add_flag("--quiet", args->quiet, "No progress and no summary");
-  cmd->callback([args] { run(*args); });
+  add_haar_bake_options(cmd, &args->haar);
+  cmd->add_flag("--auto", args->automatic,
+                "Analyse the scene and bake only what it needs for --tolerance (default 0.01)");
+  cmd->add_option("--env", args->env, "--auto: lighting whose band energy picks the SH order");
+  cmd->callback([args, cmd] {
+    args->tolerance_given = cmd->count("--tolerance") > 0;
+    args->transfer_given = cmd->count("--transfer") > 0;
+    run(*args);
+  });
 }
 
 }  // namespace

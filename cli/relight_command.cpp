@@ -12,6 +12,7 @@
 #include <CLI/CLI.hpp>
 
 #include "command_registry.h"
+#include "haar_cli.h"
 #include "relight/relight_pipeline.h"
 #include "sh/env_map.h"
 #include "sh/window.h"
@@ -32,6 +33,7 @@ struct RelightArguments {
   std::string vertex_colors, csv;
   int turntable = 0;
   bool quiet = false;
+  HaarRelightArguments haar;  // --terms, --approx for Haar files (haar_cli.h)
 };
 
 std::array<double, 3> parse_rotation(const std::string& text) {
@@ -98,6 +100,7 @@ void run(const RelightArguments& args) {
   request.csv_path = args.csv;
   request.turntable_frames = args.turntable;
 
+  if (relight_if_haar(request, args.haar, args.quiet)) return;
   const relight::RelightSummary summary = relight::run_relight(request);
   if (args.quiet) return;
   std::printf("relit %zu vertices at SH order %d (%s%s%s); shading %.2f ms, rendering %.3f s",
@@ -143,6 +146,7 @@ void register_relight(CLI::App& app) {
   cmd->add_option("--turntable", args->turntable,
                   "Write N frames OUT_000… with the light turning about +Y");
   cmd->add_flag("--quiet", args->quiet, "Print nothing on success");
+  add_haar_relight_options(cmd, &args->haar);
   cmd->callback([args] { run(*args); });
 }
 

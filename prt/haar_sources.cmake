@@ -6,4 +6,5 @@ target_sources(prt_runtime PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/src/haar_approximation.cpp
   ${CMAKE_CURRENT_LIST_DIR}/src/haar_transfer.cpp
   ${CMAKE_CURRENT_LIST_DIR}/src/haar_relighter.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/src/haar_transfer_file.cpp
 )

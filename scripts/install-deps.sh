@@ -10,6 +10,8 @@ PACKAGES=(
   libopenexr-dev libtinygltf-dev catch2 libtbb-dev
   libcli11-dev nlohmann-json3-dev libtinyobjloader-dev
   libbenchmark-dev
+  librsvg2-bin
+  clang libclang-rt-14-dev  # scripts/fuzz.sh (libFuzzer)
 )
 
 missing=()

@@ -160,6 +160,18 @@ SolveReport solve_interreflection(const SparseTransferMatrix& h, const std::vect
   };
 
   bool done = true_residual();
+  // BiCGSTAB is not monotone and can diverge on stiff non-normal systems (eigenvalues of ρH
+  // spread around a circle of radius ~ρ): keep the iterate with the smallest true residual, so
+  // an unconverged solve never returns worse than its Jacobi warm-up.
+  Block best_t(t, t + n);
+  std::vector<double> best_rel = rel;
+  auto keep_best = [&]() {
+    if (*std::max_element(rel.begin(), rel.end()) <
+        *std::max_element(best_rel.begin(), best_rel.end())) {
+      std::copy(t, t + n, best_t.begin());
+      best_rel = rel;
+    }
+  };
   while (!done && iterations < options.max_iterations) {
     // (Re)start: r̂ = r, p = 0, v = 0, ρ = α = ω = 1.
     rhat = r;
@@ -218,6 +230,12 @@ SolveReport solve_interreflection(const SparseTransferMatrix& h, const std::vect
       if (all || restart) break;
     }
     done = true_residual();
+    keep_best();
+  }
+  if (!done && *std::max_element(best_rel.begin(), best_rel.end()) <
+                   *std::max_element(rel.begin(), rel.end())) {
+    std::copy(best_t.begin(), best_t.end(), t);
+    rel = best_rel;
   }
   if (progress) progress->finish();
   report.krylov_iterations = iterations;

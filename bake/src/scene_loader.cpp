@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <stdexcept>
 
 #include "bake/mesh_normals.h"
 #include "gltf_loader.h"
@@ -48,6 +49,12 @@ void finish_scene(Scene& scene, const std::string& path, const LoadOptions& opti
     for (ScenePrimitive& p : scene.primitives) p.albedo = *options.albedo_override;
     std::fill(scene.albedo.begin(), scene.albedo.end(), *options.albedo_override);
   }
+  // File normals must be unit length (an OBJ `vn 5 1 0` is not, found by fuzzing): normalise
+  // them; zero or non-finite ones are treated as missing and computed below.
+  for (glm::vec3& n : scene.normals) {
+    const float length = glm::length(n);
+    n = (std::isfinite(length) && length > 0.f) ? n / length : glm::vec3(0.f);
+  }
   remove_degenerate_triangles(scene);
   if (scene.triangles.empty())
     throw SceneError(path + ": the scene has no (non-degenerate) triangles");
@@ -68,15 +75,22 @@ Scene load_scene(const std::string& path, const LoadOptions& options) {
   std::transform(extension.begin(), extension.end(), extension.begin(),
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   Scene scene;
-  if (extension == ".gltf") {
-    scene = detail::read_gltf_scene(path, /*binary=*/false);
-  } else if (extension == ".glb") {
-    scene = detail::read_gltf_scene(path, /*binary=*/true);
-  } else if (extension == ".obj") {
-    scene = detail::read_obj_scene(path);
-  } else {
-    throw SceneError(path + ": unsupported scene format '" + extension +
-                     "' (expected .gltf, .glb or .obj)");
+  try {
+    if (extension == ".gltf") {
+      scene = detail::read_gltf_scene(path, /*binary=*/false);
+    } else if (extension == ".glb") {
+      scene = detail::read_gltf_scene(path, /*binary=*/true);
+    } else if (extension == ".obj") {
+      scene = detail::read_obj_scene(path);
+    } else {
+      throw SceneError(path + ": unsupported scene format '" + extension +
+                       "' (expected .gltf, .glb or .obj)");
+    }
+  } catch (const SceneError&) {
+    throw;
+  } catch (const std::out_of_range&) {
+    // e.g. a glTF primitive naming an accessor that does not exist (found by fuzzing).
+    throw SceneError(path + ": the file refers to an element that does not exist");
   }
   finish_scene(scene, path, options);
   return scene;

@@ -47,7 +47,9 @@ namespace prt::bake {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
-constexpr std::size_t kVertexBlock = 64;  // vertices per parallel task (fixed: determinism)
+constexpr double kY00 = 0.28209479177387814;  // 1 / (2√π)
+constexpr int kMaxAdaptiveBounces = 200;      // then BiCGSTAB finishes the solve
+constexpr std::size_t kVertexBlock = 64;      // vertices per parallel task (fixed: determinism)
 constexpr const char* kBasisConvention =
     "real orthonormal SH, no Condon-Shortley phase, index k = l(l+1)+m, Y(x,y,z) with polar "
     "axis +z, scene frame glTF (+Y up)";
@@ -87,6 +89,49 @@ struct VertexSums {
   std::vector<float> bent;            // 3V
 };
 
+double max_abs(const std::vector<double>& x) {
+  double m = 0.0;
+  for (double e : x) m = std::max(m, std::fabs(e));
+  return m;
+}
+
+// Adaptive interreflection (transfer_baker.h): T = Σ_i (ρH)^i D, stopped after the first bounce
+// whose max-norm is ≤ tolerance × max|D|; BiCGSTAB (to relative residual `tolerance`) finishes
+// when kMaxAdaptiveBounces were not enough (ρ → 1). Skipped when H is empty or ρ = 0: T = D.
+void solve_adaptively(const SparseTransferMatrix& h, const std::vector<double>& rho,
+                      const std::vector<double>& direct, int columns, double tolerance,
+                      std::vector<double>& t, BakeStatistics& st, ProgressSink* progress) {
+  t = direct;
+  const bool any_albedo = std::any_of(rho.begin(), rho.end(), [](double r) { return r > 0.0; });
+  const double d_max = max_abs(direct);
+  if (h.entries() == 0 || !any_albedo || d_max == 0.0) return;
+  st.interreflection_solved = true;
+  std::vector<double> bounce = direct, next(direct.size());
+  int bounces = 0;
+  bool stopped = false;
+  while (bounces < kMaxAdaptiveBounces && !stopped) {
+    multiply_gather(h, rho, bounce.data(), columns, next.data());
+    const double energy = max_abs(next);
+    for (std::size_t j = 0; j < t.size(); ++j) t[j] += next[j];
+    bounce.swap(next);
+    if (st.bounce_energy.size() <= static_cast<std::size_t>(bounces))
+      st.bounce_energy.push_back(0.0);
+    st.bounce_energy[bounces] = std::max(st.bounce_energy[bounces], energy);
+    ++bounces;
+    stopped = energy <= tolerance * d_max;
+  }
+  st.jacobi_bounces = std::max(st.jacobi_bounces, bounces);
+  if (stopped) return;
+  SolveOptions so;
+  so.bounces = -1;
+  so.tolerance = tolerance;
+  const SolveReport rep =
+      solve_interreflection(h, rho, direct.data(), columns, t.data(), so, progress);
+  st.solver_iterations += rep.krylov_iterations;
+  st.solver_residual = std::max(st.solver_residual, rep.relative_residual);
+  st.solver_converged = st.solver_converged && rep.converged;
+}
+
 }  // namespace
 
 const char* transfer_kind_name(prt::TransferKind kind) {
@@ -120,6 +165,21 @@ void validate_bake_inputs(const Scene& scene, const BakeOptions& o) {
     throw BakeError(name + ": bounce tolerance must be in (0, 1)");
   if (o.max_solver_iterations < 1) throw BakeError(name + ": solver iteration cap must be >= 1");
   if (o.threads < 0) throw BakeError(name + ": thread count must be >= 0");
+  if (o.adaptive.enabled) {
+    const AdaptiveSampling& a = o.adaptive;
+    if (a.min_samples < 1 || a.max_samples < a.min_samples || a.max_samples > kMaxBakeSamples)
+      throw BakeError(name + ": adaptive sample range [" + std::to_string(a.min_samples) + ", " +
+                      std::to_string(a.max_samples) + "] is invalid");
+    if (!(a.standard_error > 0.0) || !std::isfinite(a.standard_error))
+      throw BakeError(name + ": adaptive standard error target must be > 0");
+    if (!(a.bounce_tolerance > 0.0) || !(a.bounce_tolerance < 1.0))
+      throw BakeError(name + ": adaptive bounce tolerance must be in (0, 1)");
+    if (!a.vertex_mode.empty() && a.vertex_mode.size() != scene.positions.size())
+      throw BakeError(name + ": adaptive vertex modes do not match the vertex count");
+    if (a.lighting_order < 0 ||
+        a.lighting.size() < static_cast<std::size_t>(a.lighting_order) * a.lighting_order)
+      throw BakeError(name + ": adaptive lighting has fewer than order² coefficients");
+  }
   if (scene.positions.empty()) throw BakeError(name + ": the scene has no vertices");
   if (scene.normals.size() != scene.positions.size())
     throw BakeError(name + ": " + std::to_string(scene.normals.size()) + " normals for " +
@@ -201,20 +261,54 @@ BakeResult bake_transfer(const Scene& scene, const BakeOptions& options, Progres
   SparseTransferMatrix h;
   double ray_offset = 0.0;
 
+  // Analytic unshadowed transfer of vertex v: (1/π) · rotate_zonal(clamped cosine, n), grey.
+  std::vector<double> zonal(order);
+  for (int l = 0; l < order; ++l) zonal[l] = sh::clamped_cosine_zonal_coefficient(l);
+  auto unshadowed = [&](std::size_t v, double* out) {
+    const glm::dvec3 n = glm::normalize(glm::dvec3(scene.normals[v]));
+    sh::rotate_zonal(order, zonal.data(), n.x, n.y, n.z, out);
+    for (int k = 0; k < K; ++k) out[k] /= kPi;
+  };
+
   if (!need_sh_rays) {
-    // Analytic: (1/π) · rotate_zonal(clamped cosine, n); albedo applied below.
-    std::vector<double> zonal(order);
-    for (int l = 0; l < order; ++l) zonal[l] = sh::clamped_cosine_zonal_coefficient(l);
+    // Analytic; albedo applied by store_direct.
     tbb::parallel_for(std::size_t(0), V, [&](std::size_t v) {
-      const glm::dvec3 n = glm::normalize(glm::dvec3(scene.normals[v]));
       std::vector<double> out(K);
-      sh::rotate_zonal(order, zonal.data(), n.x, n.y, n.z, out.data());
-      for (int k = 0; k < K; ++k) out[k] /= kPi;
+      unshadowed(v, out.data());
       store_direct(v, out.data());
     });
   }
 
-  if (need_rays) {
+  const bool adaptive = options.adaptive.enabled && need_rays;
+  const AdaptiveSampling& ad = options.adaptive;
+  auto mode_of = [&](std::size_t v) {
+    return ad.vertex_mode.empty() ? kSampleVertex : ad.vertex_mode[v];
+  };
+  bool any_sampled = !adaptive;
+  if (adaptive) {
+    st.vertex_samples.assign(V, 0);
+    st.vertex_standard_error.assign(V, 0.f);
+    for (std::size_t v = 0; v < V; ++v) {
+      any_sampled = any_sampled || mode_of(v) == kSampleVertex;
+      if (mode_of(v) == kAnalyticVertex) ++st.analytic_vertices;
+    }
+  }
+  if (adaptive && !any_sampled) {
+    // Nothing to cast: no BVH is built. AO = 1 and bent normal = n are exact for an open
+    // hemisphere; skipped vertices keep zeros.
+    std::vector<double> out(K);
+    for (std::size_t v = 0; v < V; ++v) {
+      const glm::vec3 n = glm::normalize(scene.normals[v]);
+      for (int a = 0; a < 3; ++a) sums.bent[3 * v + a] = n[a];
+      if (mode_of(v) != kAnalyticVertex) continue;
+      unshadowed(v, out.data());
+      store_direct(v, out.data());
+      sums.ao[v] = 1.f;
+    }
+    if (interreflect) h.row_offsets.assign(V + 1, 0);
+  }
+
+  if (need_rays && any_sampled) {
     const Clock::time_point t_rays = Clock::now();
     RayCaster caster(scene);
     ray_offset = caster.offset_scale();
@@ -225,6 +319,87 @@ BakeResult bake_transfer(const Scene& scene, const BakeOptions& options, Progres
     const float tfar = std::numeric_limits<float>::infinity();
     const double inv_n = 1.0 / N;
 
+    // Adaptive sampling of one vertex (see transfer_baker.h); returns the rays cast.
+    const int min_n = round_up_to_packet(ad.min_samples);
+    const int max_n = std::max(min_n, round_up_to_packet(ad.max_samples));
+    const int light_order = std::min(ad.lighting_order, 6);  // w(ω): low-order luminance
+    const int eval_order = std::max(order, light_order);
+    const int eval_k = eval_order * eval_order;
+    const double light_mean = light_order > 0 ? ad.lighting[0] * kY00 : 0.0;
+    const bool weighted = light_order > 0 && light_mean > 0.0;
+    auto sample_adaptively = [&](std::size_t v, const glm::vec3& n,
+                                 std::vector<std::pair<uint32_t, float>>& gathered,
+                                 const auto& gather_hit, const auto& emit_row) -> uint64_t {
+      std::vector<double> s(K, 0.0), occluded_sum(K, 0.0);
+      gathered.clear();
+      const uint8_t mode = mode_of(v);
+      if (mode != kSampleVertex) {
+        if (mode == kAnalyticVertex) {
+          unshadowed(v, s.data());
+          store_direct(v, s.data());
+          sums.ao[v] = 1.f;
+        }
+        for (int a = 0; a < 3; ++a) sums.bent[3 * v + a] = n[a];
+        if (interreflect) emit_row(0.0);
+        return 0;
+      }
+      const glm::vec3 origin = caster.vertex_origin(static_cast<uint32_t>(v));
+      glm::vec3 dirs[kPacketSize];
+      bool occluded[kPacketSize];
+      RayCaster::Hit hits[kPacketSize];
+      std::vector<float> y(eval_k);
+      double sum_x = 0.0, sum_x2 = 0.0, se = 0.0;
+      uint32_t visible = 0;
+      glm::dvec3 bent(0.0);
+      int used = 0;
+      while (true) {
+        generate_cosine_directions(n, options.seed, v, static_cast<uint32_t>(used), kPacketSize,
+                                   dirs);
+        if (interreflect) {
+          caster.intersect_packet(origin, dirs, kPacketSize, tfar, hits);
+          for (int i = 0; i < kPacketSize; ++i) occluded[i] = hits[i].hit;
+        } else {
+          caster.occluded_packet(origin, dirs, kPacketSize, tfar, occluded);
+        }
+        for (int i = 0; i < kPacketSize; ++i) {
+          if (!occluded[i]) {
+            ++visible;
+            bent += glm::dvec3(dirs[i]);
+            continue;
+          }
+          sh::evaluate(eval_order, dirs[i].x, dirs[i].y, dirs[i].z, y.data());
+          for (int k = 0; k < K; ++k) occluded_sum[k] += static_cast<double>(y[k]);
+          double x = 1.0;
+          if (weighted) {
+            double radiance = 0.0;
+            for (int k = 0; k < light_order * light_order; ++k)
+              radiance += ad.lighting[k] * static_cast<double>(y[k]);
+            x = radiance / light_mean;
+          }
+          sum_x += x;
+          sum_x2 += x * x;
+          if (interreflect && hits[i].hit) gather_hit(hits[i], dirs[i]);
+        }
+        used += kPacketSize;
+        const double mean = sum_x / used;
+        const double var = std::max(0.0, sum_x2 / used - mean * mean) * used / (used - 1.0);
+        se = std::sqrt(var / used);
+        if (used >= max_n || (used >= min_n && se <= ad.standard_error)) break;
+      }
+      unshadowed(v, s.data());
+      const double inv_used = 1.0 / used;
+      for (int k = 0; k < K; ++k) s[k] -= occluded_sum[k] * inv_used;  // control variate
+      store_direct(v, s.data());
+      sums.ao[v] = static_cast<float>(visible * inv_used);
+      const double bl = glm::length(bent);
+      const glm::vec3 bn = bl > 0 ? glm::vec3(bent / bl) : n;
+      for (int a = 0; a < 3; ++a) sums.bent[3 * v + a] = bn[a];
+      if (interreflect) emit_row(inv_used);
+      st.vertex_samples[v] = static_cast<uint32_t>(used);
+      st.vertex_standard_error[v] = static_cast<float>(se);
+      return static_cast<uint64_t>(used);
+    };
+
     tbb::parallel_for(std::size_t(0), blocks, [&](std::size_t blk) {
       glm::vec3 dirs[kPacketSize];
       bool occluded[kPacketSize];
@@ -234,8 +409,50 @@ BakeResult bake_transfer(const Scene& scene, const BakeOptions& options, Progres
       std::vector<std::pair<uint32_t, float>> gathered;
       const std::size_t v_end = std::min(V, (blk + 1) * kVertexBlock);
       uint64_t rays = 0;
+      // The hit's vertices, weighted by barycentrics, go into this vertex's row of H.
+      auto gather_hit = [&](const RayCaster::Hit& hit, const glm::vec3& dir) {
+        const glm::uvec3 tri = scene.triangles[hit.triangle];
+        const float b0 = 1.f - hit.u - hit.v, b1 = hit.u, b2 = hit.v;
+        // The side the ray sees: the flat facet's geometric normal, oriented to agree
+        // with the triangle's vertex normals (so a winding that disagrees with the
+        // normals does not matter). Interpolated smooth normals would misjudge rays
+        // that graze a neighbouring facet of a curved, faceted surface (~1% of rays in
+        // the cavity test), losing their energy.
+        const glm::vec3 p0 = scene.positions[tri.x];
+        const glm::vec3 ng = glm::cross(scene.positions[tri.y] - p0, scene.positions[tri.z] - p0);
+        const float side =
+            glm::dot(ng, scene.normals[tri.x] + scene.normals[tri.y] + scene.normals[tri.z]);
+        if (!(glm::dot(ng, dir) * side < 0.f)) {  // back face: occludes only
+          ++block_back_hits[blk];
+          return;
+        }
+        gathered.emplace_back(tri.x, b0);
+        gathered.emplace_back(tri.y, b1);
+        gathered.emplace_back(tri.z, b2);
+      };
+      // Merges duplicate columns of the gathered entries into one row of H.
+      auto emit_row = [&](double row_scale) {
+        BlockRows& br = rows[blk];
+        std::sort(gathered.begin(), gathered.end(),
+                  [](const auto& a, const auto& b) { return a.first < b.first; });
+        uint32_t len = 0;
+        for (std::size_t i = 0; i < gathered.size();) {
+          const uint32_t col = gathered[i].first;
+          double w = 0.0;
+          for (; i < gathered.size() && gathered[i].first == col; ++i) w += gathered[i].second;
+          if (w <= 0.0) continue;
+          br.columns.push_back(col);
+          br.weights.push_back(static_cast<float>(w * row_scale));
+          ++len;
+        }
+        br.lengths.push_back(len);
+      };
       for (std::size_t v = blk * kVertexBlock; v < v_end; ++v) {
         const glm::vec3 n = glm::normalize(scene.normals[v]);
+        if (adaptive) {
+          rays += sample_adaptively(v, n, gathered, gather_hit, emit_row);
+          continue;
+        }
         const glm::vec3 origin = caster.vertex_origin(static_cast<uint32_t>(v));
         std::fill(acc.begin(), acc.end(), 0.0);
         gathered.clear();
@@ -266,31 +483,9 @@ BakeResult bake_transfer(const Scene& scene, const BakeOptions& options, Progres
           }
           if (any)
             for (int k = 0; k < K; ++k) acc[k] += static_cast<double>(packet_sum[k]);
-          if (interreflect) {
-            for (int i = 0; i < kPacketSize; ++i) {
-              const RayCaster::Hit& hit = hits[i];
-              if (!hit.hit) continue;
-              const glm::uvec3 tri = scene.triangles[hit.triangle];
-              const float b0 = 1.f - hit.u - hit.v, b1 = hit.u, b2 = hit.v;
-              // The side the ray sees: the flat facet's geometric normal, oriented to agree
-              // with the triangle's vertex normals (so a winding that disagrees with the
-              // normals does not matter). Interpolated smooth normals would misjudge rays
-              // that graze a neighbouring facet of a curved, faceted surface (~1% of rays in
-              // the cavity test), losing their energy.
-              const glm::vec3 p0 = scene.positions[tri.x];
-              const glm::vec3 ng =
-                  glm::cross(scene.positions[tri.y] - p0, scene.positions[tri.z] - p0);
-              const float side =
-                  glm::dot(ng, scene.normals[tri.x] + scene.normals[tri.y] + scene.normals[tri.z]);
-              if (!(glm::dot(ng, dirs[i]) * side < 0.f)) {  // back face: occludes only
-                ++block_back_hits[blk];
-                continue;
-              }
-              gathered.emplace_back(tri.x, b0);
-              gathered.emplace_back(tri.y, b1);
-              gathered.emplace_back(tri.z, b2);
-            }
-          }
+          if (interreflect)
+            for (int i = 0; i < kPacketSize; ++i)
+              if (hits[i].hit) gather_hit(hits[i], dirs[i]);
         }
         if (need_sh_rays)
           for (int k = 0; k < K; ++k) acc[k] *= inv_n;
@@ -301,22 +496,7 @@ BakeResult bake_transfer(const Scene& scene, const BakeOptions& options, Progres
         sums.bent[3 * v + 0] = bn.x;
         sums.bent[3 * v + 1] = bn.y;
         sums.bent[3 * v + 2] = bn.z;
-        if (interreflect) {
-          BlockRows& br = rows[blk];
-          std::sort(gathered.begin(), gathered.end(),
-                    [](const auto& a, const auto& b) { return a.first < b.first; });
-          uint32_t len = 0;
-          for (std::size_t i = 0; i < gathered.size();) {
-            const uint32_t col = gathered[i].first;
-            double w = 0.0;
-            for (; i < gathered.size() && gathered[i].first == col; ++i) w += gathered[i].second;
-            if (w <= 0.0) continue;
-            br.columns.push_back(col);
-            br.weights.push_back(static_cast<float>(w * inv_n));
-            ++len;
-          }
-          br.lengths.push_back(len);
-        }
+        if (interreflect) emit_row(inv_n);
       }
       block_rays[blk] = rays;
       if (progress) progress->advance(v_end - blk * kVertexBlock, rays);
@@ -346,7 +526,6 @@ BakeResult bake_transfer(const Scene& scene, const BakeOptions& options, Progres
   }
 
   // Assemble the header arrays, then the interreflection solve per channel.
-  data.kind = options.kind;
   data.order = static_cast<uint32_t>(order);
   data.channels = static_cast<uint32_t>(C);
   data.storage = options.precision;
@@ -368,10 +547,25 @@ BakeResult bake_transfer(const Scene& scene, const BakeOptions& options, Progres
   const Clock::time_point t_solve = Clock::now();
   std::vector<double> direct(interreflect ? V * K : 0), solved(interreflect ? V * K : 0);
   std::vector<double> rho(interreflect ? V : 0);
+  if (adaptive) {
+    for (std::size_t v = 0; v < V && interreflect; ++v)
+      if (mode_of(v) == kSampleVertex && h.row_offsets[v + 1] == h.row_offsets[v])
+        ++st.empty_gather_rows;
+    st.samples_per_vertex = 0;
+    for (uint32_t n_v : st.vertex_samples)
+      st.samples_per_vertex = std::max(st.samples_per_vertex, static_cast<int>(n_v));
+  }
   for (int c = 0; c < C && interreflect; ++c) {
     for (std::size_t v = 0; v < V; ++v) rho[v] = scene.albedo[v][c];
     for (std::size_t v = 0; v < V; ++v)
       for (int k = 0; k < K; ++k) direct[v * K + k] = rho[v] * sums.visibility_sh[v * K + k];
+    if (adaptive) {
+      solve_adaptively(h, rho, direct, K, ad.bounce_tolerance, solved, st, progress);
+      for (std::size_t v = 0; v < V; ++v)
+        for (int k = 0; k < K; ++k)
+          data.coefficients[(v * C + c) * K + k] = static_cast<float>(solved[v * K + k]);
+      continue;
+    }
     SolveOptions so;
     so.bounces = options.bounces;
     so.tolerance = options.bounce_tolerance;
@@ -391,6 +585,14 @@ BakeResult bake_transfer(const Scene& scene, const BakeOptions& options, Progres
         data.coefficients[(v * C + c) * K + k] = static_cast<float>(solved[v * K + k]);
   }
   st.seconds_solve = interreflect ? seconds_since(t_solve) : 0.0;
+  st.stored_kind = options.kind;
+  if (adaptive) {
+    if (st.analytic_vertices == V)
+      st.stored_kind = prt::TransferKind::Unshadowed;
+    else if (!interreflect || !st.interreflection_solved)
+      st.stored_kind = prt::TransferKind::Shadowed;
+  }
+  data.kind = st.stored_kind;
   if (options.ao) data.ao = std::move(sums.ao);
   if (options.bent_normals) data.bent_normals = std::move(sums.bent);
   st.seconds_total = seconds_since(t_start);
@@ -399,7 +601,7 @@ BakeResult bake_transfer(const Scene& scene, const BakeOptions& options, Progres
   meta["generator"] = "prt bake";
   meta["scene"] = scene.source_path;
   meta["sh_basis"] = kBasisConvention;
-  meta["transfer"] = transfer_kind_name(options.kind);
+  meta["transfer"] = transfer_kind_name(st.stored_kind);
   meta["order"] = order;
   meta["channels"] = C;
   meta["albedo_folded"] = true;
@@ -418,7 +620,27 @@ BakeResult bake_transfer(const Scene& scene, const BakeOptions& options, Progres
   meta["ray_offset"] = ray_offset;
   meta["seconds"] = st.seconds_total;
   meta["seconds_rays"] = st.seconds_rays;
-  if (interreflect) {
+  if (adaptive) {
+    nlohmann::json a;
+    a["transfer_requested"] = transfer_kind_name(options.kind);
+    a["min_samples"] = round_up_to_packet(ad.min_samples);
+    a["max_samples"] = round_up_to_packet(std::max(ad.min_samples, ad.max_samples));
+    a["standard_error_target"] = ad.standard_error;
+    a["lighting_weighted"] = ad.lighting_order > 0;
+    a["analytic_vertices"] = st.analytic_vertices;
+    uint64_t sampled = 0, sum = 0;
+    for (uint32_t n_v : st.vertex_samples) sampled += n_v > 0, sum += n_v;
+    a["sampled_vertices"] = sampled;
+    a["mean_samples_of_sampled_vertices"] =
+        sampled ? static_cast<double>(sum) / static_cast<double>(sampled) : 0.0;
+    if (interreflect) {
+      a["empty_gather_rows"] = st.empty_gather_rows;
+      a["interreflection_solved"] = st.interreflection_solved;
+      a["bounce_tolerance"] = ad.bounce_tolerance;
+    }
+    meta["adaptive"] = a;
+  }
+  if (interreflect && (!adaptive || st.interreflection_solved)) {
     nlohmann::json s;
     s["bounces_requested"] = options.bounces;
     s["tolerance"] = options.bounce_tolerance;

@@ -106,18 +106,9 @@ uint32_t file_checksum(const unsigned char* bytes, std::size_t size) {
 
 }  // namespace
 
-Status validate_transfer_data(const TransferData& d, const std::string& name) {
-  if (static_cast<uint32_t>(d.kind) > static_cast<uint32_t>(TransferKind::Haar)) {
-    return fail(name, "unknown transfer kind " + std::to_string(static_cast<uint32_t>(d.kind)));
-  }
-  if (d.storage != Precision::F32 && d.storage != Precision::F16) {
-    return fail(name,
-                "unknown storage precision " + std::to_string(static_cast<uint32_t>(d.storage)));
-  }
-  if (d.order < 1 || d.order > kMaxTransferOrder) {
-    return fail(name, "SH order " + std::to_string(d.order) + " is outside [1, " +
-                          std::to_string(kMaxTransferOrder) + "]");
-  }
+namespace detail {
+
+Status validate_common_transfer_fields(const TransferData& d, const std::string& name) {
   if (d.channels != 1 && d.channels != 3) {
     return fail(name, "channel count " + std::to_string(d.channels) + " is not 1 or 3");
   }
@@ -126,7 +117,6 @@ Status validate_transfer_data(const TransferData& d, const std::string& name) {
                           std::to_string(kMaxTransferVertices));
   }
   const uint64_t v = d.vertex_count;
-  const uint64_t k = uint64_t{d.order} * d.order;
   auto size_error = [&](const char* what, std::size_t have, uint64_t want) {
     std::ostringstream os;
     os << what << " holds " << have << " floats, expected " << want << " for " << v << " vertices";
@@ -134,9 +124,6 @@ Status validate_transfer_data(const TransferData& d, const std::string& name) {
   };
   if (d.positions.size() != 3 * v) return size_error("positions", d.positions.size(), 3 * v);
   if (d.normals.size() != 3 * v) return size_error("normals", d.normals.size(), 3 * v);
-  if (d.coefficients.size() != v * d.channels * k) {
-    return size_error("coefficients", d.coefficients.size(), v * d.channels * k);
-  }
   if (!d.ao.empty() && d.ao.size() != v) return size_error("ao", d.ao.size(), v);
   if (!d.bent_normals.empty() && d.bent_normals.size() != 3 * v) {
     return size_error("bent normals", d.bent_normals.size(), 3 * v);
@@ -156,10 +143,45 @@ Status validate_transfer_data(const TransferData& d, const std::string& name) {
   if (s.ok()) {
     s = check_finite_array(name, "bent normal", d.bent_normals.data(), d.bent_normals.size(), 3);
   }
-  if (s.ok()) {
-    s = check_finite_array(name, "a coefficient", d.coefficients.data(), d.coefficients.size(),
-                           d.channels * k);
+  if (!s.ok()) return s;
+  if (d.fingerprint != 0 &&
+      d.fingerprint != geometry_fingerprint(d.positions.data(), static_cast<std::size_t>(v))) {
+    return fail(name, "fingerprint does not match the positions (leave it 0 to have it computed)");
   }
+  return Status::Ok();
+}
+
+}  // namespace detail
+
+Status validate_transfer_data(const TransferData& d, const std::string& name) {
+  if (static_cast<uint32_t>(d.kind) > static_cast<uint32_t>(TransferKind::Haar)) {
+    return fail(name, "unknown transfer kind " + std::to_string(static_cast<uint32_t>(d.kind)));
+  }
+  if (d.kind == TransferKind::Haar) {
+    return fail(name,
+                "Haar-wavelet transfer is stored with prt::write_haar_transfer_file "
+                "(prt/haar_transfer_file.h), not as SH coefficients");
+  }
+  if (d.storage != Precision::F32 && d.storage != Precision::F16) {
+    return fail(name,
+                "unknown storage precision " + std::to_string(static_cast<uint32_t>(d.storage)));
+  }
+  if (d.order < 1 || d.order > kMaxTransferOrder) {
+    return fail(name, "SH order " + std::to_string(d.order) + " is outside [1, " +
+                          std::to_string(kMaxTransferOrder) + "]");
+  }
+  Status s = validate_common_transfer_fields(d, name);
+  if (!s.ok()) return s;
+  const uint64_t v = d.vertex_count;
+  const uint64_t k = uint64_t{d.order} * d.order;
+  if (d.coefficients.size() != v * d.channels * k) {
+    std::ostringstream os;
+    os << "coefficients holds " << d.coefficients.size() << " floats, expected "
+       << v * d.channels * k << " for " << v << " vertices";
+    return fail(name, os.str());
+  }
+  s = check_finite_array(name, "a coefficient", d.coefficients.data(), d.coefficients.size(),
+                         d.channels * k);
   if (!s.ok()) return s;
   if (d.storage == Precision::F16) {
     const std::size_t n = d.coefficients.size();
@@ -173,21 +195,16 @@ Status validate_transfer_data(const TransferData& d, const std::string& name) {
       return fail(name, os.str());
     }
   }
-  if (d.fingerprint != 0 &&
-      d.fingerprint != geometry_fingerprint(d.positions.data(), static_cast<std::size_t>(v))) {
-    return fail(name, "fingerprint does not match the positions (leave it 0 to have it computed)");
-  }
   return Status::Ok();
 }
 
-Result<std::vector<unsigned char>> encode_transfer_file(const TransferData& d,
-                                                        const std::string& name) {
-  Status valid = validate_transfer_data(d, name);
-  if (!valid.ok()) return valid;
+namespace detail {
+
+Result<std::vector<unsigned char>> encode_transfer_container(
+    const TransferData& d, uint32_t order_field, uint32_t storage_field, uint64_t coefficient_bytes,
+    const std::function<void(unsigned char*)>& write_coefficients, const std::string& name) {
   try {
     const uint64_t v = d.vertex_count;
-    const uint64_t k = uint64_t{d.order} * d.order;
-    const uint64_t bytes_per_value = d.storage == Precision::F16 ? 2 : 4;
     // Primitive table: records, then the names.
     uint64_t names_size = 0;
     for (const PrimitiveRange& p : d.primitives) names_size += p.name.size();
@@ -195,9 +212,7 @@ Result<std::vector<unsigned char>> encode_transfer_file(const TransferData& d,
     sizes[kPrimitives] = d.primitives.size() * kPrimitiveRecordSize + names_size;
     sizes[kPositions] = 12 * v;
     sizes[kNormals] = 12 * v;
-    if (!blocked_coefficient_bytes(v, d.channels, k, bytes_per_value, &sizes[kCoefficients])) {
-      return fail(name, "coefficient section size overflows");
-    }
+    sizes[kCoefficients] = coefficient_bytes;
     sizes[kAo] = 4 * uint64_t{d.ao.size()};
     sizes[kBentNormals] = 4 * uint64_t{d.bent_normals.size()};
     sizes[kMetadata] = d.metadata_json.size();
@@ -215,9 +230,9 @@ Result<std::vector<unsigned char>> encode_transfer_file(const TransferData& d,
     store_u32(h + kOffVersion, kTransferFileVersion);
     store_u32(h + kOffHeaderSize, kHeaderSize);
     store_u32(h + kOffKind, static_cast<uint32_t>(d.kind));
-    store_u32(h + kOffOrder, d.order);
+    store_u32(h + kOffOrder, order_field);
     store_u32(h + kOffChannels, d.channels);
-    store_u32(h + kOffStorage, static_cast<uint32_t>(d.storage));
+    store_u32(h + kOffStorage, storage_field);
     const uint32_t flags = (d.albedo_folded ? kFlagAlbedoFolded : 0u) |
                            (d.ao.empty() ? 0u : kFlagHasAo) |
                            (d.bent_normals.empty() ? 0u : kFlagHasBentNormals);
@@ -254,8 +269,31 @@ Result<std::vector<unsigned char>> encode_transfer_file(const TransferData& d,
     if (!d.metadata_json.empty()) {
       std::memcpy(h + offsets[kMetadata], d.metadata_json.data(), d.metadata_json.size());
     }
-    // Coefficients: vertex-major floats -> blocked layout (padding stays zero).
-    unsigned char* coeffs = h + offsets[kCoefficients];
+    if (coefficient_bytes != 0) write_coefficients(h + offsets[kCoefficients]);
+    store_u32(h + kOffChecksum, file_checksum(h, out.size()));
+    return out;
+  } catch (const std::bad_alloc&) {
+    return fail(name, "out of memory while encoding");
+  } catch (const std::length_error&) {
+    return fail(name, "out of memory while encoding");
+  }
+}
+
+}  // namespace detail
+
+Result<std::vector<unsigned char>> encode_transfer_file(const TransferData& d,
+                                                        const std::string& name) {
+  Status valid = validate_transfer_data(d, name);
+  if (!valid.ok()) return valid;
+  const uint64_t v = d.vertex_count;
+  const uint64_t k = uint64_t{d.order} * d.order;
+  const uint64_t bytes_per_value = d.storage == Precision::F16 ? 2 : 4;
+  uint64_t coefficient_bytes = 0;
+  if (!blocked_coefficient_bytes(v, d.channels, k, bytes_per_value, &coefficient_bytes)) {
+    return fail(name, "coefficient section size overflows");
+  }
+  // Coefficients: vertex-major floats -> blocked layout (padding stays zero).
+  auto write_blocked = [&](unsigned char* coeffs) {
     const std::size_t vk = d.channels * static_cast<std::size_t>(k);
     for (std::size_t vi = 0; vi < v; ++vi) {
       for (std::size_t c = 0; c < d.channels; ++c) {
@@ -271,18 +309,19 @@ Result<std::vector<unsigned char>> encode_transfer_file(const TransferData& d,
         }
       }
     }
-    store_u32(h + kOffChecksum, file_checksum(h, out.size()));
-    return out;
-  } catch (const std::bad_alloc&) {
-    return fail(name, "out of memory while encoding");
-  } catch (const std::length_error&) {
-    return fail(name, "out of memory while encoding");
-  }
+  };
+  return encode_transfer_container(d, d.order, static_cast<uint32_t>(d.storage), coefficient_bytes,
+                                   write_blocked, name);
 }
 
 Status write_transfer_file(const std::string& path, const TransferData& data) {
   Result<std::vector<unsigned char>> bytes = encode_transfer_file(data, path);
   if (!bytes.ok()) return bytes.status();
+  return write_bytes_atomically(path, bytes.value());
+}
+
+Status detail::write_bytes_atomically(const std::string& path,
+                                      const std::vector<unsigned char>& b) {
   std::string tmp;
   try {
     tmp = path + ".tmp-" + std::to_string(PRT_GETPID());
@@ -291,7 +330,6 @@ Status write_transfer_file(const std::string& path, const TransferData& data) {
   }
   std::FILE* f = std::fopen(tmp.c_str(), "wb");
   if (f == nullptr) return fail(path, "cannot create " + tmp + ": " + std::strerror(errno));
-  const std::vector<unsigned char>& b = bytes.value();
   bool ok = std::fwrite(b.data(), 1, b.size(), f) == b.size();
   int saved_errno = errno;
   ok = (std::fflush(f) == 0) && ok;
@@ -312,7 +350,7 @@ Status write_transfer_file(const std::string& path, const TransferData& data) {
 namespace detail {
 
 Status parse_transfer_file(const void* bytes_in, std::size_t size, const std::string& name,
-                           ParsedTransferFile* out) {
+                           ParsedTransferFile* out, bool allow_haar) {
   const auto* b = static_cast<const unsigned char*>(bytes_in);
   if (b == nullptr && size != 0) return fail(name, "null buffer");
   if (size < kHeaderSize) {
@@ -358,14 +396,28 @@ Status parse_transfer_file(const void* bytes_in, std::size_t size, const std::st
   if (kind > static_cast<uint32_t>(TransferKind::Haar)) {
     return fail(name, "unknown transfer kind " + std::to_string(kind));
   }
-  if (order < 1 || order > kMaxTransferOrder) {
+  const bool haar = kind == static_cast<uint32_t>(TransferKind::Haar);
+  if (haar && !allow_haar) {
+    return fail(name,
+                "holds Haar-wavelet transfer (kind 3, cube size " + std::to_string(order) +
+                    "): read it with prt::read_haar_transfer_file (prt/haar_transfer_file.h)");
+  }
+  if (haar) {
+    if (order < 8 || order > 128 || (order & (order - 1)) != 0) {
+      return fail(name,
+                  "Haar cube size " + std::to_string(order) + " is not a power of two in [8, 128]");
+    }
+  } else if (order < 1 || order > kMaxTransferOrder) {
     return fail(name, "SH order " + std::to_string(order) + " is outside [1, " +
                           std::to_string(kMaxTransferOrder) + "]");
   }
   if (channels != 1 && channels != 3) {
     return fail(name, "channel count " + std::to_string(channels) + " is not 1 or 3");
   }
-  if (storage > 1) return fail(name, "unknown storage precision " + std::to_string(storage));
+  if (haar ? (storage != kHaarStorageF32 && storage != kHaarStorageI16 && storage != kHaarStorageI8)
+           : storage > 1) {
+    return fail(name, "unknown storage precision " + std::to_string(storage));
+  }
   if (flags & ~kKnownFlags) return fail(name, "unknown flags " + std::to_string(flags));
   if (load_u32(b + kOffReserved0) != 0 || load_u64(b + kOffReserved1) != 0) {
     return fail(name, "reserved header fields are not zero");
@@ -382,12 +434,13 @@ Status parse_transfer_file(const void* bytes_in, std::size_t size, const std::st
     sizes[s] = load_u64(b + kOffSections + 16 * s + 8);
   }
   uint64_t coefficient_bytes = 0;
-  blocked_coefficient_bytes(v, channels, k, storage == 1 ? 2 : 4, &coefficient_bytes);
+  if (!haar) blocked_coefficient_bytes(v, channels, k, storage == 1 ? 2 : 4, &coefficient_bytes);
   const bool has_ao = flags & kFlagHasAo, has_bent = flags & kFlagHasBentNormals;
   const std::array<uint64_t, kSectionCount> expected = {
       0, 12 * v, 12 * v, coefficient_bytes, has_ao ? 4 * v : 0, has_bent ? 12 * v : 0, 0};
   for (int s = 0; s < kSectionCount; ++s) {
-    if (s != kPrimitives && s != kMetadata && sizes[s] != expected[s]) {
+    if (s != kPrimitives && s != kMetadata && !(haar && s == kCoefficients) &&
+        sizes[s] != expected[s]) {
       return fail(name, std::string(section_name(s)) + " section holds " +
                             std::to_string(sizes[s]) + " bytes, expected " +
                             std::to_string(expected[s]) + " for " + std::to_string(v) +
@@ -430,7 +483,8 @@ Status parse_transfer_file(const void* bytes_in, std::size_t size, const std::st
     d.kind = static_cast<TransferKind>(kind);
     d.order = order;
     d.channels = channels;
-    d.storage = static_cast<Precision>(storage);
+    d.storage = haar ? Precision::F32 : static_cast<Precision>(storage);
+    out->storage_code = storage;
     d.albedo_folded = flags & kFlagAlbedoFolded;
     d.vertex_count = v;
     d.fingerprint = load_u64(b + kOffFingerprint);
@@ -474,8 +528,10 @@ Status parse_transfer_file(const void* bytes_in, std::size_t size, const std::st
     if (!s.ok()) return s;
     out->coefficients = b + offsets[kCoefficients];
     out->coefficient_bytes = static_cast<std::size_t>(sizes[kCoefficients]);
-    // Finite coefficients (padding included: it must be zero, which is finite).
-    if (storage == 1) {
+    // Finite coefficients (padding included: it must be zero, which is finite). The Haar
+    // payload is checked by its decoder (prt/haar_transfer_file.h).
+    if (haar) {
+    } else if (storage == 1) {
       for (std::size_t i = 0; i < out->coefficient_bytes; i += 2) {
         const unsigned exponent = out->coefficients[i + 1] & 0x7cu;  // high byte: s eeeee mm
         if (exponent == 0x7cu) {
@@ -538,9 +594,16 @@ Result<TransferData> read_transfer_data(const void* bytes, std::size_t size,
 }
 
 Result<TransferData> read_transfer_file(const std::string& path) {
+  std::vector<unsigned char> bytes;
+  Status s = read_file_bytes(path, &bytes);
+  if (!s.ok()) return s;
+  return read_transfer_data(bytes.data(), bytes.size(), path);
+}
+
+Status detail::read_file_bytes(const std::string& path, std::vector<unsigned char>* out) {
+  std::vector<unsigned char>& bytes = *out;
   std::FILE* f = std::fopen(path.c_str(), "rb");
   if (f == nullptr) return fail(path, std::string("cannot open: ") + std::strerror(errno));
-  std::vector<unsigned char> bytes;
   bool read_error = std::fseek(f, 0, SEEK_END) != 0;
   const long length = read_error ? -1 : std::ftell(f);
   read_error = read_error || length < 0 || std::fseek(f, 0, SEEK_SET) != 0;
@@ -555,7 +618,7 @@ Result<TransferData> read_transfer_file(const std::string& path) {
   }
   std::fclose(f);
   if (read_error) return fail(path, "read error");
-  return read_transfer_data(bytes.data(), bytes.size(), path);
+  return Status::Ok();
 }
 
 }  // namespace prt

@@ -14,6 +14,9 @@
 //            = R_i1 M^{l−1}_{a,−l+1} + R_{i,−1} M^{l−1}_{a,l−1} (n = −l),
 // with R = M^1. Each row m is thus a weighted sum of at most five rows (i, a) of the previous
 // band; the weights w·(factor) without the 1/√D part depend only on (l, m) and are tabulated.
+//
+// The constructor builds band 2 in closed form (write_band2) and the recurrence from band 3;
+// build_with_recurrence() uses the recurrence from band 2 (the reference for the tests).
 #include "sh/rotation.h"
 
 #include <algorithm>
@@ -185,51 +188,76 @@ void build_band_dispatch(int l, const double* r, const double* prev, double* out
   }
 }
 
-}  // namespace
+// ---------------------------------------------------------------------------------------------
+// Closed-form band 2 (the constructor; the recurrence takes over from band 3).
 
-std::array<double, 9> rotation_from_yaw_pitch_roll(double yaw_deg, double pitch_deg,
-                                                   double roll_deg) noexcept {
-  const double d = kPi / 180.0;
-  const double cy = std::cos(yaw_deg * d), sy = std::sin(yaw_deg * d);
-  const double cp = std::cos(pitch_deg * d), sp = std::sin(pitch_deg * d);
-  const double cr = std::cos(roll_deg * d), sr = std::sin(roll_deg * d);
-  // Ry(yaw) = [cy 0 sy; 0 1 0; −sy 0 cy], Rx(pitch) = [1 0 0; 0 cp −sp; 0 sp cp],
-  // Rz(roll) = [cr −sr 0; sr cr 0; 0 0 1]; M = Ry·Rx·Rz.
-  // Rx·Rz = [cr, −sr, 0; cp·sr, cp·cr, −sp; sp·sr, sp·cr, cp].
-  const double a[9] = {cr, -sr, 0.0, cp * sr, cp * cr, -sp, sp * sr, sp * cr, cp};
-  return {cy * a[0] + sy * a[6],  cy * a[1] + sy * a[7],  cy * a[2] + sy * a[8], a[3], a[4], a[5],
-          -sy * a[0] + cy * a[6], -sy * a[1] + cy * a[7], -sy * a[2] + cy * a[8]};
-}
-
-Rotation::Rotation(int order, const std::array<double, 9>& m) noexcept
-    : order_(std::clamp(order, 1, kMaxRotationOrder)) {
-  try {
-    matrices_.resize(band_offset(order_));
-  } catch (...) {  // out of memory: an empty rotation (order 0) instead of an exception
-    order_ = 0;
-    return;
-  }
-  double* mats = matrices_.data();
-  mats[0] = 1.0;
-  if (order_ < 2) return;
-  // Band 1: k = 1, 2, 3 ↔ (y, z, x), i.e. scene axes 1, 2, 0.
+// Band 1: rows/columns (y, z, x) of M, i.e. scene axes 1, 2, 0.
+inline void write_band1(const std::array<double, 9>& m, double* r) {
   static constexpr int kAxis[3] = {1, 2, 0};
-  double* r = mats + band_offset(1);
   for (int i = 0; i < 3; ++i) {
     for (int j = 0; j < 3; ++j) r[i * 3 + j] = m[kAxis[i] * 3 + kAxis[j]];
   }
+}
+
+// Band 2 in closed form. Y2n(ω) is a quadratic form ωᵀQ_nω, so Y2n(Mᵀω) = (Mᵀω)ᵀQ_n(Mᵀω) is
+// a product of the linear forms a·ω, b·ω, c·ω, where a, b, c are the columns x, y, z of M
+// (u = Mᵀω has u_x = a·ω, u_y = b·ω, u_z = c·ω). Splitting a product (p·ω)(q·ω) into the
+// basis: its xy, yz, xz coefficients p_x q_y + p_y q_x, … give Y2,−2, Y2,−1, Y2,1 (each
+// 1.092548·xy, …); its diagonal part d = (p_x q_x, p_y q_y, p_z q_z) gives
+// Y2,0 ∝ 2z² − x² − y² with weight (2d_z − d_x − d_y)/6 and Y2,2 ∝ x² − y² with weight
+// (d_x − d_y)/2. Dividing by the normalisations (c1 = ½√(15/π), c0 = ¼√(5/π), c2 = c1/2;
+// c1/c0 = 2√3) and simplifying with the orthonormality of M's rows and columns (a·b = 0,
+// |a| = 1, Σ_j M_xj M_yj = 0, …) gives the entries below; row m, column n at (m+2)·5 + n+2.
+inline void write_band2(const std::array<double, 9>& m, double* o) {
+  constexpr double k3 = 1.7320508075688772935;  // √3
+  constexpr double h3 = 0.8660254037844386468;  // √3/2
+  const double ax = m[0], ay = m[3], az = m[6];
+  const double bx = m[1], by = m[4], bz = m[7];
+  const double cx = m[2], cy = m[5], cz = m[8];
+  // n = −2: Y ∝ u_x·u_y, i.e. (p, q) = (a, b).
+  o[0] = ax * by + ay * bx;
+  o[5] = ay * bz + az * by;
+  o[10] = k3 * (az * bz);
+  o[15] = ax * bz + az * bx;
+  o[20] = ax * bx - ay * by;
+  // n = −1: u_y·u_z, (b, c).
+  o[1] = bx * cy + by * cx;
+  o[6] = by * cz + bz * cy;
+  o[11] = k3 * (bz * cz);
+  o[16] = bx * cz + bz * cx;
+  o[21] = bx * cx - by * cy;
+  // n = 0: 2u_z² − u_x² − u_y².
+  o[2] = k3 * (cx * cy);
+  o[7] = k3 * (cy * cz);
+  o[12] = 1.5 * (cz * cz) - 0.5;
+  o[17] = k3 * (cx * cz);
+  o[22] = h3 * (cx * cx - cy * cy);
+  // n = 1: u_x·u_z, (a, c).
+  o[3] = ax * cy + ay * cx;
+  o[8] = ay * cz + az * cy;
+  o[13] = k3 * (az * cz);
+  o[18] = ax * cz + az * cx;
+  o[23] = ax * cx - ay * cy;
+  // n = 2: u_x² − u_y².
+  o[4] = ax * ay - bx * by;
+  o[9] = ay * az - by * bz;
+  o[14] = h3 * (az * az - bz * bz);
+  o[19] = ax * az - bx * bz;
+  o[24] = 0.5 * ((ax * ax - bx * bx) - (ay * ay - by * by));
+}
+
+void build_matrices(int order, const std::array<double, 9>& m, double* mats) {
+  mats[0] = 1.0;
+  if (order < 2) return;
+  double* r = mats + band_offset(1);
+  write_band1(m, r);
+  if (order < 3) return;
+  write_band2(m, mats + band_offset(2));
   const RotationTables& tables = rotation_tables();
-  for (int l = 2; l < order_; ++l) {
+  for (int l = 3; l < order; ++l) {
     build_band_dispatch(l, r, mats + band_offset(l - 1), mats + band_offset(l), tables);
   }
 }
-
-const double* Rotation::band_matrix(int l) const noexcept {
-  if (l < 0 || l >= order_) return nullptr;
-  return matrices_.data() + band_offset(l);
-}
-
-namespace {
 
 // out = B·in for one band; L > 0 fixes l at compile time.
 template <int L, typename T>
@@ -269,12 +297,65 @@ void apply_bands(int order, const double* mats, const T* in, T* out) {
 }
 }  // namespace
 
+std::array<double, 9> rotation_from_yaw_pitch_roll(double yaw_deg, double pitch_deg,
+                                                   double roll_deg) noexcept {
+  const double d = kPi / 180.0;
+  const double cy = std::cos(yaw_deg * d), sy = std::sin(yaw_deg * d);
+  const double cp = std::cos(pitch_deg * d), sp = std::sin(pitch_deg * d);
+  const double cr = std::cos(roll_deg * d), sr = std::sin(roll_deg * d);
+  // Ry(yaw) = [cy 0 sy; 0 1 0; −sy 0 cy], Rx(pitch) = [1 0 0; 0 cp −sp; 0 sp cp],
+  // Rz(roll) = [cr −sr 0; sr cr 0; 0 0 1]; M = Ry·Rx·Rz.
+  // Rx·Rz = [cr, −sr, 0; cp·sr, cp·cr, −sp; sp·sr, sp·cr, cp].
+  const double a[9] = {cr, -sr, 0.0, cp * sr, cp * cr, -sp, sp * sr, sp * cr, cp};
+  return {cy * a[0] + sy * a[6],  cy * a[1] + sy * a[7],  cy * a[2] + sy * a[8], a[3], a[4], a[5],
+          -sy * a[0] + cy * a[6], -sy * a[1] + cy * a[7], -sy * a[2] + cy * a[8]};
+}
+
+double* Rotation::allocate(int order) noexcept {
+  order_ = std::clamp(order, 1, kMaxRotationOrder);
+  if (order_ <= kInlineRotationOrder) return inline_matrices_;
+  try {
+    matrices_.resize(band_offset(order_));
+  } catch (...) {  // out of memory: an empty rotation (order 0) instead of an exception
+    order_ = 0;
+    return nullptr;
+  }
+  return matrices_.data();
+}
+
+Rotation::Rotation(int order, const std::array<double, 9>& m) noexcept {
+  double* mats = allocate(order);
+  if (mats != nullptr) build_matrices(order_, m, mats);
+}
+
+Rotation::Rotation(int order, const std::array<double, 9>& m, RecurrenceTag) noexcept {
+  double* mats = allocate(order);
+  if (mats == nullptr) return;
+  mats[0] = 1.0;
+  if (order_ < 2) return;
+  double* r = mats + band_offset(1);
+  write_band1(m, r);
+  const RotationTables& tables = rotation_tables();
+  for (int l = 2; l < order_; ++l) {
+    build_band_dispatch(l, r, mats + band_offset(l - 1), mats + band_offset(l), tables);
+  }
+}
+
+Rotation Rotation::build_with_recurrence(int order, const std::array<double, 9>& m) noexcept {
+  return Rotation(order, m, RecurrenceTag{});
+}
+
+const double* Rotation::band_matrix(int l) const noexcept {
+  if (l < 0 || l >= order_) return nullptr;
+  return data() + band_offset(l);
+}
+
 void Rotation::apply(const double* in, double* out) const noexcept {
-  apply_bands(order_, matrices_.data(), in, out);
+  apply_bands(order_, data(), in, out);
 }
 
 void Rotation::apply(const float* in, float* out) const noexcept {
-  apply_bands(order_, matrices_.data(), in, out);
+  apply_bands(order_, data(), in, out);
 }
 
 }  // namespace sh

@@ -174,3 +174,47 @@ TEST_CASE("rotation_from_yaw_pitch_roll is Ry(yaw) Rx(pitch) Rz(roll)", "[sh][ro
   REQUIRE(y90[0] == Approx(0.0).margin(1e-15));
   REQUIRE(y90[6] == Approx(-1.0).margin(1e-15));
 }
+
+TEST_CASE("closed-form band 2 and inline storage equal the plain recurrence", "[sh][rotation]") {
+  // The constructor writes band 2 in closed form (quadratic in M) and keeps order ≤ 6 inline;
+  // build_with_recurrence() runs Ivanic–Ruedenberg from band 2. Both are exact for proper
+  // rotations, so they must agree to roundoff: 1e-13 (entries are O(1), ~10 operations each;
+  // a wrong sign or index in any closed-form entry is an O(1) error). Cases: random rotations,
+  // the identity, 180° turns about axes and diagonals, and near-gimbal ones (tiny angles about
+  // x/y, i.e. the z axis almost fixed or almost flipped).
+  std::mt19937_64 rng(77);
+  std::vector<Matrix3> cases;
+  for (int i = 0; i < 200; ++i) cases.push_back(random_rotation(rng));
+  cases.push_back({1, 0, 0, 0, 1, 0, 0, 0, 1});
+  for (const auto& axis : {std::array<double, 3>{1, 0, 0}, std::array<double, 3>{0, 1, 0},
+                           std::array<double, 3>{0, 0, 1}, std::array<double, 3>{1, 1, 0},
+                           std::array<double, 3>{1, -2, 3}}) {
+    cases.push_back(axis_angle(axis[0], axis[1], axis[2], kPi));
+    for (double eps : {1e-9, 1e-4}) {
+      cases.push_back(axis_angle(axis[0], axis[1], axis[2], eps));
+      cases.push_back(axis_angle(axis[0], axis[1], axis[2], kPi - eps));
+    }
+  }
+  for (const Matrix3& m : cases) {
+    for (int order : {1, 2, 3, 4, 5, 6, 7, 12}) {
+      const sh::Rotation fast(order, m);
+      const sh::Rotation reference = sh::Rotation::build_with_recurrence(order, m);
+      REQUIRE(fast.order() == order);
+      REQUIRE(reference.order() == order);
+      for (int l = 0; l < order; ++l) {
+        const int s = 2 * l + 1;
+        for (int i = 0; i < s * s; ++i) {
+          INFO("order=" << order << " l=" << l << " entry=" << i);
+          REQUIRE(fast.band_matrix(l)[i] == Approx(reference.band_matrix(l)[i]).margin(1e-13));
+        }
+      }
+      // A copy (inline storage for order ≤ 6) must keep the same matrices.
+      const sh::Rotation copy = fast;
+      const std::vector<double> f = random_coefficients(order * order, rng);
+      std::vector<double> g(order * order), h(order * order);
+      fast.apply(f.data(), g.data());
+      copy.apply(f.data(), h.data());
+      REQUIRE(g == h);
+    }
+  }
+}

@@ -20,6 +20,25 @@
 // the sample count rounded up to a multiple of 16; vertices run in parallel, each computed
 // independently, and the solver reduces in a fixed order, so output is bit-identical for any
 // thread count.
+//
+// Adaptive sampling (BakeOptions::adaptive, used by `prt bake --auto`, bake/adaptive_baker.h):
+//   - vertices marked kAnalyticVertex get the unshadowed transfer with no rays (the caller has
+//     proved their hemisphere unoccluded, bake/scene_analysis.h); kSkipVertex leaves zeros (a
+//     pilot bake of a vertex subset);
+//   - sampled vertices use the analytic unshadowed transfer U as a control variate,
+//       S_k = U_k − (1/N) Σ_s (1 − V(ω_s)) Y_k(ω_s),
+//     unbiased like the plain estimator (E[(1/N) Σ Y_k] = U_k under pdf cos/π), and exact where no
+//     sample is occluded;
+//   - N grows by packets of 16 from min_samples until the (i.i.d.) standard error of the mean of
+//     x_s = (1 − V(ω_s))·w(ω_s) is ≤ standard_error, or N = max_samples; w is the lighting's
+//     luminance in direction ω_s over its mean (1 without lighting), so the stop rule bounds the
+//     error of the exit radiance relative to the sky's mean radiance. The rule reads only the
+//     vertex's own samples, so the result stays thread-count independent;
+//   - the interreflection solve is skipped when H is empty or every albedo is zero; otherwise
+//     Jacobi bounces stop when a bounce adds less than bounce_tolerance × max|D| (BiCGSTAB takes
+//     over after 200 bounces); the stored kind is the simplest that is exact (unshadowed when
+//     every vertex was analytic, shadowed when no sample hit a front face).
+// With adaptive.enabled = false the bake is exactly the fixed recipe above (bit-identical).
 #pragma once
 
 #include <cstdint>
@@ -42,6 +61,23 @@ struct BakeError : std::runtime_error {
 inline constexpr int kMaxBakeOrder = 32;         // bands 0..31 (1024 coefficients)
 inline constexpr int kMaxBakeSamples = 1 << 20;  // per vertex
 
+// Per-vertex treatment under adaptive sampling (AdaptiveSampling::vertex_mode).
+inline constexpr uint8_t kSampleVertex = 0;    // cast rays
+inline constexpr uint8_t kAnalyticVertex = 1;  // provably unoccluded: unshadowed transfer, no rays
+inline constexpr uint8_t kSkipVertex = 2;      // not baked (zeros)
+
+struct AdaptiveSampling {
+  bool enabled = false;
+  std::vector<uint8_t> vertex_mode;  // one per vertex, or empty (= every vertex sampled)
+  int min_samples = 64;              // rounded up to a multiple of 16
+  int max_samples = 1024;
+  double standard_error = 0.01;  // stop when the SE of the occluded, lighting-weighted mean ≤ this
+  // Luminance SH coefficients of the lighting's radiance (any order ≥ 1; empty = uniform sky).
+  std::vector<double> lighting;
+  int lighting_order = 0;
+  double bounce_tolerance = 0.0025;  // a bounce adding < this × max|D| is the last
+};
+
 struct BakeOptions {
   prt::TransferKind kind = prt::TransferKind::Shadowed;
   int order = 3;      // SH order n (n² coefficients), 1 .. kMaxBakeOrder
@@ -54,6 +90,7 @@ struct BakeOptions {
   bool ao = false;
   bool bent_normals = false;
   prt::Precision precision = prt::Precision::F32;
+  AdaptiveSampling adaptive;  // off by default
 };
 
 struct BakeStatistics {
@@ -74,6 +111,13 @@ struct BakeStatistics {
   uint64_t matrix_bytes = 0;
   uint64_t skipped_triangles = 0;  // degenerate triangles the loader removed
   uint64_t bvh_bytes = 0;          // Embree's peak memory
+  // Adaptive sampling only:
+  std::vector<uint32_t> vertex_samples;      // rays cast per vertex (0: analytic or skipped)
+  std::vector<float> vertex_standard_error;  // SE of the stop rule per sampled vertex
+  uint64_t analytic_vertices = 0;            // unshadowed transfer without rays
+  uint64_t empty_gather_rows = 0;            // sampled vertices that saw no other surface
+  bool interreflection_solved = false;       // false: skipped (H empty or albedo zero)
+  prt::TransferKind stored_kind = prt::TransferKind::Unshadowed;
 
   double mrays_per_second() const {
     return seconds_rays > 0 ? static_cast<double>(rays) / seconds_rays * 1e-6 : 0.0;

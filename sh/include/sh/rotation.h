@@ -18,9 +18,15 @@
 // Band l is built from band l − 1 and band 1 in O(l²). Its error grows with l (GUIDE.md warns
 // of ~100× per 20 bands); measured orthogonality error for a generic rotation: 5e-15 at l = 20,
 // 1e-13 at l = 40, 4e-12 at l = 60. The tests require < 1e-10 up to l = 20.
+//
+// The constructor writes band 2 in closed form (its entries are quadratic in M: Y2n(Mᵀω) is a
+// quadratic form in ω; see write_band2 in src/rotation.cpp) and runs the recurrence from
+// l = 3; matrices of order ≤ kInlineRotationOrder live inside the object (no heap allocation).
+// build_with_recurrence() runs the recurrence from l = 2 and is the tests' reference.
 #pragma once
 
 #include <array>
+#include <cstddef>
 #include <vector>
 
 #include "sh/basis.h"
@@ -29,6 +35,9 @@ namespace sh {
 
 // Largest order a Rotation accepts (its matrices take order·(4·order²−1)/3 doubles).
 inline constexpr int kMaxRotationOrder = 256;
+
+// Rotations of order up to this keep their matrices inline (no heap allocation).
+inline constexpr int kInlineRotationOrder = 6;
 
 // M = Ry(yaw)·Rx(pitch)·Rz(roll), angles in degrees, each a right-handed rotation about the
 // named axis of the scene frame (+Y up), row-major, acting on column vectors: roll is applied
@@ -44,6 +53,10 @@ class Rotation {
   // band_matrix() returns nullptr (sh/ never throws).
   Rotation(int order, const std::array<double, 9>& m) noexcept;
 
+  // The same matrices built by the general recurrence alone (band 2 included, no unrolling, no
+  // AVX2): the slow reference path for tests and benchmarks.
+  static Rotation build_with_recurrence(int order, const std::array<double, 9>& m) noexcept;
+
   int order() const noexcept { return order_; }
 
   // out = R·in for order² coefficients (in and out must not overlap).
@@ -56,8 +69,21 @@ class Rotation {
   const double* band_matrix(int l) const noexcept;
 
  private:
+  static constexpr std::size_t kInlineDoubles =
+      std::size_t(kInlineRotationOrder) * (4 * kInlineRotationOrder * kInlineRotationOrder - 1) / 3;
+  struct RecurrenceTag {};
+  Rotation(int order, const std::array<double, 9>& m, RecurrenceTag) noexcept;
+  // Sets order_ and allocates; returns the storage, or nullptr (order_ = 0) on failure.
+  double* allocate(int order) noexcept;
+  const double* data() const noexcept {
+    return order_ <= kInlineRotationOrder ? inline_matrices_ : matrices_.data();
+  }
+
   int order_;
-  std::vector<double> matrices_;  // band l at offset l(4l²−1)/3
+  // Band l at offset l(4l²−1)/3: inline_matrices_ for order ≤ kInlineRotationOrder, else
+  // matrices_.
+  double inline_matrices_[kInlineDoubles];
+  std::vector<double> matrices_;
 };
 
 }  // namespace sh

@@ -1,0 +1,273 @@
+// bake/src/adaptive_baker.cpp — the `--auto` pipeline (adaptive_baker.h).
+#include "bake/adaptive_baker.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+
+#include <nlohmann/json.hpp>
+
+#include "bake/scene_analysis.h"
+
+namespace prt::bake {
+namespace {
+
+constexpr double kSqrt4Pi = 3.5449077018110318;  // √(4π): SH band 0 of a constant 1
+constexpr double kY00 = 0.28209479177387814;
+
+std::string format(const char* fmt, double a, double b = 0.0, double c = 0.0) {
+  char buf[256];
+  std::snprintf(buf, sizeof buf, fmt, a, b, c);
+  return buf;
+}
+
+std::string label(const Scene& scene) {
+  return scene.source_path.empty() ? std::string("scene") : scene.source_path;
+}
+
+// A uniform white sky of radiance 1 at order 1: the lighting assumed without --env.
+std::vector<double> uniform_sky() {
+  return {kSqrt4Pi, kSqrt4Pi, kSqrt4Pi};
+}
+
+// Grey transfer S (no albedo) of the pilot vertices at the pilot order.
+std::vector<double> bake_pilot(const Scene& scene, const AutoBakeOptions& o,
+                               const std::vector<uint8_t>& open, std::vector<glm::vec3>& albedo,
+                               ProgressSink* progress) {
+  const std::size_t V = scene.positions.size();
+  const std::size_t P = std::min<std::size_t>(V, static_cast<std::size_t>(o.pilot_vertices));
+  Scene grey = scene;  // baked with albedo 0.5, so S = T / 0.5 exactly (a power of two)
+  std::fill(grey.albedo.begin(), grey.albedo.end(), glm::vec3(0.5f));
+  BakeOptions b;
+  b.kind = prt::TransferKind::Shadowed;
+  b.order = o.pilot_order;
+  b.seed = o.seed;
+  b.threads = o.threads;
+  b.adaptive.enabled = true;
+  b.adaptive.min_samples = b.adaptive.max_samples = o.pilot_samples;
+  b.adaptive.vertex_mode.assign(V, kSkipVertex);
+  std::vector<std::size_t> pick(P);
+  for (std::size_t i = 0; i < P; ++i) {
+    pick[i] = i * V / P;
+    b.adaptive.vertex_mode[pick[i]] = open[pick[i]] ? kAnalyticVertex : kSampleVertex;
+  }
+  const BakeResult r = bake_transfer(grey, b, progress);
+  const int K = o.pilot_order * o.pilot_order;
+  std::vector<double> s(P * K);
+  albedo.resize(P);
+  for (std::size_t i = 0; i < P; ++i) {
+    albedo[i] = scene.albedo[pick[i]];
+    for (int k = 0; k < K; ++k) s[i * K + k] = 2.0 * r.data.coefficients[pick[i] * K + k];
+  }
+  return s;
+}
+
+}  // namespace
+
+std::vector<double> exit_radiance(const prt::TransferData& data,
+                                  const std::vector<double>& lighting, int lighting_order) {
+  const std::size_t V = data.vertex_count;
+  const int K = static_cast<int>(data.coefficients_per_channel());
+  const int KL = lighting_order * lighting_order, n = std::min(K, KL);
+  const int C = static_cast<int>(data.channels);
+  std::vector<double> b(3 * V, 0.0);
+  for (std::size_t v = 0; v < V; ++v)
+    for (int c = 0; c < 3; ++c) {
+      const float* t = &data.coefficients[(v * C + (C == 1 ? 0 : c)) * K];
+      double sum = 0.0;
+      for (int k = 0; k < n; ++k) sum += static_cast<double>(t[k]) * lighting[c * KL + k];
+      b[3 * v + c] = sum;
+    }
+  return b;
+}
+
+double relative_rms_error(const std::vector<double>& b, const std::vector<double>& reference) {
+  double num = 0.0, den = 0.0;
+  for (std::size_t i = 0; i < b.size() && i < reference.size(); ++i) {
+    num += (b[i] - reference[i]) * (b[i] - reference[i]);
+    den += reference[i] * reference[i];
+  }
+  return den > 0.0 ? std::sqrt(num / den) : std::sqrt(num);
+}
+
+std::string AutoBakeReport::json() const {
+  nlohmann::json j;
+  j["vertices"] = vertices;
+  j["open_vertices"] = open_vertices;
+  j["analysis_seconds"] = analysis_seconds;
+  j["pilot_seconds"] = pilot_seconds;
+  j["grey"] = grey;
+  j["stored_transfer"] = transfer_kind_name(stored_kind);
+  j["order"] = order;
+  j["order_chosen_from_lighting"] = order_chosen;
+  if (order_chosen) {
+    nlohmann::json o;
+    o["met"] = order_choice.met;
+    o["haar_recommended"] = order_choice.haar_recommended;
+    o["predicted_by_order"] = order_choice.predicted_by_order;
+    o["cauchy_schwarz_bound_by_order"] = order_choice.bound_by_order;
+    o["tail_bound"] = order_choice.tail_bound;
+    o["lighting_band_energy"] = order_choice.lighting_band_energy;
+    o["transfer_band_energy"] = order_choice.transfer_band_energy;
+    j["order_selection"] = o;
+  }
+  j["predicted_truncation_error"] = predicted_truncation_error;
+  j["predicted_sampling_error"] = predicted_sampling_error;
+  j["predicted_error"] = predicted_error;
+  j["error_metric"] = "relative RMS of exit radiance over vertices and RGB";
+  j["mean_samples"] = mean_samples;
+  j["left_out"] = left_out;
+  return j.dump();
+}
+
+AutoBakeResult bake_transfer_auto(const Scene& scene, const AutoBakeOptions& o,
+                                  ProgressSink* progress) {
+  const std::string name = label(scene);
+  if (!(o.tolerance > 0.0 && o.tolerance < 1.0))
+    throw BakeError(name + ": --auto tolerance must be in (0, 1)");
+  if (!o.lighting.empty() &&
+      (o.lighting_order < 1 ||
+       o.lighting.size() != 3 * static_cast<std::size_t>(o.lighting_order) * o.lighting_order))
+    throw BakeError(name + ": lighting must hold 3 × order² SH coefficients");
+  if (o.max_order < 1 || o.pilot_order <= o.max_order || o.pilot_order > kMaxBakeOrder)
+    throw BakeError(name +
+                    ": need 1 <= max order < pilot order <= " + std::to_string(kMaxBakeOrder));
+  {
+    BakeOptions probe;  // validates the scene (albedo, normals) before any analysis
+    validate_bake_inputs(scene, probe);
+  }
+  AutoBakeResult result;
+  AutoBakeReport& rep = result.report;
+  const std::size_t V = scene.positions.size();
+  rep.vertices = V;
+
+  // 1. Analysis.
+  const HemisphereAnalysis hemi = find_open_hemispheres(scene);
+  const AlbedoAnalysis alb = analyze_albedo(scene);
+  rep.analysis_seconds = hemi.seconds;
+  rep.open_vertices = hemi.open_count;
+  rep.grey = alb.grey;
+  prt::TransferKind kind = o.kind;
+  if (kind == prt::TransferKind::Interreflected && alb.all_zero) {
+    kind = prt::TransferKind::Shadowed;
+    rep.left_out.push_back("interreflection: every albedo is zero, nothing is reflected");
+  }
+  if (hemi.open_count > 0)
+    rep.left_out.push_back(
+        format("shadow rays for %.0f of %.0f vertices: their hemisphere is provably unoccluded "
+               "(all geometry on or below the tangent plane), analytic unshadowed transfer",
+               static_cast<double>(hemi.open_count), static_cast<double>(V)));
+  if (alb.grey) rep.left_out.push_back("colour channels 2 and 3: the albedo is grey");
+
+  // 2. SH order from the lighting.
+  rep.order = o.order;
+  const bool lit = !o.lighting.empty();
+  if (lit && kind != prt::TransferKind::Unshadowed) {
+    const auto t0 = std::chrono::steady_clock::now();
+    std::vector<glm::vec3> pilot_albedo;
+    const std::vector<double> pilot = bake_pilot(scene, o, hemi.open, pilot_albedo, nullptr);
+    rep.order_choice = choose_order(pilot, pilot_albedo, o.pilot_order, o.lighting,
+                                    o.lighting_order, 0.5 * o.tolerance, o.max_order);
+    rep.pilot_seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    rep.order_chosen = true;
+    rep.order = rep.order_choice.order;
+    rep.predicted_truncation_error = rep.order_choice.predicted_error;
+    if (rep.order_choice.met)
+      rep.left_out.push_back(
+          format("SH bands >= %.0f (the file has order %.0f): predicted to carry %.2g of the exit "
+                 "radiance",
+                 rep.order, rep.order, rep.predicted_truncation_error));
+    else
+      rep.left_out.push_back(format(
+          "nothing dropped, but no SH order <= %.0f meets the tolerance (predicted %.2g at that "
+          "order): the lighting is all-frequency, bake --basis haar instead",
+          o.max_order, rep.predicted_truncation_error));
+  } else if (!lit) {
+    rep.left_out.push_back(
+        format("SH order not chosen (no --env): kept at %.0f; errors predicted for a uniform sky",
+               o.order));
+  }
+
+  // 3. The adaptive bake.
+  BakeOptions b;
+  b.kind = kind;
+  b.order = rep.order;
+  b.seed = o.seed;
+  b.threads = o.threads;
+  b.ao = o.ao;
+  b.bent_normals = o.bent_normals;
+  b.precision = o.precision;
+  b.adaptive.enabled = true;
+  b.adaptive.min_samples = o.min_samples;
+  b.adaptive.max_samples = o.max_samples;
+  b.adaptive.standard_error = o.tolerance;
+  b.adaptive.bounce_tolerance = 0.25 * o.tolerance;
+  b.adaptive.vertex_mode.assign(V, kSampleVertex);
+  for (std::size_t v = 0; v < V; ++v)
+    if (hemi.open[v]) b.adaptive.vertex_mode[v] = kAnalyticVertex;
+  const std::vector<double> lighting = lit ? o.lighting : uniform_sky();
+  const int lighting_order = lit ? o.lighting_order : 1;
+  const int KL = lighting_order * lighting_order;
+  double mean_radiance[3];
+  for (int c = 0; c < 3; ++c) mean_radiance[c] = lighting[c * KL] * kY00;
+  if (lit) {
+    b.adaptive.lighting_order = lighting_order;
+    b.adaptive.lighting.resize(KL);
+    for (int k = 0; k < KL; ++k)
+      b.adaptive.lighting[k] =
+          0.2126 * lighting[k] + 0.7152 * lighting[KL + k] + 0.0722 * lighting[2 * KL + k];
+  }
+  result.bake = bake_transfer(scene, b, progress);
+  const BakeStatistics& st = result.bake.stats;
+  rep.stored_kind = st.stored_kind;
+
+  // 4. What was skipped, and the predicted error.
+  uint64_t sampled = 0, sum = 0;
+  uint32_t lo = 0, hi = 0;
+  double se2 = 0.0;
+  for (std::size_t v = 0; v < V; ++v) {
+    const uint32_t n = st.vertex_samples.empty() ? 0 : st.vertex_samples[v];
+    if (n == 0) continue;
+    lo = sampled == 0 ? n : std::min(lo, n);
+    hi = std::max(hi, n);
+    ++sampled;
+    sum += n;
+    for (int c = 0; c < 3; ++c) {
+      const double e = scene.albedo[v][c] * mean_radiance[c] * st.vertex_standard_error[v];
+      se2 += e * e;
+    }
+  }
+  rep.mean_samples = sampled ? static_cast<double>(sum) / static_cast<double>(sampled) : 0.0;
+  if (sampled > 0)
+    rep.left_out.push_back(
+        format("fixed sample count: %.0f to %.0f rays per vertex (mean %.1f), each vertex stopping "
+               "when its standard error is within the tolerance",
+               lo, hi, rep.mean_samples));
+  if (kind == prt::TransferKind::Interreflected) {
+    if (!st.interreflection_solved)
+      rep.left_out.push_back(
+          "interreflection solve: no sample hit a front face (no surface "
+          "sees another), the transfer is the shadowed one");
+    else
+      rep.left_out.push_back(format(
+          "interreflection for %.0f vertices that see no other surface (empty rows); bounces "
+          "after %.0f: the next added < %.2g of the direct light",
+          static_cast<double>(st.empty_gather_rows), st.jacobi_bounces, 0.25 * o.tolerance));
+  }
+  const std::vector<double> radiance = exit_radiance(result.bake.data, lighting, lighting_order);
+  double b2 = 0.0;
+  for (double x : radiance) b2 += x * x;
+  rep.predicted_sampling_error = b2 > 0.0 ? std::sqrt(se2 / b2) : 0.0;
+  rep.predicted_error = std::hypot(rep.predicted_truncation_error, rep.predicted_sampling_error);
+
+  nlohmann::json meta = nlohmann::json::parse(result.bake.data.metadata_json, nullptr, false);
+  if (meta.is_discarded() || !meta.is_object()) meta = nlohmann::json::object();
+  meta["auto"] = nlohmann::json::parse(rep.json());
+  meta["auto"]["tolerance"] = o.tolerance;
+  result.bake.data.metadata_json = meta.dump();
+  return result;
+}
+
+}  // namespace prt::bake

@@ -1,0 +1,394 @@
+// bake/src/ground_truth.cpp — the Monte Carlo reference of bake/ground_truth.h.
+#include "bake/ground_truth.h"
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <optional>
+#include <string>
+
+#include <tbb/global_control.h>
+#include <tbb/parallel_for.h>
+
+#include "bake/progress.h"
+#include "bake/ray_caster.h"
+#include "bake/sampling.h"
+#include "bake/transfer_baker.h"
+
+namespace prt::bake {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr int kRouletteFromDepth = 2;  // path vertices 0 and 1 never roulette
+constexpr std::size_t kVertexBlock = 32;
+
+using Clock = std::chrono::steady_clock;
+
+double luminance(const double rgb[3]) {
+  return 0.2126 * rgb[0] + 0.7152 * rgb[1] + 0.0722 * rgb[2];
+}
+
+// SplitMix64 stream seeded per (vertex, sample): uniform doubles in [0, 1).
+struct SampleRng {
+  uint64_t state;
+  double next() {
+    state += 0x9e3779b97f4a7c15ull;
+    uint64_t z = state;
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+    z ^= z >> 31;
+    return static_cast<double>(z >> 11) * 0x1.0p-53;
+  }
+};
+
+std::string label(const Scene& scene) {
+  return scene.source_path.empty() ? std::string("scene") : scene.source_path;
+}
+
+// Face direction of the cube layouts (sh/env_map.h): face index in +X, −X, +Y, −Y, +Z, −Z order.
+void cube_face_direction(int face, double a, double b, bool faces_layout, double d[3]) {
+  switch (face) {
+    case 0:
+      d[0] = 1, d[1] = -b, d[2] = a;
+      break;  // +X
+    case 1:
+      d[0] = -1, d[1] = -b, d[2] = -a;
+      break;  // −X
+    case 2:
+      d[0] = a, d[1] = 1, d[2] = -b;
+      break;  // +Y
+    case 3:
+      d[0] = a, d[1] = -1, d[2] = b;
+      break;  // −Y
+    case 4:   // +Z
+      if (faces_layout)
+        d[0] = -a, d[1] = -b, d[2] = 1;
+      else
+        d[0] = a, d[1] = b, d[2] = 1;
+      break;
+    default:
+      d[0] = a, d[1] = -b, d[2] = -1;
+      break;  // −Z
+  }
+}
+
+// Cell (col, row) of the vertical cross → face index, or −1 for the empty cells.
+int cross_face(int cell_col, int cell_row) {
+  if (cell_col == 1 && cell_row == 0) return 2;
+  if (cell_row == 1) return cell_col == 0 ? 1 : cell_col == 1 ? 5 : 0;
+  if (cell_col == 1 && cell_row == 2) return 3;
+  if (cell_col == 1 && cell_row == 3) return 4;
+  return -1;
+}
+
+// A triangle's geometric normal, oriented to the side its vertex normals point to.
+glm::vec3 oriented_face_normal(const Scene& s, uint32_t tri) {
+  const glm::uvec3 t = s.triangles[tri];
+  glm::vec3 ng =
+      glm::cross(s.positions[t.y] - s.positions[t.x], s.positions[t.z] - s.positions[t.x]);
+  const float len = glm::length(ng);
+  if (!(len > 0.f)) return glm::vec3(0.f);
+  ng /= len;
+  if (glm::dot(ng, s.normals[t.x] + s.normals[t.y] + s.normals[t.z]) < 0.f) ng = -ng;
+  return ng;
+}
+
+}  // namespace
+
+bool image_point_direction(sh::EnvLayout layout, int w, int h, double x, double y, double dir[3],
+                           double* jacobian) noexcept {
+  if (w <= 0 || h <= 0 || !(x >= 0 && x <= w && y >= 0 && y <= h)) return false;
+  switch (layout) {
+    case sh::EnvLayout::LatLong: {
+      const double phi = 2.0 * kPi * (x / w - 0.5), theta = kPi * y / h;
+      const double st = std::sin(theta);
+      dir[0] = st * std::cos(phi), dir[1] = std::cos(theta), dir[2] = st * std::sin(phi);
+      *jacobian = st * 2.0 * kPi * kPi / (static_cast<double>(w) * h);
+      return *jacobian > 0;
+    }
+    case sh::EnvLayout::Angular: {
+      const double u = 2.0 * x / w - 1.0, v = 1.0 - 2.0 * y / h;
+      const double r = std::sqrt(u * u + v * v);
+      if (r >= 1.0) return false;
+      const double theta = kPi * r;
+      const double sinc = r > 0 ? std::sin(theta) / theta : 1.0;
+      const double s_over_r = kPi * sinc;  // sin θ / r
+      dir[0] = s_over_r * u, dir[1] = s_over_r * v, dir[2] = -std::cos(theta);
+      *jacobian = kPi * kPi * sinc * (2.0 / w) * (2.0 / h);
+      return *jacobian > 0;
+    }
+    case sh::EnvLayout::Cross:
+    case sh::EnvLayout::Faces: {
+      const bool faces = layout == sh::EnvLayout::Faces;
+      const int s = faces ? w : w / 3;
+      if (s <= 0) return false;
+      const int cc = std::min(static_cast<int>(x / s), faces ? 0 : 2);
+      const int cr = std::min(static_cast<int>(y / s), faces ? 5 : 3);
+      const int face = faces ? cr : cross_face(cc, cr);
+      if (face < 0) return false;
+      const double a = 2.0 * (x - cc * s) / s - 1.0, b = 2.0 * (y - cr * s) / s - 1.0;
+      double d[3];
+      cube_face_direction(face, a, b, faces, d);
+      const double r2 = a * a + b * b + 1.0, inv = 1.0 / std::sqrt(r2);
+      for (int i = 0; i < 3; ++i) dir[i] = d[i] * inv;
+      *jacobian = (2.0 / s) * (2.0 / s) / (r2 * std::sqrt(r2));
+      return true;
+    }
+  }
+  return false;
+}
+
+EnvironmentSampler::EnvironmentSampler(const sh::EnvMap& env) : env_(&env) {
+  std::string why;
+  if (env.width <= 0 || env.height <= 0 ||
+      env.rgb.size() != 3ull * env.width * static_cast<std::size_t>(env.height))
+    throw BakeError("environment: empty map or pixel count does not match its size");
+  if (env.layout != sh::EnvLayout::LatLong &&
+      !sh::validate_layout(env.layout, env.width, env.height, &why))
+    throw BakeError("environment: " + why);
+  const std::vector<double> omega = sh::texel_solid_angles(env.layout, env.width, env.height);
+  cdf_.resize(omega.size());
+  double sum = 0;
+  for (std::size_t t = 0; t < omega.size(); ++t) {
+    const float* p = &env.rgb[3 * t];
+    double rgb[3] = {p[0], p[1], p[2]};
+    double weight = 0;
+    if (std::isfinite(rgb[0]) && std::isfinite(rgb[1]) && std::isfinite(rgb[2]) && rgb[0] >= 0 &&
+        rgb[1] >= 0 && rgb[2] >= 0) {
+      // Luminance, but never 0 for a coloured texel (pure blue has luminance 0.07·b).
+      weight = std::max(luminance(rgb), (rgb[0] + rgb[1] + rgb[2]) * 1e-3) * omega[t];
+    } else if (omega[t] > 0) {
+      ++skipped_;
+    }
+    sum += weight;
+    cdf_[t] = sum;
+  }
+  total_weight_ = sum;
+}
+
+void EnvironmentSampler::evaluate(const double dir[3], double rgb[3], double* pdf) const {
+  rgb[0] = rgb[1] = rgb[2] = 0;
+  *pdf = 0;
+  double x, y;
+  if (!sh::direction_to_texel(env_->layout, env_->width, env_->height, dir, &x, &y)) return;
+  const int col = std::clamp(static_cast<int>(std::floor(x)), 0, env_->width - 1);
+  const int row = std::clamp(static_cast<int>(std::floor(y)), 0, env_->height - 1);
+  const std::size_t t = static_cast<std::size_t>(row) * env_->width + col;
+  const double weight = cdf_[t] - (t > 0 ? cdf_[t - 1] : 0.0);
+  if (!(weight > 0)) return;  // black or skipped texel: radiance 0 too
+  for (int c = 0; c < 3; ++c) rgb[c] = env_->rgb[3 * t + c];
+  double d[3], jac;
+  if (!image_point_direction(env_->layout, env_->width, env_->height, x, y, d, &jac)) return;
+  *pdf = weight / total_weight_ / jac;
+}
+
+bool EnvironmentSampler::sample(double u0, double u1, double u2, double dir[3], double rgb[3],
+                                double* pdf) const {
+  if (black()) return false;
+  const double target = u0 * total_weight_;
+  std::size_t t =
+      static_cast<std::size_t>(std::upper_bound(cdf_.begin(), cdf_.end(), target) - cdf_.begin());
+  t = std::min(t, cdf_.size() - 1);
+  const double weight = cdf_[t] - (t > 0 ? cdf_[t - 1] : 0.0);
+  if (!(weight > 0)) return false;
+  const int col = static_cast<int>(t % env_->width), row = static_cast<int>(t / env_->width);
+  double jac;
+  if (!image_point_direction(env_->layout, env_->width, env_->height, col + u1, row + u2, dir,
+                             &jac))
+    return false;
+  for (int c = 0; c < 3; ++c) rgb[c] = env_->rgb[3 * t + c];
+  *pdf = weight / total_weight_ / jac;
+  return true;
+}
+
+struct GroundTruthIntegrator::Impl {
+  const Scene& scene;
+  GroundTruthOptions options;
+  EnvironmentSampler light;
+  RayCaster caster;
+  // Per vertex: Σ x_c and Σ x_c² over its samples (c = R, G, B).
+  std::vector<double> sum, sum_squares;
+  uint64_t rays = 0;
+  double seconds = 0;
+
+  Impl(const Scene& s, const sh::EnvMap& env, const GroundTruthOptions& o)
+      : scene(s),
+        options(o),
+        light(env),
+        caster(s),
+        sum(3 * s.vertex_count(), 0.0),
+        sum_squares(3 * s.vertex_count(), 0.0) {}
+
+  // One sample of B_v (RGB) into out; returns the rays cast.
+  uint32_t sample_vertex(uint32_t v, uint64_t sample_index, double out[3]) const;
+};
+
+uint32_t GroundTruthIntegrator::Impl::sample_vertex(uint32_t v, uint64_t sample_index,
+                                                    double out[3]) const {
+  SampleRng rng{hash_seed(hash_seed(options.seed, v), sample_index)};
+  out[0] = out[1] = out[2] = 0;
+  uint32_t cast = 0;
+  glm::vec3 origin = caster.vertex_origin(v);
+  glm::vec3 normal = glm::normalize(scene.normals[v]);
+  double beta[3] = {scene.albedo[v].x, scene.albedo[v].y, scene.albedo[v].z};
+  const float far = 1e30f;
+  for (int depth = 0;; ++depth) {
+    // Light sample, weighted by the balance heuristic against the cosine sample.
+    double ld[3], lrgb[3], lpdf;
+    const double u0 = rng.next(), u1 = rng.next(), u2 = rng.next();
+    if (light.sample(u0, u1, u2, ld, lrgb, &lpdf)) {
+      const glm::vec3 d(static_cast<float>(ld[0]), static_cast<float>(ld[1]),
+                        static_cast<float>(ld[2]));
+      const double cosine = glm::dot(normal, d);
+      if (cosine > 0 && lpdf > 0) {
+        ++cast;
+        if (!caster.occluded(origin, d, 0.f, far)) {
+          const double cpdf = cosine / kPi;
+          const double w = cosine / kPi / (lpdf + cpdf);  // w_l · cos/(π p_l)
+          for (int c = 0; c < 3; ++c) out[c] += beta[c] * w * lrgb[c];
+        }
+      }
+    }
+    // Cosine sample: escape → weighted map radiance; front hit → continue the path.
+    glm::vec3 t, b;
+    build_orthonormal_basis(normal, t, b);
+    const glm::vec3 local = sample_cosine_hemisphere(
+        glm::vec2(static_cast<float>(rng.next()), static_cast<float>(rng.next())));
+    glm::vec3 d = glm::normalize(local.x * t + local.y * b + local.z * normal);
+    const double cosine = glm::dot(normal, d);
+    if (!(cosine > 0)) break;
+    ++cast;
+    const RayCaster::Hit hit = caster.intersect(origin, d, 0.f, far);
+    if (!hit.hit) {
+      const double dd[3] = {d.x, d.y, d.z};
+      double rgb[3], lpdf_at;
+      light.evaluate(dd, rgb, &lpdf_at);
+      const double cpdf = cosine / kPi;
+      const double w = cpdf / (cpdf + lpdf_at);
+      for (int c = 0; c < 3; ++c) out[c] += beta[c] * w * rgb[c];
+      break;
+    }
+    if (depth >= options.max_bounces) break;
+    const glm::vec3 ng = oriented_face_normal(scene, hit.triangle);
+    if (!(glm::dot(ng, d) < 0.f)) break;  // back face (or degenerate): occludes, reflects nothing
+    const glm::uvec3 tri = scene.triangles[hit.triangle];
+    const float w0 = 1.f - hit.u - hit.v;
+    const glm::vec3 albedo =
+        w0 * scene.albedo[tri.x] + hit.u * scene.albedo[tri.y] + hit.v * scene.albedo[tri.z];
+    glm::vec3 ns =
+        w0 * scene.normals[tri.x] + hit.u * scene.normals[tri.y] + hit.v * scene.normals[tri.z];
+    const float ns_len = glm::length(ns);
+    ns = ns_len > 0.f ? ns / ns_len : ng;
+    if (glm::dot(ns, ng) <= 0.f) ns = ng;
+    beta[0] *= albedo.x, beta[1] *= albedo.y, beta[2] *= albedo.z;
+    if (depth + 1 >= kRouletteFromDepth) {
+      const double survive =
+          std::clamp<double>(std::max({albedo.x, albedo.y, albedo.z}), 0.05, 0.99);
+      if (rng.next() >= survive) break;
+      for (double& x : beta) x /= survive;
+    }
+    const glm::vec3 p = w0 * scene.positions[tri.x] + hit.u * scene.positions[tri.y] +
+                        hit.v * scene.positions[tri.z];
+    origin = caster.offset_origin(p, ng);
+    normal = ns;
+  }
+  return cast;
+}
+
+GroundTruthIntegrator::GroundTruthIntegrator(const Scene& scene, const sh::EnvMap& env,
+                                             const GroundTruthOptions& o) {
+  const std::string name = label(scene);
+  if (scene.vertex_count() == 0 || scene.triangles.empty())
+    throw BakeError(name + ": the scene has no vertices or no triangles");
+  if (scene.normals.size() != scene.vertex_count() || scene.albedo.size() != scene.vertex_count())
+    throw BakeError(name + ": normals or albedo do not match the vertex count");
+  for (const glm::vec3& a : scene.albedo)
+    for (int c = 0; c < 3; ++c)
+      if (!(a[c] >= 0.f && a[c] < 1.f))
+        throw BakeError(name + ": albedo " + std::to_string(a[c]) + " is outside [0, 1)");
+  if (o.max_bounces < 0 || o.initial_samples < 1 || o.max_samples < o.initial_samples ||
+      !(o.target_relative_se > 0))
+    throw BakeError(name +
+                    ": ground truth needs max_bounces >= 0, 1 <= initial_samples <= "
+                    "max_samples and a positive target");
+  impl_ = std::make_unique<Impl>(scene, env, o);
+}
+
+GroundTruthIntegrator::~GroundTruthIntegrator() = default;
+
+void GroundTruthIntegrator::add_samples_up_to(int total, ProgressSink* progress) {
+  if (total <= samples_) return;
+  const auto t0 = Clock::now();
+  std::optional<tbb::global_control> limit;
+  if (impl_->options.threads > 0)
+    limit.emplace(tbb::global_control::max_allowed_parallelism, impl_->options.threads);
+  const std::size_t V = impl_->scene.vertex_count();
+  const int first = samples_;
+  if (progress) progress->start("ground truth " + std::to_string(total) + " samples/vertex", V);
+  std::atomic<uint64_t> pass_rays{0};
+  tbb::parallel_for(std::size_t(0), (V + kVertexBlock - 1) / kVertexBlock, [&](std::size_t blk) {
+    const std::size_t begin = blk * kVertexBlock, end = std::min(V, begin + kVertexBlock);
+    uint64_t block_rays = 0;
+    for (std::size_t v = begin; v < end; ++v) {
+      double s[3] = {0, 0, 0}, s2[3] = {0, 0, 0};
+      for (int i = first; i < total; ++i) {
+        double x[3];
+        block_rays += impl_->sample_vertex(static_cast<uint32_t>(v), static_cast<uint64_t>(i), x);
+        for (int c = 0; c < 3; ++c) s[c] += x[c], s2[c] += x[c] * x[c];
+      }
+      for (int c = 0; c < 3; ++c)
+        impl_->sum[3 * v + c] += s[c], impl_->sum_squares[3 * v + c] += s2[c];
+    }
+    pass_rays += block_rays;
+    if (progress) progress->advance(end - begin, block_rays);
+  });
+  if (progress) progress->finish();
+  samples_ = total;
+  impl_->rays += pass_rays.load();
+  impl_->seconds += std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+void GroundTruthIntegrator::refine(double target, ProgressSink* progress) {
+  impl_->options.target_relative_se = target;
+  if (samples_ == 0) add_samples_up_to(impl_->options.initial_samples, progress);
+  while (result().relative_rms_se > target &&
+         static_cast<int64_t>(samples_) * 2 <= impl_->options.max_samples)
+    add_samples_up_to(samples_ * 2, progress);
+}
+
+GroundTruthResult GroundTruthIntegrator::result() const {
+  GroundTruthResult r;
+  const std::size_t n = impl_->sum.size();
+  r.radiance.assign(n, 0.0);
+  r.standard_error.assign(n, 0.0);
+  r.samples_per_vertex = samples_;
+  r.rays = impl_->rays;
+  r.seconds = impl_->seconds;
+  r.skipped_texels = impl_->light.skipped_texels();
+  r.target_relative_se = impl_->options.target_relative_se;
+  if (samples_ == 0) return r;
+  const double N = samples_;
+  double se2 = 0, b2 = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double mean = impl_->sum[i] / N;
+    const double var =
+        samples_ > 1 ? std::max(0.0, (impl_->sum_squares[i] - N * mean * mean) / (N - 1)) : 0.0;
+    r.radiance[i] = mean;
+    r.standard_error[i] = std::sqrt(var / N);
+    se2 += var / N;
+    b2 += mean * mean;
+  }
+  r.relative_rms_se = b2 > 0 ? std::sqrt(se2 / b2) : (se2 > 0 ? INFINITY : 0.0);
+  r.reached_target = r.relative_rms_se <= r.target_relative_se;
+  return r;
+}
+
+GroundTruthResult compute_ground_truth(const Scene& scene, const sh::EnvMap& env,
+                                       const GroundTruthOptions& options, ProgressSink* progress) {
+  GroundTruthIntegrator integrator(scene, env, options);
+  integrator.refine(options.target_relative_se, progress);
+  return integrator.result();
+}
+
+}  // namespace prt::bake

@@ -1,0 +1,378 @@
+// bake/src/haar_baker.cpp — the Haar-wavelet bake (see bake/haar_baker.h).
+#include "bake/haar_baker.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <tbb/global_control.h>
+#include <tbb/parallel_for.h>
+#include <nlohmann/json.hpp>
+
+#include "bake/interreflection_solver.h"
+#include "bake/progress.h"
+#include "bake/ray_caster.h"
+#include "bake/sampling.h"
+#include "bake/transfer_baker.h"
+#include "prt/geometry_check.h"
+#include "prt/haar_cube_map.h"
+#include "prt/haar_transform.h"
+
+namespace prt::bake {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+constexpr double kInvPi = 0.31830988618379067154;
+constexpr std::size_t kVerticesPerTask = 32;     // fixed: determinism does not depend on it
+constexpr std::size_t kVerticesPerChunk = 4096;  // sparse vectors held before the builder
+constexpr int kSolveColumns = 64;                // interreflection: columns per Krylov solve
+
+double seconds_since(Clock::time_point t) {
+  return std::chrono::duration<double>(Clock::now() - t).count();
+}
+
+// Every (sub-)texel direction of the cube with its quadrature weight (exact solid angle).
+struct TexelSamples {
+  int per_texel = 1;                 // S²
+  std::vector<glm::vec3> direction;  // texel-major: [t·S² + s]
+  std::vector<float> solid_angle;
+};
+
+TexelSamples make_texel_samples(int size, int supersample, uint64_t seed) {
+  TexelSamples ts;
+  const int s2 = supersample * supersample;
+  ts.per_texel = s2;
+  const std::size_t texels = std::size_t{6} * size * size;
+  ts.direction.resize(texels * s2);
+  ts.solid_angle.resize(texels * s2);
+  const double texel_width = 2.0 / size, sub_width = texel_width / supersample;
+  for (int face = 0; face < 6; ++face) {
+    for (int row = 0; row < size; ++row) {
+      for (int col = 0; col < size; ++col) {
+        const std::size_t t = (std::size_t(face) * size + row) * size + col;
+        for (int sy = 0; sy < supersample; ++sy) {
+          for (int sx = 0; sx < supersample; ++sx) {
+            const std::size_t i = t * s2 + sy * supersample + sx;
+            const double a0 = -1.0 + col * texel_width + sx * sub_width;
+            const double b0 = -1.0 + row * texel_width + sy * sub_width;
+            double ja = 0.5, jb = 0.5;  // centre for S = 1
+            if (supersample > 1) {
+              const uint64_t h = hash_seed(seed, i);
+              ja = static_cast<double>(h >> 40) * 0x1p-24;
+              jb = static_cast<double>(h & 0xffffffu) * 0x1p-24;
+            }
+            double d[3];
+            cube_face_point_direction(face, a0 + ja * sub_width, b0 + jb * sub_width, d);
+            ts.direction[i] = glm::vec3(float(d[0]), float(d[1]), float(d[2]));
+            ts.solid_angle[i] =
+                static_cast<float>(supersample == 1 ? cube_texel_solid_angle(size, col, row)
+                                                    : cube_face_rect_solid_angle(
+                                                          a0, a0 + sub_width, b0, b0 + sub_width));
+          }
+        }
+      }
+    }
+  }
+  return ts;
+}
+
+// One H row under construction: (vertex, weight) pairs, merged when emitted.
+using GatherRow = std::vector<std::pair<uint32_t, float>>;
+
+// Traces vertex v's texel rays; writes the grey quadrature transfer Σ V·cos·Ω into
+// `dense` (6N² floats, albedo not applied) and, when `row` is given, its gather row. Returns
+// the rays cast.
+uint64_t trace_vertex(const Scene& scene, const RayCaster& caster, const TexelSamples& ts,
+                      uint32_t v, bool shadows, GatherRow* row, float* dense) {
+  const glm::vec3 n = glm::normalize(scene.normals[v]);
+  const glm::vec3 origin = caster.vertex_origin(v);
+  const std::size_t samples = ts.direction.size();
+  const int s2 = ts.per_texel;
+  glm::vec3 dirs[kPacketSize];
+  uint32_t texel[kPacketSize];
+  float weight[kPacketSize];
+  bool occluded[kPacketSize];
+  RayCaster::Hit hits[kPacketSize];
+  int count = 0;
+  uint64_t rays = 0;
+  const float tfar = std::numeric_limits<float>::infinity();
+  auto flush = [&] {
+    if (count == 0) return;
+    if (row != nullptr) {
+      caster.intersect_packet(origin, dirs, count, tfar, hits);
+      for (int i = 0; i < count; ++i) {
+        occluded[i] = hits[i].hit;
+        if (!hits[i].hit) continue;
+        const glm::uvec3 tri = scene.triangles[hits[i].triangle];
+        // Front or back judged by the facet normal oriented by its vertex normals (as the SH
+        // baker does): back faces occlude but reflect nothing.
+        const glm::vec3 p0 = scene.positions[tri.x];
+        const glm::vec3 ng = glm::cross(scene.positions[tri.y] - p0, scene.positions[tri.z] - p0);
+        const float side =
+            glm::dot(ng, scene.normals[tri.x] + scene.normals[tri.y] + scene.normals[tri.z]);
+        if (!(glm::dot(ng, dirs[i]) * side < 0.f)) continue;
+        const float w = static_cast<float>(weight[i] * kInvPi);
+        row->emplace_back(tri.x, w * (1.f - hits[i].u - hits[i].v));
+        row->emplace_back(tri.y, w * hits[i].u);
+        row->emplace_back(tri.z, w * hits[i].v);
+      }
+    } else {
+      caster.occluded_packet(origin, dirs, count, tfar, occluded);
+    }
+    rays += static_cast<uint64_t>(count);
+    for (int i = 0; i < count; ++i)
+      if (!occluded[i]) dense[texel[i]] += weight[i];
+    count = 0;
+  };
+  for (std::size_t i = 0; i < samples; ++i) {
+    const float c = glm::dot(n, ts.direction[i]);
+    if (!(c > 0.f)) continue;  // below the horizon: contributes nothing, no ray
+    const float w = c * ts.solid_angle[i];
+    const uint32_t t = static_cast<uint32_t>(i / s2);
+    if (!shadows) {
+      dense[t] += w;
+      continue;
+    }
+    dirs[count] = ts.direction[i];
+    texel[count] = t;
+    weight[count] = w;
+    if (++count == kPacketSize) flush();
+  }
+  flush();
+  return rays;
+}
+
+std::string metadata_json(const Scene& scene, const HaarBakeOptions& o, int channels) {
+  nlohmann::json j;
+  j["generator"] = "prt bake --basis haar";
+  j["basis"] = "haar";
+  j["haar"] = {{"cube_size", o.cube_size},
+               {"faces", "+X,-X,+Y,-Y,+Z,-Z; wavelet index face*N^2+q, non-standard 2D Haar"},
+               {"supersample", o.supersample},
+               {"relative_threshold", o.compression.relative_threshold},
+               {"max_terms_per_vertex", o.compression.max_terms_per_vertex},
+               {"quantization_bits", static_cast<int>(o.compression.quantization)}};
+  j["transport"] = transfer_kind_name(o.transport);
+  j["albedo_folded"] = true;
+  j["channels"] = channels;
+  j["frame"] = "glTF, +Y up";
+  j["scene"] = scene.source_path;
+  j["seed"] = o.seed;
+  return j.dump();
+}
+
+void validate_haar_options(const Scene& scene, const HaarBakeOptions& o) {
+  const std::string name = scene.source_path.empty() ? "scene" : scene.source_path;
+  if (o.transport != prt::TransferKind::Unshadowed && o.transport != prt::TransferKind::Shadowed &&
+      o.transport != prt::TransferKind::Interreflected)
+    throw BakeError(name + ": Haar transport must be unshadowed, shadowed or interreflected");
+  if (!prt::is_valid_cube_size(o.cube_size))
+    throw BakeError(name + ": cube size " + std::to_string(o.cube_size) +
+                    " is not a power of two in [8, 128]");
+  if (o.supersample < 1 || o.supersample > kMaxHaarSupersample)
+    throw BakeError(name + ": supersampling " + std::to_string(o.supersample) + " is outside [1, " +
+                    std::to_string(kMaxHaarSupersample) + "]");
+  if (!(o.compression.relative_threshold >= 0.0 && o.compression.relative_threshold < 1.0))
+    throw BakeError(name + ": relative threshold must be in [0, 1)");
+  if (o.compression.max_terms_per_vertex < 0)
+    throw BakeError(name + ": terms per vertex must be >= 0 (0 = no limit)");
+  // The shared scene and albedo checks of the SH baker.
+  BakeOptions sh;
+  sh.kind = o.transport;
+  sh.order = 1;
+  sh.bounces = o.bounces;
+  sh.bounce_tolerance = o.bounce_tolerance;
+  sh.max_solver_iterations = o.max_solver_iterations;
+  sh.threads = o.threads;
+  validate_bake_inputs(scene, sh);
+  if (o.transport == prt::TransferKind::Interreflected) {
+    const uint64_t channels = 3;  // upper bound
+    const uint64_t bytes =
+        uint64_t(scene.vertex_count()) * 6 * uint64_t(o.cube_size) * o.cube_size * channels * 4;
+    if (bytes > kMaxHaarInterreflectionBytes)
+      throw BakeError(name + ": interreflected Haar transfer at cube size " +
+                      std::to_string(o.cube_size) + " needs " + std::to_string(bytes >> 20) +
+                      " MiB of dense wavelet coefficients; use a smaller --cube");
+  }
+}
+
+}  // namespace
+
+HaarBakeResult bake_haar_transfer(const Scene& scene, const HaarBakeOptions& options,
+                                  ProgressSink* progress) {
+  const Clock::time_point t_start = Clock::now();
+  validate_haar_options(scene, options);
+  std::unique_ptr<tbb::global_control> limit;
+  if (options.threads > 0)
+    limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
+                                                  options.threads);
+  const std::size_t V = scene.vertex_count();
+  const int N = options.cube_size;
+  const std::size_t W = std::size_t{6} * N * N;  // texels = wavelet coefficients
+  bool grey = true;
+  for (const glm::vec3& a : scene.albedo) grey = grey && a.x == a.y && a.y == a.z;
+  const int C = grey ? 1 : 3;
+  const bool shadows = options.transport != prt::TransferKind::Unshadowed;
+  const bool interreflect = options.transport == prt::TransferKind::Interreflected;
+
+  HaarBakeResult result;
+  HaarBakeStatistics& st = result.stats;
+  st.vertices = V;
+  st.triangles = scene.triangles.size();
+  const TexelSamples ts = make_texel_samples(N, options.supersample, options.seed);
+  const RayCaster caster(scene);
+  prt::HaarTransferBuilder builder(N, C, options.compression.quantization);
+
+  // Dense per-vertex transfer (texel domain, albedo/π applied), C channels interleaved.
+  auto dense_transfer = [&](uint32_t v, GatherRow* row, std::vector<float>& grey_dense,
+                            std::vector<float>& dense) {
+    std::fill(grey_dense.begin(), grey_dense.end(), 0.f);
+    const uint64_t rays = trace_vertex(scene, caster, ts, v, shadows, row, grey_dense.data());
+    for (int c = 0; c < C; ++c) {
+      const float k = static_cast<float>(scene.albedo[v][c] * kInvPi);
+      for (std::size_t t = 0; t < W; ++t) dense[t * C + c] = grey_dense[t] * k;
+    }
+    return rays;
+  };
+
+  const Clock::time_point t_rays = Clock::now();
+  std::vector<uint64_t> task_rays((V + kVerticesPerTask - 1) / kVerticesPerTask, 0);
+  if (progress) progress->start("bake haar", V);
+  if (!interreflect) {
+    std::vector<prt::SparseVertexTransfer> sparse;
+    for (std::size_t first = 0; first < V; first += kVerticesPerChunk) {
+      const std::size_t end = std::min(V, first + kVerticesPerChunk);
+      sparse.assign(end - first, {});
+      tbb::parallel_for(first, end, kVerticesPerTask, [&](std::size_t task_first) {
+        std::vector<float> grey_dense(W), dense(W * C);
+        const std::size_t task_end = std::min(end, task_first + kVerticesPerTask);
+        uint64_t rays = 0;
+        for (std::size_t v = task_first; v < task_end; ++v) {
+          rays += dense_transfer(static_cast<uint32_t>(v), nullptr, grey_dense, dense);
+          prt::Result<prt::SparseVertexTransfer> s =
+              prt::compress_vertex_transfer(dense.data(), N, C, options.compression);
+          sparse[v - first] = std::move(s.value());  // size and channels were validated
+        }
+        task_rays[task_first / kVerticesPerTask] = rays;
+        if (progress) progress->advance(task_end - task_first, rays);
+      });
+      for (const prt::SparseVertexTransfer& s : sparse) {
+        const prt::Status added = builder.add_vertex(s);
+        if (!added.ok()) throw BakeError(scene.source_path + ": " + added.message());
+      }
+    }
+    if (progress) progress->finish();
+    for (uint64_t r : task_rays) st.rays += r;
+    st.seconds_rays = seconds_since(t_rays);
+  } else {
+    // Pass 1: D̂ (wavelet domain, dense) and H.
+    std::vector<float> coeffs(V * W * C);
+    std::vector<GatherRow> rows(V);
+    tbb::parallel_for(std::size_t(0), V, kVerticesPerTask, [&](std::size_t task_first) {
+      std::vector<float> grey_dense(W);
+      const std::size_t task_end = std::min(V, task_first + kVerticesPerTask);
+      uint64_t rays = 0;
+      for (std::size_t v = task_first; v < task_end; ++v) {
+        std::vector<float> dense(W * C);
+        rays += dense_transfer(static_cast<uint32_t>(v), &rows[v], grey_dense, dense);
+        float* out = coeffs.data() + v * W * C;
+        std::copy(dense.begin(), dense.end(), out);
+        for (int face = 0; face < 6; ++face)
+          for (int c = 0; c < C; ++c)
+            prt::forward_haar_2d(out + std::size_t(face) * N * N * C + c, N, C);
+        GatherRow& row = rows[v];
+        std::sort(row.begin(), row.end(),
+                  [](const auto& a, const auto& b) { return a.first < b.first; });
+        std::size_t kept = 0;
+        for (std::size_t i = 0; i < row.size();) {
+          const uint32_t col = row[i].first;
+          double w = 0.0;
+          for (; i < row.size() && row[i].first == col; ++i) w += row[i].second;
+          if (w > 0.0) row[kept++] = {col, static_cast<float>(w)};
+        }
+        row.resize(kept);
+      }
+      task_rays[task_first / kVerticesPerTask] = rays;
+      if (progress) progress->advance(task_end - task_first, rays);
+    });
+    if (progress) progress->finish();
+    for (uint64_t r : task_rays) st.rays += r;
+    st.seconds_rays = seconds_since(t_rays);
+    SparseTransferMatrix h;
+    h.row_offsets.reserve(V + 1);
+    for (const GatherRow& row : rows) {
+      for (const auto& [col, w] : row) {
+        h.columns.push_back(col);
+        h.weights.push_back(w);
+      }
+      h.row_offsets.push_back(h.columns.size());
+    }
+    rows = {};
+    // Pass 2: T̂ = D̂ + diag(ρ) H T̂, per channel, in chunks of wavelet columns.
+    const Clock::time_point t_solve = Clock::now();
+    SolveOptions so;
+    so.bounces = options.bounces;
+    so.tolerance = options.bounce_tolerance;
+    so.max_iterations = options.max_solver_iterations;
+    std::vector<double> d(V * kSolveColumns), t(V * kSolveColumns);
+    for (int c = 0; c < C; ++c) {
+      std::vector<double> rho(V);
+      for (std::size_t v = 0; v < V; ++v) rho[v] = scene.albedo[v][c];
+      for (std::size_t first = 0; first < W; first += kSolveColumns) {
+        const int cols = static_cast<int>(std::min<std::size_t>(kSolveColumns, W - first));
+        for (std::size_t v = 0; v < V; ++v)
+          for (int k = 0; k < cols; ++k) d[v * cols + k] = coeffs[(v * W + first + k) * C + c];
+        const SolveReport r = solve_interreflection(h, rho, d.data(), cols, t.data(), so);
+        st.solver_iterations += r.krylov_iterations;
+        st.solver_residual = std::max(st.solver_residual, r.relative_residual);
+        st.solver_converged = st.solver_converged && r.converged;
+        for (std::size_t v = 0; v < V; ++v)
+          for (int k = 0; k < cols; ++k)
+            coeffs[(v * W + first + k) * C + c] = static_cast<float>(t[v * cols + k]);
+      }
+    }
+    st.seconds_solve = seconds_since(t_solve);
+    for (std::size_t v = 0; v < V; ++v) {
+      const prt::SparseVertexTransfer s =
+          prt::truncate_vertex_coefficients(coeffs.data() + v * W * C, N, C, options.compression);
+      const prt::Status added = builder.add_vertex(s);
+      if (!added.ok()) throw BakeError(scene.source_path + ": " + added.message());
+    }
+  }
+
+  prt::Result<prt::HaarTransfer> transfer = builder.finish();
+  if (!transfer.ok()) throw BakeError(scene.source_path + ": " + transfer.status().message());
+  prt::HaarTransferFile& file = result.file;
+  file.transfer = std::move(transfer.value());
+  prt::TransferData& info = file.info;
+  info.kind = prt::TransferKind::Haar;
+  info.order = static_cast<uint32_t>(N);
+  info.channels = static_cast<uint32_t>(C);
+  info.albedo_folded = true;
+  info.vertex_count = V;
+  info.positions.resize(3 * V);
+  info.normals.resize(3 * V);
+  for (std::size_t v = 0; v < V; ++v) {
+    const glm::vec3 n = glm::normalize(scene.normals[v]);
+    for (int a = 0; a < 3; ++a) {
+      info.positions[3 * v + a] = scene.positions[v][a];
+      info.normals[3 * v + a] = n[a];
+    }
+  }
+  for (const ScenePrimitive& p : scene.primitives)
+    info.primitives.push_back({p.first_vertex, p.vertex_count, p.name});
+  info.fingerprint = prt::geometry_fingerprint(info.positions.data(), V);
+  info.metadata_json = metadata_json(scene, options, C);
+  st.stored_bytes = file.transfer.stored_bytes();
+  st.dense_bytes = file.transfer.dense_bytes();
+  st.entries = file.transfer.entry_count();
+  st.seconds_total = seconds_since(t_start);
+  return result;
+}
+
+}  // namespace prt::bake

@@ -1,0 +1,161 @@
+// fuzz/make_fuzz_corpus.cpp — writes the seed corpora of the fuzz targets with the project's own
+// writers, so every seed is a valid input the loaders accept (the fuzzer mutates from there):
+//   corpus/fuzz_transfer_file/  coefficient files: orders 1..3, 1 and 3 channels, F32 and F16,
+//                               with and without AO, bent normals and primitive ranges;
+//   corpus/fuzz_scene_obj/      small OBJ files (triangles, quads, vn/vt, negative indices);
+//   corpus/fuzz_scene_gltf/     GLB files from bake::write_glb and a .gltf with a data URI;
+//   corpus/fuzz_env_map/        selector byte + small .hdr, .exr and .pfm maps of each layout.
+// Usage: make_fuzz_corpus OUT_DIR   (scripts/fuzz.sh runs it when a corpus folder is empty).
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <iterator>
+#include <string>
+#include <vector>
+
+#include "bake/glb_writer.h"
+#include "bake/procedural_mesh.h"
+#include "prt/transfer_file.h"
+#include "relight/image_io.h"
+
+namespace fs = std::filesystem;
+
+namespace {
+
+void write_bytes(const fs::path& path, const std::string& bytes) {
+  std::ofstream out(path, std::ios::binary);
+  out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+  if (!out) throw std::runtime_error(path.string() + ": cannot write");
+}
+
+std::string read_bytes(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+void write_transfer_seeds(const fs::path& dir) {
+  int n = 0;
+  for (uint32_t order : {1u, 2u, 3u}) {
+    for (uint32_t channels : {1u, 3u}) {
+      for (prt::Precision storage : {prt::Precision::F32, prt::Precision::F16}) {
+        prt::TransferData d;
+        d.kind = order == 3 ? prt::TransferKind::Interreflected : prt::TransferKind::Shadowed;
+        d.order = order;
+        d.channels = channels;
+        d.storage = storage;
+        d.vertex_count = order == 1 ? 1 : 17;  // 17: one full block of 16 plus a padded one
+        for (uint64_t v = 0; v < d.vertex_count; ++v) {
+          d.positions.insert(d.positions.end(), {float(v), 0.5f * float(v), -1.0f});
+          d.normals.insert(d.normals.end(), {0.f, 1.f, 0.f});
+        }
+        for (uint64_t i = 0; i < d.vertex_count * channels * order * order; ++i)
+          d.coefficients.push_back(0.25f - 0.01f * float(i % 50));
+        if (order >= 2) {
+          d.ao.assign(d.vertex_count, 0.75f);
+          for (uint64_t v = 0; v < d.vertex_count; ++v)
+            d.bent_normals.insert(d.bent_normals.end(), {0.f, 0.f, 1.f});
+          d.primitives.push_back({0, d.vertex_count, "mesh/0"});
+        }
+        d.metadata_json = R"({"seed":)" + std::to_string(n) + "}";
+        auto bytes = prt::encode_transfer_file(d, "seed");
+        if (!bytes.ok()) throw std::runtime_error(bytes.status().message());
+        write_bytes(dir / ("seed_" + std::to_string(n++) + ".prt"),
+                    std::string(bytes->begin(), bytes->end()));
+      }
+    }
+  }
+}
+
+void write_obj_seeds(const fs::path& dir) {
+  write_bytes(dir / "triangle.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+  write_bytes(dir / "quad_vn_vt.obj",
+              "o quad\nv 0 0 0\nv 1 0 0\nv 1 0 1\nv 0 0 1\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n"
+              "vn 0 1 0\nf 1/1/1 4/4/1 3/3/1 2/2/1\n");
+  write_bytes(dir / "negative_indices.obj",
+              "v 0 0 0\nv 1 0 0\nv 0 0 -1\nv 1 0 -1\nf -4 -3 -2\nf -3 -1 -2\n");
+  write_bytes(dir / "two_shapes_crlf.obj",
+              "g a\r\nv 0 0 0\r\nv 1 0 0\r\nv 0 1 0\r\nf 1 2 3\r\ng b\r\nv 0 0 1\r\nv 1 0 1\r\n"
+              "v 0 1 1\r\nf 4 5 6\r\n");
+  write_bytes(dir / "degenerate.obj",
+              "v 0 0 0\nv 1 0 0\nv 2 0 0\nv 0 1 0\nf 1 2 3\nf 1 1 4\nf 1 2 4\nvn 0 0 1\n");
+}
+
+void write_gltf_seeds(const fs::path& dir) {
+  const fs::path tmp = dir / "tmp.glb";
+  prt::bake::write_glb(tmp.string(),
+                       prt::bake::make_box({-1, -1, -1}, {1, 1, 1}, 1, false, {0.5f, 0.5f, 0.5f}));
+  fs::rename(tmp, dir / "box.glb");
+  prt::bake::write_glb(tmp.string(), prt::bake::make_quad({0, 0, 0}, {1, 0, 0}, {0, 0, -1}, 1, 1,
+                                                          {0.8f, 0.2f, 0.2f}));
+  fs::rename(tmp, dir / "quad.glb");
+  // One triangle, no normals, no indices, a node with TRS, a camera, positions in a data URI:
+  // 3 vec3 floats (0,0,0) (1,0,0) (0,1,0) = 36 bytes in base64.
+  write_bytes(dir / "triangle.gltf", R"({"asset":{"version":"2.0"},"scene":0,
+"scenes":[{"nodes":[0,1]}],
+"nodes":[{"mesh":0,"translation":[0,1,0],"rotation":[0,0,0,1],"scale":[2,2,2]},
+ {"camera":0,"translation":[0,0,3]}],
+"cameras":[{"type":"perspective","perspective":{"yfov":0.8,"znear":0.1}}],
+"meshes":[{"primitives":[{"attributes":{"POSITION":0},"material":0}]}],
+"materials":[{"pbrMetallicRoughness":{"baseColorFactor":[0.5,0.6,0.7,1]}}],
+"accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3",
+ "min":[0,0,0],"max":[1,1,0]}],
+"bufferViews":[{"buffer":0,"byteLength":36}],
+"buffers":[{"byteLength":36,
+ "uri":"data:application/octet-stream;base64,AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAA"}]}
+)");
+}
+
+void write_env_seeds(const fs::path& dir) {
+  // Selector byte b: extension = {hdr, exr, pfm}[b % 3], layout = {guess, latlong, angular, cross,
+  // faces}[(b / 3) % 5] (fuzz_env_map.cpp).
+  struct Size {
+    int w, h, layout;
+  };
+  const std::vector<Size> sizes = {{8, 4, 1}, {4, 4, 2}, {6, 8, 3}, {2, 12, 4}, {1, 1, 0}};
+  int n = 0;
+  for (const Size& s : sizes) {
+    std::vector<float> rgb(static_cast<std::size_t>(s.w) * s.h * 3);
+    for (std::size_t i = 0; i < rgb.size(); ++i) rgb[i] = 0.1f + 0.37f * float(i % 7);
+    for (int ext = 0; ext < 3; ++ext) {
+      std::string file;
+      if (ext == 2) {
+        // PFM: "PF\nW H\n-1.0\n", little-endian float RGB rows, bottom row first.
+        file = "PF\n" + std::to_string(s.w) + " " + std::to_string(s.h) + "\n-1.0\n";
+        for (int row = s.h - 1; row >= 0; --row)
+          file.append(reinterpret_cast<const char*>(&rgb[std::size_t(row) * s.w * 3]),
+                      std::size_t(s.w) * 3 * sizeof(float));
+      } else {
+        const fs::path tmp = dir / (ext == 0 ? "tmp.hdr" : "tmp.exr");
+        prt::relight::write_image(tmp.string(), s.w, s.h, 3, rgb.data());
+        file = read_bytes(tmp);
+        fs::remove(tmp);
+      }
+      const char selector = static_cast<char>(ext + 3 * s.layout);
+      write_bytes(dir / ("map_" + std::to_string(n++)), std::string(1, selector) + file);
+    }
+  }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc != 2) {
+    std::cerr << "usage: make_fuzz_corpus OUT_DIR\n";
+    return 2;
+  }
+  try {
+    const fs::path out = argv[1];
+    const fs::path dirs[] = {out / "fuzz_transfer_file", out / "fuzz_scene_obj",
+                             out / "fuzz_scene_gltf", out / "fuzz_env_map"};
+    for (const fs::path& d : dirs) fs::create_directories(d);
+    write_transfer_seeds(dirs[0]);
+    write_obj_seeds(dirs[1]);
+    write_gltf_seeds(dirs[2]);
+    write_env_seeds(dirs[3]);
+  } catch (const std::exception& e) {
+    std::cerr << e.what() << "\n";
+    return 1;
+  }
+  return 0;
+}

@@ -1,0 +1,84 @@
+// relight/report.h — `prt report`: error against run time for the PRT settings, measured against
+// the independent Monte Carlo ground truth of bake/ground_truth.h.
+//
+// Conventions: SH basis of sh/basis.h (real orthonormal, no Condon–Shortley phase,
+// k = l(l+1)+m); glTF frame (+Y up); radiance in the map's units; errors as defined in
+// relight/report_metrics.h (RGB-norm relative RMS over vertices, p99 and max of the floored
+// per-vertex relative error, relative RMS over the scene's pixels of a rendering).
+//
+// Sweep design: one axis at a time around a base setting (order 6, 1024 samples per vertex,
+// interreflected with bounces solved to convergence, f32 storage; --quick: 256 samples), plus a
+// small (order × samples) grid for the Pareto plot. Axes are rows of a table (ReportAxis) of
+// settings (ReportSetting), so a new axis — wavelet terms, cube size — is one more entry.
+// Projection vs sampling error: a reference bake at the largest order and sample count
+// (converged transfer) truncated to order n gives the projection error of order n (against the
+// ground truth); the order-n bake at N samples against that truncated reference gives the
+// sampling error.
+// The ground truth is refined (sample doubling) until its relative RMS standard error is at most
+// 1/5 of the smallest error measured, within a time budget, and the summary says what it reached.
+// Outputs in the output directory: results.csv, results.json, pareto.svg/png,
+// error_vs_order.svg/png, summary.md (PNG through rsvg-convert; without it only SVG). All files
+// are written atomically. Errors throw std::runtime_error "PATH: problem".
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "prt/transfer_data.h"
+#include "sh/env_map.h"
+
+namespace prt::relight {
+
+struct ReportSetting {
+  int order = 6;
+  int samples = 1024;
+  int bounces = -1;  // −1: solved to convergence; 0: shadowed (direct) only
+  prt::Precision precision = prt::Precision::F32;
+};
+
+struct ReportAxis {
+  std::string name;  // "order", "samples", "bounces", "precision", "grid"
+  std::vector<ReportSetting> settings;
+};
+
+struct ReportOptions {
+  std::string scene_path, environment_path, output_dir;
+  std::optional<sh::EnvLayout> layout;
+  bool quick = false;
+  uint64_t seed = 1;
+  int image_width = 320, image_height = 180;
+  double ground_truth_budget_seconds = 110;  // refinement stops before exceeding this
+  bool verbose = true;                       // progress lines on stderr
+};
+
+struct ReportMeasurement {
+  std::string axis;  // axes this setting belongs to, joined with '+'
+  ReportSetting setting;
+  double bake_seconds = 0, relight_seconds = 0;
+  uint64_t file_bytes = 0;
+  double relative_rms = 0, p99 = 0, max = 0, image_relative_rms = 0;
+  bool on_pareto_front = false;
+  std::string failure;  // non-empty when the setting could not be measured (e.g. f16 overflow)
+};
+
+struct ReportResult {
+  std::vector<ReportMeasurement> measurements;
+  std::vector<int> orders;               // of the projection/sampling split
+  std::vector<double> projection_error;  // per order
+  std::vector<int> split_samples;
+  std::vector<std::vector<double>> sampling_error;  // [samples index][order index]
+  int ground_truth_samples = 0;
+  double ground_truth_relative_se = 0, ground_truth_seconds = 0, ground_truth_mrays = 0;
+  bool ground_truth_adequate = false;  // SE ≤ smallest error / 5
+  std::vector<std::string> files_written;
+};
+
+// The base setting and the axes swept (quick or full).
+ReportSetting base_setting(bool quick);
+std::vector<ReportAxis> report_axes(bool quick);
+
+// Runs everything and writes the files. Throws std::runtime_error on failure.
+ReportResult run_report(const ReportOptions& options);
+
+}  // namespace prt::relight

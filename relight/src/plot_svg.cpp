@@ -1,0 +1,332 @@
+// relight/src/plot_svg.cpp — see plot_svg.h.
+#include "relight/plot_svg.h"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+namespace prt::relight {
+namespace {
+
+std::string escape_xml(const std::string& s) {
+  std::string out;
+  for (char c : s) {
+    switch (c) {
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '&':
+        out += "&amp;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      default:
+        out += c;
+    }
+  }
+  return out;
+}
+
+std::string number(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.2f", v);
+  return buf;
+}
+
+struct Axis {
+  double lo, hi, px0, px1;
+  bool log;
+  double map(double v) const {
+    const double t = log ? (std::log10(v) - std::log10(lo)) / (std::log10(hi) - std::log10(lo))
+                         : (v - lo) / (hi - lo);
+    return px0 + t * (px1 - px0);
+  }
+  bool inside(double v) const { return (!log || v > 0) && std::isfinite(v); }
+};
+
+std::string marker_svg(Marker m, double x, double y, double r, const std::string& color) {
+  std::ostringstream o;
+  switch (m) {
+    case Marker::None:
+      break;
+    case Marker::Circle:
+      o << "<circle cx='" << number(x) << "' cy='" << number(y) << "' r='" << number(r)
+        << "' fill='" << color << "' stroke='white' stroke-width='0.8'/>";
+      break;
+    case Marker::Square:
+      o << "<rect x='" << number(x - r) << "' y='" << number(y - r) << "' width='" << number(2 * r)
+        << "' height='" << number(2 * r) << "' fill='" << color
+        << "' stroke='white' stroke-width='0.8'/>";
+      break;
+    case Marker::Triangle:
+      o << "<polygon points='" << number(x) << "," << number(y - 1.2 * r) << " "
+        << number(x - 1.1 * r) << "," << number(y + 0.8 * r) << " " << number(x + 1.1 * r) << ","
+        << number(y + 0.8 * r) << "' fill='" << color << "' stroke='white' stroke-width='0.8'/>";
+      break;
+    case Marker::Diamond:
+      o << "<polygon points='" << number(x) << "," << number(y - 1.3 * r) << " "
+        << number(x + 1.3 * r) << "," << number(y) << " " << number(x) << "," << number(y + 1.3 * r)
+        << " " << number(x - 1.3 * r) << "," << number(y) << "' fill='" << color
+        << "' stroke='white' stroke-width='0.8'/>";
+      break;
+    case Marker::Cross:
+      o << "<path d='M" << number(x - r) << "," << number(y - r) << " L" << number(x + r) << ","
+        << number(y + r) << " M" << number(x - r) << "," << number(y + r) << " L" << number(x + r)
+        << "," << number(y - r) << "' stroke='" << color << "' stroke-width='2'/>";
+      break;
+  }
+  return o.str();
+}
+
+}  // namespace
+
+void choose_axis_range(const std::vector<double>& values, bool log_scale, double* lo, double* hi) {
+  double a = INFINITY, b = -INFINITY;
+  for (double v : values)
+    if (std::isfinite(v) && (!log_scale || v > 0)) a = std::min(a, v), b = std::max(b, v);
+  if (!(a <= b)) {
+    *lo = log_scale ? 0.1 : 0.0;
+    *hi = log_scale ? 10.0 : 1.0;
+    return;
+  }
+  if (log_scale) {
+    *lo = std::pow(10.0, std::floor(std::log10(a) + 1e-9));
+    *hi = std::pow(10.0, std::ceil(std::log10(b) - 1e-9));
+    if (*hi <= *lo) *hi = *lo * 10.0;
+    return;
+  }
+  if (a == b) a -= 0.5, b += 0.5;
+  const std::vector<double> ticks = major_ticks(a, b, false, 6);
+  const double step = ticks.size() > 1 ? ticks[1] - ticks[0] : (b - a);
+  *lo = std::floor(a / step + 1e-9) * step;
+  *hi = std::ceil(b / step - 1e-9) * step;
+}
+
+std::vector<double> major_ticks(double lo, double hi, bool log_scale, int target) {
+  std::vector<double> t;
+  if (!(hi > lo)) return t;
+  if (log_scale) {
+    if (!(lo > 0)) return t;
+    for (int k = static_cast<int>(std::floor(std::log10(lo) - 1e-9));
+         k <= static_cast<int>(std::ceil(std::log10(hi) + 1e-9)); ++k) {
+      const double v = std::pow(10.0, k);
+      if (v >= lo * (1 - 1e-9) && v <= hi * (1 + 1e-9)) t.push_back(v);
+    }
+    return t;
+  }
+  const double raw = (hi - lo) / std::max(1, target);
+  const double mag = std::pow(10.0, std::floor(std::log10(raw)));
+  double step = mag;
+  for (double m : {1.0, 2.0, 2.5, 5.0, 10.0})
+    if (m * mag >= raw) {
+      step = m * mag;
+      break;
+    }
+  for (double v = std::ceil(lo / step - 1e-9) * step; v <= hi + 1e-9 * step; v += step)
+    t.push_back(std::fabs(v) < 1e-12 * step ? 0.0 : v);
+  return t;
+}
+
+std::vector<double> minor_ticks(double lo, double hi, bool log_scale) {
+  std::vector<double> t;
+  if (!log_scale || !(lo > 0) || !(hi > lo)) return t;
+  for (int k = static_cast<int>(std::floor(std::log10(lo)));
+       k <= static_cast<int>(std::ceil(std::log10(hi))); ++k)
+    for (int m = 2; m <= 9; ++m) {
+      const double v = m * std::pow(10.0, k);
+      if (v > lo && v < hi) t.push_back(v);
+    }
+  return t;
+}
+
+std::string format_tick(double value, bool log_scale, bool percent) {
+  const double v = percent ? value * 100.0 : value;
+  char buf[32];
+  if (log_scale) {
+    const int k = static_cast<int>(std::lround(std::log10(std::fabs(v))));
+    if (k >= -4 && k <= 4)
+      std::snprintf(buf, sizeof buf, "%.*f", k < 0 ? -k : 0, v);
+    else
+      std::snprintf(buf, sizeof buf, "1e%d", k);
+  } else {
+    std::snprintf(buf, sizeof buf, "%g", v);
+  }
+  return std::string(buf) + (percent ? "%" : "");
+}
+
+std::string render_svg(const PlotSpec& spec) {
+  const double W = spec.width, H = spec.height;
+  const double left = 86, right = W - 24, top = 48, bottom = H - 64;
+  std::vector<double> xs, ys;
+  for (const PlotSeries& s : spec.series) {
+    xs.insert(xs.end(), s.x.begin(), s.x.end());
+    ys.insert(ys.end(), s.y.begin(), s.y.end());
+  }
+  for (const auto& r : spec.reference_lines) ys.push_back(r.first);
+  Axis ax, ay;
+  choose_axis_range(xs, spec.log_x, &ax.lo, &ax.hi);
+  choose_axis_range(ys, spec.log_y, &ay.lo, &ay.hi);
+  ax.px0 = left, ax.px1 = right, ax.log = spec.log_x;
+  ay.px0 = bottom, ay.px1 = top, ay.log = spec.log_y;
+
+  std::ostringstream o;
+  o << "<?xml version='1.0' encoding='UTF-8'?>\n"
+    << "<svg xmlns='http://www.w3.org/2000/svg' width='" << spec.width << "' height='"
+    << spec.height << "' viewBox='0 0 " << spec.width << " " << spec.height
+    << "' font-family='DejaVu Sans, Helvetica, Arial, sans-serif'>\n"
+    << "<rect width='100%' height='100%' fill='white'/>\n";
+  o << "<text x='" << number(W / 2) << "' y='28' text-anchor='middle' font-size='17' "
+    << "font-weight='bold'>" << escape_xml(spec.title) << "</text>\n";
+  // Grid and ticks.
+  for (double v : minor_ticks(ax.lo, ax.hi, ax.log))
+    o << "<line x1='" << number(ax.map(v)) << "' y1='" << top << "' x2='" << number(ax.map(v))
+      << "' y2='" << bottom << "' stroke='#eeeeee'/>\n";
+  for (double v : minor_ticks(ay.lo, ay.hi, ay.log))
+    o << "<line x1='" << left << "' y1='" << number(ay.map(v)) << "' x2='" << right << "' y2='"
+      << number(ay.map(v)) << "' stroke='#eeeeee'/>\n";
+  for (double v : major_ticks(ax.lo, ax.hi, ax.log)) {
+    const double x = ax.map(v);
+    o << "<line x1='" << number(x) << "' y1='" << top << "' x2='" << number(x) << "' y2='" << bottom
+      << "' stroke='#d0d0d0'/>\n"
+      << "<text x='" << number(x) << "' y='" << bottom + 20 << "' text-anchor='middle' "
+      << "font-size='13'>" << format_tick(v, ax.log, false) << "</text>\n";
+  }
+  for (double v : major_ticks(ay.lo, ay.hi, ay.log)) {
+    const double y = ay.map(v);
+    o << "<line x1='" << left << "' y1='" << number(y) << "' x2='" << right << "' y2='" << number(y)
+      << "' stroke='#d0d0d0'/>\n"
+      << "<text x='" << left - 8 << "' y='" << number(y + 4) << "' text-anchor='end' "
+      << "font-size='13'>" << format_tick(v, ay.log, spec.y_as_percent) << "</text>\n";
+  }
+  o << "<rect x='" << left << "' y='" << top << "' width='" << right - left << "' height='"
+    << bottom - top << "' fill='none' stroke='#333333'/>\n";
+  o << "<text x='" << number((left + right) / 2) << "' y='" << H - 18
+    << "' text-anchor='middle' font-size='14'>" << escape_xml(spec.x_label) << "</text>\n";
+  o << "<text transform='translate(20," << number((top + bottom) / 2)
+    << ") rotate(-90)' text-anchor='middle' font-size='14'>" << escape_xml(spec.y_label)
+    << "</text>\n";
+  // Reference lines.
+  for (const auto& r : spec.reference_lines) {
+    if (!ay.inside(r.first) || r.first < ay.lo || r.first > ay.hi) continue;
+    const double y = ay.map(r.first);
+    o << "<line x1='" << left << "' y1='" << number(y) << "' x2='" << right << "' y2='" << number(y)
+      << "' stroke='#888888' stroke-dasharray='2,4' stroke-width='1.2'/>\n"
+      << "<text x='" << right - 4 << "' y='" << number(y - 4) << "' text-anchor='end' "
+      << "font-size='11' fill='#666666'>" << escape_xml(r.second) << "</text>\n";
+  }
+  // Series.
+  o << "<g>\n";
+  for (const PlotSeries& s : spec.series) {
+    std::vector<std::pair<double, double>> pts;
+    std::vector<std::string> labels;
+    for (std::size_t i = 0; i < s.x.size() && i < s.y.size(); ++i)
+      if (ax.inside(s.x[i]) && ay.inside(s.y[i])) {
+        pts.emplace_back(ax.map(s.x[i]), ay.map(s.y[i]));
+        labels.push_back(i < s.point_labels.size() ? s.point_labels[i] : std::string());
+      }
+    if (s.line && pts.size() > 1) {
+      o << "<polyline fill='none' stroke='" << s.color << "' stroke-width='" << s.line_width << "'"
+        << (s.dashed ? " stroke-dasharray='7,5'" : "") << " points='";
+      for (const auto& p : pts) o << number(p.first) << "," << number(p.second) << " ";
+      o << "'/>\n";
+    }
+    for (std::size_t i = 0; i < pts.size(); ++i) {
+      o << marker_svg(s.marker, pts[i].first, pts[i].second, s.marker_size, s.color) << "\n";
+      if (!labels[i].empty())
+        o << "<text x='" << number(pts[i].first + 7) << "' y='" << number(pts[i].second - 6)
+          << "' font-size='10' fill='#444444'>" << escape_xml(labels[i]) << "</text>\n";
+    }
+  }
+  o << "</g>\n";
+  // Legend (top right, inside the plot).
+  int entries = 0;
+  for (const PlotSeries& s : spec.series) entries += s.label.empty() ? 0 : 1;
+  if (entries > 0) {
+    std::size_t longest = 0;
+    for (const PlotSeries& s : spec.series) longest = std::max(longest, s.label.size());
+    const double lw = 46 + 6.6 * static_cast<double>(longest), lh = 8 + 19.0 * entries;
+    const double lx = right - lw - 8, ly = top + 8;
+    o << "<rect x='" << number(lx) << "' y='" << number(ly) << "' width='" << number(lw)
+      << "' height='" << number(lh) << "' fill='white' fill-opacity='0.9' stroke='#999999'/>\n";
+    int row = 0;
+    for (const PlotSeries& s : spec.series) {
+      if (s.label.empty()) continue;
+      const double y = ly + 14 + 19.0 * row++;
+      if (s.line)
+        o << "<line x1='" << number(lx + 6) << "' y1='" << number(y) << "' x2='" << number(lx + 34)
+          << "' y2='" << number(y) << "' stroke='" << s.color << "' stroke-width='" << s.line_width
+          << "'" << (s.dashed ? " stroke-dasharray='7,5'" : "") << "/>\n";
+      o << marker_svg(s.marker, lx + 20, y, s.marker_size, s.color) << "\n";
+      o << "<text x='" << number(lx + 40) << "' y='" << number(y + 4) << "' font-size='12'>"
+        << escape_xml(s.label) << "</text>\n";
+    }
+  }
+  o << "</svg>\n";
+  return o.str();
+}
+
+void write_text_file(const std::string& path, const std::string& text) {
+  const std::string tmp = path + ".tmp-" + std::to_string(::getpid());
+  {
+    std::ofstream f(tmp, std::ios::binary);
+    if (!f) throw std::runtime_error(path + ": cannot open for writing");
+    f << text;
+    f.flush();
+    if (!f) {
+      f.close();
+      std::remove(tmp.c_str());
+      throw std::runtime_error(path + ": write failed");
+    }
+  }
+  std::error_code ec;
+  std::filesystem::rename(tmp, path, ec);
+  if (ec) {
+    std::remove(tmp.c_str());
+    throw std::runtime_error(path + ": cannot rename into place: " + ec.message());
+  }
+}
+
+bool convert_svg_to_png(const std::string& svg_path, const std::string& png_path, double zoom,
+                        std::string* why) {
+  if (std::system("command -v rsvg-convert >/dev/null 2>&1") != 0) {
+    if (why) *why = "rsvg-convert not found (install librsvg2-bin)";
+    return false;
+  }
+  const std::string tmp = png_path + ".tmp-" + std::to_string(::getpid()) + ".png";
+  const std::string quote = "'";
+  auto quoted = [&](const std::string& s) {
+    std::string q = quote;
+    for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    return q + quote;
+  };
+  char zoom_text[32];
+  std::snprintf(zoom_text, sizeof zoom_text, "%.3f", zoom);
+  const std::string cmd = "rsvg-convert --zoom=" + std::string(zoom_text) + " -o " + quoted(tmp) +
+                          " " + quoted(svg_path) + " 2>/dev/null";
+  if (std::system(cmd.c_str()) != 0) {
+    std::remove(tmp.c_str());
+    if (why) *why = svg_path + ": rsvg-convert failed";
+    return false;
+  }
+  std::error_code ec;
+  std::filesystem::rename(tmp, png_path, ec);
+  if (ec) {
+    std::remove(tmp.c_str());
+    if (why) *why = png_path + ": cannot rename into place";
+    return false;
+  }
+  return true;
+}
+
+}  // namespace prt::relight

@@ -1,0 +1,683 @@
+// relight/src/report.cpp — `prt report` (see report.h).
+#include "relight/report.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <map>
+#include <sstream>
+#include <stdexcept>
+
+#include <nlohmann/json.hpp>
+
+#include "bake/ground_truth.h"
+#include "bake/progress.h"
+#include "bake/ray_caster.h"
+#include "bake/scene_loader.h"
+#include "bake/transfer_baker.h"
+#include "prt/lighting.h"
+#include "prt/relighter.h"
+#include "prt/transfer_file.h"
+#include "relight/camera.h"
+#include "relight/image_io.h"
+#include "relight/plot_svg.h"
+#include "relight/relight_pipeline.h"
+#include "relight/renderer.h"
+#include "relight/report_metrics.h"
+
+namespace prt::relight {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+constexpr const char* kBasis =
+    "real orthonormal SH, no Condon-Shortley phase, index k = l(l+1)+m, Y(x,y,z) with polar axis "
+    "+z, scene frame glTF (+Y up)";
+const char* const kPalette[] = {"#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd",
+                                "#8c564b", "#e377c2", "#17becf", "#bcbd22", "#7f7f7f"};
+
+double since(Clock::time_point t) {
+  return std::chrono::duration<double>(Clock::now() - t).count();
+}
+
+std::string precision_name(prt::Precision p) {
+  return p == prt::Precision::F16 ? "f16" : "f32";
+}
+
+std::string bounces_name(int b) {
+  return b < 0 ? std::string("converged") : std::to_string(b);
+}
+
+std::string describe(const ReportSetting& s) {
+  return "order " + std::to_string(s.order) + ", " + std::to_string(s.samples) + " spp, bounces " +
+         bounces_name(s.bounces) + ", " + precision_name(s.precision);
+}
+
+std::string short_label(const ReportSetting& s) {
+  std::string t = "n" + std::to_string(s.order) + " " + std::to_string(s.samples);
+  if (s.bounces >= 0) t += " b" + std::to_string(s.bounces);
+  if (s.precision == prt::Precision::F16) t += " f16";
+  return t;
+}
+
+bool same(const ReportSetting& a, const ReportSetting& b) {
+  return a.order == b.order && a.samples == b.samples && a.bounces == b.bounces &&
+         a.precision == b.precision;
+}
+
+std::string percent(double x) {
+  char buf[32];
+  if (!std::isfinite(x)) return "inf";
+  std::snprintf(buf, sizeof buf, x < 0.01 ? "%.3f%%" : "%.2f%%", 100.0 * x);
+  return buf;
+}
+
+std::string seconds_text(double s) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, s < 0.01 ? "%.2f ms" : "%.2f s", s < 0.01 ? s * 1e3 : s);
+  return buf;
+}
+
+// Relights a transfer with SH lighting: 3 floats per vertex; *seconds = best of `repeats` runs.
+std::vector<float> relight(const prt::TransferData& data, prt::Precision precision,
+                           const prt::ShLighting& lighting, int repeats, double* seconds,
+                           std::string* failure) {
+  auto relighter = prt::Relighter::create(data, precision);
+  if (!relighter.ok()) {
+    *failure = relighter.status().message();
+    return {};
+  }
+  std::vector<float> b;
+  *seconds = INFINITY;
+  for (int i = 0; i < repeats; ++i) {
+    const auto t0 = Clock::now();
+    b = shade_all_vertices(*relighter, lighting, static_cast<std::size_t>(data.vertex_count));
+    *seconds = std::min(*seconds, since(t0));
+  }
+  return b;
+}
+
+// The first n² coefficients of every channel (the order-n transfer of the same samples: the
+// interreflection solve acts on each coefficient column independently).
+prt::TransferData truncate_order(const prt::TransferData& d, int n) {
+  prt::TransferData t = d;
+  const std::size_t K = d.coefficients_per_channel(), k = static_cast<std::size_t>(n) * n;
+  t.order = static_cast<uint32_t>(n);
+  t.coefficients.assign(d.vertex_count * d.channels * k, 0.f);
+  for (std::size_t r = 0; r < d.vertex_count * d.channels; ++r)
+    std::copy_n(&d.coefficients[r * K], k, &t.coefficients[r * k]);
+  return t;
+}
+
+std::vector<double> to_double(const std::vector<float>& v) {
+  return std::vector<double>(v.begin(), v.end());
+}
+
+}  // namespace
+
+ReportSetting base_setting(bool quick) {
+  ReportSetting s;
+  s.order = 6;
+  s.samples = quick ? 256 : 1024;
+  s.bounces = -1;
+  s.precision = prt::Precision::F32;
+  return s;
+}
+
+std::vector<ReportAxis> report_axes(bool quick) {
+  const ReportSetting base = base_setting(quick);
+  std::vector<ReportAxis> axes;
+  auto vary = [&](const std::string& name, auto values, auto apply) {
+    ReportAxis axis{name, {}};
+    for (auto v : values) {
+      ReportSetting s = base;
+      apply(s, v);
+      axis.settings.push_back(s);
+    }
+    axes.push_back(axis);
+  };
+  const std::vector<int> orders =
+      quick ? std::vector<int>{2, 3, 4, 5, 6} : std::vector<int>{2, 3, 4, 5, 6, 8, 10, 12, 16};
+  const std::vector<int> samples =
+      quick ? std::vector<int>{64, 256, 1024} : std::vector<int>{64, 256, 1024, 4096, 16384};
+  const std::vector<int> bounces =
+      quick ? std::vector<int>{0, 1, -1} : std::vector<int>{0, 1, 2, 4, 8, -1};
+  vary("order", orders, [](ReportSetting& s, int v) { s.order = v; });
+  vary("samples", samples, [](ReportSetting& s, int v) { s.samples = v; });
+  vary("bounces", bounces, [](ReportSetting& s, int v) { s.bounces = v; });
+  vary("precision", std::vector<prt::Precision>{prt::Precision::F32, prt::Precision::F16},
+       [](ReportSetting& s, prt::Precision v) { s.precision = v; });
+  ReportAxis grid{"grid", {}};
+  const std::vector<int> grid_orders =
+      quick ? std::vector<int>{2, 4, 6} : std::vector<int>{2, 4, 6, 8, 10};
+  const std::vector<int> grid_samples =
+      quick ? std::vector<int>{64, 256} : std::vector<int>{64, 256, 1024, 4096};
+  for (int n : grid_orders)
+    for (int N : grid_samples) {
+      ReportSetting s = base;
+      s.order = n, s.samples = N;
+      grid.settings.push_back(s);
+    }
+  axes.push_back(grid);
+  return axes;
+}
+
+ReportResult run_report(const ReportOptions& opt) {
+  const auto t_start = Clock::now();
+  auto log = [&](const std::string& line) {
+    if (opt.verbose) std::fprintf(stderr, "[report %6.1fs] %s\n", since(t_start), line.c_str());
+  };
+  std::error_code ec;
+  std::filesystem::create_directories(opt.output_dir, ec);
+  if (ec) throw std::runtime_error(opt.output_dir + ": cannot create directory: " + ec.message());
+
+  bake::Scene scene = bake::load_scene(opt.scene_path);
+  std::string layout_note;
+  const sh::EnvMap env = read_environment(opt.environment_path, opt.layout, &layout_note);
+  bake::RayCaster caster(scene);
+  const std::size_t V = scene.vertex_count();
+  log(opt.scene_path + ": " + std::to_string(V) + " vertices; " + opt.environment_path + ": " +
+      layout_note);
+  RenderOptions ropt;
+  ropt.width = opt.image_width, ropt.height = opt.image_height, ropt.samples_per_axis = 2;
+  const Camera camera =
+      parse_camera("auto", scene, static_cast<float>(ropt.width) / static_cast<float>(ropt.height));
+  const auto render_radiance = [&](const std::vector<float>& b) {
+    return render(scene, caster, b, nullptr, kIdentityRotation, camera, ropt).rgb;
+  };
+  // Pixels fully covered by the scene: a rendering of radiance 1 everywhere is 1 there.
+  std::vector<uint8_t> mask;
+  {
+    const std::vector<float> ones = render_radiance(std::vector<float>(3 * V, 1.f));
+    mask.resize(ones.size() / 3);
+    for (std::size_t i = 0; i < mask.size(); ++i) mask[i] = ones[3 * i] > 0.999f ? 1 : 0;
+  }
+
+  // Ground truth: a first estimate now, refined after the sweep if the errors demand it.
+  bake::GroundTruthOptions gto;
+  gto.seed = opt.seed + 1000;
+  gto.initial_samples = 64;
+  gto.max_samples = 1 << 16;
+  bake::GroundTruthIntegrator gt(scene, env, gto);
+  bake::ConsoleProgress progress(!opt.verbose);
+  const double first_target = opt.quick ? 0.03 : 0.01;
+  const double budget =
+      opt.quick ? std::min(opt.ground_truth_budget_seconds, 15.0) : opt.ground_truth_budget_seconds;
+  const auto refine_within_budget = [&](double target) {
+    gt.add_samples_up_to(gto.initial_samples, &progress);
+    while (gt.result().relative_rms_se > target && gt.samples_per_vertex() * 2 <= gto.max_samples &&
+           gt.result().seconds * 2.0 <= budget)  // the next pass costs about all passes so far
+      gt.add_samples_up_to(gt.samples_per_vertex() * 2, &progress);
+  };
+  refine_within_budget(first_target);
+  bake::GroundTruthResult truth = gt.result();
+  log("ground truth: " + std::to_string(truth.samples_per_vertex) +
+      " samples/vertex, relative RMS SE " + percent(truth.relative_rms_se) + ", " +
+      seconds_text(truth.seconds));
+
+  // Lighting per order (projected once each).
+  std::map<int, prt::ShLighting> lighting;
+  const auto lighting_for = [&](int order) -> const prt::ShLighting& {
+    auto it = lighting.find(order);
+    if (it == lighting.end()) it = lighting.emplace(order, project_lighting(env, order, {})).first;
+    return it->second;
+  };
+
+  // Unique settings, tagged with every axis they belong to.
+  ReportResult result;
+  std::vector<std::vector<float>> radiance;  // per measurement
+  std::vector<std::vector<float>> images;
+  for (const ReportAxis& axis : report_axes(opt.quick))
+    for (const ReportSetting& s : axis.settings) {
+      auto it = std::find_if(result.measurements.begin(), result.measurements.end(),
+                             [&](const ReportMeasurement& m) { return same(m.setting, s); });
+      if (it != result.measurements.end()) {
+        if (it->axis.find(axis.name) == std::string::npos) it->axis += "+" + axis.name;
+        continue;
+      }
+      ReportMeasurement m;
+      m.axis = axis.name;
+      m.setting = s;
+      result.measurements.push_back(m);
+    }
+  // The converged reference of the projection/sampling split: the largest order and sample
+  // count (quick: the samples axis' largest bake at the base order, reused).
+  const int reference_order = opt.quick ? base_setting(true).order : 16;
+  const int reference_samples = opt.quick ? 1024 : 8192;
+  // Bakes are shared between settings that differ only in precision.
+  std::map<std::tuple<int, int, int>, bake::BakeResult> bakes;
+  const auto bake_for = [&](const ReportSetting& s) -> const bake::BakeResult& {
+    const auto key = std::make_tuple(s.order, s.samples, s.bounces);
+    auto it = bakes.find(key);
+    if (it == bakes.end()) {
+      bake::BakeOptions bo;
+      bo.kind = prt::TransferKind::Interreflected;
+      bo.order = s.order, bo.samples = s.samples, bo.bounces = s.bounces, bo.seed = opt.seed;
+      it = bakes.emplace(key, bake::bake_transfer(scene, bo)).first;
+    }
+    return it->second;
+  };
+  const std::size_t total = result.measurements.size();
+  for (std::size_t i = 0; i < total; ++i) {
+    ReportMeasurement& m = result.measurements[i];
+    const bake::BakeResult& baked = bake_for(m.setting);
+    m.bake_seconds = baked.stats.seconds_total;
+    prt::TransferData data = baked.data;
+    data.storage = m.setting.precision;
+    auto bytes = prt::encode_transfer_file(data, "report");
+    std::vector<float> b;
+    if (!bytes.ok()) {
+      m.failure = bytes.status().message();
+    } else {
+      m.file_bytes = bytes->size();
+      b = relight(data, m.setting.precision, lighting_for(m.setting.order), 5, &m.relight_seconds,
+                  &m.failure);
+    }
+    radiance.push_back(b);
+    images.push_back(b.empty() ? std::vector<float>() : render_radiance(b));
+    if (m.failure.empty()) {
+      const VertexErrorStats e = compute_vertex_errors(b, truth.radiance);
+      m.relative_rms = e.relative_rms, m.p99 = e.p99, m.max = e.max;
+    }
+    // Keep only the base bake (the precision axis reuses it) and the reference bake of the
+    // projection/sampling split: memory stays bounded.
+    const ReportSetting b0 = base_setting(opt.quick);
+    if (!(m.setting.order == b0.order && m.setting.samples == b0.samples &&
+          m.setting.bounces == b0.bounces) &&
+        !(m.setting.order == reference_order && m.setting.samples == reference_samples &&
+          m.setting.bounces == -1))
+      bakes.erase(std::make_tuple(m.setting.order, m.setting.samples, m.setting.bounces));
+    log("[" + std::to_string(i + 1) + "/" + std::to_string(total) + "] " + describe(m.setting) +
+        ": bake " + seconds_text(m.bake_seconds) + ", relight " + seconds_text(m.relight_seconds) +
+        ", error " + (m.failure.empty() ? percent(m.relative_rms) : "failed: " + m.failure));
+  }
+
+  // Projection vs sampling error.
+  const ReportSetting base = base_setting(opt.quick);
+  for (const ReportAxis& axis : report_axes(opt.quick)) {
+    if (axis.name == "order")
+      for (const ReportSetting& s : axis.settings) result.orders.push_back(s.order);
+    if (axis.name == "grid")
+      for (const ReportSetting& s : axis.settings)
+        if (std::find(result.split_samples.begin(), result.split_samples.end(), s.samples) ==
+            result.split_samples.end())
+          result.split_samples.push_back(s.samples);
+  }
+  std::vector<std::vector<double>> reference_b;  // per order
+  {
+    ReportSetting rs = base;
+    rs.order = reference_order, rs.samples = reference_samples, rs.bounces = -1;
+    log("reference bake (order " + std::to_string(rs.order) + ", " + std::to_string(rs.samples) +
+        " spp) for the projection/sampling split");
+    const bake::BakeResult ref = bake_for(rs);
+    for (int n : result.orders) {
+      double unused;
+      std::string failure;
+      reference_b.push_back(to_double(relight(truncate_order(ref.data, n), prt::Precision::F32,
+                                              lighting_for(n), 1, &unused, &failure)));
+    }
+  }
+  const auto compute_split = [&]() {
+    result.projection_error.clear();
+    for (std::size_t j = 0; j < result.orders.size(); ++j)
+      result.projection_error.push_back(
+          compute_vertex_errors(reference_b[j], truth.radiance).relative_rms);
+  };
+  compute_split();
+  result.sampling_error.assign(result.split_samples.size(),
+                               std::vector<double>(result.orders.size(), NAN));
+  for (std::size_t i = 0; i < result.measurements.size(); ++i) {
+    const ReportMeasurement& m = result.measurements[i];
+    if (!m.failure.empty() || m.setting.bounces != base.bounces ||
+        m.setting.samples >= reference_samples || m.setting.precision != prt::Precision::F32)
+      continue;
+    const auto si =
+        std::find(result.split_samples.begin(), result.split_samples.end(), m.setting.samples);
+    const auto oi = std::find(result.orders.begin(), result.orders.end(), m.setting.order);
+    if (si == result.split_samples.end() || oi == result.orders.end()) continue;
+    result.sampling_error[static_cast<std::size_t>(si - result.split_samples.begin())]
+                         [static_cast<std::size_t>(oi - result.orders.begin())] =
+        compute_vertex_errors(radiance[i],
+                              reference_b[static_cast<std::size_t>(oi - result.orders.begin())])
+            .relative_rms;
+  }
+
+  // Is the ground truth good enough for the smallest error measured? Refine if needed.
+  const auto smallest_error = [&]() {
+    double e = INFINITY;
+    for (const ReportMeasurement& m : result.measurements)
+      if (m.failure.empty() && m.relative_rms > 0) e = std::min(e, m.relative_rms);
+    for (double p : result.projection_error) e = std::min(e, p);
+    return e;
+  };
+  double e_min = smallest_error();
+  if (truth.relative_rms_se > e_min / 5.0) {
+    log("refining the ground truth toward SE " + percent(e_min / 5.0) +
+        " (1/5 of the smallest error)");
+    refine_within_budget(e_min / 5.0);
+    truth = gt.result();
+    for (std::size_t i = 0; i < result.measurements.size(); ++i) {
+      ReportMeasurement& m = result.measurements[i];
+      if (!m.failure.empty()) continue;
+      const VertexErrorStats e = compute_vertex_errors(radiance[i], truth.radiance);
+      m.relative_rms = e.relative_rms, m.p99 = e.p99, m.max = e.max;
+    }
+    compute_split();
+    e_min = smallest_error();
+  }
+  const std::vector<float> truth_f(truth.radiance.begin(), truth.radiance.end());
+  const std::vector<float> truth_image = render_radiance(truth_f);
+  for (std::size_t i = 0; i < result.measurements.size(); ++i)
+    if (result.measurements[i].failure.empty())
+      result.measurements[i].image_relative_rms =
+          relative_rms_image_error(images[i], truth_image, mask);
+  result.ground_truth_samples = truth.samples_per_vertex;
+  result.ground_truth_relative_se = truth.relative_rms_se;
+  result.ground_truth_seconds = truth.seconds;
+  result.ground_truth_mrays = truth.mrays_per_second();
+  result.ground_truth_adequate = truth.relative_rms_se <= e_min / 5.0;
+  log("ground truth: " + std::to_string(truth.samples_per_vertex) + " samples/vertex, SE " +
+      percent(truth.relative_rms_se) + " vs smallest error " + percent(e_min) +
+      (result.ground_truth_adequate ? " (adequate)" : " (NOT below 1/5 of it)"));
+
+  // Pareto front over (bake time, error).
+  std::vector<double> cost, error;
+  for (const ReportMeasurement& m : result.measurements) {
+    cost.push_back(m.failure.empty() ? m.bake_seconds : INFINITY);
+    error.push_back(m.failure.empty() ? m.relative_rms : INFINITY);
+  }
+  const std::vector<bool> front = pareto_front(cost, error);
+  for (std::size_t i = 0; i < front.size(); ++i) result.measurements[i].on_pareto_front = front[i];
+
+  const std::filesystem::path dir(opt.output_dir);
+  const auto out = [&](const std::string& name) { return (dir / name).string(); };
+  const auto written = [&](const std::string& name) { result.files_written.push_back(out(name)); };
+
+  // results.csv
+  {
+    std::ostringstream csv;
+    csv << "axis,order,samples,bounces,precision,bake_seconds,relight_seconds,file_bytes,"
+           "relative_rms,p99_relative,max_relative,image_relative_rms,pareto,failure\n";
+    for (const ReportMeasurement& m : result.measurements) {
+      std::string failure = m.failure;
+      std::replace(failure.begin(), failure.end(), ',', ';');
+      csv << m.axis << "," << m.setting.order << "," << m.setting.samples << ","
+          << bounces_name(m.setting.bounces) << "," << precision_name(m.setting.precision) << ","
+          << m.bake_seconds << "," << m.relight_seconds << "," << m.file_bytes << ","
+          << m.relative_rms << "," << m.p99 << "," << m.max << "," << m.image_relative_rms << ","
+          << (m.on_pareto_front ? 1 : 0) << "," << failure << "\n";
+    }
+    write_text_file(out("results.csv"), csv.str());
+    written("results.csv");
+  }
+  // results.json
+  {
+    nlohmann::json j;
+    j["sh_basis"] = kBasis;
+    j["scene"] = opt.scene_path;
+    j["environment"] = opt.environment_path;
+    j["environment_layout"] = layout_note;
+    j["vertices"] = V;
+    j["quick"] = opt.quick;
+    j["base_setting"] = {{"order", base.order},
+                         {"samples", base.samples},
+                         {"bounces", bounces_name(base.bounces)},
+                         {"precision", "f32"}};
+    j["error_definitions"] = {
+        {"relative_rms", "sqrt(sum_p |B_p - B_gt,p|^2) / sqrt(sum_p |B_gt,p|^2), |.| RGB norm"},
+        {"p99_relative/max_relative",
+         "per-vertex |B_p - B_gt,p| / max(|B_gt,p|, 0.05 * RMS_p |B_gt,p|): 99th percentile "
+         "(nearest rank) and maximum"},
+        {"image_relative_rms", "relative RMS over the pixels that show the scene, " +
+                                   std::to_string(ropt.width) + "x" + std::to_string(ropt.height) +
+                                   " with 2x2 samples, same camera for both"},
+        {"bake_seconds", "wall time of bake_transfer (all threads)"},
+        {"relight_seconds", "best of 5 wall times of shading every vertex (all threads)"}};
+    j["ground_truth"] = {{"samples_per_vertex", truth.samples_per_vertex},
+                         {"relative_rms_standard_error", truth.relative_rms_se},
+                         {"seconds", truth.seconds},
+                         {"rays", truth.rays},
+                         {"mrays_per_second", truth.mrays_per_second()},
+                         {"max_bounces", gto.max_bounces},
+                         {"adequate", result.ground_truth_adequate},
+                         {"smallest_error_measured", e_min}};
+    nlohmann::json rows = nlohmann::json::array();
+    for (const ReportMeasurement& m : result.measurements)
+      rows.push_back({{"axis", m.axis},
+                      {"order", m.setting.order},
+                      {"samples", m.setting.samples},
+                      {"bounces", bounces_name(m.setting.bounces)},
+                      {"precision", precision_name(m.setting.precision)},
+                      {"bake_seconds", m.bake_seconds},
+                      {"relight_seconds", m.relight_seconds},
+                      {"file_bytes", m.file_bytes},
+                      {"relative_rms", m.relative_rms},
+                      {"p99_relative", m.p99},
+                      {"max_relative", m.max},
+                      {"image_relative_rms", m.image_relative_rms},
+                      {"pareto", m.on_pareto_front},
+                      {"failure", m.failure}});
+    j["results"] = rows;
+    j["split"] = {{"orders", result.orders},
+                  {"projection_error", result.projection_error},
+                  {"reference_samples", reference_samples},
+                  {"sampling_samples", result.split_samples},
+                  {"sampling_error", result.sampling_error}};
+    write_text_file(out("results.json"), j.dump(2) + "\n");
+    written("results.json");
+  }
+  // Plots.
+  std::vector<std::string> png_notes;
+  const auto write_plot = [&](const PlotSpec& spec, const std::string& stem) {
+    write_text_file(out(stem + ".svg"), render_svg(spec));
+    written(stem + ".svg");
+    std::string why;
+    if (convert_svg_to_png(out(stem + ".svg"), out(stem + ".png"), 1.5, &why))
+      written(stem + ".png");
+    else
+      png_notes.push_back(why);
+  };
+  const std::vector<std::pair<double, std::string>> thresholds = {
+      {0.01, "1%"}, {0.05, "5%"}, {0.10, "10%"}};
+  {
+    PlotSpec p;
+    p.title = "Error against bake time (" + std::string(opt.quick ? "quick" : "full") + " sweep)";
+    p.x_label = "bake time, seconds (wall, all threads; log)";
+    p.y_label = "relative RMS error of exit radiance vs ground truth (log)";
+    p.log_x = p.log_y = true;
+    p.y_as_percent = true;
+    for (const auto& t : thresholds) p.reference_lines.push_back(t);
+    // Grid: one line per order through its sample counts.
+    std::vector<int> grid_orders;
+    for (const ReportMeasurement& m : result.measurements)
+      if (m.axis.find("grid") != std::string::npos &&
+          std::find(grid_orders.begin(), grid_orders.end(), m.setting.order) == grid_orders.end())
+        grid_orders.push_back(m.setting.order);
+    std::sort(grid_orders.begin(), grid_orders.end());
+    for (std::size_t g = 0; g < grid_orders.size(); ++g) {
+      PlotSeries s;
+      s.label = "order " + std::to_string(grid_orders[g]) + ", samples varied";
+      s.color = kPalette[g % 10];
+      s.line_width = 1.5;
+      std::vector<std::pair<int, std::size_t>> pts;
+      for (std::size_t i = 0; i < result.measurements.size(); ++i) {
+        const ReportMeasurement& m = result.measurements[i];
+        if (m.axis.find("grid") != std::string::npos && m.setting.order == grid_orders[g] &&
+            m.failure.empty())
+          pts.emplace_back(m.setting.samples, i);
+      }
+      std::sort(pts.begin(), pts.end());
+      for (const auto& [n, i] : pts) {
+        s.x.push_back(result.measurements[i].bake_seconds);
+        s.y.push_back(result.measurements[i].relative_rms);
+      }
+      p.series.push_back(s);
+    }
+    PlotSeries other;
+    other.label = "other axes (bounces, order, samples, f16)";
+    other.color = "#555555";
+    other.line = false;
+    other.marker = Marker::Diamond;
+    other.marker_size = 3.5;
+    for (const ReportMeasurement& m : result.measurements)
+      if (m.axis.find("grid") == std::string::npos && m.failure.empty()) {
+        other.x.push_back(m.bake_seconds);
+        other.y.push_back(m.relative_rms);
+      }
+    p.series.push_back(other);
+    PlotSeries f;
+    f.label = "Pareto front";
+    f.color = "#d62728";
+    f.dashed = true;
+    f.marker = Marker::Circle;
+    f.marker_size = 6.5;
+    f.line_width = 2.0;
+    std::vector<std::size_t> idx;
+    for (std::size_t i = 0; i < result.measurements.size(); ++i)
+      if (result.measurements[i].on_pareto_front) idx.push_back(i);
+    std::sort(idx.begin(), idx.end(), [&](std::size_t a, std::size_t b) {
+      return result.measurements[a].bake_seconds < result.measurements[b].bake_seconds;
+    });
+    for (std::size_t i : idx) {
+      f.x.push_back(result.measurements[i].bake_seconds);
+      f.y.push_back(result.measurements[i].relative_rms);
+      f.point_labels.push_back(short_label(result.measurements[i].setting));
+    }
+    // Front drawn first so the other markers stay visible on top of its big circles.
+    p.series.insert(p.series.begin(), f);
+    write_plot(p, "pareto");
+  }
+  {
+    PlotSpec p;
+    p.title = "Error against SH order: projection vs sampling";
+    p.x_label = "SH order n (n^2 coefficients per channel)";
+    p.y_label = "relative RMS error (log)";
+    p.log_y = true;
+    p.y_as_percent = true;
+    PlotSeries proj;
+    proj.label = "projection: order-n converged transfer (" + std::to_string(reference_samples) +
+                 " spp) vs ground truth";
+    proj.color = "#000000";
+    proj.line_width = 3;
+    proj.marker = Marker::Square;
+    for (std::size_t j = 0; j < result.orders.size(); ++j) {
+      proj.x.push_back(result.orders[j]);
+      proj.y.push_back(result.projection_error[j]);
+    }
+    p.series.push_back(proj);
+    for (std::size_t si = 0; si < result.split_samples.size(); ++si) {
+      PlotSeries s;
+      s.label = "sampling: " + std::to_string(result.split_samples[si]) +
+                " spp vs converged order-n bake";
+      s.color = kPalette[si < 3 ? si : si + 1];  // index 3 (red) is the total's
+      s.dashed = true;
+      s.marker = Marker::Triangle;
+      for (std::size_t j = 0; j < result.orders.size(); ++j)
+        if (std::isfinite(result.sampling_error[si][j])) {
+          s.x.push_back(result.orders[j]);
+          s.y.push_back(result.sampling_error[si][j]);
+        }
+      p.series.push_back(s);
+    }
+    PlotSeries total_s;
+    total_s.label =
+        "total: base setting (" + std::to_string(base.samples) + " spp) vs ground truth";
+    total_s.color = "#d62728";
+    total_s.marker = Marker::Circle;
+    for (const ReportMeasurement& m : result.measurements)
+      if (m.axis.find("order") != std::string::npos && m.failure.empty()) {
+        total_s.x.push_back(m.setting.order);
+        total_s.y.push_back(m.relative_rms);
+      }
+    p.series.push_back(total_s);
+    p.reference_lines.push_back({truth.relative_rms_se, "ground-truth standard error"});
+    write_plot(p, "error_vs_order");
+  }
+  // summary.md
+  {
+    std::ostringstream md;
+    md << "# prt report: error against run time\n\n"
+       << "Scene `" << opt.scene_path << "` (" << V << " vertices), environment `"
+       << opt.environment_path << "` (" << layout_note << "), " << (opt.quick ? "quick" : "full")
+       << " sweep. Generated by `prt report" << (opt.quick ? " --quick" : "") << "`.\n\n"
+       << "## Ground truth\n\n"
+       << "Per-vertex Monte Carlo integration against the environment map itself "
+          "(bake/ground_truth.h: luminance importance sampling of the map and cosine sampling "
+          "combined by MIS, Embree visibility, diffuse path tracing with Russian roulette, cap "
+       << gto.max_bounces << " bounces): " << truth.samples_per_vertex
+       << " samples per vertex, relative RMS standard error **" << percent(truth.relative_rms_se)
+       << "**, " << seconds_text(truth.seconds) << " (" << truth.rays << " rays, "
+       << static_cast<int>(truth.mrays_per_second() * 10) / 10.0 << " Mrays/s).\n\n"
+       << "The smallest error measured below is " << percent(e_min) << "; the ground truth's "
+       << "standard error is " << percent(truth.relative_rms_se) << ", "
+       << (result.ground_truth_adequate
+               ? "at most 1/5 of it, so every error below is resolved."
+               : "**more than 1/5 of it**: errors near " + percent(e_min) +
+                     " are inflated by ground-truth noise (they add in quadrature). Run the full "
+                     "report or a larger budget for more.")
+       << "\n\n## Cheapest settings\n\n| target | cheapest setting | bake | relight | file | error "
+          "| p99 | image |\n|---|---|---|---|---|---|---|---|\n";
+    for (const auto& t : thresholds) {
+      const long i = cheapest_reaching(cost, error, t.first);
+      if (i < 0) {
+        md << "| " << t.second << " | none of the settings reached it | | | | | | |\n";
+        continue;
+      }
+      const ReportMeasurement& m = result.measurements[static_cast<std::size_t>(i)];
+      md << "| " << t.second << " | " << describe(m.setting) << " | "
+         << seconds_text(m.bake_seconds) << " | " << seconds_text(m.relight_seconds) << " | "
+         << m.file_bytes / 1024 << " KiB | " << percent(m.relative_rms) << " | " << percent(m.p99)
+         << " | " << percent(m.image_relative_rms) << " |\n";
+    }
+    md << "\nCost is the bake's wall time; the relight time (shading every vertex once) is "
+          "shown beside it.\n\n## Plots\n\n"
+       << "![Error against bake time](pareto.png)\n\n"
+       << "Log-log: every measured setting; lines join the (order × samples) grid at fixed "
+          "order; the dashed red line is the Pareto front (no other setting is both faster and "
+          "more accurate). Dotted lines mark 1%, 5%, 10%. ([SVG](pareto.svg))\n\n"
+       << "![Error against SH order](error_vs_order.png)\n\n"
+       << "Projection error: order-n relighting with a converged " << reference_samples
+       << "-sample transfer against the ground truth (what order n can do at best). Sampling "
+          "error: the order-n bake at N samples against that converged order-n transfer (what "
+          "finite sampling adds). The total error of the base setting is in red. "
+          "([SVG](error_vs_order.svg))\n\n"
+       << "## Settings\n\nBase setting: " << describe(base)
+       << " (interreflected transfer). Each axis varies one parameter around it; the grid "
+          "varies order and samples together.\n\n"
+       << "| axis | order | spp | bounces | prec. | bake | relight | file | rel. RMS | p99 | max "
+          "| image | front |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+    for (const ReportMeasurement& m : result.measurements) {
+      md << "| " << m.axis << " | " << m.setting.order << " | " << m.setting.samples << " | "
+         << bounces_name(m.setting.bounces) << " | " << precision_name(m.setting.precision)
+         << " | ";
+      if (!m.failure.empty()) {
+        md << "failed: " << m.failure << " | | | | | | | |\n";
+        continue;
+      }
+      md << seconds_text(m.bake_seconds) << " | " << seconds_text(m.relight_seconds) << " | "
+         << m.file_bytes / 1024 << " KiB | " << percent(m.relative_rms) << " | " << percent(m.p99)
+         << " | " << percent(m.max) << " | " << percent(m.image_relative_rms) << " | "
+         << (m.on_pareto_front ? "yes" : "") << " |\n";
+    }
+    md << "\n## Definitions\n\n"
+       << "- B: per-vertex exit radiance (RGB), |·| its Euclidean norm. **rel. RMS** = "
+          "√(Σ|B − B_gt|²)/√(Σ|B_gt|²) over vertices.\n"
+       << "- **p99 / max**: 99th percentile (nearest rank) and maximum over vertices of "
+          "|B − B_gt| / max(|B_gt|, 0.05·RMS|B_gt|) (the floor keeps near-black vertices from "
+          "dividing by ~0).\n"
+       << "- **image**: relative RMS over the pixels that show the scene, rendering both with "
+          "the relight renderer ("
+       << ropt.width << "×" << ropt.height << ", 2×2 samples, same camera).\n"
+       << "- Lighting: the map projected to order n (no window); " << kBasis << ".\n"
+       << "- Times: wall clock on this machine, all threads; relight = best of 5.\n";
+    for (const std::string& n : png_notes) md << "- PNG not written: " << n << "\n";
+    write_text_file(out("summary.md"), md.str());
+    written("summary.md");
+  }
+  log("done in " + seconds_text(since(t_start)) + "; wrote " +
+      std::to_string(result.files_written.size()) + " files to " + opt.output_dir);
+  return result;
+}
+
+}  // namespace prt::relight

@@ -1,0 +1,68 @@
+#!/usr/bin/env bash
+# scripts/fuzz.sh — builds the libFuzzer targets of fuzz/ with clang and
+# -fsanitize=fuzzer,address,undefined, and runs each for N executions (default 1,000,000) from
+# its seed corpus fuzz/corpus/<target>/ (new inputs go to build-fuzz/corpus/<target>/, so the
+# committed seeds stay small). Findings (crash-*, leak-*, timeout-*, oom-*) are written to
+# build-fuzz/findings/<target>/ and make the script fail.
+#
+# Usage: scripts/fuzz.sh [-n RUNS] [-t SECONDS] [-j JOBS] [TARGET...]
+#   -n RUNS     executions per target (libFuzzer -runs), default 1000000
+#   -t SECONDS  also stop a target after this much time (libFuzzer -max_total_time), default none
+#   TARGET      fuzz_transfer_file fuzz_scene_obj fuzz_scene_gltf fuzz_env_map (default: all)
+# Environment: BUILD_DIR (default <repo>/build-fuzz), REGENERATE_CORPUS=1 rewrites the seeds.
+# Needs clang and libclang-rt-14-dev (scripts/install-deps.sh installs them).
+set -euo pipefail
+
+ROOT="$(cd "$(dirname "$0")/.." && pwd)"
+BUILD_DIR="${BUILD_DIR:-$ROOT/build-fuzz}"
+RUNS=1000000
+TIME=0
+while getopts "n:t:j:" opt; do
+  case "$opt" in
+    n) RUNS="$OPTARG" ;;
+    t) TIME="$OPTARG" ;;
+    j) ;;  # accepted for symmetry; each target runs single-threaded
+    *) echo "usage: $0 [-n RUNS] [-t SECONDS] [TARGET...]" >&2; exit 2 ;;
+  esac
+done
+shift $((OPTIND - 1))
+TARGETS=("$@")
+if [ ${#TARGETS[@]} -eq 0 ]; then
+  TARGETS=(fuzz_transfer_file fuzz_scene_obj fuzz_scene_gltf fuzz_env_map)
+fi
+
+if ! command -v clang++ >/dev/null || ! ls /usr/lib/llvm-*/lib/clang/*/lib/linux/libclang_rt.fuzzer-x86_64.a >/dev/null 2>&1; then
+  "$ROOT/scripts/install-deps.sh"
+fi
+
+cmake -S "$ROOT/fuzz" -B "$BUILD_DIR" -DCMAKE_CXX_COMPILER=clang++ \
+  -DCMAKE_BUILD_TYPE=RelWithDebInfo >/dev/null
+cmake --build "$BUILD_DIR" --target make_fuzz_corpus "${TARGETS[@]}" -j2
+
+CORPUS="$ROOT/fuzz/corpus"
+if [ "${REGENERATE_CORPUS:-0}" = 1 ] || [ ! -d "$CORPUS/fuzz_transfer_file" ]; then
+  "$BUILD_DIR/make_fuzz_corpus" "$CORPUS"
+fi
+
+export ASAN_OPTIONS="${ASAN_OPTIONS:-detect_leaks=1:allocator_may_return_null=1}"
+export UBSAN_OPTIONS="${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}"
+status=0
+for t in "${TARGETS[@]}"; do
+  work="$BUILD_DIR/corpus/$t"
+  findings="$BUILD_DIR/findings/$t"
+  mkdir -p "$work" "$findings"
+  echo "== $t: $RUNS runs" >&2
+  start=$(date +%s)
+  set +e
+  "$BUILD_DIR/$t" -runs="$RUNS" -max_total_time="$TIME" -timeout=10 -rss_limit_mb=2048 \
+    -max_len=65536 -print_final_stats=1 -artifact_prefix="$findings/" \
+    "$work" "$CORPUS/$t" 2>"$BUILD_DIR/$t.log"
+  rc=$?
+  set -e
+  end=$(date +%s)
+  execs=$(grep -o 'stat::number_of_executed_units: *[0-9]*' "$BUILD_DIR/$t.log" | grep -o '[0-9]*$' || true)
+  rate=$(grep -o 'stat::average_exec_per_sec: *[0-9]*' "$BUILD_DIR/$t.log" | grep -o '[0-9]*$' || true)
+  echo "$t: exit $rc, ${execs:-?} executions in $((end - start)) s (${rate:-?}/s); log $BUILD_DIR/$t.log" >&2
+  if [ "$rc" -ne 0 ]; then status=1; tail -40 "$BUILD_DIR/$t.log" >&2; fi
+done
+exit $status

@@ -1,0 +1,255 @@
+// Tests of `prt bake --auto` (bake/adaptive_baker.h, bake/scene_analysis.h,
+// bake/order_selection.h and the adaptive path of bake/transfer_baker.h).
+#include <cmath>
+#include <cstdio>
+#include <vector>
+
+#include <catch2/catch.hpp>
+#include <nlohmann/json.hpp>
+
+#include "bake/adaptive_baker.h"
+#include "bake/procedural_mesh.h"
+#include "bake/scene_analysis.h"
+#include "bake/transfer_baker.h"
+#include "sh/zonal.h"
+
+using namespace prt::bake;
+
+namespace {
+
+constexpr double kSqrt4Pi = 3.5449077018110318;
+
+// A ground quad (6 × 6, 24 × 24 cells) with a sphere of radius 0.7 resting on it.
+Scene make_plane_with_sphere(glm::vec3 albedo) {
+  Scene s =
+      make_quad({-3.f, 0.f, 3.f}, {6.f, 0.f, 0.f}, {0.f, 0.f, -6.f}, 24, 24, albedo, "ground");
+  append_scene(s, make_uv_sphere({0.f, 0.7f, 0.f}, 0.7f, 16, 32, false, albedo, "ball"));
+  return s;
+}
+
+// Band-limited lighting (bands 0..5 only, stored at order 8): an ambient term plus a smooth lobe
+// toward (0.4, 0.8, 0.45), tinted per channel. RGB, channel-major.
+std::vector<double> make_band_limited_lighting(int order) {
+  const int K = order * order;
+  std::vector<double> zonal(order, 0.0), lobe(K), out(3 * K, 0.0);
+  for (int l = 0; l < order && l < 6; ++l) zonal[l] = 1.5 * std::exp(-0.12 * l * (l + 1));
+  const glm::dvec3 d = glm::normalize(glm::dvec3(0.4, 0.8, 0.45));
+  sh::rotate_zonal(order, zonal.data(), d.x, d.y, d.z, lobe.data());
+  const double tint[3] = {1.0, 0.8, 0.6};
+  for (int c = 0; c < 3; ++c) {
+    for (int k = 0; k < K; ++k) out[c * K + k] = tint[c] * lobe[k];
+    out[c * K] += 0.3 * kSqrt4Pi;
+  }
+  return out;
+}
+
+AutoBakeOptions quick_auto(double tolerance) {
+  AutoBakeOptions o;
+  o.tolerance = tolerance;
+  o.pilot_vertices = 128;
+  return o;
+}
+
+}  // namespace
+
+TEST_CASE("a convex mesh under --auto casts no rays and equals the unshadowed bake") {
+  for (int shape = 0; shape < 2; ++shape) {
+    const Scene scene =
+        shape == 0 ? make_uv_sphere({0.3f, -0.2f, 1.f}, 2.f, 20, 40, false, glm::vec3(0.6f))
+                   : make_box({-1.f, 0.f, -2.f}, {1.f, 0.5f, 2.f}, 6, false, glm::vec3(0.6f));
+    CAPTURE(shape);
+    AutoBakeOptions o = quick_auto(0.01);
+    o.order = 4;
+    const AutoBakeResult a = bake_transfer_auto(scene, o);
+    CHECK(a.bake.stats.rays == 0);
+    CHECK(a.report.open_vertices == scene.vertex_count());
+    CHECK(a.bake.data.kind == prt::TransferKind::Unshadowed);
+
+    BakeOptions u;
+    u.kind = prt::TransferKind::Unshadowed;
+    u.order = 4;
+    const BakeResult ref = bake_transfer(scene, u);
+    REQUIRE(a.bake.data.channels == ref.data.channels);
+    REQUIRE(a.bake.data.order == ref.data.order);
+    // Bit-identical: the same analytic path, no Monte Carlo anywhere.
+    CHECK(a.bake.data.coefficients == ref.data.coefficients);
+    const auto meta = nlohmann::json::parse(a.bake.data.metadata_json);
+    CHECK(meta.at("auto").at("open_vertices").get<std::size_t>() == scene.vertex_count());
+    CHECK(meta.at("transfer").get<std::string>() == "unshadowed");
+  }
+}
+
+TEST_CASE("grey albedo gives one channel and coloured albedo gives three") {
+  const Scene grey = make_plane_with_sphere(glm::vec3(0.5f));
+  const glm::vec3 rgb(0.2f, 0.5f, 0.8f);
+  const Scene coloured = make_plane_with_sphere(rgb);
+  AutoBakeOptions o = quick_auto(0.02);
+  o.kind = prt::TransferKind::Shadowed;  // T_c = ρ_c·S exactly, so the channels can be compared
+  const AutoBakeResult g = bake_transfer_auto(grey, o);
+  const AutoBakeResult c = bake_transfer_auto(coloured, o);
+  REQUIRE(g.bake.data.channels == 1);
+  REQUIRE(c.bake.data.channels == 3);
+  CHECK(g.bake.stats.rays > 0);
+  // Same sample decisions (they do not depend on albedo), so channel c = (ρ_c / 0.5)·grey up
+  // to float rounding of the two products (relative 1e-6, plus 1e-9 absolute near zero).
+  const std::size_t K = g.bake.data.coefficients_per_channel();
+  for (std::size_t v = 0; v < grey.vertex_count(); v += 7)
+    for (int ch = 0; ch < 3; ++ch)
+      for (std::size_t k = 0; k < K; ++k) {
+        const double expect = g.bake.data.coefficients[v * K + k] * (rgb[ch] / 0.5);
+        const double got = c.bake.data.coefficients[(v * 3 + ch) * K + k];
+        REQUIRE(got == Approx(expect).epsilon(1e-6).margin(1e-9));
+      }
+}
+
+TEST_CASE("the chosen order meets the tolerance against a converged reference") {
+  const Scene scene = make_plane_with_sphere(glm::vec3(0.6f));
+  const int lighting_order = 8;
+  const std::vector<double> lighting = make_band_limited_lighting(lighting_order);
+  const double tolerance = 0.02;
+  AutoBakeOptions o = quick_auto(tolerance);
+  o.lighting = lighting;
+  o.lighting_order = lighting_order;
+  const AutoBakeResult a = bake_transfer_auto(scene, o);
+  REQUIRE(a.report.order_chosen);
+  CHECK(a.report.order_choice.met);
+  CHECK_FALSE(a.report.order_choice.haar_recommended);
+  CHECK(a.report.order <= 6);  // the lighting has no energy in bands ≥ 6
+  CHECK(a.report.predicted_error <= tolerance);
+  CHECK(a.bake.data.kind == prt::TransferKind::Interreflected);
+
+  // Reference: the fixed recipe at order 8 (beyond the lighting's bands), 4096 samples, solved
+  // to 1e-6. Its own Monte Carlo error is ~tolerance/10, so it can judge a 2% tolerance.
+  BakeOptions r;
+  r.kind = prt::TransferKind::Interreflected;
+  r.order = lighting_order;
+  r.samples = 4096;
+  r.bounce_tolerance = 1e-6;
+  const BakeResult ref = bake_transfer(scene, r);
+  const std::vector<double> b_ref = exit_radiance(ref.data, lighting, lighting_order);
+  const double measured =
+      relative_rms_error(exit_radiance(a.bake.data, lighting, lighting_order), b_ref);
+  // The truncation part alone, measured: the reference cut at the chosen order.
+  prt::TransferData cut = ref.data;
+  const int n = a.report.order, K8 = lighting_order * lighting_order;
+  cut.order = static_cast<uint32_t>(n);
+  cut.coefficients.clear();
+  for (std::size_t v = 0; v < scene.vertex_count(); ++v)
+    for (int k = 0; k < n * n; ++k) cut.coefficients.push_back(ref.data.coefficients[v * K8 + k]);
+  const double truncation = relative_rms_error(exit_radiance(cut, lighting, lighting_order), b_ref);
+  std::printf(
+      "order %d: predicted %.4f (truncation %.4f, sampling %.4f); measured %.4f "
+      "(truncation %.4f); rays %llu vs %llu\n",
+      n, a.report.predicted_error, a.report.predicted_truncation_error,
+      a.report.predicted_sampling_error, measured, truncation,
+      static_cast<unsigned long long>(a.bake.stats.rays),
+      static_cast<unsigned long long>(ref.stats.rays));
+  CHECK(measured <= tolerance);
+  // Honest prediction: the measured truncation stays within the predicted truncation budget
+  // (tolerance/2), and the measured total within the predicted total plus the reference's
+  // own noise (~0.002 at 4096 samples).
+  CHECK(truncation <= 0.5 * tolerance);
+  CHECK(measured <= a.report.predicted_error + 0.002);
+}
+
+TEST_CASE("a sun-like lighting makes --auto recommend the Haar basis") {
+  const Scene scene = make_plane_with_sphere(glm::vec3(0.6f));
+  const int order = 32;
+  std::vector<double> zonal(order, 1.0), lobe(order * order), lighting(3 * order * order);
+  const glm::dvec3 d = glm::normalize(glm::dvec3(0.3, 0.9, 0.2));
+  sh::rotate_zonal(order, zonal.data(), d.x, d.y, d.z, lobe.data());  // a delta, cut at band 31
+  for (int c = 0; c < 3; ++c)
+    for (int k = 0; k < order * order; ++k) lighting[c * order * order + k] = lobe[k];
+  AutoBakeOptions o = quick_auto(0.01);
+  o.kind = prt::TransferKind::Shadowed;
+  o.lighting = lighting;
+  o.lighting_order = order;
+  const AutoBakeResult a = bake_transfer_auto(scene, o);
+  CHECK(a.report.order_choice.haar_recommended);
+  CHECK(a.report.order == o.max_order);
+  CHECK(a.report.predicted_error > 0.01);
+}
+
+TEST_CASE("adding an occluder turns shadow rays on for exactly the affected vertices") {
+  Scene scene = make_uv_sphere({0.f, 0.f, 0.f}, 1.f, 18, 36, false, glm::vec3(0.5f));
+  const std::size_t sphere_vertices = scene.vertex_count();
+  AutoBakeOptions o = quick_auto(0.02);
+  o.kind = prt::TransferKind::Shadowed;
+  REQUIRE(bake_transfer_auto(scene, o).bake.stats.rays == 0);
+
+  append_scene(scene, make_box({1.3f, 0.2f, -0.3f}, {1.8f, 0.9f, 0.4f}, 2, false, glm::vec3(0.5f),
+                               "occluder"));
+  const AutoBakeResult a = bake_transfer_auto(scene, o);
+  // Independently: a vertex must cast rays iff some scene vertex lies strictly above its
+  // tangent plane (brute force, in double). Heights within 1e-3 of the plane would make the
+  // comparison depend on the analysis' threshold τ (4e-5 × extent); the scene has none there
+  // except the sphere's own neighbours (height ≤ 0) and coplanar box faces (height 0).
+  std::size_t affected_sphere = 0, ambiguous = 0;
+  for (std::size_t v = 0; v < scene.vertex_count(); ++v) {
+    const glm::dvec3 p(scene.positions[v]), n(scene.normals[v]);
+    double top = -1e30;
+    for (const glm::vec3& q : scene.positions) top = std::max(top, glm::dot(glm::dvec3(q) - p, n));
+    if (top > 0.0 && top < 1e-3) ++ambiguous;
+    const bool affected = top >= 1e-3;
+    CAPTURE(v, top);
+    REQUIRE(affected == (a.bake.stats.vertex_samples[v] > 0));
+    if (affected && v < sphere_vertices) ++affected_sphere;
+  }
+  CHECK(ambiguous == 0);
+  // Non-trivial: the occluder affects some of the sphere, not all of it.
+  CHECK(affected_sphere > 0);
+  CHECK(affected_sphere < sphere_vertices / 2);
+  CHECK(a.report.open_vertices == scene.vertex_count() - [&] {
+    std::size_t n = 0;
+    for (uint32_t s : a.bake.stats.vertex_samples) n += s > 0;
+    return n;
+  }());
+}
+
+TEST_CASE("the open-hemisphere hierarchy agrees with the brute-force test") {
+  const Scene scene = make_plane_with_sphere(glm::vec3(0.5f));
+  const HemisphereAnalysis h = find_open_hemispheres(scene);
+  std::size_t open = 0;
+  for (std::size_t v = 0; v < scene.vertex_count(); ++v) {
+    REQUIRE(static_cast<bool>(h.open[v]) == is_hemisphere_open_brute_force(scene, v, h.threshold));
+    open += h.open[v];
+  }
+  CHECK(open == h.open_count);
+  CHECK(open > 0);                         // the top of the ball
+  CHECK(open < scene.vertex_count() / 2);  // the ground sees the ball
+}
+
+TEST_CASE("samples adapt per vertex: few in the open, more near the contact, any thread count") {
+  const Scene scene = make_plane_with_sphere(glm::vec3(0.5f));
+  AutoBakeOptions o = quick_auto(0.01);
+  o.kind = prt::TransferKind::Shadowed;
+  o.threads = 1;
+  const AutoBakeResult one = bake_transfer_auto(scene, o);
+  o.threads = 2;
+  const AutoBakeResult two = bake_transfer_auto(scene, o);
+  CHECK(one.bake.data.coefficients == two.bake.data.coefficients);
+  CHECK(one.bake.stats.vertex_samples == two.bake.stats.vertex_samples);
+  // Ground vertex 0 is the corner (−3, 0, 3): the ball covers a small solid angle there.
+  // The ground vertex under the ball's edge, (0.75, 0, 0) → grid (i, j) = (15, 12) roughly,
+  // sits in the crevice.
+  const auto& n = one.bake.stats.vertex_samples;
+  const std::size_t crevice = 12 * 25 + 15;
+  CHECK(n[0] < n[crevice]);
+  CHECK(n[crevice] > 64);
+}
+
+TEST_CASE("interreflection is skipped when no surface sees another or the albedo is zero") {
+  // Zero albedo: nothing is reflected, so no solve (and the stored kind says so).
+  Scene black = make_plane_with_sphere(glm::vec3(0.f));
+  const AutoBakeResult z = bake_transfer_auto(black, quick_auto(0.02));
+  CHECK(z.bake.data.kind == prt::TransferKind::Shadowed);
+  CHECK_FALSE(z.bake.stats.interreflection_solved);
+
+  const AutoBakeResult lit =
+      bake_transfer_auto(make_plane_with_sphere(glm::vec3(0.5f)), quick_auto(0.02));
+  CHECK(lit.bake.stats.interreflection_solved);
+  CHECK(lit.bake.data.kind == prt::TransferKind::Interreflected);
+  // Bounces stopped by the rule: the last one added < tolerance/4 of max|D|.
+  REQUIRE_FALSE(lit.bake.stats.bounce_energy.empty());
+  CHECK(lit.bake.stats.jacobi_bounces < 20);
+}
