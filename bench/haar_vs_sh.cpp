@@ -178,6 +178,7 @@ int main(int argc, char** argv) {
     plot.y_label = "relative L2 error";
     plot.log_x = plot.log_y = true;
     plot.y_as_percent = true;
+    plot.legend = prt::relight::LegendCorner::BottomLeft;  // the data leave that corner empty
     const char* colors[3] = {"#d62728", "#2ca02c", "#1f77b4"};
     for (std::size_t li = 0; li < lights.size(); ++li) {
       const Light& light = lights[li];

@@ -249,14 +249,19 @@ std::string render_svg(const PlotSpec& spec) {
     }
   }
   o << "</g>\n";
-  // Legend (top right, inside the plot).
+  // Legend, inside the plot, in the corner the spec asks for.
   int entries = 0;
   for (const PlotSeries& s : spec.series) entries += s.label.empty() ? 0 : 1;
   if (entries > 0) {
     std::size_t longest = 0;
     for (const PlotSeries& s : spec.series) longest = std::max(longest, s.label.size());
     const double lw = 46 + 6.6 * static_cast<double>(longest), lh = 8 + 19.0 * entries;
-    const double lx = right - lw - 8, ly = top + 8;
+    const bool at_left =
+        spec.legend == LegendCorner::BottomLeft || spec.legend == LegendCorner::TopLeft;
+    const bool at_bottom =
+        spec.legend == LegendCorner::BottomLeft || spec.legend == LegendCorner::BottomRight;
+    const double lx = at_left ? left + 8 : right - lw - 8;
+    const double ly = at_bottom ? bottom - lh - 8 : top + 8;
     o << "<rect x='" << number(lx) << "' y='" << number(ly) << "' width='" << number(lw)
       << "' height='" << number(lh) << "' fill='white' fill-opacity='0.9' stroke='#999999'/>\n";
     int row = 0;

@@ -25,6 +25,9 @@ struct PlotSeries {
   std::vector<std::string> point_labels;  // optional text next to each point
 };
 
+// Where the legend box sits inside the plot area.
+enum class LegendCorner { TopRight, TopLeft, BottomRight, BottomLeft };
+
 struct PlotSpec {
   std::string title, x_label, y_label;
   bool log_x = false, log_y = false;
@@ -33,6 +36,7 @@ struct PlotSpec {
   // Horizontal reference lines (y value, label), drawn dotted.
   std::vector<std::pair<double, std::string>> reference_lines;
   bool y_as_percent = false;  // tick labels ×100 with a % sign
+  LegendCorner legend = LegendCorner::TopRight;
 };
 
 // Axis range covering the data (log: whole decades around the data; linear: nice round numbers).
