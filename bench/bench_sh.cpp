@@ -104,13 +104,29 @@ void rotate_apply_only(benchmark::State& state) {
   }
 }
 
+// The zxzxz fast path: Euler angles from the 3×3 matrix and one coefficient vector, no matrices.
+template <typename T>
+void rotate_coefficients(benchmark::State& state) {
+  const int order = int(state.range(0));
+  const auto rotations = random_rotations();
+  std::vector<T> in(order * order, T(0.5)), out(order * order);
+  int i = 0;
+  for (auto _ : state) {
+    sh::rotate_coefficients(order, rotations[i++ & 63], in.data(), out.data());
+    benchmark::DoNotOptimize(out.data());
+    benchmark::ClobberMemory();
+  }
+}
+
 }  // namespace
 
 BENCHMARK_TEMPLATE(evaluate_per_direction, double)->Arg(3)->Arg(5)->Arg(10);
 BENCHMARK_TEMPLATE(evaluate_per_direction, float)->Arg(3)->Arg(5)->Arg(10);
 BENCHMARK(evaluate_recurrence_per_direction)->Arg(5)->Arg(10)->Arg(20);
-BENCHMARK(rotate_build_and_apply)->Arg(2)->Arg(3)->Arg(5)->Arg(10);
+BENCHMARK(rotate_build_and_apply)->Arg(2)->Arg(3)->Arg(5)->Arg(10)->Arg(16);
 BENCHMARK(rotate_build_recurrence_and_apply)->Arg(3)->Arg(5);
 BENCHMARK(rotate_apply_only)->Arg(3)->Arg(5)->Arg(10);
+BENCHMARK_TEMPLATE(rotate_coefficients, double)->Arg(3)->Arg(5)->Arg(10)->Arg(16);
+BENCHMARK_TEMPLATE(rotate_coefficients, float)->Arg(5);
 
 BENCHMARK_MAIN();

@@ -358,4 +358,311 @@ void Rotation::apply(const float* in, float* out) const noexcept {
   apply_bands(order_, data(), in, out);
 }
 
+// ---------------------------------------------------------------------------------------------
+// rotate_coefficients: the zxzxz path, R(M) = Z(α)·X₋·Z(β)·X₊·Z(γ) per band.
+//
+// Euler angles. M = Rz(α)·Ry(β)·Rz(γ) expands to
+//   [ ca·cb·cg − sa·sg,  −ca·cb·sg − sa·cg,  ca·sb ]
+//   [ sa·cb·cg + ca·sg,  −sa·cb·sg + ca·cg,  sa·sb ]
+//   [ −sb·cg,            sb·sg,              cb    ]
+// so cb = m22, sb = √(m02² + m12²) (β ∈ [0, π]) and (ca, sa) = (m02, m12)/sb. Reading γ from
+// (−m20, m21)/sb would lose accuracy near the poles (error ε/sb in α and γ separately, and they
+// do not cancel), so γ comes from the well-conditioned sum or difference instead:
+//   m00 + m11 = (1 + cb)·cos(α+γ),  m10 − m01 = (1 + cb)·sin(α+γ)   (used when cb ≥ 0),
+//   m11 − m00 = (1 − cb)·cos(α−γ),  −(m10 + m01) = (1 − cb)·sin(α−γ) (used when cb < 0),
+// whose norms are ≥ 1; then γ = (α+γ) − α or α − (α−γ) by complex division. An error ε/sb in α
+// then changes the rebuilt M by only O(ε) (it multiplies sb in column 2 and row 2, and moves
+// α+γ or α−γ not at all). At sb = 0 exactly, α = 0 and γ carries the whole z turn.
+//
+// Y-rotation. Rx(−90°)·Rz(β)·Rx(+90°) turns by β about Rx(−90°)·ẑ = ŷ, i.e. it is Ry(β); since
+// R(A)·R(B) = R(A·B), R(Ry(β)) = X₋·Z(β)·X₊ with X± = R(Rx(±90°)) and X₋ = X₊ᵀ.
+//
+// Z-rotation. g(φ) = f(φ − θ) gives, for m > 0, out_m = c·in_m − s·in_−m and
+// out_−m = c·in_−m + s·in_m with c = cos mθ, s = sin mθ (no Condon–Shortley phase).
+//
+// Parity blocks. Rx commutes with the reflection x → −x, under which Y_lm is even iff
+// (m ≥ 0 and m even) or (m < 0 and m odd); and Rx(+90°) carries z → −z onto y → −y, under which
+// Y_lm has parity (−1)^(l+m) and sign(m ≥ 0 ? +1 : −1) respectively. So X₊ only connects input
+// m and output m' of the same x-parity with (l+m even) ⇔ (m' ≥ 0). Split band l into four
+// groups, each ordered by |m|:
+//   0: m = 0, 2, 4, …    1: m = −1, −3, …    2: m = 1, 3, …    3: m = −2, −4, …
+// (sizes ⌊l/2⌋+1, ⌈l/2⌉, ⌈l/2⌉, ⌊l/2⌋). X₊ maps group s onto group d(s) by a dense square
+// block: d = (0, 1, 3, 2) for even l, (1, 0, 2, 3) for odd l; about a quarter of X₊'s entries
+// are non-zero. X₋ = X₊ᵀ maps d(s) back onto s by the transposed block. Z pairs group 0's
+// m = 2j with group 3's m = −2j, and group 2's m = 2j+1 with group 1's m = −(2j+1).
+namespace {
+
+constexpr int group_size(int l, int g) {
+  return g == 0 ? l / 2 + 1 : g == 3 ? l / 2 : (l + 1) / 2;
+}
+constexpr int group_member(int g, int r) {
+  return g == 0 ? 2 * r : g == 1 ? -(2 * r + 1) : g == 2 ? 2 * r + 1 : -(2 * r + 2);
+}
+constexpr int x_target_group(int l, int g) {
+  constexpr int kEven[4] = {0, 1, 3, 2}, kOdd[4] = {1, 0, 2, 3};
+  return l % 2 == 0 ? kEven[g] : kOdd[g];
+}
+
+// Band l's blocks at xblock_offset(l): for each source group g, Bᵀ_g then B_g (row-major,
+// group_size(l, g)² each), with B_g[r][c] = X₊[member(d(g), r)][member(g, c)].
+constexpr int xblock_doubles(int l) {
+  int n = 0;
+  for (int g = 0; g < 4; ++g) n += 2 * group_size(l, g) * group_size(l, g);
+  return n;
+}
+constexpr int xblock_offset(int l) {
+  int offset = 0;
+  for (int j = 2; j < l; ++j) offset += xblock_doubles(j);
+  return offset;
+}
+
+struct XBlocks {
+  double values[xblock_offset(kFastRotateOrder)];
+  XBlocks() {
+    const Rotation x(kFastRotateOrder, {1, 0, 0, 0, 0, -1, 0, 1, 0});  // Rx(+90°)
+    for (int l = 2; l < kFastRotateOrder; ++l) {
+      const double* band = x.band_matrix(l);
+      const int s = 2 * l + 1;
+      double* p = values + xblock_offset(l);
+      for (int g = 0; g < 4; ++g) {
+        const int n = group_size(l, g), d = x_target_group(l, g);
+        for (int r = 0; r < n; ++r) {
+          for (int c = 0; c < n; ++c) {
+            const double v = band[(group_member(d, r) + l) * s + (group_member(g, c) + l)];
+            p[c * n + r] = v;          // Bᵀ
+            p[n * n + r * n + c] = v;  // B
+          }
+        }
+        p += 2 * n * n;
+      }
+    }
+  }
+};
+
+const XBlocks& x_blocks() {
+  static const XBlocks instance;
+  return instance;
+}
+
+// cos kθ and sin kθ for k = 1..N−1, from (c, s) = (cos θ, sin θ) by angle addition.
+template <int N>
+struct ZTurn {
+  double c[N > 1 ? N : 2];
+  double s[N > 1 ? N : 2];
+  ZTurn(double c1, double s1) {
+    double ck = c1, sk = s1;
+    for (int k = 1; k < N; ++k) {
+      c[k] = ck;
+      s[k] = sk;
+      const double cn = ck * c1 - sk * s1;
+      sk = sk * c1 + ck * s1;
+      ck = cn;
+    }
+  }
+};
+
+struct EulerZyz {
+  double ca, sa, cb, sb, cg, sg;
+};
+
+inline EulerZyz decompose_zyz(const std::array<double, 9>& m) {
+  EulerZyz e;
+  e.cb = m[8];
+  const bool upper = e.cb >= 0.0;
+  const double t = m[2] * m[2] + m[5] * m[5];        // sb²
+  const double d = upper ? 1.0 + e.cb : 1.0 - e.cb;  // |(p, q)| below, in [1, 2]
+  double inv_d;
+  if (t > 1e-200) {
+    // One square root and one division, independent of each other (no latency chain):
+    // q = 1/(t·d), then 1/sb = sb·d·q and 1/d = t·q.
+    e.sb = std::sqrt(t);
+    const double q = 1.0 / (t * d);
+    const double inv_sb = e.sb * d * q;
+    inv_d = t * q;
+    e.ca = m[2] * inv_sb;
+    e.sa = m[5] * inv_sb;
+  } else {
+    // At a pole (sb < 1e-100): α = 0 and γ takes the whole z turn; the neglected sb changes M
+    // by less than 1e-100.
+    e.sb = std::sqrt(t);
+    inv_d = 1.0 / d;
+    e.ca = 1.0;
+    e.sa = 0.0;
+  }
+  if (upper) {  // σ = α + γ; γ = σ − α
+    const double cs = (m[0] + m[4]) * inv_d, ss = (m[3] - m[1]) * inv_d;
+    e.cg = cs * e.ca + ss * e.sa;
+    e.sg = ss * e.ca - cs * e.sa;
+  } else {  // δ = α − γ; γ = α − δ
+    const double cd = (m[4] - m[0]) * inv_d, sd = -(m[3] + m[1]) * inv_d;
+    e.cg = e.ca * cd + e.sa * sd;
+    e.sg = e.sa * cd - e.ca * sd;
+  }
+  return e;
+}
+
+// y = Σ_c v[c]·(row c of t) for a dense N×N row-major t, i.e. y = tᵀ·v (column sweeps, which
+// vectorise without horizontal sums).
+template <int N>
+inline void multiply_transposed(const double* t, const double* v, double* y) {
+  for (int r = 0; r < N; ++r) y[r] = t[r] * v[0];
+  for (int c = 1; c < N; ++c) {
+    for (int r = 0; r < N; ++r) y[r] += t[c * N + r] * v[c];
+  }
+}
+
+// Applies Z(θ) to band L held in groups g0..g3.
+template <int L, int N>
+inline void turn_groups(const ZTurn<N>& z, double* g0, double* g1, double* g2, double* g3) {
+  for (int j = 1; 2 * j <= L; ++j) {  // (m, −m) = (2j, −2j): g0[j], g3[j−1]
+    const double p = g0[j], q = g3[j - 1];
+    g0[j] = z.c[2 * j] * p - z.s[2 * j] * q;
+    g3[j - 1] = z.c[2 * j] * q + z.s[2 * j] * p;
+  }
+  for (int j = 0; 2 * j + 1 <= L; ++j) {  // (2j+1, −(2j+1)): g2[j], g1[j]
+    const double p = g2[j], q = g1[j];
+    g2[j] = z.c[2 * j + 1] * p - z.s[2 * j + 1] * q;
+    g1[j] = z.c[2 * j + 1] * q + z.s[2 * j + 1] * p;
+  }
+}
+
+template <int L, int N, typename T>
+inline void rotate_band_zxzxz(const T* in, T* out, const ZTurn<N>& za, const ZTurn<N>& zb,
+                              const ZTurn<N>& zg, const double* blocks) {
+  constexpr int n0 = group_size(L, 0), n1 = group_size(L, 1), n2 = group_size(L, 2),
+                n3 = group_size(L, 3);
+  constexpr int d0 = x_target_group(L, 0), d1 = x_target_group(L, 1), d2 = x_target_group(L, 2),
+                d3 = x_target_group(L, 3);
+  const double* b0 = blocks + xblock_offset(L);  // Bᵀ_0, B_0, Bᵀ_1, …
+  const double* b1 = b0 + 2 * n0 * n0;
+  const double* b2 = b1 + 2 * n1 * n1;
+  const double* b3 = b2 + 2 * n2 * n2;
+  const T* x = in + L * L + L;  // x[m], m = −L..L
+  double u[4][L / 2 + 1], w[4][L / 2 + 1];
+  for (int r = 0; r < n0; ++r) u[0][r] = double(x[group_member(0, r)]);
+  for (int r = 0; r < n1; ++r) u[1][r] = double(x[group_member(1, r)]);
+  for (int r = 0; r < n2; ++r) u[2][r] = double(x[group_member(2, r)]);
+  for (int r = 0; r < n3; ++r) u[3][r] = double(x[group_member(3, r)]);
+  turn_groups<L>(zg, u[0], u[1], u[2], u[3]);  // Z(γ)
+  multiply_transposed<n0>(b0, u[0], w[d0]);    // X₊: w[d(g)] = B_g·u[g]
+  multiply_transposed<n1>(b1, u[1], w[d1]);
+  multiply_transposed<n2>(b2, u[2], w[d2]);
+  multiply_transposed<n3>(b3, u[3], w[d3]);
+  turn_groups<L>(zb, w[0], w[1], w[2], w[3]);          // Z(β)
+  multiply_transposed<n0>(b0 + n0 * n0, w[d0], u[0]);  // X₋: u[g] = B_gᵀ·w[d(g)]
+  multiply_transposed<n1>(b1 + n1 * n1, w[d1], u[1]);
+  multiply_transposed<n2>(b2 + n2 * n2, w[d2], u[2]);
+  multiply_transposed<n3>(b3 + n3 * n3, w[d3], u[3]);
+  turn_groups<L>(za, u[0], u[1], u[2], u[3]);  // Z(α)
+  T* y = out + L * L + L;
+  for (int r = 0; r < n0; ++r) y[group_member(0, r)] = T(u[0][r]);
+  for (int r = 0; r < n1; ++r) y[group_member(1, r)] = T(u[1][r]);
+  for (int r = 0; r < n2; ++r) y[group_member(2, r)] = T(u[2][r]);
+  for (int r = 0; r < n3; ++r) y[group_member(3, r)] = T(u[3][r]);
+}
+
+template <int N, typename T, int... L>
+inline void rotate_bands_zxzxz(const T* in, T* out, const ZTurn<N>& za, const ZTurn<N>& zb,
+                               const ZTurn<N>& zg, const double* blocks,
+                               std::integer_sequence<int, L...>) {
+  (rotate_band_zxzxz<L + 2, N>(in, out, za, zb, zg, blocks), ...);
+}
+
+// Band 1 is M with axes reordered to (y, z, x).
+template <typename T>
+inline void rotate_band1(const std::array<double, 9>& m, const T* in, T* out) {
+  const double r[9] = {m[4], m[5], m[3], m[7], m[8], m[6], m[1], m[2], m[0]};
+  const double v[3] = {double(in[1]), double(in[2]), double(in[3])};
+  for (int i = 0; i < 3; ++i) {
+    out[1 + i] = T(r[i * 3] * v[0] + r[i * 3 + 1] * v[1] + r[i * 3 + 2] * v[2]);
+  }
+}
+
+// Orders up to this are one straight-line function each (everything inlined); higher orders
+// call one such function per band (keeps the code size down: ~40 kB instead of ~1 MB).
+constexpr int kStraightLineOrder = 6;
+
+template <int N, typename T>
+#if defined(__GNUC__)
+__attribute__((flatten))
+#endif
+void rotate_fixed_order(const std::array<double, 9>& m, const T* in, T* out) {
+  out[0] = in[0];
+  if constexpr (N >= 2) rotate_band1(m, in, out);
+  if constexpr (N >= 3) {
+    const EulerZyz e = decompose_zyz(m);
+    const ZTurn<N> za(e.ca, e.sa), zb(e.cb, e.sb), zg(e.cg, e.sg);
+    rotate_bands_zxzxz<N>(in, out, za, zb, zg, x_blocks().values,
+                          std::make_integer_sequence<int, N - 2>());
+  }
+}
+
+using FullTurn = ZTurn<kFastRotateOrder>;
+
+template <int L, typename T>
+#if defined(__GNUC__)
+__attribute__((flatten))
+#endif
+void rotate_one_band(const T* in, T* out, const FullTurn& za, const FullTurn& zb,
+                     const FullTurn& zg, const double* blocks) {
+  rotate_band_zxzxz<L>(in, out, za, zb, zg, blocks);
+}
+
+template <typename T>
+using BandRotator = void (*)(const T*, T*, const FullTurn&, const FullTurn&, const FullTurn&,
+                             const double*);
+
+template <typename T, int... I>
+constexpr std::array<BandRotator<T>, sizeof...(I)> make_band_rotators(
+    std::integer_sequence<int, I...>) {
+  return {&rotate_one_band<I + 2, T>...};
+}
+
+template <typename T>
+void rotate_by_bands(int order, const std::array<double, 9>& m, const T* in, T* out) {
+  static constexpr auto kBands =
+      make_band_rotators<T>(std::make_integer_sequence<int, kFastRotateOrder - 2>());
+  out[0] = in[0];
+  rotate_band1(m, in, out);
+  const EulerZyz e = decompose_zyz(m);
+  const FullTurn za(e.ca, e.sa), zb(e.cb, e.sb), zg(e.cg, e.sg);
+  const double* blocks = x_blocks().values;
+  for (int l = 2; l < order; ++l) kBands[l - 2](in, out, za, zb, zg, blocks);
+}
+
+template <typename T>
+using FixedRotator = void (*)(const std::array<double, 9>&, const T*, T*);
+
+template <typename T, int... I>
+constexpr std::array<FixedRotator<T>, sizeof...(I)> make_fixed_rotators(
+    std::integer_sequence<int, I...>) {
+  return {&rotate_fixed_order<I + 1, T>...};
+}
+
+template <typename T>
+void rotate_coefficients_impl(int order, const std::array<double, 9>& m, const T* in, T* out) {
+  static constexpr auto kRotators =
+      make_fixed_rotators<T>(std::make_integer_sequence<int, kStraightLineOrder>());
+  order = std::clamp(order, 1, kMaxRotationOrder);
+  if (order <= kStraightLineOrder) {
+    kRotators[order - 1](m, in, out);
+  } else if (order <= kFastRotateOrder) {
+    rotate_by_bands(order, m, in, out);
+  } else {
+    Rotation(order, m).apply(in, out);
+  }
+}
+
+}  // namespace
+
+void rotate_coefficients(int order, const std::array<double, 9>& m, const double* in,
+                         double* out) noexcept {
+  rotate_coefficients_impl(order, m, in, out);
+}
+
+void rotate_coefficients(int order, const std::array<double, 9>& m, const float* in,
+                         float* out) noexcept {
+  rotate_coefficients_impl(order, m, in, out);
+}
+
 }  // namespace sh

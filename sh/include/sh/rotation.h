@@ -86,4 +86,30 @@ class Rotation {
   std::vector<double> matrices_;
 };
 
+// Largest order rotate_coefficients() serves with its zxzxz fast path (bands 0..order−1); above
+// it, rotate_coefficients() builds a Rotation and applies it.
+inline constexpr int kFastRotateOrder = 16;
+
+// out = Rotation(order, m)·in for order² coefficients (same semantics, same convention), without
+// building band matrices: M is split into ZYZ Euler angles, M = Rz(α)·Ry(β)·Rz(γ), read straight
+// from M's entries (no trigonometric calls; exact at the gimbal poles β = 0 and β = π), and
+// Ry(β) = Rx(−90°)·Rz(β)·Rx(+90°), so per band
+//   R(M) = Z(α)·X(−90°)·Z(β)·X(+90°)·Z(γ),
+// where Z(θ) mixes each pair (m, −m) by cos mθ, sin mθ (built by angle addition from cos θ,
+// sin θ) and X(±90°) are constant band matrices (computed once, thread-safe, by Rotation).
+// X(+90°) only connects m and m' of equal parity under x → −x with (l+m even) ⇔ (m' ≥ 0), so it
+// is four dense square blocks holding about a quarter of its entries. Cost per band l ≈
+// 2·(l² + l + 1) + 12·l multiply–adds (applying a built band matrix alone takes (2l+1)²).
+// Measured on one loaded core (docs/BENCHMARKS.md): order 5 ≈ 60 ns including all setup, 4×
+// faster than building a Rotation and applying it; order 10 ≈ 0.34 µs (9×).
+// References: J. Kautz, P.-P. Sloan, J. Snyder, "Fast, Arbitrary BRDF Shading for
+// Low-Frequency Lighting Using Spherical Harmonics", EGWR 2002 (the zxzxz factorisation);
+// P.-P. Sloan, "Stupid Spherical Harmonics (SH) Tricks", GDC 2008.
+// order is clamped to [1, kMaxRotationOrder]; in and out must not overlap. Orders up to
+// kFastRotateOrder allocate nothing. The float version reads/writes float and computes in double.
+void rotate_coefficients(int order, const std::array<double, 9>& m, const double* in,
+                         double* out) noexcept;
+void rotate_coefficients(int order, const std::array<double, 9>& m, const float* in,
+                         float* out) noexcept;
+
 }  // namespace sh
