@@ -8,7 +8,6 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -20,6 +19,7 @@
 #include "bake/progress.h"
 #include "bake/scene_loader.h"
 #include "bake/transfer_baker.h"
+#include "cli_parsing.h"
 #include "command_registry.h"
 #include "haar_cli.h"
 #include "prt/transfer_file.h"
@@ -50,25 +50,16 @@ struct BakeArguments {
 
 // "r,g,b" or a single grey value; each in [0, 1).
 glm::vec3 parse_albedo(const std::string& text) {
-  std::vector<float> values;
-  std::istringstream stream(text);
-  std::string part;
-  while (std::getline(stream, part, ',')) {
-    try {
-      std::size_t used = 0;
-      const float v = std::stof(part, &used);
-      if (used != part.size() || !std::isfinite(v)) throw std::invalid_argument(part);
-      values.push_back(v);
-    } catch (const std::exception&) {
-      throw CommandError("--albedo " + text + ": '" + part + "' is not a number");
-    }
-  }
+  std::vector<double> values = parse_number_list("--albedo", text);
   if (values.size() == 1) values = {values[0], values[0], values[0]};
   if (values.size() != 3) throw CommandError("--albedo " + text + ": expected r,g,b or one value");
-  for (float v : values)
-    if (!(v >= 0.f && v < 1.f))
+  glm::vec3 albedo;
+  for (int c = 0; c < 3; ++c) {
+    albedo[c] = static_cast<float>(values[c]);
+    if (!(albedo[c] >= 0.f && albedo[c] < 1.f))
       throw CommandError("--albedo " + text + ": every component must be in [0, 1)");
-  return {values[0], values[1], values[2]};
+  }
+  return albedo;
 }
 
 prt::TransferKind parse_kind(const std::string& text) {
@@ -115,14 +106,14 @@ void run_auto(const BakeArguments& args, const bake::Scene& scene, const bake::B
   if (args.quiet) return;
   const bake::AutoBakeReport& r = result.report;
   const bake::BakeStatistics& st = result.bake.stats;
-  std::printf("prt bake --auto %s: %s transfer, order %d, %u channel%s; %llu rays in %.2f s "
-              "(total %.2f s); predicted error %.3g (truncation %.3g, sampling %.3g; tolerance "
-              "%.3g)\n",
-              args.scene.c_str(), bake::transfer_kind_name(r.stored_kind), r.order,
-              result.bake.data.channels, result.bake.data.channels == 1 ? "" : "s",
-              static_cast<unsigned long long>(st.rays), st.seconds_rays, st.seconds_total,
-              r.predicted_error, r.predicted_truncation_error, r.predicted_sampling_error,
-              o.tolerance);
+  std::printf(
+      "prt bake --auto %s: %s transfer, order %d, %u channel%s; %llu rays in %.2f s "
+      "(total %.2f s); predicted error %.3g (truncation %.3g, sampling %.3g; tolerance "
+      "%.3g)\n",
+      args.scene.c_str(), bake::transfer_kind_name(r.stored_kind), r.order,
+      result.bake.data.channels, result.bake.data.channels == 1 ? "" : "s",
+      static_cast<unsigned long long>(st.rays), st.seconds_rays, st.seconds_total,
+      r.predicted_error, r.predicted_truncation_error, r.predicted_sampling_error, o.tolerance);
   for (const std::string& line : r.left_out) std::printf("  left out: %s\n", line.c_str());
   std::printf("  wrote %s\n", args.output.c_str());
 }

@@ -15,13 +15,13 @@
 #include <cstdio>
 #include <memory>
 #include <optional>
-#include <sstream>
 #include <string>
 #include <vector>
 
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
+#include "cli_parsing.h"
 #include "command_registry.h"
 #include "relight/image_io.h"
 #include "sh/basis.h"
@@ -59,13 +59,7 @@ struct Settings {
 
 Settings parse_settings(const EnvArguments& args) {
   Settings settings;
-  if (args.layout != "auto") {
-    sh::EnvLayout layout;
-    if (!sh::parse_layout(args.layout, &layout))
-      throw CommandError("--layout " + args.layout +
-                         ": unknown layout (auto, latlong, angular, cross or faces)");
-    settings.layout = layout;
-  }
+  settings.layout = parse_layout_option(args.layout);
   if (!sh::parse_window(args.window, &settings.window))
     throw CommandError("--window " + args.window +
                        ": unknown window (none, hanning, lanczos, laplacian or auto)");
@@ -75,14 +69,7 @@ Settings parse_settings(const EnvArguments& args) {
   if (!std::isfinite(args.window_strength))
     throw CommandError("--window-strength: must be a finite number");
   if (!args.rotate.empty()) {
-    std::array<double, 3> angles{};
-    std::istringstream in(args.rotate);
-    char comma1 = 0, comma2 = 0;
-    in >> angles[0] >> comma1 >> angles[1] >> comma2 >> angles[2];
-    std::string rest;
-    if (!in || comma1 != ',' || comma2 != ',' || (in >> rest) || !std::isfinite(angles[0]) ||
-        !std::isfinite(angles[1]) || !std::isfinite(angles[2]))
-      throw CommandError("--rotate " + args.rotate + ": expected yaw,pitch,roll in degrees");
+    const std::array<double, 3> angles = parse_yaw_pitch_roll(args.rotate);
     if (args.order > sh::kMaxRotationOrder)
       throw CommandError("--rotate: orders above " + std::to_string(sh::kMaxRotationOrder) +
                          " cannot be rotated");

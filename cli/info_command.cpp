@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include "command_registry.h"
+#include "prt/transfer_data.h"
 #include "prt/transfer_file.h"
 
 namespace prt::cli {
@@ -23,27 +24,13 @@ struct InfoArguments {
   bool json = false, csv = false;
 };
 
-const char* kind_name(prt::TransferKind kind) {
-  switch (kind) {
-    case prt::TransferKind::Unshadowed:
-      return "unshadowed";
-    case prt::TransferKind::Shadowed:
-      return "shadowed";
-    case prt::TransferKind::Interreflected:
-      return "interreflected";
-    case prt::TransferKind::Haar:
-      return "haar";
-  }
-  return "unknown";
-}
-
 nlohmann::json describe(const prt::TransferData& d, const std::string& path) {
   nlohmann::json j;
   j["file"] = path;
   std::error_code ec;
   const auto size = std::filesystem::file_size(path, ec);
   if (!ec) j["bytes"] = size;
-  j["kind"] = kind_name(d.kind);
+  j["kind"] = prt::transfer_kind_name(d.kind);
   j["order"] = d.order;
   j["coefficients_per_channel"] = d.coefficients_per_channel();
   j["channels"] = d.channels;
@@ -75,7 +62,7 @@ nlohmann::json describe(const prt::TransferData& d, const std::string& path) {
 void print_text(const prt::TransferData& d, const nlohmann::json& j) {
   std::printf("file          %s", j["file"].get<std::string>().c_str());
   if (j.contains("bytes")) std::printf(" (%llu bytes)", j["bytes"].get<unsigned long long>());
-  std::printf("\nkind          %s\n", kind_name(d.kind));
+  std::printf("\nkind          %s\n", prt::transfer_kind_name(d.kind));
   std::printf("order         %u (%u coefficients per channel)\n", d.order,
               d.coefficients_per_channel());
   std::printf("channels      %u\n", d.channels);

@@ -1,16 +1,14 @@
 // `prt relight SCENE FILE.prt ENV -o OUT.(exr|png|hdr) [...]`: shade a baked scene under an
 // environment map and render it (relight/relight_pipeline.h does the work).
-#include <array>
-#include <cmath>
 #include <cstdio>
 #include <memory>
-#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include <CLI/CLI.hpp>
 
+#include "cli_parsing.h"
 #include "command_registry.h"
 #include "haar_cli.h"
 #include "relight/relight_pipeline.h"
@@ -36,27 +34,6 @@ struct RelightArguments {
   HaarRelightArguments haar;  // --terms, --approx for Haar files (haar_cli.h)
 };
 
-std::array<double, 3> parse_rotation(const std::string& text) {
-  std::array<double, 3> v{};
-  std::istringstream stream(text);
-  std::string part;
-  int count = 0;
-  while (std::getline(stream, part, ',')) {
-    if (count >= 3) break;
-    try {
-      std::size_t used = 0;
-      v[count] = std::stod(part, &used);
-      if (used != part.size() || !std::isfinite(v[count])) throw std::invalid_argument(part);
-    } catch (const std::exception&) {
-      throw CommandError("--rotate " + text + ": '" + part + "' is not a number");
-    }
-    ++count;
-  }
-  if (count != 3 || std::getline(stream, part, ','))
-    throw CommandError("--rotate " + text + ": expected yaw,pitch,roll in degrees");
-  return v;
-}
-
 void parse_size(const std::string& text, int* width, int* height) {
   const std::size_t x = text.find_first_of("xX");
   try {
@@ -79,13 +56,8 @@ void run(const RelightArguments& args) {
   request.transfer_path = args.transfer;
   request.environment_path = args.environment;
   request.output_path = args.output;
-  if (args.layout != "auto") {
-    sh::EnvLayout layout;
-    if (!sh::parse_layout(args.layout, &layout))
-      throw CommandError("--layout " + args.layout + ": expected auto|latlong|angular|cross|faces");
-    request.layout = layout;
-  }
-  request.lighting.yaw_pitch_roll_deg = parse_rotation(args.rotate);
+  request.layout = parse_layout_option(args.layout);
+  request.lighting.yaw_pitch_roll_deg = parse_yaw_pitch_roll(args.rotate);
   if (!sh::parse_window(args.window, &request.lighting.window))
     throw CommandError("--window " + args.window +
                        ": expected none|hanning|lanczos|laplacian|auto");

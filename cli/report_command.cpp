@@ -10,10 +10,10 @@
 
 #include <CLI/CLI.hpp>
 
+#include "cli_parsing.h"
 #include "command_registry.h"
 #include "relight/report.h"
 #include "relight/stability_report.h"
-#include "sh/env_map.h"
 
 namespace prt::cli {
 namespace {
@@ -42,12 +42,7 @@ void run(const ReportArguments& a) {
   o.quick = a.quick;
   o.seed = a.seed;
   o.ground_truth_budget_seconds = a.budget;
-  if (a.layout != "auto") {
-    sh::EnvLayout layout;
-    if (!sh::parse_layout(a.layout, &layout))
-      throw CommandError("--layout " + a.layout + ": expected auto|latlong|angular|cross|faces");
-    o.layout = layout;
-  }
+  o.layout = parse_layout_option(a.layout);
   const prt::relight::ReportResult r = prt::relight::run_report(o);
   for (const std::string& f : r.files_written) std::printf("wrote %s\n", f.c_str());
 }

@@ -10,6 +10,8 @@
 
 #include "bake/scene_analysis.h"
 
+#include "scene_label.h"
+
 namespace prt::bake {
 namespace {
 
@@ -20,10 +22,6 @@ std::string format(const char* fmt, double a, double b = 0.0, double c = 0.0) {
   char buf[256];
   std::snprintf(buf, sizeof buf, fmt, a, b, c);
   return buf;
-}
-
-std::string label(const Scene& scene) {
-  return scene.source_path.empty() ? std::string("scene") : scene.source_path;
 }
 
 // A uniform white sky of radiance 1 at order 1: the lighting assumed without --env.
@@ -123,7 +121,7 @@ std::string AutoBakeReport::json() const {
 
 AutoBakeResult bake_transfer_auto(const Scene& scene, const AutoBakeOptions& o,
                                   ProgressSink* progress) {
-  const std::string name = label(scene);
+  const std::string name = detail::scene_label(scene);
   if (!(o.tolerance > 0.0 && o.tolerance < 1.0))
     throw BakeError(name + ": --auto tolerance must be in (0, 1)");
   if (!o.lighting.empty() &&

@@ -12,12 +12,12 @@
 #include <tiny_gltf.h>
 #include <glm/gtc/quaternion.hpp>
 
+#include "scene_file_errors.h"
+
 namespace prt::bake {
 namespace {
 
-[[noreturn]] void fail(const std::string& path, const std::string& problem) {
-  throw SceneError(path + ": " + problem);
-}
+using detail::fail;
 
 // Appends raw bytes to the buffer (4-byte aligned) and returns a new buffer view's index.
 int add_buffer_view(tinygltf::Model& model, const void* bytes, std::size_t size, int target) {

@@ -1,5 +1,6 @@
 // glTF 2.0 reading through tinygltf (see gltf_loader.h and bake/scene_loader.h).
 #include "gltf_loader.h"
+#include "scene_file_errors.h"
 
 #include <cctype>
 #include <cmath>
@@ -14,23 +15,6 @@
 
 namespace prt::bake::detail {
 namespace {
-
-[[noreturn]] void fail(const std::string& path, const std::string& problem) {
-  throw SceneError(path + ": " + problem);
-}
-
-// Joins the non-empty lines of a multi-line message with "; " (messages must be one line).
-std::string condense(const std::string& text) {
-  std::string out, line;
-  std::istringstream in(text);
-  while (std::getline(in, line)) {
-    while (!line.empty() && (line.back() == '\r' || line.back() == ' ')) line.pop_back();
-    if (line.empty()) continue;
-    if (!out.empty()) out += "; ";
-    out += line;
-  }
-  return out;
-}
 
 // Image callback: accepts the bytes without decoding them (we only read baseColorFactor).
 bool skip_image_decoding(tinygltf::Image*, const int, std::string*, std::string*, int, int,

@@ -16,6 +16,8 @@
 #include "bake/sampling.h"
 #include "bake/transfer_baker.h"
 
+#include "scene_label.h"
+
 namespace prt::bake {
 namespace {
 
@@ -41,10 +43,6 @@ struct SampleRng {
     return static_cast<double>(z >> 11) * 0x1.0p-53;
   }
 };
-
-std::string label(const Scene& scene) {
-  return scene.source_path.empty() ? std::string("scene") : scene.source_path;
-}
 
 // Face direction of the cube layouts (sh/env_map.h): face index in +X, −X, +Y, −Y, +Z, −Z order.
 void cube_face_direction(int face, double a, double b, bool faces_layout, double d[3]) {
@@ -298,7 +296,7 @@ uint32_t GroundTruthIntegrator::Impl::sample_vertex(uint32_t v, uint64_t sample_
 
 GroundTruthIntegrator::GroundTruthIntegrator(const Scene& scene, const sh::EnvMap& env,
                                              const GroundTruthOptions& o) {
-  const std::string name = label(scene);
+  const std::string name = detail::scene_label(scene);
   if (scene.vertex_count() == 0 || scene.triangles.empty())
     throw BakeError(name + ": the scene has no vertices or no triangles");
   if (scene.normals.size() != scene.vertex_count() || scene.albedo.size() != scene.vertex_count())

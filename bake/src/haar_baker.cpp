@@ -19,9 +19,11 @@
 #include "bake/ray_caster.h"
 #include "bake/sampling.h"
 #include "bake/transfer_baker.h"
-#include "prt/geometry_check.h"
 #include "prt/haar_cube_map.h"
 #include "prt/haar_transform.h"
+
+#include "hit_side.h"
+#include "transfer_geometry.h"
 
 namespace prt::bake {
 namespace {
@@ -108,14 +110,9 @@ uint64_t trace_vertex(const Scene& scene, const RayCaster& caster, const TexelSa
       for (int i = 0; i < count; ++i) {
         occluded[i] = hits[i].hit;
         if (!hits[i].hit) continue;
+        // Back faces occlude but reflect nothing (hit_side.h, as the SH baker).
+        if (!detail::ray_hits_front_side(scene, hits[i].triangle, dirs[i])) continue;
         const glm::uvec3 tri = scene.triangles[hits[i].triangle];
-        // Front or back judged by the facet normal oriented by its vertex normals (as the SH
-        // baker does): back faces occlude but reflect nothing.
-        const glm::vec3 p0 = scene.positions[tri.x];
-        const glm::vec3 ng = glm::cross(scene.positions[tri.y] - p0, scene.positions[tri.z] - p0);
-        const float side =
-            glm::dot(ng, scene.normals[tri.x] + scene.normals[tri.y] + scene.normals[tri.z]);
-        if (!(glm::dot(ng, dirs[i]) * side < 0.f)) continue;
         const float w = static_cast<float>(weight[i] * kInvPi);
         row->emplace_back(tri.x, w * (1.f - hits[i].u - hits[i].v));
         row->emplace_back(tri.y, w * hits[i].u);
@@ -354,19 +351,7 @@ HaarBakeResult bake_haar_transfer(const Scene& scene, const HaarBakeOptions& opt
   info.order = static_cast<uint32_t>(N);
   info.channels = static_cast<uint32_t>(C);
   info.albedo_folded = true;
-  info.vertex_count = V;
-  info.positions.resize(3 * V);
-  info.normals.resize(3 * V);
-  for (std::size_t v = 0; v < V; ++v) {
-    const glm::vec3 n = glm::normalize(scene.normals[v]);
-    for (int a = 0; a < 3; ++a) {
-      info.positions[3 * v + a] = scene.positions[v][a];
-      info.normals[3 * v + a] = n[a];
-    }
-  }
-  for (const ScenePrimitive& p : scene.primitives)
-    info.primitives.push_back({p.first_vertex, p.vertex_count, p.name});
-  info.fingerprint = prt::geometry_fingerprint(info.positions.data(), V);
+  detail::store_scene_geometry(scene, info);
   info.metadata_json = metadata_json(scene, options, C);
   st.stored_bytes = file.transfer.stored_bytes();
   st.dense_bytes = file.transfer.dense_bytes();

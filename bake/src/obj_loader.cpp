@@ -1,5 +1,6 @@
 // Wavefront OBJ reading through tinyobjloader (see obj_loader.h and bake/scene_loader.h).
 #include "obj_loader.h"
+#include "scene_file_errors.h"
 
 #include <algorithm>
 #include <cmath>
@@ -18,22 +19,6 @@ namespace prt::bake::detail {
 namespace {
 
 constexpr float kDefaultObjAlbedo = 0.8f;
-
-[[noreturn]] void fail(const std::string& path, const std::string& problem) {
-  throw SceneError(path + ": " + problem);
-}
-
-std::string condense(const std::string& text) {
-  std::string out, line;
-  std::istringstream in(text);
-  while (std::getline(in, line)) {
-    while (!line.empty() && (line.back() == '\r' || line.back() == ' ')) line.pop_back();
-    if (line.empty()) continue;
-    if (!out.empty()) out += "; ";
-    out += line;
-  }
-  return out;
-}
 
 // tinyobjloader reads a coordinate it cannot parse ("nan", "inf", "1.0x") as 0 without a word,
 // so every `v` line is checked here first: each of its first three fields must be a finite

@@ -11,6 +11,8 @@
 
 #include <embree3/rtcore.h>
 
+#include "scene_label.h"
+
 namespace prt::bake {
 namespace {
 
@@ -35,15 +37,11 @@ std::string describe(RTCError e) {
   }
 }
 
-std::string scene_label(const Scene& scene) {
-  return scene.source_path.empty() ? std::string("scene") : scene.source_path;
-}
-
 void throw_if_error(RTCDevice device, const Scene& scene, const char* what) {
   const RTCError e = rtcGetDeviceError(device);
   if (e != RTC_ERROR_NONE)
-    throw std::runtime_error(scene_label(scene) + ": Embree " + what + " failed (" + describe(e) +
-                             ")");
+    throw std::runtime_error(detail::scene_label(scene) + ": Embree " + what + " failed (" +
+                             describe(e) + ")");
 }
 
 // Scene-proportional offset: a fraction of the extent, but never below a few float ulps of the
@@ -99,7 +97,7 @@ RayCaster::RayCaster(const Scene& scene) : scene_(&scene) {
   offset_scale_ = compute_offset_scale(scene);
   RTCDevice device = rtcNewDevice(nullptr);
   if (!device)
-    throw std::runtime_error(scene_label(scene) + ": cannot create the Embree device (" +
+    throw std::runtime_error(detail::scene_label(scene) + ": cannot create the Embree device (" +
                              describe(rtcGetDeviceError(nullptr)) + ")");
   device_ = device;
   rtcSetDeviceMemoryMonitorFunction(device, &RayCaster::monitor_memory, this);
@@ -117,7 +115,7 @@ RayCaster::RayCaster(const Scene& scene) : scene_(&scene) {
   for (const glm::uvec3& t : scene.triangles)
     if (t.x < nv && t.y < nv && t.z < nv) tris.push_back(t);
   if (tris.size() != scene.triangles.size())
-    throw std::runtime_error(scene_label(scene) + ": triangle index out of range");
+    throw std::runtime_error(detail::scene_label(scene) + ": triangle index out of range");
   triangle_count_ = tris.size();
 
   // Per-vertex nudge toward the mean centroid of the vertex's triangles, tangentially.
@@ -155,7 +153,7 @@ RayCaster::RayCaster(const Scene& scene) : scene_(&scene) {
     if (!vb || !ib) {
       rtcReleaseGeometry(geom);
       throw_if_error(device, scene, "buffer allocation");
-      throw std::runtime_error(scene_label(scene) + ": Embree buffer allocation failed");
+      throw std::runtime_error(detail::scene_label(scene) + ": Embree buffer allocation failed");
     }
     for (std::size_t i = 0; i < nv; ++i) {
       vb[3 * i + 0] = scene.positions[i].x;

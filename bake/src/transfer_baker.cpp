@@ -39,9 +39,13 @@
 #include "bake/progress.h"
 #include "bake/ray_caster.h"
 #include "bake/sampling.h"
-#include "prt/geometry_check.h"
 #include "sh/basis.h"
 #include "sh/zonal.h"
+
+#include "hit_side.h"
+#include "transfer_geometry.h"
+
+#include "scene_label.h"
 
 namespace prt::bake {
 namespace {
@@ -60,8 +64,16 @@ double seconds_since(Clock::time_point t) {
   return std::chrono::duration<double>(Clock::now() - t).count();
 }
 
-std::string label(const Scene& scene) {
-  return scene.source_path.empty() ? std::string("scene") : scene.source_path;
+// Casts kPacketSize rays from `origin`: closest hits into `hits` (occluded[i] = a hit) when
+// `hits` is not null, occlusion only otherwise.
+void cast_packet(const RayCaster& caster, const glm::vec3& origin, const glm::vec3* dirs,
+                 float tfar, RayCaster::Hit* hits, bool* occluded) {
+  if (hits != nullptr) {
+    caster.intersect_packet(origin, dirs, kPacketSize, tfar, hits);
+    for (int i = 0; i < kPacketSize; ++i) occluded[i] = hits[i].hit;
+  } else {
+    caster.occluded_packet(origin, dirs, kPacketSize, tfar, occluded);
+  }
 }
 
 std::string primitive_of(const Scene& scene, std::size_t v) {
@@ -134,22 +146,8 @@ void solve_adaptively(const SparseTransferMatrix& h, const std::vector<double>& 
 
 }  // namespace
 
-const char* transfer_kind_name(prt::TransferKind kind) {
-  switch (kind) {
-    case prt::TransferKind::Unshadowed:
-      return "unshadowed";
-    case prt::TransferKind::Shadowed:
-      return "shadowed";
-    case prt::TransferKind::Interreflected:
-      return "interreflected";
-    case prt::TransferKind::Haar:
-      return "haar";
-  }
-  return "unknown";
-}
-
 void validate_bake_inputs(const Scene& scene, const BakeOptions& o) {
-  const std::string name = label(scene);
+  const std::string name = detail::scene_label(scene);
   if (o.kind != prt::TransferKind::Unshadowed && o.kind != prt::TransferKind::Shadowed &&
       o.kind != prt::TransferKind::Interreflected)
     throw BakeError(name + ": transfer kind '" + transfer_kind_name(o.kind) +
@@ -355,12 +353,7 @@ BakeResult bake_transfer(const Scene& scene, const BakeOptions& options, Progres
       while (true) {
         generate_cosine_directions(n, options.seed, v, static_cast<uint32_t>(used), kPacketSize,
                                    dirs);
-        if (interreflect) {
-          caster.intersect_packet(origin, dirs, kPacketSize, tfar, hits);
-          for (int i = 0; i < kPacketSize; ++i) occluded[i] = hits[i].hit;
-        } else {
-          caster.occluded_packet(origin, dirs, kPacketSize, tfar, occluded);
-        }
+        cast_packet(caster, origin, dirs, tfar, interreflect ? hits : nullptr, occluded);
         for (int i = 0; i < kPacketSize; ++i) {
           if (!occluded[i]) {
             ++visible;
@@ -411,21 +404,14 @@ BakeResult bake_transfer(const Scene& scene, const BakeOptions& options, Progres
       uint64_t rays = 0;
       // The hit's vertices, weighted by barycentrics, go into this vertex's row of H.
       auto gather_hit = [&](const RayCaster::Hit& hit, const glm::vec3& dir) {
-        const glm::uvec3 tri = scene.triangles[hit.triangle];
-        const float b0 = 1.f - hit.u - hit.v, b1 = hit.u, b2 = hit.v;
-        // The side the ray sees: the flat facet's geometric normal, oriented to agree
-        // with the triangle's vertex normals (so a winding that disagrees with the
-        // normals does not matter). Interpolated smooth normals would misjudge rays
-        // that graze a neighbouring facet of a curved, faceted surface (~1% of rays in
-        // the cavity test), losing their energy.
-        const glm::vec3 p0 = scene.positions[tri.x];
-        const glm::vec3 ng = glm::cross(scene.positions[tri.y] - p0, scene.positions[tri.z] - p0);
-        const float side =
-            glm::dot(ng, scene.normals[tri.x] + scene.normals[tri.y] + scene.normals[tri.z]);
-        if (!(glm::dot(ng, dir) * side < 0.f)) {  // back face: occludes only
+        // The side the ray sees: the flat facet's geometric normal, oriented by the
+        // triangle's vertex normals (hit_side.h). A back face occludes only.
+        if (!detail::ray_hits_front_side(scene, hit.triangle, dir)) {
           ++block_back_hits[blk];
           return;
         }
+        const glm::uvec3 tri = scene.triangles[hit.triangle];
+        const float b0 = 1.f - hit.u - hit.v, b1 = hit.u, b2 = hit.v;
         gathered.emplace_back(tri.x, b0);
         gathered.emplace_back(tri.y, b1);
         gathered.emplace_back(tri.z, b2);
@@ -461,12 +447,7 @@ BakeResult bake_transfer(const Scene& scene, const BakeOptions& options, Progres
         for (int first = 0; first < N; first += kPacketSize) {
           generate_cosine_directions(n, options.seed, v, static_cast<uint32_t>(first), kPacketSize,
                                      dirs);
-          if (interreflect) {
-            caster.intersect_packet(origin, dirs, kPacketSize, tfar, hits);
-            for (int i = 0; i < kPacketSize; ++i) occluded[i] = hits[i].hit;
-          } else {
-            caster.occluded_packet(origin, dirs, kPacketSize, tfar, occluded);
-          }
+          cast_packet(caster, origin, dirs, tfar, interreflect ? hits : nullptr, occluded);
           rays += kPacketSize;
           // SH of the visible directions: summed in float over the 16 rays of a packet (at
           // most 16 terms of magnitude ≤ ~3.5), then added to the double accumulator.
@@ -530,19 +511,7 @@ BakeResult bake_transfer(const Scene& scene, const BakeOptions& options, Progres
   data.channels = static_cast<uint32_t>(C);
   data.storage = options.precision;
   data.albedo_folded = true;
-  data.vertex_count = V;
-  data.positions.resize(3 * V);
-  data.normals.resize(3 * V);
-  for (std::size_t v = 0; v < V; ++v) {
-    const glm::vec3 n = glm::normalize(scene.normals[v]);
-    for (int a = 0; a < 3; ++a) {
-      data.positions[3 * v + a] = scene.positions[v][a];
-      data.normals[3 * v + a] = n[a];
-    }
-  }
-  for (const ScenePrimitive& p : scene.primitives)
-    data.primitives.push_back({p.first_vertex, p.vertex_count, p.name});
-  data.fingerprint = prt::geometry_fingerprint(data.positions.data(), V);
+  detail::store_scene_geometry(scene, data);
 
   const Clock::time_point t_solve = Clock::now();
   std::vector<double> direct(interreflect ? V * K : 0), solved(interreflect ? V * K : 0);

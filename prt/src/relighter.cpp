@@ -5,9 +5,7 @@
 #include "prt/relighter.h"
 
 #include <algorithm>
-#include <cerrno>
 #include <cmath>
-#include <cstdio>
 #include <cstring>
 #include <new>
 #include <sstream>
@@ -342,23 +340,9 @@ Result<Relighter> Relighter::from_file_bytes(const void* bytes, std::size_t size
 }
 
 Result<Relighter> Relighter::from_file(const std::string& path) {
-  std::FILE* f = std::fopen(path.c_str(), "rb");
-  if (f == nullptr) return Status::Error(path + ": cannot open: " + std::strerror(errno));
   std::vector<unsigned char> bytes;
-  bool read_error = std::fseek(f, 0, SEEK_END) != 0;
-  const long length = read_error ? -1 : std::ftell(f);
-  read_error = read_error || length < 0 || std::fseek(f, 0, SEEK_SET) != 0;
-  if (!read_error) {
-    try {
-      bytes.resize(static_cast<std::size_t>(length));
-    } catch (const std::exception&) {
-      std::fclose(f);
-      return Status::Error(path + ": out of memory");
-    }
-    read_error = std::fread(bytes.data(), 1, bytes.size(), f) != bytes.size();
-  }
-  std::fclose(f);
-  if (read_error) return Status::Error(path + ": read error");
+  Status s = detail::read_file_bytes(path, &bytes);
+  if (!s.ok()) return s;
   return from_file_bytes(bytes.data(), bytes.size(), path);
 }
 

@@ -96,6 +96,17 @@ Status check_finite_array(const std::string& name, const char* what, const float
   return fail(name, os.str());
 }
 
+// Positions, normals, AO and bent normals must all be finite (the first bad value is named).
+Status check_finite_vertex_arrays(const std::string& name, const TransferData& d) {
+  Status s = check_finite_array(name, "position", d.positions.data(), d.positions.size(), 3);
+  if (s.ok()) s = check_finite_array(name, "normal", d.normals.data(), d.normals.size(), 3);
+  if (s.ok()) s = check_finite_array(name, "ao", d.ao.data(), d.ao.size(), 1);
+  if (s.ok()) {
+    s = check_finite_array(name, "bent normal", d.bent_normals.data(), d.bent_normals.size(), 3);
+  }
+  return s;
+}
+
 // CRC-32C of the file with the checksum field taken as zero.
 uint32_t file_checksum(const unsigned char* bytes, std::size_t size) {
   static const unsigned char zeros[4] = {0, 0, 0, 0};
@@ -137,13 +148,7 @@ Status validate_common_transfer_fields(const TransferData& d, const std::string&
       return fail(name, os.str());
     }
   }
-  Status s = check_finite_array(name, "position", d.positions.data(), d.positions.size(), 3);
-  if (s.ok()) s = check_finite_array(name, "normal", d.normals.data(), d.normals.size(), 3);
-  if (s.ok()) s = check_finite_array(name, "ao", d.ao.data(), d.ao.size(), 1);
-  if (s.ok()) {
-    s = check_finite_array(name, "bent normal", d.bent_normals.data(), d.bent_normals.size(), 3);
-  }
-  if (!s.ok()) return s;
+  if (Status s = check_finite_vertex_arrays(name, d); !s.ok()) return s;
   if (d.fingerprint != 0 &&
       d.fingerprint != geometry_fingerprint(d.positions.data(), static_cast<std::size_t>(v))) {
     return fail(name, "fingerprint does not match the positions (leave it 0 to have it computed)");
@@ -519,13 +524,7 @@ Status parse_transfer_file(const void* bytes_in, std::size_t size, const std::st
     read_floats(kBentNormals, d.bent_normals);
     d.metadata_json.assign(reinterpret_cast<const char*>(b + offsets[kMetadata]),
                            static_cast<std::size_t>(sizes[kMetadata]));
-    Status s = check_finite_array(name, "position", d.positions.data(), d.positions.size(), 3);
-    if (s.ok()) s = check_finite_array(name, "normal", d.normals.data(), d.normals.size(), 3);
-    if (s.ok()) s = check_finite_array(name, "ao", d.ao.data(), d.ao.size(), 1);
-    if (s.ok()) {
-      s = check_finite_array(name, "bent normal", d.bent_normals.data(), d.bent_normals.size(), 3);
-    }
-    if (!s.ok()) return s;
+    if (Status s = check_finite_vertex_arrays(name, d); !s.ok()) return s;
     out->coefficients = b + offsets[kCoefficients];
     out->coefficient_bytes = static_cast<std::size_t>(sizes[kCoefficients]);
     // Finite coefficients (padding included: it must be zero, which is finite). The Haar

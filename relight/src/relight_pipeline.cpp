@@ -3,7 +3,6 @@
 #include <unistd.h>
 #include <algorithm>
 #include <cctype>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -13,24 +12,16 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
-#include "bake/glb_writer.h"
-#include "bake/ray_caster.h"
 #include "bake/scene_loader.h"
 #include "prt/geometry_check.h"
 #include "prt/transfer_file.h"
-#include "relight/camera.h"
 #include "relight/image_io.h"
 #include "relight/tone_map.h"
+#include "relight_frames.h"
 #include "sh/rotation.h"
 
 namespace prt::relight {
 namespace {
-
-using Clock = std::chrono::steady_clock;
-
-double seconds_since(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
 
 std::string lower_extension(const std::string& path) {
   std::string ext = std::filesystem::path(path).extension().string();
@@ -60,6 +51,32 @@ std::vector<float> flatten_positions(const bake::Scene& scene) {
 
 }  // namespace
 
+void check_relight_outputs(const RelightRequest& request) {
+  check_image_extension(request.output_path);
+  check_parent_directory(request.output_path);
+  if (!request.vertex_colors_path.empty()) {
+    if (lower_extension(request.vertex_colors_path) != ".glb")
+      throw std::runtime_error(request.vertex_colors_path + ": vertex colours are written as .glb");
+    check_parent_directory(request.vertex_colors_path);
+  }
+  if (!request.csv_path.empty()) check_parent_directory(request.csv_path);
+  if (request.turntable_frames < 0 || request.turntable_frames > 3600)
+    throw std::runtime_error("--turntable " + std::to_string(request.turntable_frames) +
+                             ": frame count must be in 0..3600");
+}
+
+void check_transfer_matches_scene(const prt::TransferData& data, const std::string& transfer_path,
+                                  const bake::Scene& scene) {
+  const std::vector<float> positions = flatten_positions(scene);
+  const prt::Status match =
+      prt::check_geometry(data, positions.data(), scene.vertex_count(), kGeometryTolerance);
+  if (!match.ok())
+    throw std::runtime_error(
+        transfer_path + ": was not baked for " +
+        (scene.source_path.empty() ? std::string("this scene") : scene.source_path) + ": " +
+        match.message());
+}
+
 prt::TransferData load_transfer_for_scene(const std::string& transfer_path,
                                           const bake::Scene& scene) {
   prt::Result<prt::TransferData> data = prt::read_transfer_file(transfer_path);
@@ -69,14 +86,7 @@ prt::TransferData load_transfer_for_scene(const std::string& transfer_path,
     if (message.rfind(transfer_path, 0) == 0) throw std::runtime_error(message);
     throw std::runtime_error(transfer_path + ": " + message);
   }
-  const std::vector<float> positions = flatten_positions(scene);
-  const prt::Status match =
-      prt::check_geometry(*data, positions.data(), scene.vertex_count(), kGeometryTolerance);
-  if (!match.ok())
-    throw std::runtime_error(
-        transfer_path + ": was not baked for " +
-        (scene.source_path.empty() ? std::string("this scene") : scene.source_path) + ": " +
-        match.message());
+  check_transfer_matches_scene(*data, transfer_path, scene);
   return std::move(data).value();
 }
 
@@ -205,28 +215,12 @@ std::string turntable_frame_path(const std::string& path, int frame) {
 
 RelightSummary run_relight(const RelightRequest& request) {
   // 1. Validate every input before writing anything.
-  check_image_extension(request.output_path);
-  check_parent_directory(request.output_path);
-  if (!request.vertex_colors_path.empty()) {
-    if (lower_extension(request.vertex_colors_path) != ".glb")
-      throw std::runtime_error(request.vertex_colors_path + ": vertex colours are written as .glb");
-    check_parent_directory(request.vertex_colors_path);
-  }
-  if (!request.csv_path.empty()) check_parent_directory(request.csv_path);
-  if (request.turntable_frames < 0 || request.turntable_frames > 3600)
-    throw std::runtime_error("--turntable " + std::to_string(request.turntable_frames) +
-                             ": frame count must be in 0..3600");
-
+  check_relight_outputs(request);
   RelightSummary summary;
   const bake::Scene scene = bake::load_scene(request.scene_path);
   const prt::TransferData data = load_transfer_for_scene(request.transfer_path, scene);
   const sh::EnvMap env =
       read_environment(request.environment_path, request.layout, &summary.layout_note);
-  const float aspect = static_cast<float>(request.render.width) /
-                       static_cast<float>(std::max(1, request.render.height));
-  const Camera camera = parse_camera(request.camera, scene, aspect);
-  make_camera_basis(camera, aspect);  // throws for a degenerate scene camera
-
   summary.vertex_count = scene.vertex_count();
   summary.order = static_cast<int>(data.order);
   const prt::ShLighting base =
@@ -234,46 +228,14 @@ RelightSummary run_relight(const RelightRequest& request) {
   prt::Result<prt::Relighter> relighter = prt::Relighter::create(data);
   if (!relighter.ok())
     throw std::runtime_error(request.transfer_path + ": " + relighter.status().message());
-  const std::array<double, 9> rotation = sh::rotation_from_yaw_pitch_roll(
-      request.lighting.yaw_pitch_roll_deg[0], request.lighting.yaw_pitch_roll_deg[1],
-      request.lighting.yaw_pitch_roll_deg[2]);
-  const bake::RayCaster caster(scene);
 
   // 2. Shade, render, write: one frame, or the turntable's frames.
-  const int frames = std::max(1, request.turntable_frames);
-  for (int frame = 0; frame < frames; ++frame) {
-    const std::array<double, 9> m =
-        request.turntable_frames > 0 ? turntable_rotation(rotation, frame, frames) : rotation;
-    const prt::ShLighting lighting = rotate_lighting(base, m);
-    auto start = Clock::now();
-    const std::vector<float> radiance =
-        shade_all_vertices(*relighter, lighting, scene.vertex_count());
-    summary.shade_seconds += seconds_since(start);
-    if (frame == 0) {
-      for (std::size_t v = 0; v < scene.vertex_count(); ++v)
-        if (radiance[3 * v] < 0.f || radiance[3 * v + 1] < 0.f || radiance[3 * v + 2] < 0.f)
-          ++summary.negative_vertices;
-      if (!request.vertex_colors_path.empty()) {
-        std::vector<glm::vec3> colors(scene.vertex_count());
-        for (std::size_t v = 0; v < colors.size(); ++v)
-          colors[v] = glm::vec3(radiance[3 * v], radiance[3 * v + 1], radiance[3 * v + 2]);
-        bake::write_glb(request.vertex_colors_path, scene, &colors);
-        summary.files_written.push_back(request.vertex_colors_path);
-      }
-      if (!request.csv_path.empty()) {
-        write_vertex_csv(request.csv_path, scene, radiance);
-        summary.files_written.push_back(request.csv_path);
-      }
-    }
-    start = Clock::now();
-    const Image image = render(scene, caster, radiance, &env, m, camera, request.render);
-    summary.render_seconds += seconds_since(start);
-    const std::string path = request.turntable_frames > 0
-                                 ? turntable_frame_path(request.output_path, frame)
-                                 : request.output_path;
-    write_rendered_image(path, image, request.exposure_ev);
-    summary.files_written.push_back(path);
-  }
+  detail::render_relight_frames(
+      request, scene, env, [&](const std::array<double, 9>& m) { return rotate_lighting(base, m); },
+      [&](const prt::ShLighting& lighting) {
+        return shade_all_vertices(*relighter, lighting, scene.vertex_count());
+      },
+      &summary);
   return summary;
 }
 

@@ -137,7 +137,8 @@ void validate_bake_inputs(const Scene& scene, const BakeOptions& options);
 BakeResult bake_transfer(const Scene& scene, const BakeOptions& options,
                          ProgressSink* progress = nullptr);
 
-// "unshadowed" / "shadowed" / "interreflected" / "haar".
-const char* transfer_kind_name(prt::TransferKind kind);
+// "unshadowed" / "shadowed" / "interreflected" / "haar" (defined by the runtime,
+// prt/transfer_data.h).
+using prt::transfer_kind_name;
 
 }  // namespace prt::bake

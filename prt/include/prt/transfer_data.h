@@ -35,8 +35,8 @@ struct PrimitiveRange {
 
 struct TransferData {
   TransferKind kind = TransferKind::Unshadowed;
-  uint32_t order = 3;      // SH order n: n² coefficients per channel
-  uint32_t channels = 1;   // 1 (grey albedo) or 3 (RGB)
+  uint32_t order = 3;                  // SH order n: n² coefficients per channel
+  uint32_t channels = 1;               // 1 (grey albedo) or 3 (RGB)
   Precision storage = Precision::F32;  // precision of the coefficients on disk
   bool albedo_folded = true;
   uint64_t vertex_count = 0;
@@ -57,5 +57,9 @@ struct TransferData {
 
   uint32_t coefficients_per_channel() const { return order * order; }
 };
+
+// The kind's name as written in metadata and reports: "unshadowed" / "shadowed" /
+// "interreflected" / "haar" ("unknown" for a value outside the enumeration).
+const char* transfer_kind_name(TransferKind kind);
 
 }  // namespace prt

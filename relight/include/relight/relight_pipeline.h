@@ -38,6 +38,11 @@ constexpr float kGeometryTolerance = 1e-5f;
 prt::TransferData load_transfer_for_scene(const std::string& transfer_path,
                                           const bake::Scene& scene);
 
+// Throws "TRANSFER_PATH: was not baked for SCENE: problem" unless `data` (a coefficient file's
+// header and positions, SH or Haar) was baked for `scene` (prt::check_geometry).
+void check_transfer_matches_scene(const prt::TransferData& data, const std::string& transfer_path,
+                                  const bake::Scene& scene);
+
 struct LightingOptions {
   std::array<double, 3> yaw_pitch_roll_deg{0.0, 0.0, 0.0};  // --rotate
   sh::Window window = sh::Window::None;
@@ -96,6 +101,10 @@ struct RelightSummary {
   std::string window_note, layout_note;
   std::vector<std::string> files_written;
 };
+
+// Checks the request's outputs before any work is done: the image is .exr, .hdr or .png, the
+// vertex colours .glb, every output's directory exists, and 0 ≤ turntable_frames ≤ 3600.
+void check_relight_outputs(const RelightRequest& request);
 
 RelightSummary run_relight(const RelightRequest& request);
 
