@@ -551,6 +551,7 @@ ReportResult run_report(const ReportOptions& opt) {
   {
     PlotSpec p;
     p.title = "Error against SH order: projection vs sampling";
+    p.legend = LegendCorner::BottomRight;  // the sampling curves rise into the top right
     p.x_label = "SH order n (n^2 coefficients per channel)";
     p.y_label = "relative RMS error (log)";
     p.log_y = true;
@@ -614,8 +615,9 @@ ReportResult run_report(const ReportOptions& opt) {
        << (result.ground_truth_adequate
                ? "at most 1/5 of it, so every error below is resolved."
                : "**more than 1/5 of it**: errors near " + percent(e_min) +
-                     " are inflated by ground-truth noise (they add in quadrature). Run the full "
-                     "report or a larger budget for more.")
+                     " are inflated by ground-truth noise (they add in quadrature)" +
+                     std::string(opt.quick ? ". Run the full report for more."
+                                           : "; raise --ground-truth-budget for more."))
        << "\n\n## Cheapest settings\n\n| target | cheapest setting | bake | relight | file | error "
           "| p99 | image |\n|---|---|---|---|---|---|---|---|\n";
     for (const auto& t : thresholds) {
