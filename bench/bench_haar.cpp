@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
+#include <string>
 #include <vector>
 
 #include "prt/haar_approximation.h"
@@ -71,8 +72,11 @@ prt::SparseLighting make_lighting(int64_t terms) {
   return prt::select_nonlinear(*prt::transform_cube(cube), terms);
 }
 
+// Arg 0: uniform / coarse_dense data; arg 1: 0 = HaarRelighter::shade (vertex-blocked, dense
+// columns), 1 = prt::shade_index_lists (the plain per-index list walk it replaced).
 void BM_HaarRelight(benchmark::State& state) {
   const bool coarse_dense = state.range(0) != 0;
+  const bool lists = state.range(1) != 0;
   static const prt::HaarRelighter* relighters[2] = {nullptr, nullptr};
   if (!relighters[coarse_dense]) {
     relighters[coarse_dense] = new prt::HaarRelighter(make_synthetic_transfer(coarse_dense));
@@ -84,19 +88,28 @@ void BM_HaarRelight(benchmark::State& state) {
     touched += relighter.transfer().offsets[i + 1] - relighter.transfer().offsets[i];
   std::vector<float> out(3 * kVertices);
   for (auto _ : state) {
-    if (!relighter.shade(lighting, out.data()).ok()) state.SkipWithError("shade failed");
+    const prt::Status s = lists ? prt::shade_index_lists(relighter.transfer(), lighting, out.data())
+                                : relighter.shade(lighting, out.data());
+    if (!s.ok()) state.SkipWithError("shade failed");
     benchmark::DoNotOptimize(out.data());
     benchmark::ClobberMemory();
   }
-  state.SetLabel(coarse_dense ? "coarse_dense" : "uniform");
+  state.SetLabel(std::string(coarse_dense ? "coarse_dense" : "uniform") +
+                 (lists ? " lists" : " blocked"));
   state.counters["entries_touched"] = static_cast<double>(touched);
   state.counters["entries_stored"] = static_cast<double>(relighter.transfer().entry_count());
   state.counters["stored_MB"] = static_cast<double>(relighter.transfer().stored_bytes()) / 1e6;
+  state.counters["blocked_MB"] = static_cast<double>(relighter.blocked_bytes()) / 1e6;
   state.counters["dense_MB"] = static_cast<double>(relighter.transfer().dense_bytes()) / 1e6;
   state.counters["entries/s"] = benchmark::Counter(static_cast<double>(touched),
                                                    benchmark::Counter::kIsIterationInvariantRate);
 }
-BENCHMARK(BM_HaarRelight)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_HaarRelight)
+    ->Args({0, 0})
+    ->Args({0, 1})
+    ->Args({1, 0})
+    ->Args({1, 1})
+    ->Unit(benchmark::kMillisecond);
 
 prt::CubeMap make_random_cube(int n) {
   prt::CubeMap cube = prt::make_black_cube_map(n);

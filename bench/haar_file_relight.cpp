@@ -4,16 +4,21 @@
 // Either bakes the scene (shadowed, N = 32, colour albedo, 16-bit, relative threshold T),
 // writes it with prt::write_haar_transfer_file and reads it back, or reads an existing file
 // (--file). Then: the K-term non-linear lighting of the HDR (prt::relight::project_haar_lighting,
-// identity rotation), the thread pinned to CPU 0 (sched_setaffinity), and HaarRelighter::shade
-// repeated R times; prints the median wall and thread-CPU time per relight, the list entries the
-// lighting touches and the file's size.
+// identity rotation), the thread pinned to one CPU (the first one it may run on, so
+// `taskset -c 1` picks CPU 1), and, alternating in the same run, R relights with
+// prt::shade_index_lists (the plain per-index list walk: "before") and with
+// HaarRelighter::shade (vertex-blocked, dense columns: "after"); prints the median wall and
+// thread-CPU time per relight of each, their largest difference, the list entries the lighting
+// touches and the file's size.
 // Usage: haar_file_relight [--mesh OBJ] [--hdr HDR] [--threshold T] [--bits 8|16]
 //                          [--albedo R,G,B] [--file PRT] [--out PRT] [--repeat R] [--terms K]
+//                          [--block B] [--dense F]   (HaarRelighterLayout)
 #include <sched.h>
 #include <time.h>
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <stdexcept>
@@ -48,9 +53,22 @@ int main(int argc, char** argv) {
   std::string file, out = "/tmp/haar_file_relight.prt";
   double threshold = 1e-3, albedo[3] = {0.6, 0.5, 0.4};
   int bits = 16, repeat = 50, terms = 200;
-  for (int i = 1; i + 1 < argc; i += 2) {
-    const std::string a = argv[i], v = argv[i + 1];
-    if (a == "--mesh")
+  prt::HaarRelighterLayout layout;
+  for (int i = 1; i < argc; i += 2) {
+    const std::string a = argv[i];
+    if (a == "--help" || a == "-h" || i + 1 >= argc) {
+      std::printf(
+          "usage: haar_file_relight [--mesh OBJ] [--hdr HDR] [--threshold T] [--bits 8|16]\n"
+          "  [--albedo R,G,B] [--file PRT] [--out PRT] [--repeat R] [--terms K] [--block B]\n"
+          "  [--dense F]\n");
+      return a == "--help" || a == "-h" ? 0 : 2;
+    }
+    const std::string v = argv[i + 1];
+    if (a == "--block")
+      layout.block_vertices = std::atoi(v.c_str());
+    else if (a == "--dense")
+      layout.dense_fraction = std::atof(v.c_str());
+    else if (a == "--mesh")
       mesh = v;
     else if (a == "--hdr")
       hdr = v;
@@ -114,28 +132,61 @@ int main(int argc, char** argv) {
 
     cpu_set_t set;
     CPU_ZERO(&set);
-    CPU_SET(0, &set);
+    if (sched_getaffinity(0, sizeof set, &set) != 0) std::perror("sched_getaffinity");
+    int cpu = 0;
+    while (cpu < CPU_SETSIZE && !CPU_ISSET(cpu, &set)) ++cpu;
+    CPU_ZERO(&set);
+    CPU_SET(cpu, &set);
     if (sched_setaffinity(0, sizeof set, &set) != 0) std::perror("sched_setaffinity");
-    const prt::HaarRelighter relighter(std::move(f->transfer));
-    std::vector<float> rgb(3 * static_cast<std::size_t>(relighter.vertex_count()));
-    if (!relighter.shade(lighting, rgb.data()).ok()) throw std::runtime_error("shade failed");
-    std::vector<double> wall, cpu;
+    const double build0 = thread_cpu_seconds();
+    const prt::HaarRelighter relighter(std::move(f->transfer), layout);
+    const double build_seconds = thread_cpu_seconds() - build0;
+    const prt::HaarTransfer& tr = relighter.transfer();
+    std::printf(
+        "blocked layout: %d vertices/block, dense fraction %.2f: %.0f B/vertex, %llu dense "
+        "slices holding %llu entries (incl. zero padding; %llu entries in the lists), built in "
+        "%.2f s CPU\n",
+        relighter.layout().block_vertices, relighter.layout().dense_fraction,
+        double(relighter.blocked_bytes()) / V,
+        static_cast<unsigned long long>(relighter.dense_slice_count()),
+        static_cast<unsigned long long>(relighter.dense_entry_count()),
+        static_cast<unsigned long long>(tr.entry_count()), build_seconds);
+    const std::size_t n = 3 * static_cast<std::size_t>(relighter.vertex_count());
+    std::vector<float> before(n), after(n);
+    if (!prt::shade_index_lists(tr, lighting, before.data()).ok() ||
+        !relighter.shade(lighting, after.data()).ok())
+      throw std::runtime_error("shade failed");
+    double max_diff = 0.0, max_value = 0.0;
+    for (std::size_t j = 0; j < n; ++j) {
+      max_diff = std::max(max_diff, double(std::fabs(before[j] - after[j])));
+      max_value = std::max(max_value, double(std::fabs(before[j])));
+    }
+    std::vector<double> wall[2], cpu_time[2];
     for (int r = 0; r < repeat; ++r) {
-      const auto w0 = std::chrono::steady_clock::now();
-      const double c0 = thread_cpu_seconds();
-      if (!relighter.shade(lighting, rgb.data()).ok()) throw std::runtime_error("shade failed");
-      cpu.push_back(thread_cpu_seconds() - c0);
-      wall.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - w0).count());
+      for (int which = 0; which < 2; ++which) {
+        const auto w0 = std::chrono::steady_clock::now();
+        const double c0 = thread_cpu_seconds();
+        const bool ok = which == 0 ? prt::shade_index_lists(tr, lighting, before.data()).ok()
+                                   : relighter.shade(lighting, after.data()).ok();
+        if (!ok) throw std::runtime_error("shade failed");
+        cpu_time[which].push_back(thread_cpu_seconds() - c0);
+        wall[which].push_back(
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - w0).count());
+      }
     }
     std::printf(
-        "relight K = %zu non-linear, RGB, one core: median %.3f ms wall, %.3f ms CPU "
-        "(min %.3f / %.3f) over %d runs; %llu list entries touched (%.2f%% of %llu)\n",
-        lighting.term_count(), 1e3 * median(wall), 1e3 * median(cpu),
-        1e3 * *std::min_element(wall.begin(), wall.end()),
-        1e3 * *std::min_element(cpu.begin(), cpu.end()), repeat,
-        static_cast<unsigned long long>(touched),
-        100.0 * double(touched) / double(relighter.transfer().entry_count()),
-        static_cast<unsigned long long>(relighter.transfer().entry_count()));
+        "relight K = %zu non-linear, RGB, CPU %d; %llu list entries touched (%.2f%% of "
+        "%llu); max |after - before| = %.3g (largest value %.3g)\n",
+        lighting.term_count(), cpu, static_cast<unsigned long long>(touched),
+        100.0 * double(touched) / double(tr.entry_count()),
+        static_cast<unsigned long long>(tr.entry_count()), max_diff, max_value);
+    const char* names[2] = {"before (shade_index_lists)", "after  (HaarRelighter::shade)"};
+    for (int which = 0; which < 2; ++which) {
+      std::printf("  %s: median %.3f ms CPU, %.3f ms wall (min %.3f / %.3f) over %d runs\n",
+                  names[which], 1e3 * median(cpu_time[which]), 1e3 * median(wall[which]),
+                  1e3 * *std::min_element(cpu_time[which].begin(), cpu_time[which].end()),
+                  1e3 * *std::min_element(wall[which].begin(), wall[which].end()), repeat);
+    }
   } catch (const std::exception& e) {
     std::fprintf(stderr, "haar_file_relight: %s\n", e.what());
     return 1;

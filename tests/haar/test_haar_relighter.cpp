@@ -203,3 +203,141 @@ TEST_CASE("Shading rejects mismatched lighting", "[haar][relighter]") {
   bad_index.rgb = {1, 1, 1};
   CHECK_FALSE(relighter.shade(bad_index, out.data()).ok());
 }
+
+namespace {
+
+// Random sparse wavelet-domain transfer with every kind of slice the blocked layout meets:
+// indices every vertex keeps (i mod 48 < 3: dense columns), indices 95% / 60% of vertices keep
+// (dense or sparse depending on dense_fraction and the block), 5% elsewhere, and every 101st
+// vertex empty (step 0). Per-vertex scales span 10^±2 so the quantisation steps differ.
+// Returns the transfer and, in `dense_wavelet`, the dequantised coefficients the transfer
+// really holds (vertex-major, 6N²·channels), for an independent reference.
+prt::HaarTransfer random_sparse_transfer(int n, int channels, int64_t vertices,
+                                         prt::HaarQuantization q, uint32_t seed,
+                                         std::vector<float>* dense_wavelet) {
+  const uint32_t count = 6u * n * n;
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f), sym(-1.0f, 1.0f), expo(-2.0f, 2.0f);
+  prt::HaarTransferBuilder builder(n, channels, q);
+  for (int64_t v = 0; v < vertices; ++v) {
+    prt::SparseVertexTransfer sv;
+    const float scale = std::pow(10.0f, expo(rng));
+    for (uint32_t i = 0; i < count && v % 101 != 0; ++i) {
+      const uint32_t kind = i % 48;
+      const float keep = kind < 3 ? 1.0f : kind == 5 ? 0.95f : kind == 7 ? 0.6f : 0.05f;
+      if (unit(rng) >= keep) continue;
+      sv.index.push_back(i);
+      for (int c = 0; c < channels; ++c) sv.values.push_back(scale * sym(rng));
+    }
+    REQUIRE(builder.add_vertex(sv).ok());
+  }
+  prt::Result<prt::HaarTransfer> t = builder.finish();
+  REQUIRE(t.ok());
+  dense_wavelet->assign(static_cast<size_t>(vertices) * count * channels, 0.0f);
+  for (uint32_t i = 0; i < count; ++i)
+    for (uint64_t e = t->offsets[i]; e < t->offsets[i + 1]; ++e)
+      for (int c = 0; c < channels; ++c)
+        (*dense_wavelet)[(static_cast<size_t>(t->vertices[e]) * count + i) * channels + c] =
+            t->dequantized_value(e, c);
+  return std::move(*t);
+}
+
+}  // namespace
+
+TEST_CASE("The blocked relighter equals the list walk and the dense reference",
+          "[haar][relighter]") {
+  // 2053 vertices: not a multiple of any block size below (2053 = 293·7 + 2 = 32·64 + 5 =
+  // 2·1024 + 5), so every layout has a short last block.
+  const int n = 8;
+  const int64_t vertices = 2053;
+  const size_t count = 6 * n * n;
+  // Lighting: random sky plus a one-texel sun, K = 60 non-linear terms, and one term forced to
+  // zero (the relighter skips those).
+  prt::CubeMap sky = random_lighting(n, 11);
+  sky.rgb[3 * 100] = sky.rgb[3 * 100 + 1] = sky.rgb[3 * 100 + 2] = 3000.0f;
+  prt::SparseLighting lighting = prt::select_nonlinear(*prt::transform_cube(sky), 60);
+  REQUIRE(lighting.term_count() == 60);
+  lighting.rgb[3 * 7] = lighting.rgb[3 * 7 + 1] = lighting.rgb[3 * 7 + 2] = 0.0f;
+  // The texel-domain lighting these K terms stand for (for shade_dense_reference).
+  prt::WaveletCube kept{n, std::vector<float>(3 * count, 0.0f)};
+  for (size_t k = 0; k < lighting.term_count(); ++k)
+    for (int c = 0; c < 3; ++c) kept.rgb[3 * lighting.index[k] + c] = lighting.rgb[3 * k + c];
+  const prt::CubeMap kept_texels = *prt::inverse_transform_cube(kept);
+
+  for (int channels : {1, 3}) {
+    for (prt::HaarQuantization q : {prt::HaarQuantization::Float32, prt::HaarQuantization::Bits16,
+                                    prt::HaarQuantization::Bits8}) {
+      std::vector<float> wavelet;
+      const prt::HaarTransfer transfer =
+          random_sparse_transfer(n, channels, vertices, q, 40 + channels, &wavelet);
+      // Independent reference: the dequantised transfer back in the texel domain, summed in
+      // double against the texel-domain lighting.
+      std::vector<float> texels = wavelet;
+      for (int64_t v = 0; v < vertices; ++v)
+        for (int face = 0; face < 6; ++face)
+          for (int c = 0; c < channels; ++c)
+            prt::inverse_haar_2d(texels.data() + (v * count + face * n * n) * channels + c, n,
+                                 channels);
+      std::vector<double> reference(3 * vertices);
+      REQUIRE(prt::shade_dense_reference(texels.data(), vertices, n, channels, kept_texels,
+                                         reference.data())
+                  .ok());
+      // Per-vertex magnitude scale Σ_k |T̂_v,k|·|L̂_k| (double) for the tolerances.
+      std::vector<double> scale(3 * vertices, 0.0);
+      for (int64_t v = 0; v < vertices; ++v)
+        for (size_t k = 0; k < lighting.term_count(); ++k)
+          for (int c = 0; c < 3; ++c)
+            scale[3 * v + c] += std::fabs(
+                double(
+                    wavelet[(v * count + lighting.index[k]) * channels + (channels == 1 ? 0 : c)]) *
+                double(lighting.rgb[3 * k + c]));
+      std::vector<float> lists(3 * vertices);
+      REQUIRE(prt::shade_index_lists(transfer, lighting, lists.data()).ok());
+
+      for (int block : {1, 7, 64, 1024, 65536}) {
+        for (double dense : {0.0, 0.5, 0.9, 2.0}) {
+          const prt::HaarRelighter relighter(transfer, prt::HaarRelighterLayout{block, dense});
+          // The data really exercises both paths: fraction 2 never stores a dense column,
+          // fraction ≤ 0.9 always does (the i mod 48 < 3 columns are full), and fraction 0
+          // stores every non-empty slice densely.
+          if (dense > 1.0) {
+            REQUIRE(relighter.dense_slice_count() == 0);
+          } else {
+            REQUIRE(relighter.dense_slice_count() > 0);
+          }
+          std::vector<float> fast(3 * vertices, -1.0f);
+          REQUIRE(relighter.shade(lighting, fast.data()).ok());
+          for (int64_t j = 0; j < 3 * vertices; ++j) {
+            INFO("channels " << channels << ", bits " << static_cast<int>(q) << ", block " << block
+                             << ", dense fraction " << dense << ", value " << j);
+            // Same products, same per-vertex order as the list walk: equal up to float
+            // rounding (in practice bit for bit); 1e-6 of the magnitude scale allows a few
+            // ulps of reassociation should a compiler fuse multiply-adds differently.
+            REQUIRE(std::fabs(fast[j] - lists[j]) <= 1e-6 * scale[j]);
+            // Against the double texel sum: the float sum of ≤ 60 terms (≤ 60·2⁻²⁴ ≈ 3.6e-6
+            // of the scale) plus the float inverse transforms of transfer and lighting (three
+            // levels at N = 8, a few 2⁻²⁴ each, relative to the same magnitudes): 2e-5 of the
+            // scale leaves a margin of ~3.
+            REQUIRE(std::fabs(fast[j] - reference[j]) <= 2e-5 * scale[j] + 1e-30);
+          }
+        }
+      }
+    }
+  }
+}
+
+TEST_CASE("Shading refuses a transfer whose lists are inconsistent", "[haar][relighter]") {
+  std::vector<float> wavelet;
+  prt::HaarTransfer transfer =
+      random_sparse_transfer(8, 3, 50, prt::HaarQuantization::Bits16, 3, &wavelet);
+  REQUIRE(transfer.entry_count() > 0);
+  transfer.vertices[0] = 50;  // out of range
+  const prt::HaarRelighter relighter(transfer);
+  prt::SparseLighting one;
+  one.size = 8;
+  one.index = {0};
+  one.rgb = {1, 1, 1};
+  std::vector<float> out(150, 5.0f);
+  CHECK_FALSE(relighter.shade(one, out.data()).ok());
+  CHECK(out == std::vector<float>(150, 0.0f));
+}
