@@ -27,7 +27,7 @@ if [ "$ALL" = 1 ]; then
   regex='.*'
 else
   cmake --build "$BUILD_DIR" --target "${SHORT_TARGETS[@]}" -j"$JOBS"
-  regex="^($(IFS='|'; echo "${SHORT_TARGETS[*]}")): "
+  regex="^($(IFS='|'; echo "${SHORT_TARGETS[*]}")):"  # ctest names are "target:case"
 fi
 built=$(date +%s)
 
