@@ -24,8 +24,8 @@
 #include <vector>
 
 #include "bake/haar_baker.h"
-#include "bake/procedural_mesh.h"
 #include "bake/scene_loader.h"
+#include "haar_bench_scene.h"
 #include "prt/haar_relighter.h"
 #include "prt/haar_transform.h"
 #include "relight/image_io.h"
@@ -46,19 +46,6 @@ double relative_rms(const std::vector<float>& b, const std::vector<float>& ref) 
   return r2 > 0 ? std::sqrt(e2 / r2) : 0.0;
 }
 
-sh::EnvMap make_area_light() {
-  // As bench/haar_vs_sh.cpp: dim sky 0.05 and a 16×12-texel patch of radiance 200.
-  sh::EnvMap env;
-  env.layout = sh::EnvLayout::LatLong;
-  env.width = 512;
-  env.height = 256;
-  env.rgb.assign(3 * 512 * 256, 0.05f);
-  for (int y = 50; y < 62; ++y)
-    for (int x = 160; x < 176; ++x)
-      for (int c = 0; c < 3; ++c) env.rgb[3 * (y * 512 + x) + c] = 200.f;
-  return env;
-}
-
 struct Setting {
   const char* mode;  // "threshold" or "top-M"
   double threshold;
@@ -72,14 +59,7 @@ int main(int argc, char** argv) {
   const std::string data = argc > 1 ? argv[1] : PRT_SHARED_DATA_DIR;
   const std::string out_dir = argc > 2 ? argv[2] : ".";
   try {
-    prt::bake::Scene scene = prt::bake::load_scene(data + "/meshes/bunny_small.obj");
-    const glm::vec3 lo = scene.bounds_min(), hi = scene.bounds_max();
-    const float ext = std::max(hi.x - lo.x, hi.z - lo.z);
-    const glm::vec3 c = 0.5f * (lo + hi);
-    prt::bake::append_scene(
-        scene, prt::bake::make_quad({c.x - ext, lo.y, c.z + ext}, {2 * ext, 0, 0}, {0, 0, -2 * ext},
-                                    40, 40, glm::vec3(0.8f), "ground"));
-    for (glm::vec3& a : scene.albedo) a = glm::vec3(0.8f);
+    prt::bake::Scene scene = prt::bench::make_bunny_on_plane(data);
     const std::size_t V = scene.vertex_count();
 
     prt::bake::HaarBakeOptions o;
@@ -95,10 +75,7 @@ int main(int argc, char** argv) {
 
     // Per-vertex wavelet coefficients (vertex-major), to re-truncate.
     const std::size_t W = std::size_t(6) * kCube * kCube;
-    std::vector<float> coeffs(V * W, 0.f);
-    for (std::size_t i = 0; i < W; ++i)
-      for (uint64_t e = full.offsets[i]; e < full.offsets[i + 1]; ++e)
-        coeffs[full.vertices[e] * W + i] = full.values_f32[e];
+    const std::vector<float> coeffs = prt::bench::dense_wavelet_coefficients(full, V, kCube);
 
     struct Light {
       std::string name;
@@ -109,7 +86,7 @@ int main(int argc, char** argv) {
     const sh::EnvMap park = prt::relight::read_environment(data + "/hdri/rooitou_park_1k.hdr",
                                                            sh::EnvLayout::LatLong, nullptr);
     for (auto& [name, env] : std::vector<std::pair<std::string, sh::EnvMap>>{
-             {"park", park}, {"area light", make_area_light()}}) {
+             {"park", park}, {"area light", prt::bench::make_area_light()}}) {
       prt::Result<prt::CubeMap> cube = prt::resample_to_cube(env, kCube);
       if (!cube.ok()) throw std::runtime_error(cube.status().message());
       prt::Result<prt::WaveletCube> w = prt::transform_cube(*cube);

@@ -32,8 +32,8 @@
 #include <tbb/parallel_for.h>
 
 #include "bake/haar_baker.h"
-#include "bake/procedural_mesh.h"
 #include "bake/scene_loader.h"
+#include "haar_bench_scene.h"
 #include "prt/haar_relighter.h"
 #include "prt/haar_transform.h"
 #include "relight/image_io.h"
@@ -72,20 +72,6 @@ Errors compare(const std::vector<float>& b, const std::vector<float>& ref,
   return {std::sqrt(e2 / r2), emax / rmax, std::sqrt((e2 + ge2) / (r2 + gr2))};
 }
 
-sh::EnvMap make_area_light() {
-  // A 512×256 lat-long map: dim uniform sky 0.05 and a 16×12-texel rectangle of radiance 200
-  // at 40° elevation toward −Z+X (about 0.2% of the sphere): a small, bright area light.
-  sh::EnvMap env;
-  env.layout = sh::EnvLayout::LatLong;
-  env.width = 512;
-  env.height = 256;
-  env.rgb.assign(3 * 512 * 256, 0.05f);
-  for (int y = 50; y < 62; ++y)
-    for (int x = 160; x < 176; ++x)
-      for (int c = 0; c < 3; ++c) env.rgb[3 * (y * 512 + x) + c] = 200.f;
-  return env;
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -94,14 +80,7 @@ int main(int argc, char** argv) {
   const auto t0 = std::chrono::steady_clock::now();
   try {
     // Scene: the bunny on a ground plane.
-    prt::bake::Scene scene = prt::bake::load_scene(data + "/meshes/bunny_small.obj");
-    const glm::vec3 lo = scene.bounds_min(), hi = scene.bounds_max();
-    const float ext = std::max(hi.x - lo.x, hi.z - lo.z);
-    const glm::vec3 c = 0.5f * (lo + hi);
-    prt::bake::append_scene(
-        scene, prt::bake::make_quad({c.x - ext, lo.y, c.z + ext}, {2 * ext, 0, 0}, {0, 0, -2 * ext},
-                                    40, 40, glm::vec3(0.8f), "ground"));
-    for (glm::vec3& a : scene.albedo) a = glm::vec3(0.8f);
+    prt::bake::Scene scene = prt::bench::make_bunny_on_plane(data);
     const std::size_t V = scene.vertex_count();
     std::set<std::pair<uint32_t, uint32_t>> edge_set;
     for (const glm::uvec3& t : scene.triangles)
@@ -123,10 +102,7 @@ int main(int argc, char** argv) {
 
     // Dense transfer per vertex (wavelet → texel domain), for the SH projection.
     const std::size_t W = std::size_t(6) * kCube * kCube;
-    std::vector<float> dense(V * W, 0.f);
-    for (std::size_t i = 0; i < W; ++i)
-      for (uint64_t e = transfer.offsets[i]; e < transfer.offsets[i + 1]; ++e)
-        dense[transfer.vertices[e] * W + i] = transfer.values_f32[e];
+    std::vector<float> dense = prt::bench::dense_wavelet_coefficients(transfer, V, kCube);
     tbb::parallel_for(std::size_t(0), V, [&](std::size_t v) {
       for (int f = 0; f < 6; ++f)
         prt::inverse_haar_2d(dense.data() + v * W + f * kCube * kCube, kCube);
@@ -168,7 +144,7 @@ int main(int argc, char** argv) {
     lights.push_back(
         {"park (rooitou, sun)", prt::relight::read_environment(data + "/hdri/rooitou_park_1k.hdr",
                                                                sh::EnvLayout::LatLong, nullptr)});
-    lights.push_back({"small area light", make_area_light()});
+    lights.push_back({"small area light", prt::bench::make_area_light()});
 
     std::ofstream csv_tmp;
     std::string csv = "light,method,terms,l2,max,h1\n";

@@ -144,11 +144,17 @@ Status ShLighting::rotate(const std::array<double, 9>& m) {
                          "), not a rotation");
   }
   try {
-    const sh::Rotation rotation(order_, m);
     std::vector<double> rotated(values_.size());
     const std::size_t n = coefficient_count();
-    for (int c = 0; c < kChannels; ++c)
-      rotation.apply(values_.data() + c * n, rotated.data() + c * n);
+    if (order_ <= sh::kFastRotateOrder) {
+      // zxzxz path: no band matrices to build, cheaper than build + 3 applies at these orders.
+      for (int c = 0; c < kChannels; ++c)
+        sh::rotate_coefficients(order_, m, values_.data() + c * n, rotated.data() + c * n);
+    } else {
+      const sh::Rotation rotation(order_, m);
+      for (int c = 0; c < kChannels; ++c)
+        rotation.apply(values_.data() + c * n, rotated.data() + c * n);
+    }
     values_.swap(rotated);
     refresh_float_copy();
   } catch (const std::bad_alloc&) {
