@@ -108,12 +108,14 @@ void run_auto(const BakeArguments& args, const bake::Scene& scene, const bake::B
   const bake::BakeStatistics& st = result.bake.stats;
   std::printf(
       "prt bake --auto %s: %s transfer, order %d, %u channel%s; %llu rays in %.2f s "
-      "(total %.2f s); predicted error %.3g (truncation %.3g, sampling %.3g; tolerance "
-      "%.3g)\n",
+      "(total %.2f s); predicted error %.3g (truncation %.3g, skipped vertices <= %.3g, "
+      "sampling %.3g; tolerance %.3g; excludes the mesh's interpolation of interreflected "
+      "light)\n",
       args.scene.c_str(), bake::transfer_kind_name(r.stored_kind), r.order,
       result.bake.data.channels, result.bake.data.channels == 1 ? "" : "s",
       static_cast<unsigned long long>(st.rays), st.seconds_rays, st.seconds_total,
-      r.predicted_error, r.predicted_truncation_error, r.predicted_sampling_error, o.tolerance);
+      r.predicted_error, r.predicted_truncation_error, r.predicted_skip_error,
+      r.predicted_sampling_error, o.tolerance);
   for (const std::string& line : r.left_out) std::printf("  left out: %s\n", line.c_str());
   std::printf("  wrote %s\n", args.output.c_str());
 }

@@ -321,14 +321,16 @@ void GroundTruthIntegrator::add_samples_up_to(int total, ProgressSink* progress)
   std::optional<tbb::global_control> limit;
   if (impl_->options.threads > 0)
     limit.emplace(tbb::global_control::max_allowed_parallelism, impl_->options.threads);
-  const std::size_t V = impl_->scene.vertex_count();
+  const std::vector<uint32_t>& subset = impl_->options.vertices;
+  const std::size_t V = subset.empty() ? impl_->scene.vertex_count() : subset.size();
   const int first = samples_;
   if (progress) progress->start("ground truth " + std::to_string(total) + " samples/vertex", V);
   std::atomic<uint64_t> pass_rays{0};
   tbb::parallel_for(std::size_t(0), (V + kVertexBlock - 1) / kVertexBlock, [&](std::size_t blk) {
     const std::size_t begin = blk * kVertexBlock, end = std::min(V, begin + kVertexBlock);
     uint64_t block_rays = 0;
-    for (std::size_t v = begin; v < end; ++v) {
+    for (std::size_t i_v = begin; i_v < end; ++i_v) {
+      const std::size_t v = subset.empty() ? i_v : subset[i_v];
       double s[3] = {0, 0, 0}, s2[3] = {0, 0, 0};
       for (int i = first; i < total; ++i) {
         double x[3];

@@ -38,6 +38,7 @@
 #include "bake/interreflection_solver.h"
 #include "bake/progress.h"
 #include "bake/ray_caster.h"
+#include "bake/sample_allocation.h"
 #include "bake/sampling.h"
 #include "sh/basis.h"
 #include "sh/zonal.h"
@@ -54,11 +55,19 @@ constexpr double kPi = 3.14159265358979323846;
 constexpr double kY00 = 0.28209479177387814;  // 1 / (2√π)
 constexpr int kMaxAdaptiveBounces = 200;      // then BiCGSTAB finishes the solve
 constexpr std::size_t kVertexBlock = 64;      // vertices per parallel task (fixed: determinism)
+constexpr uint64_t kReplicaSalt = 0x5245504c49434131ull;  // seeds the second adaptive replica
+constexpr std::size_t kAuditStride = 8;           // every 8th sampled vertex audits the error model
+constexpr std::size_t kMinAuditVertices = 64;     // fewer sampled vertices than 8 × 64: all audit
+constexpr double kMinCalibration2 = 0.05 * 0.05;  // c is never taken below 0.05
 constexpr const char* kBasisConvention =
     "real orthonormal SH, no Condon-Shortley phase, index k = l(l+1)+m, Y(x,y,z) with polar "
     "axis +z, scene frame glTF (+Y up)";
 
 using Clock = std::chrono::steady_clock;
+
+int round_up(int n, int multiple) {
+  return (n + multiple - 1) / multiple * multiple;
+}
 
 double seconds_since(Clock::time_point t) {
   return std::chrono::duration<double>(Clock::now() - t).count();
@@ -100,6 +109,38 @@ struct VertexSums {
   std::vector<float> ao;              // V
   std::vector<float> bent;            // 3V
 };
+
+// Appends the hit triangle's vertices, weighted by barycentrics, to a row being gathered; false
+// (nothing added) when the ray sees the back side: the flat facet's geometric normal, oriented
+// by the triangle's vertex normals (hit_side.h). A back face occludes only.
+bool gather_front_hit(const Scene& scene, const RayCaster::Hit& hit, const glm::vec3& dir,
+                      std::vector<std::pair<uint32_t, float>>& gathered) {
+  if (!detail::ray_hits_front_side(scene, hit.triangle, dir)) return false;
+  const glm::uvec3 tri = scene.triangles[hit.triangle];
+  const float b0 = 1.f - hit.u - hit.v, b1 = hit.u, b2 = hit.v;
+  gathered.emplace_back(tri.x, b0);
+  gathered.emplace_back(tri.y, b1);
+  gathered.emplace_back(tri.z, b2);
+  return true;
+}
+
+// Merges duplicate columns of the gathered entries into one row of H, scaled by row_scale.
+void append_row(std::vector<std::pair<uint32_t, float>>& gathered, double row_scale,
+                BlockRows& br) {
+  std::sort(gathered.begin(), gathered.end(),
+            [](const auto& a, const auto& b) { return a.first < b.first; });
+  uint32_t len = 0;
+  for (std::size_t i = 0; i < gathered.size();) {
+    const uint32_t col = gathered[i].first;
+    double w = 0.0;
+    for (; i < gathered.size() && gathered[i].first == col; ++i) w += gathered[i].second;
+    if (w <= 0.0) continue;
+    br.columns.push_back(col);
+    br.weights.push_back(static_cast<float>(w * row_scale));
+    ++len;
+  }
+  br.lengths.push_back(len);
+}
 
 double max_abs(const std::vector<double>& x) {
   double m = 0.0;
@@ -168,8 +209,8 @@ void validate_bake_inputs(const Scene& scene, const BakeOptions& o) {
     if (a.min_samples < 1 || a.max_samples < a.min_samples || a.max_samples > kMaxBakeSamples)
       throw BakeError(name + ": adaptive sample range [" + std::to_string(a.min_samples) + ", " +
                       std::to_string(a.max_samples) + "] is invalid");
-    if (!(a.standard_error > 0.0) || !std::isfinite(a.standard_error))
-      throw BakeError(name + ": adaptive standard error target must be > 0");
+    if (!(a.rms_error > 0.0) || !std::isfinite(a.rms_error))
+      throw BakeError(name + ": adaptive RMS error target must be > 0");
     if (!(a.bounce_tolerance > 0.0) || !(a.bounce_tolerance < 1.0))
       throw BakeError(name + ": adaptive bounce tolerance must be in (0, 1)");
     if (!a.vertex_mode.empty() && a.vertex_mode.size() != scene.positions.size())
@@ -317,22 +358,90 @@ BakeResult bake_transfer(const Scene& scene, const BakeOptions& options, Progres
     const float tfar = std::numeric_limits<float>::infinity();
     const double inv_n = 1.0 / N;
 
-    // Adaptive sampling of one vertex (see transfer_baker.h); returns the rays cast.
-    const int min_n = round_up_to_packet(ad.min_samples);
-    const int max_n = std::max(min_n, round_up_to_packet(ad.max_samples));
-    const int light_order = std::min(ad.lighting_order, 6);  // w(ω): low-order luminance
-    const int eval_order = std::max(order, light_order);
+    // Adaptive sampling (see transfer_baker.h): phase 1 casts min_samples rays per sampled
+    // vertex, then rounds of Neyman allocation (bake/sample_allocation.h) add rays until the
+    // calibrated error model meets the budget. Audit vertices (every kAuditStride-th sampled
+    // vertex) draw from two independently scrambled sequences in alternate packets; the others
+    // from the one sequence of the fixed recipe. Hits are gathered into H in every round.
+    const int pair = 2 * kPacketSize;
+    const int min_n = round_up(std::max(ad.min_samples, pair), pair);
+    const int max_n = std::max(min_n, round_up(ad.max_samples, pair));
+    // w(ω): the lighting's luminance up to the transfer's order (higher bands cannot reach the
+    // exit radiance Σ_k T_k L_k).
+    const int light_order = std::min(ad.lighting_order, order);
+    const int eval_order = order;
     const int eval_k = eval_order * eval_order;
     const double light_mean = light_order > 0 ? ad.lighting[0] * kY00 : 0.0;
     const bool weighted = light_order > 0 && light_mean > 0.0;
+    const uint64_t replica_seed[2] = {options.seed, hash_seed(options.seed, kReplicaSalt)};
+    struct VertexState {
+      double sum_x[2] = {0.0, 0.0};  // per replica (audit) or all in [0]: Σ x_s
+      double sum_x2 = 0.0;           // x_s = (1 − V(ω_s))·w(ω_s)
+      uint32_t used = 0, visible = 0, occluded = 0;
+      bool audit = false;
+      glm::dvec3 bent{0.0};
+    };
+    std::vector<VertexState> state(adaptive ? V : 0);
+    // Σ (1 − V) Y_k of each sampled vertex, at its slot (sampled vertices only: a pilot bake
+    // samples a few hundred vertices of a large scene at a high order).
+    std::vector<std::size_t> slot(adaptive ? V : 0);
+    std::size_t slots = 0;
+    for (std::size_t v = 0; v < slot.size(); ++v)
+      if (mode_of(v) == kSampleVertex) slot[v] = slots++;
+    const std::size_t audit_stride = slots >= kMinAuditVertices * kAuditStride ? kAuditStride : 1;
+    for (std::size_t v = 0; v < slot.size(); ++v)
+      if (mode_of(v) == kSampleVertex) state[v].audit = slot[v] % audit_stride == 0;
+    std::vector<double> occluded_sum(slots * K);
+    // Casts packets for vertex v until it has `target` samples.
+    auto sample_vertex = [&](std::size_t v, const glm::vec3& n, int target,
+                             const auto& gather_hit) -> uint64_t {
+      VertexState& vs = state[v];
+      const glm::vec3 origin = caster.vertex_origin(static_cast<uint32_t>(v));
+      glm::vec3 dirs[kPacketSize];
+      bool occluded[kPacketSize];
+      RayCaster::Hit hits[kPacketSize];
+      std::vector<float> y(eval_k);
+      double* occ = &occluded_sum[slot[v] * K];
+      const uint32_t first = vs.used;
+      while (vs.used < static_cast<uint32_t>(target)) {
+        const int r = vs.audit ? static_cast<int>((vs.used / kPacketSize) % 2) : 0;
+        const uint32_t index = vs.audit ? vs.used / pair * kPacketSize : vs.used;
+        generate_cosine_directions(n, replica_seed[r], v, index, kPacketSize, dirs);
+        cast_packet(caster, origin, dirs, tfar, interreflect ? hits : nullptr, occluded);
+        for (int i = 0; i < kPacketSize; ++i) {
+          if (!occluded[i]) {
+            ++vs.visible;
+            vs.bent += glm::dvec3(dirs[i]);
+            continue;
+          }
+          ++vs.occluded;
+          sh::evaluate(eval_order, dirs[i].x, dirs[i].y, dirs[i].z, y.data());
+          for (int k = 0; k < K; ++k) occ[k] += static_cast<double>(y[k]);
+          double x = 1.0;
+          if (weighted) {
+            double radiance = 0.0;
+            for (int k = 0; k < light_order * light_order; ++k)
+              radiance += ad.lighting[k] * static_cast<double>(y[k]);
+            x = radiance / light_mean;
+          }
+          vs.sum_x[r] += x;
+          vs.sum_x2 += x * x;
+          if (interreflect && hits[i].hit) gather_hit(hits[i], dirs[i]);
+        }
+        vs.used += kPacketSize;
+      }
+      return vs.used - first;
+    };
+    // Phase 1 of one vertex; analytic and skipped vertices are final here. Rows of H hold
+    // unscaled sums until phase 2 has added its hits.
     auto sample_adaptively = [&](std::size_t v, const glm::vec3& n,
                                  std::vector<std::pair<uint32_t, float>>& gathered,
                                  const auto& gather_hit, const auto& emit_row) -> uint64_t {
-      std::vector<double> s(K, 0.0), occluded_sum(K, 0.0);
       gathered.clear();
       const uint8_t mode = mode_of(v);
       if (mode != kSampleVertex) {
         if (mode == kAnalyticVertex) {
+          std::vector<double> s(K);
           unshadowed(v, s.data());
           store_direct(v, s.data());
           sums.ao[v] = 1.f;
@@ -341,56 +450,9 @@ BakeResult bake_transfer(const Scene& scene, const BakeOptions& options, Progres
         if (interreflect) emit_row(0.0);
         return 0;
       }
-      const glm::vec3 origin = caster.vertex_origin(static_cast<uint32_t>(v));
-      glm::vec3 dirs[kPacketSize];
-      bool occluded[kPacketSize];
-      RayCaster::Hit hits[kPacketSize];
-      std::vector<float> y(eval_k);
-      double sum_x = 0.0, sum_x2 = 0.0, se = 0.0;
-      uint32_t visible = 0;
-      glm::dvec3 bent(0.0);
-      int used = 0;
-      while (true) {
-        generate_cosine_directions(n, options.seed, v, static_cast<uint32_t>(used), kPacketSize,
-                                   dirs);
-        cast_packet(caster, origin, dirs, tfar, interreflect ? hits : nullptr, occluded);
-        for (int i = 0; i < kPacketSize; ++i) {
-          if (!occluded[i]) {
-            ++visible;
-            bent += glm::dvec3(dirs[i]);
-            continue;
-          }
-          sh::evaluate(eval_order, dirs[i].x, dirs[i].y, dirs[i].z, y.data());
-          for (int k = 0; k < K; ++k) occluded_sum[k] += static_cast<double>(y[k]);
-          double x = 1.0;
-          if (weighted) {
-            double radiance = 0.0;
-            for (int k = 0; k < light_order * light_order; ++k)
-              radiance += ad.lighting[k] * static_cast<double>(y[k]);
-            x = radiance / light_mean;
-          }
-          sum_x += x;
-          sum_x2 += x * x;
-          if (interreflect && hits[i].hit) gather_hit(hits[i], dirs[i]);
-        }
-        used += kPacketSize;
-        const double mean = sum_x / used;
-        const double var = std::max(0.0, sum_x2 / used - mean * mean) * used / (used - 1.0);
-        se = std::sqrt(var / used);
-        if (used >= max_n || (used >= min_n && se <= ad.standard_error)) break;
-      }
-      unshadowed(v, s.data());
-      const double inv_used = 1.0 / used;
-      for (int k = 0; k < K; ++k) s[k] -= occluded_sum[k] * inv_used;  // control variate
-      store_direct(v, s.data());
-      sums.ao[v] = static_cast<float>(visible * inv_used);
-      const double bl = glm::length(bent);
-      const glm::vec3 bn = bl > 0 ? glm::vec3(bent / bl) : n;
-      for (int a = 0; a < 3; ++a) sums.bent[3 * v + a] = bn[a];
-      if (interreflect) emit_row(inv_used);
-      st.vertex_samples[v] = static_cast<uint32_t>(used);
-      st.vertex_standard_error[v] = static_cast<float>(se);
-      return static_cast<uint64_t>(used);
+      const uint64_t rays = sample_vertex(v, n, min_n, gather_hit);
+      if (interreflect) emit_row(1.0);
+      return rays;
     };
 
     tbb::parallel_for(std::size_t(0), blocks, [&](std::size_t blk) {
@@ -404,35 +466,9 @@ BakeResult bake_transfer(const Scene& scene, const BakeOptions& options, Progres
       uint64_t rays = 0;
       // The hit's vertices, weighted by barycentrics, go into this vertex's row of H.
       auto gather_hit = [&](const RayCaster::Hit& hit, const glm::vec3& dir) {
-        // The side the ray sees: the flat facet's geometric normal, oriented by the
-        // triangle's vertex normals (hit_side.h). A back face occludes only.
-        if (!detail::ray_hits_front_side(scene, hit.triangle, dir)) {
-          ++block_back_hits[blk];
-          return;
-        }
-        const glm::uvec3 tri = scene.triangles[hit.triangle];
-        const float b0 = 1.f - hit.u - hit.v, b1 = hit.u, b2 = hit.v;
-        gathered.emplace_back(tri.x, b0);
-        gathered.emplace_back(tri.y, b1);
-        gathered.emplace_back(tri.z, b2);
+        if (!gather_front_hit(scene, hit, dir, gathered)) ++block_back_hits[blk];
       };
-      // Merges duplicate columns of the gathered entries into one row of H.
-      auto emit_row = [&](double row_scale) {
-        BlockRows& br = rows[blk];
-        std::sort(gathered.begin(), gathered.end(),
-                  [](const auto& a, const auto& b) { return a.first < b.first; });
-        uint32_t len = 0;
-        for (std::size_t i = 0; i < gathered.size();) {
-          const uint32_t col = gathered[i].first;
-          double w = 0.0;
-          for (; i < gathered.size() && gathered[i].first == col; ++i) w += gathered[i].second;
-          if (w <= 0.0) continue;
-          br.columns.push_back(col);
-          br.weights.push_back(static_cast<float>(w * row_scale));
-          ++len;
-        }
-        br.lengths.push_back(len);
-      };
+      auto emit_row = [&](double row_scale) { append_row(gathered, row_scale, rows[blk]); };
       for (std::size_t v = blk * kVertexBlock; v < v_end; ++v) {
         const glm::vec3 n = glm::normalize(scene.normals[v]);
         if (adaptive) {
@@ -482,6 +518,144 @@ BakeResult bake_transfer(const Scene& scene, const BakeOptions& options, Progres
       block_rays[blk] = rays;
       if (progress) progress->advance(v_end - blk * kVertexBlock, rays);
     });
+    if (adaptive) {
+      // Allocation in units of the sky's mean radiance. Vertex v's direct exit radiance is
+      // ρ̄_v·(u_v − mean x), ρ̄ the luminance albedo. Error model: e_v² = c²·ρ̄_v²σ_v²/n_v, the
+      // i.i.d. variance (σ_v² the spread of x, floored at the Jeffreys p(1 − p),
+      // p = (occluded + ½)/(n + 1), so a vertex whose rays all escaped still owns the error of
+      // an occluder they may have missed) times c², measured on the audit vertices:
+      // E[(m₀ − m₁)²/4] = Var((m₀ + m₁)/2) for replica means m_r, so
+      // c² = Σ_audit ρ̄²(m₀ − m₁)²/4 / Σ_audit ρ̄²σ²/n — the scrambled points' gain over the
+      // i.i.d. rate, at the current counts. Budget: (rms_error)²·Σ_v (ρ̄_v b_v)², b_v the
+      // direct exit radiance over the mean (interreflection would only add to it). Each round
+      // doubles the cap (min_samples·2, ·4, … max_samples) and re-measures c; holding c while
+      // n grows within a round is conservative, as the points' error falls faster than n^-½.
+      const std::vector<double> uniform_sky{1.0 / kY00};
+      const std::vector<double>& lum = weighted ? ad.lighting : uniform_sky;
+      const int lum_k = std::min(K, weighted ? light_order * light_order : 1);
+      const double lum_mean = weighted ? light_mean : 1.0;
+      auto spread2 = [&](const VertexState& vs) {
+        const double n = vs.used, mean = (vs.sum_x[0] + vs.sum_x[1]) / n;
+        const double var = std::max(0.0, vs.sum_x2 / n - mean * mean) * n / (n - 1.0);
+        const double p = (vs.occluded + 0.5) / (n + 1.0);
+        return std::max(var, p * (1.0 - p));
+      };
+      auto luminance = [](const glm::vec3& c) {
+        return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z;
+      };
+      std::vector<double> b2_of(V, 0.0);
+      tbb::parallel_for(std::size_t(0), V, [&](std::size_t v) {
+        const uint8_t mode = mode_of(v);
+        if (mode == kSkipVertex) return;
+        std::vector<double> s(K);
+        unshadowed(v, s.data());
+        if (mode == kSampleVertex) {
+          const double inv = 1.0 / state[v].used;
+          for (int k = 0; k < K; ++k) s[k] -= occluded_sum[slot[v] * K + k] * inv;
+        }
+        double b = 0.0;
+        for (int k = 0; k < lum_k; ++k) b += s[k] * lum[k];
+        const double rho = luminance(scene.albedo[v]);
+        b2_of[v] = (rho * b / lum_mean) * (rho * b / lum_mean);
+      });
+      double b2 = 0.0;  // fixed order: deterministic
+      for (double x : b2_of) b2 += x;
+      const double budget = ad.rms_error * ad.rms_error * b2;
+      std::vector<double> a(V, 0.0);
+      std::vector<uint32_t> lo(V, 0), hi(V, 0);
+      double c2 = 1.0, model2 = 0.0;
+      // Measures c² and the calibrated error at the current counts; fills a, lo.
+      auto measure = [&] {
+        double iid_audit = 0.0, rep_audit = 0.0;
+        model2 = 0.0;
+        for (std::size_t v = 0; v < V; ++v) {
+          if (mode_of(v) != kSampleVertex) continue;
+          const VertexState& vs = state[v];
+          const double rho = luminance(scene.albedo[v]);
+          a[v] = rho * std::sqrt(spread2(vs));
+          lo[v] = vs.used;
+          model2 += a[v] * a[v] / vs.used;
+          if (!vs.audit) continue;
+          iid_audit += a[v] * a[v] / vs.used;
+          const double half = 0.5 * vs.used, d = (vs.sum_x[0] - vs.sum_x[1]) / half;
+          rep_audit += rho * rho * 0.25 * d * d;
+        }
+        c2 = iid_audit > 0.0 ? std::max(rep_audit / iid_audit, kMinCalibration2) : 1.0;
+        model2 *= c2;
+      };
+      measure();
+      std::vector<std::vector<BlockRows>> round_rows;  // per round, per block
+      for (int cap = std::min(max_n, 2 * min_n); model2 > budget; cap = std::min(max_n, 2 * cap)) {
+        for (std::size_t v = 0; v < V; ++v)
+          hi[v] = mode_of(v) == kSampleVertex ? std::max<uint32_t>(cap, state[v].used) : 0;
+        SampleAllocation alloc = allocate_samples(a, lo, hi, budget / c2, kPacketSize);
+        for (std::size_t v = 0; v < V; ++v)
+          if (state[v].audit && alloc.samples[v] > 0)
+            alloc.samples[v] = std::min<uint32_t>(round_up(alloc.samples[v], pair), hi[v]);
+        // One round: the extra rays; their hits form this round's (unscaled) rows of H.
+        std::vector<BlockRows>& round = round_rows.emplace_back(blocks);
+        tbb::parallel_for(std::size_t(0), blocks, [&](std::size_t blk) {
+          const std::size_t v_begin = blk * kVertexBlock;
+          const std::size_t v_end = std::min(V, v_begin + kVertexBlock);
+          uint64_t rays = 0;
+          std::vector<std::pair<uint32_t, float>> gathered;
+          auto gather_hit = [&](const RayCaster::Hit& hit, const glm::vec3& dir) {
+            if (!gather_front_hit(scene, hit, dir, gathered)) ++block_back_hits[blk];
+          };
+          for (std::size_t v = v_begin; v < v_end; ++v) {
+            gathered.clear();
+            if (mode_of(v) == kSampleVertex) {
+              const glm::vec3 n = glm::normalize(scene.normals[v]);
+              rays += sample_vertex(v, n, static_cast<int>(alloc.samples[v]), gather_hit);
+            }
+            if (interreflect) append_row(gathered, 1.0, round[blk]);
+          }
+          block_rays[blk] += rays;
+        });
+        st.allocation_rounds += 1;
+        measure();
+        if (cap == max_n) break;
+      }
+      st.allocation_budget_met = model2 <= budget;
+      st.qmc_calibration = std::sqrt(c2);
+      // The final transfer, and the rows of H: every round's entries merged, scaled by 1/n_v.
+      tbb::parallel_for(std::size_t(0), blocks, [&](std::size_t blk) {
+        const std::size_t v_begin = blk * kVertexBlock, v_end = std::min(V, v_begin + kVertexBlock);
+        std::vector<double> s(K);
+        std::vector<std::pair<uint32_t, float>> gathered;
+        BlockRows merged;
+        std::vector<std::size_t> offsets(1 + round_rows.size(), 0);
+        auto take = [&](const BlockRows& br, std::size_t row, std::size_t& offset) {
+          for (uint32_t i = 0; i < br.lengths[row]; ++i, ++offset)
+            gathered.emplace_back(br.columns[offset], br.weights[offset]);
+        };
+        for (std::size_t v = v_begin; v < v_end; ++v) {
+          const bool sampled = mode_of(v) == kSampleVertex;
+          const double inv = sampled ? 1.0 / state[v].used : 0.0;
+          if (interreflect) {
+            gathered.clear();
+            take(rows[blk], v - v_begin, offsets[0]);
+            for (std::size_t r = 0; r < round_rows.size(); ++r)
+              take(round_rows[r][blk], v - v_begin, offsets[1 + r]);
+            append_row(gathered, inv, merged);
+          }
+          if (!sampled) continue;
+          const VertexState& vs = state[v];
+          const glm::vec3 n = glm::normalize(scene.normals[v]);
+          unshadowed(v, s.data());
+          for (int k = 0; k < K; ++k)
+            s[k] -= occluded_sum[slot[v] * K + k] * inv;  // control variate
+          store_direct(v, s.data());
+          sums.ao[v] = static_cast<float>(vs.visible * inv);
+          const double bl = glm::length(vs.bent);
+          const glm::vec3 bn = bl > 0 ? glm::vec3(vs.bent / bl) : n;
+          for (int c = 0; c < 3; ++c) sums.bent[3 * v + c] = bn[c];
+          st.vertex_samples[v] = vs.used;
+          st.vertex_standard_error[v] = static_cast<float>(std::sqrt(c2 * spread2(vs) * inv));
+        }
+        if (interreflect) rows[blk] = std::move(merged);
+      });
+    }
     if (progress) progress->finish();
     for (uint64_t r : block_rays) st.rays += r;
     for (uint64_t b : block_back_hits) st.back_face_hits += b;
@@ -592,9 +766,13 @@ BakeResult bake_transfer(const Scene& scene, const BakeOptions& options, Progres
   if (adaptive) {
     nlohmann::json a;
     a["transfer_requested"] = transfer_kind_name(options.kind);
-    a["min_samples"] = round_up_to_packet(ad.min_samples);
-    a["max_samples"] = round_up_to_packet(std::max(ad.min_samples, ad.max_samples));
-    a["standard_error_target"] = ad.standard_error;
+    a["min_samples"] = round_up(std::max(ad.min_samples, 2 * kPacketSize), 2 * kPacketSize);
+    a["max_samples"] = round_up(std::max(ad.min_samples, ad.max_samples), 2 * kPacketSize);
+    a["audit_stride"] = 8;
+    a["allocation_rounds"] = st.allocation_rounds;
+    a["qmc_calibration"] = st.qmc_calibration;
+    a["rms_sampling_error_target"] = ad.rms_error;
+    a["allocation_budget_met"] = st.allocation_budget_met;
     a["lighting_weighted"] = ad.lighting_order > 0;
     a["analytic_vertices"] = st.analytic_vertices;
     uint64_t sampled = 0, sum = 0;

@@ -308,3 +308,31 @@ TEST_CASE("cli: the engine example computes what prt relight --csv computes") {
     CHECK(engine_rgb[c] > 0.01);  // the vertex is lit, so agreement is not 0 == 0
   }
 }
+
+TEST_CASE("cli: prt bake --auto says what it left out, and the file records it") {
+  const fs::path dir = scratch("auto");
+  const std::string scene = prt::test::project_data("demo.glb").string();
+  const std::string sky = prt::test::project_data("sky.hdr").string();
+  const fs::path prt_file = dir / "demo_auto.prt";
+  const RunResult r = run(prt_cli() + " bake " + scene + " -o " + prt_file.string() +
+                          " --auto --tolerance 0.02 --env " + sky);
+  INFO(r.out << r.err);
+  REQUIRE(r.exit_code == 0);
+  // The summary names the prediction and its parts, and each omission on its own line.
+  CHECK(r.out.find("predicted error") != std::string::npos);
+  CHECK(r.out.find("tolerance 0.02") != std::string::npos);
+  CHECK(r.out.find("left out: shadow rays for") != std::string::npos);
+  CHECK(r.out.find("left out: colour channels 2 and 3") == std::string::npos);  // demo is coloured
+  const RunResult info = run(prt_cli() + " info " + prt_file.string() + " --json");
+  REQUIRE(info.exit_code == 0);
+  const auto j = nlohmann::json::parse(info.out);
+  const std::string meta = j.dump();
+  CHECK(meta.find("predicted_error") != std::string::npos);
+  CHECK(meta.find("error_scope") != std::string::npos);
+  // A bad tolerance is refused in one line, leaving nothing behind.
+  const fs::path bad = dir / "bad.prt";
+  require_one_line_error(
+      run(prt_cli() + " bake " + scene + " -o " + bad.string() + " --auto --tolerance 2"),
+      "tolerance");
+  CHECK_FALSE(fs::exists(bad));
+}

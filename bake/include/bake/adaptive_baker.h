@@ -13,14 +13,18 @@
 //     spread evenly over the index range) and bake/order_selection.h choose the smallest SH order
 //     whose predicted truncation error is ≤ tolerance/2; bands above it are dropped (the file
 //     simply has a lower order). When no order ≤ max_order meets it, Haar is recommended.
-//  3. the bake with BakeOptions::adaptive: per-vertex sample counts from min_samples to
-//     max_samples until the standard error of the exit radiance is ≤ tolerance × the sky's mean
-//     radiance; interreflection skipped when no sample hit another surface; bounces stop when
-//     one adds < tolerance/4 × max direct.
-//  4. predicted error = [truncation² + sampling²]^½ (the truncation error is deterministic and
-//     the sampling error zero-mean, so their squares add in the RMS), with sampling =
-//     [Σ_v,c (ρ_c·L̄_c·SE_v)²]^½ / [Σ B²]^½ from the i.i.d. standard error, which over-estimates
-//     the error of scrambled Sobol' points (conservative).
+//  3. bake/occlusion_bound.h: vertices whose blockable projected solid angle is bounded, without
+//     rays, below bounded_skip_cutoff are ranked by their exit-radiance error bound ρ·G·M
+//     (adaptive_baker.cpp) and skip rays, smallest first, while the bounds' relative RMS stays
+//     ≤ bounded_skip_share × tolerance.
+//  4. the bake with BakeOptions::adaptive (bake/transfer_baker.h): min_samples rays per sampled
+//     vertex, then Neyman allocation up to max_samples until the calibrated sampling error
+//     (audit vertices with two independent scrambles measure the points' actual error) meets
+//     what is left of the tolerance; interreflection skipped when no sample hit another surface;
+//     bounces stop when one adds < tolerance/4 × max direct.
+//  5. predicted error = [(truncation + skip)² + sampling²]^½: truncation and the skip bias are
+//     deterministic and may share a sign (added), the sampling error is zero-mean (squares
+//     add); sampling = [Σ_v,c (ρ_c·L̄_c·SE_v)²]^½ / [Σ B²]^½ with the calibrated SE.
 //     Without lighting, B and L̄ are those of a uniform white sky.
 // The report goes to AutoBakeReport::json() and into the file's metadata as "auto".
 #pragma once
@@ -49,13 +53,20 @@ struct AutoBakeOptions {
   int max_samples = 1024;
   uint64_t seed = 1;
   int threads = 0;
+  // Vertices whose occlusion is bounded without rays (bake/occlusion_bound.h) below
+  // bounded_skip_cutoff of the cosine-weighted hemisphere may skip rays while their summed
+  // error bound stays ≤ bounded_skip_share × tolerance (relative RMS); 0 turns this off.
+  double bounded_skip_share = 0.25;
+  double bounded_skip_cutoff = 0.05;
   bool ao = false, bent_normals = false;
   prt::Precision precision = prt::Precision::F32;
 };
 
 struct AutoBakeReport {
   std::size_t vertices = 0;
-  std::size_t open_vertices = 0;  // analytic, no rays
+  std::size_t open_vertices = 0;          // analytic, no rays
+  std::size_t bounded_skip_vertices = 0;  // analytic within the error bound, no rays
+  double predicted_skip_error = 0;        // bound of their bias, relative RMS
   double analysis_seconds = 0, pilot_seconds = 0;
   bool grey = true;
   prt::TransferKind stored_kind = prt::TransferKind::Shadowed;
@@ -64,7 +75,7 @@ struct AutoBakeReport {
   OrderChoice order_choice;   // valid when order_chosen
   double predicted_truncation_error = 0;
   double predicted_sampling_error = 0;
-  double predicted_error = 0;         // [truncation² + sampling²]^½
+  double predicted_error = 0;         // [(truncation + skip)² + sampling²]^½
   double mean_samples = 0;            // over sampled vertices
   std::vector<std::string> left_out;  // "what: why", one line each
   std::string json() const;           // the "auto" object of the metadata

@@ -54,6 +54,9 @@ struct GroundTruthOptions {
   double target_relative_se = 0.01;  // refine() target for s (see header)
   uint64_t seed = 1;
   int threads = 0;  // 0 = all hardware threads
+  // Only these vertices are integrated (empty: all). The others keep radiance and standard
+  // error 0, so s covers the subset; a spot check of a large scene costs what the subset costs.
+  std::vector<uint32_t> vertices;
 };
 
 struct GroundTruthResult {

@@ -31,6 +31,9 @@
 
 namespace prt::bake {
 
+// ε of the scene (see above): what offset_origin() moves a point along its normal.
+float ray_offset_scale(const Scene& scene);
+
 class RayCaster {
  public:
   // Builds the BVH (high quality, robust mode) over every triangle of `scene`.

@@ -29,11 +29,20 @@
 //       S_k = U_k − (1/N) Σ_s (1 − V(ω_s)) Y_k(ω_s),
 //     unbiased like the plain estimator (E[(1/N) Σ Y_k] = U_k under pdf cos/π), and exact where no
 //     sample is occluded;
-//   - N grows by packets of 16 from min_samples until the (i.i.d.) standard error of the mean of
-//     x_s = (1 − V(ω_s))·w(ω_s) is ≤ standard_error, or N = max_samples; w is the lighting's
-//     luminance in direction ω_s over its mean (1 without lighting), so the stop rule bounds the
-//     error of the exit radiance relative to the sky's mean radiance. The rule reads only the
-//     vertex's own samples, so the result stays thread-count independent;
+//   - sample counts: x_s = (1 − V(ω_s))·w(ω_s), w the lighting's luminance (up to the transfer's
+//     order) in direction ω_s over its mean (1 without lighting). Every sampled vertex first
+//     casts min_samples rays; then rounds of Neyman allocation (bake/sample_allocation.h), each
+//     with a cap 2× the last (up to max_samples), add rays until the scene's relative RMS
+//     sampling error of the direct exit radiance is predicted ≤ rms_error. The prediction is
+//     the i.i.d. one, Σ_v ρ̄_v²σ_v²/n_v (ρ̄: luminance albedo, σ_v: spread of x floored at the
+//     Jeffreys p(1 − p) of its occluded count) over Σ_v (ρ̄_v b_v)² (b_v: direct exit radiance
+//     over the mean), scaled by c², which audit vertices measure: every 8th sampled vertex draws
+//     from two independently scrambled sequences in alternate packets (counts multiples of 32),
+//     and the spread of the two means is an unbiased estimate of its actual error. c < 1 is
+//     the scrambled Sobol' points' gain over the i.i.d. rate (qmc_calibration). The other
+//     vertices use the fixed recipe's single sequence. Hits are gathered into H in every round;
+//     vertex_standard_error is the calibrated c·σ_v/√n_v. The allocation reads every vertex in
+//     a fixed order: thread-count independent;
 //   - the interreflection solve is skipped when H is empty or every albedo is zero; otherwise
 //     Jacobi bounces stop when a bounce adds less than bounce_tolerance × max|D| (BiCGSTAB takes
 //     over after 200 bounces); the stored kind is the simplest that is exact (unshadowed when
@@ -69,9 +78,9 @@ inline constexpr uint8_t kSkipVertex = 2;      // not baked (zeros)
 struct AdaptiveSampling {
   bool enabled = false;
   std::vector<uint8_t> vertex_mode;  // one per vertex, or empty (= every vertex sampled)
-  int min_samples = 64;              // rounded up to a multiple of 16
+  int min_samples = 64;              // rounded up to a multiple of 32 (two replicas)
   int max_samples = 1024;
-  double standard_error = 0.01;  // stop when the SE of the occluded, lighting-weighted mean ≤ this
+  double rms_error = 0.01;  // relative RMS sampling error of the exit radiance over the scene
   // Luminance SH coefficients of the lighting's radiance (any order ≥ 1; empty = uniform sky).
   std::vector<double> lighting;
   int lighting_order = 0;
@@ -113,10 +122,13 @@ struct BakeStatistics {
   uint64_t bvh_bytes = 0;          // Embree's peak memory
   // Adaptive sampling only:
   std::vector<uint32_t> vertex_samples;      // rays cast per vertex (0: analytic or skipped)
-  std::vector<float> vertex_standard_error;  // SE of the stop rule per sampled vertex
-  uint64_t analytic_vertices = 0;            // unshadowed transfer without rays
-  uint64_t empty_gather_rows = 0;            // sampled vertices that saw no other surface
-  bool interreflection_solved = false;       // false: skipped (H empty or albedo zero)
+  std::vector<float> vertex_standard_error;  // calibrated SE of the mean of x (see above)
+  bool allocation_budget_met = true;         // false: max_samples everywhere was not enough
+  double qmc_calibration = 1.0;    // c: audit-measured error / i.i.d. error, at the final counts
+  int allocation_rounds = 0;       // rounds of allocation after the first min_samples
+  uint64_t analytic_vertices = 0;  // unshadowed transfer without rays
+  uint64_t empty_gather_rows = 0;  // sampled vertices that saw no other surface
+  bool interreflection_solved = false;  // false: skipped (H empty or albedo zero)
   prt::TransferKind stored_kind = prt::TransferKind::Unshadowed;
 
   double mrays_per_second() const {
