@@ -1,12 +1,17 @@
-// `prt report SCENE ENV -o DIR [--quick] [--layout L] [--seed S]`: sweeps SH order, samples per
-// vertex, bounces and storage precision, measures bake time, relight time, file size and error
-// against an independent Monte Carlo ground truth, and writes results.csv, results.json,
-// pareto.svg/png, error_vs_order.svg/png and summary.md (relight/report.h).
+// `prt report SCENE ENV -o DIR [--quick] [--layout L] [--seed S] [--haar-cubes LIST]`: sweeps SH
+// order, samples per vertex, bounces and storage precision, and Haar cube size × lighting terms,
+// measures bake time, relight time, file size and error against an independent Monte Carlo
+// ground truth, and writes results.csv, results.json, pareto.svg/png, error_vs_order.svg/png,
+// haar_error_vs_terms.svg/png and summary.md (relight/report.h). --haar-cubes "8,16" overrides
+// the Haar cube sizes of the mode, "none" leaves Haar out.
 // `prt report --stability -o DIR [--quick]`: the stiff and extreme cases of
 // relight/stability_report.h; exits with status 1 when any case fails.
 #include <cstdio>
 #include <memory>
+#include <optional>
+#include <sstream>
 #include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
@@ -19,11 +24,33 @@ namespace prt::cli {
 namespace {
 
 struct ReportArguments {
-  std::string scene, environment, output, layout = "auto";
+  std::string scene, environment, output, layout = "auto", haar_cubes;
   bool quick = false, stability = false;
   uint64_t seed = 1;
   double budget = 110;
 };
+
+// "none" → empty list; "8,16" → {8, 16}; "" → the mode's default. Throws CommandError.
+std::optional<std::vector<int>> parse_haar_cubes(const std::string& text) {
+  if (text.empty()) return std::nullopt;
+  std::vector<int> cubes;
+  if (text == "none") return cubes;
+  std::stringstream in(text);
+  for (std::string item; std::getline(in, item, ',');) {
+    std::size_t used = 0;
+    int n = 0;
+    try {
+      n = std::stoi(item, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (used == 0 || used != item.size() || n < 8 || n > 128 || (n & (n - 1)) != 0)
+      throw CommandError("--haar-cubes: '" + item +
+                         "' is not a power of two in [8, 128] (or pass none)");
+    cubes.push_back(n);
+  }
+  return cubes;
+}
 
 void run(const ReportArguments& a) {
   if (a.stability) {
@@ -43,6 +70,7 @@ void run(const ReportArguments& a) {
   o.seed = a.seed;
   o.ground_truth_budget_seconds = a.budget;
   o.layout = parse_layout_option(a.layout);
+  o.haar_cubes = parse_haar_cubes(a.haar_cubes);
   const prt::relight::ReportResult r = prt::relight::run_report(o);
   for (const std::string& f : r.files_written) std::printf("wrote %s\n", f.c_str());
 }
@@ -61,6 +89,8 @@ void register_report(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--seed", args->seed, "Seed of the bakes and the ground truth")
       ->capture_default_str();
+  cmd->add_option("--haar-cubes", args->haar_cubes,
+                  "Haar cube sizes, e.g. 8,16,32 (default: quick 8; full 8,16), or none");
   cmd->add_option("--ground-truth-budget", args->budget,
                   "Seconds the ground-truth refinement may take (full run)")
       ->capture_default_str();

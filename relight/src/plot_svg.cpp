@@ -165,6 +165,40 @@ std::string format_tick(double value, bool log_scale, bool percent) {
   return std::string(buf) + (percent ? "%" : "");
 }
 
+namespace {
+
+// An axis-aligned box in pixels.
+struct Box {
+  double x0, y0, x1, y1;
+  bool overlaps(const Box& b) const { return x0 < b.x1 && b.x0 < x1 && y0 < b.y1 && b.y0 < y1; }
+  bool contains(double x, double y) const { return x >= x0 && x <= x1 && y >= y0 && y <= y1; }
+};
+
+// True when the segment (ax, ay)–(bx, by) meets the box (Liang–Barsky clipping).
+bool segment_meets(const Box& b, double ax, double ay, double bx, double by) {
+  double t0 = 0, t1 = 1;
+  const double dx = bx - ax, dy = by - ay;
+  const double p[4] = {-dx, dx, -dy, dy}, q[4] = {ax - b.x0, b.x1 - ax, ay - b.y0, b.y1 - ay};
+  for (int i = 0; i < 4; ++i) {
+    if (p[i] == 0) {
+      if (q[i] < 0) return false;
+      continue;
+    }
+    const double t = q[i] / p[i];
+    if (p[i] < 0)
+      t0 = std::max(t0, t);
+    else
+      t1 = std::min(t1, t);
+    if (t0 > t1) return false;
+  }
+  return true;
+}
+
+// Text box of a 10-px label (DejaVu Sans averages ≈ 6 px per character at that size).
+constexpr double kLabelCharWidth = 6.0, kLabelHeight = 10.0;
+
+}  // namespace
+
 std::string render_svg(const PlotSpec& spec) {
   const double W = spec.width, H = spec.height;
   const double left = 86, right = W - 24, top = 48, bottom = H - 64;
@@ -180,12 +214,14 @@ std::string render_svg(const PlotSpec& spec) {
   ax.px0 = left, ax.px1 = right, ax.log = spec.log_x;
   ay.px0 = bottom, ay.px1 = top, ay.log = spec.log_y;
 
-  std::ostringstream o;
-  o << "<?xml version='1.0' encoding='UTF-8'?>\n"
-    << "<svg xmlns='http://www.w3.org/2000/svg' width='" << spec.width << "' height='"
-    << spec.height << "' viewBox='0 0 " << spec.width << " " << spec.height
-    << "' font-family='DejaVu Sans, Helvetica, Arial, sans-serif'>\n"
-    << "<rect width='100%' height='100%' fill='white'/>\n";
+  // The legend's size (its place is chosen once the data are drawn).
+  int entries = 0;
+  std::size_t longest = 0;
+  for (const PlotSeries& s : spec.series)
+    if (!s.label.empty()) ++entries, longest = std::max(longest, s.label.size());
+  const double lw = 46 + 6.6 * static_cast<double>(longest), lh = 8 + 19.0 * entries;
+
+  std::ostringstream o;  // everything after the document header
   o << "<text x='" << number(W / 2) << "' y='28' text-anchor='middle' font-size='17' "
     << "font-weight='bold'>" << escape_xml(spec.title) << "</text>\n";
   // Grid and ticks.
@@ -226,6 +262,13 @@ std::string render_svg(const PlotSpec& spec) {
       << "font-size='11' fill='#666666'>" << escape_xml(r.second) << "</text>\n";
   }
   // Series.
+  std::vector<std::vector<std::pair<double, double>>> drawn;  // pixel points per series
+  std::vector<Box> label_boxes;
+  struct PendingLabel {
+    double x, y;
+    std::string text;
+  };
+  std::vector<PendingLabel> pending;
   o << "<g>\n";
   for (const PlotSeries& s : spec.series) {
     std::vector<std::pair<double, double>> pts;
@@ -243,25 +286,80 @@ std::string render_svg(const PlotSpec& spec) {
     }
     for (std::size_t i = 0; i < pts.size(); ++i) {
       o << marker_svg(s.marker, pts[i].first, pts[i].second, s.marker_size, s.color) << "\n";
-      if (!labels[i].empty())
-        o << "<text x='" << number(pts[i].first + 7) << "' y='" << number(pts[i].second - 6)
-          << "' font-size='10' fill='#444444'>" << escape_xml(labels[i]) << "</text>\n";
+      if (!labels[i].empty()) pending.push_back({pts[i].first, pts[i].second, labels[i]});
     }
+    if (s.line)
+      drawn.push_back(pts);
+    else  // markers only: the points, but no segments between them
+      for (const auto& pt : pts) drawn.push_back({pt});
+  }
+  // Point labels, after every marker is known (placement: see the header).
+  for (const PendingLabel& l : pending) {
+    const double px = l.x, py = l.y;
+    const double w = kLabelCharWidth * static_cast<double>(l.text.size());
+    const Box candidates[4] = {{px + 7, py - 6 - kLabelHeight, px + 7 + w, py - 4},
+                               {px + 7, py + 4, px + 7 + w, py + 6 + kLabelHeight},
+                               {px - 7 - w, py - 6 - kLabelHeight, px - 7, py - 4},
+                               {px - 7 - w, py + 4, px - 7, py + 6 + kLabelHeight}};
+    // First choice: clear of labels and markers; second: clear of labels; else no label.
+    int pick = -1;
+    for (int pass = 0; pass < 2 && pick < 0; ++pass)
+      for (int c = 0; c < 4 && pick < 0; ++c) {
+        const Box& b = candidates[c];
+        bool free = b.x0 >= left && b.x1 <= right && b.y0 >= top && b.y1 <= bottom;
+        for (const Box& placed : label_boxes) free = free && !b.overlaps(placed);
+        const Box grown{b.x0 - 3, b.y0 - 3, b.x1 + 3, b.y1 + 3};  // marker radius
+        if (pass == 0)
+          for (const auto& series_pts : drawn)
+            for (const auto& [x, y] : series_pts) free = free && !grown.contains(x, y);
+        if (free) pick = c;
+      }
+    if (pick < 0) continue;
+    const Box& b = candidates[pick];
+    label_boxes.push_back(b);
+    o << "<text x='" << number(pick < 2 ? b.x0 : b.x1) << "' y='" << number(b.y1 - 2) << "'"
+      << (pick < 2 ? "" : " text-anchor='end'") << " font-size='10' fill='#444444'>"
+      << escape_xml(l.text) << "</text>\n";
   }
   o << "</g>\n";
-  // Legend, inside the plot, in the corner the spec asks for.
-  int entries = 0;
-  for (const PlotSeries& s : spec.series) entries += s.label.empty() ? 0 : 1;
+  // Legend: in the corner the spec asks for, or (Auto) the first free corner, else outside.
+  double document_width = W;
   if (entries > 0) {
-    std::size_t longest = 0;
-    for (const PlotSeries& s : spec.series) longest = std::max(longest, s.label.size());
-    const double lw = 46 + 6.6 * static_cast<double>(longest), lh = 8 + 19.0 * entries;
-    const bool at_left =
-        spec.legend == LegendCorner::BottomLeft || spec.legend == LegendCorner::TopLeft;
-    const bool at_bottom =
-        spec.legend == LegendCorner::BottomLeft || spec.legend == LegendCorner::BottomRight;
-    const double lx = at_left ? left + 8 : right - lw - 8;
-    const double ly = at_bottom ? bottom - lh - 8 : top + 8;
+    const auto corner_box = [&](LegendCorner c) {
+      const bool at_left = c == LegendCorner::BottomLeft || c == LegendCorner::TopLeft;
+      const bool at_bottom = c == LegendCorner::BottomLeft || c == LegendCorner::BottomRight;
+      const double x0 = at_left ? left + 8 : right - lw - 8;
+      const double y0 = at_bottom ? bottom - lh - 8 : top + 8;
+      return Box{x0, y0, x0 + lw, y0 + lh};
+    };
+    const auto covers_nothing = [&](const Box& b) {
+      for (const auto& pts : drawn) {
+        for (const auto& [x, y] : pts)
+          if (Box{b.x0 - 5, b.y0 - 5, b.x1 + 5, b.y1 + 5}.contains(x, y)) return false;
+        for (std::size_t i = 1; i < pts.size(); ++i)
+          if (segment_meets(b, pts[i - 1].first, pts[i - 1].second, pts[i].first, pts[i].second))
+            return false;
+      }
+      for (const Box& l : label_boxes)
+        if (b.overlaps(l)) return false;
+      return true;
+    };
+    LegendCorner where = spec.legend;
+    if (where == LegendCorner::Auto) {
+      where = LegendCorner::OutsideRight;
+      for (LegendCorner c : {LegendCorner::TopRight, LegendCorner::TopLeft,
+                             LegendCorner::BottomRight, LegendCorner::BottomLeft})
+        if (covers_nothing(corner_box(c))) {
+          where = c;
+          break;
+        }
+    }
+    Box box = corner_box(where);
+    if (where == LegendCorner::OutsideRight) {
+      box = Box{right + 16, top, right + 16 + lw, top + lh};
+      document_width = std::ceil(box.x1 + 12);
+    }
+    const double lx = box.x0, ly = box.y0;
     o << "<rect x='" << number(lx) << "' y='" << number(ly) << "' width='" << number(lw)
       << "' height='" << number(lh) << "' fill='white' fill-opacity='0.9' stroke='#999999'/>\n";
     int row = 0;
@@ -277,8 +375,14 @@ std::string render_svg(const PlotSpec& spec) {
         << escape_xml(s.label) << "</text>\n";
     }
   }
-  o << "</svg>\n";
-  return o.str();
+  std::ostringstream doc;
+  doc << "<?xml version='1.0' encoding='UTF-8'?>\n"
+      << "<svg xmlns='http://www.w3.org/2000/svg' width='" << document_width << "' height='"
+      << spec.height << "' viewBox='0 0 " << document_width << " " << spec.height
+      << "' font-family='DejaVu Sans, Helvetica, Arial, sans-serif'>\n"
+      << "<rect width='100%' height='100%' fill='white'/>\n"
+      << o.str() << "</svg>\n";
+  return doc.str();
 }
 
 void write_text_file(const std::string& path, const std::string& text) {

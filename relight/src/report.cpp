@@ -7,20 +7,28 @@
 #include <cstdio>
 #include <filesystem>
 #include <map>
+#include <memory>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
+#include <tuple>
 
 #include <nlohmann/json.hpp>
 
 #include "bake/ground_truth.h"
+#include "bake/haar_baker.h"
 #include "bake/progress.h"
 #include "bake/ray_caster.h"
 #include "bake/scene_loader.h"
 #include "bake/transfer_baker.h"
+#include "prt/haar_cube_map.h"
+#include "prt/haar_relighter.h"
+#include "prt/haar_transfer_file.h"
 #include "prt/lighting.h"
 #include "prt/relighter.h"
 #include "prt/transfer_file.h"
 #include "relight/camera.h"
+#include "relight/haar_relight.h"
 #include "relight/image_io.h"
 #include "relight/plot_svg.h"
 #include "relight/relight_pipeline.h"
@@ -36,6 +44,11 @@ constexpr const char* kBasis =
     "+z, scene frame glTF (+Y up)";
 const char* const kPalette[] = {"#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd",
                                 "#8c564b", "#e377c2", "#17becf", "#bcbd22", "#7f7f7f"};
+// Haar series (one per cube size), apart from the SH grid's first five palette colours.
+const char* const kHaarPalette[] = {"#8c564b", "#e377c2", "#17becf", "#bcbd22"};
+// Haar compression of the report's bakes: the defaults of `prt bake --basis haar`.
+constexpr double kHaarThreshold = 1e-3;
+constexpr prt::HaarQuantization kHaarQuantization = prt::HaarQuantization::Bits16;
 
 double since(Clock::time_point t) {
   return std::chrono::duration<double>(Clock::now() - t).count();
@@ -49,12 +62,48 @@ std::string bounces_name(int b) {
   return b < 0 ? std::string("converged") : std::to_string(b);
 }
 
+bool is_haar(const ReportSetting& s) {
+  return s.basis == ReportBasis::Haar;
+}
+
+std::string basis_name(const ReportSetting& s) {
+  return is_haar(s) ? "haar" : "sh";
+}
+
+// Storage of the coefficients: f32/f16 for SH, the quantisation for Haar.
+std::string storage_name(const ReportSetting& s) {
+  return is_haar(s) ? std::string("i") + std::to_string(static_cast<int>(kHaarQuantization))
+                    : precision_name(s.precision);
+}
+
+int64_t haar_coefficient_count(int cube) {
+  return int64_t{6} * cube * cube;
+}
+
+// The number of lighting terms a Haar setting uses (all = 6N²).
+int64_t haar_terms_used(const ReportSetting& s) {
+  return s.terms > 0 ? std::min(s.terms, haar_coefficient_count(s.cube))
+                     : haar_coefficient_count(s.cube);
+}
+
+std::string terms_text(const ReportSetting& s) {
+  const std::string n = std::to_string(haar_terms_used(s));
+  return s.terms > 0 ? n : "all " + n;
+}
+
 std::string describe(const ReportSetting& s) {
-  return "order " + std::to_string(s.order) + ", " + std::to_string(s.samples) + " spp, bounces " +
-         bounces_name(s.bounces) + ", " + precision_name(s.precision);
+  if (is_haar(s))
+    return "Haar cube " + std::to_string(s.cube) + ", " + terms_text(s) +
+           " lighting terms (non-linear), bounces " + bounces_name(s.bounces) + ", " +
+           storage_name(s);
+  return "SH order " + std::to_string(s.order) + ", " + std::to_string(s.samples) +
+         " spp, bounces " + bounces_name(s.bounces) + ", " + precision_name(s.precision);
 }
 
 std::string short_label(const ReportSetting& s) {
+  if (is_haar(s))
+    return "H" + std::to_string(s.cube) + " K" +
+           (s.terms > 0 ? std::to_string(s.terms) : std::string("all"));
   std::string t = "n" + std::to_string(s.order) + " " + std::to_string(s.samples);
   if (s.bounces >= 0) t += " b" + std::to_string(s.bounces);
   if (s.precision == prt::Precision::F16) t += " f16";
@@ -62,8 +111,9 @@ std::string short_label(const ReportSetting& s) {
 }
 
 bool same(const ReportSetting& a, const ReportSetting& b) {
-  return a.order == b.order && a.samples == b.samples && a.bounces == b.bounces &&
-         a.precision == b.precision;
+  return a.basis == b.basis && a.order == b.order && a.samples == b.samples &&
+         a.bounces == b.bounces && a.precision == b.precision && a.cube == b.cube &&
+         a.terms == b.terms;
 }
 
 std::string percent(double x) {
@@ -125,7 +175,7 @@ ReportSetting base_setting(bool quick) {
   return s;
 }
 
-std::vector<ReportAxis> report_axes(bool quick) {
+std::vector<ReportAxis> report_axes(bool quick, const std::optional<std::vector<int>>& haar_cubes) {
   const ReportSetting base = base_setting(quick);
   std::vector<ReportAxis> axes;
   auto vary = [&](const std::string& name, auto values, auto apply) {
@@ -160,7 +210,30 @@ std::vector<ReportAxis> report_axes(bool quick) {
       grid.settings.push_back(s);
     }
   axes.push_back(grid);
+  ReportAxis haar{"haar", {}};
+  for (int cube : haar_cubes ? *haar_cubes : default_haar_cubes(quick))
+    for (int64_t k : haar_terms(quick)) {
+      if (k >= haar_coefficient_count(cube)) continue;  // the same as all terms
+      ReportSetting s;
+      s.basis = ReportBasis::Haar;
+      s.order = 0, s.samples = 0;
+      s.bounces = base.bounces;
+      s.precision = prt::Precision::F32;
+      s.cube = cube;
+      s.terms = k;
+      haar.settings.push_back(s);
+    }
+  if (!haar.settings.empty()) axes.push_back(haar);
   return axes;
+}
+
+std::vector<int> default_haar_cubes(bool quick) {
+  return quick ? std::vector<int>{8} : std::vector<int>{8, 16};
+}
+
+std::vector<int64_t> haar_terms(bool quick) {
+  return quick ? std::vector<int64_t>{10, 30, 100, 0}
+               : std::vector<int64_t>{10, 30, 100, 300, 1000, 0};
 }
 
 ReportResult run_report(const ReportOptions& opt) {
@@ -168,6 +241,11 @@ ReportResult run_report(const ReportOptions& opt) {
   auto log = [&](const std::string& line) {
     if (opt.verbose) std::fprintf(stderr, "[report %6.1fs] %s\n", since(t_start), line.c_str());
   };
+  if (opt.haar_cubes)
+    for (int cube : *opt.haar_cubes)
+      if (!prt::is_valid_cube_size(cube))
+        throw std::runtime_error("report: Haar cube size " + std::to_string(cube) +
+                                 " is not a power of two in [8, 128]");
   std::error_code ec;
   std::filesystem::create_directories(opt.output_dir, ec);
   if (ec) throw std::runtime_error(opt.output_dir + ": cannot create directory: " + ec.message());
@@ -228,7 +306,7 @@ ReportResult run_report(const ReportOptions& opt) {
   ReportResult result;
   std::vector<std::vector<float>> radiance;  // per measurement
   std::vector<std::vector<float>> images;
-  for (const ReportAxis& axis : report_axes(opt.quick))
+  for (const ReportAxis& axis : report_axes(opt.quick, opt.haar_cubes))
     for (const ReportSetting& s : axis.settings) {
       auto it = std::find_if(result.measurements.begin(), result.measurements.end(),
                              [&](const ReportMeasurement& m) { return same(m.setting, s); });
@@ -258,9 +336,91 @@ ReportResult run_report(const ReportOptions& opt) {
     }
     return it->second;
   };
+  // Haar bakes are shared between the settings of one cube size (they differ only in K) and
+  // dropped after the last of them.
+  struct HaarBake {
+    double seconds = 0;
+    uint64_t file_bytes = 0;
+    std::unique_ptr<prt::HaarRelighter> relighter;
+    std::string failure;
+    int uses_left = 0;
+  };
+  std::map<int, HaarBake> haar_bakes;
+  for (const ReportMeasurement& m : result.measurements)
+    if (is_haar(m.setting)) ++haar_bakes[m.setting.cube].uses_left;
+  const auto haar_bake_for = [&](const ReportSetting& s) -> HaarBake& {
+    HaarBake& hb = haar_bakes[s.cube];
+    if (hb.relighter || !hb.failure.empty()) return hb;
+    bake::HaarBakeOptions ho;
+    ho.transport = prt::TransferKind::Interreflected;
+    ho.cube_size = s.cube;
+    ho.supersample = 1;
+    ho.compression.relative_threshold = kHaarThreshold;
+    ho.compression.quantization = kHaarQuantization;
+    ho.bounces = s.bounces;
+    ho.seed = opt.seed;
+    log("Haar bake, cube " + std::to_string(s.cube) + " (" +
+        std::to_string(haar_coefficient_count(s.cube)) + " directions per vertex)");
+    try {
+      bake::HaarBakeResult r = bake::bake_haar_transfer(scene, ho);
+      hb.seconds = r.stats.seconds_total;
+      auto bytes = prt::encode_haar_transfer_file(r.file, "report");
+      if (!bytes.ok()) {
+        hb.failure = bytes.status().message();
+        return hb;
+      }
+      hb.file_bytes = bytes->size();
+      hb.relighter = std::make_unique<prt::HaarRelighter>(std::move(r.file.transfer));
+    } catch (const std::runtime_error& e) {  // e.g. the dense wavelet block is too large
+      hb.failure = e.what();
+    }
+    return hb;
+  };
+  const auto measure_haar = [&](ReportMeasurement& m) {
+    HaarBake& hb = haar_bake_for(m.setting);
+    std::vector<float> b;
+    m.bake_seconds = hb.seconds;
+    m.file_bytes = hb.file_bytes;
+    m.failure = hb.failure;
+    if (hb.relighter) {
+      HaarLightingOptions lo;
+      lo.terms = m.setting.terms;
+      lo.linear = false;
+      const prt::SparseLighting haar_lighting =
+          project_haar_lighting(env, m.setting.cube, kIdentityRotation, lo);
+      b.assign(3 * V, 0.f);
+      m.relight_seconds = INFINITY;
+      for (int r = 0; r < 5; ++r) {
+        const auto t0 = Clock::now();
+        const prt::Status shaded = hb.relighter->shade(haar_lighting, b.data());
+        m.relight_seconds = std::min(m.relight_seconds, since(t0));
+        if (!shaded.ok()) {
+          m.failure = shaded.message();
+          b.clear();
+          break;
+        }
+      }
+    }
+    if (--hb.uses_left == 0) hb.relighter.reset();
+    return b;
+  };
   const std::size_t total = result.measurements.size();
   for (std::size_t i = 0; i < total; ++i) {
     ReportMeasurement& m = result.measurements[i];
+    if (is_haar(m.setting)) {
+      const std::vector<float> b = measure_haar(m);
+      radiance.push_back(b);
+      images.push_back(b.empty() ? std::vector<float>() : render_radiance(b));
+      if (m.failure.empty()) {
+        const VertexErrorStats e = compute_vertex_errors(b, truth.radiance);
+        m.relative_rms = e.relative_rms, m.p99 = e.p99, m.max = e.max;
+      }
+      log("[" + std::to_string(i + 1) + "/" + std::to_string(total) + "] " + describe(m.setting) +
+          ": bake " + seconds_text(m.bake_seconds) + " (one per cube), relight " +
+          seconds_text(m.relight_seconds) + ", error " +
+          (m.failure.empty() ? percent(m.relative_rms) : "failed: " + m.failure));
+      continue;
+    }
     const bake::BakeResult& baked = bake_for(m.setting);
     m.bake_seconds = baked.stats.seconds_total;
     prt::TransferData data = baked.data;
@@ -295,7 +455,7 @@ ReportResult run_report(const ReportOptions& opt) {
 
   // Projection vs sampling error.
   const ReportSetting base = base_setting(opt.quick);
-  for (const ReportAxis& axis : report_axes(opt.quick)) {
+  for (const ReportAxis& axis : report_axes(opt.quick, opt.haar_cubes)) {
     if (axis.name == "order")
       for (const ReportSetting& s : axis.settings) result.orders.push_back(s.order);
     if (axis.name == "grid")
@@ -329,7 +489,7 @@ ReportResult run_report(const ReportOptions& opt) {
                                std::vector<double>(result.orders.size(), NAN));
   for (std::size_t i = 0; i < result.measurements.size(); ++i) {
     const ReportMeasurement& m = result.measurements[i];
-    if (!m.failure.empty() || m.setting.bounces != base.bounces ||
+    if (is_haar(m.setting) || !m.failure.empty() || m.setting.bounces != base.bounces ||
         m.setting.samples >= reference_samples || m.setting.precision != prt::Precision::F32)
       continue;
     const auto si =
@@ -397,16 +557,23 @@ ReportResult run_report(const ReportOptions& opt) {
   // results.csv
   {
     std::ostringstream csv;
-    csv << "axis,order,samples,bounces,precision,bake_seconds,relight_seconds,file_bytes,"
-           "relative_rms,p99_relative,max_relative,image_relative_rms,pareto,failure\n";
+    // basis sh: order and samples set, cube and terms empty; basis haar: the other way round
+    // (terms = the lighting terms used, 6N² for all).
+    csv << "axis,basis,order,samples,cube,terms,bounces,precision,bake_seconds,relight_seconds,"
+           "file_bytes,relative_rms,p99_relative,max_relative,image_relative_rms,pareto,failure\n";
     for (const ReportMeasurement& m : result.measurements) {
       std::string failure = m.failure;
       std::replace(failure.begin(), failure.end(), ',', ';');
-      csv << m.axis << "," << m.setting.order << "," << m.setting.samples << ","
-          << bounces_name(m.setting.bounces) << "," << precision_name(m.setting.precision) << ","
-          << m.bake_seconds << "," << m.relight_seconds << "," << m.file_bytes << ","
-          << m.relative_rms << "," << m.p99 << "," << m.max << "," << m.image_relative_rms << ","
-          << (m.on_pareto_front ? 1 : 0) << "," << failure << "\n";
+      const ReportSetting& st = m.setting;
+      csv << m.axis << "," << basis_name(st) << ",";
+      if (is_haar(st))
+        csv << ",," << st.cube << "," << haar_terms_used(st) << ",";
+      else
+        csv << st.order << "," << st.samples << ",,,";
+      csv << bounces_name(st.bounces) << "," << storage_name(st) << "," << m.bake_seconds << ","
+          << m.relight_seconds << "," << m.file_bytes << "," << m.relative_rms << "," << m.p99
+          << "," << m.max << "," << m.image_relative_rms << "," << (m.on_pareto_front ? 1 : 0)
+          << "," << failure << "\n";
     }
     write_text_file(out("results.csv"), csv.str());
     written("results.csv");
@@ -432,8 +599,12 @@ ReportResult run_report(const ReportOptions& opt) {
         {"image_relative_rms", "relative RMS over the pixels that show the scene, " +
                                    std::to_string(ropt.width) + "x" + std::to_string(ropt.height) +
                                    " with 2x2 samples, same camera for both"},
-        {"bake_seconds", "wall time of bake_transfer (all threads)"},
-        {"relight_seconds", "best of 5 wall times of shading every vertex (all threads)"}};
+        {"bake_seconds",
+         "wall time of bake_transfer (SH) or bake_haar_transfer (Haar: one bake per cube size, "
+         "shared by its K settings), all threads"},
+        {"relight_seconds",
+         "best of 5 wall times of shading every vertex (SH: all threads; Haar: "
+         "HaarRelighter::shade on one thread, as prt relight)"}};
     j["ground_truth"] = {{"samples_per_vertex", truth.samples_per_vertex},
                          {"relative_rms_standard_error", truth.relative_rms_se},
                          {"seconds", truth.seconds},
@@ -442,13 +613,27 @@ ReportResult run_report(const ReportOptions& opt) {
                          {"max_bounces", gto.max_bounces},
                          {"adequate", result.ground_truth_adequate},
                          {"smallest_error_measured", e_min}};
+    j["haar"] = {{"transfer", "interreflected, bounces as the base setting"},
+                 {"directions", "one per cube texel (6N^2 per vertex, texel centres)"},
+                 {"relative_threshold", kHaarThreshold},
+                 {"quantization_bits", static_cast<int>(kHaarQuantization)},
+                 {"lighting", "non-linear: the K largest area-weighted wavelet coefficients"},
+                 {"relight_seconds",
+                  "best of 5, HaarRelighter::shade on one thread (as prt "
+                  "relight); lighting selection not included"}};
     nlohmann::json rows = nlohmann::json::array();
-    for (const ReportMeasurement& m : result.measurements)
+    for (const ReportMeasurement& m : result.measurements) {
+      const ReportSetting& st = m.setting;
+      const nlohmann::json none;  // null: the field does not apply to this basis
       rows.push_back({{"axis", m.axis},
-                      {"order", m.setting.order},
-                      {"samples", m.setting.samples},
-                      {"bounces", bounces_name(m.setting.bounces)},
-                      {"precision", precision_name(m.setting.precision)},
+                      {"basis", basis_name(st)},
+                      {"order", is_haar(st) ? none : nlohmann::json(st.order)},
+                      {"samples", is_haar(st) ? none : nlohmann::json(st.samples)},
+                      {"cube", is_haar(st) ? nlohmann::json(st.cube) : none},
+                      {"terms", is_haar(st) ? nlohmann::json(haar_terms_used(st)) : none},
+                      {"all_terms", is_haar(st) ? nlohmann::json(st.terms <= 0) : none},
+                      {"bounces", bounces_name(st.bounces)},
+                      {"precision", storage_name(st)},
                       {"bake_seconds", m.bake_seconds},
                       {"relight_seconds", m.relight_seconds},
                       {"file_bytes", m.file_bytes},
@@ -458,6 +643,7 @@ ReportResult run_report(const ReportOptions& opt) {
                       {"image_relative_rms", m.image_relative_rms},
                       {"pareto", m.on_pareto_front},
                       {"failure", m.failure}});
+    }
     j["results"] = rows;
     j["split"] = {{"orders", result.orders},
                   {"projection_error", result.projection_error},
@@ -480,6 +666,24 @@ ReportResult run_report(const ReportOptions& opt) {
   };
   const std::vector<std::pair<double, std::string>> thresholds = {
       {0.01, "1%"}, {0.05, "5%"}, {0.10, "10%"}};
+  // Haar cube sizes measured (in sweep order) and, per cube, its measured rows by ascending K.
+  std::vector<int> haar_cubes_swept;
+  for (const ReportMeasurement& m : result.measurements)
+    if (is_haar(m.setting) && std::find(haar_cubes_swept.begin(), haar_cubes_swept.end(),
+                                        m.setting.cube) == haar_cubes_swept.end())
+      haar_cubes_swept.push_back(m.setting.cube);
+  const auto haar_rows_by_terms = [&](int cube) {
+    std::vector<std::size_t> rows;
+    for (std::size_t i = 0; i < result.measurements.size(); ++i) {
+      const ReportMeasurement& m = result.measurements[i];
+      if (is_haar(m.setting) && m.setting.cube == cube && m.failure.empty()) rows.push_back(i);
+    }
+    std::sort(rows.begin(), rows.end(), [&](std::size_t a, std::size_t b) {
+      return haar_terms_used(result.measurements[a].setting) <
+             haar_terms_used(result.measurements[b].setting);
+    });
+    return rows;
+  };
   {
     PlotSpec p;
     p.title = "Error against bake time (" + std::string(opt.quick ? "quick" : "full") + " sweep)";
@@ -487,6 +691,7 @@ ReportResult run_report(const ReportOptions& opt) {
     p.y_label = "relative RMS error of exit radiance vs ground truth (log)";
     p.log_x = p.log_y = true;
     p.y_as_percent = true;
+    p.legend = LegendCorner::Auto;  // a free corner, else beside the plot
     for (const auto& t : thresholds) p.reference_lines.push_back(t);
     // Grid: one line per order through its sample counts.
     std::vector<int> grid_orders;
@@ -497,7 +702,7 @@ ReportResult run_report(const ReportOptions& opt) {
     std::sort(grid_orders.begin(), grid_orders.end());
     for (std::size_t g = 0; g < grid_orders.size(); ++g) {
       PlotSeries s;
-      s.label = "order " + std::to_string(grid_orders[g]) + ", samples varied";
+      s.label = "SH order " + std::to_string(grid_orders[g]) + ", samples varied";
       s.color = kPalette[g % 10];
       s.line_width = 1.5;
       std::vector<std::pair<int, std::size_t>> pts;
@@ -515,17 +720,31 @@ ReportResult run_report(const ReportOptions& opt) {
       p.series.push_back(s);
     }
     PlotSeries other;
-    other.label = "other axes (bounces, order, samples, f16)";
+    other.label = "SH, other axes (bounces, order, samples, f16)";
     other.color = "#555555";
     other.line = false;
     other.marker = Marker::Diamond;
     other.marker_size = 3.5;
     for (const ReportMeasurement& m : result.measurements)
-      if (m.axis.find("grid") == std::string::npos && m.failure.empty()) {
+      if (!is_haar(m.setting) && m.axis.find("grid") == std::string::npos && m.failure.empty()) {
         other.x.push_back(m.bake_seconds);
         other.y.push_back(m.relative_rms);
       }
     p.series.push_back(other);
+    // Haar: one series per cube size; its K settings share the bake, so they stand in a column.
+    for (std::size_t c = 0; c < haar_cubes_swept.size(); ++c) {
+      PlotSeries h;
+      h.label = "Haar cube " + std::to_string(haar_cubes_swept[c]) + ", K varied (column)";
+      h.color = kHaarPalette[c % 4];
+      h.marker = Marker::Square;
+      h.marker_size = 5;
+      h.line_width = 1.5;
+      for (std::size_t i : haar_rows_by_terms(haar_cubes_swept[c])) {
+        h.x.push_back(result.measurements[i].bake_seconds);
+        h.y.push_back(result.measurements[i].relative_rms);
+      }
+      p.series.push_back(h);
+    }
     PlotSeries f;
     f.label = "Pareto front";
     f.color = "#d62728";
@@ -595,6 +814,42 @@ ReportResult run_report(const ReportOptions& opt) {
     p.reference_lines.push_back({truth.relative_rms_se, "ground-truth standard error"});
     write_plot(p, "error_vs_order");
   }
+  if (!haar_cubes_swept.empty()) {
+    PlotSpec p;
+    p.title = "Error against lighting terms: Haar (non-linear) and SH";
+    p.x_label = "lighting terms per colour channel (Haar: K kept; SH: n^2; log)";
+    p.y_label = "relative RMS error of exit radiance vs ground truth (log)";
+    p.log_x = p.log_y = true;
+    p.y_as_percent = true;
+    p.legend = LegendCorner::Auto;  // errors fall to the right: usually bottom left is free
+    for (std::size_t c = 0; c < haar_cubes_swept.size(); ++c) {
+      PlotSeries h;
+      const int cube = haar_cubes_swept[c];
+      h.label = "Haar cube " + std::to_string(cube) +
+                " (6N^2 = " + std::to_string(haar_coefficient_count(cube)) + "), interreflected";
+      h.color = kHaarPalette[c % 4];
+      h.marker = Marker::Square;
+      for (std::size_t i : haar_rows_by_terms(cube)) {
+        h.x.push_back(static_cast<double>(haar_terms_used(result.measurements[i].setting)));
+        h.y.push_back(result.measurements[i].relative_rms);
+      }
+      p.series.push_back(h);
+    }
+    PlotSeries sh_s;
+    sh_s.label = "SH order n (order axis, " + std::to_string(base.samples) + " spp)";
+    sh_s.color = "#1f77b4";
+    sh_s.marker = Marker::Circle;
+    sh_s.dashed = true;
+    for (const ReportMeasurement& m : result.measurements)
+      if (!is_haar(m.setting) && m.axis.find("order") != std::string::npos && m.failure.empty()) {
+        sh_s.x.push_back(static_cast<double>(m.setting.order) * m.setting.order);
+        sh_s.y.push_back(m.relative_rms);
+      }
+    p.series.push_back(sh_s);
+    for (const auto& t : thresholds) p.reference_lines.push_back(t);
+    p.reference_lines.push_back({truth.relative_rms_se, "ground-truth SE"});
+    write_plot(p, "haar_error_vs_terms");
+  }
   // summary.md
   {
     std::ostringstream md;
@@ -632,27 +887,98 @@ ReportResult run_report(const ReportOptions& opt) {
          << m.file_bytes / 1024 << " KiB | " << percent(m.relative_rms) << " | " << percent(m.p99)
          << " | " << percent(m.image_relative_rms) << " |\n";
     }
-    md << "\nCost is the bake's wall time; the relight time (shading every vertex once) is "
-          "shown beside it.\n\n## Plots\n\n"
+    md << "\nBoth bases compete: SH (spherical harmonics) and Haar (wavelets on a cube map, "
+          "non-linear lighting approximation). Cost is the bake's wall time; the relight time "
+          "(shading every vertex once) is shown beside it.\n\n## Plots\n\n"
        << "![Error against bake time](pareto.png)\n\n"
-       << "Log-log: every measured setting; lines join the (order × samples) grid at fixed "
-          "order; the dashed red line is the Pareto front (no other setting is both faster and "
-          "more accurate). Dotted lines mark 1%, 5%, 10%. ([SVG](pareto.svg))\n\n"
+       << "Log-log: every measured setting; lines join the SH (order × samples) grid at fixed "
+          "order"
+       << (haar_cubes_swept.empty()
+               ? ""
+               : "; squares are Haar settings, one colour per cube size, standing in a column "
+                 "because the K settings of a cube share its bake")
+       << "; the dashed red line is the Pareto front over all settings (no other setting is both "
+          "faster and more accurate). Dotted lines mark 1%, 5%, 10%. ([SVG](pareto.svg))\n\n"
        << "![Error against SH order](error_vs_order.png)\n\n"
        << "Projection error: order-n relighting with a converged " << reference_samples
        << "-sample transfer against the ground truth (what order n can do at best). Sampling "
           "error: the order-n bake at N samples against that converged order-n transfer (what "
           "finite sampling adds). The total error of the base setting is in red. "
-          "([SVG](error_vs_order.svg))\n\n"
-       << "## Settings\n\nBase setting: " << describe(base)
+          "([SVG](error_vs_order.svg))\n\n";
+    if (!haar_cubes_swept.empty()) {
+      md << "## Haar wavelets\n\n"
+         << "Interreflected Haar transfer (as `prt bake --basis haar --cube N`: bounces "
+         << bounces_name(base.bounces) << ", one direction per cube texel, per-vertex threshold "
+         << kHaarThreshold << ", " << static_cast<int>(kHaarQuantization)
+         << "-bit), relit with the K largest area-weighted lighting coefficients (as `prt "
+            "relight --terms K`). Relative RMS error against the same ground truth:\n\n| K |";
+      for (int cube : haar_cubes_swept) md << " cube " << cube << " |";
+      md << "\n|---|";
+      for (std::size_t c = 0; c < haar_cubes_swept.size(); ++c) md << "---|";
+      md << "\n";
+      std::vector<int64_t> ks;  // distinct K values (0 = all), all last
+      for (const ReportMeasurement& m : result.measurements)
+        if (is_haar(m.setting) && std::find(ks.begin(), ks.end(), m.setting.terms) == ks.end())
+          ks.push_back(m.setting.terms);
+      std::sort(ks.begin(), ks.end(), [](int64_t a, int64_t b) {
+        return (a <= 0 ? INT64_MAX : a) < (b <= 0 ? INT64_MAX : b);
+      });
+      const auto haar_row = [&](int cube, int64_t k) -> const ReportMeasurement* {
+        for (const ReportMeasurement& m : result.measurements)
+          if (is_haar(m.setting) && m.setting.cube == cube && m.setting.terms == k) return &m;
+        return nullptr;
+      };
+      for (int64_t k : ks) {
+        md << "| " << (k > 0 ? std::to_string(k) : std::string("all (6N²)")) << " |";
+        for (int cube : haar_cubes_swept) {
+          const ReportMeasurement* m = haar_row(cube, k);
+          md << " "
+             << (!m                    ? "—"
+                 : !m->failure.empty() ? "failed"
+                                       : percent(m->relative_rms))
+             << " |";
+        }
+        md << "\n";
+      }
+      md << "| bake |";
+      for (int cube : haar_cubes_swept) {
+        const ReportMeasurement* m = haar_row(cube, 0);
+        md << " " << (m && m->failure.empty() ? seconds_text(m->bake_seconds) : "—") << " |";
+      }
+      md << "\n| file |";
+      for (int cube : haar_cubes_swept) {
+        const ReportMeasurement* m = haar_row(cube, 0);
+        md << " " << (m && m->failure.empty() ? std::to_string(m->file_bytes / 1024) + " KiB" : "—")
+           << " |";
+      }
+      md << "\n\n";
+      for (int cube : haar_cubes_swept) {
+        const ReportMeasurement* m = haar_row(cube, 0);
+        if (m && !m->failure.empty()) md << "Cube " << cube << " failed: " << m->failure << "\n\n";
+      }
+      md << "![Error against lighting terms](haar_error_vs_terms.png)\n\n"
+         << "Error against the number of lighting terms per colour channel: Haar with K kept "
+            "terms per cube size, and SH order n (n² terms, the order axis at the base sample "
+            "count) for comparison. The Haar curves level off at the error of their cube "
+            "resolution and transfer; the dotted lines mark 1%, 5%, 10% and the ground truth's "
+            "standard error. ([SVG](haar_error_vs_terms.svg))\n\n";
+    }
+    md << "## Settings\n\nBase setting: " << describe(base)
        << " (interreflected transfer). Each axis varies one parameter around it; the grid "
-          "varies order and samples together.\n\n"
-       << "| axis | order | spp | bounces | prec. | bake | relight | file | rel. RMS | p99 | max "
-          "| image | front |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+          "varies order and samples together"
+       << (haar_cubes_swept.empty() ? "" : "; the haar axis varies cube size and lighting terms")
+       << ".\n\n"
+       << "| axis | basis | order | spp | cube | terms | bounces | prec. | bake | relight | file "
+          "| rel. RMS | p99 | max | image | front |\n"
+          "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
     for (const ReportMeasurement& m : result.measurements) {
-      md << "| " << m.axis << " | " << m.setting.order << " | " << m.setting.samples << " | "
-         << bounces_name(m.setting.bounces) << " | " << precision_name(m.setting.precision)
-         << " | ";
+      const ReportSetting& st = m.setting;
+      md << "| " << m.axis << " | " << basis_name(st) << " | ";
+      if (is_haar(st))
+        md << " | | " << st.cube << " | " << terms_text(st) << " | ";
+      else
+        md << st.order << " | " << st.samples << " | | | ";
+      md << bounces_name(st.bounces) << " | " << storage_name(st) << " | ";
       if (!m.failure.empty()) {
         md << "failed: " << m.failure << " | | | | | | | |\n";
         continue;
@@ -671,8 +997,15 @@ ReportResult run_report(const ReportOptions& opt) {
        << "- **image**: relative RMS over the pixels that show the scene, rendering both with "
           "the relight renderer ("
        << ropt.width << "×" << ropt.height << ", 2×2 samples, same camera).\n"
-       << "- Lighting: the map projected to order n (no window); " << kBasis << ".\n"
-       << "- Times: wall clock on this machine, all threads; relight = best of 5.\n";
+       << "- Lighting: SH: the map projected to order n (no window); " << kBasis
+       << ". Haar: the map resampled to the N-cube (exact area weights), wavelet-transformed, the "
+          "K largest area-weighted coefficients kept (relight/haar_relight.h).\n"
+       << "- Times: wall clock on this machine; bake with all threads; relight = best of 5 (SH "
+          "all threads; Haar one thread, as `prt relight`; projecting or selecting the lighting "
+          "not included). A Haar bake is shared by the K settings of its cube size.\n"
+       << "- File: the coefficient file's size (SH f32/f16; Haar sparse "
+       << static_cast<int>(kHaarQuantization) << "-bit with per-vertex threshold " << kHaarThreshold
+       << ").\n";
     for (const std::string& n : png_notes) md << "- PNG not written: " << n << "\n";
     write_text_file(out("summary.md"), md.str());
     written("summary.md");

@@ -1,9 +1,11 @@
 // `prt report` pieces: error metrics against hand-computed values, the Pareto front and cheapest
-// selection against brute force, SVG plot scales and ticks, and an end-to-end report on a tiny
-// procedural scene whose files must be complete and self-consistent.
+// selection against brute force, SVG plot scales and ticks, the sweep's Haar axis, and an
+// end-to-end report on a tiny procedural scene whose files must be complete and self-consistent
+// and whose SH and Haar errors must show the physics (bounces, order, lighting terms, a sun).
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <random>
 #include <sstream>
 #include <vector>
@@ -129,6 +131,94 @@ TEST_CASE("plot axes: decade ranges, ticks and labels") {
   CHECK(svg.find("series") != std::string::npos);
 }
 
+TEST_CASE(
+    "plot legend: Auto takes a free corner or goes beside the plot and labels do not collide") {
+  const auto width_of = [](const std::string& svg) {
+    const std::size_t at = svg.find("<svg");
+    const std::size_t w = svg.find("width='", at) + 7;
+    return std::stod(svg.substr(w, svg.find('\'', w) - w));
+  };
+  PlotSpec p;
+  p.legend = LegendCorner::Auto;
+  PlotSeries s;
+  s.label = "a series with a long enough label";
+  s.x = {0, 10};
+  s.y = {0, 10};  // a diagonal from bottom left to top right: the other two corners are free
+  p.series.push_back(s);
+  CHECK(width_of(render_svg(p)) == p.width);
+  // Markers on a 41 × 41 grid over the whole plot (about 19 × 11 px apart, closer than the
+  // legend's 27-px height): no free corner, so the legend goes outside and the document grows
+  // by at least the legend's width (≥ 46 px + the label).
+  p.series[0].line = false;
+  p.series[0].x.clear(), p.series[0].y.clear();
+  for (int i = 0; i <= 40; ++i)
+    for (int k = 0; k <= 40; ++k)
+      p.series[0].x.push_back(i / 4.0), p.series[0].y.push_back(k / 4.0);
+  CHECK(width_of(render_svg(p)) > p.width + 46);
+  // An explicit corner is kept even when it covers data.
+  p.legend = LegendCorner::TopRight;
+  CHECK(width_of(render_svg(p)) == p.width);
+  // Two labelled points 1 px apart: the second label goes elsewhere (another place, or left out
+  // when there is none) — never on top of the first.
+  PlotSpec q;
+  PlotSeries t;
+  t.line = false;
+  t.x = {5, 5.01, 0, 10};
+  t.y = {5, 5.01, 0, 10};
+  t.point_labels = {"first", "second", "", ""};
+  q.series.push_back(t);
+  const std::string svg = render_svg(q);
+  const auto text_at = [&](const std::string& label) {
+    const std::size_t end = svg.find(">" + label + "</text>");
+    if (end == std::string::npos) return std::string();
+    const std::size_t start = svg.rfind("<text", end);
+    return svg.substr(start, end - start);
+  };
+  REQUIRE(!text_at("first").empty());
+  const std::string second = text_at("second");
+  if (!second.empty()) {
+    // Same x attribute and same anchor would mean the same box (the points are 1 px apart).
+    const auto attrs = [](const std::string& tag) { return tag.substr(0, tag.find(" font-size")); };
+    CHECK(attrs(second) != attrs(text_at("first")));
+  }
+}
+
+TEST_CASE("the Haar axis: cube sizes x lighting terms with K >= 6N^2 collapsed into all") {
+  const auto haar_axis = [](const std::vector<ReportAxis>& axes) {
+    for (const ReportAxis& a : axes)
+      if (a.name == "haar") return a.settings;
+    return std::vector<ReportSetting>{};
+  };
+  // Quick: one cube (8), every K of haar_terms(true) below 6·8² = 384, plus all (0).
+  const std::vector<ReportSetting> quick = haar_axis(report_axes(true));
+  REQUIRE(quick.size() == haar_terms(true).size());
+  for (const ReportSetting& s : quick) {
+    CHECK(s.basis == ReportBasis::Haar);
+    CHECK(s.cube == 8);
+    CHECK(s.terms < 384);
+    CHECK(s.bounces == base_setting(true).bounces);
+    CHECK(s.order == 0);
+    CHECK(s.samples == 0);
+  }
+  // Full with an explicit cube list: K = 1000 is dropped at N = 8 (only 384 coefficients) and
+  // kept at N = 16 (1536); every cube has exactly one "all".
+  const std::vector<ReportSetting> full = haar_axis(report_axes(false, std::vector<int>{8, 16}));
+  int all8 = 0, all16 = 0, k1000_8 = 0, k1000_16 = 0;
+  for (const ReportSetting& s : full) {
+    all8 += s.cube == 8 && s.terms == 0;
+    all16 += s.cube == 16 && s.terms == 0;
+    k1000_8 += s.cube == 8 && s.terms == 1000;
+    k1000_16 += s.cube == 16 && s.terms == 1000;
+  }
+  CHECK(all8 == 1);
+  CHECK(all16 == 1);
+  CHECK(k1000_8 == 0);
+  CHECK(k1000_16 == 1);
+  // An empty list leaves the axis out; the SH axes do not change.
+  CHECK(haar_axis(report_axes(true, std::vector<int>{})).empty());
+  CHECK(report_axes(true, std::vector<int>{}).size() + 1 == report_axes(true).size());
+}
+
 TEST_CASE("end-to-end quick report on a small scene writes consistent files") {
   // A box on a floor (~150 vertices) under a small lat-long sky with a bright sun texel.
   prt::bake::Scene scene = prt::bake::make_quad(
@@ -155,6 +245,7 @@ TEST_CASE("end-to-end quick report on a small scene writes consistent files") {
   o.environment_path = env_path;
   o.output_dir = (dir / "out").string();
   o.quick = true;
+  o.haar_cubes = std::vector<int>{8, 16};  // quick's 8 plus 16: the cube-size trend (0.1 s here)
   o.image_width = 64, o.image_height = 36;
   o.verbose = false;
   const ReportResult r = run_report(o);
@@ -164,18 +255,20 @@ TEST_CASE("end-to-end quick report on a small scene writes consistent files") {
   // Every setting of every axis was measured once.
   std::size_t unique = 0;
   std::vector<ReportSetting> seen;
-  for (const ReportAxis& a : report_axes(true))
+  for (const ReportAxis& a : report_axes(true, o.haar_cubes))
     for (const ReportSetting& s : a.settings) {
       bool dup = false;
       for (const ReportSetting& t : seen)
-        dup |= t.order == s.order && t.samples == s.samples && t.bounces == s.bounces &&
-               t.precision == s.precision;
+        dup |= t.basis == s.basis && t.order == s.order && t.samples == s.samples &&
+               t.bounces == s.bounces && t.precision == s.precision && t.cube == s.cube &&
+               t.terms == s.terms;
       if (!dup) seen.push_back(s), ++unique;
     }
   REQUIRE(r.measurements.size() == unique);
   bool any_front = false;
   for (const ReportMeasurement& m : r.measurements) {
-    INFO(m.axis << " order " << m.setting.order << " spp " << m.setting.samples);
+    INFO(m.axis << " order " << m.setting.order << " spp " << m.setting.samples << " cube "
+                << m.setting.cube << " terms " << m.setting.terms);
     REQUIRE(m.failure.empty());
     CHECK(std::isfinite(m.relative_rms));
     CHECK(m.relative_rms < 1.0);
@@ -190,8 +283,9 @@ TEST_CASE("end-to-end quick report on a small scene writes consistent files") {
   // sun in the map.
   auto find = [&](int order, int samples, int bounces) {
     for (const ReportMeasurement& m : r.measurements)
-      if (m.setting.order == order && m.setting.samples == samples &&
-          m.setting.bounces == bounces && m.setting.precision == prt::Precision::F32)
+      if (m.setting.basis == ReportBasis::Sh && m.setting.order == order &&
+          m.setting.samples == samples && m.setting.bounces == bounces &&
+          m.setting.precision == prt::Precision::F32)
         return m.relative_rms;
     return static_cast<double>(NAN);
   };
@@ -201,17 +295,95 @@ TEST_CASE("end-to-end quick report on a small scene writes consistent files") {
   // Projection error falls with order (the split is monotone within 1% slack for GT noise).
   REQUIRE(r.projection_error.size() == r.orders.size());
   CHECK(r.projection_error.back() < r.projection_error.front());
+
+  // Haar rows: for each cube (the test asks for 8 and 16), one per K of the quick axis, sharing
+  // one bake (same bake time and file size).
+  std::map<int, std::vector<const ReportMeasurement*>> haar;  // cube → rows by K, all (0) last
+  for (const int cube : {8, 16})
+    for (const int64_t k : haar_terms(true))
+      for (const ReportMeasurement& m : r.measurements)
+        if (m.setting.basis == ReportBasis::Haar && m.setting.cube == cube && m.setting.terms == k)
+          haar[cube].push_back(&m);
+  std::size_t haar_rows = 0;
+  for (const auto& [cube, rows] : haar) {
+    INFO("cube " << cube);
+    REQUIRE(rows.size() == haar_terms(true).size());
+    haar_rows += rows.size();
+    for (const ReportMeasurement* m : rows) {
+      CHECK(m->axis == "haar");
+      CHECK(m->bake_seconds == rows.front()->bake_seconds);
+      CHECK(m->file_bytes == rows.front()->file_bytes);
+      CHECK(m->relight_seconds > 0);
+    }
+    REQUIRE(rows.back()->setting.terms == 0);
+    // Error against K at fixed N. The K largest area-weighted terms are nested, so the lighting
+    // error falls with K; the error against the ground truth also holds the cube's resolution,
+    // the transfer's truncation and quantisation and the ground truth's noise, which adding terms
+    // does not change, so once the lighting error is below them the total may wobble by a
+    // fraction of the lighting error left. Allowed: 3% of the previous error per step (measured
+    // wobble < 0.5%; terms mis-indexed or mis-signed make it grow by far more). And the terms
+    // must matter: 10 terms cannot hold a sky with a 500x sun texel (they drop whole faces'
+    // averages), so all terms must be at least 2x better (measured ≈ 2.7x at 8, 10x at 16).
+    for (std::size_t i = 1; i < rows.size(); ++i) {
+      INFO("K " << rows[i - 1]->setting.terms << " -> " << rows[i]->setting.terms << ": "
+                << rows[i - 1]->relative_rms << " -> " << rows[i]->relative_rms);
+      CHECK(rows[i]->relative_rms <= rows[i - 1]->relative_rms * 1.03);
+    }
+    CHECK(rows.back()->relative_rms * 2 < rows.front()->relative_rms);
+  }
+  const double haar8 = haar[8].back()->relative_rms, haar16 = haar[16].back()->relative_rms;
+  INFO("all terms: cube 8 " << haar8 << ", cube 16 " << haar16 << "; SH order 3 "
+                            << find(3, base.samples, -1) << ", shadowed SH "
+                            << find(base.order, base.samples, 0));
+  // The rows hold interreflection: better than the shadowed-only SH transfer (bounces 0, which
+  // misses the 50-60% reflecting floor and box; measured 10.1% vs Haar 6.2% and 2.3%).
+  CHECK(haar8 * 1.25 < find(base.order, base.samples, 0));
+  // Cube resolution: with one direction per texel the 8-cube (texels ≈ 14° at a face centre)
+  // puts the sun (a 5.6° lat-long texel) in a texel twice its size and shifts the box's shadow
+  // edge; the 16-cube (≈ 7°) nearly resolves it. Measured 6.2% → 2.3%; required ≥ 1.5x.
+  CHECK(haar16 * 1.5 < haar8);
+  // All-frequency vs low-order SH under a sun: SH order 3 (9 terms) smears the sharp box shadow
+  // (7.4%); the 16-cube must be at least 2x better (measured 3.2x), and must beat every SH
+  // setting of the sweep (best: order 6 at 1024 spp, 4.3%) — if it did not, a frame or sign
+  // error in the Haar lighting (the sun in the wrong texel) would be the likely cause.
+  CHECK(haar16 * 2 < find(3, base.samples, -1));
+  for (const ReportMeasurement& m : r.measurements)
+    if (m.setting.basis == ReportBasis::Sh) CHECK(haar16 < m.relative_rms);
   // The JSON mirrors the measurements and prints the basis convention.
   std::ifstream jf(dir / "out" / "results.json");
   const nlohmann::json j = nlohmann::json::parse(jf);
   CHECK(j["results"].size() == r.measurements.size());
   CHECK(j["sh_basis"].get<std::string>().find("no Condon-Shortley") != std::string::npos);
   CHECK(j["ground_truth"]["samples_per_vertex"].get<int>() == r.ground_truth_samples);
+  int json_haar = 0;
+  for (const nlohmann::json& row : j["results"]) {
+    const std::string basis = row["basis"].get<std::string>();
+    REQUIRE((basis == "sh" || basis == "haar"));
+    if (basis == "haar") {
+      ++json_haar;
+      const int cube = row["cube"].get<int>();
+      CHECK((cube == 8 || cube == 16));
+      CHECK(row["terms"].get<int64_t>() >= 1);
+      CHECK(row["terms"].get<int64_t>() <= 6 * cube * cube);
+      CHECK(row["order"].is_null());
+    } else {
+      CHECK(row["cube"].is_null());
+      CHECK(row["order"].get<int>() >= 1);
+    }
+  }
+  CHECK(json_haar == static_cast<int>(haar_rows));
   // CSV: a header and one row per measurement.
   std::ifstream cf(dir / "out" / "results.csv");
-  int lines = 0;
-  for (std::string line; std::getline(cf, line);) ++lines;
+  int lines = 0, csv_haar = 0;
+  std::string header;
+  for (std::string line; std::getline(cf, line);) {
+    if (lines++ == 0) header = line;
+    if (line.rfind("haar,haar,,,8,", 0) == 0 || line.rfind("haar,haar,,,16,", 0) == 0)
+      ++csv_haar;  // axis, basis, no order or samples, cube
+  }
   CHECK(lines == static_cast<int>(r.measurements.size()) + 1);
+  CHECK(header.rfind("axis,basis,order,samples,cube,terms,bounces,precision,", 0) == 0);
+  CHECK(csv_haar == static_cast<int>(haar_rows));
   // The summary names the cheapest setting for each target and embeds both plots.
   std::ifstream mf(dir / "out" / "summary.md");
   std::stringstream md;
@@ -219,4 +391,11 @@ TEST_CASE("end-to-end quick report on a small scene writes consistent files") {
   CHECK(md.str().find("| 10% |") != std::string::npos);
   CHECK(md.str().find("(pareto.png)") != std::string::npos);
   CHECK(md.str().find("(error_vs_order.png)") != std::string::npos);
+  CHECK(md.str().find("## Haar wavelets") != std::string::npos);
+  CHECK(md.str().find("(haar_error_vs_terms.png)") != std::string::npos);
+  CHECK(std::filesystem::exists(dir / "out" / "haar_error_vs_terms.svg"));
+  // The cheapest-setting lines name the basis.
+  const std::string ten = md.str().substr(md.str().find("| 10% |"), 40);
+  CHECK((ten.find("| SH order") != std::string::npos ||
+         ten.find("| Haar cube") != std::string::npos));
 }

@@ -4,6 +4,11 @@
 // rsvg-convert (Debian package librsvg2-bin) when it is installed.
 // Coordinates: data space → pixel space by x_px = left + (T(x) − T(x0))/(T(x1) − T(x0))·width,
 // T = log10 for log axes (non-positive values are dropped from log plots), y up.
+// Point labels are drawn after all markers and placed greedily, in series order, at the first of
+// above-right, below-right, above-left, below-left of their marker whose text box (estimated
+// from the character count) stays inside the plot and covers no label placed before and no
+// marker; failing that, the first that covers no label; failing that, the label is left out
+// (overlapping text would be unreadable; the caller's table has the point).
 #pragma once
 
 #include <string>
@@ -25,8 +30,11 @@ struct PlotSeries {
   std::vector<std::string> point_labels;  // optional text next to each point
 };
 
-// Where the legend box sits inside the plot area.
-enum class LegendCorner { TopRight, TopLeft, BottomRight, BottomLeft };
+// Where the legend box sits: a corner inside the plot area; Auto = the first corner (top right,
+// top left, bottom right, bottom left) whose box covers no marker, line or point label, or, when
+// every corner covers something, OutsideRight; OutsideRight = right of the plot area, the
+// document widened by the legend's width.
+enum class LegendCorner { TopRight, TopLeft, BottomRight, BottomLeft, Auto, OutsideRight };
 
 struct PlotSpec {
   std::string title, x_label, y_label;

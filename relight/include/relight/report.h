@@ -9,7 +9,18 @@
 // Sweep design: one axis at a time around a base setting (order 6, 1024 samples per vertex,
 // interreflected with bounces solved to convergence, f32 storage; --quick: 256 samples), plus a
 // small (order × samples) grid for the Pareto plot. Axes are rows of a table (ReportAxis) of
-// settings (ReportSetting), so a new axis — wavelet terms, cube size — is one more entry.
+// settings (ReportSetting), so a new axis is one more entry.
+// Haar axis ("haar"): all-frequency transfer (bake/haar_baker.h, as `prt bake --basis haar`:
+// interreflected with the base setting's bounces, one direction per cube texel, per-vertex
+// threshold 1e-3, 16-bit quantisation) on cube sizes N (quick {8}; full {8, 16}) × K
+// non-linear lighting terms (relight/haar_relight.h, as `prt relight --terms K`; K values at or
+// above 6N² collapse into "all"). One bake per N is shared by its K settings. Haar has no sample
+// count (its directions are the 6N² texel centres) and no SH order: those fields are 0 and are
+// printed empty. The bake cost grows about as N⁴ (the interreflection solve runs on all 6N²
+// wavelet columns, and each of the 6N² texel rays adds a gather entry): on the demo scene
+// (11k vertices, 2 cores) N = 8 takes ≈ 10 CPU-seconds, N = 16 ≈ 10× that, so quick keeps
+// N = 8 and N = 32 (estimated ≈ 10× N = 16 again, most of an hour; not measured) is opt-in
+// (ReportOptions::haar_cubes, `prt report --haar-cubes 8,16,32`).
 // Projection vs sampling error: a reference bake at the largest order and sample count
 // (converged transfer) truncated to order n gives the projection error of order n (against the
 // ground truth); the order-n bake at N samples against that truncated reference gives the
@@ -17,10 +28,12 @@
 // The ground truth is refined (sample doubling) until its relative RMS standard error is at most
 // 1/5 of the smallest error measured, within a time budget, and the summary says what it reached.
 // Outputs in the output directory: results.csv, results.json, pareto.svg/png,
-// error_vs_order.svg/png, summary.md (PNG through rsvg-convert; without it only SVG). All files
-// are written atomically. Errors throw std::runtime_error "PATH: problem".
+// error_vs_order.svg/png, haar_error_vs_terms.svg/png (when the Haar axis is swept), summary.md
+// (PNG through rsvg-convert; without it only SVG). All files are written atomically. Errors
+// throw std::runtime_error "PATH: problem".
 #pragma once
 
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
@@ -30,15 +43,20 @@
 
 namespace prt::relight {
 
+enum class ReportBasis { Sh, Haar };
+
 struct ReportSetting {
-  int order = 6;
-  int samples = 1024;
-  int bounces = -1;  // −1: solved to convergence; 0: shadowed (direct) only
-  prt::Precision precision = prt::Precision::F32;
+  ReportBasis basis = ReportBasis::Sh;
+  int order = 6;       // SH order n (n² coefficients); 0 for Haar
+  int samples = 1024;  // SH rays per vertex; 0 for Haar (one direction per cube texel)
+  int bounces = -1;    // −1: solved to convergence; 0: shadowed (direct) only
+  prt::Precision precision = prt::Precision::F32;  // SH storage (Haar files are 16-bit)
+  int cube = 0;                                    // Haar cube size N; 0 for SH
+  int64_t terms = 0;  // Haar lighting terms K (non-linear); 0 = all 6N²; 0 for SH
 };
 
 struct ReportAxis {
-  std::string name;  // "order", "samples", "bounces", "precision", "grid"
+  std::string name;  // "order", "samples", "bounces", "precision", "grid", "haar"
   std::vector<ReportSetting> settings;
 };
 
@@ -49,7 +67,10 @@ struct ReportOptions {
   uint64_t seed = 1;
   int image_width = 320, image_height = 180;
   double ground_truth_budget_seconds = 110;  // refinement stops before exceeding this
-  bool verbose = true;                       // progress lines on stderr
+  // Haar cube sizes to sweep: nullopt = the default of the mode (quick {8}, full {8, 16});
+  // an empty list leaves the Haar axis out.
+  std::optional<std::vector<int>> haar_cubes;
+  bool verbose = true;  // progress lines on stderr
 };
 
 struct ReportMeasurement {
@@ -74,9 +95,12 @@ struct ReportResult {
   std::vector<std::string> files_written;
 };
 
-// The base setting and the axes swept (quick or full).
+// The base setting and the axes swept (quick or full). haar_cubes as in ReportOptions.
 ReportSetting base_setting(bool quick);
-std::vector<ReportAxis> report_axes(bool quick);
+std::vector<int> default_haar_cubes(bool quick);
+std::vector<int64_t> haar_terms(bool quick);  // K values (0 = all) before collapsing at 6N²
+std::vector<ReportAxis> report_axes(bool quick,
+                                    const std::optional<std::vector<int>>& haar_cubes = {});
 
 // Runs everything and writes the files. Throws std::runtime_error on failure.
 ReportResult run_report(const ReportOptions& options);
