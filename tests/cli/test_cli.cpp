@@ -15,6 +15,8 @@
 #include <string>
 #include <vector>
 
+#include <unistd.h>
+
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>
 
@@ -37,19 +39,25 @@ std::string slurp(const fs::path& p) {
   return s.str();
 }
 
-// Runs `command` through the shell, capturing stdout and stderr into files.
+// Runs `command` through the shell, capturing stdout and stderr into files. ctest runs every
+// test case as its own process, several at once (-j), all sharing the output directory: the
+// capture files are named by process id as well as by a per-process counter, so that parallel
+// cases never read each other's output, and are removed once read.
 RunResult run(const std::string& command) {
   static int counter = 0;
   const fs::path dir = prt::test::output_path("cli");
   fs::create_directories(dir);
-  const fs::path out = dir / ("run" + std::to_string(counter) + ".out");
-  const fs::path err = dir / ("run" + std::to_string(counter++) + ".err");
+  const std::string stem = "run" + std::to_string(::getpid()) + "_" + std::to_string(counter++);
+  const fs::path out = dir / (stem + ".out");
+  const fs::path err = dir / (stem + ".err");
   const std::string full = command + " >" + out.string() + " 2>" + err.string();
   const int status = std::system(full.c_str());
   RunResult r;
   r.exit_code = (status == -1) ? -1 : WEXITSTATUS(status);
   r.out = slurp(out);
   r.err = slurp(err);
+  fs::remove(out);  // a later process given the same pid starts clean
+  fs::remove(err);
   return r;
 }
 

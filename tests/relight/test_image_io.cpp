@@ -41,10 +41,13 @@ std::vector<float> random_pixels(std::size_t count, float low, float high, unsig
   return pixels;
 }
 
-// No temporaries (PATH.tmp-<pid>) are left in the directory of `path`.
+// No temporaries of `path` (PATH.tmp-<pid>) are left in its directory. Only this path's: ctest
+// runs the other cases as parallel processes writing into the same directory, and their
+// temporaries may exist at any moment.
 bool no_temporaries_beside(const std::string& path) {
+  const std::string prefix = fs::path(path).filename().string() + ".tmp-";
   for (const auto& entry : fs::directory_iterator(fs::path(path).parent_path()))
-    if (entry.path().filename().string().find(".tmp-") != std::string::npos) return false;
+    if (entry.path().filename().string().rfind(prefix, 0) == 0) return false;
   return true;
 }
 
