@@ -1,72 +1,96 @@
-// fuzz/fuzz_env_map.cpp — libFuzzer target: the environment-map path, image bytes →
-// OpenImageIO (relight::read_environment) → sh::validate_layout → sh::project.
+// fuzz/fuzz_env_map.cpp — libFuzzer target: the environment-map path from memory, image bytes →
+// the project's Radiance / PFM decoders (relight/radiance_hdr.h, relight/pfm_image.h) →
+// relight::to_environment (layout guessed or forced) → sh::validate_layout → sh::project.
+// (EXR goes through OpenImageIO: fuzz_env_map_exr.cpp.)
 //
-// Input: byte 0 picks the container (.hdr, .exr, .pfm) and whether the layout is guessed or
-// forced; the rest is the file. A hostile file must either be refused with a one-line
-// std::runtime_error or give a map whose projection is finite over the texels it used
-// (NaN/Inf/negative texels are skipped and counted). Images larger than kMaxFuzzTexels are
-// refused by the target before decoding pixels would take all memory (the header is read
-// by read_environment first, so this still exercises the header parsers).
-#include <algorithm>
+// Input: byte 0 picks the decoder (even: Radiance RGBE, odd: PFM) and the layout
+// ((b / 2) % 5: guessed, latlong, angular, cross, faces); the rest is the file. A hostile file
+// must be refused with a one-line std::runtime_error "fuzz.hdr: ..." / "fuzz.pfm: ...", or give
+// an image of the announced size (RGBE: finite, non-negative samples) and then a map whose
+// projection is finite over the texels it used (NaN/Inf/negative texels are skipped and
+// counted). Images over kMaxFuzzTexels are refused by the decoders' own size cap, before they
+// allocate, which keeps each execution short (the cap is the parameter real reads set to 2^28).
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <cstdlib>
+#include <cstring>
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <utility>
+#include <vector>
 
-#include <OpenImageIO/imageio.h>
-
-#include "fuzz_input_file.h"
 #include "relight/image_io.h"
-#include "scene_invariants.h"
+#include "relight/pfm_image.h"
+#include "relight/radiance_hdr.h"
 #include "sh/env_map.h"
 #include "sh/projection.h"
 
+namespace {
+
+// 2^16 texels: wide enough for a 32768-pixel scanline (flat, too long for RLE) and beyond.
+constexpr std::size_t kMaxFuzzTexels = std::size_t{1} << 16;
+
+// Errors are one line, "NAME: problem".
+void check_error(const char* message, const std::string& name) {
+  if (message == nullptr || std::strncmp(message, name.c_str(), name.size()) != 0 ||
+      std::strncmp(message + name.size(), ": ", 2) != 0 || message[name.size() + 2] == '\0' ||
+      std::strchr(message, '\n') != nullptr || std::strchr(message, '\r') != nullptr)
+    std::abort();
+}
+
+std::optional<sh::EnvLayout> layout_of(uint8_t selector) {
+  switch ((selector / 2) % 5) {
+    case 1:
+      return sh::EnvLayout::LatLong;
+    case 2:
+      return sh::EnvLayout::Angular;
+    case 3:
+      return sh::EnvLayout::Cross;
+    case 4:
+      return sh::EnvLayout::Faces;
+    default:
+      return std::nullopt;  // guessed from the aspect ratio
+  }
+}
+
+}  // namespace
+
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   if (size < 1) return 0;
-  static const char* const kExtensions[] = {".hdr", ".exr", ".pfm"};
   const uint8_t selector = data[0];
-  const std::string path =
-      prt::fuzz::write_scratch_file(kExtensions[selector % 3], data + 1, size - 1);
-  std::optional<sh::EnvLayout> layout;
-  switch ((selector / 3) % 5) {
-    case 1:
-      layout = sh::EnvLayout::LatLong;
-      break;
-    case 2:
-      layout = sh::EnvLayout::Angular;
-      break;
-    case 3:
-      layout = sh::EnvLayout::Cross;
-      break;
-    case 4:
-      layout = sh::EnvLayout::Faces;
-      break;
-    default:
-      break;  // guessed from the aspect ratio
+  const bool radiance = selector % 2 == 0;
+  const std::string name = radiance ? "fuzz.hdr" : "fuzz.pfm";
+  prt::relight::FloatImage image;
+  try {
+    image = radiance ? prt::relight::decode_radiance_hdr(data + 1, size - 1, name, kMaxFuzzTexels)
+                     : prt::relight::decode_pfm(data + 1, size - 1, name, kMaxFuzzTexels);
+  } catch (const std::runtime_error& e) {
+    check_error(e.what(), name);
+    return 0;
   }
-  // Decoding a header that claims a gigantic image would allocate it (read_environment has no
-  // size cap: 8192×4096 maps are legitimate); keep the fuzzer inside its memory limit.
-  constexpr long long kMaxFuzzTexels = 1 << 20;
-  if (auto in = OIIO::ImageInput::open(path)) {
-    const OIIO::ImageSpec& spec = in->spec();
-    if (static_cast<long long>(spec.width) * spec.height * std::max(spec.nchannels, 1) *
-            std::max(spec.depth, 1) >
-        3 * kMaxFuzzTexels)
-      return 0;
-  }
+  if (image.width <= 0 || image.height <= 0) std::abort();
+  const std::size_t texels = static_cast<std::size_t>(image.width) * image.height;
+  if (texels > kMaxFuzzTexels) std::abort();
+  const bool channels_ok =
+      radiance ? image.channels == 3 : image.channels == 1 || image.channels == 3;
+  if (!channels_ok) std::abort();
+  if (image.pixels.size() != texels * static_cast<std::size_t>(image.channels)) std::abort();
+  if (radiance)
+    for (float v : image.pixels)
+      if (!std::isfinite(v) || v < 0.0f) std::abort();  // m · 2^(e − 136) is never NaN or < 0
+
   sh::EnvMap env;
   try {
-    env = prt::relight::read_environment(path, layout);
+    env = prt::relight::to_environment(std::move(image), name, layout_of(selector));
   } catch (const std::runtime_error& e) {
-    prt::fuzz::check_one_line_message(e.what());
+    check_error(e.what(), name);
     return 0;
   }
   std::string why;
   if (!sh::validate_layout(env.layout, env.width, env.height, &why)) std::abort();
-  if (env.rgb.size() != static_cast<std::size_t>(env.width) * env.height * 3) std::abort();
+  if (env.rgb.size() != texels * 3) std::abort();
   sh::ProjectionStats stats;
   const std::vector<double> c = sh::project(env, 3, &stats);
   if (c.size() != 27) std::abort();

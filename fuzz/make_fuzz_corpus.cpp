@@ -4,14 +4,18 @@
 //                               with and without AO, bent normals and primitive ranges;
 //   corpus/fuzz_scene_obj/      small OBJ files (triangles, quads, vn/vt, negative indices);
 //   corpus/fuzz_scene_gltf/     GLB files from bake::write_glb and a .gltf with a data URI;
-//   corpus/fuzz_env_map/        selector byte + small .hdr, .exr and .pfm maps of each layout.
+//   corpus/fuzz_env_map/        selector byte + small .hdr and .pfm maps of each layout;
+//   corpus/fuzz_env_map_exr/    selector byte + small .exr maps of each layout (its regression_*
+//                               files are kept findings of the target, not written here).
 // Usage: make_fuzz_corpus OUT_DIR   (scripts/fuzz.sh runs it when a corpus folder is empty).
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <iterator>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "bake/glb_writer.h"
@@ -106,35 +110,74 @@ void write_gltf_seeds(const fs::path& dir) {
 )");
 }
 
-void write_env_seeds(const fs::path& dir) {
-  // Selector byte b: extension = {hdr, exr, pfm}[b % 3], layout = {guess, latlong, angular, cross,
-  // faces}[(b / 3) % 5] (fuzz_env_map.cpp).
+// PFM bytes: "PF"/"Pf", size, scale (-1: little-endian, 1: big-endian), rows bottom first.
+std::string pfm_bytes(int w, int h, int channels, const std::vector<float>& values,
+                      bool big_endian) {
+  std::string file = std::string(channels == 3 ? "PF" : "Pf") + "\n" + std::to_string(w) + " " +
+                     std::to_string(h) + "\n" + (big_endian ? "1.0" : "-1.0") + "\n";
+  const std::size_t row = std::size_t(w) * channels;
+  for (int r = h - 1; r >= 0; --r)
+    for (std::size_t i = 0; i < row; ++i) {
+      char b[4];
+      std::memcpy(b, &values[std::size_t(r) * row + i], 4);
+      if (big_endian) {
+        std::swap(b[0], b[3]);
+        std::swap(b[1], b[2]);
+      }
+      file.append(b, 4);
+    }
+  return file;
+}
+
+std::string written_by_openimageio(const fs::path& dir, const std::string& extension, int w, int h,
+                                   const std::vector<float>& rgb) {
+  const fs::path tmp = dir / ("tmp" + extension);
+  prt::relight::write_image(tmp.string(), w, h, 3, rgb.data());
+  std::string file = read_bytes(tmp);
+  fs::remove(tmp);
+  return file;
+}
+
+// corpus/fuzz_env_map/: selector byte b (decoder {Radiance, PFM}[b % 2], layout {guess, latlong,
+// angular, cross, faces}[(b / 2) % 5]; fuzz_env_map.cpp) + a small map of each layout as .hdr
+// (OpenImageIO's writer: flat below width 8, RLE from 8) and PFM, plus the rarer encodings the
+// decoders handle: grey and big-endian PFM, old-style RLE, a bottom-up and a column-major .hdr.
+// corpus/fuzz_env_map_exr/: selector byte (layout = b % 5) + the same maps as .exr.
+void write_env_seeds(const fs::path& dir, const fs::path& exr_dir) {
   struct Size {
     int w, h, layout;
   };
-  const std::vector<Size> sizes = {{8, 4, 1}, {4, 4, 2}, {6, 8, 3}, {2, 12, 4}, {1, 1, 0}};
-  int n = 0;
+  const std::vector<Size> sizes = {{8, 4, 1},  {4, 4, 2}, {6, 8, 3},
+                                   {2, 12, 4}, {1, 1, 0}, {16, 8, 0}};
+  int n = 0, e = 0;
+  auto seed = [&](int decoder, int layout, const std::string& file) {
+    const char selector = static_cast<char>(decoder + 2 * layout);
+    write_bytes(dir / ("map_" + std::to_string(n++)), std::string(1, selector) + file);
+  };
   for (const Size& s : sizes) {
     std::vector<float> rgb(static_cast<std::size_t>(s.w) * s.h * 3);
     for (std::size_t i = 0; i < rgb.size(); ++i) rgb[i] = 0.1f + 0.37f * float(i % 7);
-    for (int ext = 0; ext < 3; ++ext) {
-      std::string file;
-      if (ext == 2) {
-        // PFM: "PF\nW H\n-1.0\n", little-endian float RGB rows, bottom row first.
-        file = "PF\n" + std::to_string(s.w) + " " + std::to_string(s.h) + "\n-1.0\n";
-        for (int row = s.h - 1; row >= 0; --row)
-          file.append(reinterpret_cast<const char*>(&rgb[std::size_t(row) * s.w * 3]),
-                      std::size_t(s.w) * 3 * sizeof(float));
-      } else {
-        const fs::path tmp = dir / (ext == 0 ? "tmp.hdr" : "tmp.exr");
-        prt::relight::write_image(tmp.string(), s.w, s.h, 3, rgb.data());
-        file = read_bytes(tmp);
-        fs::remove(tmp);
-      }
-      const char selector = static_cast<char>(ext + 3 * s.layout);
-      write_bytes(dir / ("map_" + std::to_string(n++)), std::string(1, selector) + file);
-    }
+    seed(0, s.layout, written_by_openimageio(dir, ".hdr", s.w, s.h, rgb));
+    seed(1, s.layout, pfm_bytes(s.w, s.h, 3, rgb, false));
+    write_bytes(exr_dir / ("map_" + std::to_string(e++)),
+                std::string(1, static_cast<char>(s.layout)) +
+                    written_by_openimageio(dir, ".exr", s.w, s.h, rgb));
   }
+  // Grey big-endian PFM, 4x2 lat-long.
+  seed(1, 1, pfm_bytes(4, 2, 1, {0.5f, 1.f, 2.f, 4.f, 8.f, 16.f, 32.f, 64.f}, true));
+  const std::string header = "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n";
+  // Old-style RLE, 10x5 lat-long, each scanline: a pixel, repeat 3; a pixel, repeat 1, repeat 0
+  // (shifted: 0 << 8); a pixel, repeat 3.
+  std::string scanline("\x80\x40\x20\x81\x01\x01\x01\x03\x10\x20\x80\x82", 12);
+  scanline += std::string("\x01\x01\x01\x01\x01\x01\x01\x00\x05\x06\x07\x85", 12);
+  scanline += std::string("\x01\x01\x01\x03", 4);
+  std::string old_rle = header + "-Y 5 +X 10\n";
+  for (int row = 0; row < 5; ++row) old_rle += scanline;
+  seed(0, 0, old_rle);
+  // Bottom-up rows and column-major scanlines, 2x1 lat-long, flat pixels.
+  const std::string two_pixels("\x80\x40\x20\x81\x10\x20\x80\x82", 8);
+  seed(0, 1, header + "+Y 1 +X 2\n" + two_pixels);
+  seed(0, 1, header + "+X 2 -Y 1\n" + two_pixels);
 }
 
 }  // namespace
@@ -147,12 +190,13 @@ int main(int argc, char** argv) {
   try {
     const fs::path out = argv[1];
     const fs::path dirs[] = {out / "fuzz_transfer_file", out / "fuzz_scene_obj",
-                             out / "fuzz_scene_gltf", out / "fuzz_env_map"};
+                             out / "fuzz_scene_gltf", out / "fuzz_env_map",
+                             out / "fuzz_env_map_exr"};
     for (const fs::path& d : dirs) fs::create_directories(d);
     write_transfer_seeds(dirs[0]);
     write_obj_seeds(dirs[1]);
     write_gltf_seeds(dirs[2]);
-    write_env_seeds(dirs[3]);
+    write_env_seeds(dirs[3], dirs[4]);
   } catch (const std::exception& e) {
     std::cerr << e.what() << "\n";
     return 1;

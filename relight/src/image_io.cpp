@@ -1,17 +1,28 @@
-// relight/src/image_io.cpp — environment-map reading and atomic image writing with OpenImageIO.
+// relight/src/image_io.cpp — environment-map reading (own Radiance and PFM decoders, OpenImageIO
+// for the rest) and atomic image writing with OpenImageIO.
 #include "relight/image_io.h"
 
 #include <unistd.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <memory>
 #include <stdexcept>
 #include <string>
 #include <system_error>
+#include <utility>
+#include <vector>
 
 #include <OpenImageIO/imageio.h>
+
+#include "relight/exr_header_check.h"
+#include "relight/pfm_image.h"
+#include "relight/radiance_hdr.h"
 
 namespace prt::relight {
 namespace {
@@ -34,15 +45,19 @@ std::string lower_extension(const std::string& path) {
   return extension;
 }
 
-// Float RGB from an image with any channel count.
-sh::EnvMap to_rgb(const FloatImage& image, sh::EnvLayout layout) {
+// Float RGB from an image with any channel count (3 channels: the pixels are moved).
+sh::EnvMap to_rgb(FloatImage&& image, sh::EnvLayout layout) {
   sh::EnvMap env;
   env.layout = layout;
   env.width = image.width;
   env.height = image.height;
   const std::size_t texels = static_cast<std::size_t>(image.width) * image.height;
-  env.rgb.resize(texels * 3);
   const int channels = image.channels;
+  if (channels == 3) {
+    env.rgb = std::move(image.pixels);
+    return env;
+  }
+  env.rgb.resize(texels * 3);
   for (std::size_t i = 0; i < texels; ++i) {
     const float* in = &image.pixels[i * channels];
     float* out = &env.rgb[i * 3];
@@ -55,6 +70,96 @@ sh::EnvMap to_rgb(const FloatImage& image, sh::EnvLayout layout) {
     }
   }
   return env;
+}
+
+enum class Decoder { Radiance, Pfm, OpenImageIO };
+
+// See "Which decoder reads a file" in image_io.h.
+Decoder choose_decoder(const std::string& path, const unsigned char* head, std::size_t size) {
+  if (has_radiance_magic(head, size)) return Decoder::Radiance;
+  if (has_pfm_magic(head, size)) return Decoder::Pfm;
+  const std::string extension = lower_extension(path);
+  if (extension == ".hdr" || extension == ".rgbe") return Decoder::Radiance;
+  if (extension == ".pfm") return Decoder::Pfm;
+  return Decoder::OpenImageIO;
+}
+
+// Up to `limit` bytes from the start of the file (all of it for limit = SIZE_MAX).
+std::vector<unsigned char> read_file_bytes(const std::string& path, std::size_t limit) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) fail(path, std::string("cannot open: ") + std::strerror(errno));
+  std::vector<unsigned char> bytes;
+  if (limit == SIZE_MAX) {
+    in.seekg(0, std::ios::end);
+    const std::streamoff size = in.tellg();
+    in.seekg(0, std::ios::beg);
+    if (size < 0 || !in) fail(path, "cannot read: cannot tell the file's size");
+    bytes.resize(static_cast<std::size_t>(size));
+  } else {
+    bytes.resize(limit);
+  }
+  in.read(reinterpret_cast<char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
+  if (in.bad() || (limit == SIZE_MAX && in.gcount() != static_cast<std::streamsize>(bytes.size())))
+    fail(path, "cannot read the file");
+  bytes.resize(static_cast<std::size_t>(in.gcount()));
+  return bytes;
+}
+
+std::string size_text(long long width, long long height) {
+  return std::to_string(width) + "x" + std::to_string(height);
+}
+
+// OpenImageIO, with the reader of the extension's format only when OpenImageIO knows the
+// extension (no probing of every plugin), else with its usual search. OpenEXR files (by magic)
+// are checked by exr_header_problem before OpenEXR sees them. (OpenEXR then reads the file
+// itself: OpenImageIO 2.4's IOMemReader does not bounds-check negative offsets, which a hostile
+// line-offset table produces — fuzz_env_map_exr found that, so the pixels are not decoded from
+// the checked bytes.)
+FloatImage read_with_openimageio(const std::string& path, const std::vector<unsigned char>& head,
+                                 std::size_t max_texels) {
+  std::string format = lower_extension(path);
+  if (!format.empty()) format.erase(0, 1);  // ".exr" -> "exr"
+  if (has_exr_magic(head.data(), head.size())) {
+    format = "openexr";
+    const std::vector<unsigned char> bytes = read_file_bytes(path, SIZE_MAX);
+    const std::string problem = exr_header_problem(bytes.data(), bytes.size(), max_texels);
+    if (!problem.empty()) fail(path, problem);
+  }
+  std::unique_ptr<OIIO::ImageInput> in;
+  if (!format.empty()) in = OIIO::ImageInput::create(format);
+  if (in) {
+    OIIO::ImageSpec opened;
+    if (!in->open(path, opened)) {
+      std::string why = in->geterror();
+      if (why.empty()) why = OIIO::geterror();
+      fail(path, "cannot read the image: " + why);
+    }
+  } else {
+    (void)OIIO::geterror();  // drop "no format for this extension"
+    in = OIIO::ImageInput::open(path);
+    if (!in) fail(path, "cannot read the image: " + OIIO::geterror());
+  }
+  const OIIO::ImageSpec& spec = in->spec();
+  if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0)
+    fail(path, "the image has zero size (" + size_text(spec.width, spec.height) + ")");
+  if (spec.depth > 1)
+    fail(path, "volume images are not supported (depth " + std::to_string(spec.depth) + ")");
+  const std::uint64_t texels = static_cast<std::uint64_t>(spec.width) * spec.height;
+  if (texels > max_texels)
+    fail(path, size_text(spec.width, spec.height) + " is too large (more than " +
+                   std::to_string(max_texels) + " texels)");
+  if (texels * static_cast<std::uint64_t>(spec.nchannels) > 4 * std::uint64_t{max_texels})
+    fail(path, size_text(spec.width, spec.height) + " with " + std::to_string(spec.nchannels) +
+                   " channels is too large");
+  FloatImage image;
+  image.width = spec.width;
+  image.height = spec.height;
+  image.channels = spec.nchannels;
+  image.pixels.resize(static_cast<std::size_t>(texels) * static_cast<std::size_t>(image.channels));
+  if (!in->read_image(0, 0, 0, image.channels, OIIO::TypeDesc::FLOAT, image.pixels.data()))
+    fail(path, "cannot read the pixels: " + in->geterror());
+  in->close();
+  return image;
 }
 
 std::string temporary_path(const std::string& path) {
@@ -98,35 +203,28 @@ void write_atomically(const std::string& path, const OIIO::ImageSpec& spec, OIIO
 
 }  // namespace
 
-FloatImage read_image(const std::string& path) {
+FloatImage read_image(const std::string& path, std::size_t max_texels) {
   std::error_code error;
   if (!std::filesystem::exists(path, error)) fail(path, "no such file");
   if (std::filesystem::is_directory(path, error)) fail(path, "is a directory, not an image");
-  std::unique_ptr<OIIO::ImageInput> in = OIIO::ImageInput::open(path);
-  if (!in) fail(path, "cannot read the image: " + OIIO::geterror());
-  const OIIO::ImageSpec& spec = in->spec();
-  if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0)
-    fail(path, "the image has zero size (" + std::to_string(spec.width) + "x" +
-                   std::to_string(spec.height) + ")");
-  FloatImage image;
-  image.width = spec.width;
-  image.height = spec.height;
-  image.channels = spec.nchannels;
-  image.pixels.resize(static_cast<std::size_t>(image.width) * image.height * image.channels);
-  if (!in->read_image(0, 0, 0, image.channels, OIIO::TypeDesc::FLOAT, image.pixels.data()))
-    fail(path, "cannot read the pixels: " + in->geterror());
-  in->close();
-  return image;
+  const std::vector<unsigned char> head = read_file_bytes(path, 4);
+  switch (choose_decoder(path, head.data(), head.size())) {
+    case Decoder::Radiance: {
+      const std::vector<unsigned char> bytes = read_file_bytes(path, SIZE_MAX);
+      return decode_radiance_hdr(bytes.data(), bytes.size(), path, max_texels);
+    }
+    case Decoder::Pfm: {
+      const std::vector<unsigned char> bytes = read_file_bytes(path, SIZE_MAX);
+      return decode_pfm(bytes.data(), bytes.size(), path, max_texels);
+    }
+    case Decoder::OpenImageIO:
+      break;
+  }
+  return read_with_openimageio(path, head, max_texels);
 }
 
-sh::EnvMap read_environment(const std::string& path, std::optional<sh::EnvLayout> layout,
-                            std::string* chosen_note) {
-  const bool is_pattern = path.find("%s") != std::string::npos;
-  if (is_pattern && (!layout || *layout == sh::EnvLayout::Faces)) {
-    if (chosen_note) *chosen_note = "layout faces (six files from the pattern)";
-    return read_environment_faces_pattern(path);
-  }
-  const FloatImage image = read_image(path);
+sh::EnvMap to_environment(FloatImage image, const std::string& path,
+                          std::optional<sh::EnvLayout> layout, std::string* chosen_note) {
   sh::EnvLayout chosen;
   if (layout) {
     chosen = *layout;
@@ -150,7 +248,17 @@ sh::EnvMap read_environment(const std::string& path, std::optional<sh::EnvLayout
                      " is " + kRatios[static_cast<int>(chosen)] + ")";
     }
   }
-  return to_rgb(image, chosen);
+  return to_rgb(std::move(image), chosen);
+}
+
+sh::EnvMap read_environment(const std::string& path, std::optional<sh::EnvLayout> layout,
+                            std::string* chosen_note) {
+  const bool is_pattern = path.find("%s") != std::string::npos;
+  if (is_pattern && (!layout || *layout == sh::EnvLayout::Faces)) {
+    if (chosen_note) *chosen_note = "layout faces (six files from the pattern)";
+    return read_environment_faces_pattern(path);
+  }
+  return to_environment(read_image(path), path, layout, chosen_note);
 }
 
 sh::EnvMap read_environment_faces(const std::vector<std::string>& six_paths) {
@@ -161,7 +269,7 @@ sh::EnvMap read_environment_faces(const std::vector<std::string>& six_paths) {
   env.layout = sh::EnvLayout::Faces;
   for (std::size_t face = 0; face < 6; ++face) {
     const std::string& path = six_paths[face];
-    const FloatImage image = read_image(path);
+    FloatImage image = read_image(path);
     if (image.width != image.height)
       fail(path, "a cube face must be square, not " + std::to_string(image.width) + "x" +
                      std::to_string(image.height));
@@ -173,7 +281,7 @@ sh::EnvMap read_environment_faces(const std::vector<std::string>& six_paths) {
       fail(path, "face size " + std::to_string(image.width) + " differs from the first face's " +
                      std::to_string(env.width));
     }
-    const sh::EnvMap face_map = to_rgb(image, sh::EnvLayout::Faces);
+    const sh::EnvMap face_map = to_rgb(std::move(image), sh::EnvLayout::Faces);
     env.rgb.insert(env.rgb.end(), face_map.rgb.begin(), face_map.rgb.end());
   }
   return env;

@@ -1,10 +1,25 @@
-// relight/image_io.h — reading environment maps and writing images (OpenImageIO).
+// relight/image_io.h — reading environment maps and writing images.
 //
 // Environment maps are read as linear float RGB (sh::EnvMap: row 0 at the top, layouts and the
-// glTF frame as in sh/env_map.h). .hdr (RGBE), .exr and .pfm are supported, and anything else
-// OpenImageIO reads; alpha and extra channels are dropped, one- and two-channel images are
-// treated as grey (channel 0 replicated). No colour-space conversion is applied: HDR formats hold
-// linear radiance.
+// glTF frame as in sh/env_map.h). Radiance RGBE (.hdr, .pic) and PFM are decoded by the
+// project's own decoders (relight/radiance_hdr.h, relight/pfm_image.h); everything else (.exr,
+// .png, ...) by OpenImageIO. Alpha and extra channels are dropped, one- and two-channel images
+// are treated as grey (channel 0 replicated). No colour-space conversion is applied: HDR formats
+// hold linear radiance. NaN, infinite and negative texels are passed through as stored
+// (sh::project skips and counts them).
+//
+// Which decoder reads a file: the magic "#?" → Radiance; "PF"/"Pf" + whitespace → PFM; otherwise
+// the extension .hdr/.rgbe → Radiance and .pfm → PFM (which then refuse the file's magic), and
+// anything else → OpenImageIO's reader for the extension's format only (a bad .exr fails in the
+// OpenEXR plugin instead of being offered to every plugin in turn). ".pic" without "#?" goes to
+// OpenImageIO (Softimage PIC shares the extension). A file whose extension OpenImageIO does not
+// know is offered to all its plugins, as before. OpenEXR files (magic 76 2f 31 01) have their
+// headers checked by relight/exr_header_check.h first (OpenEXR would otherwise allocate whatever
+// a hostile header claims).
+//
+// Size: images of more than `max_texels` texels (default kMaxImageTexels = 2^28, e.g. 16384 ×
+// 16384) are refused before their pixels are allocated; so are volume images (depth > 1) and
+// images with more samples than 4 channels' worth (texels × channels > 4 × max_texels).
 //
 // Errors are thrown as std::runtime_error with a one-line message "PATH: problem".
 // Writes are atomic: the image goes to PATH.tmp-<pid> and is renamed onto PATH; on error the
@@ -12,10 +27,12 @@
 #pragma once
 
 #include <array>
+#include <cstddef>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "relight/float_image.h"
 #include "sh/env_map.h"
 
 namespace prt::relight {
@@ -38,12 +55,15 @@ sh::EnvMap read_environment_faces_pattern(const std::string& pattern);
 // The six face names substituted for "%s": px, nx, py, ny, pz, nz.
 inline constexpr std::array<const char*, 6> kFaceSuffixes = {"px", "nx", "py", "ny", "pz", "nz"};
 
-// Reads any image as float pixels (channels as stored). Throws like read_environment.
-struct FloatImage {
-  int width = 0, height = 0, channels = 0;
-  std::vector<float> pixels;  // row-major, row 0 at the top
-};
-FloatImage read_image(const std::string& path);
+// Reads any image as float pixels (channels as stored; relight/float_image.h). Throws like
+// read_environment, and for more than `max_texels` texels.
+FloatImage read_image(const std::string& path, std::size_t max_texels = kMaxImageTexels);
+
+// The layout step of read_environment on an already decoded image: checks the requested layout
+// or guesses it from the aspect ratio (see read_environment; errors name `path`), then converts
+// to RGB (the pixels are moved, not copied, when the image has 3 channels).
+sh::EnvMap to_environment(FloatImage image, const std::string& path,
+                          std::optional<sh::EnvLayout> layout, std::string* chosen_note = nullptr);
 
 struct ImageWriteOptions {
   // EXR only: store 16-bit half floats instead of 32-bit floats. Values beyond the half range
