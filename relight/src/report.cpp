@@ -846,8 +846,19 @@ ReportResult run_report(const ReportOptions& opt) {
         sh_s.y.push_back(m.relative_rms);
       }
     p.series.push_back(sh_s);
-    for (const auto& t : thresholds) p.reference_lines.push_back(t);
-    p.reference_lines.push_back({truth.relative_rms_se, "ground-truth SE"});
+    // The ground truth's SE gets its own line unless it sits on a threshold line (within 25%),
+    // where the two labels would print over each other: then the threshold's label says both.
+    bool se_shown = false;
+    for (const auto& t : thresholds) {
+      const double ratio = truth.relative_rms_se / t.first;
+      if (ratio > 0.8 && ratio < 1.25) {
+        p.reference_lines.push_back({t.first, t.second + " ≈ ground-truth SE"});
+        se_shown = true;
+      } else {
+        p.reference_lines.push_back(t);
+      }
+    }
+    if (!se_shown) p.reference_lines.push_back({truth.relative_rms_se, "ground-truth SE"});
     write_plot(p, "haar_error_vs_terms");
   }
   // summary.md
