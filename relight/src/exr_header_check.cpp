@@ -8,19 +8,14 @@
 #include <string>
 #include <string_view>
 
+#include "message_text.h"
+
 namespace prt::relight {
 namespace {
 
 // A name for a message: printable ASCII only, at most 40 characters, quoted.
 std::string quoted(std::string_view text) {
-  constexpr std::size_t kMax = 40;
-  std::string out = "\"";
-  for (std::size_t i = 0; i < text.size() && i < kMax; ++i) {
-    const unsigned char c = static_cast<unsigned char>(text[i]);
-    out += (c >= 0x20 && c < 0x7f) ? static_cast<char>(c) : '?';
-  }
-  if (text.size() > kMax) out += "...";
-  return out + "\"";
+  return detail::quoted(text, 40);
 }
 
 std::int32_t read_i32(const unsigned char* p) {

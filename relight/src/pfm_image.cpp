@@ -10,6 +10,8 @@
 #include <string_view>
 #include <system_error>
 
+#include "message_text.h"
+
 namespace prt::relight {
 namespace {
 
@@ -52,14 +54,7 @@ class HeaderReader {
 
 // A header token for an error message: printable ASCII only, at most 20 characters.
 std::string quoted(std::string_view text) {
-  constexpr std::size_t kMax = 20;
-  std::string out = "\"";
-  for (std::size_t i = 0; i < text.size() && i < kMax; ++i) {
-    const unsigned char c = static_cast<unsigned char>(text[i]);
-    out += (c >= 0x20 && c < 0x7f) ? static_cast<char>(c) : '?';
-  }
-  if (text.size() > kMax) out += "...";
-  return out + "\"";
+  return detail::quoted(text, 20);
 }
 
 // 1 to 9 decimal digits, nothing else.

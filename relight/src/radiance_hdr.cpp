@@ -11,6 +11,8 @@
 #include <string_view>
 #include <vector>
 
+#include "message_text.h"
+
 namespace prt::relight {
 namespace {
 
@@ -20,14 +22,7 @@ namespace {
 
 // A piece of header text for an error message: printable ASCII only, at most 40 characters.
 std::string quoted(std::string_view text) {
-  constexpr std::size_t kMax = 40;
-  std::string out = "\"";
-  for (std::size_t i = 0; i < text.size() && i < kMax; ++i) {
-    const unsigned char c = static_cast<unsigned char>(text[i]);
-    out += (c >= 0x20 && c < 0x7f) ? static_cast<char>(c) : '?';
-  }
-  if (text.size() > kMax) out += "...";
-  return out + "\"";
+  return detail::quoted(text, 40);
 }
 
 std::string size_text(std::uint64_t width, std::uint64_t height) {
