@@ -30,12 +30,14 @@
 #include "relight/image_io.h"
 #include "relight/pfm_image.h"
 #include "relight/radiance_hdr.h"
+#include "support/error_message.h"
 #include "support/test_data.h"
 
 namespace fs = std::filesystem;
 using prt::relight::decode_pfm;
 using prt::relight::decode_radiance_hdr;
 using prt::relight::FloatImage;
+using prt::test::error_of;
 
 namespace {
 
@@ -86,17 +88,6 @@ long first_difference(const std::vector<float>& a, const std::vector<float>& b) 
   for (std::size_t i = 0; i < std::min(a.size(), b.size()); ++i)
     if (std::memcmp(&a[i], &b[i], sizeof(float)) != 0) return static_cast<long>(i);
   return a.size() == b.size() ? -1 : static_cast<long>(std::min(a.size(), b.size()));
-}
-
-// The message of the runtime_error thrown by `call` ("" if none).
-template <typename Call>
-std::string error_of(Call call) {
-  try {
-    call();
-  } catch (const std::runtime_error& e) {
-    return e.what();
-  }
-  return "";
 }
 
 // "NAME: problem", one line.

@@ -18,11 +18,13 @@
 #include "relight/image_io.h"
 #include "relight/sky_model.h"
 #include "sh/projection.h"
+#include "support/error_message.h"
 #include "support/test_data.h"
 
 namespace fs = std::filesystem;
 using prt::relight::read_environment;
 using prt::relight::write_image;
+using prt::test::error_of;
 
 namespace {
 
@@ -49,17 +51,6 @@ bool no_temporaries_beside(const std::string& path) {
   for (const auto& entry : fs::directory_iterator(fs::path(path).parent_path()))
     if (entry.path().filename().string().rfind(prefix, 0) == 0) return false;
   return true;
-}
-
-// Catches the runtime_error of `call` and returns its message ("" if nothing was thrown).
-template <typename Call>
-std::string error_of(Call call) {
-  try {
-    call();
-  } catch (const std::runtime_error& e) {
-    return e.what();
-  }
-  return "";
 }
 
 void check_one_line_error(const std::string& message, const std::string& path) {
