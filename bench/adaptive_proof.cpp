@@ -116,6 +116,30 @@ Row run_scene(const std::string& name, const Scene& scene, const std::vector<dou
   Row row;
   row.name = name;
   row.vertices = scene.vertex_count();
+  if (const char* repeat = std::getenv("PRT_PROOF_AUTO_ONLY")) {
+    // For profiling: only the --auto bake, N times (no reference, no sweep).
+    AutoBakeOptions o;
+    o.tolerance = std::getenv("PRT_PROOF_TOLERANCE") ? std::atof(std::getenv("PRT_PROOF_TOLERANCE"))
+                                                     : kTolerance;
+    o.lighting = sky;
+    o.lighting_order = kLightingOrder;
+    o.cap_sampling = std::getenv("PRT_PROOF_NOCAPS") == nullptr;
+    for (int i = 0; i < std::atoi(repeat); ++i) {
+      const AutoBakeResult a = bake_transfer_auto(scene, o);
+      std::printf(
+          "%s: auto bake %.3f s (rays %.3f s, %llu rays, solve %.3f s), order %d, rounds %d, c "
+          "%.3f "
+          "/ caps %.3f, budget met %d, predicted sampling %.4f truncation %.4f total %.4f, mean "
+          "samples %.0f\n",
+          name.c_str(), a.bake.stats.seconds_total, a.bake.stats.seconds_rays,
+          static_cast<unsigned long long>(a.bake.stats.rays), a.bake.stats.seconds_solve,
+          a.report.order, a.bake.stats.allocation_rounds, a.bake.stats.qmc_calibration,
+          a.bake.stats.qmc_calibration_caps, a.bake.stats.allocation_budget_met ? 1 : 0,
+          a.report.predicted_sampling_error, a.report.predicted_truncation_error,
+          a.report.predicted_error, a.report.mean_samples);
+    }
+    return row;
+  }
   BakeOptions ref;
   ref.kind = prt::TransferKind::Interreflected;
   ref.order = kLightingOrder;
@@ -126,9 +150,48 @@ Row run_scene(const std::string& name, const Scene& scene, const std::vector<dou
       exit_radiance(bake_transfer(scene, ref).data, sky, kLightingOrder);
 
   AutoBakeOptions o;
-  o.tolerance = kTolerance;
+  o.tolerance = std::getenv("PRT_PROOF_TOLERANCE") ? std::atof(std::getenv("PRT_PROOF_TOLERANCE"))
+                                                   : kTolerance;
   o.lighting = sky;
   o.lighting_order = kLightingOrder;
+  o.cap_sampling = std::getenv("PRT_PROOF_NOCAPS") == nullptr;
+  if (const char* list = std::getenv("PRT_PROOF_TOLERANCES")) {
+    // For tuning: --auto's error against time at several tolerances (best of 3 times).
+    for (const char* c = list; *c != '\0';) {
+      AutoBakeOptions t = o;
+      t.tolerance = std::strtod(c, const_cast<char**>(&c));
+      if (*c == ',') ++c;
+      double best = 1e30, err = 0.0, samples = 0.0;
+      int order = 0;
+      for (int i = 0; i < 3; ++i) {
+        const auto t0 = std::chrono::steady_clock::now();
+        const AutoBakeResult a = bake_transfer_auto(scene, t);
+        best = std::min(
+            best, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+        err = relative_rms_error(exit_radiance(a.bake.data, sky, kLightingOrder), b_ref);
+        samples = a.report.mean_samples;
+        order = a.report.order;
+      }
+      std::printf("  tolerance %.4f: auto %.3f s, error %.4f, order %d, mean samples %.0f\n",
+                  t.tolerance, best, err, order, samples);
+    }
+    for (int order : {3, 4, 5})
+      for (int samples : {32, 64, 128, 256, 512}) {
+        BakeOptions f;
+        f.kind = prt::TransferKind::Interreflected;
+        f.order = order;
+        f.samples = samples;
+        double best = 1e30, err = 0.0;
+        for (int i = 0; i < 3; ++i) {
+          const BakeResult r = bake_transfer(scene, f);
+          best = std::min(best, r.stats.seconds_total);
+          err = relative_rms_error(exit_radiance(r.data, sky, kLightingOrder), b_ref);
+        }
+        std::printf("  fixed order %d, %d samples: %.3f s, error %.4f\n", order, samples, best,
+                    err);
+      }
+    return row;
+  }
   const auto t0 = std::chrono::steady_clock::now();
   const AutoBakeResult a = bake_transfer_auto(scene, o);
   row.auto_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -250,12 +313,15 @@ Row run_scene(const std::string& name, const Scene& scene, const std::vector<dou
               row.fixed_seconds, row.fixed_error, row.fixed_table.c_str());
   std::printf(
       "  auto: analysis %.3f s, pilot %.3f s, rays %.3f s (%llu rays), solve %.3f s, bake total "
-      "%.3f s, bounces %d, open %zu, bounded skips %zu (bound %.4f), c %.3f, rounds %d, "
-      "predicted truncation %.4f\n",
+      "%.3f s, bounces %d, open %zu, bounded skips %zu (bound %.4f), c %.3f, caps: %llu vertices "
+      "(+%llu open, c %.3f, %.3f s), rounds %d, predicted truncation %.4f\n",
       a.report.analysis_seconds, a.report.pilot_seconds, a.bake.stats.seconds_rays,
       static_cast<unsigned long long>(a.bake.stats.rays), a.bake.stats.seconds_solve,
       a.bake.stats.seconds_total, a.bake.stats.jacobi_bounces, row.open, row.bounded,
-      a.report.predicted_skip_error, a.bake.stats.qmc_calibration, a.bake.stats.allocation_rounds,
+      a.report.predicted_skip_error, a.bake.stats.qmc_calibration,
+      static_cast<unsigned long long>(a.bake.stats.cap_vertices),
+      static_cast<unsigned long long>(a.bake.stats.cap_open_vertices),
+      a.bake.stats.qmc_calibration_caps, a.bake.stats.seconds_caps, a.bake.stats.allocation_rounds,
       a.report.predicted_truncation_error);
   std::fflush(stdout);
   return row;

@@ -46,6 +46,8 @@ std::vector<double> bake_pilot(const Scene& scene, const AutoBakeOptions& o,
   b.threads = o.threads;
   b.adaptive.enabled = true;
   b.adaptive.min_samples = b.adaptive.max_samples = o.pilot_samples;
+  b.adaptive.cap_sampling = o.cap_sampling;
+  b.adaptive.min_cap_samples = o.pilot_samples;
   b.adaptive.vertex_mode.assign(V, kSkipVertex);
   std::vector<std::size_t> pick(P);
   for (std::size_t i = 0; i < P; ++i) {
@@ -313,6 +315,7 @@ AutoBakeResult bake_transfer_auto(const Scene& scene, const AutoBakeOptions& o,
   b.adaptive.enabled = true;
   b.adaptive.min_samples = o.min_samples;
   b.adaptive.max_samples = o.max_samples;
+  b.adaptive.cap_sampling = o.cap_sampling;
   // The sampling error gets what the deterministic errors (truncation and skipped vertices,
   // added as they may share a sign) leave of the tolerance: the zero-mean sampling error adds
   // in squares. A 10% margin covers the allocation's luminance, direct-light-only model.

@@ -10,83 +10,14 @@
 
 #include "bake/ray_caster.h"
 
+#include "triangle_hierarchy.h"
+
 namespace prt::bake {
 namespace {
 
-constexpr int kLeafTriangles = 8;
 constexpr double kAcceptRatio = 0.25;  // accept a group's ball when r/d ≤ this
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
-
-struct Ball {
-  glm::dvec3 center{0.0};
-  double radius = 0.0;
-};
-
-// Groups of triangles in depth-first order; children of node i at i+1 and `second`.
-struct TriangleHierarchy {
-  struct Node {
-    glm::dvec3 box_center, box_half;  // of the group's vertices
-    Ball ball;                        // holds the group's vertices
-    uint32_t first = 0, count = 0;    // leaf: range of `order`
-    uint32_t second = 0;
-  };
-  const Scene* scene = nullptr;
-  std::vector<uint32_t> order;  // triangle indices, grouped by primitive
-  std::vector<uint32_t> primitive;  // per triangle (by its first vertex)
-  std::vector<glm::dvec3> centroid;
-  std::vector<Node> nodes;
-
-  glm::dvec3 vertex(uint32_t t, int i) const {
-    return glm::dvec3(scene->positions[scene->triangles[t][i]]);
-  }
-
-  uint32_t build(uint32_t first, uint32_t count) {
-    glm::dvec3 lo(kInfinity), hi(-kInfinity), clo(kInfinity), chi(-kInfinity);
-    for (uint32_t i = first; i < first + count; ++i) {
-      for (int k = 0; k < 3; ++k) {
-        lo = glm::min(lo, vertex(order[i], k));
-        hi = glm::max(hi, vertex(order[i], k));
-      }
-      clo = glm::min(clo, centroid[order[i]]);
-      chi = glm::max(chi, centroid[order[i]]);
-    }
-    Node node;
-    node.box_center = 0.5 * (lo + hi);
-    node.box_half = 0.5 * (hi - lo);
-    node.ball.center = node.box_center;
-    for (uint32_t i = first; i < first + count; ++i)
-      for (int k = 0; k < 3; ++k)
-        node.ball.radius =
-            std::max(node.ball.radius, glm::length(vertex(order[i], k) - node.ball.center));
-    node.first = first, node.count = count;
-    const uint32_t index = static_cast<uint32_t>(nodes.size());
-    nodes.push_back(node);
-    if (count <= kLeafTriangles) return index;
-    // Split between primitives first (a floor and the objects on it get separate groups, so a
-    // group's ball is not stretched over the floor), then at the median centroid.
-    uint32_t half = count / 2;
-    const uint32_t p_first = primitive[order[first]], p_last = primitive[order[first + count - 1]];
-    if (p_first != p_last) {
-      const uint32_t p_mid = p_first + (p_last - p_first + 1) / 2;
-      half = static_cast<uint32_t>(
-          std::lower_bound(order.begin() + first, order.begin() + first + count, p_mid,
-                           [&](uint32_t t, uint32_t p) { return primitive[t] < p; }) -
-          (order.begin() + first));
-    } else {
-      const glm::dvec3 size = chi - clo;
-      const int axis = size.x >= size.y && size.x >= size.z ? 0 : (size.y >= size.z ? 1 : 2);
-      std::nth_element(order.begin() + first, order.begin() + first + half,
-                       order.begin() + first + count, [&](uint32_t a, uint32_t b) {
-                         return centroid[a][axis] < centroid[b][axis];
-                       });
-    }
-    nodes[index].count = 0;
-    build(first, half);
-    const uint32_t second = build(first + half, count - half);
-    nodes[index].second = second;
-    return index;
-  }
-};
+using detail::TriangleHierarchy;
 
 // Bound of one triangle as seen from p: 0 when it lies within τ of the tangent plane.
 double triangle_bound(const Scene& scene, uint32_t t, const glm::dvec3& p, const glm::dvec3& n,
@@ -135,26 +66,7 @@ OcclusionBounds bound_occlusion(const Scene& scene, double threshold, double cut
   const std::size_t V = scene.positions.size();
   OcclusionBounds result;
   result.bound.assign(V, 0.f);
-  TriangleHierarchy h;
-  h.scene = &scene;
-  const uint32_t T = static_cast<uint32_t>(scene.triangles.size());
-  h.order.resize(T);
-  h.centroid.resize(T);
-  std::vector<uint32_t> vertex_primitive(V, 0);
-  for (uint32_t p = 0; p < scene.primitives.size(); ++p) {
-    const ScenePrimitive& prim = scene.primitives[p];
-    for (std::size_t v = prim.first_vertex; v < prim.first_vertex + prim.vertex_count && v < V; ++v)
-      vertex_primitive[v] = p;
-  }
-  h.primitive.assign(T, 0);
-  for (uint32_t t = 0; t < T; ++t) {
-    h.order[t] = t;
-    h.centroid[t] = (h.vertex(t, 0) + h.vertex(t, 1) + h.vertex(t, 2)) / 3.0;
-    h.primitive[t] = vertex_primitive[scene.triangles[t].x];
-  }
-  std::stable_sort(h.order.begin(), h.order.end(),
-                   [&](uint32_t a, uint32_t b) { return h.primitive[a] < h.primitive[b]; });
-  if (T > 0) h.build(0, T);
+  const TriangleHierarchy h = detail::build_triangle_hierarchy(scene);
   const double inflate = 2.0 * static_cast<double>(ray_offset_scale(scene));
   tbb::parallel_for(std::size_t(0), V, [&](std::size_t v) {
     if (!skip.empty() && skip[v]) return;

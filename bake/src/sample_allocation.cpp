@@ -14,8 +14,8 @@ uint32_t round_up(double n, uint32_t packet) {
 
 uint32_t count_for(double lambda, double a, uint32_t lo, uint32_t hi, uint32_t packet) {
   if (hi == 0) return 0;
-  const double want = lambda * a;
-  if (!(want > lo)) return lo;  // also NaN-safe
+  const double want = lambda * a;  // a: a_v/√c_v when costs are given
+  if (!(want > lo)) return lo;     // also NaN-safe
   if (want >= hi) return hi;
   return std::min(hi, std::max(lo, round_up(want, packet)));
 }
@@ -31,13 +31,18 @@ double error2(const std::vector<double>& a, const std::vector<uint32_t>& n) {
 
 SampleAllocation allocate_samples(const std::vector<double>& a, const std::vector<uint32_t>& n_min,
                                   const std::vector<uint32_t>& n_max, double budget,
-                                  uint32_t packet) {
+                                  uint32_t packet, const std::vector<double>& cost) {
   const std::size_t V = a.size();
   SampleAllocation r;
   r.samples.assign(V, 0);
+  // n_v ∝ a_v/√c_v: the λ search runs on the cost-scaled spreads.
+  std::vector<double> scaled = a;
+  if (!cost.empty())
+    for (std::size_t v = 0; v < V; ++v)
+      scaled[v] = cost[v] > 0.0 ? a[v] / std::sqrt(cost[v]) : a[v];
   auto fill = [&](double lambda) {
     for (std::size_t v = 0; v < V; ++v)
-      r.samples[v] = count_for(lambda, a[v], n_min[v], n_max[v], packet);
+      r.samples[v] = count_for(lambda, scaled[v], n_min[v], n_max[v], packet);
     return error2(a, r.samples);
   };
   // λ = 0: everyone at n_min. λ = ∞: everyone at n_max.
@@ -48,8 +53,8 @@ SampleAllocation allocate_samples(const std::vector<double>& a, const std::vecto
   }
   double hi_lambda = 0.0;
   for (std::size_t v = 0; v < V; ++v)
-    if (a[v] > 0.0 && n_max[v] > 0)
-      hi_lambda = std::max(hi_lambda, static_cast<double>(n_max[v]) / a[v]);
+    if (scaled[v] > 0.0 && n_max[v] > 0)
+      hi_lambda = std::max(hi_lambda, static_cast<double>(n_max[v]) / scaled[v]);
   e = fill(hi_lambda);
   if (e > budget) {
     r.predicted_error2 = e;
@@ -58,7 +63,8 @@ SampleAllocation allocate_samples(const std::vector<double>& a, const std::vecto
   // Bisection on log λ between a λ that misses the budget and one that meets it.
   double lo = hi_lambda, hi = hi_lambda;
   for (std::size_t v = 0; v < V; ++v)
-    if (a[v] > 0.0 && n_max[v] > 0) lo = std::min(lo, static_cast<double>(n_min[v]) / a[v]);
+    if (scaled[v] > 0.0 && n_max[v] > 0)
+      lo = std::min(lo, static_cast<double>(n_min[v]) / scaled[v]);
   lo = std::max(lo, 1e-300);
   for (int it = 0; it < 100 && hi / lo > 1.0 + 1e-9; ++it) {
     const double mid = std::sqrt(lo * hi);

@@ -35,11 +35,14 @@
 #include <tbb/parallel_for.h>
 #include <nlohmann/json.hpp>
 
+#include "bake/cap_sampling.h"
 #include "bake/interreflection_solver.h"
+#include "bake/occluder_caps.h"
 #include "bake/progress.h"
 #include "bake/ray_caster.h"
 #include "bake/sample_allocation.h"
 #include "bake/sampling.h"
+#include "bake/scene_analysis.h"
 #include "sh/basis.h"
 #include "sh/zonal.h"
 
@@ -59,6 +62,11 @@ constexpr uint64_t kReplicaSalt = 0x5245504c49434131ull;  // seeds the second ad
 constexpr std::size_t kAuditStride = 8;           // every 8th sampled vertex audits the error model
 constexpr std::size_t kMinAuditVertices = 64;     // fewer sampled vertices than 8 × 64: all audit
 constexpr double kMinCalibration2 = 0.05 * 0.05;  // c is never taken below 0.05
+constexpr std::size_t kMinClassAudits = 64;
+constexpr double kHitCost = 2.0;
+constexpr uint32_t kRoundGrowth = 4;  // a vertex's samples grow at most 4× per allocation round
+constexpr int kMaxRounds = 8;  // a ray that hits costs 1 + this × an escaping one (allocation)
+                               // // fewer audits in a class (hemisphere / caps): shared c
 constexpr const char* kBasisConvention =
     "real orthonormal SH, no Condon-Shortley phase, index k = l(l+1)+m, Y(x,y,z) with polar "
     "axis +z, scene frame glTF (+Y up)";
@@ -73,15 +81,15 @@ double seconds_since(Clock::time_point t) {
   return std::chrono::duration<double>(Clock::now() - t).count();
 }
 
-// Casts kPacketSize rays from `origin`: closest hits into `hits` (occluded[i] = a hit) when
-// `hits` is not null, occlusion only otherwise.
-void cast_packet(const RayCaster& caster, const glm::vec3& origin, const glm::vec3* dirs,
+// Casts `count` ≤ kPacketSize rays from `origin`: closest hits into `hits` (occluded[i] = a hit)
+// when `hits` is not null, occlusion only otherwise.
+void cast_packet(const RayCaster& caster, const glm::vec3& origin, const glm::vec3* dirs, int count,
                  float tfar, RayCaster::Hit* hits, bool* occluded) {
   if (hits != nullptr) {
-    caster.intersect_packet(origin, dirs, kPacketSize, tfar, hits);
-    for (int i = 0; i < kPacketSize; ++i) occluded[i] = hits[i].hit;
+    caster.intersect_packet(origin, dirs, count, tfar, hits);
+    for (int i = 0; i < count; ++i) occluded[i] = hits[i].hit;
   } else {
-    caster.occluded_packet(origin, dirs, kPacketSize, tfar, occluded);
+    caster.occluded_packet(origin, dirs, count, tfar, occluded);
   }
 }
 
@@ -110,14 +118,15 @@ struct VertexSums {
   std::vector<float> bent;            // 3V
 };
 
-// Appends the hit triangle's vertices, weighted by barycentrics, to a row being gathered; false
+// Appends the hit triangle's vertices, weighted by barycentrics × the sample's weight (1 under
+// cosine-weighted sampling, bake/cap_sampling.h's w in caps), to a row being gathered; false
 // (nothing added) when the ray sees the back side: the flat facet's geometric normal, oriented
 // by the triangle's vertex normals (hit_side.h). A back face occludes only.
 bool gather_front_hit(const Scene& scene, const RayCaster::Hit& hit, const glm::vec3& dir,
-                      std::vector<std::pair<uint32_t, float>>& gathered) {
+                      float weight, std::vector<std::pair<uint32_t, float>>& gathered) {
   if (!detail::ray_hits_front_side(scene, hit.triangle, dir)) return false;
   const glm::uvec3 tri = scene.triangles[hit.triangle];
-  const float b0 = 1.f - hit.u - hit.v, b1 = hit.u, b2 = hit.v;
+  const float b0 = (1.f - hit.u - hit.v) * weight, b1 = hit.u * weight, b2 = hit.v * weight;
   gathered.emplace_back(tri.x, b0);
   gathered.emplace_back(tri.y, b1);
   gathered.emplace_back(tri.z, b2);
@@ -320,9 +329,33 @@ BakeResult bake_transfer(const Scene& scene, const BakeOptions& options, Progres
 
   const bool adaptive = options.adaptive.enabled && need_rays;
   const AdaptiveSampling& ad = options.adaptive;
-  auto mode_of = [&](std::size_t v) {
-    return ad.vertex_mode.empty() ? kSampleVertex : ad.vertex_mode[v];
+  // Adaptive: the caller's vertex modes, with vertices whose occluder caps all lie below the
+  // horizon made analytic (they are provably open too).
+  std::vector<uint8_t> modes;
+  auto mode_of = [&](std::size_t v) { return modes.empty() ? kSampleVertex : modes[v]; };
+  OccluderCaps caps;
+  auto capped = [&](std::size_t v) {
+    return !caps.covered.empty() && caps.covered[v] && caps.count(v) > 0;
   };
+  if (adaptive) {
+    modes = ad.vertex_mode.empty() ? std::vector<uint8_t>(V, kSampleVertex) : ad.vertex_mode;
+    if (ad.cap_sampling) {
+      std::vector<uint8_t> wanted(V, 0);
+      for (std::size_t v = 0; v < V; ++v) wanted[v] = modes[v] == kSampleVertex;
+      caps = find_occluder_caps(scene, open_hemisphere_threshold(scene), wanted, ad.max_caps,
+                                ad.max_cap_solid_angle);
+      st.seconds_caps = caps.seconds;
+      for (std::size_t v = 0; v < V; ++v) {
+        if (!wanted[v] || !caps.covered[v]) continue;
+        if (caps.count(v) == 0) {
+          modes[v] = kAnalyticVertex;
+          ++st.cap_open_vertices;
+        } else {
+          ++st.cap_vertices;
+        }
+      }
+    }
+  }
   bool any_sampled = !adaptive;
   if (adaptive) {
     st.vertex_samples.assign(V, 0);
@@ -366,6 +399,9 @@ BakeResult bake_transfer(const Scene& scene, const BakeOptions& options, Progres
     const int pair = 2 * kPacketSize;
     const int min_n = round_up(std::max(ad.min_samples, pair), pair);
     const int max_n = std::max(min_n, round_up(ad.max_samples, pair));
+    // Capped vertices start lower: 16-sample packets, pairs of them on audit vertices.
+    const int min_cap_n = std::min(min_n, round_up(std::max(ad.min_cap_samples, 1), kPacketSize));
+    const int min_cap_audit_n = std::min(min_n, round_up(min_cap_n, pair));
     // w(ω): the lighting's luminance up to the transfer's order (higher bands cannot reach the
     // exit radiance Σ_k T_k L_k).
     const int light_order = std::min(ad.lighting_order, order);
@@ -376,10 +412,15 @@ BakeResult bake_transfer(const Scene& scene, const BakeOptions& options, Progres
     const uint64_t replica_seed[2] = {options.seed, hash_seed(options.seed, kReplicaSalt)};
     struct VertexState {
       double sum_x[2] = {0.0, 0.0};  // per replica (audit) or all in [0]: Σ x_s
-      double sum_x2 = 0.0;           // x_s = (1 − V(ω_s))·w(ω_s)
-      uint32_t used = 0, visible = 0, occluded = 0;
+      // x_s = w_s·(1 − V(ω_s))·L(ω_s), w_s the cap weight (or 1). Σ over the pairs of points
+      // (2i, 2i + 1) of a sequence of (x_2i − x_2i+1)²/2: the successive-difference estimate of
+      // the per-sample variance, which sees the points' stratification (see the allocation).
+      double sum_pair2 = 0.0;
+      uint32_t used = 0, visible = 0, occluded = 0, cast = 0;
       bool audit = false;
-      glm::dvec3 bent{0.0};
+      glm::dvec3 bent{0.0};          // Σ visible ω_s (hemisphere sampling)
+      double occluded_weight = 0.0;  // Σ w_s (1 − V(ω_s))   (cap sampling: AO)
+      glm::dvec3 occluded_dir{0.0};  // Σ w_s (1 − V(ω_s)) ω_s (cap sampling: bent normal)
     };
     std::vector<VertexState> state(adaptive ? V : 0);
     // Σ (1 − V) Y_k of each sampled vertex, at its slot (sampled vertices only: a pilot bake
@@ -392,45 +433,69 @@ BakeResult bake_transfer(const Scene& scene, const BakeOptions& options, Progres
     for (std::size_t v = 0; v < slot.size(); ++v)
       if (mode_of(v) == kSampleVertex) state[v].audit = slot[v] % audit_stride == 0;
     std::vector<double> occluded_sum(slots * K);
-    // Casts packets for vertex v until it has `target` samples.
+    // Casts packets for vertex v until it has `target` samples; returns the rays cast. A capped
+    // vertex draws inside its caps (bake/cap_sampling.h) and casts only the samples above its
+    // horizon (the others have weight 0 but count as samples of the estimator).
     auto sample_vertex = [&](std::size_t v, const glm::vec3& n, int target,
                              const auto& gather_hit) -> uint64_t {
       VertexState& vs = state[v];
       const glm::vec3 origin = caster.vertex_origin(static_cast<uint32_t>(v));
+      const bool in_caps = capped(v);
       glm::vec3 dirs[kPacketSize];
+      double w[kPacketSize];
+      int point[kPacketSize];  // the packet's point each cast ray came from
       bool occluded[kPacketSize];
       RayCaster::Hit hits[kPacketSize];
       std::vector<float> y(eval_k);
       double* occ = &occluded_sum[slot[v] * K];
-      const uint32_t first = vs.used;
+      uint64_t cast = 0;
       while (vs.used < static_cast<uint32_t>(target)) {
         const int r = vs.audit ? static_cast<int>((vs.used / kPacketSize) % 2) : 0;
         const uint32_t index = vs.audit ? vs.used / pair * kPacketSize : vs.used;
-        generate_cosine_directions(n, replica_seed[r], v, index, kPacketSize, dirs);
-        cast_packet(caster, origin, dirs, tfar, interreflect ? hits : nullptr, occluded);
-        for (int i = 0; i < kPacketSize; ++i) {
+        int count = kPacketSize;
+        if (in_caps) {
+          generate_cap_directions(caps.of(v), static_cast<int>(caps.count(v)), n, replica_seed[r],
+                                  v, index, kPacketSize, dirs, w);
+          count = 0;
+          for (int i = 0; i < kPacketSize; ++i)
+            if (w[i] > 0.0) dirs[count] = dirs[i], w[count] = w[i], point[count++] = i;
+        } else {
+          generate_cosine_directions(n, replica_seed[r], v, index, kPacketSize, dirs);
+          std::fill(w, w + kPacketSize, 1.0);
+          for (int i = 0; i < kPacketSize; ++i) point[i] = i;
+        }
+        double xs[kPacketSize] = {};  // x of each point of the packet (0: visible or no ray)
+        if (count > 0)
+          cast_packet(caster, origin, dirs, count, tfar, interreflect ? hits : nullptr, occluded);
+        cast += static_cast<uint64_t>(count);
+        vs.cast += static_cast<uint32_t>(count);
+        for (int i = 0; i < count; ++i) {
           if (!occluded[i]) {
             ++vs.visible;
             vs.bent += glm::dvec3(dirs[i]);
             continue;
           }
           ++vs.occluded;
+          vs.occluded_weight += w[i];
+          vs.occluded_dir += w[i] * glm::dvec3(dirs[i]);
           sh::evaluate(eval_order, dirs[i].x, dirs[i].y, dirs[i].z, y.data());
-          for (int k = 0; k < K; ++k) occ[k] += static_cast<double>(y[k]);
-          double x = 1.0;
+          for (int k = 0; k < K; ++k) occ[k] += w[i] * static_cast<double>(y[k]);
+          double x = w[i];
           if (weighted) {
             double radiance = 0.0;
             for (int k = 0; k < light_order * light_order; ++k)
               radiance += ad.lighting[k] * static_cast<double>(y[k]);
-            x = radiance / light_mean;
+            x *= radiance / light_mean;
           }
           vs.sum_x[r] += x;
-          vs.sum_x2 += x * x;
-          if (interreflect && hits[i].hit) gather_hit(hits[i], dirs[i]);
+          xs[point[i]] = x;
+          if (interreflect && hits[i].hit) gather_hit(hits[i], dirs[i], static_cast<float>(w[i]));
         }
+        for (int i = 0; i < kPacketSize; i += 2)
+          vs.sum_pair2 += 0.5 * (xs[i] - xs[i + 1]) * (xs[i] - xs[i + 1]);
         vs.used += kPacketSize;
       }
-      return vs.used - first;
+      return cast;
     };
     // Phase 1 of one vertex; analytic and skipped vertices are final here. Rows of H hold
     // unscaled sums until phase 2 has added its hits.
@@ -450,7 +515,8 @@ BakeResult bake_transfer(const Scene& scene, const BakeOptions& options, Progres
         if (interreflect) emit_row(0.0);
         return 0;
       }
-      const uint64_t rays = sample_vertex(v, n, min_n, gather_hit);
+      const int first_target = !capped(v) ? min_n : (state[v].audit ? min_cap_audit_n : min_cap_n);
+      const uint64_t rays = sample_vertex(v, n, first_target, gather_hit);
       if (interreflect) emit_row(1.0);
       return rays;
     };
@@ -465,8 +531,8 @@ BakeResult bake_transfer(const Scene& scene, const BakeOptions& options, Progres
       const std::size_t v_end = std::min(V, (blk + 1) * kVertexBlock);
       uint64_t rays = 0;
       // The hit's vertices, weighted by barycentrics, go into this vertex's row of H.
-      auto gather_hit = [&](const RayCaster::Hit& hit, const glm::vec3& dir) {
-        if (!gather_front_hit(scene, hit, dir, gathered)) ++block_back_hits[blk];
+      auto gather_hit = [&](const RayCaster::Hit& hit, const glm::vec3& dir, float weight) {
+        if (!gather_front_hit(scene, hit, dir, weight, gathered)) ++block_back_hits[blk];
       };
       auto emit_row = [&](double row_scale) { append_row(gathered, row_scale, rows[blk]); };
       for (std::size_t v = blk * kVertexBlock; v < v_end; ++v) {
@@ -483,7 +549,8 @@ BakeResult bake_transfer(const Scene& scene, const BakeOptions& options, Progres
         for (int first = 0; first < N; first += kPacketSize) {
           generate_cosine_directions(n, options.seed, v, static_cast<uint32_t>(first), kPacketSize,
                                      dirs);
-          cast_packet(caster, origin, dirs, tfar, interreflect ? hits : nullptr, occluded);
+          cast_packet(caster, origin, dirs, kPacketSize, tfar, interreflect ? hits : nullptr,
+                      occluded);
           rays += kPacketSize;
           // SH of the visible directions: summed in float over the 16 rays of a packet (at
           // most 16 terms of magnitude ≤ ~3.5), then added to the double accumulator.
@@ -502,7 +569,7 @@ BakeResult bake_transfer(const Scene& scene, const BakeOptions& options, Progres
             for (int k = 0; k < K; ++k) acc[k] += static_cast<double>(packet_sum[k]);
           if (interreflect)
             for (int i = 0; i < kPacketSize; ++i)
-              if (hits[i].hit) gather_hit(hits[i], dirs[i]);
+              if (hits[i].hit) gather_hit(hits[i], dirs[i], 1.f);
         }
         if (need_sh_rays)
           for (int k = 0; k < K; ++k) acc[k] *= inv_n;
@@ -534,11 +601,25 @@ BakeResult bake_transfer(const Scene& scene, const BakeOptions& options, Progres
       const std::vector<double>& lum = weighted ? ad.lighting : uniform_sky;
       const int lum_k = std::min(K, weighted ? light_order * light_order : 1);
       const double lum_mean = weighted ? light_mean : 1.0;
-      auto spread2 = [&](const VertexState& vs) {
-        const double n = vs.used, mean = (vs.sum_x[0] + vs.sum_x[1]) / n;
-        const double var = std::max(0.0, vs.sum_x2 / n - mean * mean) * n / (n - 1.0);
+      // A capped vertex's weights are ≤ Ω/π: its Jeffreys floor is scaled by (Ω/π)².
+      std::vector<double> weight_bound2(V, 1.0);
+      for (std::size_t v = 0; v < V; ++v)
+        if (mode_of(v) == kSampleVertex && capped(v)) {
+          const double wmax = total_solid_angle(caps.of(v), static_cast<int>(caps.count(v))) / kPi;
+          weight_bound2[v] = wmax * wmax;
+        }
+      // Per-sample variance σ_v²: the successive-difference estimate over point pairs. The
+      // pairs (2i, 2i + 1) of a scrambled Sobol' sequence share elementary intervals, so where
+      // the occluded region's boundary is simple (a floor's straight horizon) the pairs agree
+      // and σ_v² is small, where it is ragged (contact shadows) they differ: unlike the plain
+      // sample variance, the estimate sees each vertex's own stratification gain. Under i.i.d.
+      // points E[(x_a − x_b)²/2] = σ², the usual variance. Floored at the Jeffreys p(1 − p).
+      auto spread2 = [&](std::size_t v) {
+        const VertexState& vs = state[v];
+        const double n = vs.used;
+        const double var = vs.sum_pair2 / (0.5 * n);
         const double p = (vs.occluded + 0.5) / (n + 1.0);
-        return std::max(var, p * (1.0 - p));
+        return std::max(var, weight_bound2[v] * p * (1.0 - p));
       };
       auto luminance = [](const glm::vec3& c) {
         return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z;
@@ -561,37 +642,71 @@ BakeResult bake_transfer(const Scene& scene, const BakeOptions& options, Progres
       double b2 = 0.0;  // fixed order: deterministic
       for (double x : b2_of) b2 += x;
       const double budget = ad.rms_error * ad.rms_error * b2;
-      std::vector<double> a(V, 0.0);
+      // a_v = c_class·ρ̄_v·σ_v: the calibrated standard deviation, c measured separately for
+      // hemisphere-sampled (class 0) and cap-sampled (class 1) vertices when a class has
+      // kMinClassAudits audit vertices, else shared.
+      std::vector<double> a(V, 0.0), iid_a(V, 0.0);
       std::vector<uint32_t> lo(V, 0), hi(V, 0);
-      double c2 = 1.0, model2 = 0.0;
+      double c2 = 1.0, c2_class[2] = {1.0, 1.0}, model2 = 0.0;
       // Measures c² and the calibrated error at the current counts; fills a, lo.
       auto measure = [&] {
-        double iid_audit = 0.0, rep_audit = 0.0;
-        model2 = 0.0;
+        double iid_audit[2] = {0.0, 0.0}, rep_audit[2] = {0.0, 0.0};
+        std::size_t audits[2] = {0, 0};
         for (std::size_t v = 0; v < V; ++v) {
           if (mode_of(v) != kSampleVertex) continue;
           const VertexState& vs = state[v];
           const double rho = luminance(scene.albedo[v]);
-          a[v] = rho * std::sqrt(spread2(vs));
+          iid_a[v] = rho * std::sqrt(spread2(v));
           lo[v] = vs.used;
-          model2 += a[v] * a[v] / vs.used;
           if (!vs.audit) continue;
-          iid_audit += a[v] * a[v] / vs.used;
+          const int cls = capped(v) ? 1 : 0;
+          ++audits[cls];
+          iid_audit[cls] += iid_a[v] * iid_a[v] / vs.used;
           const double half = 0.5 * vs.used, d = (vs.sum_x[0] - vs.sum_x[1]) / half;
-          rep_audit += rho * rho * 0.25 * d * d;
+          rep_audit[cls] += rho * rho * 0.25 * d * d;
         }
-        c2 = iid_audit > 0.0 ? std::max(rep_audit / iid_audit, kMinCalibration2) : 1.0;
-        model2 *= c2;
+        const double iid_all = iid_audit[0] + iid_audit[1];
+        c2 = iid_all > 0.0 ? std::max((rep_audit[0] + rep_audit[1]) / iid_all, kMinCalibration2)
+                           : 1.0;
+        for (int cls = 0; cls < 2; ++cls)
+          c2_class[cls] = audits[cls] >= kMinClassAudits && iid_audit[cls] > 0.0
+                              ? std::max(rep_audit[cls] / iid_audit[cls], kMinCalibration2)
+                              : c2;
+        model2 = 0.0;
+        for (std::size_t v = 0; v < V; ++v) {
+          if (mode_of(v) != kSampleVertex) continue;
+          a[v] = std::sqrt(c2_class[capped(v) ? 1 : 0]) * iid_a[v];
+          model2 += a[v] * a[v] / state[v].used;
+        }
       };
       measure();
       std::vector<std::vector<BlockRows>> round_rows;  // per round, per block
-      for (int cap = std::min(max_n, 2 * min_n); model2 > budget; cap = std::min(max_n, 2 * cap)) {
+      // Each round allocates toward the Neyman targets with every vertex's final cap (max_n),
+      // but lets no vertex grow more than kRoundGrowth× in one round, so that c and the spreads
+      // are re-measured on the way (a target computed from 64 rays is a rough one).
+      for (int r = 0; model2 > budget && r < kMaxRounds; ++r) {
         for (std::size_t v = 0; v < V; ++v)
-          hi[v] = mode_of(v) == kSampleVertex ? std::max<uint32_t>(cap, state[v].used) : 0;
-        SampleAllocation alloc = allocate_samples(a, lo, hi, budget / c2, kPacketSize);
-        for (std::size_t v = 0; v < V; ++v)
-          if (state[v].audit && alloc.samples[v] > 0)
+          hi[v] = mode_of(v) == kSampleVertex ? std::max<uint32_t>(max_n, state[v].used) : 0;
+        // Cost of a sample: rays that hit cost more than rays that escape (closest hit, the
+        // gather, H's entries); samples below a capped vertex's horizon cast nothing.
+        std::vector<double> cost(V, 1.0);
+        for (std::size_t v = 0; v < V; ++v) {
+          const VertexState& vs = state[v];
+          if (mode_of(v) != kSampleVertex || vs.used == 0) continue;
+          const double cast_share = static_cast<double>(vs.cast) / vs.used;
+          const double hit_share = vs.cast > 0 ? static_cast<double>(vs.occluded) / vs.cast : 0.0;
+          cost[v] = std::max(0.05, cast_share * (1.0 + kHitCost * hit_share));
+        }
+        SampleAllocation alloc = allocate_samples(a, lo, hi, budget, kPacketSize, cost);
+        bool grows = false;
+        for (std::size_t v = 0; v < V; ++v) {
+          if (alloc.samples[v] == 0) continue;
+          alloc.samples[v] = std::min<uint32_t>(alloc.samples[v], kRoundGrowth * state[v].used);
+          if (state[v].audit)
             alloc.samples[v] = std::min<uint32_t>(round_up(alloc.samples[v], pair), hi[v]);
+          grows = grows || alloc.samples[v] > state[v].used;
+        }
+        if (!grows) break;
         // One round: the extra rays; their hits form this round's (unscaled) rows of H.
         std::vector<BlockRows>& round = round_rows.emplace_back(blocks);
         tbb::parallel_for(std::size_t(0), blocks, [&](std::size_t blk) {
@@ -599,8 +714,8 @@ BakeResult bake_transfer(const Scene& scene, const BakeOptions& options, Progres
           const std::size_t v_end = std::min(V, v_begin + kVertexBlock);
           uint64_t rays = 0;
           std::vector<std::pair<uint32_t, float>> gathered;
-          auto gather_hit = [&](const RayCaster::Hit& hit, const glm::vec3& dir) {
-            if (!gather_front_hit(scene, hit, dir, gathered)) ++block_back_hits[blk];
+          auto gather_hit = [&](const RayCaster::Hit& hit, const glm::vec3& dir, float weight) {
+            if (!gather_front_hit(scene, hit, dir, weight, gathered)) ++block_back_hits[blk];
           };
           for (std::size_t v = v_begin; v < v_end; ++v) {
             gathered.clear();
@@ -614,10 +729,10 @@ BakeResult bake_transfer(const Scene& scene, const BakeOptions& options, Progres
         });
         st.allocation_rounds += 1;
         measure();
-        if (cap == max_n) break;
       }
       st.allocation_budget_met = model2 <= budget;
-      st.qmc_calibration = std::sqrt(c2);
+      st.qmc_calibration = std::sqrt(c2_class[0]);
+      st.qmc_calibration_caps = std::sqrt(c2_class[1]);
       // The final transfer, and the rows of H: every round's entries merged, scaled by 1/n_v.
       tbb::parallel_for(std::size_t(0), blocks, [&](std::size_t blk) {
         const std::size_t v_begin = blk * kVertexBlock, v_end = std::min(V, v_begin + kVertexBlock);
@@ -646,12 +761,21 @@ BakeResult bake_transfer(const Scene& scene, const BakeOptions& options, Progres
           for (int k = 0; k < K; ++k)
             s[k] -= occluded_sum[slot[v] * K + k] * inv;  // control variate
           store_direct(v, s.data());
-          sums.ao[v] = static_cast<float>(vs.visible * inv);
-          const double bl = glm::length(vs.bent);
-          const glm::vec3 bn = bl > 0 ? glm::vec3(vs.bent / bl) : n;
+          // Hemisphere: the visible fraction and mean visible direction. Caps: the same with the
+          // unoccluded values (1 and (2/3)·n, E[ω] under cos/π) as control variates.
+          glm::dvec3 bent = vs.bent;
+          if (capped(v)) {
+            sums.ao[v] = static_cast<float>(std::max(0.0, 1.0 - vs.occluded_weight * inv));
+            bent = (2.0 / 3.0) * glm::dvec3(n) - vs.occluded_dir * inv;
+          } else {
+            sums.ao[v] = static_cast<float>(vs.visible * inv);
+          }
+          const double bl = glm::length(bent);
+          const glm::vec3 bn = bl > 0 ? glm::vec3(bent / bl) : n;
           for (int c = 0; c < 3; ++c) sums.bent[3 * v + c] = bn[c];
           st.vertex_samples[v] = vs.used;
-          st.vertex_standard_error[v] = static_cast<float>(std::sqrt(c2 * spread2(vs) * inv));
+          st.vertex_standard_error[v] =
+              static_cast<float>(std::sqrt(c2_class[capped(v) ? 1 : 0] * spread2(v) * inv));
         }
         if (interreflect) rows[blk] = std::move(merged);
       });

@@ -58,6 +58,9 @@ struct AutoBakeOptions {
   // error bound stays ≤ bounded_skip_share × tolerance (relative RMS); 0 turns this off.
   double bounded_skip_share = 0.25;
   double bounded_skip_cutoff = 0.05;
+  // Vertices whose blockable directions fit in a few small cones draw their rays inside them
+  // (bake/occluder_caps.h, bake/cap_sampling.h).
+  bool cap_sampling = true;
   bool ao = false, bent_normals = false;
   prt::Precision precision = prt::Precision::F32;
 };

@@ -26,8 +26,10 @@ struct SampleAllocation {
 
 // a: per-vertex standard deviations (≥ 0); vertices with n_max == 0 are not sampled (n_v = 0).
 // n_min[v] ≤ n_max[v]; both multiples of `packet`. budget: the allowed Σ a_v² / n_v (> 0).
+// cost (optional, one per vertex, > 0): the cost of one sample of v; the cost Σ c_v·n_v is then
+// minimised instead of Σ n_v, which gives n_v ∝ a_v/√c_v (the same Lagrange argument).
 SampleAllocation allocate_samples(const std::vector<double>& a, const std::vector<uint32_t>& n_min,
                                   const std::vector<uint32_t>& n_max, double budget,
-                                  uint32_t packet);
+                                  uint32_t packet, const std::vector<double>& cost = {});
 
 }  // namespace prt::bake

@@ -19,12 +19,12 @@
 namespace prt::bake {
 
 struct ScenePrimitive {
-  std::string name;              // "mesh/primitive" or OBJ shape name
-  uint32_t first_vertex = 0;     // into Scene::positions
+  std::string name;           // "mesh/primitive" or OBJ shape name
+  uint32_t first_vertex = 0;  // into Scene::positions
   uint32_t vertex_count = 0;
-  uint32_t first_triangle = 0;   // into Scene::triangles
+  uint32_t first_triangle = 0;  // into Scene::triangles
   uint32_t triangle_count = 0;
-  glm::vec3 albedo{0.8f};        // linear RGB reflectance in [0, 1)
+  glm::vec3 albedo{0.8f};  // linear RGB reflectance in [0, 1)
 };
 
 struct SceneCamera {
@@ -39,7 +39,7 @@ struct Scene {
   std::vector<glm::vec3> albedo;      // per vertex (copied from its primitive's material)
   std::vector<glm::uvec3> triangles;  // indices into positions; degenerate ones removed
   std::vector<ScenePrimitive> primitives;
-  std::vector<SceneCamera> cameras;   // glTF cameras, if any, in node order
+  std::vector<SceneCamera> cameras;  // glTF cameras, if any, in node order
 
   std::size_t skipped_degenerate_triangles = 0;  // zero-area or repeated-index triangles
   std::size_t computed_normal_vertices = 0;      // vertices whose normal was computed

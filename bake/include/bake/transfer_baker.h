@@ -85,6 +85,14 @@ struct AdaptiveSampling {
   std::vector<double> lighting;
   int lighting_order = 0;
   double bounce_tolerance = 0.0025;  // a bounce adding < this × max|D| is the last
+  // Cap sampling (bake/occluder_caps.h, bake/cap_sampling.h): a sampled vertex whose blockable
+  // directions fit in ≤ max_caps cones of total solid angle ≤ max_cap_solid_angle draws its rays
+  // inside them only (w ≤ Ω/π ≤ ½ of the hemisphere estimator's weight) and starts at
+  // min_cap_samples; one whose caps all lie below its horizon gets the analytic transfer.
+  bool cap_sampling = true;
+  int max_caps = 8;
+  double max_cap_solid_angle = 1.5707963267948966;  // π/2 sr
+  int min_cap_samples = 16;  // rounded up to a multiple of 16 (of 32 on audit vertices)
 };
 
 struct BakeOptions {
@@ -124,10 +132,14 @@ struct BakeStatistics {
   std::vector<uint32_t> vertex_samples;      // rays cast per vertex (0: analytic or skipped)
   std::vector<float> vertex_standard_error;  // calibrated SE of the mean of x (see above)
   bool allocation_budget_met = true;         // false: max_samples everywhere was not enough
-  double qmc_calibration = 1.0;    // c: audit-measured error / i.i.d. error, at the final counts
-  int allocation_rounds = 0;       // rounds of allocation after the first min_samples
-  uint64_t analytic_vertices = 0;  // unshadowed transfer without rays
-  uint64_t empty_gather_rows = 0;  // sampled vertices that saw no other surface
+  double qmc_calibration = 1.0;       // c: audit-measured error / i.i.d. error, at the final counts
+  double qmc_calibration_caps = 1.0;  // the same for cap-sampled vertices (their own audits)
+  uint64_t cap_vertices = 0;          // sampled inside their occluder caps
+  uint64_t cap_open_vertices = 0;     // every cap below the horizon: analytic, no rays
+  double seconds_caps = 0.0;          // finding the caps
+  int allocation_rounds = 0;          // rounds of allocation after the first min_samples
+  uint64_t analytic_vertices = 0;     // unshadowed transfer without rays
+  uint64_t empty_gather_rows = 0;     // sampled vertices that saw no other surface
   bool interreflection_solved = false;  // false: skipped (H empty or albedo zero)
   prt::TransferKind stored_kind = prt::TransferKind::Unshadowed;
 
