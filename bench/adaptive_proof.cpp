@@ -130,13 +130,14 @@ Row run_scene(const std::string& name, const Scene& scene, const std::vector<dou
           "%s: auto bake %.3f s (rays %.3f s, %llu rays, solve %.3f s), order %d, rounds %d, c "
           "%.3f "
           "/ caps %.3f, budget met %d, predicted sampling %.4f truncation %.4f total %.4f, mean "
-          "samples %.0f\n",
+          "samples %.0f; analysis %.3f s, pilot %.3f s, caps %.3f s, bvh %.3f s\n",
           name.c_str(), a.bake.stats.seconds_total, a.bake.stats.seconds_rays,
           static_cast<unsigned long long>(a.bake.stats.rays), a.bake.stats.seconds_solve,
           a.report.order, a.bake.stats.allocation_rounds, a.bake.stats.qmc_calibration,
           a.bake.stats.qmc_calibration_caps, a.bake.stats.allocation_budget_met ? 1 : 0,
           a.report.predicted_sampling_error, a.report.predicted_truncation_error,
-          a.report.predicted_error, a.report.mean_samples);
+          a.report.predicted_error, a.report.mean_samples, a.report.analysis_seconds,
+          a.report.pilot_seconds, a.bake.stats.seconds_caps, a.bake.stats.seconds_bvh);
     }
     return row;
   }
@@ -155,8 +156,10 @@ Row run_scene(const std::string& name, const Scene& scene, const std::vector<dou
   o.lighting = sky;
   o.lighting_order = kLightingOrder;
   o.cap_sampling = std::getenv("PRT_PROOF_NOCAPS") == nullptr;
+  if (const char* m = std::getenv("PRT_PROOF_MIN_SAMPLES")) o.min_samples = std::atoi(m);
   if (const char* list = std::getenv("PRT_PROOF_TOLERANCES")) {
     // For tuning: --auto's error against time at several tolerances (best of 3 times).
+    int last_order = 3;
     for (const char* c = list; *c != '\0';) {
       AutoBakeOptions t = o;
       t.tolerance = std::strtod(c, const_cast<char**>(&c));
@@ -174,8 +177,17 @@ Row run_scene(const std::string& name, const Scene& scene, const std::vector<dou
       }
       std::printf("  tolerance %.4f: auto %.3f s, error %.4f, order %d, mean samples %.0f\n",
                   t.tolerance, best, err, order, samples);
+      last_order = order;
     }
-    for (int order : {3, 4, 5})
+    std::vector<int> orders;  // PRT_PROOF_FIXED_ORDERS="4,5", else the last --auto order
+    if (const char* fo = std::getenv("PRT_PROOF_FIXED_ORDERS"))
+      for (const char* c = fo; *c != '\0';) {
+        orders.push_back(static_cast<int>(std::strtol(c, const_cast<char**>(&c), 10)));
+        if (*c == ',') ++c;
+      }
+    if (orders.empty()) orders.push_back(last_order);
+    for (int order : orders) {
+      if (order < 1) continue;  // "0": no fixed sweep
       for (int samples : {32, 64, 128, 256, 512}) {
         BakeOptions f;
         f.kind = prt::TransferKind::Interreflected;
@@ -190,6 +202,7 @@ Row run_scene(const std::string& name, const Scene& scene, const std::vector<dou
         std::printf("  fixed order %d, %d samples: %.3f s, error %.4f\n", order, samples, best,
                     err);
       }
+    }
     return row;
   }
   const auto t0 = std::chrono::steady_clock::now();
@@ -354,9 +367,9 @@ int main(int argc, char** argv) {
     append_scene(s, make_uv_sphere({0.5f, 0.4f, 1.8f}, 0.4f, 24, 48, false, glm::vec3(0.6f)));
     return s;
   };
-  if (wanted("plane"))
+  if (wanted("plane 8x8"))
     rows.push_back(run_scene("plane with 3 objects (8×8 ground)", plane_scene(8.f, 80), sky, 8));
-  if (wanted("plane"))
+  if (wanted("plane 24x24"))
     rows.push_back(
         run_scene("plane with 3 objects (24×24 ground)", plane_scene(24.f, 120), sky, 8));
   const std::string bunny = data + "/meshes/stanford-bunny.obj";

@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <memory>
 
 #include <nlohmann/json.hpp>
 
@@ -46,8 +47,7 @@ std::vector<double> bake_pilot(const Scene& scene, const AutoBakeOptions& o,
   b.threads = o.threads;
   b.adaptive.enabled = true;
   b.adaptive.min_samples = b.adaptive.max_samples = o.pilot_samples;
-  b.adaptive.cap_sampling = o.cap_sampling;
-  b.adaptive.min_cap_samples = o.pilot_samples;
+  b.adaptive.cap_sampling = false;  // 256 vertices: not worth the caps' hierarchy
   b.adaptive.vertex_mode.assign(V, kSkipVertex);
   std::vector<std::size_t> pick(P);
   for (std::size_t i = 0; i < P; ++i) {
@@ -89,11 +89,12 @@ struct BoundedSkips {
 BoundedSkips select_bounded_skips(const Scene& scene, const std::vector<uint8_t>& open,
                                   const std::vector<double>& lighting, int lighting_order,
                                   double error_budget, double cutoff, const AlbedoAnalysis& albedo,
-                                  double* seconds) {
+                                  const TriangleHierarchy& hierarchy, double* seconds) {
   const std::size_t V = scene.positions.size();
   BoundedSkips r;
   r.skip.assign(V, 0);
-  const OcclusionBounds ob = bound_occlusion(scene, open_hemisphere_threshold(scene), cutoff, open);
+  const OcclusionBounds ob =
+      bound_occlusion(scene, open_hemisphere_threshold(scene), cutoff, open, &hierarchy);
   *seconds = ob.seconds;
   const int n = lighting_order, KL = n * n;
   double m[3];
@@ -288,11 +289,22 @@ AutoBakeResult bake_transfer_auto(const Scene& scene, const AutoBakeOptions& o,
   const int lighting_order = lit ? o.lighting_order : 1;
   BoundedSkips skips;
   skips.skip.assign(V, 0);
-  if (o.bounded_skip_share > 0.0 && kind != prt::TransferKind::Unshadowed) {
+  // One triangle hierarchy for the occlusion bounds here and the occluder caps of the bake.
+  std::shared_ptr<const TriangleHierarchy> hierarchy;
+  const bool needs_hierarchy = kind != prt::TransferKind::Unshadowed &&
+                               (o.bounded_skip_share > 0.0 || o.cap_sampling) &&
+                               hemi.open_count < V;
+  if (needs_hierarchy) {
+    const auto t_h = std::chrono::steady_clock::now();
+    hierarchy = std::make_shared<const TriangleHierarchy>(build_triangle_hierarchy(scene));
+    rep.analysis_seconds +=
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - t_h).count();
+  }
+  if (o.bounded_skip_share > 0.0 && needs_hierarchy) {
     double seconds = 0.0;
     skips = select_bounded_skips(scene, hemi.open, lighting, lighting_order,
                                  o.bounded_skip_share * o.tolerance, o.bounded_skip_cutoff, alb,
-                                 &seconds);
+                                 *hierarchy, &seconds);
     rep.analysis_seconds += seconds;
     rep.bounded_skip_vertices = skips.count;
     rep.predicted_skip_error = skips.error_bound;
@@ -316,6 +328,7 @@ AutoBakeResult bake_transfer_auto(const Scene& scene, const AutoBakeOptions& o,
   b.adaptive.min_samples = o.min_samples;
   b.adaptive.max_samples = o.max_samples;
   b.adaptive.cap_sampling = o.cap_sampling;
+  b.adaptive.hierarchy = hierarchy;
   // The sampling error gets what the deterministic errors (truncation and skipped vertices,
   // added as they may share a sign) leave of the tolerance: the zero-mean sampling error adds
   // in squares. A 10% margin covers the allocation's luminance, direct-light-only model.
@@ -360,9 +373,14 @@ AutoBakeResult bake_transfer_auto(const Scene& scene, const AutoBakeOptions& o,
   rep.mean_samples = sampled ? static_cast<double>(sum) / static_cast<double>(sampled) : 0.0;
   if (sampled > 0)
     rep.left_out.push_back(
-        format("fixed sample count: %.0f to %.0f rays per vertex (mean %.1f), each vertex stopping "
-               "when its standard error is within the tolerance",
+        format("a uniform sample count: %.0f to %.0f samples per vertex (mean %.1f), allocated "
+               "to where the measured error is: fewer in open areas, more in crevices",
                lo, hi, rep.mean_samples));
+  if (st.cap_vertices > 0)
+    rep.left_out.push_back(
+        format("rays toward the open sky for %.0f vertices: they sample only the cones that can "
+               "hold an occluder (%.0f more had every cone below the horizon: no rays)",
+               static_cast<double>(st.cap_vertices), static_cast<double>(st.cap_open_vertices)));
   if (kind == prt::TransferKind::Interreflected) {
     if (!st.interreflection_solved)
       rep.left_out.push_back(

@@ -8,8 +8,7 @@
 #include <tbb/parallel_for.h>
 
 #include "bake/ray_caster.h"
-
-#include "triangle_hierarchy.h"
+#include "bake/triangle_hierarchy.h"
 
 namespace prt::bake {
 namespace {
@@ -49,10 +48,12 @@ bool cap_of_ball(const glm::dvec3& to_center, double radius, DirectionCap& cap) 
 
 OccluderCaps find_occluder_caps(const Scene& scene, double threshold,
                                 const std::vector<uint8_t>& wanted, int max_caps,
-                                double max_solid_angle) {
+                                double max_solid_angle, const TriangleHierarchy* hierarchy) {
   const auto t0 = std::chrono::steady_clock::now();
   const std::size_t V = scene.positions.size();
-  const detail::TriangleHierarchy h = detail::build_triangle_hierarchy(scene);
+  TriangleHierarchy own;
+  if (hierarchy == nullptr) own = build_triangle_hierarchy(scene);
+  const TriangleHierarchy& h = hierarchy != nullptr ? *hierarchy : own;
   const double inflate = 2.0 * static_cast<double>(ray_offset_scale(scene));
   const std::size_t limit = static_cast<std::size_t>(std::max(max_caps, 0));
   // Blocks of vertices keep their caps in their own lists (memory ∝ the caps found, not
@@ -90,20 +91,20 @@ OccluderCaps find_occluder_caps(const Scene& scene, double threshold,
       if (!h.nodes.empty()) stack[top++] = 0;
       while (top > 0 && ok) {
         const uint32_t index = stack[--top];
-        const detail::TriangleHierarchy::Node& node = h.nodes[index];
+        const TriangleHierarchy::Node& node = h.nodes[index];
         if (glm::dot(node.box_center - p, n) + glm::dot(node.box_half, abs_n) <= threshold)
           continue;  // the whole group lies within τ of the tangent plane
-        const double r = node.ball.radius + inflate;
-        const double d = glm::length(node.ball.center - p);
+        const double r = node.ball_radius + inflate;
+        const double d = glm::length(node.ball_center - p);
         if (d > 0.0 && r <= kAcceptRatio * d) {
-          ok = add_ball(node.ball.center, r);
+          ok = add_ball(node.ball_center, r);
           continue;
         }
         if (node.count > 0) {
           for (uint32_t i = node.first; i < node.first + node.count && ok; ++i) {
             const uint32_t t = h.order[i];
             glm::dvec3 q[3];
-            double height = -detail::kHierarchyInfinity;
+            double height = -std::numeric_limits<double>::infinity();
             for (int k = 0; k < 3; ++k) {
               q[k] = h.vertex(t, k);
               height = std::max(height, glm::dot(q[k] - p, n));

@@ -9,15 +9,13 @@
 #include <tbb/parallel_for.h>
 
 #include "bake/ray_caster.h"
-
-#include "triangle_hierarchy.h"
+#include "bake/triangle_hierarchy.h"
 
 namespace prt::bake {
 namespace {
 
 constexpr double kAcceptRatio = 0.25;  // accept a group's ball when r/d ≤ this
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
-using detail::TriangleHierarchy;
 
 // Bound of one triangle as seen from p: 0 when it lies within τ of the tangent plane.
 double triangle_bound(const Scene& scene, uint32_t t, const glm::dvec3& p, const glm::dvec3& n,
@@ -61,12 +59,15 @@ double occlusion_bound_brute_force(const Scene& scene, std::size_t vertex, doubl
 }
 
 OcclusionBounds bound_occlusion(const Scene& scene, double threshold, double cutoff,
-                                const std::vector<uint8_t>& skip) {
+                                const std::vector<uint8_t>& skip,
+                                const TriangleHierarchy* hierarchy) {
   const auto t0 = std::chrono::steady_clock::now();
   const std::size_t V = scene.positions.size();
   OcclusionBounds result;
   result.bound.assign(V, 0.f);
-  const TriangleHierarchy h = detail::build_triangle_hierarchy(scene);
+  TriangleHierarchy own;
+  if (hierarchy == nullptr) own = build_triangle_hierarchy(scene);
+  const TriangleHierarchy& h = hierarchy != nullptr ? *hierarchy : own;
   const double inflate = 2.0 * static_cast<double>(ray_offset_scale(scene));
   tbb::parallel_for(std::size_t(0), V, [&](std::size_t v) {
     if (!skip.empty() && skip[v]) return;
@@ -82,8 +83,8 @@ OcclusionBounds bound_occlusion(const Scene& scene, double threshold, double cut
       const TriangleHierarchy::Node& node = h.nodes[index];
       if (glm::dot(node.box_center - p, n) + glm::dot(node.box_half, abs_n) <= threshold)
         continue;  // the whole group lies within τ of the tangent plane
-      const glm::dvec3 to_center = node.ball.center - p;
-      const double r = node.ball.radius + inflate, d = glm::length(to_center);
+      const glm::dvec3 to_center = node.ball_center - p;
+      const double r = node.ball_radius + inflate, d = glm::length(to_center);
       if (d > 0.0 && r <= kAcceptRatio * d) {
         sum += ball_projected_solid_angle_bound(to_center, r, n);
         continue;

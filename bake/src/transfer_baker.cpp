@@ -343,7 +343,7 @@ BakeResult bake_transfer(const Scene& scene, const BakeOptions& options, Progres
       std::vector<uint8_t> wanted(V, 0);
       for (std::size_t v = 0; v < V; ++v) wanted[v] = modes[v] == kSampleVertex;
       caps = find_occluder_caps(scene, open_hemisphere_threshold(scene), wanted, ad.max_caps,
-                                ad.max_cap_solid_angle);
+                                ad.max_cap_solid_angle, ad.hierarchy.get());
       st.seconds_caps = caps.seconds;
       for (std::size_t v = 0; v < V; ++v) {
         if (!wanted[v] || !caps.covered[v]) continue;
@@ -382,7 +382,9 @@ BakeResult bake_transfer(const Scene& scene, const BakeOptions& options, Progres
 
   if (need_rays && any_sampled) {
     const Clock::time_point t_rays = Clock::now();
+    const Clock::time_point t_bvh = Clock::now();
     RayCaster caster(scene);
+    st.seconds_bvh = seconds_since(t_bvh);
     ray_offset = caster.offset_scale();
     const std::size_t blocks = (V + kVertexBlock - 1) / kVertexBlock;
     std::vector<BlockRows> rows(interreflect ? blocks : 0);
@@ -624,7 +626,11 @@ BakeResult bake_transfer(const Scene& scene, const BakeOptions& options, Progres
       auto luminance = [](const glm::vec3& c) {
         return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z;
       };
-      std::vector<double> b2_of(V, 0.0);
+      // Budget denominator: Σ_v B_v², B_v = ρ̄_v·b_v (direct, in units of the mean radiance)
+      // plus, when interreflecting, the first bounce ρ̄_v·(1/n_v)·Σ_hits B(hit), read from the
+      // phase-1 rows of H. The later bounces only add (lighting ≥ 0), so this stays a lower
+      // bound of the exit radiance: the budget stays conservative.
+      std::vector<double> b2_of(V, 0.0), direct_b(V, 0.0);
       tbb::parallel_for(std::size_t(0), V, [&](std::size_t v) {
         const uint8_t mode = mode_of(v);
         if (mode == kSkipVertex) return;
@@ -637,8 +643,22 @@ BakeResult bake_transfer(const Scene& scene, const BakeOptions& options, Progres
         double b = 0.0;
         for (int k = 0; k < lum_k; ++k) b += s[k] * lum[k];
         const double rho = luminance(scene.albedo[v]);
-        b2_of[v] = (rho * b / lum_mean) * (rho * b / lum_mean);
+        direct_b[v] = rho * b / lum_mean;
+        b2_of[v] = direct_b[v] * direct_b[v];
       });
+      if (interreflect)
+        tbb::parallel_for(std::size_t(0), blocks, [&](std::size_t blk) {
+          const BlockRows& br = rows[blk];
+          std::size_t offset = 0;
+          for (std::size_t v = blk * kVertexBlock, i = 0; i < br.lengths.size(); ++v, ++i) {
+            double gathered = 0.0;
+            for (uint32_t e = 0; e < br.lengths[i]; ++e, ++offset)
+              gathered += static_cast<double>(br.weights[offset]) * direct_b[br.columns[offset]];
+            if (mode_of(v) != kSampleVertex) continue;
+            const double b = direct_b[v] + luminance(scene.albedo[v]) * gathered / state[v].used;
+            b2_of[v] = b * b;
+          }
+        });
       double b2 = 0.0;  // fixed order: deterministic
       for (double x : b2_of) b2 += x;
       const double budget = ad.rms_error * ad.rms_error * b2;

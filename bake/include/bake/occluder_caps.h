@@ -6,7 +6,7 @@
 // toward those objects only, not toward the open sky.
 //
 // Frame and units: the Scene's. The argument is that of bake/occlusion_bound.h, per group of
-// triangles of a hierarchy (bake/src/triangle_hierarchy.h):
+// triangles of a hierarchy (bake/triangle_hierarchy.h):
 //   - a group whose every vertex lies within τ of p's tangent plane cannot be hit (the proof of
 //     bake/scene_analysis.h, same τ);
 //   - a ball B(c, r) that holds the group, seen from p at distance d > r, covers the cap of
@@ -26,6 +26,7 @@
 #include <glm/glm.hpp>
 
 #include "bake/scene.h"
+#include "bake/triangle_hierarchy.h"
 
 namespace prt::bake {
 
@@ -53,9 +54,11 @@ inline constexpr int kDefaultMaxCaps = 8;
 
 // Caps of every vertex with wanted[v] != 0 (wanted empty = every vertex). threshold is τ of
 // bake/scene_analysis.h. Deterministic, parallel.
+// `hierarchy` (optional) is bake/triangle_hierarchy.h's over this scene; built when null.
 OccluderCaps find_occluder_caps(const Scene& scene, double threshold,
                                 const std::vector<uint8_t>& wanted, int max_caps,
-                                double max_solid_angle);
+                                double max_solid_angle,
+                                const TriangleHierarchy* hierarchy = nullptr);
 
 // The ball B(c, r) seen from p (to_center = c − p) as a cap; false when p lies inside it.
 bool cap_of_ball(const glm::dvec3& to_center, double radius, DirectionCap& cap);

@@ -24,6 +24,7 @@
 #include <vector>
 
 #include "bake/scene.h"
+#include "bake/triangle_hierarchy.h"
 
 namespace prt::bake {
 
@@ -34,8 +35,10 @@ struct OcclusionBounds {
 
 // Bounds every vertex whose `skip` entry is 0 (skip may be empty); others get 0. threshold is
 // τ of bake/scene_analysis.h. Deterministic, parallel.
+// `hierarchy` (optional) is bake/triangle_hierarchy.h's over this scene; built when null.
 OcclusionBounds bound_occlusion(const Scene& scene, double threshold, double cutoff,
-                                const std::vector<uint8_t>& skip = {});
+                                const std::vector<uint8_t>& skip = {},
+                                const TriangleHierarchy* hierarchy = nullptr);
 
 // Reference path for tests: the same union bound with one ball per triangle, O(T) per vertex.
 double occlusion_bound_brute_force(const Scene& scene, std::size_t vertex, double threshold);

@@ -51,11 +51,13 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "bake/scene.h"
+#include "bake/triangle_hierarchy.h"
 #include "prt/transfer_data.h"
 
 namespace prt::bake {
@@ -93,6 +95,8 @@ struct AdaptiveSampling {
   int max_caps = 8;
   double max_cap_solid_angle = 1.5707963267948966;  // π/2 sr
   int min_cap_samples = 16;  // rounded up to a multiple of 16 (of 32 on audit vertices)
+  // The scene's triangle hierarchy when the caller has one (built here when null).
+  std::shared_ptr<const TriangleHierarchy> hierarchy;
 };
 
 struct BakeOptions {
@@ -118,6 +122,7 @@ struct BakeStatistics {
   double seconds_total = 0;    // wall time of bake_transfer
   double seconds_rays = 0;     // the per-vertex sampling pass (rays + SH accumulation)
   double seconds_solve = 0;    // interreflection solve
+  double seconds_bvh = 0;      // building the BVH (part of seconds_rays)
   int jacobi_bounces = 0;      // per channel
   int solver_iterations = 0;   // BiCGSTAB iterations, summed over channels
   double solver_residual = 0;  // max over channels

@@ -1,0 +1,108 @@
+// bake/src/triangle_hierarchy.cpp — building the triangle-group hierarchy (triangle_hierarchy.h).
+#include "bake/triangle_hierarchy.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <tbb/parallel_for.h>
+
+namespace prt::bake {
+namespace {
+
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
+
+struct Builder {
+  TriangleHierarchy& h;
+  const std::vector<uint32_t>& primitive;  // per triangle
+  const std::vector<glm::dvec3>& centroid;
+
+  // Topology only: the split of order[first, first + count).
+  uint32_t build(uint32_t first, uint32_t count) {
+    const uint32_t index = static_cast<uint32_t>(h.nodes.size());
+    h.nodes.emplace_back();
+    h.nodes[index].first = first;
+    h.nodes[index].size = count;
+    if (count <= TriangleHierarchy::kLeafTriangles) {
+      h.nodes[index].count = count;
+      return index;
+    }
+    uint32_t half = count / 2;
+    const auto begin = h.order.begin() + first;
+    const uint32_t p_first = primitive[h.order[first]];
+    const uint32_t p_last = primitive[h.order[first + count - 1]];
+    if (p_first != p_last) {
+      // Between primitives (order is sorted by primitive).
+      const uint32_t p_mid = p_first + (p_last - p_first + 1) / 2;
+      half = static_cast<uint32_t>(
+          std::lower_bound(begin, begin + count, p_mid,
+                           [&](uint32_t t, uint32_t p) { return primitive[t] < p; }) -
+          begin);
+    } else {
+      glm::dvec3 lo(kInfinity), hi(-kInfinity);
+      for (uint32_t i = first; i < first + count; ++i) {
+        lo = glm::min(lo, centroid[h.order[i]]);
+        hi = glm::max(hi, centroid[h.order[i]]);
+      }
+      const glm::dvec3 size = hi - lo;
+      const int axis = size.x >= size.y && size.x >= size.z ? 0 : (size.y >= size.z ? 1 : 2);
+      std::nth_element(begin, begin + half, begin + count, [&](uint32_t a, uint32_t b) {
+        return centroid[a][axis] < centroid[b][axis];
+      });
+    }
+    build(first, half);
+    const uint32_t second = build(first + half, count - half);
+    h.nodes[index].second = second;
+    return index;
+  }
+};
+
+}  // namespace
+
+TriangleHierarchy build_triangle_hierarchy(const Scene& scene) {
+  TriangleHierarchy h;
+  h.scene = &scene;
+  const std::size_t V = scene.positions.size();
+  const uint32_t T = static_cast<uint32_t>(scene.triangles.size());
+  if (T == 0) return h;
+  std::vector<uint32_t> vertex_primitive(V, 0);
+  for (uint32_t p = 0; p < scene.primitives.size(); ++p) {
+    const ScenePrimitive& prim = scene.primitives[p];
+    for (std::size_t v = prim.first_vertex; v < prim.first_vertex + prim.vertex_count && v < V; ++v)
+      vertex_primitive[v] = p;
+  }
+  std::vector<uint32_t> primitive(T, 0);
+  std::vector<glm::dvec3> centroid(T);
+  h.order.resize(T);
+  for (uint32_t t = 0; t < T; ++t) {
+    h.order[t] = t;
+    centroid[t] = (h.vertex(t, 0) + h.vertex(t, 1) + h.vertex(t, 2)) / 3.0;
+    primitive[t] = vertex_primitive[scene.triangles[t].x];
+  }
+  std::stable_sort(h.order.begin(), h.order.end(),
+                   [&](uint32_t a, uint32_t b) { return primitive[a] < primitive[b]; });
+  h.nodes.reserve(2 * (T / TriangleHierarchy::kLeafTriangles) + 2);
+  Builder{h, primitive, centroid}.build(0, T);
+  // Boxes and balls of the groups' vertices.
+  tbb::parallel_for(std::size_t(0), h.nodes.size(), [&](std::size_t i) {
+    TriangleHierarchy::Node& node = h.nodes[i];
+    glm::dvec3 lo(kInfinity), hi(-kInfinity);
+    for (uint32_t j = node.first; j < node.first + node.size; ++j)
+      for (int k = 0; k < 3; ++k) {
+        lo = glm::min(lo, h.vertex(h.order[j], k));
+        hi = glm::max(hi, h.vertex(h.order[j], k));
+      }
+    node.box_center = 0.5 * (lo + hi);
+    node.box_half = 0.5 * (hi - lo);
+    node.ball_center = node.box_center;
+    double r2 = 0.0;
+    for (uint32_t j = node.first; j < node.first + node.size; ++j)
+      for (int k = 0; k < 3; ++k) {
+        const glm::dvec3 d = h.vertex(h.order[j], k) - node.ball_center;
+        r2 = std::max(r2, glm::dot(d, d));
+      }
+    node.ball_radius = std::sqrt(r2);
+  });
+  return h;
+}
+
+}  // namespace prt::bake
