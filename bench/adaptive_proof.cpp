@@ -34,6 +34,7 @@ namespace {
 
 constexpr int kLightingOrder = 8;
 constexpr double kTolerance = 0.01;
+constexpr double kRepeatBelowSeconds = 2.0;  // bakes faster than this are timed best of 3
 
 std::vector<double> make_sky() {
   const int K = kLightingOrder * kLightingOrder;
@@ -104,7 +105,9 @@ struct Row {
   std::string auto_kind;
   std::size_t auto_bytes = 0, open = 0, bounded = 0;
   double gt_auto = 0, gt_fixed = 0, gt_se = 0;
-  std::vector<double> sweep_error, sweep_seconds;  // the fixed sweep, in sample order
+  std::vector<double> sweep_error, sweep_seconds;    // the fixed sweep, in sample order
+  std::vector<double> sweep2_error, sweep2_seconds;  // the same one order higher
+  std::string fixed_table_higher;
   int fixed_samples = 0;
   double fixed_seconds = 0, fixed_error = 0;
   std::size_t fixed_bytes = 0;
@@ -205,9 +208,18 @@ Row run_scene(const std::string& name, const Scene& scene, const std::vector<dou
     }
     return row;
   }
+  // Wall time of the whole --auto bake (analysis, pilot, bake); best of 3 when under 2 s (these
+  // VMs are noisy; the fixed bakes get the same treatment).
   const auto t0 = std::chrono::steady_clock::now();
   const AutoBakeResult a = bake_transfer_auto(scene, o);
   row.auto_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  for (int i = 0; i < 2 && row.auto_seconds < kRepeatBelowSeconds; ++i) {
+    const auto t1 = std::chrono::steady_clock::now();
+    bake_transfer_auto(scene, o);
+    row.auto_seconds =
+        std::min(row.auto_seconds,
+                 std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count());
+  }
   row.auto_error = relative_rms_error(exit_radiance(a.bake.data, sky, kLightingOrder), b_ref);
   row.predicted = a.report.predicted_error;
   row.order = a.report.order;
@@ -248,28 +260,54 @@ Row run_scene(const std::string& name, const Scene& scene, const std::vector<dou
       d << '\n';
     }
   }
+  // A fixed bake's time: best of 3 when under kRepeatBelowSeconds.
+  const auto fixed_bake = [&](const BakeOptions& f, double* seconds) {
+    BakeResult r = bake_transfer(scene, f);
+    *seconds = r.stats.seconds_total;
+    for (int i = 0; i < 2 && *seconds < kRepeatBelowSeconds; ++i)
+      *seconds = std::min(*seconds, bake_transfer(scene, f).stats.seconds_total);
+    return r;
+  };
   bool found = false;
   for (int samples : {64, 128, 256, 512, 1024}) {
     BakeOptions f;
     f.kind = prt::TransferKind::Interreflected;
     f.order = row.order;
     f.samples = samples;
-    const BakeResult r = bake_transfer(scene, f);
+    double seconds = 0.0;
+    const BakeResult r = fixed_bake(f, &seconds);
     const double err = relative_rms_error(exit_radiance(r.data, sky, kLightingOrder), b_ref);
     char line[160];
-    std::snprintf(line, sizeof line, "%d: %.4f in %.2f s; ", samples, err, r.stats.seconds_total);
+    std::snprintf(line, sizeof line, "%d: %.4f in %.2f s; ", samples, err, seconds);
     row.fixed_table += line;
     row.sweep_error.push_back(err);
-    row.sweep_seconds.push_back(r.stats.seconds_total);
+    row.sweep_seconds.push_back(seconds);
     // Keep the first setting at equal error, else the most accurate one so far.
     if (!found || (row.fixed_error > row.auto_error && err < row.fixed_error)) {
       row.fixed_samples = samples;
-      row.fixed_seconds = r.stats.seconds_total;
+      row.fixed_seconds = seconds;
       row.fixed_error = err;
       row.fixed_bytes = file_bytes(r.data);
     }
     found = true;
     if (err <= row.auto_error) break;  // the cheapest fixed setting at equal error
+  }
+  // The same sweep one SH order higher: a higher order with fewer rays can be the cheaper fixed
+  // setting at equal error (its truncation error is lower).
+  for (int samples : {64, 128, 256, 512, 1024}) {
+    BakeOptions f;
+    f.kind = prt::TransferKind::Interreflected;
+    f.order = row.order + 1;
+    f.samples = samples;
+    double seconds = 0.0;
+    const BakeResult r = fixed_bake(f, &seconds);
+    const double err = relative_rms_error(exit_radiance(r.data, sky, kLightingOrder), b_ref);
+    char line[160];
+    std::snprintf(line, sizeof line, "%d: %.4f in %.2f s; ", samples, err, seconds);
+    row.fixed_table_higher += line;
+    row.sweep2_error.push_back(err);
+    row.sweep2_seconds.push_back(seconds);
+    if (err <= row.auto_error) break;
   }
   // The prediction checked against the ground truth (bake/ground_truth.h) on every
   // gt_stride-th vertex, at 1% relative standard error (its noise is removed, see above).
@@ -385,19 +423,30 @@ int main(int argc, char** argv) {
   // Fixed time at the auto error, interpolated log-log between the bracketing sample counts
   // (error falls as a power of the time): the discrete grid alone flatters whichever side lands
   // just under a grid point. "" when the auto error is outside the swept range.
+  // Both sweeps (the auto order and one higher); the cheaper interpolated time wins.
   const auto interpolated = [](const Row& r, std::string* text) {
-    const auto& e = r.sweep_error;
-    const auto& t = r.sweep_seconds;
-    for (std::size_t i = 0; i + 1 < e.size(); ++i)
-      if (e[i] >= r.auto_error && r.auto_error >= e[i + 1] && e[i] > e[i + 1]) {
-        const double s = std::log(r.auto_error / e[i]) / std::log(e[i + 1] / e[i]);
-        const double time = t[i] * std::pow(t[i + 1] / t[i], s);
-        char buf[64];
-        std::snprintf(buf, sizeof buf, "%.2f s (%.2f×)", time, time / r.auto_seconds);
-        *text = buf;
-        return;
-      }
-    *text = e.empty() || r.auto_error > e.front() ? "below the sweep" : "beyond the sweep";
+    double best = 0.0;
+    int best_order = 0;
+    bool below = false;
+    const auto one = [&](const std::vector<double>& e, const std::vector<double>& t, int order) {
+      below = below || (!e.empty() && r.auto_error > e.front());
+      for (std::size_t i = 0; i + 1 < e.size(); ++i)
+        if (e[i] >= r.auto_error && r.auto_error >= e[i + 1] && e[i] > e[i + 1]) {
+          const double s = std::log(r.auto_error / e[i]) / std::log(e[i + 1] / e[i]);
+          const double time = t[i] * std::pow(t[i + 1] / t[i], s);
+          if (best_order == 0 || time < best) best = time, best_order = order;
+        }
+    };
+    one(r.sweep_error, r.sweep_seconds, r.order);
+    one(r.sweep2_error, r.sweep2_seconds, r.order + 1);
+    if (best_order > 0) {
+      char buf[96];
+      std::snprintf(buf, sizeof buf, "%.2f s at order %d (%.2f×)", best, best_order,
+                    best / r.auto_seconds);
+      *text = buf;
+      return;
+    }
+    *text = below ? "below the sweep" : "beyond the sweep";
   };
   std::ofstream f(out);
   f << "# Adaptive baking (`prt bake --auto`) against the fixed recipe\n\n"
@@ -406,8 +455,10 @@ int main(int argc, char** argv) {
        "(bands 0–5), measured against a fixed interreflected bake at order 8 with 2048 samples "
        "(an independent seed) solved to 1e-6. The fixed setting is interreflected at the order "
        "--auto chose, with the "
-       "fewest samples (64…1024) whose measured error is ≤ the --auto error (or the best one). "
-       "Times are bake wall times on this 2-core VM (auto includes analysis and the pilot). "
+       "fewest samples (64…1024) whose measured error is ≤ the --auto error (or the best one); "
+       "the interpolated column also sweeps one order higher and takes the cheaper. "
+       "Times are bake wall times on this 2-core VM (auto includes analysis and the pilot), the "
+       "best of 3 for bakes under 2 s. "
        "Ground truth: bake/ground_truth.h (path tracing against the sky as a 256×128 map) on "
        "every 8th (planes, sphere), 16th (bunny) or 32nd (ship) vertex at 1% relative standard "
        "error s; the error against it has its own noise removed (Σ(b − g)² − Σ SE²).\n\n"
@@ -429,7 +480,9 @@ int main(int argc, char** argv) {
     f << line;
   }
   f << "\nFixed sweeps (samples: error in time):\n\n";
-  for (const Row& r : rows) f << "- " << r.name << ": " << r.fixed_table << "\n";
+  for (const Row& r : rows)
+    f << "- " << r.name << ": order " << r.order << ": " << r.fixed_table << " order "
+      << r.order + 1 << ": " << r.fixed_table_higher << "\n";
   std::printf("wrote %s\n", out.c_str());
   return 0;
 }

@@ -331,11 +331,14 @@ AutoBakeResult bake_transfer_auto(const Scene& scene, const AutoBakeOptions& o,
   b.adaptive.hierarchy = hierarchy;
   // The sampling error gets what the deterministic errors (truncation and skipped vertices,
   // added as they may share a sign) leave of the tolerance: the zero-mean sampling error adds
-  // in squares. A 10% margin covers the allocation's luminance, direct-light-only model.
+  // in squares. A 10% margin covers the allocation's luminance model. When the deterministic
+  // part alone misses the tolerance (a sun: Haar is recommended), the tolerance cannot be met
+  // whatever the rays; the sampling error then gets the tolerance on its own, so that the SH
+  // bake is no noisier than asked, without spending rays on an unreachable total.
   const double fixed_part = rep.predicted_truncation_error + rep.predicted_skip_error;
   b.adaptive.rms_error = 0.9 * (fixed_part < 0.9 * o.tolerance
                                     ? std::sqrt(o.tolerance * o.tolerance - fixed_part * fixed_part)
-                                    : 0.5 * o.tolerance);
+                                    : o.tolerance);
   b.adaptive.bounce_tolerance = 0.25 * o.tolerance;
   b.adaptive.vertex_mode.assign(V, kSampleVertex);
   for (std::size_t v = 0; v < V; ++v)

@@ -17,8 +17,8 @@ double error2(const std::vector<double>& a, const std::vector<uint32_t>& n) {
   return e;
 }
 
-uint64_t cost(const std::vector<uint32_t>& n) {
-  return std::accumulate(n.begin(), n.end(), uint64_t{0});
+double cost(const std::vector<uint32_t>& n) {
+  return static_cast<double>(std::accumulate(n.begin(), n.end(), uint64_t{0}));
 }
 
 }  // namespace
@@ -55,10 +55,10 @@ TEST_CASE("allocation is cheaper than equal counts or equal standard errors at t
   // Equal counts reaching the budget: n = Σa²/budget.
   double sum_a2 = 0;
   for (double x : a) sum_a2 += x * x;
-  const double equal_cost = V * std::ceil(sum_a2 / budget);
+  const double equal_cost = static_cast<double>(V) * std::ceil(sum_a2 / budget);
   // Equal standard error per vertex: n_v = a_v²·V/budget.
   double equal_se_cost = 0;
-  for (double x : a) equal_se_cost += std::max(16.0, x * x * V / budget);
+  for (double x : a) equal_se_cost += std::max(16.0, x * x * static_cast<double>(V) / budget);
   CAPTURE(cost(r.samples), equal_cost, equal_se_cost);
   // Neyman's cost (Σa)²/budget is the minimum; here ≈ 0.38× equal counts.
   CHECK(cost(r.samples) < 0.5 * equal_cost);
@@ -66,7 +66,7 @@ TEST_CASE("allocation is cheaper than equal counts or equal standard errors at t
   // And near the optimum (Σa)²/budget (rounding to packets and the lower bound add a little).
   double sum_a = 0;
   for (double x : a) sum_a += x;
-  CHECK(cost(r.samples) <= 1.1 * sum_a * sum_a / budget + 16.0 * V);
+  CHECK(cost(r.samples) <= 1.1 * sum_a * sum_a / budget + 16.0 * static_cast<double>(V));
 }
 
 TEST_CASE("an unreachable budget leaves every vertex at its maximum and says so") {

@@ -29,20 +29,29 @@
 //       S_k = U_k − (1/N) Σ_s (1 − V(ω_s)) Y_k(ω_s),
 //     unbiased like the plain estimator (E[(1/N) Σ Y_k] = U_k under pdf cos/π), and exact where no
 //     sample is occluded;
-//   - sample counts: x_s = (1 − V(ω_s))·w(ω_s), w the lighting's luminance (up to the transfer's
-//     order) in direction ω_s over its mean (1 without lighting). Every sampled vertex first
-//     casts min_samples rays; then rounds of Neyman allocation (bake/sample_allocation.h), each
-//     with a cap 2× the last (up to max_samples), add rays until the scene's relative RMS
-//     sampling error of the direct exit radiance is predicted ≤ rms_error. The prediction is
-//     the i.i.d. one, Σ_v ρ̄_v²σ_v²/n_v (ρ̄: luminance albedo, σ_v: spread of x floored at the
-//     Jeffreys p(1 − p) of its occluded count) over Σ_v (ρ̄_v b_v)² (b_v: direct exit radiance
-//     over the mean), scaled by c², which audit vertices measure: every 8th sampled vertex draws
-//     from two independently scrambled sequences in alternate packets (counts multiples of 32),
-//     and the spread of the two means is an unbiased estimate of its actual error. c < 1 is
-//     the scrambled Sobol' points' gain over the i.i.d. rate (qmc_calibration). The other
+//   - cap sampling (AdaptiveSampling::cap_sampling): a vertex whose blockable directions fit in
+//     a few small cones (bake/occluder_caps.h) draws its directions inside them with weights
+//     w_s (bake/cap_sampling.h) and its estimator becomes U_k − (1/N) Σ_s w_s(1 − V)Y_k (w = 1
+//     for hemisphere sampling); rays below its horizon are not cast. AO and the bent normal of
+//     such a vertex use 1 and (2/3)·n (their unoccluded values) as control variates too;
+//   - sample counts: x_s = w_s·(1 − V(ω_s))·L(ω_s), L the lighting's luminance (up to the
+//     transfer's order) in direction ω_s over its mean (1 without lighting). Every sampled
+//     vertex first takes min_samples samples (capped vertices min_cap_samples); then rounds of
+//     Neyman allocation with costs (bake/sample_allocation.h: n_v ∝ a_v/√c_v, c_v the cost of a
+//     sample: its ray, 3× for one that hits) move every vertex toward its target at max_samples,
+//     growing it at most 4× per round, until the scene's relative RMS sampling error is
+//     predicted ≤ rms_error. The prediction is Σ_v a_v²/n_v over Σ_v B_v², a_v = c·ρ̄_v·σ_v
+//     (ρ̄: luminance albedo; σ_v²: the successive-difference variance of x over the point pairs
+//     (2i, 2i + 1), which share elementary intervals of the scrambled Sobol' net, floored at the
+//     Jeffreys (w_max)²·p(1 − p) of its occluded count) and B_v the direct exit radiance plus
+//     the first bounce read from the phase-1 rows of H (a lower bound: the budget stays
+//     conservative). c is measured by audit vertices: every 8th sampled vertex draws from two
+//     independently scrambled sequences in alternate packets (counts multiples of 32), and the
+//     spread of the two means is an unbiased estimate of its actual error; c is measured per
+//     class (hemisphere, caps) when a class has 64 audits (qmc_calibration, _caps). The other
 //     vertices use the fixed recipe's single sequence. Hits are gathered into H in every round;
-//     vertex_standard_error is the calibrated c·σ_v/√n_v. The allocation reads every vertex in
-//     a fixed order: thread-count independent;
+//     vertex_standard_error is c·σ_v/√n_v. The allocation reads every vertex in a fixed order:
+//     thread-count independent;
 //   - the interreflection solve is skipped when H is empty or every albedo is zero; otherwise
 //     Jacobi bounces stop when a bounce adds less than bounce_tolerance × max|D| (BiCGSTAB takes
 //     over after 200 bounces); the stored kind is the simplest that is exact (unshadowed when
