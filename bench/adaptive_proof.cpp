@@ -127,6 +127,25 @@ Row run_scene(const std::string& name, const Scene& scene, const std::vector<dou
     o.lighting = sky;
     o.lighting_order = kLightingOrder;
     o.cap_sampling = std::getenv("PRT_PROOF_NOCAPS") == nullptr;
+    if (std::getenv("PRT_PROOF_SHADOWED")) {
+      // The sampling prediction alone: a shadowed --auto bake against a shadowed fixed bake at
+      // the same order with 4096 samples (no truncation, no interreflection in the difference).
+      o.kind = prt::TransferKind::Shadowed;
+      const AutoBakeResult a = bake_transfer_auto(scene, o);
+      BakeOptions f;
+      f.kind = prt::TransferKind::Shadowed;
+      f.order = a.report.order;
+      f.samples = 4096;
+      f.seed = 99;
+      const std::vector<double> ref_s =
+          exit_radiance(bake_transfer(scene, f).data, sky, kLightingOrder);
+      std::printf(
+          "%s: shadowed auto, order %d: predicted sampling %.4f, measured against 4096 "
+          "samples %.4f\n",
+          name.c_str(), a.report.order, a.report.predicted_sampling_error,
+          relative_rms_error(exit_radiance(a.bake.data, sky, kLightingOrder), ref_s));
+      return row;
+    }
     for (int i = 0; i < std::atoi(repeat); ++i) {
       const AutoBakeResult a = bake_transfer_auto(scene, o);
       std::printf(
@@ -160,6 +179,9 @@ Row run_scene(const std::string& name, const Scene& scene, const std::vector<dou
   o.lighting_order = kLightingOrder;
   o.cap_sampling = std::getenv("PRT_PROOF_NOCAPS") == nullptr;
   if (const char* m = std::getenv("PRT_PROOF_MIN_SAMPLES")) o.min_samples = std::atoi(m);
+  if (const char* m = std::getenv("PRT_PROOF_CAP_SOLID_ANGLE"))
+    o.max_cap_solid_angle = std::atof(m);
+  if (const char* m = std::getenv("PRT_PROOF_MAX_CAPS")) o.max_caps = std::atoi(m);
   if (const char* list = std::getenv("PRT_PROOF_TOLERANCES")) {
     // For tuning: --auto's error against time at several tolerances (best of 3 times).
     int last_order = 3;

@@ -329,6 +329,8 @@ AutoBakeResult bake_transfer_auto(const Scene& scene, const AutoBakeOptions& o,
   b.adaptive.max_samples = o.max_samples;
   b.adaptive.cap_sampling = o.cap_sampling;
   b.adaptive.hierarchy = hierarchy;
+  b.adaptive.max_caps = o.max_caps;
+  b.adaptive.max_cap_solid_angle = o.max_cap_solid_angle;
   // The sampling error gets what the deterministic errors (truncation and skipped vertices,
   // added as they may share a sign) leave of the tolerance: the zero-mean sampling error adds
   // in squares. A 10% margin covers the allocation's luminance model. When the deterministic

@@ -222,6 +222,9 @@ void validate_bake_inputs(const Scene& scene, const BakeOptions& o) {
       throw BakeError(name + ": adaptive RMS error target must be > 0");
     if (!(a.bounce_tolerance > 0.0) || !(a.bounce_tolerance < 1.0))
       throw BakeError(name + ": adaptive bounce tolerance must be in (0, 1)");
+    if (a.cap_sampling && (a.max_caps < 1 || a.max_caps > 256 || !(a.max_cap_solid_angle > 0.0) ||
+                           !std::isfinite(a.max_cap_solid_angle) || a.min_cap_samples < 1))
+      throw BakeError(name + ": cap sampling needs 1..256 caps, a solid angle > 0 and >= 1 sample");
     if (!a.vertex_mode.empty() && a.vertex_mode.size() != scene.positions.size())
       throw BakeError(name + ": adaptive vertex modes do not match the vertex count");
     if (a.lighting_order < 0 ||
@@ -412,6 +415,23 @@ BakeResult bake_transfer(const Scene& scene, const BakeOptions& options, Progres
     const double light_mean = light_order > 0 ? ad.lighting[0] * kY00 : 0.0;
     const bool weighted = light_order > 0 && light_mean > 0.0;
     const uint64_t replica_seed[2] = {options.seed, hash_seed(options.seed, kReplicaSalt)};
+    const std::vector<double> uniform_sky{1.0 / kY00};
+    const std::vector<double>& lum = weighted ? ad.lighting : uniform_sky;
+    const int lum_k = std::min(K, weighted ? light_order * light_order : 1);
+    const double lum_mean = weighted ? light_mean : 1.0;
+    auto luminance = [](const glm::vec3& c) { return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z; };
+    // Interreflected: a blocked sample swaps the sky's radiance for the hit surface's, so its
+    // error contribution is (L_sky − L_hit), not L_sky. L_hit is approximated by the hit
+    // vertices' unshadowed exit radiance ρ̄·u (in units of the mean; the audit's c calibrates
+    // what the approximation misses).
+    std::vector<float> hit_radiance(adaptive && interreflect ? V : 0);
+    tbb::parallel_for(std::size_t(0), hit_radiance.size(), [&](std::size_t v) {
+      std::vector<double> u(K);
+      unshadowed(v, u.data());
+      double b = 0.0;
+      for (int k = 0; k < lum_k; ++k) b += u[k] * lum[k];
+      hit_radiance[v] = static_cast<float>(luminance(scene.albedo[v]) * b / lum_mean);
+    });
     struct VertexState {
       double sum_x[2] = {0.0, 0.0};  // per replica (audit) or all in [0]: Σ x_s
       // x_s = w_s·(1 − V(ω_s))·L(ω_s), w_s the cap weight (or 1). Σ over the pairs of points
@@ -482,16 +502,23 @@ BakeResult bake_transfer(const Scene& scene, const BakeOptions& options, Progres
           vs.occluded_dir += w[i] * glm::dvec3(dirs[i]);
           sh::evaluate(eval_order, dirs[i].x, dirs[i].y, dirs[i].z, y.data());
           for (int k = 0; k < K; ++k) occ[k] += w[i] * static_cast<double>(y[k]);
-          double x = w[i];
+          double sky = 1.0;
           if (weighted) {
             double radiance = 0.0;
             for (int k = 0; k < light_order * light_order; ++k)
               radiance += ad.lighting[k] * static_cast<double>(y[k]);
-            x *= radiance / light_mean;
+            sky = radiance / light_mean;
           }
+          double hit = 0.0;
+          if (interreflect && hits[i].hit &&
+              gather_hit(hits[i], dirs[i], static_cast<float>(w[i]))) {
+            const glm::uvec3 tri = scene.triangles[hits[i].triangle];
+            hit = (1.0 - hits[i].u - hits[i].v) * hit_radiance[tri.x] +
+                  hits[i].u * hit_radiance[tri.y] + hits[i].v * hit_radiance[tri.z];
+          }
+          const double x = w[i] * (sky - hit);
           vs.sum_x[r] += x;
           xs[point[i]] = x;
-          if (interreflect && hits[i].hit) gather_hit(hits[i], dirs[i], static_cast<float>(w[i]));
         }
         for (int i = 0; i < kPacketSize; i += 2)
           vs.sum_pair2 += 0.5 * (xs[i] - xs[i + 1]) * (xs[i] - xs[i + 1]);
@@ -534,7 +561,9 @@ BakeResult bake_transfer(const Scene& scene, const BakeOptions& options, Progres
       uint64_t rays = 0;
       // The hit's vertices, weighted by barycentrics, go into this vertex's row of H.
       auto gather_hit = [&](const RayCaster::Hit& hit, const glm::vec3& dir, float weight) {
-        if (!gather_front_hit(scene, hit, dir, weight, gathered)) ++block_back_hits[blk];
+        const bool front = gather_front_hit(scene, hit, dir, weight, gathered);
+        if (!front) ++block_back_hits[blk];
+        return front;
       };
       auto emit_row = [&](double row_scale) { append_row(gathered, row_scale, rows[blk]); };
       for (std::size_t v = blk * kVertexBlock; v < v_end; ++v) {
@@ -599,10 +628,6 @@ BakeResult bake_transfer(const Scene& scene, const BakeOptions& options, Progres
       // direct exit radiance over the mean (interreflection would only add to it). Each round
       // doubles the cap (min_samples·2, ·4, … max_samples) and re-measures c; holding c while
       // n grows within a round is conservative, as the points' error falls faster than n^-½.
-      const std::vector<double> uniform_sky{1.0 / kY00};
-      const std::vector<double>& lum = weighted ? ad.lighting : uniform_sky;
-      const int lum_k = std::min(K, weighted ? light_order * light_order : 1);
-      const double lum_mean = weighted ? light_mean : 1.0;
       // A capped vertex's weights are ≤ Ω/π: its Jeffreys floor is scaled by (Ω/π)².
       std::vector<double> weight_bound2(V, 1.0);
       for (std::size_t v = 0; v < V; ++v)
@@ -622,9 +647,6 @@ BakeResult bake_transfer(const Scene& scene, const BakeOptions& options, Progres
         const double var = vs.sum_pair2 / (0.5 * n);
         const double p = (vs.occluded + 0.5) / (n + 1.0);
         return std::max(var, weight_bound2[v] * p * (1.0 - p));
-      };
-      auto luminance = [](const glm::vec3& c) {
-        return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z;
       };
       // Budget denominator: Σ_v B_v², B_v = ρ̄_v·b_v (direct, in units of the mean radiance)
       // plus, when interreflecting, the first bounce ρ̄_v·(1/n_v)·Σ_hits B(hit), read from the
@@ -735,7 +757,9 @@ BakeResult bake_transfer(const Scene& scene, const BakeOptions& options, Progres
           uint64_t rays = 0;
           std::vector<std::pair<uint32_t, float>> gathered;
           auto gather_hit = [&](const RayCaster::Hit& hit, const glm::vec3& dir, float weight) {
-            if (!gather_front_hit(scene, hit, dir, weight, gathered)) ++block_back_hits[blk];
+            const bool front = gather_front_hit(scene, hit, dir, weight, gathered);
+            if (!front) ++block_back_hits[blk];
+            return front;
           };
           for (std::size_t v = v_begin; v < v_end; ++v) {
             gathered.clear();

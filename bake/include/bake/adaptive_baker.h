@@ -61,6 +61,8 @@ struct AutoBakeOptions {
   // Vertices whose blockable directions fit in a few small cones draw their rays inside them
   // (bake/occluder_caps.h, bake/cap_sampling.h).
   bool cap_sampling = true;
+  int max_caps = 8;
+  double max_cap_solid_angle = 1.5707963267948966;  // π/2 sr
   bool ao = false, bent_normals = false;
   prt::Precision precision = prt::Precision::F32;
 };
