@@ -1,6 +1,8 @@
 // bake/src/adaptive_baker.cpp — the `--auto` pipeline (adaptive_baker.h).
 #include "bake/adaptive_baker.h"
 
+#include "bake/ray_caster.h"
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -35,6 +37,7 @@ std::vector<double> uniform_sky() {
 // Grey transfer S (no albedo) of the pilot vertices at the pilot order.
 std::vector<double> bake_pilot(const Scene& scene, const AutoBakeOptions& o,
                                const std::vector<uint8_t>& open, std::vector<glm::vec3>& albedo,
+                               const std::shared_ptr<const RayCaster>& caster,
                                ProgressSink* progress) {
   const std::size_t V = scene.positions.size();
   const std::size_t P = std::min<std::size_t>(V, static_cast<std::size_t>(o.pilot_vertices));
@@ -48,6 +51,7 @@ std::vector<double> bake_pilot(const Scene& scene, const AutoBakeOptions& o,
   b.adaptive.enabled = true;
   b.adaptive.min_samples = b.adaptive.max_samples = o.pilot_samples;
   b.adaptive.cap_sampling = false;  // 256 vertices: not worth the caps' hierarchy
+  b.adaptive.caster = caster;       // built over `scene`: the same geometry as `grey`
   b.adaptive.vertex_mode.assign(V, kSkipVertex);
   std::vector<std::size_t> pick(P);
   for (std::size_t i = 0; i < P; ++i) {
@@ -238,6 +242,12 @@ AutoBakeResult bake_transfer_auto(const Scene& scene, const AutoBakeOptions& o,
 
   // 1. Analysis.
   const HemisphereAnalysis hemi = find_open_hemispheres(scene);
+  // One BVH for the pilot and the bake, built on first use (never when every vertex is open).
+  std::shared_ptr<const RayCaster> caster;
+  auto shared_caster = [&] {
+    if (!caster && hemi.open_count < V) caster = std::make_shared<const RayCaster>(scene);
+    return caster;
+  };
   const AlbedoAnalysis alb = analyze_albedo(scene);
   rep.analysis_seconds = hemi.seconds;
   rep.open_vertices = hemi.open_count;
@@ -260,7 +270,8 @@ AutoBakeResult bake_transfer_auto(const Scene& scene, const AutoBakeOptions& o,
   if (lit && kind != prt::TransferKind::Unshadowed) {
     const auto t0 = std::chrono::steady_clock::now();
     std::vector<glm::vec3> pilot_albedo;
-    const std::vector<double> pilot = bake_pilot(scene, o, hemi.open, pilot_albedo, nullptr);
+    const std::vector<double> pilot =
+        bake_pilot(scene, o, hemi.open, pilot_albedo, shared_caster(), nullptr);
     rep.order_choice = choose_order(pilot, pilot_albedo, o.pilot_order, o.lighting,
                                     o.lighting_order, 0.5 * o.tolerance, o.max_order);
     rep.pilot_seconds =
@@ -329,6 +340,7 @@ AutoBakeResult bake_transfer_auto(const Scene& scene, const AutoBakeOptions& o,
   b.adaptive.max_samples = o.max_samples;
   b.adaptive.cap_sampling = o.cap_sampling;
   b.adaptive.hierarchy = hierarchy;
+  b.adaptive.caster = shared_caster();
   b.adaptive.max_caps = o.max_caps;
   b.adaptive.max_cap_solid_angle = o.max_cap_solid_angle;
   // The sampling error gets what the deterministic errors (truncation and skipped vertices,

@@ -28,6 +28,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <memory>
 #include <optional>
 #include <utility>
 
@@ -386,7 +387,9 @@ BakeResult bake_transfer(const Scene& scene, const BakeOptions& options, Progres
   if (need_rays && any_sampled) {
     const Clock::time_point t_rays = Clock::now();
     const Clock::time_point t_bvh = Clock::now();
-    RayCaster caster(scene);
+    std::unique_ptr<RayCaster> own_caster;
+    if (!(adaptive && ad.caster)) own_caster = std::make_unique<RayCaster>(scene);
+    const RayCaster& caster = own_caster ? *own_caster : *ad.caster;
     st.seconds_bvh = seconds_since(t_bvh);
     ray_offset = caster.offset_scale();
     const std::size_t blocks = (V + kVertexBlock - 1) / kVertexBlock;

@@ -72,6 +72,7 @@
 namespace prt::bake {
 
 class ProgressSink;
+class RayCaster;
 
 // Thrown for invalid scenes or options; one line "PATH: problem".
 struct BakeError : std::runtime_error {
@@ -106,6 +107,9 @@ struct AdaptiveSampling {
   int min_cap_samples = 16;  // rounded up to a multiple of 16 (of 32 on audit vertices)
   // The scene's triangle hierarchy when the caller has one (built here when null).
   std::shared_ptr<const TriangleHierarchy> hierarchy;
+  // A ray caster over this scene's geometry (same positions, normals and triangles; the albedo
+  // may differ) when the caller has one (built here when null).
+  std::shared_ptr<const RayCaster> caster;
 };
 
 struct BakeOptions {
