@@ -115,6 +115,22 @@ struct Row {
   std::string fixed_table;
 };
 
+// The --auto options of the proof, with the digging overrides of the environment (see
+// docs/adaptive/README.md).
+AutoBakeOptions auto_options(const std::vector<double>& sky) {
+  AutoBakeOptions o;
+  const char* tolerance = std::getenv("PRT_PROOF_TOLERANCE");
+  o.tolerance = tolerance ? std::atof(tolerance) : kTolerance;
+  o.lighting = sky;
+  o.lighting_order = kLightingOrder;
+  o.cap_sampling = std::getenv("PRT_PROOF_NOCAPS") == nullptr;
+  if (const char* m = std::getenv("PRT_PROOF_MIN_SAMPLES")) o.min_samples = std::atoi(m);
+  if (const char* m = std::getenv("PRT_PROOF_CAP_SOLID_ANGLE"))
+    o.max_cap_solid_angle = std::atof(m);
+  if (const char* m = std::getenv("PRT_PROOF_MAX_CAPS")) o.max_caps = std::atoi(m);
+  return o;
+}
+
 Row run_scene(const std::string& name, const Scene& scene, const std::vector<double>& sky,
               int gt_stride) {
   Row row;
@@ -122,12 +138,7 @@ Row run_scene(const std::string& name, const Scene& scene, const std::vector<dou
   row.vertices = scene.vertex_count();
   if (const char* repeat = std::getenv("PRT_PROOF_AUTO_ONLY")) {
     // For profiling: only the --auto bake, N times (no reference, no sweep).
-    AutoBakeOptions o;
-    o.tolerance = std::getenv("PRT_PROOF_TOLERANCE") ? std::atof(std::getenv("PRT_PROOF_TOLERANCE"))
-                                                     : kTolerance;
-    o.lighting = sky;
-    o.lighting_order = kLightingOrder;
-    o.cap_sampling = std::getenv("PRT_PROOF_NOCAPS") == nullptr;
+    AutoBakeOptions o = auto_options(sky);
     if (std::getenv("PRT_PROOF_SHADOWED")) {
       // The sampling prediction alone: a shadowed --auto bake against a shadowed fixed bake at
       // the same order with 4096 samples (no truncation, no interreflection in the difference).
@@ -184,16 +195,7 @@ Row run_scene(const std::string& name, const Scene& scene, const std::vector<dou
         std::sqrt(2.0);
   }
 
-  AutoBakeOptions o;
-  o.tolerance = std::getenv("PRT_PROOF_TOLERANCE") ? std::atof(std::getenv("PRT_PROOF_TOLERANCE"))
-                                                   : kTolerance;
-  o.lighting = sky;
-  o.lighting_order = kLightingOrder;
-  o.cap_sampling = std::getenv("PRT_PROOF_NOCAPS") == nullptr;
-  if (const char* m = std::getenv("PRT_PROOF_MIN_SAMPLES")) o.min_samples = std::atoi(m);
-  if (const char* m = std::getenv("PRT_PROOF_CAP_SOLID_ANGLE"))
-    o.max_cap_solid_angle = std::atof(m);
-  if (const char* m = std::getenv("PRT_PROOF_MAX_CAPS")) o.max_caps = std::atoi(m);
+  AutoBakeOptions o = auto_options(sky);
   if (const char* list = std::getenv("PRT_PROOF_TOLERANCES")) {
     // For tuning: --auto's error against time at several tolerances (best of 3 times).
     int last_order = 3;
@@ -302,47 +304,42 @@ Row run_scene(const std::string& name, const Scene& scene, const std::vector<dou
       *seconds = std::min(*seconds, bake_transfer(scene, f).stats.seconds_total);
     return r;
   };
-  bool found = false;
-  for (int samples : {64, 128, 256, 512, 1024}) {
-    BakeOptions f;
-    f.kind = prt::TransferKind::Interreflected;
-    f.order = row.order;
-    f.samples = samples;
-    double seconds = 0.0;
-    const BakeResult r = fixed_bake(f, &seconds);
-    const double err = relative_rms_error(exit_radiance(r.data, sky, kLightingOrder), b_ref);
-    char line[160];
-    std::snprintf(line, sizeof line, "%d: %.4f in %.2f s; ", samples, err, seconds);
-    row.fixed_table += line;
-    row.sweep_error.push_back(err);
-    row.sweep_seconds.push_back(seconds);
-    // Keep the first setting at equal error, else the most accurate one so far.
-    if (!found || (row.fixed_error > row.auto_error && err < row.fixed_error)) {
-      row.fixed_samples = samples;
-      row.fixed_seconds = seconds;
-      row.fixed_error = err;
-      row.fixed_bytes = file_bytes(r.data);
+  // Sweeps 64…1024 samples at `order` until the error is ≤ the auto error; `on_bake` sees each.
+  const auto sweep = [&](int order, std::string& table, std::vector<double>& errors,
+                         std::vector<double>& times, const auto& on_bake) {
+    for (int samples : {64, 128, 256, 512, 1024}) {
+      BakeOptions f;
+      f.kind = prt::TransferKind::Interreflected;
+      f.order = order;
+      f.samples = samples;
+      double seconds = 0.0;
+      const BakeResult r = fixed_bake(f, &seconds);
+      const double err = relative_rms_error(exit_radiance(r.data, sky, kLightingOrder), b_ref);
+      char line[160];
+      std::snprintf(line, sizeof line, "%d: %.4f in %.2f s; ", samples, err, seconds);
+      table += line;
+      errors.push_back(err);
+      times.push_back(seconds);
+      on_bake(samples, seconds, err, r);
+      if (err <= row.auto_error) break;  // the cheapest fixed setting at equal error
     }
-    found = true;
-    if (err <= row.auto_error) break;  // the cheapest fixed setting at equal error
-  }
+  };
+  bool found = false;
+  sweep(row.order, row.fixed_table, row.sweep_error, row.sweep_seconds,
+        [&](int samples, double seconds, double err, const BakeResult& r) {
+          // Keep the first setting at equal error, else the most accurate one so far.
+          if (!found || (row.fixed_error > row.auto_error && err < row.fixed_error)) {
+            row.fixed_samples = samples;
+            row.fixed_seconds = seconds;
+            row.fixed_error = err;
+            row.fixed_bytes = file_bytes(r.data);
+          }
+          found = true;
+        });
   // The same sweep one SH order higher: a higher order with fewer rays can be the cheaper fixed
   // setting at equal error (its truncation error is lower).
-  for (int samples : {64, 128, 256, 512, 1024}) {
-    BakeOptions f;
-    f.kind = prt::TransferKind::Interreflected;
-    f.order = row.order + 1;
-    f.samples = samples;
-    double seconds = 0.0;
-    const BakeResult r = fixed_bake(f, &seconds);
-    const double err = relative_rms_error(exit_radiance(r.data, sky, kLightingOrder), b_ref);
-    char line[160];
-    std::snprintf(line, sizeof line, "%d: %.4f in %.2f s; ", samples, err, seconds);
-    row.fixed_table_higher += line;
-    row.sweep2_error.push_back(err);
-    row.sweep2_seconds.push_back(seconds);
-    if (err <= row.auto_error) break;
-  }
+  sweep(row.order + 1, row.fixed_table_higher, row.sweep2_error, row.sweep2_seconds,
+        [](int, double, double, const BakeResult&) {});
   // The prediction checked against the ground truth (bake/ground_truth.h) on every
   // gt_stride-th vertex, at 1% relative standard error (its noise is removed, see above).
   {
