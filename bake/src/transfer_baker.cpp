@@ -939,9 +939,14 @@ BakeResult bake_transfer(const Scene& scene, const BakeOptions& options, Progres
     a["transfer_requested"] = transfer_kind_name(options.kind);
     a["min_samples"] = round_up(std::max(ad.min_samples, 2 * kPacketSize), 2 * kPacketSize);
     a["max_samples"] = round_up(std::max(ad.min_samples, ad.max_samples), 2 * kPacketSize);
-    a["audit_stride"] = 8;
+    a["min_cap_samples"] = round_up(std::max(ad.min_cap_samples, 1), kPacketSize);
+    a["audit_stride"] = kAuditStride;
     a["allocation_rounds"] = st.allocation_rounds;
     a["qmc_calibration"] = st.qmc_calibration;
+    a["qmc_calibration_caps"] = st.qmc_calibration_caps;
+    a["cap_sampling"] = ad.cap_sampling;
+    a["cap_vertices"] = st.cap_vertices;
+    a["cap_open_vertices"] = st.cap_open_vertices;
     a["rms_sampling_error_target"] = ad.rms_error;
     a["allocation_budget_met"] = st.allocation_budget_met;
     a["lighting_weighted"] = ad.lighting_order > 0;
