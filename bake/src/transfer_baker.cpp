@@ -773,6 +773,7 @@ BakeResult bake_transfer(const Scene& scene, const BakeOptions& options, Progres
             if (interreflect) append_row(gathered, 1.0, round[blk]);
           }
           block_rays[blk] += rays;
+          if (progress) progress->advance(0, rays);  // the rate counts every round's rays
         });
         st.allocation_rounds += 1;
         measure();
