@@ -50,8 +50,9 @@ std::vector<double> bake_pilot(const Scene& scene, const AutoBakeOptions& o,
   b.threads = o.threads;
   b.adaptive.enabled = true;
   b.adaptive.min_samples = b.adaptive.max_samples = o.pilot_samples;
-  b.adaptive.cap_sampling = false;  // 256 vertices: not worth the caps' hierarchy
-  b.adaptive.caster = caster;       // built over `scene`: the same geometry as `grey`
+  b.adaptive.cap_sampling = false;   // 256 vertices: not worth the caps' hierarchy
+  b.adaptive.caster = caster;        // built over `scene`: the same geometry as `grey`
+  b.adaptive.compact_output = true;  // P rows, not V
   b.adaptive.vertex_mode.assign(V, kSkipVertex);
   std::vector<std::size_t> pick(P);
   for (std::size_t i = 0; i < P; ++i) {
@@ -64,7 +65,7 @@ std::vector<double> bake_pilot(const Scene& scene, const AutoBakeOptions& o,
   albedo.resize(P);
   for (std::size_t i = 0; i < P; ++i) {
     albedo[i] = scene.albedo[pick[i]];
-    for (int k = 0; k < K; ++k) s[i * K + k] = 2.0 * r.data.coefficients[pick[i] * K + k];
+    for (int k = 0; k < K; ++k) s[i * K + k] = 2.0 * r.data.coefficients[i * K + k];
   }
   return s;
 }

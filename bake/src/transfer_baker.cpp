@@ -223,6 +223,8 @@ void validate_bake_inputs(const Scene& scene, const BakeOptions& o) {
       throw BakeError(name + ": adaptive RMS error target must be > 0");
     if (!(a.bounce_tolerance > 0.0) || !(a.bounce_tolerance < 1.0))
       throw BakeError(name + ": adaptive bounce tolerance must be in (0, 1)");
+    if (a.compact_output && o.kind == prt::TransferKind::Interreflected)
+      throw BakeError(name + ": compact output is for shadowed and unshadowed bakes");
     if (a.cap_sampling && (a.max_caps < 1 || a.max_caps > 256 || !(a.max_cap_solid_angle > 0.0) ||
                            !std::isfinite(a.max_cap_solid_angle) || a.min_cap_samples < 1))
       throw BakeError(name + ": cap sampling needs 1..256 caps, a solid angle > 0 and >= 1 sample");
@@ -292,7 +294,20 @@ BakeResult bake_transfer(const Scene& scene, const BakeOptions& options, Progres
   // Shadowed/unshadowed transfer goes straight into the float output (T = ρ_c·S); only the
   // interreflected kind keeps S = (1/N) Σ V Y_k in double for the solve.
   prt::TransferData& data = result.data;
-  data.coefficients.assign(V * C * K, 0.f);
+  // Compact output (AdaptiveSampling::compact_output): rows for the vertices that are not
+  // kSkipVertex only, in vertex order (a pilot of 256 vertices of a large scene at order 16
+  // would otherwise allocate V × 256 floats).
+  const bool compact = options.adaptive.enabled && options.adaptive.compact_output;
+  std::vector<std::size_t> row_of;
+  std::size_t rows_out = V;
+  if (compact) {
+    row_of.assign(V, 0);
+    rows_out = 0;
+    for (std::size_t v = 0; v < V; ++v)
+      if (options.adaptive.vertex_mode.empty() || options.adaptive.vertex_mode[v] != kSkipVertex)
+        row_of[v] = rows_out++;
+  }
+  data.coefficients.assign(rows_out * C * K, 0.f);
   VertexSums sums;
   if (interreflect) sums.visibility_sh.assign(V * K, 0.0);
   auto store_direct = [&](std::size_t v, const double* s_k) {
@@ -300,9 +315,10 @@ BakeResult bake_transfer(const Scene& scene, const BakeOptions& options, Progres
       std::copy(s_k, s_k + K, &sums.visibility_sh[v * K]);
       return;
     }
+    const std::size_t row = compact ? row_of[v] : v;
     for (int c = 0; c < C; ++c) {
       const double rho_c = scene.albedo[v][c];
-      float* t = &data.coefficients[(v * C + c) * K];
+      float* t = &data.coefficients[(row * C + c) * K];
       for (int k = 0; k < K; ++k) t[k] = static_cast<float>(rho_c * s_k[k]);
     }
   };

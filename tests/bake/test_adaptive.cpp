@@ -353,3 +353,38 @@ TEST_CASE("interreflection is skipped when no surface sees another or the albedo
   REQUIRE_FALSE(lit.bake.stats.bounce_energy.empty());
   CHECK(lit.bake.stats.jacobi_bounces < 20);
 }
+
+TEST_CASE("compact output holds exactly the rows of the bake's non-skipped vertices") {
+  // The --auto pilot bakes a few hundred vertices of a possibly huge scene at order 16; with
+  // compact output it allocates rows for those only. The rows must be the full bake's, bit for
+  // bit, in vertex order.
+  const Scene scene = make_plane_with_sphere(glm::vec3(0.5f));
+  const std::size_t V = scene.vertex_count();
+  BakeOptions b;
+  b.kind = prt::TransferKind::Shadowed;
+  b.order = 6;
+  b.adaptive.enabled = true;
+  b.adaptive.min_samples = b.adaptive.max_samples = 64;
+  b.adaptive.vertex_mode.assign(V, kSkipVertex);
+  std::vector<std::size_t> picked;
+  for (std::size_t v = 3; v < V; v += 37) {
+    b.adaptive.vertex_mode[v] = v % 2 ? kSampleVertex : kAnalyticVertex;
+    picked.push_back(v);
+  }
+  const BakeResult full = bake_transfer(scene, b);
+  b.adaptive.compact_output = true;
+  const BakeResult compact = bake_transfer(scene, b);
+  const std::size_t K = 36;
+  REQUIRE(full.data.channels == 1);
+  REQUIRE(full.data.coefficients.size() == V * K);
+  REQUIRE(compact.data.coefficients.size() == picked.size() * K);
+  std::size_t mismatches = 0;
+  for (std::size_t i = 0; i < picked.size(); ++i)
+    for (std::size_t k = 0; k < K; ++k)
+      mismatches +=
+          compact.data.coefficients[i * K + k] != full.data.coefficients[picked[i] * K + k];
+  CHECK(mismatches == 0);
+  // Interreflected bakes keep the full layout (the solve needs every vertex): refused.
+  b.kind = prt::TransferKind::Interreflected;
+  CHECK_THROWS_AS(bake_transfer(scene, b), BakeError);
+}

@@ -110,6 +110,10 @@ struct AdaptiveSampling {
   // A ray caster over this scene's geometry (same positions, normals and triangles; the albedo
   // may differ) when the caller has one (built here when null).
   std::shared_ptr<const RayCaster> caster;
+  // Shadowed or unshadowed only: TransferData::coefficients holds rows for the vertices that are
+  // not kSkipVertex, in vertex order, instead of one per vertex (the file writer needs the
+  // full layout; this is for in-memory callers such as the --auto pilot).
+  bool compact_output = false;
 };
 
 struct BakeOptions {
