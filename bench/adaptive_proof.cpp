@@ -128,6 +128,7 @@ AutoBakeOptions auto_options(const std::vector<double>& sky) {
   if (const char* m = std::getenv("PRT_PROOF_CAP_SOLID_ANGLE"))
     o.max_cap_solid_angle = std::atof(m);
   if (const char* m = std::getenv("PRT_PROOF_MAX_CAPS")) o.max_caps = std::atoi(m);
+  if (const char* m = std::getenv("PRT_PROOF_SKIP_SHARE")) o.bounded_skip_share = std::atof(m);
   return o;
 }
 
@@ -172,6 +173,27 @@ Row run_scene(const std::string& name, const Scene& scene, const std::vector<dou
           a.report.predicted_sampling_error, a.report.predicted_truncation_error,
           a.report.predicted_error, a.report.mean_samples, a.report.analysis_seconds,
           a.report.pilot_seconds, a.bake.stats.seconds_caps, a.bake.stats.seconds_bvh);
+      std::printf("  truncation by order:");
+      for (double e : a.report.order_choice.predicted_by_order) std::printf(" %.4f", e);
+      std::printf(" (tail %.4f, skips %.4f)\n", a.report.order_choice.tail_bound,
+                  a.report.predicted_skip_error);
+      if (const char* fs = std::getenv("PRT_PROOF_FIXED_SAMPLES")) {
+        // The fixed bake's phases beside it, at the same order.
+        BakeOptions f;
+        f.kind = prt::TransferKind::Interreflected;
+        f.order = a.report.order;
+        f.samples = std::atoi(fs);
+        const int reps = std::max(1, std::atoi(std::getenv("PRT_PROOF_FIXED_REPEAT")
+                                                   ? std::getenv("PRT_PROOF_FIXED_REPEAT")
+                                                   : "1"));
+        for (int r = 1; r < reps; ++r) bake_transfer(scene, f);  // for profiling
+        const BakeResult b = bake_transfer(scene, f);
+        std::printf(
+            "  fixed %d samples: %.3f s (rays %.3f s, %llu rays, solve %.3f s, bvh %.3f s)\n",
+            f.samples, b.stats.seconds_total, b.stats.seconds_rays,
+            static_cast<unsigned long long>(b.stats.rays), b.stats.seconds_solve,
+            b.stats.seconds_bvh);
+      }
     }
     return row;
   }

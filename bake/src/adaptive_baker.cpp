@@ -23,9 +23,9 @@ namespace {
 constexpr double kSqrt4Pi = 3.5449077018110318;  // √(4π): SH band 0 of a constant 1
 constexpr double kY00 = 0.28209479177387814;
 
-std::string format(const char* fmt, double a, double b = 0.0, double c = 0.0) {
-  char buf[256];
-  std::snprintf(buf, sizeof buf, fmt, a, b, c);
+std::string format(const char* fmt, double a, double b = 0.0, double c = 0.0, double d = 0.0) {
+  char buf[512];
+  std::snprintf(buf, sizeof buf, fmt, a, b, c, d);
   return buf;
 }
 
@@ -288,8 +288,10 @@ AutoBakeResult bake_transfer_auto(const Scene& scene, const AutoBakeOptions& o,
     else
       rep.left_out.push_back(format(
           "nothing dropped, but no SH order <= %.0f meets the tolerance (predicted %.2g at that "
-          "order): the lighting is all-frequency, bake --basis haar instead",
-          o.max_order, rep.predicted_truncation_error));
+          "order from the bands the pilot sees, %.2g more at most from the lighting's bands "
+          ">= %.0f): the lighting is all-frequency, bake --basis haar instead",
+          o.max_order, rep.predicted_truncation_error - rep.order_choice.tail_bound,
+          rep.order_choice.tail_bound, static_cast<double>(o.pilot_order)));
   } else if (!lit) {
     rep.left_out.push_back(
         format("SH order not chosen (no --env): kept at %.0f; errors predicted for a uniform sky",

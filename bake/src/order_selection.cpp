@@ -44,6 +44,15 @@ OrderChoice choose_order(const std::vector<double>& pilot, const std::vector<glm
     const double* s = &pilot[v * kp];
     const std::vector<double> es = band_energies(s, np);
     for (int l = 0; l < np; ++l) out.transfer_band_energy[l] += es[l] / static_cast<double>(P);
+    // Stand-in for the bands ≥ np: the smallest energy of the pilot's upper half of bands,
+    // taking adjacent bands in pairs (the larger of the two). The last band alone was wrong
+    // both ways: an open pilot vertex's analytic clamped cosine has no odd bands l ≥ 3, so an
+    // odd last band gave it no tail although its even bands beyond np are not zero; and the
+    // pilot's Monte Carlo noise, which adds ~(2l + 1)/N to each band, is largest there. The
+    // true energies decrease with l, so the envelope's minimum still covers the bands ≥ np.
+    double tail_energy = np >= 2 ? std::max(es[np - 2], es[np - 1]) : es[0];
+    for (int l = std::max(1, np / 2); l < np; ++l)
+      tail_energy = std::min(tail_energy, std::max(es[l - 1], es[l]));
     for (int c = 0; c < 3; ++c) {
       const double rho = albedo[v][c];
       const double* lc = &lighting[c * kl];
@@ -65,7 +74,7 @@ OrderChoice choose_order(const std::vector<double>& pilot, const std::vector<glm
         suffix += band[n - 1];
         suffix_bound += band_bound[n - 1];
       }
-      const double tail = rho * std::sqrt(es[np - 1]) * tail_light[c];
+      const double tail = rho * std::sqrt(tail_energy) * tail_light[c];
       tail2 += tail * tail;
     }
   }

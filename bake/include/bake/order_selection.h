@@ -15,8 +15,10 @@
 //   predicted(n) = [Σ_v,c e_v,c(n)²]^½ / [Σ_v,c B_v,c²]^½  (bands n .. n_p−1, exact sums), and
 //   bound(n)     = the same with |e| replaced by its Cauchy–Schwarz bound,
 // plus tail = a Cauchy–Schwarz bound of bands ≥ n_p, where the pilot does not see the transfer:
-// it takes the transfer's last pilot band norm as a stand-in for every higher band (transfer
-// band norms of clamped-cosine × visibility decrease with l) times the lighting's band norms
+// it takes the smallest transfer band norm of the pilot's upper half of bands (adjacent bands in
+// pairs, the larger of each pair) as a stand-in for every higher band (transfer band norms of
+// clamped-cosine × visibility decrease with l, and the pilot's noise inflates its last bands)
+// times the lighting's band norms
 // beyond n_p (zero when the lighting given stops at n_p). The chosen order is the smallest n
 // ≤ max_order with predicted(n) + tail ≤ target; when there is none (a sun: energy in every
 // band), no SH order meets it and the Haar basis is recommended.
