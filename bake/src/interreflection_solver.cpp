@@ -69,6 +69,32 @@ void for_each_entry(std::size_t rows, int k, F&& f) {
 
 }  // namespace
 
+namespace {
+
+// Rows [begin, end) of y = diag(rho)·H·x: the solve's hot loop (~70% of an order-12
+// interreflected bake). Cloned for AVX2 + FMA where the CPU has it (4 doubles per instruction,
+// fused multiply-add), chosen at load time; the default clone is the baseline x86-64 build.
+// Each clone sums in the same order, so results do not depend on the thread count.
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
+__attribute__((target_clones("avx2,fma", "default")))
+#endif
+void gather_rows(const uint64_t* offsets, const uint32_t* columns, const float* weights,
+                 const double* rho, const double* x, int k, std::size_t begin, std::size_t end,
+                 double* acc, double* y) {
+  for (std::size_t v = begin; v != end; ++v) {
+    for (int c = 0; c < k; ++c) acc[c] = 0.0;
+    for (uint64_t e = offsets[v]; e < offsets[v + 1]; ++e) {
+      const double w = weights[e];
+      const double* __restrict xs = x + static_cast<std::size_t>(columns[e]) * k;
+      for (int c = 0; c < k; ++c) acc[c] += w * xs[c];
+    }
+    double* __restrict out = y + v * k;
+    for (int c = 0; c < k; ++c) out[c] = rho[v] * acc[c];
+  }
+}
+
+}  // namespace
+
 void multiply_gather(const SparseTransferMatrix& h, const std::vector<double>& rho, const double* x,
                      int columns, double* y) {
   const std::size_t rows = h.rows();
@@ -76,15 +102,8 @@ void multiply_gather(const SparseTransferMatrix& h, const std::vector<double>& r
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, rows, 64),
                     [&](const tbb::blocked_range<std::size_t>& r) {
                       std::vector<double> acc(k);
-                      for (std::size_t v = r.begin(); v != r.end(); ++v) {
-                        std::fill(acc.begin(), acc.end(), 0.0);
-                        for (uint64_t e = h.row_offsets[v]; e < h.row_offsets[v + 1]; ++e) {
-                          const double w = h.weights[e];
-                          const double* xs = x + static_cast<std::size_t>(h.columns[e]) * k;
-                          for (int c = 0; c < k; ++c) acc[c] += w * xs[c];
-                        }
-                        for (int c = 0; c < k; ++c) y[v * k + c] = rho[v] * acc[c];
-                      }
+                      gather_rows(h.row_offsets.data(), h.columns.data(), h.weights.data(),
+                                  rho.data(), x, k, r.begin(), r.end(), acc.data(), y);
                     });
 }
 
