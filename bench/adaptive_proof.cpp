@@ -159,6 +159,21 @@ Row run_scene(const std::string& name, const Scene& scene, const std::vector<dou
           relative_rms_error(exit_radiance(a.bake.data, sky, kLightingOrder), ref_s));
       return row;
     }
+    if (const char* fo = std::getenv("PRT_PROOF_FIXED_ONLY")) {
+      // For profiling: only a fixed interreflected bake at order FO with PRT_PROOF_FIXED_SAMPLES.
+      BakeOptions f;
+      f.kind = prt::TransferKind::Interreflected;
+      f.order = std::atoi(fo);
+      const char* fs = std::getenv("PRT_PROOF_FIXED_SAMPLES");
+      f.samples = fs ? std::atoi(fs) : 128;
+      for (int i = 0; i < std::atoi(repeat); ++i) {
+        const BakeResult b = bake_transfer(scene, f);
+        std::printf("%s: fixed %d samples: %.3f s (rays %.3f s, %llu rays, solve %.3f s)\n",
+                    name.c_str(), f.samples, b.stats.seconds_total, b.stats.seconds_rays,
+                    static_cast<unsigned long long>(b.stats.rays), b.stats.seconds_solve);
+      }
+      return row;
+    }
     for (int i = 0; i < std::atoi(repeat); ++i) {
       const AutoBakeResult a = bake_transfer_auto(scene, o);
       std::printf(

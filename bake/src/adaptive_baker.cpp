@@ -35,7 +35,7 @@ std::vector<double> uniform_sky() {
 }
 
 // Grey transfer S (no albedo) of the pilot vertices at the pilot order.
-std::vector<double> bake_pilot(const Scene& scene, const AutoBakeOptions& o,
+std::vector<double> bake_pilot(const Scene& scene, const AutoBakeOptions& o, int pilot_order,
                                const std::vector<uint8_t>& open, std::vector<glm::vec3>& albedo,
                                const std::shared_ptr<const RayCaster>& caster,
                                ProgressSink* progress) {
@@ -45,7 +45,7 @@ std::vector<double> bake_pilot(const Scene& scene, const AutoBakeOptions& o,
   std::fill(grey.albedo.begin(), grey.albedo.end(), glm::vec3(0.5f));
   BakeOptions b;
   b.kind = prt::TransferKind::Shadowed;
-  b.order = o.pilot_order;
+  b.order = pilot_order;
   b.seed = o.seed;
   b.threads = o.threads;
   b.adaptive.enabled = true;
@@ -60,7 +60,7 @@ std::vector<double> bake_pilot(const Scene& scene, const AutoBakeOptions& o,
     b.adaptive.vertex_mode[pick[i]] = open[pick[i]] ? kAnalyticVertex : kSampleVertex;
   }
   const BakeResult r = bake_transfer(grey, b, progress);
-  const int K = o.pilot_order * o.pilot_order;
+  const int K = pilot_order * pilot_order;
   std::vector<double> s(P * K);
   albedo.resize(P);
   for (std::size_t i = 0; i < P; ++i) {
@@ -271,10 +271,14 @@ AutoBakeResult bake_transfer_auto(const Scene& scene, const AutoBakeOptions& o,
   if (lit && kind != prt::TransferKind::Unshadowed) {
     const auto t0 = std::chrono::steady_clock::now();
     std::vector<glm::vec3> pilot_albedo;
+    // Bands ≥ the lighting's order carry nothing whatever the transfer holds there, so the
+    // pilot need not see past them (a band-limited sky of order 6: a pilot of order 7, 49
+    // coefficients instead of 256).
+    const int pilot_order = std::min(o.pilot_order, std::max(2, o.lighting_order + 1));
     const std::vector<double> pilot =
-        bake_pilot(scene, o, hemi.open, pilot_albedo, shared_caster(), nullptr);
-    rep.order_choice = choose_order(pilot, pilot_albedo, o.pilot_order, o.lighting,
-                                    o.lighting_order, 0.5 * o.tolerance, o.max_order);
+        bake_pilot(scene, o, pilot_order, hemi.open, pilot_albedo, shared_caster(), nullptr);
+    rep.order_choice = choose_order(pilot, pilot_albedo, pilot_order, o.lighting, o.lighting_order,
+                                    0.5 * o.tolerance, o.max_order);
     rep.pilot_seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     rep.order_chosen = true;
@@ -291,7 +295,7 @@ AutoBakeResult bake_transfer_auto(const Scene& scene, const AutoBakeOptions& o,
           "order from the bands the pilot sees, %.2g more at most from the lighting's bands "
           ">= %.0f): the lighting is all-frequency, bake --basis haar instead",
           o.max_order, rep.predicted_truncation_error - rep.order_choice.tail_bound,
-          rep.order_choice.tail_bound, static_cast<double>(o.pilot_order)));
+          rep.order_choice.tail_bound, static_cast<double>(pilot_order)));
   } else if (!lit) {
     rep.left_out.push_back(
         format("SH order not chosen (no --env): kept at %.0f; errors predicted for a uniform sky",

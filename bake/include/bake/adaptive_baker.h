@@ -9,7 +9,8 @@
 //  1. bake/scene_analysis.h: vertices with a provably open hemisphere get the analytic
 //     unshadowed transfer with no rays; grey albedo → one channel; zero albedo → no
 //     interreflection.
-//  2. with lighting: a pilot bake (order pilot_order, pilot_samples rays, pilot_vertices vertices
+//  2. with lighting: a pilot bake (order pilot_order, or lighting_order + 1 when that is lower:
+//     bands the lighting lacks carry nothing; pilot_samples rays, pilot_vertices vertices
 //     spread evenly over the index range) and bake/order_selection.h choose the smallest SH order
 //     whose predicted truncation error is ≤ tolerance/2; bands above it are dropped (the file
 //     simply has a lower order). When no order ≤ max_order meets it, Haar is recommended.
@@ -46,7 +47,8 @@ struct AutoBakeOptions {
   std::vector<double> lighting;  // 3 × lighting_order² (channel-major), or empty
   int lighting_order = 0;
   int max_order = 12;    // highest SH order the lighting may ask for
-  int pilot_order = 16;  // > max_order, so the pilot sees bands beyond the cap
+  int pilot_order = 16;  // > max_order, so the pilot sees bands beyond the cap (at most
+                         // lighting_order + 1 are baked)
   int pilot_vertices = 256;
   int pilot_samples = 256;
   int min_samples = 64;
