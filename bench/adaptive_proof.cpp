@@ -188,6 +188,9 @@ Row run_scene(const std::string& name, const Scene& scene, const std::vector<dou
           a.report.predicted_sampling_error, a.report.predicted_truncation_error,
           a.report.predicted_error, a.report.mean_samples, a.report.analysis_seconds,
           a.report.pilot_seconds, a.bake.stats.seconds_caps, a.bake.stats.seconds_bvh);
+      std::printf("  capped vertices %llu (cap-open %llu)\n",
+                  static_cast<unsigned long long>(a.bake.stats.cap_vertices),
+                  static_cast<unsigned long long>(a.bake.stats.cap_open_vertices));
       std::printf("  truncation by order:");
       for (double e : a.report.order_choice.predicted_by_order) std::printf(" %.4f", e);
       std::printf(" (tail %.4f, skips %.4f)\n", a.report.order_choice.tail_bound,

@@ -63,11 +63,10 @@ constexpr uint64_t kReplicaSalt = 0x5245504c49434131ull;  // seeds the second ad
 constexpr std::size_t kAuditStride = 8;           // every 8th sampled vertex audits the error model
 constexpr std::size_t kMinAuditVertices = 64;     // fewer sampled vertices than 8 × 64: all audit
 constexpr double kMinCalibration2 = 0.05 * 0.05;  // c is never taken below 0.05
-constexpr std::size_t kMinClassAudits = 64;
-constexpr double kHitCost = 2.0;
+constexpr std::size_t kMinClassAudits = 64;       // fewer in a class (hemisphere / caps): shared c
+constexpr double kHitCost = 2.0;  // a ray that hits costs 1 + this × an escaping one (allocation)
 constexpr uint32_t kRoundGrowth = 4;  // a vertex's samples grow at most 4× per allocation round
-constexpr int kMaxRounds = 8;  // a ray that hits costs 1 + this × an escaping one (allocation)
-                               // // fewer audits in a class (hemisphere / caps): shared c
+constexpr int kMaxRounds = 8;
 constexpr const char* kBasisConvention =
     "real orthonormal SH, no Condon-Shortley phase, index k = l(l+1)+m, Y(x,y,z) with polar "
     "axis +z, scene frame glTF (+Y up)";
