@@ -289,13 +289,18 @@ AutoBakeResult bake_transfer_auto(const Scene& scene, const AutoBakeOptions& o,
           format("SH bands >= %.0f (the file has order %.0f): predicted to carry %.2g of the exit "
                  "radiance",
                  rep.order, rep.order, rep.predicted_truncation_error));
-    else
+    else if (rep.order_choice.tail_bound > 0.0)
       rep.left_out.push_back(format(
           "nothing dropped, but no SH order <= %.0f meets the tolerance (predicted %.2g at that "
           "order from the bands the pilot sees, %.2g more at most from the lighting's bands "
           ">= %.0f): the lighting is all-frequency, bake --basis haar instead",
           o.max_order, rep.predicted_truncation_error - rep.order_choice.tail_bound,
           rep.order_choice.tail_bound, static_cast<double>(pilot_order)));
+    else
+      rep.left_out.push_back(
+          format("nothing dropped, but no SH order <= %.0f meets the tolerance (predicted %.2g "
+                 "at that order): the lighting is all-frequency, bake --basis haar instead",
+                 o.max_order, rep.predicted_truncation_error));
   } else if (!lit) {
     rep.left_out.push_back(
         format("SH order not chosen (no --env): kept at %.0f; errors predicted for a uniform sky",
