@@ -201,9 +201,8 @@ Row run_scene(const std::string& name, const Scene& scene, const std::vector<dou
         f.kind = prt::TransferKind::Interreflected;
         f.order = a.report.order;
         f.samples = std::atoi(fs);
-        const int reps = std::max(1, std::atoi(std::getenv("PRT_PROOF_FIXED_REPEAT")
-                                                   ? std::getenv("PRT_PROOF_FIXED_REPEAT")
-                                                   : "1"));
+        const char* repeat_fixed = std::getenv("PRT_PROOF_FIXED_REPEAT");
+        const int reps = repeat_fixed ? std::max(1, std::atoi(repeat_fixed)) : 1;
         for (int r = 1; r < reps; ++r) bake_transfer(scene, f);  // for profiling
         const BakeResult b = bake_transfer(scene, f);
         std::printf(
@@ -559,7 +558,7 @@ int main(int argc, char** argv) {
   for (const Row& r : rows) {
     std::string same, cheapest;
     interpolated(r, &same, &cheapest);
-    char line[768];
+    char line[1024];
     std::snprintf(
         line, sizeof line,
         "| %s | %zu | %zu + %zu | %s, %d, %.0f | %.2f s | %.4f (%.4f) | %.4f (%.4f) | %d | "
