@@ -23,6 +23,7 @@
 #include "bake/procedural_mesh.h"
 #include "bake/scene_loader.h"
 #include "bake/transfer_baker.h"
+#include "bake/triangle_hierarchy.h"
 #include "prt/transfer_file.h"
 #include "sh/basis.h"
 #include "sh/env_map.h"
@@ -157,6 +158,15 @@ Row run_scene(const std::string& name, const Scene& scene, const std::vector<dou
           "samples %.4f\n",
           name.c_str(), a.report.order, a.report.predicted_sampling_error,
           relative_rms_error(exit_radiance(a.bake.data, sky, kLightingOrder), ref_s));
+      return row;
+    }
+    if (std::getenv("PRT_PROOF_TIME_HIERARCHY")) {
+      for (int i = 0; i < 3; ++i) {
+        const auto t0 = std::chrono::steady_clock::now();
+        const TriangleHierarchy h = build_triangle_hierarchy(scene);
+        std::printf("hierarchy %zu nodes: %.3f s\n", h.nodes.size(),
+                    std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+      }
       return row;
     }
     if (const char* fo = std::getenv("PRT_PROOF_FIXED_ONLY")) {
