@@ -2,14 +2,46 @@
 #include "bake/triangle_hierarchy.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_invoke.h>
 
 namespace prt::bake {
 namespace {
 
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
+
+// Where the group order[first, first + count) splits: between primitives when it holds more
+// than one (order is sorted by primitive), else at the median centroid along the longest axis
+// of the centroids' box (order[first, first + count) is partitioned around it).
+uint32_t split_point(TriangleHierarchy& h, const std::vector<uint32_t>& primitive,
+                     const std::vector<glm::dvec3>& centroid, uint32_t first, uint32_t count) {
+  uint32_t half = count / 2;
+  const auto begin = h.order.begin() + first;
+  const uint32_t p_first = primitive[h.order[first]];
+  const uint32_t p_last = primitive[h.order[first + count - 1]];
+  if (p_first != p_last) {
+    // Between primitives (order is sorted by primitive).
+    const uint32_t p_mid = p_first + (p_last - p_first + 1) / 2;
+    half = static_cast<uint32_t>(
+        std::lower_bound(begin, begin + count, p_mid,
+                         [&](uint32_t t, uint32_t p) { return primitive[t] < p; }) -
+        begin);
+  } else {
+    glm::dvec3 lo(kInfinity), hi(-kInfinity);
+    for (uint32_t i = first; i < first + count; ++i) {
+      lo = glm::min(lo, centroid[h.order[i]]);
+      hi = glm::max(hi, centroid[h.order[i]]);
+    }
+    const glm::dvec3 size = hi - lo;
+    const int axis = size.x >= size.y && size.x >= size.z ? 0 : (size.y >= size.z ? 1 : 2);
+    std::nth_element(begin, begin + half, begin + count,
+                     [&](uint32_t a, uint32_t b) { return centroid[a][axis] < centroid[b][axis]; });
+  }
+  return half;
+}
 
 struct Builder {
   TriangleHierarchy& h;
@@ -26,29 +58,7 @@ struct Builder {
       h.nodes[index].count = count;
       return index;
     }
-    uint32_t half = count / 2;
-    const auto begin = h.order.begin() + first;
-    const uint32_t p_first = primitive[h.order[first]];
-    const uint32_t p_last = primitive[h.order[first + count - 1]];
-    if (p_first != p_last) {
-      // Between primitives (order is sorted by primitive).
-      const uint32_t p_mid = p_first + (p_last - p_first + 1) / 2;
-      half = static_cast<uint32_t>(
-          std::lower_bound(begin, begin + count, p_mid,
-                           [&](uint32_t t, uint32_t p) { return primitive[t] < p; }) -
-          begin);
-    } else {
-      glm::dvec3 lo(kInfinity), hi(-kInfinity);
-      for (uint32_t i = first; i < first + count; ++i) {
-        lo = glm::min(lo, centroid[h.order[i]]);
-        hi = glm::max(hi, centroid[h.order[i]]);
-      }
-      const glm::dvec3 size = hi - lo;
-      const int axis = size.x >= size.y && size.x >= size.z ? 0 : (size.y >= size.z ? 1 : 2);
-      std::nth_element(begin, begin + half, begin + count, [&](uint32_t a, uint32_t b) {
-        return centroid[a][axis] < centroid[b][axis];
-      });
-    }
+    const uint32_t half = split_point(h, primitive, centroid, first, count);
     build(first, half);
     const uint32_t second = build(first + half, count - half);
     h.nodes[index].second = second;
@@ -56,9 +66,57 @@ struct Builder {
   }
 };
 
+// The same splits as Builder, with the two halves of a large group split concurrently (they
+// touch disjoint ranges of `order`), into a temporary tree; emit() then numbers it depth-first
+// exactly as Builder does. Same order, same nodes.
+struct ParallelBuilder {
+  static constexpr uint32_t kSerialBelow = 1u << 14;  // smaller groups: one task
+  struct Split {
+    uint32_t first = 0, count = 0;
+    uint32_t left = 0, right = 0;  // temporary indices; count ≤ kLeafTriangles: a leaf
+  };
+  TriangleHierarchy& h;
+  const std::vector<uint32_t>& primitive;
+  const std::vector<glm::dvec3>& centroid;
+  std::vector<Split> splits;
+  std::atomic<uint32_t> used{0};
+
+  uint32_t split(uint32_t first, uint32_t count) {
+    const uint32_t index = used.fetch_add(1, std::memory_order_relaxed);
+    Split& node = splits[index];
+    node.first = first;
+    node.count = count;
+    if (count <= TriangleHierarchy::kLeafTriangles) return index;
+    const uint32_t half = split_point(h, primitive, centroid, first, count);
+    if (count >= kSerialBelow) {
+      tbb::parallel_invoke([&] { node.left = split(first, half); },
+                           [&] { node.right = split(first + half, count - half); });
+    } else {
+      node.left = split(first, half);
+      node.right = split(first + half, count - half);
+    }
+    return index;
+  }
+
+  uint32_t emit(uint32_t s) {
+    const uint32_t index = static_cast<uint32_t>(h.nodes.size());
+    h.nodes.emplace_back();
+    h.nodes[index].first = splits[s].first;
+    h.nodes[index].size = splits[s].count;
+    if (splits[s].count <= TriangleHierarchy::kLeafTriangles) {
+      h.nodes[index].count = splits[s].count;
+      return index;
+    }
+    emit(splits[s].left);
+    const uint32_t second = emit(splits[s].right);
+    h.nodes[index].second = second;
+    return index;
+  }
+};
+
 }  // namespace
 
-TriangleHierarchy build_triangle_hierarchy(const Scene& scene) {
+TriangleHierarchy build_triangle_hierarchy(const Scene& scene, HierarchyBuild mode) {
   TriangleHierarchy h;
   h.scene = &scene;
   const std::size_t V = scene.positions.size();
@@ -81,7 +139,13 @@ TriangleHierarchy build_triangle_hierarchy(const Scene& scene) {
   std::stable_sort(h.order.begin(), h.order.end(),
                    [&](uint32_t a, uint32_t b) { return primitive[a] < primitive[b]; });
   h.nodes.reserve(2 * (T / TriangleHierarchy::kLeafTriangles) + 2);
-  Builder{h, primitive, centroid}.build(0, T);
+  if (mode == HierarchyBuild::Serial) {
+    Builder{h, primitive, centroid}.build(0, T);
+  } else {
+    ParallelBuilder b{h, primitive, centroid, {}};
+    b.splits.resize(2 * static_cast<std::size_t>(T));  // ≤ 2T − 1 nodes: every leaf holds ≥ 1
+    b.emit(b.split(0, T));
+  }
   // Boxes and balls of the groups' vertices.
   tbb::parallel_for(std::size_t(0), h.nodes.size(), [&](std::size_t i) {
     TriangleHierarchy::Node& node = h.nodes[i];

@@ -39,8 +39,14 @@ struct TriangleHierarchy {
   }
 };
 
-// Builds the hierarchy over every triangle of `scene` (no nodes when it has none). The split
-// is serial (centroids only); boxes and balls are computed in parallel. Deterministic.
-TriangleHierarchy build_triangle_hierarchy(const Scene& scene);
+enum class HierarchyBuild {
+  Parallel,  // large groups' halves split concurrently (the default)
+  Serial,    // one thread: the reference the parallel build must equal node for node
+};
+
+// Builds the hierarchy over every triangle of `scene` (no nodes when it has none). Boxes and
+// balls are computed in parallel. Deterministic: both modes give the same nodes and order.
+TriangleHierarchy build_triangle_hierarchy(const Scene& scene,
+                                           HierarchyBuild mode = HierarchyBuild::Parallel);
 
 }  // namespace prt::bake
