@@ -15,6 +15,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "bake/adaptive_baker.h"
 #include "bake/ground_truth.h"
 #include "bake/haar_baker.h"
 #include "bake/progress.h"
@@ -34,6 +35,7 @@
 #include "relight/relight_pipeline.h"
 #include "relight/renderer.h"
 #include "relight/report_metrics.h"
+#include "sh/projection.h"
 
 namespace prt::relight {
 namespace {
@@ -225,6 +227,10 @@ std::vector<ReportAxis> report_axes(bool quick, const std::optional<std::vector<
     }
   if (!haar.settings.empty()) axes.push_back(haar);
   return axes;
+}
+
+std::vector<double> default_auto_tolerances(bool quick) {
+  return quick ? std::vector<double>{0.05} : std::vector<double>{0.01, 0.05, 0.1};
 }
 
 std::vector<int> default_haar_cubes(bool quick) {
@@ -541,6 +547,56 @@ ReportResult run_report(const ReportOptions& opt) {
       percent(truth.relative_rms_se) + " vs smallest error " + percent(e_min) +
       (result.ground_truth_adequate ? " (adequate)" : " (NOT below 1/5 of it)"));
 
+  // `prt bake --auto` at each tolerance, against the same ground truth.
+  const std::vector<double> auto_tolerances =
+      opt.auto_tolerances ? *opt.auto_tolerances : default_auto_tolerances(opt.quick);
+  if (!auto_tolerances.empty()) {
+    bake::AutoBakeOptions ao;
+    ao.seed = opt.seed;
+    ao.lighting_order = bake::kMaxBakeOrder;  // as `prt bake --auto --env`
+    ao.lighting = sh::project(env, ao.lighting_order);
+    for (double tolerance : auto_tolerances) {
+      ReportAuto a;
+      a.tolerance = tolerance;
+      ao.tolerance = tolerance;
+      try {
+        const auto t0 = Clock::now();
+        const bake::AutoBakeResult ab = bake::bake_transfer_auto(scene, ao);
+        a.bake_seconds = since(t0);
+        a.order = ab.report.order;
+        a.channels = ab.bake.data.channels;
+        a.kind = bake::transfer_kind_name(ab.report.stored_kind);
+        a.haar_recommended = ab.report.order_choice.haar_recommended;
+        a.predicted_error = ab.report.predicted_error;
+        auto bytes = prt::encode_transfer_file(ab.bake.data, "report");
+        if (!bytes.ok()) throw std::runtime_error(bytes.status().message());
+        a.file_bytes = bytes->size();
+        double relight_seconds = 0;
+        const std::vector<float> b =
+            relight(ab.bake.data, ab.bake.data.storage, lighting_for(a.order), 1, &relight_seconds,
+                    &a.failure);
+        if (a.failure.empty()) {
+          const VertexErrorStats e = compute_vertex_errors(b, truth.radiance);
+          a.relative_rms = e.relative_rms, a.p99 = e.p99, a.max = e.max;
+          for (std::size_t i = 0; i < result.measurements.size(); ++i) {
+            const ReportMeasurement& m = result.measurements[i];
+            if (!m.failure.empty() || m.relative_rms > a.relative_rms) continue;
+            if (a.cheapest_fixed < 0 ||
+                m.bake_seconds <
+                    result.measurements[static_cast<std::size_t>(a.cheapest_fixed)].bake_seconds)
+              a.cheapest_fixed = static_cast<long>(i);
+          }
+        }
+      } catch (const std::exception& e) {
+        a.failure = e.what();
+      }
+      log("--auto, tolerance " + percent(tolerance) + ": order " + std::to_string(a.order) +
+          ", bake " + seconds_text(a.bake_seconds) + ", predicted " + percent(a.predicted_error) +
+          ", measured " + (a.failure.empty() ? percent(a.relative_rms) : "failed: " + a.failure));
+      result.autos.push_back(a);
+    }
+  }
+
   // Pareto front over (bake time, error).
   std::vector<double> cost, error;
   for (const ReportMeasurement& m : result.measurements) {
@@ -645,6 +701,24 @@ ReportResult run_report(const ReportOptions& opt) {
                       {"failure", m.failure}});
     }
     j["results"] = rows;
+    nlohmann::json autos = nlohmann::json::array();
+    for (const ReportAuto& a : result.autos)
+      autos.push_back(
+          {{"tolerance", a.tolerance},
+           {"order", a.order},
+           {"channels", a.channels},
+           {"kind", a.kind},
+           {"haar_recommended", a.haar_recommended},
+           {"predicted_error", a.predicted_error},
+           {"predicted_error_scope", "excludes the mesh's interpolation of interreflected light"},
+           {"bake_seconds", a.bake_seconds},
+           {"file_bytes", a.file_bytes},
+           {"relative_rms", a.relative_rms},
+           {"p99_relative", a.p99},
+           {"max_relative", a.max},
+           {"cheapest_fixed_index", a.cheapest_fixed},
+           {"failure", a.failure}});
+    j["auto"] = autos;
     j["split"] = {{"orders", result.orders},
                   {"projection_error", result.projection_error},
                   {"reference_samples", reference_samples},
@@ -998,6 +1072,42 @@ ReportResult run_report(const ReportOptions& opt) {
          << m.file_bytes / 1024 << " KiB | " << percent(m.relative_rms) << " | " << percent(m.p99)
          << " | " << percent(m.max) << " | " << percent(m.image_relative_rms) << " | "
          << (m.on_pareto_front ? "yes" : "") << " |\n";
+    }
+    if (!result.autos.empty()) {
+      md << "\n## Scene-adaptive bake (`prt bake --auto`)\n\n"
+         << "`prt bake --auto --env` at each tolerance (bake/adaptive_baker.h: the lighting it "
+            "adapts to is this map projected at order "
+         << bake::kMaxBakeOrder
+         << "), measured against the same ground truth. Its prediction leaves out the mesh's "
+            "interpolation of interreflected light, which the measured error includes. The last "
+            "columns name the fixed setting above that reaches the measured error with the "
+            "fastest bake.\n\n| tolerance | chosen | predicted | measured | p99 | bake | file | "
+            "fastest fixed setting at that error | its bake | its file | bake speed-up |\n"
+            "|---|---|---|---|---|---|---|---|---|---|---|\n";
+      for (const ReportAuto& a : result.autos) {
+        md << "| " << percent(a.tolerance) << " | ";
+        if (!a.failure.empty()) {
+          md << "failed: " << a.failure << " | | | | | | | | | |\n";
+          continue;
+        }
+        md << a.kind << ", SH order " << a.order << ", " << a.channels << " channel"
+           << (a.channels == 1 ? "" : "s")
+           << (a.haar_recommended ? " (no SH order meets it: Haar recommended)" : "") << " | "
+           << percent(a.predicted_error) << " | " << percent(a.relative_rms) << " | "
+           << percent(a.p99) << " | " << seconds_text(a.bake_seconds) << " | "
+           << a.file_bytes / 1024 << " KiB | ";
+        if (a.cheapest_fixed < 0) {
+          md << "none reaches it | | | |\n";
+          continue;
+        }
+        const ReportMeasurement& m =
+            result.measurements[static_cast<std::size_t>(a.cheapest_fixed)];
+        char speed[32];
+        std::snprintf(speed, sizeof speed, "%.2f×", m.bake_seconds / a.bake_seconds);
+        md << describe(m.setting) << " (" << percent(m.relative_rms) << ") | "
+           << seconds_text(m.bake_seconds) << " | " << m.file_bytes / 1024 << " KiB | " << speed
+           << " |\n";
+      }
     }
     md << "\n## Definitions\n\n"
        << "- B: per-vertex exit radiance (RGB), |·| its Euclidean norm. **rel. RMS** = "

@@ -398,4 +398,33 @@ TEST_CASE("end-to-end quick report on a small scene writes consistent files") {
   const std::string ten = md.str().substr(md.str().find("| 10% |"), 40);
   CHECK((ten.find("| SH order") != std::string::npos ||
          ten.find("| Haar cube") != std::string::npos));
+
+  // The `prt bake --auto` row (quick: tolerance 5%). The 500× sun texel defeats every SH order
+  // ≤ 12 at 5%, so Haar is recommended and the order is the cap, and its own prediction says it
+  // misses the tolerance; it was measured against the same ground truth, and the fastest fixed
+  // setting at its error is the one brute force finds among the measurements.
+  REQUIRE(r.autos.size() == 1);
+  const ReportAuto& a = r.autos[0];
+  REQUIRE(a.failure.empty());
+  CHECK(a.tolerance == 0.05);
+  CHECK(a.haar_recommended);
+  CHECK(a.order == 12);
+  CHECK(a.predicted_error > a.tolerance);
+  CHECK(std::isfinite(a.relative_rms));
+  CHECK(a.relative_rms > 0.0);
+  CHECK(a.relative_rms < 1.0);
+  CHECK(a.bake_seconds > 0.0);
+  CHECK(a.file_bytes > 0);
+  long fastest = -1;
+  for (std::size_t i = 0; i < r.measurements.size(); ++i) {
+    const ReportMeasurement& m = r.measurements[i];
+    if (m.relative_rms <= a.relative_rms &&
+        (fastest < 0 ||
+         m.bake_seconds < r.measurements[static_cast<std::size_t>(fastest)].bake_seconds))
+      fastest = static_cast<long>(i);
+  }
+  CHECK(a.cheapest_fixed == fastest);
+  CHECK(j["auto"].size() == 1);
+  CHECK(j["auto"][0]["relative_rms"].get<double>() == a.relative_rms);
+  CHECK(md.str().find("## Scene-adaptive bake (`prt bake --auto`)") != std::string::npos);
 }

@@ -27,6 +27,8 @@
 // sampling error.
 // The ground truth is refined (sample doubling) until its relative RMS standard error is at most
 // 1/5 of the smallest error measured, within a time budget, and the summary says what it reached.
+// `prt bake --auto` rows (ReportAuto): one per tolerance, after the sweep, measured against the
+// final ground truth; results.json "auto" and a summary.md section.
 // Outputs in the output directory: results.csv, results.json, pareto.svg/png,
 // error_vs_order.svg/png, haar_error_vs_terms.svg/png (when the Haar axis is swept), summary.md
 // (PNG through rsvg-convert; without it only SVG). All files are written atomically. Errors
@@ -71,6 +73,28 @@ struct ReportOptions {
   // an empty list leaves the Haar axis out.
   std::optional<std::vector<int>> haar_cubes;
   bool verbose = true;  // progress lines on stderr
+  // Tolerances of the `prt bake --auto` rows (bake/adaptive_baker.h): nullopt = the default of
+  // the mode (quick {0.05}; full {0.01, 0.05, 0.1}); an empty list leaves them out.
+  std::optional<std::vector<double>> auto_tolerances;
+};
+
+// `prt bake --auto --env` at one tolerance, baked as the CLI does it (the map projected at
+// order 32 is the lighting it adapts to) and measured like the settings: its own prediction
+// against the error measured with the same ground truth, and the fixed setting of the sweep
+// that reaches that error fastest.
+struct ReportAuto {
+  double tolerance = 0;
+  int order = 0;  // the SH order it chose
+  uint32_t channels = 0;
+  std::string kind;               // the transfer it stored
+  bool haar_recommended = false;  // no SH order meets the tolerance
+  double predicted_error = 0;     // excludes the mesh's interpolation of interreflected light
+  double bake_seconds = 0;        // wall time of bake_transfer_auto: analysis, pilot and bake
+  uint64_t file_bytes = 0;
+  double relative_rms = 0, p99 = 0, max = 0;
+  long cheapest_fixed = -1;  // index into measurements with relative_rms ≤ this one's, fastest
+                             // bake; −1 when no setting reaches it
+  std::string failure;
 };
 
 struct ReportMeasurement {
@@ -92,12 +116,14 @@ struct ReportResult {
   int ground_truth_samples = 0;
   double ground_truth_relative_se = 0, ground_truth_seconds = 0, ground_truth_mrays = 0;
   bool ground_truth_adequate = false;  // SE ≤ smallest error / 5
+  std::vector<ReportAuto> autos;
   std::vector<std::string> files_written;
 };
 
 // The base setting and the axes swept (quick or full). haar_cubes as in ReportOptions.
 ReportSetting base_setting(bool quick);
 std::vector<int> default_haar_cubes(bool quick);
+std::vector<double> default_auto_tolerances(bool quick);
 std::vector<int64_t> haar_terms(bool quick);  // K values (0 = all) before collapsing at 6N²
 std::vector<ReportAxis> report_axes(bool quick,
                                     const std::optional<std::vector<int>>& haar_cubes = {});
