@@ -24,7 +24,7 @@ namespace prt::cli {
 namespace {
 
 struct ReportArguments {
-  std::string scene, environment, output, layout = "auto", haar_cubes;
+  std::string scene, environment, output, layout = "auto", haar_cubes, auto_tolerances;
   bool quick = false, stability = false;
   uint64_t seed = 1;
   double budget = 110;
@@ -52,6 +52,30 @@ std::optional<std::vector<int>> parse_haar_cubes(const std::string& text) {
   return cubes;
 }
 
+// "none" → empty list; "0.01,0.05" → {0.01, 0.05}; "" → the mode's default. Throws
+// CommandError.
+std::optional<std::vector<double>> parse_auto_tolerances(const std::string& text) {
+  if (text.empty()) return std::nullopt;
+  std::vector<double> tolerances;
+  if (text == "none") return tolerances;
+  if (text.back() == ',') throw CommandError("--auto-tolerances: '" + text + "' ends with a comma");
+  std::stringstream in(text);
+  for (std::string item; std::getline(in, item, ',');) {
+    std::size_t used = 0;
+    double t = 0.0;
+    try {
+      t = std::stod(item, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (used == 0 || used != item.size() || !(t > 0.0) || !(t < 1.0))
+      throw CommandError("--auto-tolerances: '" + item +
+                         "' is not a relative error in (0, 1) (or pass none)");
+    tolerances.push_back(t);
+  }
+  return tolerances;
+}
+
 void run(const ReportArguments& a) {
   if (a.stability) {
     const int failed = prt::relight::run_stability_report(a.output, a.quick);
@@ -71,6 +95,7 @@ void run(const ReportArguments& a) {
   o.ground_truth_budget_seconds = a.budget;
   o.layout = parse_layout_option(a.layout);
   o.haar_cubes = parse_haar_cubes(a.haar_cubes);
+  o.auto_tolerances = parse_auto_tolerances(a.auto_tolerances);
   const prt::relight::ReportResult r = prt::relight::run_report(o);
   for (const std::string& f : r.files_written) std::printf("wrote %s\n", f.c_str());
 }
@@ -91,6 +116,9 @@ void register_report(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--haar-cubes", args->haar_cubes,
                   "Haar cube sizes, e.g. 8,16,32 (default: quick 8; full 8,16), or none");
+  cmd->add_option("--auto-tolerances", args->auto_tolerances,
+                  "Tolerances of the prt bake --auto rows, e.g. 0.01,0.05 (default: quick 0.05; "
+                  "full 0.01,0.05,0.1), or none");
   cmd->add_option("--ground-truth-budget", args->budget,
                   "Seconds the ground-truth refinement may take (full run)")
       ->capture_default_str();

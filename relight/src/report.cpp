@@ -819,6 +819,22 @@ ReportResult run_report(const ReportOptions& opt) {
       }
       p.series.push_back(h);
     }
+    // `prt bake --auto` at each tolerance (not part of the front, which is over the sweep).
+    PlotSeries au;
+    au.label = "prt bake --auto, by tolerance";
+    au.color = "#000000";
+    au.line = false;
+    au.marker = Marker::Triangle;
+    au.marker_size = 6;
+    for (const ReportAuto& a : result.autos)
+      if (a.failure.empty()) {
+        char label[32];
+        std::snprintf(label, sizeof label, "auto %g%%", 100.0 * a.tolerance);
+        au.x.push_back(a.bake_seconds);
+        au.y.push_back(a.relative_rms);
+        au.point_labels.push_back(label);
+      }
+    if (!au.x.empty()) p.series.push_back(au);
     PlotSeries f;
     f.label = "Pareto front";
     f.color = "#d62728";
@@ -983,7 +999,11 @@ ReportResult run_report(const ReportOptions& opt) {
                : "; squares are Haar settings, one colour per cube size, standing in a column "
                  "because the K settings of a cube share its bake")
        << "; the dashed red line is the Pareto front over all settings (no other setting is both "
-          "faster and more accurate). Dotted lines mark 1%, 5%, 10%. ([SVG](pareto.svg))\n\n"
+          "faster and more accurate)"
+       << (result.autos.empty() ? ""
+                                : "; black triangles are `prt bake --auto` at each tolerance "
+                                  "(below), not part of the front")
+       << ". Dotted lines mark 1%, 5%, 10%. ([SVG](pareto.svg))\n\n"
        << "![Error against SH order](error_vs_order.png)\n\n"
        << "Projection error: order-n relighting with a converged " << reference_samples
        << "-sample transfer against the ground truth (what order n can do at best). Sampling "

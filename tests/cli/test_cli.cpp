@@ -204,6 +204,20 @@ TEST_CASE("cli: prt bake refuses bad scenes and options, leaving nothing behind"
   CHECK(files_in(out_dir).empty());
 }
 
+TEST_CASE("cli: prt report refuses a bad --auto-tolerances list before any work") {
+  const fs::path dir = scratch("report_errors");
+  const fs::path out_dir = dir / "out";
+  for (const char* bad : {"2", "0", "x", "0.05,", "0.01,-1"}) {
+    INFO("--auto-tolerances " << bad);
+    require_one_line_error(
+        run(prt_cli() + " report " + prt::test::project_data("demo.glb").string() + " " +
+            prt::test::project_data("sky.hdr").string() + " -o " + out_dir.string() +
+            " --quick --auto-tolerances '" + bad + "'"),
+        "--auto-tolerances");
+    CHECK_FALSE(fs::exists(out_dir));
+  }
+}
+
 TEST_CASE("cli: prt info and prt relight refuse corrupt and mismatched files") {
   const fs::path dir = scratch("relight_errors");
   const fs::path scene = dir / "quad.obj";
