@@ -11,6 +11,7 @@
 #include <optional>
 #include <sstream>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include <CLI/CLI.hpp>
@@ -30,50 +31,60 @@ struct ReportArguments {
   double budget = 110;
 };
 
-// "none" → empty list; "8,16" → {8, 16}; "" → the mode's default. Throws CommandError.
-std::optional<std::vector<int>> parse_haar_cubes(const std::string& text) {
+// A comma-separated option: "" → nullopt (the mode's default); "none" → an empty list; else
+// every item through parse(), which returns nullopt for an item it refuses. Throws CommandError
+// naming the option and the item ("is not <expected>").
+template <class T, class Parse>
+std::optional<std::vector<T>> parse_list(const std::string& option, const std::string& text,
+                                         const std::string& expected, Parse parse) {
   if (text.empty()) return std::nullopt;
-  std::vector<int> cubes;
-  if (text == "none") return cubes;
+  std::vector<T> items;
+  if (text == "none") return items;
+  if (text.back() == ',') throw CommandError(option + ": '" + text + "' ends with a comma");
   std::stringstream in(text);
   for (std::string item; std::getline(in, item, ',');) {
-    std::size_t used = 0;
-    int n = 0;
-    try {
-      n = std::stoi(item, &used);
-    } catch (const std::exception&) {
-      used = 0;
-    }
-    if (used == 0 || used != item.size() || n < 8 || n > 128 || (n & (n - 1)) != 0)
-      throw CommandError("--haar-cubes: '" + item +
-                         "' is not a power of two in [8, 128] (or pass none)");
-    cubes.push_back(n);
+    const std::optional<T> value = parse(item);
+    if (!value)
+      throw CommandError(option + ": '" + item + "' is not " + expected + " (or pass none)");
+    items.push_back(*value);
   }
-  return cubes;
+  return items;
 }
 
-// "none" → empty list; "0.01,0.05" → {0.01, 0.05}; "" → the mode's default. Throws
-// CommandError.
-std::optional<std::vector<double>> parse_auto_tolerances(const std::string& text) {
-  if (text.empty()) return std::nullopt;
-  std::vector<double> tolerances;
-  if (text == "none") return tolerances;
-  if (text.back() == ',') throw CommandError("--auto-tolerances: '" + text + "' ends with a comma");
-  std::stringstream in(text);
-  for (std::string item; std::getline(in, item, ',');) {
-    std::size_t used = 0;
-    double t = 0.0;
-    try {
-      t = std::stod(item, &used);
-    } catch (const std::exception&) {
-      used = 0;
-    }
-    if (used == 0 || used != item.size() || !(t > 0.0) || !(t < 1.0))
-      throw CommandError("--auto-tolerances: '" + item +
-                         "' is not a relative error in (0, 1) (or pass none)");
-    tolerances.push_back(t);
+// The whole item as a number (std::stoi / std::stod), else nullopt.
+template <class T>
+std::optional<T> whole_number(const std::string& item) {
+  std::size_t used = 0;
+  T value{};
+  try {
+    if constexpr (std::is_integral_v<T>)
+      value = static_cast<T>(std::stoi(item, &used));
+    else
+      value = static_cast<T>(std::stod(item, &used));
+  } catch (const std::exception&) {
+    return std::nullopt;
   }
-  return tolerances;
+  if (used == 0 || used != item.size()) return std::nullopt;
+  return value;
+}
+
+std::optional<std::vector<int>> parse_haar_cubes(const std::string& text) {
+  return parse_list<int>("--haar-cubes", text, "a power of two in [8, 128]",
+                         [](const std::string& item) -> std::optional<int> {
+                           const std::optional<int> n = whole_number<int>(item);
+                           if (!n || *n < 8 || *n > 128 || (*n & (*n - 1)) != 0)
+                             return std::nullopt;
+                           return n;
+                         });
+}
+
+std::optional<std::vector<double>> parse_auto_tolerances(const std::string& text) {
+  return parse_list<double>("--auto-tolerances", text, "a relative error in (0, 1)",
+                            [](const std::string& item) -> std::optional<double> {
+                              const std::optional<double> t = whole_number<double>(item);
+                              if (!t || !(*t > 0.0) || !(*t < 1.0)) return std::nullopt;
+                              return t;
+                            });
 }
 
 void run(const ReportArguments& a) {
