@@ -547,6 +547,13 @@ ReportResult run_report(const ReportOptions& opt) {
       percent(truth.relative_rms_se) + " vs smallest error " + percent(e_min) +
       (result.ground_truth_adequate ? " (adequate)" : " (NOT below 1/5 of it)"));
 
+  // Every setting's (bake time, error); failed ones never count.
+  std::vector<double> cost, error;
+  for (const ReportMeasurement& m : result.measurements) {
+    cost.push_back(m.failure.empty() ? m.bake_seconds : INFINITY);
+    error.push_back(m.failure.empty() ? m.relative_rms : INFINITY);
+  }
+
   // `prt bake --auto` at each tolerance, against the same ground truth.
   const std::vector<double> auto_tolerances =
       opt.auto_tolerances ? *opt.auto_tolerances : default_auto_tolerances(opt.quick);
@@ -578,14 +585,7 @@ ReportResult run_report(const ReportOptions& opt) {
         if (a.failure.empty()) {
           const VertexErrorStats e = compute_vertex_errors(b, truth.radiance);
           a.relative_rms = e.relative_rms, a.p99 = e.p99, a.max = e.max;
-          for (std::size_t i = 0; i < result.measurements.size(); ++i) {
-            const ReportMeasurement& m = result.measurements[i];
-            if (!m.failure.empty() || m.relative_rms > a.relative_rms) continue;
-            if (a.cheapest_fixed < 0 ||
-                m.bake_seconds <
-                    result.measurements[static_cast<std::size_t>(a.cheapest_fixed)].bake_seconds)
-              a.cheapest_fixed = static_cast<long>(i);
-          }
+          a.cheapest_fixed = cheapest_reaching(cost, error, a.relative_rms);
         }
       } catch (const std::exception& e) {
         a.failure = e.what();
@@ -598,11 +598,6 @@ ReportResult run_report(const ReportOptions& opt) {
   }
 
   // Pareto front over (bake time, error).
-  std::vector<double> cost, error;
-  for (const ReportMeasurement& m : result.measurements) {
-    cost.push_back(m.failure.empty() ? m.bake_seconds : INFINITY);
-    error.push_back(m.failure.empty() ? m.relative_rms : INFINITY);
-  }
   const std::vector<bool> front = pareto_front(cost, error);
   for (std::size_t i = 0; i < front.size(); ++i) result.measurements[i].on_pareto_front = front[i];
 
