@@ -114,3 +114,36 @@ TEST_CASE("triangle hierarchy: the parallel build equals the serial one node for
   }
   CHECK(differing == 0);
 }
+
+// The second method: every group's box and ball from a plain pass over its own vertices, the
+// formulas of triangle_hierarchy.h (box of the vertices, ball centred on it, radius to the
+// farthest vertex). The build derives boxes bottom up and prunes the radius search, which must
+// give these values bit for bit, also far from the origin (where rounding is coarsest).
+TEST_CASE("triangle hierarchy: every group's box and ball equal a pass over its vertices") {
+  for (const glm::vec3 offset : {glm::vec3(0.f), glm::vec3(3.0e4f, -1.7e4f, 5.1e4f)}) {
+    Scene scene = floor_with_ball();
+    append_scene(scene, make_box({2.f, 0.f, -1.f}, {3.f, 1.f, 1.f}, 8, false, glm::vec3(0.5f)));
+    for (glm::vec3& p : scene.positions) p += offset;
+    const TriangleHierarchy h = build_triangle_hierarchy(scene);
+    REQUIRE(h.nodes.size() > 1000);
+    std::size_t differing = 0;
+    for (const TriangleHierarchy::Node& node : h.nodes) {
+      glm::dvec3 lo(INFINITY), hi(-INFINITY);
+      for (uint32_t j = node.first; j < node.first + node.size; ++j)
+        for (int k = 0; k < 3; ++k) {
+          lo = glm::min(lo, h.vertex(h.order[j], k));
+          hi = glm::max(hi, h.vertex(h.order[j], k));
+        }
+      const glm::dvec3 center = 0.5 * (lo + hi);
+      double r2 = 0.0;
+      for (uint32_t j = node.first; j < node.first + node.size; ++j)
+        for (int k = 0; k < 3; ++k) {
+          const glm::dvec3 d = h.vertex(h.order[j], k) - center;
+          r2 = std::max(r2, glm::dot(d, d));
+        }
+      differing += node.box_center != center || node.box_half != 0.5 * (hi - lo) ||
+                   node.ball_center != center || node.ball_radius != std::sqrt(r2);
+    }
+    CHECK(differing == 0);
+  }
+}
