@@ -400,7 +400,25 @@ AutoBakeResult bake_transfer_auto(const Scene& scene, const AutoBakeOptions& o,
     }
   }
   rep.mean_samples = sampled ? static_cast<double>(sum) / static_cast<double>(sampled) : 0.0;
-  if (sampled > 0)
+  const std::vector<double> radiance = exit_radiance(result.bake.data, lighting, lighting_order);
+  double b2 = 0.0;
+  for (double x : radiance) b2 += x * x;
+  rep.predicted_sampling_error = b2 > 0.0 ? std::sqrt(se2 / b2) : 0.0;
+  rep.predicted_error = std::hypot(rep.predicted_truncation_error + rep.predicted_skip_error,
+                                   rep.predicted_sampling_error);
+  // Equal counts everywhere leave nothing out: the allocation either stopped where it started
+  // (the tolerance was met there) or ran every vertex up to the cap without meeting it.
+  if (sampled > 0 && lo == hi)
+    rep.left_out.push_back(
+        st.allocation_budget_met
+            ? format("nothing from the sample count: every sampled vertex took %.0f samples, "
+                     "which meet the tolerance's sampling share",
+                     lo)
+            : format("nothing from the sample count: every sampled vertex took the cap of %.0f "
+                     "samples, short of the tolerance's sampling share (predicted sampling "
+                     "error %.2g)",
+                     hi, rep.predicted_sampling_error));
+  else if (sampled > 0)
     rep.left_out.push_back(
         format("a uniform sample count: %.0f to %.0f samples per vertex (mean %.1f), allocated "
                "to where the measured error is: fewer in open areas, more in crevices",
@@ -421,12 +439,6 @@ AutoBakeResult bake_transfer_auto(const Scene& scene, const AutoBakeOptions& o,
           "after %.0f: the next added < %.2g of the direct light",
           static_cast<double>(st.empty_gather_rows), st.jacobi_bounces, 0.25 * o.tolerance));
   }
-  const std::vector<double> radiance = exit_radiance(result.bake.data, lighting, lighting_order);
-  double b2 = 0.0;
-  for (double x : radiance) b2 += x * x;
-  rep.predicted_sampling_error = b2 > 0.0 ? std::sqrt(se2 / b2) : 0.0;
-  rep.predicted_error = std::hypot(rep.predicted_truncation_error + rep.predicted_skip_error,
-                                   rep.predicted_sampling_error);
 
   nlohmann::json meta = nlohmann::json::parse(result.bake.data.metadata_json, nullptr, false);
   if (meta.is_discarded() || !meta.is_object()) meta = nlohmann::json::object();

@@ -115,7 +115,6 @@ struct ParallelBuilder {
   }
 };
 
-
 // Boxes and balls of the groups' vertices, the same values as a pass over every group's
 // vertices (which costs one visit per triangle per level of the tree) at a fraction of the cost:
 // - boxes bottom up: a leaf's from its vertices, an internal node's as the union of its
@@ -174,7 +173,7 @@ void compute_bounds(TriangleHierarchy& h) {
           const uint32_t j = stack[--top];
           const TriangleHierarchy::Node& sub = h.nodes[j];
           if (j != level[li] && reach(j, c) * (1.0 + 1e-9) <= r)
-            continue;  // every vertex of this subtree is within the farthest found so far
+            continue;            // every vertex of this subtree is within the farthest found so far
           if (sub.count == 0) {  // the child reaching farther is taken first
             const bool left_first = reach(j + 1, c) >= reach(sub.second, c);
             stack[top++] = left_first ? sub.second : j + 1;

@@ -338,6 +338,34 @@ TEST_CASE("samples adapt per vertex: few in the open, more near the contact, any
   CHECK(n[crevice] > 64);
 }
 
+// With equal counts everywhere nothing was left out of the sample count, and the report must
+// not claim an allocation: it says whether the counts met the tolerance or hit the cap.
+TEST_CASE("equal sample counts are reported as such: met at the minimum, or short at the cap") {
+  const Scene scene = make_plane_with_sphere(glm::vec3(0.5f));
+  const auto line_with = [](const AutoBakeResult& a, const std::string& text) {
+    for (const std::string& line : a.report.left_out)
+      if (line.find(text) != std::string::npos) return true;
+    return false;
+  };
+  AutoBakeOptions o = quick_auto(0.2);  // loose: 64 samples everywhere meet it
+  o.kind = prt::TransferKind::Shadowed;
+  o.cap_sampling = false;  // capped vertices would start at fewer samples
+  o.bounded_skip_share = 0.0;
+  const AutoBakeResult met = bake_transfer_auto(scene, o);
+  CHECK(met.bake.stats.allocation_budget_met);
+  CHECK(line_with(met, "every sampled vertex took 64 samples, which meet"));
+  CHECK_FALSE(line_with(met, "allocated to where the measured error is"));
+  o.tolerance = 0.0005;  // tight: the cap of 64 is not enough
+  o.max_samples = 64;
+  const AutoBakeResult capped = bake_transfer_auto(scene, o);
+  CHECK_FALSE(capped.bake.stats.allocation_budget_met);
+  CHECK(line_with(capped, "every sampled vertex took the cap of 64 samples, short of"));
+  o.tolerance = 0.01;  // room to allocate: the counts differ and the report says so
+  o.max_samples = 1024;
+  const AutoBakeResult adapted = bake_transfer_auto(scene, o);
+  CHECK(line_with(adapted, "allocated to where the measured error is"));
+}
+
 TEST_CASE("interreflection is skipped when no surface sees another or the albedo is zero") {
   // Zero albedo: nothing is reflected, so no solve (and the stored kind says so).
   Scene black = make_plane_with_sphere(glm::vec3(0.f));
