@@ -15,7 +15,7 @@ std::vector<double> band_energies(const double* coefficients, int order) {
 
 OrderChoice choose_order(const std::vector<double>& pilot, const std::vector<glm::vec3>& albedo,
                          int pilot_order, const std::vector<double>& lighting, int lighting_order,
-                         double target, int max_order) {
+                         double target, int max_order, double limit) {
   OrderChoice out;
   const int np = pilot_order, kp = np * np, kl = lighting_order * lighting_order;
   const std::size_t P = albedo.size();
@@ -85,11 +85,13 @@ OrderChoice choose_order(const std::vector<double>& pilot, const std::vector<glm
     out.bound_by_order[n - 1] = std::sqrt(bound2[n - 1]) / norm;
   }
   out.order = max_order;
-  for (int n = 1; n <= max_order; ++n) {
-    if (out.predicted_by_order[n - 1] + out.tail_bound <= target) {
-      out.order = n;
-      out.met = true;
-      break;
+  for (const double bar : {target, std::max(target, limit)}) {
+    for (int n = 1; n <= max_order && !out.met; ++n) {
+      if (out.predicted_by_order[n - 1] + out.tail_bound <= bar) {
+        out.order = n;
+        out.met = true;
+        out.beyond_target = bar > target;
+      }
     }
   }
   out.haar_recommended = !out.met;

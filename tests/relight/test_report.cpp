@@ -399,17 +399,23 @@ TEST_CASE("end-to-end quick report on a small scene writes consistent files") {
   CHECK((ten.find("| SH order") != std::string::npos ||
          ten.find("| Haar cube") != std::string::npos));
 
-  // The `prt bake --auto` row (quick: tolerance 5%). The 500× sun texel defeats every SH order
-  // ≤ 12 at 5%, so Haar is recommended and the order is the cap, and its own prediction says it
-  // misses the tolerance; it was measured against the same ground truth, and the fastest fixed
-  // setting at its error is the one brute force finds among the measurements.
+  // The `prt bake --auto` row (quick: tolerance 5%). The 500× sun texel puts energy in every
+  // band; the pilot, raised to 4096 samples because 256 do not resolve that, finds an SH order
+  // ≤ 12 whose truncation stays within 80% of the tolerance (order 10; a 256-sample pilot saw
+  // none, fell back to order 12 and measured 8.3%). The prediction must be honest against the
+  // same ground truth the fixed settings are measured with: measured 5.08% against 4.72%
+  // predicted. The prediction leaves out the mesh's interpolation of interreflected light,
+  // which the ground truth sees, so the bound is 1.25× the prediction; and it must not be a
+  // loose upper bound either (≤ 2× the measurement). The fastest fixed setting at its error is
+  // the one brute force finds among the measurements.
   REQUIRE(r.autos.size() == 1);
   const ReportAuto& a = r.autos[0];
   REQUIRE(a.failure.empty());
   CHECK(a.tolerance == 0.05);
-  CHECK(a.haar_recommended);
-  CHECK(a.order == 12);
-  CHECK(a.predicted_error > a.tolerance);
+  CHECK_FALSE(a.haar_recommended);
+  CHECK(a.order < 12);
+  CHECK(a.relative_rms <= 1.25 * a.predicted_error);
+  CHECK(a.predicted_error <= 2.0 * a.relative_rms);
   CHECK(std::isfinite(a.relative_rms));
   CHECK(a.relative_rms > 0.0);
   CHECK(a.relative_rms < 1.0);

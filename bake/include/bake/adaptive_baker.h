@@ -13,7 +13,9 @@
 //     bands the lighting lacks carry nothing; pilot_samples rays, pilot_vertices vertices
 //     spread evenly over the index range) and bake/order_selection.h choose the smallest SH order
 //     whose predicted truncation error is ≤ tolerance/2; bands above it are dropped (the file
-//     simply has a lower order). When no order ≤ max_order meets it, Haar is recommended.
+//     simply has a lower order). The pilot's noise only adds to the prediction, so when no
+//     order meets it the pilot is repeated with 4× the samples (up to max_pilot_samples); when
+//     none meets it then, Haar is recommended.
 //  3. bake/occlusion_bound.h: vertices whose blockable projected solid angle is bounded, without
 //     rays, below bounded_skip_cutoff are ranked by their exit-radiance error bound ρ·G·M
 //     (adaptive_baker.cpp) and skip rays, smallest first, while the bounds' relative RMS stays
@@ -56,6 +58,9 @@ struct AutoBakeOptions {
   int pilot_order = kMaxBakeOrder;
   int pilot_vertices = 256;
   int pilot_samples = 256;
+  // When no order ≤ max_order meets the target, the pilot is repeated with 4× the samples while
+  // that stays ≤ max_pilot_samples: its noise inflates the predicted truncation (a sun).
+  int max_pilot_samples = 4096;
   int min_samples = 64;
   int max_samples = 1024;
   uint64_t seed = 1;
@@ -80,6 +85,7 @@ struct AutoBakeReport {
   std::size_t bounded_skip_vertices = 0;  // analytic within the error bound, no rays
   double predicted_skip_error = 0;        // bound of their bias, relative RMS
   double analysis_seconds = 0, pilot_seconds = 0;
+  int pilot_samples = 0;  // per pilot vertex, of the last pilot (0: no pilot)
   bool grey = true;
   prt::TransferKind stored_kind = prt::TransferKind::Shadowed;
   int order = 3;

@@ -20,8 +20,9 @@
 // clamped-cosine × visibility decrease with l, and the pilot's noise inflates its last bands)
 // times the lighting's band norms
 // beyond n_p (zero when the lighting given stops at n_p). The chosen order is the smallest n
-// ≤ max_order with predicted(n) + tail ≤ target; when there is none (a sun: energy in every
-// band), no SH order meets it and the Haar basis is recommended.
+// ≤ max_order with predicted(n) + tail ≤ target; when there is none, the smallest with
+// predicted(n) + tail ≤ limit (the caller then leaves less of its tolerance to sampling); when
+// there is none either (a sun: energy in every band), the Haar basis is recommended.
 #pragma once
 
 #include <vector>
@@ -35,7 +36,8 @@ std::vector<double> band_energies(const double* coefficients, int order);
 
 struct OrderChoice {
   int order = 1;
-  bool met = false;                 // some order ≤ max_order meets the target
+  bool met = false;                 // some order ≤ max_order meets the target or the limit
+  bool beyond_target = false;       // met the limit only
   bool haar_recommended = false;    // !met
   double predicted_error = 0;       // predicted(order) + tail
   double cauchy_schwarz_bound = 0;  // bound(order) + tail
@@ -47,9 +49,9 @@ struct OrderChoice {
 };
 
 // pilot: P × pilot_order² grey transfer vectors, vertex-major; albedo: P values (rgb).
-// lighting: 3 × lighting_order² coefficients. max_order ≤ pilot_order.
+// lighting: 3 × lighting_order² coefficients. max_order ≤ pilot_order. limit ≤ target: none.
 OrderChoice choose_order(const std::vector<double>& pilot, const std::vector<glm::vec3>& albedo,
                          int pilot_order, const std::vector<double>& lighting, int lighting_order,
-                         double target, int max_order);
+                         double target, int max_order, double limit = 0.0);
 
 }  // namespace prt::bake
