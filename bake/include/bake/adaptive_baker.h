@@ -53,8 +53,9 @@ struct AutoBakeOptions {
   // The lighting's own order by default (kMaxBakeOrder for `prt bake --auto --env`): bands the
   // pilot does not see enter only through a Cauchy–Schwarz bound, which with a sun dwarfed the
   // rest (data/demo.glb under data/sky.hdr, order 12: a pilot of order 16 predicted 0.064 plus
-  // a bound of 3.2; of order 32, 0.16 with no bound, 0.07 s; `prt report` measures 0.036 against
-  // the ground truth for a converged order-12 bake, mesh interpolation included).
+  // a bound of 3.2; of order 32 with 256 samples, 0.16 with no bound; with 4096 samples (see
+  // max_pilot_samples), 0.04; `prt report` measures 0.038 against the ground truth for a
+  // converged order-12 bake, mesh interpolation included).
   int pilot_order = kMaxBakeOrder;
   int pilot_vertices = 256;
   int pilot_samples = 256;
