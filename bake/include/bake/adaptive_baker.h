@@ -10,8 +10,8 @@
 //     unshadowed transfer with no rays; grey albedo → one channel; zero albedo → no
 //     interreflection.
 //  2. with lighting: a pilot bake (order pilot_order, or lighting_order + 1 when that is lower:
-//     bands the lighting lacks carry nothing; pilot_samples rays, pilot_vertices vertices
-//     spread evenly over the index range) and bake/order_selection.h choose the smallest SH order
+//     bands the lighting lacks carry nothing; pilot_samples rays on pilot_vertices vertices, one
+//     at random from each of pilot_vertices equal index ranges) and bake/order_selection.h choose the smallest SH order
 //     whose predicted truncation error is ≤ tolerance/2; bands above it are dropped (the file
 //     simply has a lower order). The pilot's noise only adds to the prediction, so when no
 //     order meets it the pilot is repeated with 4× the samples (up to max_pilot_samples); when
