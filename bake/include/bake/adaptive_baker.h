@@ -11,11 +11,13 @@
 //     interreflection.
 //  2. with lighting: a pilot bake (order pilot_order, or lighting_order + 1 when that is lower:
 //     bands the lighting lacks carry nothing; pilot_samples rays on pilot_vertices vertices, one
-//     at random from each of pilot_vertices equal index ranges) and bake/order_selection.h choose the smallest SH order
-//     whose predicted truncation error is ≤ tolerance/2; bands above it are dropped (the file
-//     simply has a lower order). The pilot's noise only adds to the prediction, so when no
-//     order meets it the pilot is repeated with 4× the samples (up to max_pilot_samples); when
-//     none meets it then, Haar is recommended.
+//     at random from each of pilot_vertices equal index ranges) and bake/order_selection.h choose
+//     the smallest SH order whose predicted truncation error is ≤ tolerance/2; bands above it are
+//     dropped (the file simply has a lower order). The pilot's noise only adds to the prediction,
+//     so when no order meets it the pilot is repeated with 4× the samples (up to
+//     max_pilot_samples); when none meets it then, the smallest order whose truncation stays
+//     within 80% of the tolerance is baked (sampling gets the rest), and when there is none,
+//     Haar is recommended.
 //  3. bake/occlusion_bound.h: vertices whose blockable projected solid angle is bounded, without
 //     rays, below bounded_skip_cutoff are ranked by their exit-radiance error bound ρ·G·M
 //     (adaptive_baker.cpp) and skip rays, smallest first, while the bounds' relative RMS stays
