@@ -17,7 +17,8 @@
 //     so when no order meets it the pilot is repeated with 4× the samples (up to
 //     max_pilot_samples); when none meets it then, the smallest order whose truncation stays
 //     within 80% of the tolerance is baked (sampling gets the rest), and when there is none,
-//     Haar is recommended.
+//     max_order is baked and Haar is recommended unless the predicted total (step 5) still
+//     meets the tolerance.
 //  3. bake/occlusion_bound.h: vertices whose blockable projected solid angle is bounded, without
 //     rays, below bounded_skip_cutoff are ranked by their exit-radiance error bound ρ·G·M
 //     (adaptive_baker.cpp) and skip rays, smallest first, while the bounds' relative RMS stays

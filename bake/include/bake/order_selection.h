@@ -38,7 +38,8 @@ struct OrderChoice {
   int order = 1;
   bool met = false;                 // some order ≤ max_order meets the target or the limit
   bool beyond_target = false;       // met the limit only
-  bool haar_recommended = false;    // !met
+  bool haar_recommended = false;    // !met (bake_transfer_auto clears it when its bake at
+                                    // max_order meets the tolerance as a whole)
   double predicted_error = 0;       // predicted(order) + tail
   double cauchy_schwarz_bound = 0;  // bound(order) + tail
   double tail_bound = 0;
