@@ -207,6 +207,7 @@ std::string AutoBakeReport::json() const {
     nlohmann::json o;
     o["met"] = order_choice.met;
     o["haar_recommended"] = order_choice.haar_recommended;
+    o["met_beyond_half_the_tolerance"] = order_choice.beyond_target;
     o["predicted_by_order"] = order_choice.predicted_by_order;
     o["cauchy_schwarz_bound_by_order"] = order_choice.bound_by_order;
     o["tail_bound"] = order_choice.tail_bound;
