@@ -38,16 +38,22 @@ std::vector<double> uniform_sky() {
   return {kSqrt4Pi, kSqrt4Pi, kSqrt4Pi};
 }
 
-// Grey transfer S (no albedo) of the pilot vertices at the pilot order.
-std::vector<double> bake_pilot(const Scene& scene, const AutoBakeOptions& o, int pilot_order,
-                               int samples, const std::vector<uint8_t>& open,
+// The scene with albedo 0.5 everywhere: the pilot's transfer is then S = T / 0.5 exactly (a
+// power of two). Made once for all the pilots of a bake.
+Scene grey_scene(const Scene& scene) {
+  Scene grey = scene;
+  std::fill(grey.albedo.begin(), grey.albedo.end(), glm::vec3(0.5f));
+  return grey;
+}
+
+// Grey transfer S (no albedo) of the pilot vertices at the pilot order; grey = grey_scene(scene).
+std::vector<double> bake_pilot(const Scene& scene, const Scene& grey, const AutoBakeOptions& o,
+                               int pilot_order, int samples, const std::vector<uint8_t>& open,
                                std::vector<glm::vec3>& albedo,
                                const std::shared_ptr<const RayCaster>& caster,
                                ProgressSink* progress) {
   const std::size_t V = scene.positions.size();
   const std::size_t P = std::min<std::size_t>(V, static_cast<std::size_t>(o.pilot_vertices));
-  Scene grey = scene;  // baked with albedo 0.5, so S = T / 0.5 exactly (a power of two)
-  std::fill(grey.albedo.begin(), grey.albedo.end(), glm::vec3(0.5f));
   BakeOptions b;
   b.kind = prt::TransferKind::Shadowed;
   b.order = pilot_order;
@@ -296,8 +302,9 @@ AutoBakeResult bake_transfer_auto(const Scene& scene, const AutoBakeOptions& o,
     // Truncation gets half the tolerance; when no order meets that but one meets kTruncationLimit
     // of it, that order is baked and sampling gets the rest (√(1 − 0.8²) = 0.6 of it): the
     // tolerance is still met, by SH, which is cheaper than the Haar basis.
+    const Scene grey = grey_scene(scene);
     for (int samples = o.pilot_samples;; samples *= 4) {
-      const std::vector<double> pilot = bake_pilot(scene, o, pilot_order, samples, hemi.open,
+      const std::vector<double> pilot = bake_pilot(scene, grey, o, pilot_order, samples, hemi.open,
                                                    pilot_albedo, shared_caster(), nullptr);
       rep.order_choice =
           choose_order(pilot, pilot_albedo, pilot_order, o.lighting, o.lighting_order,
