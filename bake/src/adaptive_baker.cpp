@@ -105,15 +105,15 @@ struct BoundedSkips {
   double error_bound = 0.0;  // relative RMS bound of the skipped vertices' bias
 };
 
-BoundedSkips select_bounded_skips(const Scene& scene, const std::vector<uint8_t>& open,
+BoundedSkips select_bounded_skips(const Scene& scene, const VertexRayStarts& starts,
+                                  const std::vector<uint8_t>& open,
                                   const std::vector<double>& lighting, int lighting_order,
                                   double error_budget, double cutoff, const AlbedoAnalysis& albedo,
                                   const TriangleHierarchy& hierarchy, double* seconds) {
   const std::size_t V = scene.positions.size();
   BoundedSkips r;
   r.skip.assign(V, 0);
-  const OcclusionBounds ob =
-      bound_occlusion(scene, open_hemisphere_threshold(scene), cutoff, open, &hierarchy);
+  const OcclusionBounds ob = bound_occlusion(scene, starts, cutoff, open, &hierarchy);
   *seconds = ob.seconds;
   const int n = lighting_order, KL = n * n;
   double m[3];
@@ -258,7 +258,8 @@ AutoBakeResult bake_transfer_auto(const Scene& scene, const AutoBakeOptions& o,
   rep.vertices = V;
 
   // 1. Analysis.
-  const HemisphereAnalysis hemi = find_open_hemispheres(scene);
+  const VertexRayStarts starts = compute_vertex_ray_starts(scene);
+  const HemisphereAnalysis hemi = find_open_hemispheres(scene, starts);
   // One BVH for the pilot and the bake, built on first use (never when every vertex is open).
   std::shared_ptr<const RayCaster> caster;
   auto shared_caster = [&] {
@@ -369,7 +370,7 @@ AutoBakeResult bake_transfer_auto(const Scene& scene, const AutoBakeOptions& o,
   }
   if (o.bounded_skip_share > 0.0 && needs_hierarchy) {
     double seconds = 0.0;
-    skips = select_bounded_skips(scene, hemi.open, lighting, lighting_order,
+    skips = select_bounded_skips(scene, starts, hemi.open, lighting, lighting_order,
                                  o.bounded_skip_share * o.tolerance, o.bounded_skip_cutoff, alb,
                                  *hierarchy, &seconds);
     rep.analysis_seconds += seconds;

@@ -288,7 +288,7 @@ uint32_t GroundTruthIntegrator::Impl::sample_vertex(uint32_t v, uint64_t sample_
     }
     const glm::vec3 p = w0 * scene.positions[tri.x] + hit.u * scene.positions[tri.y] +
                         hit.v * scene.positions[tri.z];
-    origin = caster.offset_origin(p, ng);
+    origin = caster.surface_origin(hit.triangle, p, ng);
     normal = ns;
   }
   return cast;

@@ -7,7 +7,6 @@
 
 #include <tbb/parallel_for.h>
 
-#include "bake/ray_caster.h"
 #include "bake/triangle_hierarchy.h"
 
 namespace prt::bake {
@@ -46,7 +45,7 @@ bool cap_of_ball(const glm::dvec3& to_center, double radius, DirectionCap& cap) 
   return true;
 }
 
-OccluderCaps find_occluder_caps(const Scene& scene, double threshold,
+OccluderCaps find_occluder_caps(const Scene& scene, const VertexRayStarts& starts,
                                 const std::vector<uint8_t>& wanted, int max_caps,
                                 double max_solid_angle, const TriangleHierarchy* hierarchy) {
   const auto t0 = std::chrono::steady_clock::now();
@@ -54,7 +53,6 @@ OccluderCaps find_occluder_caps(const Scene& scene, double threshold,
   TriangleHierarchy own;
   if (hierarchy == nullptr) own = build_triangle_hierarchy(scene);
   const TriangleHierarchy& h = hierarchy != nullptr ? *hierarchy : own;
-  const double inflate = 2.0 * static_cast<double>(ray_offset_scale(scene));
   const std::size_t limit = static_cast<std::size_t>(std::max(max_caps, 0));
   // Blocks of vertices keep their caps in their own lists (memory ∝ the caps found, not
   // V × max_caps), concatenated in vertex order afterwards: deterministic.
@@ -69,6 +67,8 @@ OccluderCaps find_occluder_caps(const Scene& scene, double threshold,
       if (!wanted.empty() && !wanted[v]) continue;
       const glm::dvec3 p(scene.positions[v]);
       const glm::dvec3 n = glm::normalize(glm::dvec3(scene.normals[v]));
+      const double threshold = starts.unreachable_height[v];
+      const double inflate = 2.0 * static_cast<double>(starts.offset[v]);
       // No usable normal (zero or non-finite): no hemisphere to prove anything about.
       if (!std::isfinite(n.x) || !std::isfinite(n.y) || !std::isfinite(n.z)) continue;
       const glm::dvec3 abs_n = glm::abs(n);

@@ -8,7 +8,6 @@
 
 #include <tbb/parallel_for.h>
 
-#include "bake/ray_caster.h"
 #include "bake/triangle_hierarchy.h"
 
 namespace prt::bake {
@@ -48,17 +47,19 @@ double ball_projected_solid_angle_bound(const glm::dvec3& to_center, double radi
   return 2.0 * (1.0 - cos_a) * cos_max;
 }
 
-double occlusion_bound_brute_force(const Scene& scene, std::size_t vertex, double threshold) {
+double occlusion_bound_brute_force(const Scene& scene, std::size_t vertex,
+                                   const VertexRayStarts& starts) {
   const glm::dvec3 p(scene.positions[vertex]);
   const glm::dvec3 n = glm::normalize(glm::dvec3(scene.normals[vertex]));
-  const double inflate = 2.0 * static_cast<double>(ray_offset_scale(scene));
+  const double threshold = starts.unreachable_height[vertex];
+  const double inflate = 2.0 * static_cast<double>(starts.offset[vertex]);
   double sum = 0.0;
   for (uint32_t t = 0; t < scene.triangles.size(); ++t)
     sum += triangle_bound(scene, t, p, n, threshold, inflate);
   return sum;
 }
 
-OcclusionBounds bound_occlusion(const Scene& scene, double threshold, double cutoff,
+OcclusionBounds bound_occlusion(const Scene& scene, const VertexRayStarts& starts, double cutoff,
                                 const std::vector<uint8_t>& skip,
                                 const TriangleHierarchy* hierarchy) {
   const auto t0 = std::chrono::steady_clock::now();
@@ -68,9 +69,10 @@ OcclusionBounds bound_occlusion(const Scene& scene, double threshold, double cut
   TriangleHierarchy own;
   if (hierarchy == nullptr) own = build_triangle_hierarchy(scene);
   const TriangleHierarchy& h = hierarchy != nullptr ? *hierarchy : own;
-  const double inflate = 2.0 * static_cast<double>(ray_offset_scale(scene));
   tbb::parallel_for(std::size_t(0), V, [&](std::size_t v) {
     if (!skip.empty() && skip[v]) return;
+    const double threshold = starts.unreachable_height[v];
+    const double inflate = 2.0 * static_cast<double>(starts.offset[v]);
     const glm::dvec3 p(scene.positions[v]);
     const glm::dvec3 n = glm::normalize(glm::dvec3(scene.normals[v]));
     const glm::dvec3 abs_n = glm::abs(n);

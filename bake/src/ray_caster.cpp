@@ -67,23 +67,6 @@ void fill_ray16(RTCRay16& r, const glm::vec3& origin, const glm::vec3* dirs, int
 
 }  // namespace
 
-// Scene-proportional offset: a fraction of the extent, but never below a few float ulps of the
-// largest coordinate (which dominates for small objects far from the origin).
-float ray_offset_scale(const Scene& scene) {
-  if (scene.positions.empty()) return 1e-4f;
-  glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
-  float max_abs = 0.f;
-  for (const glm::vec3& p : scene.positions) {
-    lo = glm::min(lo, p);
-    hi = glm::max(hi, p);
-    max_abs = std::max({max_abs, std::fabs(p.x), std::fabs(p.y), std::fabs(p.z)});
-  }
-  const double extent = glm::length(glm::dvec3(hi) - glm::dvec3(lo));
-  const float ulp = std::nextafter(max_abs, std::numeric_limits<float>::infinity()) - max_abs;
-  const double eps = std::max(1e-4 * extent, 64.0 * static_cast<double>(ulp));
-  return eps > 0.0 ? static_cast<float>(eps) : 1e-4f;
-}
-
 bool RayCaster::monitor_memory(void* self, long bytes, bool /*post*/) {
   auto* caster = static_cast<RayCaster*>(self);
   const long long now = caster->bytes_now_.fetch_add(bytes) + bytes;
@@ -94,7 +77,7 @@ bool RayCaster::monitor_memory(void* self, long bytes, bool /*post*/) {
 }
 
 RayCaster::RayCaster(const Scene& scene) : scene_(&scene) {
-  offset_scale_ = ray_offset_scale(scene);
+  starts_ = compute_vertex_ray_starts(scene);
   RTCDevice device = rtcNewDevice(nullptr);
   if (!device)
     throw std::runtime_error(detail::scene_label(scene) + ": cannot create the Embree device (" +
@@ -140,7 +123,8 @@ RayCaster::RayCaster(const Scene& scene) : scene_(&scene) {
       to -= n * glm::dot(n, to);
       const double len = glm::length(to);
       if (!(len > 0.0) || !std::isfinite(len)) continue;
-      inward_[v] = glm::vec3(to / len * std::min(static_cast<double>(offset_scale_), 0.5 * len));
+      inward_[v] =
+          glm::vec3(to / len * std::min(static_cast<double>(starts_.offset[v]), 0.5 * len));
     }
   }
 

@@ -12,7 +12,6 @@ namespace prt::bake {
 namespace {
 
 constexpr int kLeafSize = 16;
-constexpr double kThresholdFraction = 0.4e-4;  // τ / extent (see the header's proof)
 
 // A BVH over points; nodes in depth-first order, children of node i at i+1 and `second`.
 struct PointHierarchy {
@@ -71,10 +70,6 @@ struct PointHierarchy {
 
 }  // namespace
 
-double open_hemisphere_threshold(const Scene& scene) {
-  return kThresholdFraction * static_cast<double>(scene.extent());
-}
-
 bool is_hemisphere_open_brute_force(const Scene& scene, std::size_t vertex, double threshold) {
   const glm::dvec3 p(scene.positions[vertex]);
   const glm::dvec3 n = glm::normalize(glm::dvec3(scene.normals[vertex]));
@@ -84,12 +79,11 @@ bool is_hemisphere_open_brute_force(const Scene& scene, std::size_t vertex, doub
   return true;
 }
 
-HemisphereAnalysis find_open_hemispheres(const Scene& scene) {
+HemisphereAnalysis find_open_hemispheres(const Scene& scene, const VertexRayStarts& starts) {
   const auto t0 = std::chrono::steady_clock::now();
   HemisphereAnalysis result;
   const std::size_t V = scene.positions.size();
   result.open.assign(V, 0);
-  result.threshold = open_hemisphere_threshold(scene);
   // Only points that belong to a triangle can block a ray.
   std::vector<uint8_t> used(V, 0);
   for (const glm::uvec3& t : scene.triangles) used[t.x] = used[t.y] = used[t.z] = 1;
@@ -100,8 +94,8 @@ HemisphereAnalysis find_open_hemispheres(const Scene& scene) {
   tbb::parallel_for(std::size_t(0), V, [&](std::size_t v) {
     const glm::dvec3 n = glm::normalize(glm::dvec3(scene.normals[v]));
     if (!std::isfinite(n.x) || !std::isfinite(n.y) || !std::isfinite(n.z)) return;
-    const bool above =
-        !bvh.nodes.empty() && bvh.any_above(glm::dvec3(scene.positions[v]), n, result.threshold);
+    const bool above = !bvh.nodes.empty() && bvh.any_above(glm::dvec3(scene.positions[v]), n,
+                                                           starts.unreachable_height[v]);
     result.open[v] = above ? 0 : 1;
   });
   result.open_count =

@@ -361,7 +361,7 @@ BakeResult bake_transfer(const Scene& scene, const BakeOptions& options, Progres
     if (ad.cap_sampling) {
       std::vector<uint8_t> wanted(V, 0);
       for (std::size_t v = 0; v < V; ++v) wanted[v] = modes[v] == kSampleVertex;
-      caps = find_occluder_caps(scene, open_hemisphere_threshold(scene), wanted, ad.max_caps,
+      caps = find_occluder_caps(scene, compute_vertex_ray_starts(scene), wanted, ad.max_caps,
                                 ad.max_cap_solid_angle, ad.hierarchy.get());
       st.seconds_caps = caps.seconds;
       for (std::size_t v = 0; v < V; ++v) {
@@ -406,7 +406,8 @@ BakeResult bake_transfer(const Scene& scene, const BakeOptions& options, Progres
     if (!(adaptive && ad.caster)) own_caster = std::make_unique<RayCaster>(scene);
     const RayCaster& caster = own_caster ? *own_caster : *ad.caster;
     st.seconds_bvh = seconds_since(t_bvh);
-    ray_offset = caster.offset_scale();
+    for (const float eps : caster.vertex_ray_starts().offset)
+      ray_offset = std::max(ray_offset, static_cast<double>(eps));
     const std::size_t blocks = (V + kVertexBlock - 1) / kVertexBlock;
     std::vector<BlockRows> rows(interreflect ? blocks : 0);
     std::vector<uint64_t> block_rays(blocks, 0), block_back_hits(blocks, 0);
@@ -947,7 +948,7 @@ BakeResult bake_transfer(const Scene& scene, const BakeOptions& options, Progres
   meta["triangles"] = st.triangles;
   meta["skipped_triangles"] = st.skipped_triangles;
   meta["rays"] = st.rays;
-  meta["ray_offset"] = ray_offset;
+  meta["ray_offset_max"] = ray_offset;  // largest ε_v (bake/ray_offset.h)
   meta["seconds"] = st.seconds_total;
   meta["seconds_rays"] = st.seconds_rays;
   if (adaptive) {

@@ -356,9 +356,9 @@ TEST_CASE("the bounded skip: only affected vertices cast rays, and skipped ones 
   AutoBakeOptions o = quick_auto(0.02);
   o.kind = prt::TransferKind::Shadowed;
   const AutoBakeResult a = bake_transfer_auto(scene, o);
-  const HemisphereAnalysis open = find_open_hemispheres(scene);
+  const HemisphereAnalysis open = find_open_hemispheres(scene, compute_vertex_ray_starts(scene));
   const OcclusionBounds bounds =
-      bound_occlusion(scene, open_hemisphere_threshold(scene), 1e30, open.open);
+      bound_occlusion(scene, compute_vertex_ray_starts(scene), 1e30, open.open);
   // Ray-free occluded fraction measured independently: 1 − AO of a fixed bake (cosine-weighted
   // AO is exactly 1 − G), 2048 scrambled Sobol' samples (error ≪ 2e-3 here).
   BakeOptions f;
@@ -401,10 +401,12 @@ TEST_CASE("the bounded skip: only affected vertices cast rays, and skipped ones 
 
 TEST_CASE("the open-hemisphere hierarchy agrees with the brute-force test") {
   const Scene scene = make_plane_with_sphere(glm::vec3(0.5f));
-  const HemisphereAnalysis h = find_open_hemispheres(scene);
+  const VertexRayStarts starts = compute_vertex_ray_starts(scene);
+  const HemisphereAnalysis h = find_open_hemispheres(scene, starts);
   std::size_t open = 0;
   for (std::size_t v = 0; v < scene.vertex_count(); ++v) {
-    REQUIRE(static_cast<bool>(h.open[v]) == is_hemisphere_open_brute_force(scene, v, h.threshold));
+    REQUIRE(static_cast<bool>(h.open[v]) ==
+            is_hemisphere_open_brute_force(scene, v, starts.unreachable_height[v]));
     open += h.open[v];
   }
   CHECK(open == h.open_count);

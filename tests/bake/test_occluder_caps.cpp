@@ -240,8 +240,8 @@ double one(const glm::dvec3&) {
 
 TEST_CASE("occluder caps: every direction that hits something lies in a cap (floor scene)") {
   const Scene scene = plane_with_objects();
-  const double tau = open_hemisphere_threshold(scene);
-  const OccluderCaps caps = find_occluder_caps(scene, tau, {}, kDefaultMaxCaps, kHalfPi);
+  const VertexRayStarts starts = compute_vertex_ray_starts(scene);
+  const OccluderCaps caps = find_occluder_caps(scene, starts, {}, kDefaultMaxCaps, kHalfPi);
   check_limits(caps, scene.vertex_count(), kDefaultMaxCaps, kHalfPi);
 
   const ContainmentStats s = check_containment(scene, caps, kFloorVertices);
@@ -269,11 +269,11 @@ TEST_CASE("occluder caps: every direction that hits something lies in a cap (flo
 
 TEST_CASE("occluder caps: every direction that hits something lies in a cap (two spheres)") {
   const Scene scene = two_spheres();
-  const double tau = open_hemisphere_threshold(scene);
+  const VertexRayStarts starts = compute_vertex_ray_starts(scene);
   // More caps allowed here: a vertex facing the other sphere from 0.8 away needs several.
   const int max_caps = 16;
   const double max_solid = 2.0 * kPi;
-  const OccluderCaps caps = find_occluder_caps(scene, tau, {}, max_caps, max_solid);
+  const OccluderCaps caps = find_occluder_caps(scene, starts, {}, max_caps, max_solid);
   check_limits(caps, scene.vertex_count(), max_caps, max_solid);
   std::size_t with_caps = 0;
   for (std::size_t v = 0; v < scene.vertex_count(); ++v)
@@ -292,7 +292,7 @@ TEST_CASE("occluder caps: every direction that hits something lies in a cap (two
 
 TEST_CASE("occluder caps: a vertex whose caps break the limits is not covered") {
   const Scene scene = plane_with_objects();
-  const double tau = open_hemisphere_threshold(scene);
+  const VertexRayStarts starts = compute_vertex_ray_starts(scene);
   // Floor vertex (i, j) sits at (−4 + 0.2 i, 0, 4 − 0.2 j). The box spans x ∈ [1, 2],
   // y ∈ [0, 1], z ∈ [−0.5, 0.5]: vertex (24, 20) = (0.8, 0, 0) is 0.2 from its −X face,
   // vertex (25, 20) = (1, 0, 0) lies on the bottom edge of that face (a vertex of its
@@ -303,7 +303,7 @@ TEST_CASE("occluder caps: a vertex whose caps break the limits is not covered") 
 
   // No limits: how many caps, of which total solid angle, the vertex next to the box gets (the
   // sum of the caps' solid angles, overlaps counted twice: it exceeds 4π here).
-  const OccluderCaps loose = find_occluder_caps(scene, tau, {}, 255, INFINITY);
+  const OccluderCaps loose = find_occluder_caps(scene, starts, {}, 255, INFINITY);
   REQUIRE(loose.covered[near_box] == 1);
   const std::size_t m = loose.count(near_box);
   double total = 0.0;
@@ -314,18 +314,18 @@ TEST_CASE("occluder caps: a vertex whose caps break the limits is not covered") 
   CHECK(total > kHalfPi);
 
   // The same limits exactly: still covered, the same caps.
-  const OccluderCaps exact = find_occluder_caps(scene, tau, {}, static_cast<int>(m), total);
+  const OccluderCaps exact = find_occluder_caps(scene, starts, {}, static_cast<int>(m), total);
   CHECK(exact.covered[near_box] == 1);
   CHECK(exact.count(near_box) == m);
   // One cap fewer, or a solid angle a little smaller: not covered, no caps.
-  const OccluderCaps few = find_occluder_caps(scene, tau, {}, static_cast<int>(m) - 1, INFINITY);
+  const OccluderCaps few = find_occluder_caps(scene, starts, {}, static_cast<int>(m) - 1, INFINITY);
   CHECK(few.covered[near_box] == 0);
   CHECK(few.count(near_box) == 0);
-  const OccluderCaps small = find_occluder_caps(scene, tau, {}, 255, 0.99 * total);
+  const OccluderCaps small = find_occluder_caps(scene, starts, {}, 255, 0.99 * total);
   CHECK(small.covered[near_box] == 0);
   CHECK(small.count(near_box) == 0);
   // The baker's defaults (8 caps, π/2 sr): not covered.
-  const OccluderCaps def = find_occluder_caps(scene, tau, {}, kDefaultMaxCaps, kHalfPi);
+  const OccluderCaps def = find_occluder_caps(scene, starts, {}, kDefaultMaxCaps, kHalfPi);
   CHECK(def.covered[near_box] == 0);
   CHECK(def.count(near_box) == 0);
 
@@ -356,7 +356,7 @@ TEST_CASE("occluder caps: a vertex whose caps break the limits is not covered") 
   // Vertices not wanted get nothing; the wanted ones get what they get without the mask.
   std::vector<uint8_t> wanted(scene.vertex_count(), 0);
   wanted[near_box] = 1;
-  const OccluderCaps only = find_occluder_caps(scene, tau, wanted, 255, INFINITY);
+  const OccluderCaps only = find_occluder_caps(scene, starts, wanted, 255, INFINITY);
   CHECK(only.covered[near_box] == 1);
   CHECK(only.count(near_box) == m);
   CHECK(std::count(only.covered.begin(), only.covered.end(), uint8_t{1}) == 1);
@@ -578,7 +578,7 @@ TEST_CASE("occluder caps: more than 255 caps are kept, not wrapped") {
   std::vector<uint8_t> wanted(s.vertex_count(), 0);
   wanted[center] = 1;
   const OccluderCaps caps =
-      find_occluder_caps(s, open_hemisphere_threshold(s), wanted, 300, INFINITY);
+      find_occluder_caps(s, compute_vertex_ray_starts(s), wanted, 300, INFINITY);
   REQUIRE(caps.covered[center] == 1);
   CHECK(caps.count(center) >= 256);
   CHECK(caps.count(center) <= 300);
@@ -597,7 +597,7 @@ TEST_CASE("occluder caps: a vertex without a usable normal is not covered") {
   const uint32_t v = 5 * 41 + 5;
   scene.normals[v] = glm::vec3(0.f);
   const OccluderCaps caps =
-      find_occluder_caps(scene, open_hemisphere_threshold(scene), {}, kDefaultMaxCaps, kHalfPi);
+      find_occluder_caps(scene, compute_vertex_ray_starts(scene), {}, kDefaultMaxCaps, kHalfPi);
   CHECK(caps.covered[v] == 0);
   CHECK(caps.count(v) == 0);
   // Its neighbour, with its normal, is covered by caps toward the objects.
@@ -651,7 +651,7 @@ struct CapBakeFixture {
 
   CapBakeFixture() {
     caps =
-        find_occluder_caps(scene, open_hemisphere_threshold(scene), {}, kDefaultMaxCaps, kHalfPi);
+        find_occluder_caps(scene, compute_vertex_ray_starts(scene), {}, kDefaultMaxCaps, kHalfPi);
     for (uint32_t v = 0; v < scene.vertex_count(); ++v)
       if (caps.covered[v]) (caps.count(v) > 0 ? capped : open).push_back(v);
     BakeOptions u;
@@ -878,7 +878,8 @@ TEST_CASE("cap-sampled bake: a vertex whose caps all lie below its horizon is an
   // here; the finder leaves the other 7 uncovered): checked too.
   CapBakeFixture& f = cap_fixture();
   REQUIRE(!f.open.empty());
-  const HemisphereAnalysis analysis = find_open_hemispheres(f.scene);
+  const HemisphereAnalysis analysis =
+      find_open_hemispheres(f.scene, compute_vertex_ray_starts(f.scene));
   for (uint32_t v : f.open) CHECK(analysis.open[v] == 1);
   for (prt::TransferKind kind : {prt::TransferKind::Shadowed, prt::TransferKind::Interreflected}) {
     CAPTURE(transfer_kind_name(kind));

@@ -65,8 +65,8 @@ TEST_CASE("ball bound: at least the exact projected solid angle of a cap, and ti
 
 TEST_CASE("occlusion bound: never below the occluded fraction measured with rays") {
   const Scene scene = floor_with_ball();
-  const double tau = open_hemisphere_threshold(scene);
-  const OcclusionBounds b = bound_occlusion(scene, tau, 1e30);
+  const VertexRayStarts starts = compute_vertex_ray_starts(scene);
+  const OcclusionBounds b = bound_occlusion(scene, starts, 1e30);
   RayCaster caster(scene);
   std::size_t checked = 0, useful = 0;
   for (uint32_t v = 0; v < scene.vertex_count(); v += 7) {
@@ -74,7 +74,7 @@ TEST_CASE("occlusion bound: never below the occluded fraction measured with rays
     CAPTURE(v, g, b.bound[v]);
     REQUIRE(static_cast<double>(b.bound[v]) >= g - 2e-3);
     // The hierarchy's groups are coarser than single triangles, never looser than 3× here.
-    const double brute = occlusion_bound_brute_force(scene, v, tau);
+    const double brute = occlusion_bound_brute_force(scene, v, starts);
     CHECK(static_cast<double>(b.bound[v]) <= 3.0 * brute + 1e-12);
     ++checked;
     useful += b.bound[v] < 0.01f;

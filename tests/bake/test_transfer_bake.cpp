@@ -185,7 +185,11 @@ TEST_CASE("ray caster: hits, barycentrics, faces, packets and an empty scene") {
     CHECK(occ[i] == inside);
     CHECK(hits[i].hit == inside);
   }
-  CHECK(caster.offset_scale() == Approx(1e-4 * std::sqrt(2.0)).epsilon(1e-3));
+  // ε_v = 4·2^-23·max|p| + 2^-18·(longest edge) (bake/ray_offset.h): vertex 0 sits at the origin
+  // (no ulp term), the others at 1; every vertex touches the √2 edge.
+  const std::vector<float>& eps = caster.vertex_ray_starts().offset;
+  CHECK(eps[0] == Approx(std::ldexp(std::sqrt(2.0), -18)).epsilon(1e-6));
+  CHECK(eps[1] == Approx(std::ldexp(4.0, -23) + std::ldexp(std::sqrt(2.0), -18)).epsilon(1e-6));
   const prt::bake::Scene empty;
   const prt::bake::RayCaster none(empty);
   CHECK_FALSE(none.occluded({0, 0, 0}, {0, 0, 1}, 0.f, 1e30f));

@@ -176,7 +176,7 @@ TEST_CASE("relight: radiance under a sunny sky equals a direct integration of LÂ
     const int cols = 2 * rows;
     const double cell = 4 * M_PI / (static_cast<double>(rows) * cols);
     const glm::vec3 n = scene.normals[v];
-    const glm::vec3 origin = caster.offset_origin(scene.positions[v], n);
+    const glm::vec3 origin = caster.vertex_origin(static_cast<uint32_t>(v));
     Moments m;
     for (int i = 0; i < rows; ++i) {
       const double y = 1 - 2 * (i + 0.5) / rows, s = std::sqrt(std::max(0.0, 1 - y * y));

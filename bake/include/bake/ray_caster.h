@@ -7,14 +7,14 @@
 // Front faces are counter-clockwise as seen by the ray (glTF's winding): front_face is
 // dot((p1 − p0) × (p2 − p0), d) < 0, computed from the scene's own positions.
 //
-// Self-intersection: offset_origin() moves a surface point along its normal by
-//   ε = max(1e-4 · extent, 64 · ulp(max_i |p_i|))
-// (extent = bounding-box diagonal), so scenes in millimetres and in kilometres both avoid
-// shadow acne; all queries start at tnear ≥ 0 from that offset point.
-// Vertices on a sharp edge whose faces do not share the vertex (box edges) lie in the plane of
-// the neighbouring face, so rays leaving them would hit that face at t = 0. vertex_origin()
-// therefore also nudges the point by min(ε, half the way) toward the mean centroid of its own
-// triangles, in the tangent plane: off the neighbouring face's plane, on the correct side.
+// Self-intersection: rays leaving a scene vertex start at vertex_origin(v), which stands ε_v off
+// the surface along the vertex normal (bake/ray_offset.h: ε follows the float rounding of the
+// point and of its own triangles, not the scene's size). Vertices on a sharp edge whose faces do
+// not share the vertex (box edges) lie in the plane of the neighbouring face, so rays leaving
+// them would hit that face at t = 0; vertex_origin() therefore also nudges the point by
+// min(ε_v, half the way) toward the mean centroid of its own triangles, in the tangent plane:
+// off the neighbouring face's plane, on the correct side. Rays leaving a hit point start at
+// surface_origin(), ε of the hit triangle off it. All queries start at tnear ≥ 0.
 // Every ray is cast with mask 0xFFFFFFFF. Embree device and build errors throw std::runtime_error
 // with a one-line message. Queries are const and thread-safe.
 #pragma once
@@ -27,12 +27,10 @@
 
 #include <glm/glm.hpp>
 
+#include "bake/ray_offset.h"
 #include "bake/scene.h"
 
 namespace prt::bake {
-
-// ε of the scene (see above): what offset_origin() moves a point along its normal.
-float ray_offset_scale(const Scene& scene);
 
 class RayCaster {
  public:
@@ -62,17 +60,20 @@ class RayCaster {
   void intersect_packet(const glm::vec3& origin, const glm::vec3* dirs, int count, float tfar,
                         Hit* out) const;
 
-  // ε of the header comment, in scene units.
-  float offset_scale() const { return offset_scale_; }
-  // p + ε·n: the origin of rays leaving a surface point p with unit normal n.
-  glm::vec3 offset_origin(const glm::vec3& p, const glm::vec3& n) const {
-    return p + offset_scale_ * n;
+  // ε_v and τ_v of every vertex (bake/ray_offset.h).
+  const VertexRayStarts& vertex_ray_starts() const { return starts_; }
+
+  // Ray origin for scene vertex v: ε_v along its normal, nudged into its own triangles.
+  glm::vec3 vertex_origin(uint32_t v) const {
+    const glm::vec3 n = glm::normalize(scene_->normals[v]);
+    return scene_->positions[v] + starts_.offset[v] * n +
+           (inward_.empty() ? glm::vec3(0.f) : inward_[v]);
   }
 
-  // Ray origin for scene vertex v: offset along its normal and nudged into its own triangles.
-  glm::vec3 vertex_origin(uint32_t v) const {
-    return offset_origin(scene_->positions[v], glm::normalize(scene_->normals[v])) +
-           (inward_.empty() ? glm::vec3(0.f) : inward_[v]);
+  // Ray origin for a point p on `triangle` (a hit point) leaving along the unit normal n of the
+  // side the ray continues on: p + ε·n with ε of that triangle (bake/ray_offset.h).
+  glm::vec3 surface_origin(uint32_t triangle, const glm::vec3& p, const glm::vec3& n) const {
+    return p + static_cast<float>(triangle_ray_offset(*scene_, triangle, glm::dvec3(p))) * n;
   }
 
   std::size_t triangle_count() const { return triangle_count_; }
@@ -88,7 +89,7 @@ class RayCaster {
   void* device_ = nullptr;     // RTCDevice
   void* rtc_scene_ = nullptr;  // RTCScene
   std::size_t triangle_count_ = 0;
-  float offset_scale_ = 0.f;
+  VertexRayStarts starts_;
   std::vector<glm::vec3> inward_;  // per-vertex tangential nudge (see vertex_origin)
   std::atomic<long long> bytes_now_{0};
   std::atomic<long long> bytes_peak_{0};

@@ -8,18 +8,16 @@
 // h(q) = (q − p)·n be the height of a point q above p's tangent plane. A triangle is the convex
 // hull of its three vertices, and h is affine, so h ≤ max over the triangle's vertices on the
 // whole triangle. If every vertex q of every triangle has h(q) ≤ τ, all geometry lies in the
-// half-space h ≤ τ. The baker casts rays from o = p + ε·n + t⊥ (bake/ray_caster.h:
-// ε ≥ 1e-4 · extent, t⊥ a nudge in the tangent plane) in directions ω with ω·n ≥ 0, so every
-// point o + sω (s ≥ 0) has height ε + s·(ω·n) ≥ ε. With τ = ε/2 minus float rounding no ray can
-// reach any triangle: the vertex's visibility is 1 in every direction of its hemisphere, and its
-// shadowed (and interreflected: nothing is hit) transfer equals the unshadowed one exactly.
-// Examples: every vertex of a convex mesh whose normals lie in the normal cone (any positive
-// blend of the adjacent face normals, or the radial normals of a sphere), the top of an object
-// standing on a ground plane with nothing above it.
-// We use τ = 0.4e-4 · extent (extent = bounding-box diagonal; float rounding of o is below
-// 2^-17 · |p| ≪ 0.1e-4 · extent unless the scene is far from its origin, where ε's own
-// 64-ulp floor takes over). The test is conservative: a vertex it rejects may still be open
-// (then rays simply find nothing).
+// half-space h ≤ τ. The baker casts rays from o = p + ε·n + t⊥ (bake/ray_caster.h, t⊥ a nudge
+// in the tangent plane) in directions ω with ω·n ≥ 0, so every point o + sω (s ≥ 0) has height
+// ε + s·(ω·n) ≥ ε, less the rounding of o. With τ_v of bake/ray_offset.h (half of ε_v after
+// that rounding) no ray can reach any triangle: the vertex's visibility is 1 in every direction of
+// its hemisphere, and its shadowed (and interreflected: nothing is hit) transfer equals the
+// unshadowed one exactly. Examples: every vertex of a convex mesh whose normals lie in the normal
+// cone (any positive blend of the adjacent face normals, or the radial normals of a sphere), the
+// top of an object standing on a ground plane with nothing above it. τ_v follows the float rounding
+// at the vertex, not the scene's size. The test is conservative: a vertex it rejects may still be
+// open (then rays simply find nothing).
 //
 // Acceleration: a bounding-volume hierarchy over the triangles' vertices (median splits, leaves
 // of ≤ 16 points). For a box with centre c and half-extent e, max h = (c − p)·n + Σ|n_i|·e_i, so
@@ -33,6 +31,7 @@
 
 #include <glm/glm.hpp>
 
+#include "bake/ray_offset.h"
 #include "bake/scene.h"
 
 namespace prt::bake {
@@ -40,15 +39,12 @@ namespace prt::bake {
 struct HemisphereAnalysis {
   std::vector<uint8_t> open;  // per vertex: 1 = provably unoccluded hemisphere
   std::size_t open_count = 0;
-  double threshold = 0.0;  // τ, scene units
   double seconds = 0.0;
 };
 
-// τ for a scene (see above): 0.4e-4 × the bounding-box diagonal.
-double open_hemisphere_threshold(const Scene& scene);
-
-// Runs the open-hemisphere test for every vertex (in parallel; deterministic).
-HemisphereAnalysis find_open_hemispheres(const Scene& scene);
+// Runs the open-hemisphere test for every vertex with τ_v of `starts` (in parallel;
+// deterministic).
+HemisphereAnalysis find_open_hemispheres(const Scene& scene, const VertexRayStarts& starts);
 
 // Reference path for tests: the same test by brute force over every triangle vertex, O(V·T).
 bool is_hemisphere_open_brute_force(const Scene& scene, std::size_t vertex, double threshold);
