@@ -11,6 +11,7 @@
 #include <catch2/catch.hpp>
 
 #include "bake/ground_truth.h"
+#include "bake/haar_baker.h"
 #include "bake/occlusion_bound.h"
 #include "bake/procedural_mesh.h"
 #include "bake/ray_caster.h"
@@ -18,6 +19,9 @@
 #include "bake/sampling.h"
 #include "bake/scene_analysis.h"
 #include "bake/transfer_baker.h"
+#include "prt/haar_approximation.h"
+#include "prt/haar_relighter.h"
+#include "prt/haar_transform.h"
 #include "transfer_test_support.h"
 
 using namespace prt::bake;
@@ -409,6 +413,39 @@ TEST_CASE("vertices of huge tilted triangles see their whole hemisphere") {
     for (uint32_t vtx = 0; vtx < plane.vertex_count(); ++vtx) {
       CAPTURE(shift.x, vtx);
       REQUIRE(occluded_fraction(caster, plane, vtx, 4096) == 0.0);
+    }
+  }
+}
+
+TEST_CASE("the Haar baker's visibility at contact in a mixed-scale scene") {
+  // The tangent unit sphere on a ground 1e3 across, at the origin and 1e4 away, baked with Haar
+  // wavelets (cube 32, 2 × 2 directions per texel, every term kept) and relit under a white
+  // cube: B = ρ·(cosine-weighted visible fraction) = ρ·(1 − (R/L)³). Quadrature over 24,576
+  // directions and the 24-ring polyhedron stay below 0.005; the budget is the closed forms' 0.01.
+  for (const glm::vec3 shift : {glm::vec3(0.f), glm::vec3(1e4f, 3e3f, -1e4f)}) {
+    Scene s = graded_grid({0, 0, 0}, {0, 0, 1}, graded({0.5f, 1.f}, 1.f, 0.5f, 500.f), {1, 0, 0},
+                          graded({0.f}, 1.f, 0.5f, 500.f), glm::vec3(0.5f), "ground");
+    append_scene(s, make_uv_sphere({0, 1, 0}, 1.f, 24, 48, false, glm::vec3(0.5f), "sphere"));
+    const Scene moved = prt::test::transformed(s, 1.f, shift);
+    HaarBakeOptions o;
+    o.cube_size = 32;
+    o.supersample = 2;
+    o.compression.quantization = prt::HaarQuantization::Float32;
+    o.compression.relative_threshold = 0.0;
+    const HaarBakeResult baked = bake_haar_transfer(moved, o);
+    prt::CubeMap white;
+    white.size = 32;
+    white.rgb.assign(static_cast<std::size_t>(3 * white.texel_count()), 1.f);
+    prt::Result<prt::WaveletCube> wavelets = prt::transform_cube(white);
+    REQUIRE(wavelets.ok());
+    const prt::HaarRelighter relighter(baked.file.transfer);
+    std::vector<float> shaded(3 * moved.vertex_count());
+    REQUIRE(relighter.shade(prt::keep_all_terms(*wavelets), shaded.data()).ok());
+    for (const float D : {0.5f, 1.f}) {
+      const double L = std::sqrt(double(D) * D + 1.0);
+      INFO("shift " << shift.x << ", D = " << D);
+      CHECK(shaded[3 * ground_vertex(s, 0.f, D)] / 0.5 ==
+            Approx(1.0 - std::pow(1.0 / L, 3.0)).margin(kClosedFormTolerance));
     }
   }
 }
