@@ -1,0 +1,99 @@
+// bake/src/fixed_sampler.cpp — the fixed recipe of the sampling pass: N Owen-scrambled Sobol'
+// cosine-distributed rays at every vertex (transfer_pass.h).
+#include <algorithm>
+#include <limits>
+
+#include <tbb/parallel_for.h>
+
+#include "bake/sampling.h"
+#include "sh/basis.h"
+#include "transfer_pass.h"
+
+namespace prt::bake::detail {
+namespace {
+
+// One vertex: its direct transfer, AO, bent normal and (interreflected) its row of H.
+struct FixedVertexSampler {
+  SamplingPass& pass;
+  std::size_t block;
+  glm::vec3 dirs[kPacketSize];
+  bool occluded[kPacketSize];
+  RayCaster::Hit hits[kPacketSize];
+  std::vector<float> y, packet_sum;
+  std::vector<double> acc;
+  std::vector<std::pair<uint32_t, float>> gathered;
+
+  FixedVertexSampler(SamplingPass& p, std::size_t blk)
+      : pass(p),
+        block(blk),
+        y(static_cast<std::size_t>(p.K)),
+        packet_sum(static_cast<std::size_t>(p.K)),
+        acc(static_cast<std::size_t>(p.K)) {}
+
+  // Returns the rays cast.
+  uint64_t sample(std::size_t v) {
+    const int K = pass.K, N = pass.N;
+    const bool need_sh = pass.need_sh_rays, interreflect = pass.interreflect;
+    const float tfar = std::numeric_limits<float>::infinity();
+    const double inv_n = 1.0 / N;
+    const glm::vec3 n = glm::normalize(pass.scene.normals[v]);
+    const glm::vec3 origin = pass.caster.vertex_origin(static_cast<uint32_t>(v));
+    std::fill(acc.begin(), acc.end(), 0.0);
+    gathered.clear();
+    uint32_t visible = 0;
+    glm::dvec3 bent(0.0);
+    uint64_t rays = 0;
+    for (int first = 0; first < N; first += kPacketSize) {
+      generate_cosine_directions(n, pass.options.seed, v, static_cast<uint32_t>(first), kPacketSize,
+                                 dirs);
+      cast_packet(pass.caster, origin, dirs, kPacketSize, tfar, interreflect ? hits : nullptr,
+                  occluded);
+      rays += kPacketSize;
+      // SH of the visible directions: summed in float over the 16 rays of a packet (at most 16
+      // terms of magnitude ≤ ~3.5), then added to the double accumulator.
+      bool any = false;
+      if (need_sh) std::fill(packet_sum.begin(), packet_sum.end(), 0.f);
+      for (int i = 0; i < kPacketSize; ++i) {
+        if (occluded[i]) continue;
+        ++visible;
+        bent += glm::dvec3(dirs[i]);
+        if (!need_sh) continue;
+        any = true;
+        sh::evaluate(pass.order, dirs[i].x, dirs[i].y, dirs[i].z, y.data());
+        for (int k = 0; k < K; ++k) packet_sum[k] += y[k];
+      }
+      if (any)
+        for (int k = 0; k < K; ++k) acc[k] += static_cast<double>(packet_sum[k]);
+      if (interreflect)
+        for (int i = 0; i < kPacketSize; ++i)
+          if (hits[i].hit && !gather_front_hit(pass.scene, hits[i], dirs[i], 1.f, gathered))
+            ++pass.block_back_hits[block];
+    }
+    if (need_sh)
+      for (int k = 0; k < K; ++k) acc[k] *= inv_n;
+    if (need_sh) pass.direct.store(v, acc.data());
+    pass.sums.ao[v] = static_cast<float>(visible * inv_n);
+    const double bl = glm::length(bent);
+    const glm::vec3 bn = bl > 0 ? glm::vec3(bent / bl) : n;
+    pass.sums.bent[3 * v + 0] = bn.x;
+    pass.sums.bent[3 * v + 1] = bn.y;
+    pass.sums.bent[3 * v + 2] = bn.z;
+    if (interreflect) append_row(gathered, inv_n, pass.rows[block]);
+    return rays;
+  }
+};
+
+}  // namespace
+
+void sample_fixed(SamplingPass& pass) {
+  tbb::parallel_for(std::size_t(0), pass.blocks(), [&](std::size_t blk) {
+    FixedVertexSampler sampler(pass, blk);
+    const std::size_t v_end = std::min(pass.V, (blk + 1) * kVertexBlock);
+    uint64_t rays = 0;
+    for (std::size_t v = blk * kVertexBlock; v < v_end; ++v) rays += sampler.sample(v);
+    pass.block_rays[blk] = rays;
+    if (pass.progress) pass.progress->advance(v_end - blk * kVertexBlock, rays);
+  });
+}
+
+}  // namespace prt::bake::detail

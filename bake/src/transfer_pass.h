@@ -1,0 +1,120 @@
+// bake/src/transfer_pass.h (private) — what the phases of bake_transfer share: the direct
+// transfer being stored, the rows of the gather matrix H being built, and the sampling pass that
+// the two samplers (fixed_sampler.cpp: the same N rays at every vertex; adaptive_sampler.cpp:
+// rays allocated to where the error is) both fill in. transfer_baker.cpp runs the phases.
+//
+// Conventions: SH of bake/transfer_baker.h (order n, K = n² coefficients, real orthonormal, polar
+// axis +z); the direct transfer S_v,k = (1/N) Σ V(ω_s) Y_k(ω_s), grey, and T = ρ_c·S once stored;
+// rows of H as derived at the top of transfer_baker.cpp.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <utility>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "bake/interreflection_solver.h"
+#include "bake/occluder_caps.h"
+#include "bake/progress.h"
+#include "bake/ray_caster.h"
+#include "bake/transfer_baker.h"
+
+namespace prt::bake::detail {
+
+inline constexpr std::size_t kVertexBlock = 64;  // vertices per parallel task (fixed: determinism)
+inline constexpr std::size_t kAuditStride = 8;   // adaptive: every 8th sampled vertex audits
+
+// The rows of H produced by one block of vertices.
+struct BlockRows {
+  std::vector<uint32_t> lengths;
+  std::vector<uint32_t> columns;
+  std::vector<float> weights;
+};
+
+// Per-vertex results of the sampling pass besides the transfer.
+struct VertexSums {
+  std::vector<double> visibility_sh;  // V × K: (1/N) Σ V Y_k (grey; albedo applied later)
+  std::vector<float> ao;              // V
+  std::vector<float> bent;            // 3V
+};
+
+// Where a vertex's direct transfer goes: straight into the float output as ρ_c·S for shadowed
+// and unshadowed bakes, kept in double (sums.visibility_sh) for the interreflection solve.
+// Compact output (AdaptiveSampling::compact_output) stores rows for the vertices that are not
+// kSkipVertex only, in vertex order.
+class DirectTransfer {
+ public:
+  DirectTransfer(const Scene& scene, const BakeOptions& options, int channels,
+                 prt::TransferData& data, VertexSums& sums);
+  // The analytic unshadowed transfer of vertex v, grey: (1/π) · rotate_zonal(clamped cosine, n).
+  void unshadowed(std::size_t v, double* out) const;
+  // Stores S_v (K values) as described above.
+  void store(std::size_t v, const double* s_k);
+
+ private:
+  const Scene& scene_;
+  int order_, K_, C_;
+  bool interreflect_;
+  bool compact_;
+  std::vector<std::size_t> row_of_;
+  std::vector<double> zonal_;
+  prt::TransferData& data_;
+  VertexSums& sums_;
+};
+
+// The sampling pass: one of the samplers fills sums, the transfer (through `direct`), the rows
+// of H per block and the ray counts.
+struct SamplingPass {
+  const Scene& scene;
+  const BakeOptions& options;
+  const RayCaster& caster;
+  ProgressSink* progress;
+  std::size_t V;
+  int order, K;
+  int N;  // the fixed recipe's samples per vertex
+  bool need_sh_rays, interreflect;
+  DirectTransfer& direct;
+  VertexSums& sums;
+  BakeStatistics& st;
+  // Adaptive only: per-vertex modes and occluder caps.
+  const std::vector<uint8_t>& modes;
+  const OccluderCaps& caps;
+  // Outputs per block of kVertexBlock vertices.
+  std::vector<BlockRows> rows;  // interreflected only
+  std::vector<uint64_t> block_rays, block_back_hits;
+
+  std::size_t blocks() const { return (V + kVertexBlock - 1) / kVertexBlock; }
+  uint8_t mode_of(std::size_t v) const { return modes.empty() ? kSampleVertex : modes[v]; }
+  bool capped(std::size_t v) const {
+    return !caps.covered.empty() && caps.covered[v] && caps.count(v) > 0;
+  }
+};
+
+// The fixed recipe: N cosine-distributed rays at every vertex.
+void sample_fixed(SamplingPass& pass);
+// Adaptive sampling (transfer_baker.h, AdaptiveSampling): min_samples everywhere, then rounds of
+// Neyman allocation until the calibrated error model meets the budget.
+void sample_adaptive(SamplingPass& pass);
+
+// Casts `count` ≤ kPacketSize rays from `origin`: closest hits into `hits` (occluded[i] = a hit)
+// when `hits` is not null, occlusion only otherwise.
+void cast_packet(const RayCaster& caster, const glm::vec3& origin, const glm::vec3* dirs, int count,
+                 float tfar, RayCaster::Hit* hits, bool* occluded);
+
+// Appends the hit triangle's vertices, weighted by barycentrics × the sample's weight (1 under
+// cosine-weighted sampling, bake/cap_sampling.h's w in caps), to a row being gathered; false
+// (nothing added) when the ray sees the back side: the flat facet's geometric normal, oriented
+// by the triangle's vertex normals (hit_side.h). A back face occludes only.
+bool gather_front_hit(const Scene& scene, const RayCaster::Hit& hit, const glm::vec3& dir,
+                      float weight, std::vector<std::pair<uint32_t, float>>& gathered);
+
+// Merges duplicate columns of the gathered entries into one row of H, scaled by row_scale.
+void append_row(std::vector<std::pair<uint32_t, float>>& gathered, double row_scale,
+                BlockRows& rows);
+
+// Concatenates the blocks' rows into H (the blocks are emptied).
+void assemble_gather_matrix(std::vector<BlockRows>& rows, std::size_t V, SparseTransferMatrix& h);
+
+}  // namespace prt::bake::detail
