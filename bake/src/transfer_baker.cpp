@@ -45,6 +45,7 @@
 #include "bake/sampling.h"
 #include "bake/scene_analysis.h"
 #include "sh/basis.h"
+#include "sh/constants.h"
 #include "sh/zonal.h"
 
 #include "hit_side.h"
@@ -55,8 +56,8 @@
 namespace prt::bake {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-constexpr double kY00 = 0.28209479177387814;  // 1 / (2√π)
+using sh::kPi;
+using sh::kY00;
 constexpr int kMaxAdaptiveBounces = 200;      // then BiCGSTAB finishes the solve
 constexpr std::size_t kVertexBlock = 64;      // vertices per parallel task (fixed: determinism)
 constexpr uint64_t kReplicaSalt = 0x5245504c49434131ull;  // seeds the second adaptive replica

@@ -21,6 +21,7 @@
 #include <nlohmann/json.hpp>
 
 #include "relight/image_io.h"
+#include "sh/constants.h"
 #include "support/test_data.h"
 
 namespace fs = std::filesystem;
@@ -160,7 +161,7 @@ TEST_CASE("cli: prt env --json states the convention and the coefficients") {
   CHECK(j["basis"].get<std::string>().find("no Condon-Shortley") != std::string::npos);
   REQUIRE(j["coefficients"].size() == 16);
   // A constant radiance c projects to L00 = c·√(4π) (exact quadrature of a constant).
-  const double root4pi = std::sqrt(4.0 * 3.14159265358979323846);
+  const double root4pi = std::sqrt(4.0 * sh::kPi);
   for (int ch = 0; ch < 3; ++ch)
     CHECK(j["coefficients"][0][ch].get<double>() == Approx(c[ch] * root4pi).epsilon(1e-6));
 }
