@@ -68,9 +68,6 @@ constexpr std::size_t kMinClassAudits = 64;       // fewer in a class (hemispher
 constexpr double kHitCost = 2.0;  // a ray that hits costs 1 + this × an escaping one (allocation)
 constexpr uint32_t kRoundGrowth = 4;  // a vertex's samples grow at most 4× per allocation round
 constexpr int kMaxRounds = 8;
-constexpr const char* kBasisConvention =
-    "real orthonormal SH, no Condon-Shortley phase, index k = l(l+1)+m, Y(x,y,z) with polar "
-    "axis +z, scene frame glTF (+Y up)";
 
 using Clock = std::chrono::steady_clock;
 
@@ -931,7 +928,7 @@ BakeResult bake_transfer(const Scene& scene, const BakeOptions& options, Progres
   nlohmann::json meta;
   meta["generator"] = "prt bake";
   meta["scene"] = scene.source_path;
-  meta["sh_basis"] = kBasisConvention;
+  meta["sh_basis"] = sh::kBasisConvention;
   meta["transfer"] = transfer_kind_name(st.stored_kind);
   meta["order"] = order;
   meta["channels"] = C;

@@ -15,6 +15,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "sh/basis.h"
 #include "stability_cases.h"
 
 namespace prt::relight::stability {
@@ -131,9 +132,7 @@ int run_stability_report(const std::string& out_dir, bool quick) {
   }
 
   nlohmann::json j;
-  j["sh_basis"] =
-      "real orthonormal SH, no Condon-Shortley phase, index k = l(l+1)+m, polar axis +z, "
-      "scene frame glTF (+Y up)";
+  j["sh_basis"] = sh::kBasisConvention;
   j["quick"] = quick;
   j["cases"] = nlohmann::json::array();
   j["failed"] = failed;
