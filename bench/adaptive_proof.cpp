@@ -26,6 +26,7 @@
 #include "bake/triangle_hierarchy.h"
 #include "prt/transfer_file.h"
 #include "sh/basis.h"
+#include "sh/constants.h"
 #include "sh/env_map.h"
 #include "sh/zonal.h"
 
@@ -46,7 +47,7 @@ std::vector<double> make_sky() {
   const double tint[3] = {1.0, 0.8, 0.6};
   for (int c = 0; c < 3; ++c) {
     for (int k = 0; k < K; ++k) out[c * K + k] = tint[c] * lobe[k];
-    out[c * K] += 0.3 * 3.5449077018110318;
+    out[c * K] += 0.3 * sh::kSqrtFourPi;
   }
   return out;
 }

@@ -8,6 +8,7 @@
 #include <benchmark/benchmark.h>
 
 #include "sh/basis.h"
+#include "sh/constants.h"
 #include "sh/rotation.h"
 
 namespace {
@@ -17,7 +18,7 @@ constexpr int kDirections = 1024;  // power of two: index with & (kDirections âˆ
 template <typename T>
 std::vector<std::array<T, 3>> random_directions() {
   std::mt19937_64 rng(1);
-  std::uniform_real_distribution<double> u(-1.0, 1.0), a(0.0, 6.283185307179586);
+  std::uniform_real_distribution<double> u(-1.0, 1.0), a(0.0, sh::kTwoPi);
   std::vector<std::array<T, 3>> d(kDirections);
   for (auto& v : d) {
     const double z = u(rng), phi = a(rng), r = std::sqrt(1.0 - z * z);

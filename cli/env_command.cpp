@@ -34,9 +34,6 @@
 namespace prt::cli {
 namespace {
 
-constexpr const char* kBasis =
-    "real orthonormal SH, no Condon-Shortley phase, k = l(l+1)+m, polar axis +z, functions of "
-    "(x,y,z) in the scene frame";
 constexpr const char* kFrame = "glTF: right-handed, +Y up";
 
 struct EnvArguments {
@@ -199,7 +196,7 @@ FileResult process(const std::string& path, const EnvArguments& args, const Sett
   j["width"] = env.width;
   j["height"] = env.height;
   j["order"] = order;
-  j["basis"] = kBasis;
+  j["basis"] = sh::kBasisConvention;
   j["frame"] = kFrame;
   j["layout"] = sh::layout_name(env.layout);
   j["layout_note"] = layout_note;
@@ -219,7 +216,7 @@ FileResult process(const std::string& path, const EnvArguments& args, const Sett
   text += "# " + path + ": " + layout_note + ", " + std::to_string(env.width) + "x" +
           std::to_string(env.height) + "\n";
   text += "# order " + std::to_string(order) + " (" + std::to_string(n2) +
-          " coefficients per channel); basis: " + kBasis + "; frame " + kFrame + "\n";
+          " coefficients per channel); basis: " + sh::kBasisConvention + "; frame " + kFrame + "\n";
   text += std::string("# quantity ") + quantity +
           (args.irradiance ? " (E_lm = A_l L_lm; constant radiance L gives E = pi L)" : "") +
           "; window " + sh::window_name(window);

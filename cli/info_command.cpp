@@ -15,6 +15,7 @@
 #include "command_registry.h"
 #include "prt/transfer_data.h"
 #include "prt/transfer_file.h"
+#include "sh/basis.h"
 
 namespace prt::cli {
 namespace {
@@ -50,8 +51,7 @@ nlohmann::json describe(const prt::TransferData& d, const std::string& path) {
     prims.push_back(
         {{"name", p.name}, {"first_vertex", p.first_vertex}, {"vertex_count", p.vertex_count}});
   j["primitives"] = prims;
-  j["sh_basis"] =
-      "real orthonormal SH, no Condon-Shortley phase, index k = l(l+1)+m, scene frame +Y up";
+  j["sh_basis"] = sh::kBasisConvention;
   if (!d.metadata_json.empty()) {
     nlohmann::json meta = nlohmann::json::parse(d.metadata_json, nullptr, false);
     j["metadata"] = meta.is_discarded() ? nlohmann::json(d.metadata_json) : meta;

@@ -13,6 +13,7 @@
 #include "command_registry.h"
 #include "relight/image_io.h"
 #include "relight/sky_model.h"
+#include "sh/constants.h"
 #include "sh/projection.h"
 
 namespace prt::cli {
@@ -39,14 +40,13 @@ void run(const MakeSkyArguments& args) {
   const sh::EnvMap sky = relight::make_procedural_sky(args.width, args.height, p);
   relight::write_image(args.output, sky.width, sky.height, 3, sky.rgb.data());
   // Mean radiance = L_00·Y_00 (∫L dω = L_00/Y_00 and Y_00² = 1/4π).
-  constexpr double kY00 = 0.28209479177387814;
   const std::vector<double> L = sh::project(sky, 1);
   const std::array<double, 3> sun = relight::sun_direction(p);
   std::printf(
       "%s: %dx%d lat-long sky, sun at elevation %g deg, azimuth %g deg "
       "(direction %.4f %.4f %.4f), mean radiance %.4g %.4g %.4g\n",
       args.output.c_str(), sky.width, sky.height, p.sun_elevation_deg, p.sun_azimuth_deg, sun[0],
-      sun[1], sun[2], L[0] * kY00, L[1] * kY00, L[2] * kY00);
+      sun[1], sun[2], L[0] * sh::kY00, L[1] * sh::kY00, L[2] * sh::kY00);
 }
 
 void register_make_sky(CLI::App& app) {

@@ -13,6 +13,7 @@
 #include "bake/ray_caster.h"
 #include "bake/sampling.h"
 #include "bake/scene_analysis.h"
+#include "sh/constants.h"
 #include "sh/zonal.h"
 
 #include "scene_label.h"
@@ -20,8 +21,9 @@
 namespace prt::bake {
 namespace {
 
-constexpr double kSqrt4Pi = 3.5449077018110318;  // √(4π): SH band 0 of a constant 1
-constexpr double kY00 = 0.28209479177387814;
+using sh::kPi;
+using sh::kSqrtFourPi;  // SH band 0 of a constant 1
+using sh::kY00;
 // The share of the tolerance an SH order's truncation may take when none takes ≤ half of it.
 constexpr double kTruncationLimit = 0.8;
 
@@ -35,7 +37,7 @@ std::string format(const char* fmt, Numbers... numbers) {
 
 // A uniform white sky of radiance 1 at order 1: the lighting assumed without --env.
 std::vector<double> uniform_sky() {
-  return {kSqrt4Pi, kSqrt4Pi, kSqrt4Pi};
+  return {kSqrtFourPi, kSqrtFourPi, kSqrtFourPi};
 }
 
 // The scene with albedo 0.5 everywhere: the pilot's transfer is then S = T / 0.5 exactly (a
@@ -123,7 +125,7 @@ BoundedSkips select_bounded_skips(const Scene& scene, const VertexRayStarts& sta
       double norm2 = 0.0;
       for (int k = l * l; k < (l + 1) * (l + 1); ++k)
         norm2 += lighting[c * KL + k] * lighting[c * KL + k];
-      const double band = std::sqrt(norm2) * std::sqrt((2.0 * l + 1.0) / (4.0 * M_PI));
+      const double band = std::sqrt(norm2) * std::sqrt((2.0 * l + 1.0) / (4.0 * kPi));
       bound += band;
       if (l > 0) rest += band;
     }
@@ -132,7 +134,7 @@ BoundedSkips select_bounded_skips(const Scene& scene, const VertexRayStarts& sta
   }
   // Unshadowed exit radiance per unit albedo: (1/π)·clamped cosine about n, dotted with L.
   std::vector<double> zonal(n), u(3 * V);
-  for (int l = 0; l < n; ++l) zonal[l] = sh::clamped_cosine_zonal_coefficient(l) / M_PI;
+  for (int l = 0; l < n; ++l) zonal[l] = sh::clamped_cosine_zonal_coefficient(l) / kPi;
   std::vector<double> e2(V, 0.0), d2(V, 0.0);
   for (std::size_t v = 0; v < V; ++v) {
     const glm::dvec3 nv = glm::normalize(glm::dvec3(scene.normals[v]));

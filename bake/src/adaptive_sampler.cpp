@@ -17,13 +17,14 @@
 #include "bake/sample_allocation.h"
 #include "bake/sampling.h"
 #include "sh/basis.h"
+#include "sh/constants.h"
 #include "transfer_pass.h"
 
 namespace prt::bake::detail {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-constexpr double kY00 = 0.28209479177387814;              // 1 / (2√π)
+using sh::kPi;
+using sh::kY00;
 constexpr uint64_t kReplicaSalt = 0x5245504c49434131ull;  // seeds the second replica
 constexpr std::size_t kMinAuditVertices = 64;     // fewer sampled vertices than 8 × 64: all audit
 constexpr double kMinCalibration2 = 0.05 * 0.05;  // c is never taken below 0.05

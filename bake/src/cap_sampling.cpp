@@ -6,11 +6,12 @@
 #include <vector>
 
 #include "bake/sampling.h"
+#include "sh/constants.h"
 
 namespace prt::bake {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using sh::kPi;
 
 }  // namespace
 

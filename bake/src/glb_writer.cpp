@@ -1,8 +1,6 @@
 // Binary glTF writing through tinygltf's serializer (see bake/glb_writer.h).
 #include "bake/glb_writer.h"
 
-#include <unistd.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -12,6 +10,7 @@
 #include <tiny_gltf.h>
 #include <glm/gtc/quaternion.hpp>
 
+#include "prt/atomic_file.h"
 #include "scene_file_errors.h"
 
 namespace prt::bake {
@@ -170,21 +169,17 @@ void write_glb(const std::string& path, const Scene& scene,
                    std::to_string(scene.positions.size()) + " vertices");
   }
   const tinygltf::Model model = build_model(path, scene, vertex_colors);
-  const std::string temporary = path + ".tmp-" + std::to_string(::getpid());
-  tinygltf::TinyGLTF writer;
-  const bool ok = writer.WriteGltfSceneToFile(&model, temporary, /*embedImages=*/true,
-                                              /*embedBuffers=*/true, /*prettyPrint=*/false,
-                                              /*writeBinary=*/true);
-  std::error_code ec;
-  if (!ok || !std::filesystem::is_regular_file(temporary, ec)) {
-    std::filesystem::remove(temporary, ec);
-    fail(path, "cannot write the file");
-  }
-  std::filesystem::rename(temporary, path, ec);
-  if (ec) {
-    std::filesystem::remove(temporary, ec);
-    fail(path, "cannot rename the temporary file into place");
-  }
+  const Status written = replace_file_atomically(path, [&](const std::string& temporary) {
+    tinygltf::TinyGLTF writer;
+    const bool ok = writer.WriteGltfSceneToFile(&model, temporary, /*embedImages=*/true,
+                                                /*embedBuffers=*/true, /*prettyPrint=*/false,
+                                                /*writeBinary=*/true);
+    std::error_code ec;
+    if (!ok || !std::filesystem::is_regular_file(temporary, ec))
+      return Status::Error(path + ": cannot write the file");
+    return Status::Ok();
+  });
+  if (!written.ok()) throw SceneError(written.message());
 }
 
 }  // namespace prt::bake

@@ -17,11 +17,12 @@
 #include "bake/transfer_baker.h"
 
 #include "scene_label.h"
+#include "sh/constants.h"
 
 namespace prt::bake {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using sh::kPi;
 constexpr int kRouletteFromDepth = 2;  // path vertices 0 and 1 never roulette
 constexpr std::size_t kVertexBlock = 32;
 

@@ -21,6 +21,7 @@
 #include "bake/transfer_baker.h"
 #include "prt/haar_cube_map.h"
 #include "prt/haar_transform.h"
+#include "sh/constants.h"
 
 #include "hit_side.h"
 #include "transfer_geometry.h"
@@ -29,7 +30,7 @@ namespace prt::bake {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-constexpr double kInvPi = 0.31830988618379067154;
+using sh::kInvPi;
 constexpr std::size_t kVerticesPerTask = 32;     // fixed: determinism does not depend on it
 constexpr std::size_t kVerticesPerChunk = 4096;  // sparse vectors held before the builder
 constexpr int kSolveColumns = 64;                // interreflection: columns per Krylov solve

@@ -8,11 +8,12 @@
 #include <tbb/parallel_for.h>
 
 #include "bake/triangle_hierarchy.h"
+#include "sh/constants.h"
 
 namespace prt::bake {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using sh::kPi;
 constexpr double kAcceptRatio = 0.5;  // accept a group's ball when r/d ≤ this (α ≤ 30°)
 
 // True when some direction of the cap lies strictly above the tangent plane of n:

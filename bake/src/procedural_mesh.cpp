@@ -5,10 +5,12 @@
 #include <cmath>
 #include <utility>
 
+#include "sh/constants.h"
+
 namespace prt::bake {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using sh::kPi;
 
 // Opens a primitive at the current end of the scene.
 void begin_primitive(Scene& scene, std::string name, glm::vec3 albedo) {

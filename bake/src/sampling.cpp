@@ -4,10 +4,12 @@
 #include <algorithm>
 #include <cmath>
 
+#include "sh/constants.h"
+
 namespace prt::bake {
 namespace {
 
-constexpr float kPi = 3.14159265358979323846f;
+using sh::kPiFloat;
 
 uint64_t mix64(uint64_t z) {
   z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
@@ -78,10 +80,10 @@ glm::vec2 map_square_to_concentric_disk(const glm::vec2& u) {
   float r, phi;
   if (std::fabs(a) > std::fabs(b)) {
     r = a;
-    phi = (kPi / 4.f) * (b / a);
+    phi = (kPiFloat / 4.f) * (b / a);
   } else {
     r = b;
-    phi = (kPi / 2.f) - (kPi / 4.f) * (a / b);
+    phi = (kPiFloat / 2.f) - (kPiFloat / 4.f) * (a / b);
   }
   return {r * std::cos(phi), r * std::sin(phi)};
 }

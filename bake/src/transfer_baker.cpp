@@ -41,6 +41,7 @@
 #include "bake/progress.h"
 #include "bake/ray_caster.h"
 #include "bake/sampling.h"
+#include "sh/basis.h"
 #include "scene_label.h"
 #include "transfer_geometry.h"
 #include "transfer_pass.h"
@@ -49,9 +50,6 @@ namespace prt::bake {
 namespace {
 
 constexpr int kMaxAdaptiveBounces = 200;  // then BiCGSTAB finishes the solve
-constexpr const char* kBasisConvention =
-    "real orthonormal SH, no Condon-Shortley phase, index k = l(l+1)+m, Y(x,y,z) with polar "
-    "axis +z, scene frame glTF (+Y up)";
 
 using Clock = std::chrono::steady_clock;
 using detail::BlockRows;
@@ -314,7 +312,7 @@ std::string bake_metadata(const BakeJob& job) {
   nlohmann::json meta;
   meta["generator"] = "prt bake";
   meta["scene"] = job.scene.source_path;
-  meta["sh_basis"] = kBasisConvention;
+  meta["sh_basis"] = sh::kBasisConvention;
   meta["transfer"] = transfer_kind_name(st.stored_kind);
   meta["order"] = job.order;
   meta["channels"] = job.C;

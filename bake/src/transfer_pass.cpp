@@ -6,12 +6,13 @@
 
 #include "hit_side.h"
 #include "sh/basis.h"
+#include "sh/constants.h"
 #include "sh/zonal.h"
 
 namespace prt::bake::detail {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using sh::kPi;
 
 }  // namespace
 

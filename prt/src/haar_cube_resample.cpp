@@ -4,12 +4,13 @@
 #include <string>
 
 #include "prt/haar_cube_map.h"
+#include "sh/constants.h"
 #include "sh/env_map.h"
 
 namespace prt {
 
 namespace {
-constexpr double kPi = 3.14159265358979323846;
+using sh::kPi;
 }  // namespace
 
 Result<CubeMap> resample_to_cube(const sh::EnvMap& env, int size, CubeResampleStats* stats) {

@@ -9,6 +9,7 @@
 #include <new>
 #include <stdexcept>
 
+#include "prt/atomic_file.h"
 #include "transfer_format.h"
 
 namespace prt {
@@ -177,7 +178,7 @@ Result<std::vector<unsigned char>> encode_haar_transfer_file(const HaarTransferF
 Status write_haar_transfer_file(const std::string& path, const HaarTransferFile& file) {
   Result<std::vector<unsigned char>> bytes = encode_haar_transfer_file(file, path);
   if (!bytes.ok()) return bytes.status();
-  return detail::write_bytes_atomically(path, bytes.value());
+  return write_file_atomically(path, bytes.value().data(), bytes.value().size());
 }
 
 Result<HaarTransferFile> read_haar_transfer_data(const void* bytes, std::size_t size,

@@ -12,18 +12,11 @@
 #include <new>
 #include <sstream>
 
+#include "prt/atomic_file.h"
 #include "prt/crc32c.h"
 #include "prt/geometry_check.h"
 #include "prt/half.h"
 #include "transfer_format.h"
-
-#if defined(_WIN32)
-#include <process.h>
-#define PRT_GETPID _getpid
-#else
-#include <unistd.h>
-#define PRT_GETPID getpid
-#endif
 
 #if defined(__BYTE_ORDER__) && __BYTE_ORDER__ != __ORDER_LITTLE_ENDIAN__
 #error "prt coefficient files are little-endian; this reader copies arrays directly"
@@ -322,34 +315,7 @@ Result<std::vector<unsigned char>> encode_transfer_file(const TransferData& d,
 Status write_transfer_file(const std::string& path, const TransferData& data) {
   Result<std::vector<unsigned char>> bytes = encode_transfer_file(data, path);
   if (!bytes.ok()) return bytes.status();
-  return write_bytes_atomically(path, bytes.value());
-}
-
-Status detail::write_bytes_atomically(const std::string& path,
-                                      const std::vector<unsigned char>& b) {
-  std::string tmp;
-  try {
-    tmp = path + ".tmp-" + std::to_string(PRT_GETPID());
-  } catch (const std::bad_alloc&) {
-    return fail(path, "out of memory");
-  }
-  std::FILE* f = std::fopen(tmp.c_str(), "wb");
-  if (f == nullptr) return fail(path, "cannot create " + tmp + ": " + std::strerror(errno));
-  bool ok = std::fwrite(b.data(), 1, b.size(), f) == b.size();
-  int saved_errno = errno;
-  ok = (std::fflush(f) == 0) && ok;
-  if (ok) saved_errno = errno;
-  ok = (std::fclose(f) == 0) && ok;
-  if (!ok) {
-    std::remove(tmp.c_str());
-    return fail(path, std::string("cannot write ") + tmp + ": " + std::strerror(saved_errno));
-  }
-  if (std::rename(tmp.c_str(), path.c_str()) != 0) {
-    saved_errno = errno;
-    std::remove(tmp.c_str());
-    return fail(path, std::string("cannot rename ") + tmp + ": " + std::strerror(saved_errno));
-  }
-  return Status::Ok();
+  return write_file_atomically(path, bytes.value().data(), bytes.value().size());
 }
 
 namespace detail {

@@ -70,9 +70,6 @@ Result<std::vector<unsigned char>> encode_transfer_container(
     uint64_t coefficient_bytes, const std::function<void(unsigned char*)>& write_coefficients,
     const std::string& name);
 
-// Writes PATH.tmp-<pid>, flushes, renames over PATH; removes the temporary on any error.
-Status write_bytes_atomically(const std::string& path, const std::vector<unsigned char>& bytes);
-
 // Reads a whole file into `bytes`.
 Status read_file_bytes(const std::string& path, std::vector<unsigned char>* bytes);
 

@@ -7,13 +7,15 @@
 #include <stdexcept>
 #include <vector>
 
+#include "sh/constants.h"
+
 namespace prt::relight {
 namespace {
 
-constexpr float kPi = 3.14159265358979323846f;
+using sh::kPiFloat;
 
 float radians(float degrees) {
-  return degrees * kPi / 180.f;
+  return degrees * kPiFloat / 180.f;
 }
 
 bool is_finite(const glm::vec3& v) {
@@ -78,7 +80,7 @@ Camera from_scene_camera(const bake::SceneCamera& camera) {
 CameraBasis make_camera_basis(const Camera& camera, float aspect) {
   if (!is_finite(camera.eye) || !is_finite(camera.target) || !is_finite(camera.up))
     throw std::runtime_error("camera: non-finite eye, target or up");
-  if (!(camera.yfov_radians > 0.f && camera.yfov_radians < kPi))
+  if (!(camera.yfov_radians > 0.f && camera.yfov_radians < kPiFloat))
     throw std::runtime_error("camera: the vertical field of view must be in (0, 180) degrees");
   if (!(aspect > 0.f) || !std::isfinite(aspect))
     throw std::runtime_error("camera: the image aspect ratio must be positive");

@@ -2,8 +2,6 @@
 // for the rest) and atomic image writing with OpenImageIO.
 #include "relight/image_io.h"
 
-#include <unistd.h>
-
 #include <algorithm>
 #include <cerrno>
 #include <cmath>
@@ -20,6 +18,7 @@
 
 #include <OpenImageIO/imageio.h>
 
+#include "prt/atomic_file.h"
 #include "relight/exr_header_check.h"
 #include "relight/pfm_image.h"
 #include "relight/radiance_hdr.h"
@@ -162,43 +161,26 @@ FloatImage read_with_openimageio(const std::string& path, const std::vector<unsi
   return image;
 }
 
-std::string temporary_path(const std::string& path) {
-  return path + ".tmp-" + std::to_string(static_cast<long>(::getpid()));
-}
-
-// Writes `format` pixels through OpenImageIO to PATH.tmp-<pid>, then renames onto PATH.
+// Writes `format` pixels through OpenImageIO to PATH atomically (prt/atomic_file.h).
 void write_atomically(const std::string& path, const OIIO::ImageSpec& spec, OIIO::TypeDesc format,
                       const void* pixels) {
   // The plugin is chosen from the final name; the temporary name has no useful extension.
   std::unique_ptr<OIIO::ImageOutput> out = OIIO::ImageOutput::create(path);
   if (!out) fail(path, "no image writer for this extension (" + OIIO::geterror() + ")");
-  const std::string temporary = temporary_path(path);
-  auto remove_temporary = [&]() {
-    std::error_code ignored;
-    std::filesystem::remove(temporary, ignored);
+  auto cannot_write = [&](const std::string& why) {
+    return prt::Status::Error(path + ": " + one_line("cannot write: " + why));
   };
-  if (!out->open(temporary, spec)) {
-    const std::string why = out->geterror();
-    remove_temporary();
-    fail(path, "cannot write: " + why);
-  }
-  if (!out->write_image(format, pixels)) {
-    const std::string why = out->geterror();
-    out->close();
-    remove_temporary();
-    fail(path, "cannot write: " + why);
-  }
-  if (!out->close()) {
-    const std::string why = out->geterror();
-    remove_temporary();
-    fail(path, "cannot write: " + why);
-  }
-  std::error_code error;
-  std::filesystem::rename(temporary, path, error);
-  if (error) {
-    remove_temporary();
-    fail(path, "cannot rename the temporary file into place: " + error.message());
-  }
+  const prt::Status written = prt::replace_file_atomically(path, [&](const std::string& temporary) {
+    if (!out->open(temporary, spec)) return cannot_write(out->geterror());
+    if (!out->write_image(format, pixels)) {
+      const std::string why = out->geterror();
+      out->close();
+      return cannot_write(why);
+    }
+    if (!out->close()) return cannot_write(out->geterror());
+    return prt::Status::Ok();
+  });
+  if (!written.ok()) throw std::runtime_error(written.message());
 }
 
 }  // namespace

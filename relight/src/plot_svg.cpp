@@ -1,8 +1,6 @@
 // relight/src/plot_svg.cpp — see plot_svg.h.
 #include "relight/plot_svg.h"
 
-#include <unistd.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -11,6 +9,8 @@
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
+
+#include "prt/atomic_file.h"
 
 namespace prt::relight {
 namespace {
@@ -386,24 +386,14 @@ std::string render_svg(const PlotSpec& spec) {
 }
 
 void write_text_file(const std::string& path, const std::string& text) {
-  const std::string tmp = path + ".tmp-" + std::to_string(::getpid());
-  {
-    std::ofstream f(tmp, std::ios::binary);
-    if (!f) throw std::runtime_error(path + ": cannot open for writing");
+  const prt::Status written = prt::replace_file_atomically(path, [&](const std::string& temporary) {
+    std::ofstream f(temporary, std::ios::binary);
+    if (!f) return prt::Status::Error(path + ": cannot open for writing");
     f << text;
     f.flush();
-    if (!f) {
-      f.close();
-      std::remove(tmp.c_str());
-      throw std::runtime_error(path + ": write failed");
-    }
-  }
-  std::error_code ec;
-  std::filesystem::rename(tmp, path, ec);
-  if (ec) {
-    std::remove(tmp.c_str());
-    throw std::runtime_error(path + ": cannot rename into place: " + ec.message());
-  }
+    return f ? prt::Status::Ok() : prt::Status::Error(path + ": write failed");
+  });
+  if (!written.ok()) throw std::runtime_error(written.message());
 }
 
 bool convert_svg_to_png(const std::string& svg_path, const std::string& png_path, double zoom,
@@ -412,7 +402,6 @@ bool convert_svg_to_png(const std::string& svg_path, const std::string& png_path
     if (why) *why = "rsvg-convert not found (install librsvg2-bin)";
     return false;
   }
-  const std::string tmp = png_path + ".tmp-" + std::to_string(::getpid()) + ".png";
   const std::string quote = "'";
   auto quoted = [&](const std::string& s) {
     std::string q = quote;
@@ -421,21 +410,16 @@ bool convert_svg_to_png(const std::string& svg_path, const std::string& png_path
   };
   char zoom_text[32];
   std::snprintf(zoom_text, sizeof zoom_text, "%.3f", zoom);
-  const std::string cmd = "rsvg-convert --zoom=" + std::string(zoom_text) + " -o " + quoted(tmp) +
-                          " " + quoted(svg_path) + " 2>/dev/null";
-  if (std::system(cmd.c_str()) != 0) {
-    std::remove(tmp.c_str());
-    if (why) *why = svg_path + ": rsvg-convert failed";
-    return false;
-  }
-  std::error_code ec;
-  std::filesystem::rename(tmp, png_path, ec);
-  if (ec) {
-    std::remove(tmp.c_str());
-    if (why) *why = png_path + ": cannot rename into place";
-    return false;
-  }
-  return true;
+  const prt::Status written =
+      prt::replace_file_atomically(png_path, [&](const std::string& temporary) {
+        const std::string cmd = "rsvg-convert --zoom=" + std::string(zoom_text) + " -o " +
+                                quoted(temporary) + " " + quoted(svg_path) + " 2>/dev/null";
+        if (std::system(cmd.c_str()) != 0)
+          return prt::Status::Error(svg_path + ": rsvg-convert failed");
+        return prt::Status::Ok();
+      });
+  if (!written.ok() && why) *why = written.message();
+  return written.ok();
 }
 
 }  // namespace prt::relight

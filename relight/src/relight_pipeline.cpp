@@ -1,6 +1,5 @@
 #include "relight/relight_pipeline.h"
 
-#include <unistd.h>
 #include <algorithm>
 #include <cctype>
 #include <cmath>
@@ -13,6 +12,7 @@
 #include <tbb/parallel_for.h>
 
 #include "bake/scene_loader.h"
+#include "prt/atomic_file.h"
 #include "prt/geometry_check.h"
 #include "prt/transfer_file.h"
 #include "relight/image_io.h"
@@ -183,10 +183,9 @@ void write_vertex_csv(const std::string& path, const bake::Scene& scene,
                       const std::vector<float>& radiance_rgb) {
   if (radiance_rgb.size() != 3 * scene.vertex_count())
     throw std::runtime_error(path + ": radiance count does not match the scene's vertices");
-  const std::string temporary = path + ".tmp-" + std::to_string(::getpid());
-  {
+  const prt::Status written = prt::replace_file_atomically(path, [&](const std::string& temporary) {
     std::FILE* file = std::fopen(temporary.c_str(), "wb");
-    if (!file) throw std::runtime_error(path + ": cannot open for writing");
+    if (!file) return prt::Status::Error(path + ": cannot open for writing");
     bool ok = std::fputs("index,x,y,z,r,g,b\n", file) >= 0;
     for (std::size_t i = 0; ok && i < scene.vertex_count(); ++i) {
       const glm::vec3& p = scene.positions[i];
@@ -195,15 +194,9 @@ void write_vertex_csv(const std::string& path, const bake::Scene& scene,
                         b[2]) > 0;
     }
     ok = (std::fclose(file) == 0) && ok;
-    if (!ok) {
-      std::remove(temporary.c_str());
-      throw std::runtime_error(path + ": write failed");
-    }
-  }
-  if (std::rename(temporary.c_str(), path.c_str()) != 0) {
-    std::remove(temporary.c_str());
-    throw std::runtime_error(path + ": cannot rename the temporary file into place");
-  }
+    return ok ? prt::Status::Ok() : prt::Status::Error(path + ": write failed");
+  });
+  if (!written.ok()) throw std::runtime_error(written.message());
 }
 
 std::string turntable_frame_path(const std::string& path, int frame) {

@@ -35,15 +35,13 @@
 #include "relight/relight_pipeline.h"
 #include "relight/renderer.h"
 #include "relight/report_metrics.h"
+#include "sh/basis.h"
 #include "sh/projection.h"
 
 namespace prt::relight {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-constexpr const char* kBasis =
-    "real orthonormal SH, no Condon-Shortley phase, index k = l(l+1)+m, Y(x,y,z) with polar axis "
-    "+z, scene frame glTF (+Y up)";
 const char* const kPalette[] = {"#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd",
                                 "#8c564b", "#e377c2", "#17becf", "#bcbd22", "#7f7f7f"};
 // Haar series (one per cube size), apart from the SH grid's first five palette colours.
@@ -632,7 +630,7 @@ ReportResult run_report(const ReportOptions& opt) {
   // results.json
   {
     nlohmann::json j;
-    j["sh_basis"] = kBasis;
+    j["sh_basis"] = sh::kBasisConvention;
     j["scene"] = opt.scene_path;
     j["environment"] = opt.environment_path;
     j["environment_layout"] = layout_note;
@@ -1133,7 +1131,7 @@ ReportResult run_report(const ReportOptions& opt) {
        << "- **image**: relative RMS over the pixels that show the scene, rendering both with "
           "the relight renderer ("
        << ropt.width << "×" << ropt.height << ", 2×2 samples, same camera).\n"
-       << "- Lighting: SH: the map projected to order n (no window); " << kBasis
+       << "- Lighting: SH: the map projected to order n (no window); " << sh::kBasisConvention
        << ". Haar: the map resampled to the N-cube (exact area weights), wavelet-transformed, the "
           "K largest area-weighted coefficients kept (relight/haar_relight.h).\n"
        << "- Times: wall clock on this machine; bake with all threads; relight = best of 5 (SH "

@@ -5,10 +5,12 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "sh/constants.h"
+
 namespace prt::relight {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using sh::kPi;
 constexpr double kDegree = kPi / 180.0;
 
 double smoothstep(double edge0, double edge1, double x) {

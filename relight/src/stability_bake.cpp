@@ -25,12 +25,13 @@
 #include "bake/transfer_baker.h"
 #include "prt/half.h"
 #include "prt/transfer_file.h"
+#include "sh/constants.h"
 #include "stability_cases.h"
 
 namespace prt::relight::stability {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using sh::kPi;
 
 std::string format(double v) {
   char buf[32];

@@ -18,6 +18,7 @@
 
 #include "prt/lighting.h"
 #include "sh/basis.h"
+#include "sh/constants.h"
 #include "sh/env_map.h"
 #include "sh/projection.h"
 #include "sh/window.h"
@@ -27,7 +28,7 @@
 namespace prt::relight::stability {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using sh::kPi;
 
 std::string format(double v) {
   char buf[32];

@@ -13,13 +13,15 @@
 #include <vector>
 
 #include "sh/basis.h"
+#include "sh/constants.h"
 #include "sh/rotation.h"
 #include "stability_cases.h"
 
 namespace prt::relight::stability {
 namespace {
 
-constexpr long double kPiL = 3.141592653589793238462643383279502884L;
+using sh::kPi;
+using sh::kPiLong;
 
 // All order² values of Y_lm at (x, y, z), |(x, y, z)| = 1 assumed as the library does (z is
 // cos θ, x + iy is sin θ·e^{iφ}), in long double.
@@ -29,7 +31,7 @@ std::vector<long double> evaluate_reference(int order, long double x, long doubl
   // Q_mm = √((2m+1)/(2m))·Q_{m−1,m−1}, Q_00 = 1/√(4π); Q_{m+1,m} = √(2m+3)·z·Q_mm;
   // Q_lm = a·(z·Q_{l−1,m} − b·Q_{l−2,m}), a = √((4l²−1)/(l²−m²)),
   // b = √(((l−1)²−m²)/(4(l−1)²−1)). Y_lm = √2·Q_l|m|·{Re, Im}((x+iy)^|m|), Y_l0 = Q_l0.
-  long double qmm = 1.0L / std::sqrt(4.0L * kPiL);
+  long double qmm = 1.0L / std::sqrt(4.0L * kPiLong);
   std::complex<long double> power(1.0L, 0.0L);
   const std::complex<long double> xy(x, y);
   for (int m = 0; m < order; ++m) {
@@ -107,7 +109,7 @@ CaseResult check_sh_evaluation_at_poles(const CaseOptions&) {
         std::vector<float> yf(kOrder * kOrder);
         for (double pole : {1.0, -1.0}) {
           for (double theta : thetas) {
-            const double t = pole > 0 ? theta : 3.14159265358979323846 - theta;
+            const double t = pole > 0 ? theta : kPi - theta;
             double x = std::sin(t) * std::cos(phi), y = std::sin(t) * std::sin(phi),
                    z = std::cos(t);
             if (theta == 0) x = y = 0, z = pole;  // exactly at the pole
@@ -127,7 +129,7 @@ CaseResult check_sh_evaluation_at_poles(const CaseOptions&) {
                                         static_cast<long double>(y) * y +
                                         static_cast<long double>(z) * z;
               const double add_err = static_cast<double>(std::fabs(
-                  norm2 / ((2.0L * l + 1.0L) / (4.0L * kPiL) * std::pow(unit2, l)) - 1.0L));
+                  norm2 / ((2.0L * l + 1.0L) / (4.0L * kPiLong) * std::pow(unit2, l)) - 1.0L));
               worst_addition = std::max(worst_addition, add_err);
               worst_double[l] = std::max(worst_double[l], band_error(yd.data(), ref, l));
               worst_float[l] = std::max(worst_float[l], band_error(yf.data(), ref_f, l));

@@ -2,19 +2,18 @@
 // DIR/stability.md and DIR/stability.json (see relight/stability_report.h, docs/STABILITY.md).
 #include "relight/stability_report.h"
 
-#include <unistd.h>
-
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <limits>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <stdexcept>
 
+#include "relight/plot_svg.h"
+#include "sh/basis.h"
 #include "stability_cases.h"
 
 namespace prt::relight::stability {
@@ -82,25 +81,6 @@ std::vector<std::function<CaseResult()>> all_cases(const CaseOptions& o) {
 namespace prt::relight {
 namespace {
 
-void write_atomically(const std::filesystem::path& path, const std::string& text) {
-  const std::string tmp = path.string() + ".tmp-" + std::to_string(static_cast<long>(getpid()));
-  {
-    std::ofstream out(tmp, std::ios::binary);
-    out << text;
-    out.flush();
-    if (!out) {
-      std::filesystem::remove(tmp);
-      throw std::runtime_error(path.string() + ": cannot write");
-    }
-  }
-  std::error_code ec;
-  std::filesystem::rename(tmp, path, ec);
-  if (ec) {
-    std::filesystem::remove(tmp);
-    throw std::runtime_error(path.string() + ": cannot rename: " + ec.message());
-  }
-}
-
 std::string format_number(double v) {
   char buf[32];
   if (v == std::floor(v) && std::fabs(v) < 1e9)
@@ -131,9 +111,7 @@ int run_stability_report(const std::string& out_dir, bool quick) {
   }
 
   nlohmann::json j;
-  j["sh_basis"] =
-      "real orthonormal SH, no Condon-Shortley phase, index k = l(l+1)+m, polar axis +z, "
-      "scene frame glTF (+Y up)";
+  j["sh_basis"] = sh::kBasisConvention;
   j["quick"] = quick;
   j["cases"] = nlohmann::json::array();
   j["failed"] = failed;
@@ -186,8 +164,8 @@ int run_stability_report(const std::string& out_dir, bool quick) {
     }
   }
   const std::filesystem::path dir(out_dir);
-  write_atomically(dir / "stability.json", j.dump(2) + "\n");
-  write_atomically(dir / "stability.md", md.str());
+  write_text_file((dir / "stability.json").string(), j.dump(2) + "\n");
+  write_text_file((dir / "stability.md").string(), md.str());
   return failed;
 }
 

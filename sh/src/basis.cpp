@@ -29,6 +29,8 @@
 #include <utility>
 #include <vector>
 
+#include "sh/constants.h"
+
 namespace sh {
 namespace {
 
@@ -42,13 +44,13 @@ inline void evaluate_order1(T x, T y, T z, T* out) noexcept {
   (void)x;
   (void)y;
   (void)z;
-  out[0] = T(0.28209479177387814);
+  out[0] = T(kY00);
 }
 
 template <typename T>
 inline void evaluate_order2(T x, T y, T z, T* out) noexcept {
   const T c1 = x, s1 = y;
-  out[0] = T(0.28209479177387814);
+  out[0] = T(kY00);
   out[2] = T(0.48860251190291992) * z;
   {
     const T q = T(0.48860251190291992);
@@ -62,7 +64,7 @@ inline void evaluate_order3(T x, T y, T z, T* out) noexcept {
   const T z2 = z * z;
   const T c1 = x, s1 = y;
   const T c2 = x * c1 - y * s1, s2 = x * s1 + y * c1;
-  out[0] = T(0.28209479177387814);
+  out[0] = T(kY00);
   out[2] = T(0.48860251190291992) * z;
   {
     const T q = T(0.48860251190291992);
@@ -88,7 +90,7 @@ inline void evaluate_order4(T x, T y, T z, T* out) noexcept {
   const T c1 = x, s1 = y;
   const T c2 = x * c1 - y * s1, s2 = x * s1 + y * c1;
   const T c3 = x * c2 - y * s2, s3 = x * s2 + y * c2;
-  out[0] = T(0.28209479177387814);
+  out[0] = T(kY00);
   out[2] = T(0.48860251190291992) * z;
   {
     const T q = T(0.48860251190291992);
@@ -131,7 +133,7 @@ inline void evaluate_order5(T x, T y, T z, T* out) noexcept {
   const T c2 = x * c1 - y * s1, s2 = x * s1 + y * c1;
   const T c3 = x * c2 - y * s2, s3 = x * s2 + y * c2;
   const T c4 = x * c3 - y * s3, s4 = x * s3 + y * c3;
-  out[0] = T(0.28209479177387814);
+  out[0] = T(kY00);
   out[2] = T(0.48860251190291992) * z;
   {
     const T q = T(0.48860251190291992);
@@ -196,7 +198,7 @@ inline void evaluate_order6(T x, T y, T z, T* out) noexcept {
   const T c3 = x * c2 - y * s2, s3 = x * s2 + y * c2;
   const T c4 = x * c3 - y * s3, s4 = x * s3 + y * c3;
   const T c5 = x * c4 - y * s4, s5 = x * s4 + y * c4;
-  out[0] = T(0.28209479177387814);
+  out[0] = T(kY00);
   out[2] = T(0.48860251190291992) * z;
   {
     const T q = T(0.48860251190291992);
@@ -281,8 +283,6 @@ inline void evaluate_order6(T x, T y, T z, T* out) noexcept {
 }
 
 // ---- general recurrence ------------------------------------------------------------------
-
-constexpr double kPi = 3.14159265358979323846;
 
 // Bands below kTableOrder read a_lm and a_lm·b_lm from tables; above, they are computed inline.
 constexpr int kTableOrder = 128;

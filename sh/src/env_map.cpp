@@ -7,11 +7,10 @@
 #include <limits>
 
 #include "gauss_legendre.h"
+#include "sh/constants.h"
 
 namespace sh {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 // ---- cube faces -------------------------------------------------------------------------------
 // A face: direction = normal + a·right + b·down, with a (right) and b (down) in [−1, 1].

@@ -10,14 +10,15 @@
 #include <cmath>
 #include <vector>
 
+#include "sh/constants.h"
+
 namespace sh::detail {
 
 inline void gauss_legendre(int n, std::vector<double>* nodes, std::vector<double>* weights) {
-  const double pi = 3.14159265358979323846;
   nodes->assign(n, 0.0);
   weights->assign(n, 0.0);
   for (int i = 0; i < (n + 1) / 2; ++i) {
-    double x = std::cos(pi * (i + 0.75) / (n + 0.5));
+    double x = std::cos(kPi * (i + 0.75) / (n + 0.5));
     double derivative = 1.0;
     for (int iteration = 0; iteration < 100; ++iteration) {
       // P_n(x) and P_{n−1}(x) by the three-term recurrence.

@@ -6,11 +6,10 @@
 
 #include "gauss_legendre.h"
 #include "sh/basis.h"
+#include "sh/constants.h"
 
 namespace sh {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 enum class TexelClass { Good, NaN, Inf, Negative };
 

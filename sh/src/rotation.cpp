@@ -24,10 +24,10 @@
 #include <cstring>
 #include <utility>
 
+#include "sh/constants.h"
+
 namespace sh {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 // The rows of band l − 1 that feed row m of band l: P(i, a, ·) with weight.
 struct RowTerms {

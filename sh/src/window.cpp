@@ -6,11 +6,11 @@
 #include <limits>
 
 #include "sh/basis.h"
+#include "sh/constants.h"
 #include "sh/zonal.h"
 
 namespace sh {
 namespace {
-constexpr double kPi = 3.14159265358979323846;
 
 char lower_ascii(char c) {
   return (c >= 'A' && c <= 'Z') ? char(c - 'A' + 'a') : c;

@@ -4,11 +4,9 @@
 #include <cmath>
 
 #include "sh/basis.h"
+#include "sh/constants.h"
 
 namespace sh {
-namespace {
-constexpr double kPi = 3.14159265358979323846;
-}  // namespace
 
 double clamped_cosine_band_factor(int l) noexcept {
   if (l < 0) return 0.0;

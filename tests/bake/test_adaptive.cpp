@@ -14,6 +14,7 @@
 #include "bake/scene_analysis.h"
 #include "bake/transfer_baker.h"
 #include "sh/basis.h"
+#include "sh/constants.h"
 #include "sh/env_map.h"
 #include "sh/zonal.h"
 
@@ -21,7 +22,8 @@ using namespace prt::bake;
 
 namespace {
 
-constexpr double kSqrt4Pi = 3.5449077018110318;
+using sh::kPi;
+using sh::kSqrtFourPi;
 
 // A ground quad (6 × 6, 24 × 24 cells) with a sphere of radius 0.7 resting on it.
 Scene make_plane_with_sphere(glm::vec3 albedo) {
@@ -42,7 +44,7 @@ std::vector<double> make_band_limited_lighting(int order) {
   const double tint[3] = {1.0, 0.8, 0.6};
   for (int c = 0; c < 3; ++c) {
     for (int k = 0; k < K; ++k) out[c * K + k] = tint[c] * lobe[k];
-    out[c * K] += 0.3 * kSqrt4Pi;
+    out[c * K] += 0.3 * kSqrtFourPi;
   }
   return out;
 }
@@ -581,11 +583,11 @@ TEST_CASE("the tail bound beyond the pilot order bounds a sun's error, exact or 
     const glm::dvec3 tx = glm::normalize(glm::cross(a, n)), ty = glm::cross(n, tx);
     const int N = 256;
     for (int i = 0; i < N; ++i) {
-      const double r = std::sqrt(uniform()), ph = 2.0 * 3.14159265358979 * uniform();
+      const double r = std::sqrt(uniform()), ph = 2.0 * kPi * uniform();
       const glm::dvec3 w =
           r * std::cos(ph) * tx + r * std::sin(ph) * ty + std::sqrt(std::max(0.0, 1.0 - r * r)) * n;
       sh::evaluate(np, w.x, w.y, w.z, y.data());
-      for (int k = 0; k < kp; ++k) noisy[v * kp + k] += 3.14159265358979 / N * y[k];
+      for (int k = 0; k < kp; ++k) noisy[v * kp + k] += kPi / N * y[k];
     }
   }
   const double true_tail = std::sqrt(tail2 / total2);

@@ -19,13 +19,14 @@
 #include "bake/scene_analysis.h"
 #include "bake/transfer_baker.h"
 #include "sh/basis.h"
+#include "sh/constants.h"
 
 using namespace prt::bake;
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-constexpr double kHalfPi = 0.5 * kPi;  // the baker's default max_cap_solid_angle
+using sh::kHalfPi;  // the baker's default max_cap_solid_angle
+using sh::kPi;
 
 // An 8×8 floor (40 segments, +Y up) with a sphere, a box and a thin rug on it. Vertices
 // [0, kFloorVertices) are the floor's.

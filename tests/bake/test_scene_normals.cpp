@@ -7,8 +7,10 @@
 
 #include "bake/mesh_normals.h"
 #include "bake/procedural_mesh.h"
+#include "sh/constants.h"
 
 using prt::bake::Scene;
+using sh::kPi;
 
 namespace {
 
@@ -97,7 +99,7 @@ TEST_CASE("compute_vertex_normals on a closed UV sphere is close to radial") {
   for (std::size_t v = 0; v < s.positions.size(); ++v) {
     worst = std::min(worst, static_cast<double>(glm::dot(s.normals[v], radial[v])));
   }
-  CHECK(worst > std::cos(0.25 * 3.14159265358979 / 180.0));
+  CHECK(worst > std::cos(0.25 * kPi / 180.0));
 }
 
 TEST_CASE("compute_vertex_normals(only_missing) keeps given normals and falls back to +Y") {

@@ -8,12 +8,13 @@
 
 #include "bake/mesh_normals.h"
 #include "bake/procedural_mesh.h"
+#include "sh/constants.h"
 
 using prt::bake::Scene;
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using sh::kPi;
 // Positions are stored as float: relative rounding about 6e-8, so 1e-5 relative leaves room for
 // the trigonometry of the builders and the summations below.
 constexpr double kFloatTolerance = 1e-5;

@@ -8,10 +8,11 @@
 #include <glm/glm.hpp>
 
 #include "bake/scene.h"
+#include "sh/constants.h"
 
 namespace prt::test {
 
-inline constexpr double kPi = 3.14159265358979323846;
+using sh::kPi;
 
 // Cosine-weighted fraction of the hemisphere around unit n at p that the planar polygon
 // `loop` covers (the differential-area-to-polygon form factor), by Lambert's formula

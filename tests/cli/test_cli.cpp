@@ -21,6 +21,8 @@
 #include <nlohmann/json.hpp>
 
 #include "relight/image_io.h"
+#include "sh/basis.h"
+#include "sh/constants.h"
 #include "support/test_data.h"
 
 namespace fs = std::filesystem;
@@ -158,9 +160,10 @@ TEST_CASE("cli: prt env --json states the convention and the coefficients") {
   CHECK(j["order"] == 4);
   CHECK(j["layout"] == "latlong");
   CHECK(j["basis"].get<std::string>().find("no Condon-Shortley") != std::string::npos);
+  CHECK(j["basis"] == sh::kBasisConvention);
   REQUIRE(j["coefficients"].size() == 16);
   // A constant radiance c projects to L00 = c·√(4π) (exact quadrature of a constant).
-  const double root4pi = std::sqrt(4.0 * 3.14159265358979323846);
+  const double root4pi = std::sqrt(4.0 * sh::kPi);
   for (int ch = 0; ch < 3; ++ch)
     CHECK(j["coefficients"][0][ch].get<double>() == Approx(c[ch] * root4pi).epsilon(1e-6));
 }
@@ -273,6 +276,9 @@ TEST_CASE("cli: bake, info and relight work end to end on the bundled scene") {
   REQUIRE(info.exit_code == 0);
   const auto j = nlohmann::json::parse(info.out);
   CHECK(j.dump().find("shadowed") != std::string::npos);
+  // One convention text: prt info prints the one the baker wrote into the file's metadata.
+  CHECK(j["sh_basis"] == sh::kBasisConvention);
+  CHECK(j["metadata"]["sh_basis"] == sh::kBasisConvention);
 
   const fs::path png = dir / "demo.png", csv = dir / "demo.csv", glb = dir / "demo_colors.glb";
   const RunResult relit = run(prt_cli() + " relight " + scene + " " + prt_file.string() + " " +

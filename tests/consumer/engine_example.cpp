@@ -16,11 +16,12 @@
 #include <prt/relighter.h>
 #include <prt/transfer_file.h>
 #include <sh/basis.h>
+#include <sh/constants.h>
 #include <sh/rotation.h>
 
 namespace {
 
-const double kPi = 3.14159265358979323846;
+using sh::kPi;
 
 int fail(const std::string& message) {
   std::fprintf(stderr, "engine_example: %s\n", message.c_str());

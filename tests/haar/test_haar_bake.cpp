@@ -14,12 +14,13 @@
 #include "prt/haar_transfer_file.h"
 #include "prt/haar_transform.h"
 #include "relight/haar_relight.h"
+#include "sh/constants.h"
 #include "support/test_data.h"
 
 namespace {
 
 using prt::bake::Scene;
-constexpr double kPi = 3.14159265358979323846;
+using sh::kPi;
 
 // A 2×2 floor (8×8 segments) with a box standing on its left half: the box shadows part of
 // the floor for low directions, and its own faces are occluded by the floor.

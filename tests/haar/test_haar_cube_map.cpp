@@ -8,11 +8,12 @@
 #include <catch2/catch.hpp>
 
 #include "prt/haar_cube_map.h"
+#include "sh/constants.h"
 #include "sh/env_map.h"
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using sh::kPi;
 
 // GUIDE.md lat-long convention, written out independently of sh/: θ from +Y, φ = atan2(z, x).
 void latlong_direction(int w, int h, int col, int row, double dir[3]) {

@@ -7,8 +7,10 @@
 #include <catch2/catch.hpp>
 
 #include "prt/lighting.h"
+#include "sh/constants.h"
 
 using prt::ShLighting;
+using sh::kPi;
 
 namespace {
 
@@ -48,8 +50,8 @@ TEST_CASE("a constant map projects to sqrt(4 pi) c in k = 0", "[lighting]") {
   REQUIRE(light->order() == order);
   for (int c = 0; c < 3; ++c) {
     // Exact texel solid angles: only rounding error remains (1e-9 relative in double).
-    CHECK(light->coefficients_double(c)[0] == Approx(std::sqrt(4 * M_PI) * rgb[c]).epsilon(1e-9));
-    CHECK(light->coefficients(c)[0] == Approx(std::sqrt(4 * M_PI) * rgb[c]).epsilon(1e-6));
+    CHECK(light->coefficients_double(c)[0] == Approx(std::sqrt(4 * kPi) * rgb[c]).epsilon(1e-9));
+    CHECK(light->coefficients(c)[0] == Approx(std::sqrt(4 * kPi) * rgb[c]).epsilon(1e-6));
     // Higher bands vanish only to quadrature accuracy: sh::project samples Y at texel centres,
     // which leaks O(1/H²) into the even bands (measured 2.0e-4·c at H = 128 for k = 24; it
     // falls 4× per doubling of H). 5e-4·c fails for any real error in the projection.
@@ -100,7 +102,7 @@ TEST_CASE("rotation moves a band-1 lobe from d to M d", "[lighting]") {
   }
   auto light = ShLighting::from_coefficients(2, c.data());
   REQUIRE(light.ok());
-  const auto m = axis_angle(1.0, 0.0, 0.0, M_PI / 2);  // +z -> −y about +x
+  const auto m = axis_angle(1.0, 0.0, 0.0, kPi / 2);  // +z -> −y about +x
   REQUIRE(light->rotate(m).ok());
   const double md[3] = {m[2], m[5], m[8]};  // M·(0, 0, 1)
   for (int ch = 0; ch < 3; ++ch) {

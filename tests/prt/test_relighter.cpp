@@ -12,6 +12,7 @@
 #include "prt/relighter.h"
 #include "prt/transfer_file.h"
 #include "sh/basis.h"
+#include "sh/constants.h"
 #include "transfer_fixtures.h"
 
 using prt::KernelPath;
@@ -19,6 +20,7 @@ using prt::Precision;
 using prt::Relighter;
 using prt::ShLighting;
 using prt::TransferData;
+using sh::kPi;
 
 namespace {
 
@@ -196,7 +198,7 @@ TEST_CASE("unshadowed diffuse transfer under a constant sky gives albedo x radia
   // Analytic: T_lm = ρ/π · A_l · Y_lm(n) (A_0 = π, A_1 = 2π/3, A_2 = π/4; GUIDE.md) and a sky
   // of constant radiance c has L_00 = √(4π)·c, so B = ρ/π · π · Y_00 · √(4π) c = ρ c for any n.
   const double rho[3] = {0.8, 0.5, 0.2}, sky[3] = {1.5, 2.0, 4.0};
-  const double a_l[3] = {M_PI, 2 * M_PI / 3, M_PI / 4};
+  const double a_l[3] = {kPi, 2 * kPi / 3, kPi / 4};
   TransferData d;
   d.order = 3;
   d.channels = 3;
@@ -211,12 +213,12 @@ TEST_CASE("unshadowed diffuse transfer under a constant sky gives albedo x radia
     for (int c = 0; c < 3; ++c) {
       for (int k = 0; k < 9; ++k) {
         const int l = k < 1 ? 0 : (k < 4 ? 1 : 2);
-        d.coefficients.push_back(static_cast<float>(rho[c] / M_PI * a_l[l] * y[k]));
+        d.coefficients.push_back(static_cast<float>(rho[c] / kPi * a_l[l] * y[k]));
       }
     }
   }
   std::vector<double> l(27, 0.0);
-  for (int c = 0; c < 3; ++c) l[c * 9] = std::sqrt(4 * M_PI) * sky[c];
+  for (int c = 0; c < 3; ++c) l[c * 9] = std::sqrt(4 * kPi) * sky[c];
   const auto light = ShLighting::from_coefficients(3, l.data());
   REQUIRE(light.ok());
   const auto r = Relighter::create(d);

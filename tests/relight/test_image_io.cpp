@@ -17,6 +17,7 @@
 
 #include "relight/image_io.h"
 #include "relight/sky_model.h"
+#include "sh/constants.h"
 #include "sh/projection.h"
 #include "support/error_message.h"
 #include "support/test_data.h"
@@ -28,7 +29,7 @@ using prt::test::error_of;
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using sh::kPi;
 
 std::string scratch(const std::string& name) {
   fs::create_directories(prt::test::output_path("image_io"));

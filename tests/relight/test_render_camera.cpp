@@ -8,8 +8,10 @@
 
 #include "bake/scene.h"
 #include "relight/camera.h"
+#include "sh/constants.h"
 
 using prt::relight::Camera;
+using sh::kPi;
 
 namespace {
 
@@ -109,7 +111,7 @@ TEST_CASE("parse_camera: auto, names, explicit numbers and clear errors") {
   const Camera manual = prt::relight::parse_camera("1,2,3,0,0,0,0,1,0,90", scene, 1.f);
   CHECK(manual.eye == glm::vec3(1, 2, 3));
   CHECK(manual.target == glm::vec3(0.f));
-  CHECK(manual.yfov_radians == Approx(M_PI / 2).epsilon(1e-6));
+  CHECK(manual.yfov_radians == Approx(kPi / 2).epsilon(1e-6));
 
   auto message_of = [&](const std::string& spec) {
     try {

@@ -21,10 +21,13 @@
 #include "prt/transfer_file.h"
 #include "relight/image_io.h"
 #include "relight/relight_pipeline.h"
+#include "sh/constants.h"
 #include "sh/env_map.h"
 #include "sh/projection.h"
 #include "sh/rotation.h"
 #include "support/test_data.h"
+
+using sh::kPi;
 
 namespace {
 
@@ -50,8 +53,7 @@ sh::EnvMap make_latlong(int width, int height, glm::dvec3 (*radiance)(const glm:
   for (int row = 0; row < height; ++row)
     for (int col = 0; col < width; ++col) {
       // GUIDE.md: u = 0.5 + atan2(z, x)/2π, v = acos(y)/π, written out independently.
-      const double phi = 2 * M_PI * ((col + 0.5) / width - 0.5),
-                   theta = M_PI * (row + 0.5) / height;
+      const double phi = 2 * kPi * ((col + 0.5) / width - 0.5), theta = kPi * (row + 0.5) / height;
       const glm::dvec3 d(std::sin(theta) * std::cos(phi), std::cos(theta),
                          std::sin(theta) * std::sin(phi));
       const glm::dvec3 f = radiance(d);
@@ -134,7 +136,7 @@ TEST_CASE("relight: under a constant white sky, shadowed radiance = albedo × AO
       const float* t = &data.coefficients[(v * 3 + c) * k_count];
       double bound = 0;
       for (int k = 0; k < k_count; ++k) {
-        const double exact = k == 0 ? std::sqrt(4 * M_PI) : 0.0;
+        const double exact = k == 0 ? std::sqrt(4 * kPi) : 0.0;
         bound += std::abs(t[k]) * std::abs(lighting.coefficients_double(c)[k] - exact);
       }
       const double expected = scene.albedo[v][c] * ao;
@@ -174,14 +176,14 @@ TEST_CASE("relight: radiance under a sunny sky equals a direct integration of L�
   };
   auto integrate = [&](std::size_t v, int rows) {
     const int cols = 2 * rows;
-    const double cell = 4 * M_PI / (static_cast<double>(rows) * cols);
+    const double cell = 4 * kPi / (static_cast<double>(rows) * cols);
     const glm::vec3 n = scene.normals[v];
     const glm::vec3 origin = caster.vertex_origin(static_cast<uint32_t>(v));
     Moments m;
     for (int i = 0; i < rows; ++i) {
       const double y = 1 - 2 * (i + 0.5) / rows, s = std::sqrt(std::max(0.0, 1 - y * y));
       for (int j = 0; j < cols; ++j) {
-        const double phi = 2 * M_PI * (j + 0.5) / cols;
+        const double phi = 2 * kPi * (j + 0.5) / cols;
         const double dir[3] = {s * std::cos(phi), y, s * std::sin(phi)};
         const double cosine = n.x * dir[0] + n.y * dir[1] + n.z * dir[2];
         if (cosine <= 0) continue;
@@ -192,8 +194,8 @@ TEST_CASE("relight: radiance under a sunny sky equals a direct integration of L�
         sh::reconstruct(coefficients.data(), 3, order, dir, l);
         for (int c = 0; c < 3; ++c) {
           const double g = scene.albedo[v][c] * l[c];  // the baker's per-sample value
-          m.b[c] += g * cosine / M_PI * cell;
-          m.second[c] += g * g * cosine / M_PI * cell;  // E_cos[g²]
+          m.b[c] += g * cosine / kPi * cell;
+          m.second[c] += g * g * cosine / kPi * cell;  // E_cos[g²]
         }
       }
     }

@@ -8,7 +8,10 @@
 #include "bake/ray_caster.h"
 #include "bake/scene.h"
 #include "relight/renderer.h"
+#include "sh/constants.h"
 #include "sh/env_map.h"
+
+using sh::kPi;
 
 namespace {
 
@@ -43,7 +46,7 @@ sh::EnvMap make_analytic_latlong(int width, int height) {
     for (int col = 0; col < width; ++col) {
       // GUIDE.md lat-long: u = 0.5 + atan2(z, x)/2π, v = acos(y)/π (written out here on purpose).
       const double u = (col + 0.5) / width, v = (row + 0.5) / height;
-      const double phi = 2 * M_PI * (u - 0.5), theta = M_PI * v;
+      const double phi = 2 * kPi * (u - 0.5), theta = kPi * v;
       const glm::dvec3 d(std::sin(theta) * std::cos(phi), std::cos(theta),
                          std::sin(theta) * std::sin(phi));
       const glm::dvec3 f = analytic_sky(d);
@@ -61,8 +64,8 @@ TEST_CASE("renderer: hits get the barycentric mix of vertex radiance, misses the
   const std::vector<float> radiance = {1.f, 2.f, 3.f, 10.f, 0.f, 5.f, 0.5f, 7.f, 20.f};
   const sh::EnvMap env = make_analytic_latlong(512, 256);
   // Yaw 40°, pitch 25° (a rotation about +Y then +X), written out: M = Ry·Rx.
-  const double cy = std::cos(40 * M_PI / 180), sy = std::sin(40 * M_PI / 180);
-  const double cx = std::cos(25 * M_PI / 180), sx = std::sin(25 * M_PI / 180);
+  const double cy = std::cos(40 * kPi / 180), sy = std::sin(40 * kPi / 180);
+  const double cx = std::cos(25 * kPi / 180), sx = std::sin(25 * kPi / 180);
   const glm::dmat3 ry(cy, 0, -sy, 0, 1, 0, sy, 0, cy);  // glm is column-major
   const glm::dmat3 rx(1, 0, 0, 0, cx, sx, 0, -sx, cx);
   const glm::dmat3 m = ry * rx;
@@ -74,7 +77,7 @@ TEST_CASE("renderer: hits get the barycentric mix of vertex radiance, misses the
   camera.eye = glm::vec3(0.f, 0.f, 4.f);
   camera.target = glm::vec3(0.f);
   camera.up = glm::vec3(0, 1, 0);
-  camera.yfov_radians = static_cast<float>(70 * M_PI / 180);
+  camera.yfov_radians = static_cast<float>(70 * kPi / 180);
   prt::relight::RenderOptions options;
   options.width = 80;
   options.height = 60;
@@ -85,7 +88,7 @@ TEST_CASE("renderer: hits get the barycentric mix of vertex radiance, misses the
   REQUIRE(image.rgb.size() == 3u * 80 * 60);
 
   // Independent pinhole model: forward −z, right +x, up +y for this camera.
-  const double t = std::tan(35 * M_PI / 180), aspect = 80.0 / 60.0;
+  const double t = std::tan(35 * kPi / 180), aspect = 80.0 / 60.0;
   const glm::dvec3 p0 = scene.positions[0], p1 = scene.positions[1], p2 = scene.positions[2];
   auto cross_z = [](glm::dvec3 a, glm::dvec3 b) { return a.x * b.y - a.y * b.x; };
   const double area = cross_z(p1 - p0, p2 - p0);

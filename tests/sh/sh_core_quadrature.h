@@ -10,6 +10,8 @@
 #include <cmath>
 #include <vector>
 
+#include "sh/constants.h"
+
 namespace sh_test {
 
 struct Quadrature {
@@ -21,7 +23,7 @@ struct Quadrature {
 inline void gauss_legendre(int n, std::vector<double>* nodes, std::vector<double>* weights) {
   nodes->assign(n, 0.0);
   weights->assign(n, 0.0);
-  const long double pi = 3.141592653589793238462643383279502884L;
+  const long double pi = sh::kPiLong;
   for (int i = 0; i < n; ++i) {
     long double t = std::cos(pi * (i + 0.75L) / (n + 0.5L));  // Tricomi's initial guess
     long double dp = 0;
@@ -58,7 +60,7 @@ inline Quadrature make_zone_quadrature(int nt, int nphi, double t0 = -1.0, doubl
   std::vector<double> nodes, weights;
   gauss_legendre(nt, &nodes, &weights);
   Quadrature q;
-  const double pi = 3.14159265358979323846;
+  const double pi = sh::kPi;
   for (int i = 0; i < nt; ++i) {
     const double t = 0.5 * (t1 + t0) + 0.5 * (t1 - t0) * nodes[i];
     const double s = std::sqrt(std::fmax(0.0, 1.0 - t * t));

@@ -6,11 +6,12 @@
 #include <catch2/catch.hpp>
 
 #include "sh/basis.h"
+#include "sh/constants.h"
 #include "sh_core_quadrature.h"
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using sh::kPi;
 
 struct Direction {
   double x, y, z;
@@ -46,7 +47,7 @@ Reference reference_sh(int order, double xd, double yd, double zd) {
   const long double x = xd, y = yd, z = zd;
   const long double r = sqrtl(x * x + y * y + z * z);
   const long double ct = z / r, st = hypotl(x, y) / r, phi = atan2l(y, x);
-  const long double pi = 3.141592653589793238462643383279502884L;
+  const long double pi = sh::kPiLong;
   Reference ref{order, std::vector<long double>(order * order),
                 std::vector<long double>(order * order), std::vector<long double>(order * order)};
   auto put = [&](int l, int m, long double p) {

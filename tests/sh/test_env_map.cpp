@@ -7,11 +7,12 @@
 
 #include <catch2/catch.hpp>
 
+#include "sh/constants.h"
 #include "sh/env_map.h"
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using sh::kPi;
 
 struct Size {
   sh::EnvLayout layout;

@@ -9,13 +9,14 @@
 #include <catch2/catch.hpp>
 
 #include "sh/basis.h"
+#include "sh/constants.h"
 #include "sh/env_map.h"
 #include "sh/projection.h"
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-constexpr double kY00 = 0.28209479177387814;  // 1/(2√π)
+using sh::kPi;
+using sh::kY00;
 constexpr double kY1 = 0.48860251190291992;   // √(3/4π)
 
 sh::EnvMap make_map(sh::EnvLayout layout, int width, int height, float r, float g, float b) {

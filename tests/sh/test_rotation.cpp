@@ -8,12 +8,13 @@
 #include <catch2/catch.hpp>
 
 #include "sh/basis.h"
+#include "sh/constants.h"
 #include "sh/rotation.h"
 #include "sh_core_quadrature.h"
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using sh::kPi;
 using Matrix3 = std::array<double, 9>;
 
 Matrix3 multiply(const Matrix3& a, const Matrix3& b) {

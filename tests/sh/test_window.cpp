@@ -7,12 +7,13 @@
 #include <catch2/catch.hpp>
 
 #include "sh/basis.h"
+#include "sh/constants.h"
 #include "sh/window.h"
 #include "sh/zonal.h"
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using sh::kPi;
 
 // Radiance coefficients of a "sun": a cap of half-angle α about the unit axis with radiance
 // `value`, from the closed-form cap coefficients (GUIDE.md) rotated with rotate_zonal.

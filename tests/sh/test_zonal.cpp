@@ -6,12 +6,13 @@
 #include <catch2/catch.hpp>
 
 #include "sh/basis.h"
+#include "sh/constants.h"
 #include "sh/zonal.h"
 #include "sh_core_quadrature.h"
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using sh::kPi;
 
 // Legendre polynomial P_l(t) by Bonnet's recurrence (test-side, independent of the library).
 double legendre(int l, double t) {

@@ -42,6 +42,7 @@
 #include "bake/order_selection.h"
 #include "bake/scene.h"
 #include "bake/transfer_baker.h"
+#include "sh/constants.h"
 
 namespace prt::bake {
 
@@ -78,7 +79,7 @@ struct AutoBakeOptions {
   // (bake/occluder_caps.h, bake/cap_sampling.h).
   bool cap_sampling = true;
   int max_caps = 8;
-  double max_cap_solid_angle = 1.5707963267948966;  // π/2 sr
+  double max_cap_solid_angle = sh::kHalfPi;  // π/2 sr
   bool ao = false, bent_normals = false;
   prt::Precision precision = prt::Precision::F32;
 };

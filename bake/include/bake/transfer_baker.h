@@ -68,6 +68,7 @@
 #include "bake/scene.h"
 #include "bake/triangle_hierarchy.h"
 #include "prt/transfer_data.h"
+#include "sh/constants.h"
 
 namespace prt::bake {
 
@@ -103,7 +104,7 @@ struct AdaptiveSampling {
   // min_cap_samples; one whose caps all lie below its horizon gets the analytic transfer.
   bool cap_sampling = true;
   int max_caps = 8;
-  double max_cap_solid_angle = 1.5707963267948966;  // π/2 sr
+  double max_cap_solid_angle = sh::kHalfPi;  // π/2 sr
   int min_cap_samples = 16;  // rounded up to a multiple of 16 (of 32 on audit vertices)
   // The scene's triangle hierarchy when the caller has one (built here when null).
   std::shared_ptr<const TriangleHierarchy> hierarchy;

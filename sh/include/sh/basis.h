@@ -32,6 +32,13 @@ constexpr int index(int l, int m) noexcept {
 // Largest order the library accepts (bands 0..kMaxOrder−1).
 inline constexpr int kMaxOrder = 1024;
 
+// The convention above in one line: every JSON output of prt states it with this text, and
+// `prt bake` writes it into the metadata of each coefficient file ("sh_basis"), so changing it
+// changes the bytes of every file baked afterwards.
+inline constexpr const char* kBasisConvention =
+    "real orthonormal SH, no Condon-Shortley phase, index k = l(l+1)+m, Y(x,y,z) with polar "
+    "axis +z, scene frame glTF (+Y up)";
+
 // Evaluates all order² basis functions at the unit direction (x, y, z) into out[0 .. order²).
 // The direction must be unit length; order must be in [1, kMaxOrder].
 // Orders up to 6 take a hard-coded polynomial fast path that equals the recurrence.
