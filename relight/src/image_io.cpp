@@ -1,5 +1,5 @@
-// relight/src/image_io.cpp — environment-map reading (own Radiance and PFM decoders, OpenImageIO
-// for the rest) and atomic image writing with OpenImageIO.
+// relight/src/image_io.cpp — environment-map reading (own Radiance and PFM decoders, the
+// OpenImageIO plugin for the rest) and atomic image writing through that plugin.
 #include "relight/image_io.h"
 
 #include <algorithm>
@@ -16,12 +16,12 @@
 #include <utility>
 #include <vector>
 
-#include <OpenImageIO/imageio.h>
-
 #include "prt/atomic_file.h"
 #include "relight/exr_header_check.h"
 #include "relight/pfm_image.h"
 #include "relight/radiance_hdr.h"
+
+#include "image_codec.h"
 
 namespace prt::relight {
 namespace {
@@ -104,16 +104,12 @@ std::vector<unsigned char> read_file_bytes(const std::string& path, std::size_t 
   return bytes;
 }
 
-std::string size_text(long long width, long long height) {
-  return std::to_string(width) + "x" + std::to_string(height);
-}
-
-// OpenImageIO, with the reader of the extension's format only when OpenImageIO knows the
-// extension (no probing of every plugin), else with its usual search. OpenEXR files (by magic)
-// are checked by exr_header_problem before OpenEXR sees them. (OpenEXR then reads the file
-// itself: OpenImageIO 2.4's IOMemReader does not bounds-check negative offsets, which a hostile
-// line-offset table produces — fuzz_env_map_exr found that, so the pixels are not decoded from
-// the checked bytes.)
+// OpenImageIO (through its plugin, image_codec.h), with the reader of the extension's format
+// only when OpenImageIO knows the extension (no probing of every plugin), else with its usual
+// search. OpenEXR files (by magic) are checked by exr_header_problem before OpenEXR sees them.
+// (OpenEXR then reads the file itself: OpenImageIO 2.4's IOMemReader does not bounds-check
+// negative offsets, which a hostile line-offset table produces — fuzz_env_map_exr found that, so
+// the pixels are not decoded from the checked bytes.)
 FloatImage read_with_openimageio(const std::string& path, const std::vector<unsigned char>& head,
                                  std::size_t max_texels) {
   std::string format = lower_extension(path);
@@ -124,61 +120,16 @@ FloatImage read_with_openimageio(const std::string& path, const std::vector<unsi
     const std::string problem = exr_header_problem(bytes.data(), bytes.size(), max_texels);
     if (!problem.empty()) fail(path, problem);
   }
-  std::unique_ptr<OIIO::ImageInput> in;
-  if (!format.empty()) in = OIIO::ImageInput::create(format);
-  if (in) {
-    OIIO::ImageSpec opened;
-    if (!in->open(path, opened)) {
-      std::string why = in->geterror();
-      if (why.empty()) why = OIIO::geterror();
-      fail(path, "cannot read the image: " + why);
-    }
-  } else {
-    (void)OIIO::geterror();  // drop "no format for this extension"
-    in = OIIO::ImageInput::open(path);
-    if (!in) fail(path, "cannot read the image: " + OIIO::geterror());
-  }
-  const OIIO::ImageSpec& spec = in->spec();
-  if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0)
-    fail(path, "the image has zero size (" + size_text(spec.width, spec.height) + ")");
-  if (spec.depth > 1)
-    fail(path, "volume images are not supported (depth " + std::to_string(spec.depth) + ")");
-  const std::uint64_t texels = static_cast<std::uint64_t>(spec.width) * spec.height;
-  if (texels > max_texels)
-    fail(path, size_text(spec.width, spec.height) + " is too large (more than " +
-                   std::to_string(max_texels) + " texels)");
-  if (texels * static_cast<std::uint64_t>(spec.nchannels) > 4 * std::uint64_t{max_texels})
-    fail(path, size_text(spec.width, spec.height) + " with " + std::to_string(spec.nchannels) +
-                   " channels is too large");
-  FloatImage image;
-  image.width = spec.width;
-  image.height = spec.height;
-  image.channels = spec.nchannels;
-  image.pixels.resize(static_cast<std::size_t>(texels) * static_cast<std::size_t>(image.channels));
-  if (!in->read_image(0, 0, 0, image.channels, OIIO::TypeDesc::FLOAT, image.pixels.data()))
-    fail(path, "cannot read the pixels: " + in->geterror());
-  in->close();
-  return image;
+  return detail::codec_read(path, format, max_texels);
 }
 
-// Writes `format` pixels through OpenImageIO to PATH atomically (prt/atomic_file.h).
-void write_atomically(const std::string& path, const OIIO::ImageSpec& spec, OIIO::TypeDesc format,
+// Writes pixels of `buffer_type`, stored as `file_type`, to PATH atomically (prt/atomic_file.h).
+void write_atomically(const std::string& path, int width, int height, int channels,
+                      PrtImagePixelType file_type, PrtImagePixelType buffer_type, bool name_y,
                       const void* pixels) {
-  // The plugin is chosen from the final name; the temporary name has no useful extension.
-  std::unique_ptr<OIIO::ImageOutput> out = OIIO::ImageOutput::create(path);
-  if (!out) fail(path, "no image writer for this extension (" + OIIO::geterror() + ")");
-  auto cannot_write = [&](const std::string& why) {
-    return prt::Status::Error(path + ": " + one_line("cannot write: " + why));
-  };
   const prt::Status written = prt::replace_file_atomically(path, [&](const std::string& temporary) {
-    if (!out->open(temporary, spec)) return cannot_write(out->geterror());
-    if (!out->write_image(format, pixels)) {
-      const std::string why = out->geterror();
-      out->close();
-      return cannot_write(why);
-    }
-    if (!out->close()) return cannot_write(out->geterror());
-    return prt::Status::Ok();
+    return detail::codec_write(path, temporary, width, height, channels, file_type, buffer_type,
+                               name_y, pixels);
   });
   if (!written.ok()) throw std::runtime_error(written.message());
 }
@@ -292,26 +243,24 @@ void write_image(const std::string& path, int width, int height, int channels, c
       const float clamped = std::isnan(v) ? 0.0f : std::clamp(v, 0.0f, 1.0f);
       bytes[i] = static_cast<unsigned char>(std::lround(clamped * 255.0f));
     }
-    OIIO::ImageSpec spec(width, height, channels, OIIO::TypeDesc::UINT8);
-    write_atomically(path, spec, OIIO::TypeDesc::UINT8, bytes.data());
+    write_atomically(path, width, height, channels, PRT_PIXEL_UINT8, PRT_PIXEL_UINT8, false,
+                     bytes.data());
   } else if (extension == ".hdr") {
     std::vector<float> rgb(texels * 3);
     for (std::size_t i = 0; i < texels; ++i)
       for (int c = 0; c < 3; ++c) rgb[i * 3 + c] = pixels[i * channels + (channels >= 3 ? c : 0)];
-    OIIO::ImageSpec spec(width, height, 3, OIIO::TypeDesc::FLOAT);
-    write_atomically(path, spec, OIIO::TypeDesc::FLOAT, rgb.data());
+    write_atomically(path, width, height, 3, PRT_PIXEL_FLOAT, PRT_PIXEL_FLOAT, false, rgb.data());
   } else if (extension == ".exr") {
-    OIIO::ImageSpec spec(width, height, channels,
-                         options.exr_half ? OIIO::TypeDesc::HALF : OIIO::TypeDesc::FLOAT);
-    if (channels == 1) spec.channelnames = {"Y"};
+    const PrtImagePixelType stored = options.exr_half ? PRT_PIXEL_HALF : PRT_PIXEL_FLOAT;
     if (options.exr_half) {
       constexpr float kHalfMax = 65504.0f;
       std::vector<float> clamped(pixels, pixels + texels * channels);
       for (float& v : clamped)
         if (!std::isnan(v)) v = std::clamp(v, -kHalfMax, kHalfMax);
-      write_atomically(path, spec, OIIO::TypeDesc::FLOAT, clamped.data());
+      write_atomically(path, width, height, channels, stored, PRT_PIXEL_FLOAT, true,
+                       clamped.data());
     } else {
-      write_atomically(path, spec, OIIO::TypeDesc::FLOAT, pixels);
+      write_atomically(path, width, height, channels, stored, PRT_PIXEL_FLOAT, true, pixels);
     }
   } else {
     fail(path, "unsupported output extension '" + extension + "' (use .exr, .hdr or .png)");
@@ -321,8 +270,7 @@ void write_image(const std::string& path, int width, int height, int channels, c
 void write_png_rgba8(const std::string& path, int width, int height, const unsigned char* rgba) {
   if (width <= 0 || height <= 0) fail(path, "cannot write an empty image");
   if (lower_extension(path) != ".png") fail(path, "write_png_rgba8 writes .png files only");
-  OIIO::ImageSpec spec(width, height, 4, OIIO::TypeDesc::UINT8);
-  write_atomically(path, spec, OIIO::TypeDesc::UINT8, rgba);
+  write_atomically(path, width, height, 4, PRT_PIXEL_UINT8, PRT_PIXEL_UINT8, false, rgba);
 }
 
 }  // namespace prt::relight
