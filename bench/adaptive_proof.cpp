@@ -43,11 +43,11 @@ std::vector<double> make_sky() {
   std::vector<double> zonal(kLightingOrder, 0.0), lobe(K), out(3 * K, 0.0);
   for (int l = 0; l < 6; ++l) zonal[l] = 1.5 * std::exp(-0.12 * l * (l + 1));
   const double n = std::sqrt(0.4 * 0.4 + 0.8 * 0.8 + 0.45 * 0.45);
-  sh::rotate_zonal(kLightingOrder, zonal.data(), 0.4 / n, 0.8 / n, 0.45 / n, lobe.data());
+  prt::sh::rotate_zonal(kLightingOrder, zonal.data(), 0.4 / n, 0.8 / n, 0.45 / n, lobe.data());
   const double tint[3] = {1.0, 0.8, 0.6};
   for (int c = 0; c < 3; ++c) {
     for (int k = 0; k < K; ++k) out[c * K + k] = tint[c] * lobe[k];
-    out[c * K] += 0.3 * sh::kSqrtFourPi;
+    out[c * K] += 0.3 * prt::sh::kSqrtFourPi;
   }
   return out;
 }
@@ -55,8 +55,8 @@ std::vector<double> make_sky() {
 // The SH sky as a 256×128 lat-long map (evaluated at texel centres) for the ground truth, which
 // integrates maps, not coefficients. The sky is band-limited to bands 0–5, so the map is the
 // same function up to its piecewise-constant texels.
-sh::EnvMap sky_map(const std::vector<double>& sky) {
-  sh::EnvMap env;
+prt::sh::EnvMap sky_map(const std::vector<double>& sky) {
+  prt::sh::EnvMap env;
   env.width = 256, env.height = 128;
   env.rgb.resize(3 * env.width * env.height);
   const int K = kLightingOrder * kLightingOrder;
@@ -64,8 +64,8 @@ sh::EnvMap sky_map(const std::vector<double>& sky) {
   for (int r = 0; r < env.height; ++r)
     for (int c = 0; c < env.width; ++c) {
       double d[3];
-      sh::texel_direction(env.layout, env.width, env.height, c, r, d);
-      sh::evaluate(kLightingOrder, d[0], d[1], d[2], y.data());
+      prt::sh::texel_direction(env.layout, env.width, env.height, c, r, d);
+      prt::sh::evaluate(kLightingOrder, d[0], d[1], d[2], y.data());
       for (int ch = 0; ch < 3; ++ch) {
         double L = 0.0;
         for (int k = 0; k < K; ++k) L += sky[ch * K + k] * y[k];
@@ -397,7 +397,7 @@ Row run_scene(const std::string& name, const Scene& scene, const std::vector<dou
     g.target_relative_se = 0.01;
     g.max_samples = 1 << 14;
     for (uint32_t v = 0; v < scene.vertex_count(); v += gt_stride) g.vertices.push_back(v);
-    const sh::EnvMap env = sky_map(sky);
+    const prt::sh::EnvMap env = sky_map(sky);
     const GroundTruthResult gt = compute_ground_truth(scene, env, g);
     row.gt_se = gt.relative_rms_se;
     row.gt_auto =

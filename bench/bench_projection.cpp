@@ -1,5 +1,5 @@
 // Environment projection benchmarks: a 1024×512 lat-long map projected to orders 3 and 10 by the
-// separable path (sh::project) and by the direct texel sum (sh::project_direct), plus a
+// separable path (prt::sh::project) and by the direct texel sum (prt::sh::project_direct), plus a
 // 1000×1000 angular map (direct sum with exact edge-integral solid angles). Results and the
 // command line: docs/BENCHMARKS.md, "## Environment projection".
 #include <random>
@@ -12,8 +12,8 @@
 
 namespace {
 
-sh::EnvMap make_random_map(sh::EnvLayout layout, int width, int height) {
-  sh::EnvMap env;
+prt::sh::EnvMap make_random_map(prt::sh::EnvLayout layout, int width, int height) {
+  prt::sh::EnvMap env;
   env.layout = layout;
   env.width = width;
   env.height = height;
@@ -24,34 +24,34 @@ sh::EnvMap make_random_map(sh::EnvLayout layout, int width, int height) {
   return env;
 }
 
-const sh::EnvMap& latlong_map() {
-  static const sh::EnvMap env = make_random_map(sh::EnvLayout::LatLong, 1024, 512);
+const prt::sh::EnvMap& latlong_map() {
+  static const prt::sh::EnvMap env = make_random_map(prt::sh::EnvLayout::LatLong, 1024, 512);
   return env;
 }
 
 void BM_ProjectLatLongSeparable(benchmark::State& state) {
   const int order = static_cast<int>(state.range(0));
-  for (auto _ : state) benchmark::DoNotOptimize(sh::project(latlong_map(), order));
+  for (auto _ : state) benchmark::DoNotOptimize(prt::sh::project(latlong_map(), order));
   state.SetItemsProcessed(state.iterations() * 1024 * 512);
 }
 BENCHMARK(BM_ProjectLatLongSeparable)->Arg(3)->Arg(10)->Unit(benchmark::kMillisecond);
 
 void BM_ProjectLatLongDirect(benchmark::State& state) {
   const int order = static_cast<int>(state.range(0));
-  for (auto _ : state) benchmark::DoNotOptimize(sh::project_direct(latlong_map(), order));
+  for (auto _ : state) benchmark::DoNotOptimize(prt::sh::project_direct(latlong_map(), order));
   state.SetItemsProcessed(state.iterations() * 1024 * 512);
 }
 BENCHMARK(BM_ProjectLatLongDirect)->Arg(3)->Arg(10)->Unit(benchmark::kMillisecond);
 
 void BM_ProjectAngularDirect(benchmark::State& state) {
-  static const sh::EnvMap env = make_random_map(sh::EnvLayout::Angular, 1000, 1000);
-  for (auto _ : state) benchmark::DoNotOptimize(sh::project(env, 3));
+  static const prt::sh::EnvMap env = make_random_map(prt::sh::EnvLayout::Angular, 1000, 1000);
+  for (auto _ : state) benchmark::DoNotOptimize(prt::sh::project(env, 3));
 }
 BENCHMARK(BM_ProjectAngularDirect)->Unit(benchmark::kMillisecond);
 
 void BM_AngularSolidAngles(benchmark::State& state) {
   for (auto _ : state)
-    benchmark::DoNotOptimize(sh::texel_solid_angles(sh::EnvLayout::Angular, 1000, 1000));
+    benchmark::DoNotOptimize(prt::sh::texel_solid_angles(prt::sh::EnvLayout::Angular, 1000, 1000));
 }
 BENCHMARK(BM_AngularSolidAngles)->Unit(benchmark::kMillisecond);
 

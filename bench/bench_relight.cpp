@@ -133,7 +133,7 @@ void BM_ProjectLatLong1024(benchmark::State& state) {
   const std::vector<float> sky = make_sky(1024, 512);
   for (auto _ : state) {
     auto light =
-        prt::ShLighting::from_pixels(sh::EnvLayout::LatLong, 1024, 512, sky.data(), kOrder);
+        prt::ShLighting::from_pixels(prt::sh::EnvLayout::LatLong, 1024, 512, sky.data(), kOrder);
     benchmark::DoNotOptimize(light);
   }
 }
@@ -144,7 +144,7 @@ void BM_RotateOrder5(benchmark::State& state) {
   double yaw = 0;
   for (auto _ : state) {
     yaw += 1.0;
-    (void)light.rotate(sh::rotation_from_yaw_pitch_roll(yaw, 10, 0));
+    (void)light.rotate(prt::sh::rotation_from_yaw_pitch_roll(yaw, 10, 0));
     benchmark::DoNotOptimize(light);
   }
 }
@@ -155,9 +155,9 @@ void BM_ProjectAndRotate1024(benchmark::State& state) {
   double yaw = 0;
   for (auto _ : state) {
     auto light =
-        prt::ShLighting::from_pixels(sh::EnvLayout::LatLong, 1024, 512, sky.data(), kOrder);
+        prt::ShLighting::from_pixels(prt::sh::EnvLayout::LatLong, 1024, 512, sky.data(), kOrder);
     yaw += 1.0;
-    (void)light->rotate(sh::rotation_from_yaw_pitch_roll(yaw, 0, 0));
+    (void)light->rotate(prt::sh::rotation_from_yaw_pitch_roll(yaw, 0, 0));
     benchmark::DoNotOptimize(light);
   }
 }

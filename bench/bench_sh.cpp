@@ -18,7 +18,7 @@ constexpr int kDirections = 1024;  // power of two: index with & (kDirections âˆ
 template <typename T>
 std::vector<std::array<T, 3>> random_directions() {
   std::mt19937_64 rng(1);
-  std::uniform_real_distribution<double> u(-1.0, 1.0), a(0.0, sh::kTwoPi);
+  std::uniform_real_distribution<double> u(-1.0, 1.0), a(0.0, prt::sh::kTwoPi);
   std::vector<std::array<T, 3>> d(kDirections);
   for (auto& v : d) {
     const double z = u(rng), phi = a(rng), r = std::sqrt(1.0 - z * z);
@@ -36,7 +36,7 @@ void evaluate_per_direction(benchmark::State& state) {
   int i = 0;
   for (auto _ : state) {
     const auto& d = dirs[i++ & (kDirections - 1)];
-    sh::evaluate(order, d[0], d[1], d[2], out.data());
+    prt::sh::evaluate(order, d[0], d[1], d[2], out.data());
     benchmark::DoNotOptimize(out.data());
     benchmark::ClobberMemory();
   }
@@ -50,7 +50,7 @@ void evaluate_recurrence_per_direction(benchmark::State& state) {
   int i = 0;
   for (auto _ : state) {
     const auto& d = dirs[i++ & (kDirections - 1)];
-    sh::evaluate_recurrence(order, d[0], d[1], d[2], out.data());
+    prt::sh::evaluate_recurrence(order, d[0], d[1], d[2], out.data());
     benchmark::DoNotOptimize(out.data());
     benchmark::ClobberMemory();
   }
@@ -60,7 +60,7 @@ void evaluate_recurrence_per_direction(benchmark::State& state) {
 std::vector<std::array<double, 9>> random_rotations() {
   std::vector<std::array<double, 9>> r;
   for (int i = 0; i < 64; ++i) {
-    r.push_back(sh::rotation_from_yaw_pitch_roll(37.0 * i, 11.0 * i - 80.0, 23.0 * i));
+    r.push_back(prt::sh::rotation_from_yaw_pitch_roll(37.0 * i, 11.0 * i - 80.0, 23.0 * i));
   }
   return r;
 }
@@ -72,7 +72,7 @@ void rotate_build_and_apply(benchmark::State& state) {
   std::vector<double> in(order * order, 0.5), out(order * order);
   int i = 0;
   for (auto _ : state) {
-    const sh::Rotation r(order, rotations[i++ & 63]);
+    const prt::sh::Rotation r(order, rotations[i++ & 63]);
     r.apply(in.data(), out.data());
     benchmark::DoNotOptimize(out.data());
     benchmark::ClobberMemory();
@@ -86,7 +86,7 @@ void rotate_build_recurrence_and_apply(benchmark::State& state) {
   std::vector<double> in(order * order, 0.5), out(order * order);
   int i = 0;
   for (auto _ : state) {
-    const sh::Rotation r = sh::Rotation::build_with_recurrence(order, rotations[i++ & 63]);
+    const prt::sh::Rotation r = prt::sh::Rotation::build_with_recurrence(order, rotations[i++ & 63]);
     r.apply(in.data(), out.data());
     benchmark::DoNotOptimize(out.data());
     benchmark::ClobberMemory();
@@ -96,7 +96,7 @@ void rotate_build_recurrence_and_apply(benchmark::State& state) {
 // Apply only (band matrices built once).
 void rotate_apply_only(benchmark::State& state) {
   const int order = int(state.range(0));
-  const sh::Rotation r(order, sh::rotation_from_yaw_pitch_roll(30.0, 20.0, 10.0));
+  const prt::sh::Rotation r(order, prt::sh::rotation_from_yaw_pitch_roll(30.0, 20.0, 10.0));
   std::vector<double> in(order * order, 0.5), out(order * order);
   for (auto _ : state) {
     r.apply(in.data(), out.data());
@@ -113,7 +113,7 @@ void rotate_coefficients(benchmark::State& state) {
   std::vector<T> in(order * order, T(0.5)), out(order * order);
   int i = 0;
   for (auto _ : state) {
-    sh::rotate_coefficients(order, rotations[i++ & 63], in.data(), out.data());
+    prt::sh::rotate_coefficients(order, rotations[i++ & 63], in.data(), out.data());
     benchmark::DoNotOptimize(out.data());
     benchmark::ClobberMemory();
   }

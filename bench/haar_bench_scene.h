@@ -32,9 +32,9 @@ inline prt::bake::Scene make_bunny_on_plane(const std::string& shared_data_dir) 
 
 // A 512×256 lat-long map: dim uniform sky 0.05 and a 16×12-texel rectangle of radiance 200
 // at 40° elevation toward −Z+X (about 0.2% of the sphere): a small, bright area light.
-inline sh::EnvMap make_area_light() {
-  sh::EnvMap env;
-  env.layout = sh::EnvLayout::LatLong;
+inline prt::sh::EnvMap make_area_light() {
+  prt::sh::EnvMap env;
+  env.layout = prt::sh::EnvLayout::LatLong;
   env.width = 512;
   env.height = 256;
   env.rgb.assign(3 * 512 * 256, 0.05f);

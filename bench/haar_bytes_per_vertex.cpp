@@ -83,9 +83,9 @@ int main(int argc, char** argv) {
       std::vector<float> ref;
     };
     std::vector<Light> lights;
-    const sh::EnvMap park = prt::relight::read_environment(data + "/hdri/rooitou_park_1k.hdr",
-                                                           sh::EnvLayout::LatLong, nullptr);
-    for (auto& [name, env] : std::vector<std::pair<std::string, sh::EnvMap>>{
+    const prt::sh::EnvMap park = prt::relight::read_environment(data + "/hdri/rooitou_park_1k.hdr",
+                                                           prt::sh::EnvLayout::LatLong, nullptr);
+    for (auto& [name, env] : std::vector<std::pair<std::string, prt::sh::EnvMap>>{
              {"park", park}, {"area light", prt::bench::make_area_light()}}) {
       prt::Result<prt::CubeMap> cube = prt::resample_to_cube(env, kCube);
       if (!cube.ok()) throw std::runtime_error(cube.status().message());

@@ -122,7 +122,7 @@ int main(int argc, char** argv) {
         static_cast<int>(t.quantization), double(t.stored_bytes()) / V,
         100.0 * double(t.stored_bytes()) / double(t.dense_bytes()), double(t.entry_count()) / V,
         100.0 * double(t.entry_count()) / V / (6.0 * t.size * t.size));
-    const sh::EnvMap env = prt::relight::read_environment(hdr, std::nullopt, nullptr);
+    const prt::sh::EnvMap env = prt::relight::read_environment(hdr, std::nullopt, nullptr);
     prt::relight::HaarLightingOptions lo;
     lo.terms = terms;
     const prt::SparseLighting lighting =

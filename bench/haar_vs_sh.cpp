@@ -118,7 +118,7 @@ int main(int argc, char** argv) {
           double d[3];
           prt::cube_texel_direction(kCube, f, col, r, d);
           std::vector<double> yd(K);
-          sh::evaluate(kMaxShOrder, d[0], d[1], d[2], yd.data());
+          prt::sh::evaluate(kMaxShOrder, d[0], d[1], d[2], yd.data());
           for (int k = 0; k < K; ++k) y[t * K + k] = static_cast<float>(yd[k]);
           omega[t] = prt::cube_texel_solid_angle(kCube, col, r);
         }
@@ -138,12 +138,12 @@ int main(int argc, char** argv) {
 
     struct Light {
       std::string name;
-      sh::EnvMap env;
+      prt::sh::EnvMap env;
     };
     std::vector<Light> lights;
     lights.push_back(
         {"park (rooitou, sun)", prt::relight::read_environment(data + "/hdri/rooitou_park_1k.hdr",
-                                                               sh::EnvLayout::LatLong, nullptr)});
+                                                               prt::sh::EnvLayout::LatLong, nullptr)});
     lights.push_back({"small area light", prt::bench::make_area_light()});
 
     std::ofstream csv_tmp;

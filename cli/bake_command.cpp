@@ -95,9 +95,9 @@ void run_auto(const BakeArguments& args, const bake::Scene& scene, const bake::B
   o.bent_normals = fixed.bent_normals;
   o.precision = fixed.precision;
   if (!args.env.empty()) {
-    const sh::EnvMap env = relight::read_environment(args.env, std::nullopt);
+    const prt::sh::EnvMap env = relight::read_environment(args.env, std::nullopt);
     o.lighting_order = bake::kMaxBakeOrder;
-    o.lighting = sh::project(env, o.lighting_order);
+    o.lighting = prt::sh::project(env, o.lighting_order);
     if (o.lighting.empty()) throw CommandError(args.env + ": cannot project the environment");
   }
   const bake::AutoBakeResult result = bake::bake_transfer_auto(scene, o, &progress);

@@ -33,10 +33,10 @@ std::array<double, 3> parse_yaw_pitch_roll(const std::string& text) {
   return {v[0], v[1], v[2]};
 }
 
-std::optional<sh::EnvLayout> parse_layout_option(const std::string& text) {
+std::optional<prt::sh::EnvLayout> parse_layout_option(const std::string& text) {
   if (text == "auto") return std::nullopt;
-  sh::EnvLayout layout;
-  if (!sh::parse_layout(text, &layout))
+  prt::sh::EnvLayout layout;
+  if (!prt::sh::parse_layout(text, &layout))
     throw CommandError("--layout " + text + ": expected auto|latlong|angular|cross|faces");
   return layout;
 }

@@ -159,12 +159,12 @@ void run(const DemoArguments& args) {
   // 3. Relight under the bundled sky.
   auto start = Clock::now();
   const std::string sky_path = (data_dir / "sky.hdr").string();
-  const sh::EnvMap sky = relight::read_environment(sky_path, sh::EnvLayout::LatLong, nullptr);
+  const prt::sh::EnvMap sky = relight::read_environment(sky_path, prt::sh::EnvLayout::LatLong, nullptr);
   relight::LightingOptions lighting_options;
   lighting_options.yaw_pitch_roll_deg = settings.yaw_pitch_roll;
-  lighting_options.window = sh::Window::Auto;
+  lighting_options.window = prt::sh::Window::Auto;
   std::string window_note;
-  const std::array<double, 9> rotation = sh::rotation_from_yaw_pitch_roll(
+  const std::array<double, 9> rotation = prt::sh::rotation_from_yaw_pitch_roll(
       settings.yaw_pitch_roll[0], settings.yaw_pitch_roll[1], settings.yaw_pitch_roll[2]);
   const prt::ShLighting lighting = relight::rotate_lighting(
       relight::project_lighting(sky, settings.order, lighting_options, &window_note), rotation);

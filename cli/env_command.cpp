@@ -49,26 +49,26 @@ struct EnvArguments {
 };
 
 struct Settings {
-  std::optional<sh::EnvLayout> layout;
-  sh::Window window = sh::Window::None;
+  std::optional<prt::sh::EnvLayout> layout;
+  prt::sh::Window window = prt::sh::Window::None;
   std::optional<std::array<double, 3>> yaw_pitch_roll;
 };
 
 Settings parse_settings(const EnvArguments& args) {
   Settings settings;
   settings.layout = parse_layout_option(args.layout);
-  if (!sh::parse_window(args.window, &settings.window))
+  if (!prt::sh::parse_window(args.window, &settings.window))
     throw CommandError("--window " + args.window +
                        ": unknown window (none, hanning, lanczos, laplacian or auto)");
-  if (args.order < 1 || args.order > sh::kMaxOrder)
+  if (args.order < 1 || args.order > prt::sh::kMaxOrder)
     throw CommandError("--order " + std::to_string(args.order) + ": must be in [1, " +
-                       std::to_string(sh::kMaxOrder) + "]");
+                       std::to_string(prt::sh::kMaxOrder) + "]");
   if (!std::isfinite(args.window_strength))
     throw CommandError("--window-strength: must be a finite number");
   if (!args.rotate.empty()) {
     const std::array<double, 3> angles = parse_yaw_pitch_roll(args.rotate);
-    if (args.order > sh::kMaxRotationOrder)
-      throw CommandError("--rotate: orders above " + std::to_string(sh::kMaxRotationOrder) +
+    if (args.order > prt::sh::kMaxRotationOrder)
+      throw CommandError("--rotate: orders above " + std::to_string(prt::sh::kMaxRotationOrder) +
                          " cannot be rotated");
     settings.yaw_pitch_roll = angles;
   }
@@ -76,15 +76,15 @@ Settings parse_settings(const EnvArguments& args) {
 }
 
 // Texels along a great circle: a rough measure of the bands a map can resolve (≈ half of it).
-int great_circle_texels(const sh::EnvMap& env) {
+int great_circle_texels(const prt::sh::EnvMap& env) {
   switch (env.layout) {
-    case sh::EnvLayout::LatLong:
+    case prt::sh::EnvLayout::LatLong:
       return env.width;
-    case sh::EnvLayout::Angular:
+    case prt::sh::EnvLayout::Angular:
       return env.width;
-    case sh::EnvLayout::Cross:
+    case prt::sh::EnvLayout::Cross:
       return 4 * (env.width / 3);
-    case sh::EnvLayout::Faces:
+    case prt::sh::EnvLayout::Faces:
       return 4 * env.width;
   }
   return env.width;
@@ -103,9 +103,9 @@ std::string format_row(int l, int m, double r, double g, double b) {
 
 FileResult process(const std::string& path, const EnvArguments& args, const Settings& settings) {
   std::string layout_note;
-  const sh::EnvMap env = relight::read_environment(path, settings.layout, &layout_note);
+  const prt::sh::EnvMap env = relight::read_environment(path, settings.layout, &layout_note);
   const int order = args.order;
-  const int n2 = sh::coefficient_count(order);
+  const int n2 = prt::sh::coefficient_count(order);
 
   // Resolution: a map with C texels around a great circle resolves bands up to about C/2.
   const int circle = great_circle_texels(env);
@@ -120,8 +120,8 @@ FileResult process(const std::string& path, const EnvArguments& args, const Sett
                        "; order " + std::to_string(order) +
                        " asks for l = " + std::to_string(order - 1) + " (aliasing)");
 
-  sh::ProjectionStats stats;
-  std::vector<double> coefficients = sh::project(env, order, &stats);
+  prt::sh::ProjectionStats stats;
+  std::vector<double> coefficients = prt::sh::project(env, order, &stats);
   if (coefficients.size() != 3 * static_cast<std::size_t>(n2))
     throw CommandError(path + ": projection failed (invalid map)");
   const std::size_t skipped = stats.skipped_texels();
@@ -139,10 +139,10 @@ FileResult process(const std::string& path, const EnvArguments& args, const Sett
 
   // Window.
   nlohmann::json window_json;
-  sh::Window window = settings.window;
+  prt::sh::Window window = settings.window;
   double strength = args.window_strength;
-  if (window == sh::Window::Auto) {
-    const sh::WindowChoice choice = sh::choose_window_auto(coefficients.data(), 3, order);
+  if (window == prt::sh::Window::Auto) {
+    const prt::sh::WindowChoice choice = prt::sh::choose_window_auto(coefficients.data(), 3, order);
     window = choice.window;
     strength = choice.strength;
     window_json["requested"] = "auto";
@@ -152,20 +152,20 @@ FileResult process(const std::string& path, const EnvArguments& args, const Sett
       warnings.push_back(path + ": no window keeps the irradiance non-negative (minimum " +
                          std::to_string(choice.min_irradiance_after) + ")");
   } else if (!(strength > 0)) {
-    strength = sh::default_window_strength(window, order);
+    strength = prt::sh::default_window_strength(window, order);
   }
-  window_json["name"] = sh::window_name(window);
-  window_json["strength"] = window == sh::Window::None ? 0.0 : strength;
-  const std::vector<double> factors = sh::window_band_factors(window, order, strength);
+  window_json["name"] = prt::sh::window_name(window);
+  window_json["strength"] = window == prt::sh::Window::None ? 0.0 : strength;
+  const std::vector<double> factors = prt::sh::window_band_factors(window, order, strength);
   window_json["band_factors"] = factors;
-  for (int c = 0; c < 3; ++c) sh::convolve_zonal(order, factors.data(), &coefficients[c * n2]);
+  for (int c = 0; c < 3; ++c) prt::sh::convolve_zonal(order, factors.data(), &coefficients[c * n2]);
 
   // Rotation.
   nlohmann::json rotation_json = nullptr;
   if (settings.yaw_pitch_roll) {
     const auto& a = *settings.yaw_pitch_roll;
-    const std::array<double, 9> matrix = sh::rotation_from_yaw_pitch_roll(a[0], a[1], a[2]);
-    const sh::Rotation rotation(order, matrix);
+    const std::array<double, 9> matrix = prt::sh::rotation_from_yaw_pitch_roll(a[0], a[1], a[2]);
+    const prt::sh::Rotation rotation(order, matrix);
     std::vector<double> rotated(coefficients.size());
     for (int c = 0; c < 3; ++c) rotation.apply(&coefficients[c * n2], &rotated[c * n2]);
     coefficients.swap(rotated);
@@ -181,9 +181,9 @@ FileResult process(const std::string& path, const EnvArguments& args, const Sett
   // Irradiance.
   if (args.irradiance) {
     std::vector<double> band_factors(order);
-    for (int l = 0; l < order; ++l) band_factors[l] = sh::clamped_cosine_band_factor(l);
+    for (int l = 0; l < order; ++l) band_factors[l] = prt::sh::clamped_cosine_band_factor(l);
     for (int c = 0; c < 3; ++c)
-      sh::convolve_zonal(order, band_factors.data(), &coefficients[c * n2]);
+      prt::sh::convolve_zonal(order, band_factors.data(), &coefficients[c * n2]);
   }
 
   for (const std::string& warning : warnings)
@@ -196,9 +196,9 @@ FileResult process(const std::string& path, const EnvArguments& args, const Sett
   j["width"] = env.width;
   j["height"] = env.height;
   j["order"] = order;
-  j["basis"] = sh::kBasisConvention;
+  j["basis"] = prt::sh::kBasisConvention;
   j["frame"] = kFrame;
-  j["layout"] = sh::layout_name(env.layout);
+  j["layout"] = prt::sh::layout_name(env.layout);
   j["layout_note"] = layout_note;
   j["window"] = window_json;
   j["quantity"] = quantity;
@@ -216,12 +216,12 @@ FileResult process(const std::string& path, const EnvArguments& args, const Sett
   text += "# " + path + ": " + layout_note + ", " + std::to_string(env.width) + "x" +
           std::to_string(env.height) + "\n";
   text += "# order " + std::to_string(order) + " (" + std::to_string(n2) +
-          " coefficients per channel); basis: " + sh::kBasisConvention + "; frame " + kFrame + "\n";
+          " coefficients per channel); basis: " + prt::sh::kBasisConvention + "; frame " + kFrame + "\n";
   text += std::string("# quantity ") + quantity +
           (args.irradiance ? " (E_lm = A_l L_lm; constant radiance L gives E = pi L)" : "") +
-          "; window " + sh::window_name(window);
-  if (window != sh::Window::None) text += " (strength " + std::to_string(strength) + ")";
-  if (settings.window == sh::Window::Auto) text += ", chosen by auto";
+          "; window " + prt::sh::window_name(window);
+  if (window != prt::sh::Window::None) text += " (strength " + std::to_string(strength) + ")";
+  if (settings.window == prt::sh::Window::Auto) text += ", chosen by auto";
   if (settings.yaw_pitch_roll) {
     const auto& a = *settings.yaw_pitch_roll;
     text += "; rotation yaw " + std::to_string(a[0]) + ", pitch " + std::to_string(a[1]) +
@@ -231,7 +231,7 @@ FileResult process(const std::string& path, const EnvArguments& args, const Sett
   text += "#  l    m                 r                g                b\n";
   for (int l = 0; l < order; ++l)
     for (int m = -l; m <= l; ++m) {
-      const int k = sh::index(l, m);
+      const int k = prt::sh::index(l, m);
       text += format_row(l, m, coefficients[k], coefficients[n2 + k], coefficients[2 * n2 + k]);
     }
   return result;

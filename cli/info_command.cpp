@@ -51,7 +51,7 @@ nlohmann::json describe(const prt::TransferData& d, const std::string& path) {
     prims.push_back(
         {{"name", p.name}, {"first_vertex", p.first_vertex}, {"vertex_count", p.vertex_count}});
   j["primitives"] = prims;
-  j["sh_basis"] = sh::kBasisConvention;
+  j["sh_basis"] = prt::sh::kBasisConvention;
   if (!d.metadata_json.empty()) {
     nlohmann::json meta = nlohmann::json::parse(d.metadata_json, nullptr, false);
     j["metadata"] = meta.is_discarded() ? nlohmann::json(d.metadata_json) : meta;

@@ -37,16 +37,16 @@ void run(const MakeSkyArguments& args) {
     throw CommandError(args.output +
                        ": invalid sky parameters (radius > 0, radiances >= 0, "
                        "1 <= supersampling <= 64)");
-  const sh::EnvMap sky = relight::make_procedural_sky(args.width, args.height, p);
+  const prt::sh::EnvMap sky = relight::make_procedural_sky(args.width, args.height, p);
   relight::write_image(args.output, sky.width, sky.height, 3, sky.rgb.data());
   // Mean radiance = L_00·Y_00 (∫L dω = L_00/Y_00 and Y_00² = 1/4π).
-  const std::vector<double> L = sh::project(sky, 1);
+  const std::vector<double> L = prt::sh::project(sky, 1);
   const std::array<double, 3> sun = relight::sun_direction(p);
   std::printf(
       "%s: %dx%d lat-long sky, sun at elevation %g deg, azimuth %g deg "
       "(direction %.4f %.4f %.4f), mean radiance %.4g %.4g %.4g\n",
       args.output.c_str(), sky.width, sky.height, p.sun_elevation_deg, p.sun_azimuth_deg, sun[0],
-      sun[1], sun[2], L[0] * sh::kY00, L[1] * sh::kY00, L[2] * sh::kY00);
+      sun[1], sun[2], L[0] * prt::sh::kY00, L[1] * prt::sh::kY00, L[2] * prt::sh::kY00);
 }
 
 void register_make_sky(CLI::App& app) {

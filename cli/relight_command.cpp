@@ -58,7 +58,7 @@ void run(const RelightArguments& args) {
   request.output_path = args.output;
   request.layout = parse_layout_option(args.layout);
   request.lighting.yaw_pitch_roll_deg = parse_yaw_pitch_roll(args.rotate);
-  if (!sh::parse_window(args.window, &request.lighting.window))
+  if (!prt::sh::parse_window(args.window, &request.lighting.window))
     throw CommandError("--window " + args.window +
                        ": expected none|hanning|lanczos|laplacian|auto");
   request.lighting.window_strength = args.window_strength;

@@ -1,6 +1,6 @@
 // fuzz/fuzz_env_map.cpp — libFuzzer target: the environment-map path from memory, image bytes →
 // the project's Radiance / PFM decoders (relight/radiance_hdr.h, relight/pfm_image.h) →
-// relight::to_environment (layout guessed or forced) → sh::validate_layout → sh::project.
+// relight::to_environment (layout guessed or forced) → prt::sh::validate_layout → prt::sh::project.
 // (EXR goes through OpenImageIO: fuzz_env_map_exr.cpp.)
 //
 // Input: byte 0 picks the decoder (even: Radiance RGBE, odd: PFM) and the layout
@@ -40,16 +40,16 @@ void check_error(const char* message, const std::string& name) {
     std::abort();
 }
 
-std::optional<sh::EnvLayout> layout_of(uint8_t selector) {
+std::optional<prt::sh::EnvLayout> layout_of(uint8_t selector) {
   switch ((selector / 2) % 5) {
     case 1:
-      return sh::EnvLayout::LatLong;
+      return prt::sh::EnvLayout::LatLong;
     case 2:
-      return sh::EnvLayout::Angular;
+      return prt::sh::EnvLayout::Angular;
     case 3:
-      return sh::EnvLayout::Cross;
+      return prt::sh::EnvLayout::Cross;
     case 4:
-      return sh::EnvLayout::Faces;
+      return prt::sh::EnvLayout::Faces;
     default:
       return std::nullopt;  // guessed from the aspect ratio
   }
@@ -81,7 +81,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     for (float v : image.pixels)
       if (!std::isfinite(v) || v < 0.0f) std::abort();  // m · 2^(e − 136) is never NaN or < 0
 
-  sh::EnvMap env;
+  prt::sh::EnvMap env;
   try {
     env = prt::relight::to_environment(std::move(image), name, layout_of(selector));
   } catch (const std::runtime_error& e) {
@@ -89,10 +89,10 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     return 0;
   }
   std::string why;
-  if (!sh::validate_layout(env.layout, env.width, env.height, &why)) std::abort();
+  if (!prt::sh::validate_layout(env.layout, env.width, env.height, &why)) std::abort();
   if (env.rgb.size() != texels * 3) std::abort();
-  sh::ProjectionStats stats;
-  const std::vector<double> c = sh::project(env, 3, &stats);
+  prt::sh::ProjectionStats stats;
+  const std::vector<double> c = prt::sh::project(env, 3, &stats);
   if (c.size() != 27) std::abort();
   for (double v : c)
     if (!std::isfinite(v)) {

@@ -1,7 +1,7 @@
 // fuzz/fuzz_env_map_exr.cpp — libFuzzer target: the OpenImageIO part of the environment-map path,
 // EXR bytes → scratch file "….exr" → relight::read_image (OpenImageIO's OpenEXR reader only, no
 // probing of other plugins) → relight::to_environment (layout guessed or forced) →
-// sh::validate_layout → sh::project.
+// prt::sh::validate_layout → prt::sh::project.
 //
 // Input: byte 0 picks the layout ((b % 5): guessed, latlong, angular, cross, faces); the rest is
 // the file. A hostile file must be refused with a one-line std::runtime_error "PATH: ..." or give
@@ -56,25 +56,25 @@ extern "C" int LLVMFuzzerInitialize(int*, char***) {
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   if (size < 1) return 0;
   const uint8_t selector = data[0];
-  std::optional<sh::EnvLayout> layout;
+  std::optional<prt::sh::EnvLayout> layout;
   switch (selector % 5) {
     case 1:
-      layout = sh::EnvLayout::LatLong;
+      layout = prt::sh::EnvLayout::LatLong;
       break;
     case 2:
-      layout = sh::EnvLayout::Angular;
+      layout = prt::sh::EnvLayout::Angular;
       break;
     case 3:
-      layout = sh::EnvLayout::Cross;
+      layout = prt::sh::EnvLayout::Cross;
       break;
     case 4:
-      layout = sh::EnvLayout::Faces;
+      layout = prt::sh::EnvLayout::Faces;
       break;
     default:
       break;  // guessed from the aspect ratio
   }
   const std::string path = prt::fuzz::write_scratch_file(".exr", data + 1, size - 1);
-  sh::EnvMap env;
+  prt::sh::EnvMap env;
   try {
     env =
         prt::relight::to_environment(prt::relight::read_image(path, kMaxFuzzTexels), path, layout);
@@ -83,10 +83,10 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     return 0;
   }
   std::string why;
-  if (!sh::validate_layout(env.layout, env.width, env.height, &why)) std::abort();
+  if (!prt::sh::validate_layout(env.layout, env.width, env.height, &why)) std::abort();
   if (env.rgb.size() != static_cast<std::size_t>(env.width) * env.height * 3) std::abort();
-  sh::ProjectionStats stats;
-  const std::vector<double> c = sh::project(env, 3, &stats);
+  prt::sh::ProjectionStats stats;
+  const std::vector<double> c = prt::sh::project(env, 3, &stats);
   if (c.size() != 27) std::abort();
   for (double v : c)
     if (!std::isfinite(v)) std::abort();

@@ -31,7 +31,7 @@
 
 #include "sh/constants.h"
 
-namespace sh {
+namespace prt::sh {
 namespace {
 
 // ---- hard-coded polynomial fast path, orders 1..6 ---------------------------------------
@@ -523,4 +523,4 @@ void evaluate_recurrence(int order, float x, float y, float z, float* out) noexc
   evaluate_recurrence_impl(order, x, y, z, out);
 }
 
-}  // namespace sh
+}  // namespace prt::sh

@@ -9,7 +9,7 @@
 #include "gauss_legendre.h"
 #include "sh/constants.h"
 
-namespace sh {
+namespace prt::sh {
 namespace {
 
 // ---- cube faces -------------------------------------------------------------------------------
@@ -510,4 +510,4 @@ void sample_bilinear(const EnvMap& env, const double dir[3], float rgb[3]) noexc
   for (int c = 0; c < 3; ++c) rgb[c] = static_cast<float>(sum[c]);
 }
 
-}  // namespace sh
+}  // namespace prt::sh

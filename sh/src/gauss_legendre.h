@@ -12,7 +12,7 @@
 
 #include "sh/constants.h"
 
-namespace sh::detail {
+namespace prt::sh::detail {
 
 inline void gauss_legendre(int n, std::vector<double>* nodes, std::vector<double>* weights) {
   nodes->assign(n, 0.0);
@@ -43,4 +43,4 @@ inline void gauss_legendre(int n, std::vector<double>* nodes, std::vector<double
   }
 }
 
-}  // namespace sh::detail
+}  // namespace prt::sh::detail

@@ -8,7 +8,7 @@
 #include "sh/basis.h"
 #include "sh/constants.h"
 
-namespace sh {
+namespace prt::sh {
 namespace {
 
 enum class TexelClass { Good, NaN, Inf, Negative };
@@ -232,4 +232,4 @@ void reconstruct(const double* coefficients, int channels, int order, const doub
   }
 }
 
-}  // namespace sh
+}  // namespace prt::sh

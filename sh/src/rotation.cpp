@@ -26,7 +26,7 @@
 
 #include "sh/constants.h"
 
-namespace sh {
+namespace prt::sh {
 namespace {
 
 // The rows of band l − 1 that feed row m of band l: P(i, a, ·) with weight.
@@ -665,4 +665,4 @@ void rotate_coefficients(int order, const std::array<double, 9>& m, const float*
   rotate_coefficients_impl(order, m, in, out);
 }
 
-}  // namespace sh
+}  // namespace prt::sh

@@ -9,7 +9,7 @@
 #include "sh/constants.h"
 #include "sh/zonal.h"
 
-namespace sh {
+namespace prt::sh {
 namespace {
 
 char lower_ascii(char c) {
@@ -191,4 +191,4 @@ WindowChoice choose_window_auto(const double* coefficients, int channels, int or
   return choice;
 }
 
-}  // namespace sh
+}  // namespace prt::sh

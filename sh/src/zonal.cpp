@@ -6,7 +6,7 @@
 #include "sh/basis.h"
 #include "sh/constants.h"
 
-namespace sh {
+namespace prt::sh {
 
 double clamped_cosine_band_factor(int l) noexcept {
   if (l < 0) return 0.0;
@@ -63,4 +63,4 @@ void rotate_zonal(int order, const float* zonal, float x, float y, float z, floa
   rotate_zonal_impl(order, zonal, x, y, z, out);
 }
 
-}  // namespace sh
+}  // namespace prt::sh

@@ -22,8 +22,8 @@ using namespace prt::bake;
 
 namespace {
 
-using sh::kPi;
-using sh::kSqrtFourPi;
+using prt::sh::kPi;
+using prt::sh::kSqrtFourPi;
 
 // A ground quad (6 × 6, 24 × 24 cells) with a sphere of radius 0.7 resting on it.
 Scene make_plane_with_sphere(glm::vec3 albedo) {
@@ -40,7 +40,7 @@ std::vector<double> make_band_limited_lighting(int order) {
   std::vector<double> zonal(order, 0.0), lobe(K), out(3 * K, 0.0);
   for (int l = 0; l < order && l < 6; ++l) zonal[l] = 1.5 * std::exp(-0.12 * l * (l + 1));
   const glm::dvec3 d = glm::normalize(glm::dvec3(0.4, 0.8, 0.45));
-  sh::rotate_zonal(order, zonal.data(), d.x, d.y, d.z, lobe.data());
+  prt::sh::rotate_zonal(order, zonal.data(), d.x, d.y, d.z, lobe.data());
   const double tint[3] = {1.0, 0.8, 0.6};
   for (int c = 0; c < 3; ++c) {
     for (int k = 0; k < K; ++k) out[c * K + k] = tint[c] * lobe[k];
@@ -213,15 +213,15 @@ TEST_CASE(
   // against 1.06% from the converged reference; the difference is what no PRT bake sees: the
   // map's piecewise-constant texels and the mesh's interpolation of interreflected light at the
   // ball's contact (docs/adaptive/README.md). Both stay inside the 2% tolerance.
-  sh::EnvMap env;
+  prt::sh::EnvMap env;
   env.width = 128, env.height = 64;
   env.rgb.resize(3 * env.width * env.height);
   std::vector<double> y(K8);
   for (int row = 0; row < env.height; ++row)
     for (int col = 0; col < env.width; ++col) {
       double d[3];
-      REQUIRE(sh::texel_direction(env.layout, env.width, env.height, col, row, d));
-      sh::evaluate(lighting_order, d[0], d[1], d[2], y.data());
+      REQUIRE(prt::sh::texel_direction(env.layout, env.width, env.height, col, row, d));
+      prt::sh::evaluate(lighting_order, d[0], d[1], d[2], y.data());
       for (int c = 0; c < 3; ++c) {
         double L = 0.0;
         for (int k = 0; k < K8; ++k) L += lighting[c * K8 + k] * y[k];
@@ -265,7 +265,7 @@ TEST_CASE("under a sun the predicted truncation follows the measured one, and pi
   const int order = 32;
   std::vector<double> zonal(order, 1.0), lobe(order * order), lighting(3 * order * order);
   const glm::dvec3 d = glm::normalize(glm::dvec3(0.3, 0.9, 0.2));
-  sh::rotate_zonal(order, zonal.data(), d.x, d.y, d.z, lobe.data());  // a delta, cut at band 31
+  prt::sh::rotate_zonal(order, zonal.data(), d.x, d.y, d.z, lobe.data());  // a delta, cut at band 31
   for (int c = 0; c < 3; ++c)
     for (int k = 0; k < order * order; ++k) lighting[c * order * order + k] = lobe[k];
   const std::vector<double> measured = measured_truncation(scene, lighting, order, 2048);
@@ -553,9 +553,9 @@ TEST_CASE("compact output holds exactly the rows of the bake's non-skipped verti
 TEST_CASE("the tail bound beyond the pilot order bounds a sun's error, exact or noisy pilot") {
   const int np = 16, nl = 32, kp = np * np, kl = nl * nl;
   std::vector<double> zonal(nl), ones(nl, 1.0), light(kl), lighting(3 * kl);
-  for (int l = 0; l < nl; ++l) zonal[l] = sh::clamped_cosine_zonal_coefficient(l);
+  for (int l = 0; l < nl; ++l) zonal[l] = prt::sh::clamped_cosine_zonal_coefficient(l);
   const glm::dvec3 d = glm::normalize(glm::dvec3(0.3, 0.9, 0.2));
-  sh::rotate_zonal(nl, ones.data(), d.x, d.y, d.z, light.data());
+  prt::sh::rotate_zonal(nl, ones.data(), d.x, d.y, d.z, light.data());
   for (int c = 0; c < 3; ++c)
     for (int k = 0; k < kl; ++k) lighting[c * kl + k] = light[k];
   const int P = 64;
@@ -572,7 +572,7 @@ TEST_CASE("the tail bound beyond the pilot order bounds a sun's error, exact or 
     const double t = (v + 0.5) / P, phi = 2.399963 * v;  // a spiral of normals
     const glm::dvec3 n(std::sqrt(1 - t * t) * std::cos(phi), t,
                        std::sqrt(1 - t * t) * std::sin(phi));
-    sh::rotate_zonal(nl, zonal.data(), n.x, n.y, n.z, s_full.data());
+    prt::sh::rotate_zonal(nl, zonal.data(), n.x, n.y, n.z, s_full.data());
     double tail = 0.0, full = 0.0;
     for (int k = 0; k < kl; ++k) (k < kp ? full : tail) += 0.6 * s_full[k] * light[k];
     tail2 += 3.0 * tail * tail;
@@ -586,7 +586,7 @@ TEST_CASE("the tail bound beyond the pilot order bounds a sun's error, exact or 
       const double r = std::sqrt(uniform()), ph = 2.0 * kPi * uniform();
       const glm::dvec3 w =
           r * std::cos(ph) * tx + r * std::sin(ph) * ty + std::sqrt(std::max(0.0, 1.0 - r * r)) * n;
-      sh::evaluate(np, w.x, w.y, w.z, y.data());
+      prt::sh::evaluate(np, w.x, w.y, w.z, y.data());
       for (int k = 0; k < kp; ++k) noisy[v * kp + k] += kPi / N * y[k];
     }
   }

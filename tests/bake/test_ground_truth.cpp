@@ -22,8 +22,8 @@ namespace {
 
 constexpr double kPi = prt::test::kPi;
 
-sh::EnvMap constant_map(sh::EnvLayout layout, int w, int h, float value) {
-  sh::EnvMap m;
+prt::sh::EnvMap constant_map(prt::sh::EnvLayout layout, int w, int h, float value) {
+  prt::sh::EnvMap m;
   m.layout = layout, m.width = w, m.height = h;
   m.rgb.assign(3ull * w * h, value);
   return m;
@@ -48,21 +48,21 @@ Mean mean_red(const prt::bake::GroundTruthResult& r, std::size_t first, std::siz
 
 }  // namespace
 
-TEST_CASE("image_point_direction agrees with sh::direction_to_texel in every layout") {
+TEST_CASE("image_point_direction agrees with prt::sh::direction_to_texel in every layout") {
   // Independent second method: the sh library's inverse mapping must send our continuous
   // image point back to itself (to 1e-6 texel), and texel centres must match texel_direction.
   struct Case {
-    sh::EnvLayout layout;
+    prt::sh::EnvLayout layout;
     int w, h;
   };
-  const Case cases[] = {{sh::EnvLayout::LatLong, 64, 32},
-                        {sh::EnvLayout::Angular, 48, 48},
-                        {sh::EnvLayout::Cross, 48, 64},
-                        {sh::EnvLayout::Faces, 16, 96}};
+  const Case cases[] = {{prt::sh::EnvLayout::LatLong, 64, 32},
+                        {prt::sh::EnvLayout::Angular, 48, 48},
+                        {prt::sh::EnvLayout::Cross, 48, 64},
+                        {prt::sh::EnvLayout::Faces, 16, 96}};
   std::mt19937_64 rng(7);
   std::uniform_real_distribution<double> u(0.0, 1.0);
   for (const Case& c : cases) {
-    INFO(sh::layout_name(c.layout));
+    INFO(prt::sh::layout_name(c.layout));
     int tested = 0;
     for (int i = 0; i < 4000; ++i) {
       const double x = u(rng) * c.w, y = u(rng) * c.h;
@@ -70,8 +70,8 @@ TEST_CASE("image_point_direction agrees with sh::direction_to_texel in every lay
       if (!prt::bake::image_point_direction(c.layout, c.w, c.h, x, y, d, &jac)) continue;
       REQUIRE(std::fabs(d[0] * d[0] + d[1] * d[1] + d[2] * d[2] - 1.0) < 1e-12);
       REQUIRE(jac > 0);
-      if (c.layout == sh::EnvLayout::LatLong && (y < 1e-3 || y > c.h - 1e-3)) continue;
-      REQUIRE(sh::direction_to_texel(c.layout, c.w, c.h, d, &bx, &by));
+      if (c.layout == prt::sh::EnvLayout::LatLong && (y < 1e-3 || y > c.h - 1e-3)) continue;
+      REQUIRE(prt::sh::direction_to_texel(c.layout, c.w, c.h, d, &bx, &by));
       REQUIRE(bx == Approx(x).margin(1e-6));
       REQUIRE(by == Approx(y).margin(1e-6));
       ++tested;
@@ -98,13 +98,13 @@ TEST_CASE("unoccluded point under a constant white map: B = ρ in every layout")
   const Scene quad = prt::bake::make_quad(glm::vec3(-1, 0, 1), glm::vec3(2, 0, 0),
                                           glm::vec3(0, 0, -2), 2, 2, glm::vec3(0.5f));
   struct Case {
-    sh::EnvLayout layout;
+    prt::sh::EnvLayout layout;
     int w, h;
   };
-  for (const Case c : {Case{sh::EnvLayout::LatLong, 64, 32}, Case{sh::EnvLayout::Angular, 64, 64},
-                       Case{sh::EnvLayout::Cross, 48, 64}, Case{sh::EnvLayout::Faces, 16, 96}}) {
-    INFO(sh::layout_name(c.layout));
-    const sh::EnvMap env = constant_map(c.layout, c.w, c.h, 1.f);
+  for (const Case c : {Case{prt::sh::EnvLayout::LatLong, 64, 32}, Case{prt::sh::EnvLayout::Angular, 64, 64},
+                       Case{prt::sh::EnvLayout::Cross, 48, 64}, Case{prt::sh::EnvLayout::Faces, 16, 96}}) {
+    INFO(prt::sh::layout_name(c.layout));
+    const prt::sh::EnvMap env = constant_map(c.layout, c.w, c.h, 1.f);
     GroundTruthOptions o;
     o.initial_samples = 2048;
     o.max_samples = 2048;
@@ -129,7 +129,7 @@ TEST_CASE("AO configuration: a floor point beside a wall sees ρ·(1 − occlude
       scene, prt::bake::make_quad(glm::vec3(1.5f, 0, -20), glm::vec3(0, 0, 40), glm::vec3(0, 1, 0),
                                   1, 1, glm::vec3(0.0f), "wall"));
   const std::vector<glm::dvec3> wall = {{1.5, 0, -20}, {1.5, 0, 20}, {1.5, 1, 20}, {1.5, 1, -20}};
-  const sh::EnvMap env = constant_map(sh::EnvLayout::LatLong, 64, 32, 1.f);
+  const prt::sh::EnvMap env = constant_map(prt::sh::EnvLayout::LatLong, 64, 32, 1.f);
   GroundTruthOptions o;
   o.max_bounces = 0;
   o.initial_samples = 16384;
@@ -170,7 +170,7 @@ TEST_CASE("spherical-cavity furnace with interreflection: B = ρf/(1 − ρ(1 �
       f += prt::test::polygon_form_factor(glm::dvec3(cavity.positions[v]),
                                           glm::dvec3(cavity.normals[v]), rim);
     f /= static_cast<double>(cavity.vertex_count() - kSegments);
-    const sh::EnvMap env = constant_map(sh::EnvLayout::LatLong, 32, 16, 1.f);
+    const prt::sh::EnvMap env = constant_map(prt::sh::EnvLayout::LatLong, 32, 16, 1.f);
     GroundTruthOptions o;
     o.initial_samples = 512;
     o.max_samples = 512;
@@ -194,14 +194,14 @@ TEST_CASE("band-limited environment: ground truth matches SH relighting of a sha
   // estimated independently from two bakes with different seeds (RMS difference / √2); the
   // relative RMS difference must lie within 4× the combined RMS error.
   const double coeffs[9] = {2.0, 0.4, 0.5, -0.3, 0.15, -0.1, 0.2, 0.1, -0.15};
-  sh::EnvMap env;
-  env.layout = sh::EnvLayout::LatLong, env.width = 256, env.height = 128;
+  prt::sh::EnvMap env;
+  env.layout = prt::sh::EnvLayout::LatLong, env.width = 256, env.height = 128;
   env.rgb.resize(3ull * env.width * env.height);
   for (int row = 0; row < env.height; ++row)
     for (int col = 0; col < env.width; ++col) {
       double d[3], y[9];
-      REQUIRE(sh::texel_direction(env.layout, env.width, env.height, col, row, d));
-      sh::evaluate(3, d[0], d[1], d[2], y);
+      REQUIRE(prt::sh::texel_direction(env.layout, env.width, env.height, col, row, d));
+      prt::sh::evaluate(3, d[0], d[1], d[2], y);
       double value = 0;
       for (int k = 0; k < 9; ++k) value += coeffs[k] * y[k];
       REQUIRE(value > 0);  // positive map
@@ -214,7 +214,7 @@ TEST_CASE("band-limited environment: ground truth matches SH relighting of a sha
   prt::bake::append_scene(
       scene, prt::bake::make_box(glm::vec3(-0.5f, 0, -0.5f), glm::vec3(0.5f, 1, 0.5f), 2, false,
                                  glm::vec3(0.7f)));
-  const std::vector<double> light = sh::project(env, 3);
+  const std::vector<double> light = prt::sh::project(env, 3);
   REQUIRE(light.size() == 27);
   prt::bake::BakeOptions bo;
   bo.kind = prt::TransferKind::Shadowed;
@@ -264,7 +264,7 @@ TEST_CASE("ground truth is deterministic per seed, for any thread count and sche
   const Scene scene = prt::bake::make_box(glm::vec3(-1), glm::vec3(1), 2, true, glm::vec3(0.5f));
   Scene open = scene;
   open.triangles.resize(open.triangles.size() - 4);  // drop part of one face: light gets in
-  const sh::EnvMap env = constant_map(sh::EnvLayout::LatLong, 32, 16, 2.f);
+  const prt::sh::EnvMap env = constant_map(prt::sh::EnvLayout::LatLong, 32, 16, 2.f);
   GroundTruthOptions o;
   o.initial_samples = 64;
   o.max_samples = 256;
@@ -302,7 +302,7 @@ TEST_CASE("refinement doubles samples until the relative RMS standard error meet
       scene, prt::bake::make_box(glm::vec3(-0.5f, 0, -0.5f), glm::vec3(0.5f, 1, 0.5f), 1, false,
                                  glm::vec3(0.7f)));
   // A small bright "sun" texel over a dim sky: a hard case for plain cosine sampling.
-  sh::EnvMap env = constant_map(sh::EnvLayout::LatLong, 64, 32, 0.2f);
+  prt::sh::EnvMap env = constant_map(prt::sh::EnvLayout::LatLong, 64, 32, 0.2f);
   float* sun = &env.rgb[3 * (8 * 64 + 40)];
   sun[0] = sun[1] = sun[2] = 5000.f;
   GroundTruthOptions o;

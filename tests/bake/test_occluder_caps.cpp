@@ -25,8 +25,8 @@ using namespace prt::bake;
 
 namespace {
 
-using sh::kHalfPi;  // the baker's default max_cap_solid_angle
-using sh::kPi;
+using prt::sh::kHalfPi;  // the baker's default max_cap_solid_angle
+using prt::sh::kPi;
 
 // An 8×8 floor (40 segments, +Y up) with a sphere, a box and a thin rug on it. Vertices
 // [0, kFloorVertices) are the floor's.
@@ -476,7 +476,7 @@ TEST_CASE("cap sampling: two overlapping caps are unbiased on their union (k cor
 }
 
 TEST_CASE("cap sampling: a non-constant integrand (SH Y_2,1) over a union of caps") {
-  // f = Y_{2,1}(ω) = 1.092548·x·z (sh::evaluate), over three caps: two overlapping and one
+  // f = Y_{2,1}(ω) = 1.092548·x·z (prt::sh::evaluate), over three caps: two overlapping and one
   // straddling the horizon. Reference: the same brute-force membership quadrature. The error
   // is judged against S = (1/π)∫_union |f| cos⁺θ (f changes sign in the union); over 200 seeds
   // it is ≤ 2.4e-3·S (quadrature: 4e-5·S against 6000×6000): tolerance 5e-3·S. Ignoring the
@@ -487,8 +487,8 @@ TEST_CASE("cap sampling: a non-constant integrand (SH Y_2,1) over a union of cap
                                        cap_around(polar(1.4, 3.5), 0.5)};
   auto y21 = [](const glm::dvec3& w) {
     double y[9];
-    sh::evaluate(3, w.x, w.y, w.z, y);
-    return y[sh::index(2, 1)];
+    prt::sh::evaluate(3, w.x, w.y, w.z, y);
+    return y[prt::sh::index(2, 1)];
   };
   auto abs_y21 = [&](const glm::dvec3& w) { return std::abs(y21(w)); };
   const double ref = quadrature_over_union(caps, 3000, y21);

@@ -347,7 +347,7 @@ TEST_CASE("interreflected transfer at contact matches the path tracer in a mixed
   o.order = 1;
   o.samples = 1024;
   const BakeResult baked = bake_transfer(moved, o);
-  sh::EnvMap sky;
+  prt::sh::EnvMap sky;
   sky.width = 32;
   sky.height = 16;
   sky.rgb.assign(3 * 32 * 16, 1.f);

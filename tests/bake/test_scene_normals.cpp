@@ -10,7 +10,7 @@
 #include "sh/constants.h"
 
 using prt::bake::Scene;
-using sh::kPi;
+using prt::sh::kPi;
 
 namespace {
 

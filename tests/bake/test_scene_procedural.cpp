@@ -14,7 +14,7 @@ using prt::bake::Scene;
 
 namespace {
 
-using sh::kPi;
+using prt::sh::kPi;
 // Positions are stored as float: relative rounding about 6e-8, so 1e-5 relative leaves room for
 // the trigonometry of the builders and the summations below.
 constexpr double kFloatTolerance = 1e-5;

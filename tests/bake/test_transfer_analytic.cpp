@@ -32,7 +32,7 @@ std::vector<double> integrate_clamped_cosine(int order, glm::dvec3 n) {
     for (int j = 0; j < np; ++j) {
       const double ph = (j + 0.5) * dp;
       const glm::dvec3 w = std::cos(th) * n + std::sin(th) * (std::cos(ph) * t + std::sin(ph) * b);
-      sh::evaluate(order, w.x, w.y, w.z, y.data());
+      prt::sh::evaluate(order, w.x, w.y, w.z, y.data());
       const double weight = std::cos(th) * std::sin(th) * dt * dp / kPi;
       for (int k = 0; k < K; ++k) sum[k] += weight * y[k];
     }

@@ -12,7 +12,7 @@
 
 namespace prt::test {
 
-using sh::kPi;
+using prt::sh::kPi;
 
 // Cosine-weighted fraction of the hemisphere around unit n at p that the planar polygon
 // `loop` covers (the differential-area-to-polygon form factor), by Lambert's formula

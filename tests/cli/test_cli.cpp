@@ -160,10 +160,10 @@ TEST_CASE("cli: prt env --json states the convention and the coefficients") {
   CHECK(j["order"] == 4);
   CHECK(j["layout"] == "latlong");
   CHECK(j["basis"].get<std::string>().find("no Condon-Shortley") != std::string::npos);
-  CHECK(j["basis"] == sh::kBasisConvention);
+  CHECK(j["basis"] == prt::sh::kBasisConvention);
   REQUIRE(j["coefficients"].size() == 16);
   // A constant radiance c projects to L00 = c·√(4π) (exact quadrature of a constant).
-  const double root4pi = std::sqrt(4.0 * sh::kPi);
+  const double root4pi = std::sqrt(4.0 * prt::sh::kPi);
   for (int ch = 0; ch < 3; ++ch)
     CHECK(j["coefficients"][0][ch].get<double>() == Approx(c[ch] * root4pi).epsilon(1e-6));
 }
@@ -277,8 +277,8 @@ TEST_CASE("cli: bake, info and relight work end to end on the bundled scene") {
   const auto j = nlohmann::json::parse(info.out);
   CHECK(j.dump().find("shadowed") != std::string::npos);
   // One convention text: prt info prints the one the baker wrote into the file's metadata.
-  CHECK(j["sh_basis"] == sh::kBasisConvention);
-  CHECK(j["metadata"]["sh_basis"] == sh::kBasisConvention);
+  CHECK(j["sh_basis"] == prt::sh::kBasisConvention);
+  CHECK(j["metadata"]["sh_basis"] == prt::sh::kBasisConvention);
 
   const fs::path png = dir / "demo.png", csv = dir / "demo.csv", glb = dir / "demo_colors.glb";
   const RunResult relit = run(prt_cli() + " relight " + scene + " " + prt_file.string() + " " +

@@ -21,7 +21,7 @@
 
 namespace {
 
-using sh::kPi;
+using prt::sh::kPi;
 
 int fail(const std::string& message) {
   std::fprintf(stderr, "engine_example: %s\n", message.c_str());
@@ -42,7 +42,7 @@ prt::Status write_demo_file(const std::string& path, double albedo) {
     const double z = 1 - (2 * v + 1) / 40.0, r = std::sqrt(1 - z * z), phi = v * 2.39996323;
     const double n[3] = {r * std::cos(phi), r * std::sin(phi), z};
     double y[9];
-    sh::evaluate(3, n[0], n[1], n[2], y);
+    prt::sh::evaluate(3, n[0], n[1], n[2], y);
     for (int k = 0; k < 9; ++k) {
       const int l = k < 1 ? 0 : (k < 4 ? 1 : 2);
       data.coefficients.push_back(static_cast<float>(albedo / kPi * band_factor[l] * y[k]));
@@ -91,12 +91,12 @@ int main(int argc, char** argv) {
   std::vector<float> pixels(3 * width * height);
   for (std::size_t i = 0; i < pixels.size(); ++i) pixels[i] = sky[i % 3];
   prt::Result<prt::ShLighting> light =
-      prt::ShLighting::from_pixels(sh::EnvLayout::LatLong, width, height, pixels.data(), 3);
+      prt::ShLighting::from_pixels(prt::sh::EnvLayout::LatLong, width, height, pixels.data(), 3);
   if (!light) return fail(light.status().message());
-  if (prt::Status s = light->rotate(sh::rotation_from_yaw_pitch_roll(30, 0, 0)); !s) {
+  if (prt::Status s = light->rotate(prt::sh::rotation_from_yaw_pitch_roll(30, 0, 0)); !s) {
     return fail(s.message());
   }
-  if (prt::Status s = light->apply_window(sh::Window::Auto, 0); !s) return fail(s.message());
+  if (prt::Status s = light->apply_window(prt::sh::Window::Auto, 0); !s) return fail(s.message());
 
   // 5. Shade in chunks, as jobs of an engine's job system would (each call is const and
   //    thread-safe; chunks that are multiples of 16 vertices are fastest).

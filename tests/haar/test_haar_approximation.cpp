@@ -66,7 +66,7 @@ TEST_CASE("Area weights equal the integral of |basis| over exact texel solid ang
     // Both sum the same exact solid angles in different orders: double rounding only.
     for (size_t q = 0; q < fast.size(); ++q) REQUIRE(fast[q] == Approx(slow[q]).epsilon(1e-12));
     // The scaling function covers the face (4π/6) with amplitude 1/N.
-    CHECK(fast[0] == Approx(4.0 * sh::kPi / 6.0 / n).epsilon(1e-12));
+    CHECK(fast[0] == Approx(4.0 * prt::sh::kPi / 6.0 / n).epsilon(1e-12));
   }
 }
 

@@ -20,7 +20,7 @@
 namespace {
 
 using prt::bake::Scene;
-using sh::kPi;
+using prt::sh::kPi;
 
 // A 2×2 floor (8×8 segments) with a box standing on its left half: the box shadows part of
 // the floor for low directions, and its own faces are occluded by the floor.
@@ -195,8 +195,8 @@ TEST_CASE("Haar bake agrees with the SH bake under smooth low-frequency light") 
 
 TEST_CASE("Haar relight: rotating the environment by resampling preserves power and moves light") {
   // A lat-long map, black but for a bright patch toward +X at the horizon.
-  sh::EnvMap env;
-  env.layout = sh::EnvLayout::LatLong;
+  prt::sh::EnvMap env;
+  env.layout = prt::sh::EnvLayout::LatLong;
   env.width = 128;
   env.height = 64;
   env.rgb.assign(3 * 128 * 64, 0.01f);

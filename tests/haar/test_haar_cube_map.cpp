@@ -13,7 +13,7 @@
 
 namespace {
 
-using sh::kPi;
+using prt::sh::kPi;
 
 // GUIDE.md lat-long convention, written out independently of sh/: θ from +Y, φ = atan2(z, x).
 void latlong_direction(int w, int h, int col, int row, double dir[3]) {
@@ -24,9 +24,9 @@ void latlong_direction(int w, int h, int col, int row, double dir[3]) {
   dir[2] = std::sin(theta) * std::sin(phi);
 }
 
-sh::EnvMap random_latlong(int w, int h, uint32_t seed) {
-  sh::EnvMap env;
-  env.layout = sh::EnvLayout::LatLong;
+prt::sh::EnvMap random_latlong(int w, int h, uint32_t seed) {
+  prt::sh::EnvMap env;
+  env.layout = prt::sh::EnvLayout::LatLong;
   env.width = w;
   env.height = h;
   env.rgb.resize(static_cast<size_t>(w) * h * 3);
@@ -111,7 +111,7 @@ TEST_CASE("Cube texel directions and the inverse mapping agree with the face tab
 
 TEST_CASE("Resampling lat-long to cube preserves power at any resolution", "[haar][cube]") {
   for (int w : {16, 64, 256}) {
-    const sh::EnvMap env = random_latlong(w, w / 2, 11u + w);
+    const prt::sh::EnvMap env = random_latlong(w, w / 2, 11u + w);
     for (int n : {8, 32, 128}) {
       prt::CubeResampleStats st;
       const prt::Result<prt::CubeMap> cube = prt::resample_to_cube(env, n, &st);
@@ -133,10 +133,10 @@ TEST_CASE("Resampling lat-long to cube preserves power at any resolution", "[haa
 }
 
 TEST_CASE("Resampling angular and cross maps preserves power", "[haar][cube]") {
-  for (sh::EnvLayout layout : {sh::EnvLayout::Angular, sh::EnvLayout::Cross}) {
-    sh::EnvMap env;
+  for (prt::sh::EnvLayout layout : {prt::sh::EnvLayout::Angular, prt::sh::EnvLayout::Cross}) {
+    prt::sh::EnvMap env;
     env.layout = layout;
-    env.width = layout == sh::EnvLayout::Angular ? 64 : 48;
+    env.width = layout == prt::sh::EnvLayout::Angular ? 64 : 48;
     env.height = 64;
     env.rgb.resize(static_cast<size_t>(env.width) * env.height * 3);
     std::mt19937 rng(3);
@@ -147,7 +147,7 @@ TEST_CASE("Resampling angular and cross maps preserves power", "[haar][cube]") {
     REQUIRE(cube.ok());
     check_power_preserved(st);
     // And the source power is Σ L·Ω with sh's exact texel solid angles (which sum to 4π).
-    const std::vector<double> omega = sh::texel_solid_angles(layout, env.width, env.height);
+    const std::vector<double> omega = prt::sh::texel_solid_angles(layout, env.width, env.height);
     double source = 0.0;
     for (size_t t = 0; t < omega.size(); ++t) source += env.rgb[3 * t + 1] * omega[t];
     CHECK(st.cube_power[1] == Approx(source).epsilon(1e-5));
@@ -158,8 +158,8 @@ TEST_CASE("A faces-layout map resamples to the identical cube", "[haar][cube]") 
   // sh's Faces layout uses the same face table; every sub-texel of a source texel must land in
   // the cube texel with the same (face, col, row), so the cube equals the map.
   const int n = 16;
-  sh::EnvMap env;
-  env.layout = sh::EnvLayout::Faces;
+  prt::sh::EnvMap env;
+  env.layout = prt::sh::EnvLayout::Faces;
   env.width = n;
   env.height = 6 * n;
   env.rgb.resize(static_cast<size_t>(n) * 6 * n * 3);
@@ -183,8 +183,8 @@ TEST_CASE("A single bright lat-long texel lands on the cube texel in its directi
   // Centre column = +X; u = 0.75 → +Z; u = 0.25 → −Z; row 0 → +Y; last row → −Y; u = 0 → −X.
   for (const Case& k : {Case{64, 31, 0}, Case{96, 33, 4}, Case{32, 30, 5}, Case{17, 0, 2},
                         Case{80, 63, 3}, Case{1, 32, 1}, Case{90, 20, 4}}) {
-    sh::EnvMap env;
-    env.layout = sh::EnvLayout::LatLong;
+    prt::sh::EnvMap env;
+    env.layout = prt::sh::EnvLayout::LatLong;
     env.width = w;
     env.height = h;
     env.rgb.assign(static_cast<size_t>(w) * h * 3, 0.01f);
@@ -216,7 +216,7 @@ TEST_CASE("A single bright lat-long texel lands on the cube texel in its directi
 }
 
 TEST_CASE("Resampling skips and counts NaN, Inf and negative texels", "[haar][cube]") {
-  sh::EnvMap env = random_latlong(32, 16, 5);
+  prt::sh::EnvMap env = random_latlong(32, 16, 5);
   env.rgb[0] = std::numeric_limits<float>::quiet_NaN();
   env.rgb[3 * 40 + 1] = std::numeric_limits<float>::infinity();
   env.rgb[3 * 77 + 2] = -1.0f;
@@ -236,8 +236,8 @@ TEST_CASE("Upsampling a coarse constant map leaves no holes", "[haar][cube]") {
   // A 16×8 lat-long map of constant radiance 1 into a 64² cube (each source texel covers
   // ~100 cube texels): with ~8 sub-samples across each cube texel, every cube texel receives
   // 1 ± (1/8 per axis ⇒ ≲ 25%) of its share; without the adaptive S it would hold 0 or ≫ 1.
-  sh::EnvMap env;
-  env.layout = sh::EnvLayout::LatLong;
+  prt::sh::EnvMap env;
+  env.layout = prt::sh::EnvLayout::LatLong;
   env.width = 16;
   env.height = 8;
   env.rgb.assign(16 * 8 * 3, 1.0f);

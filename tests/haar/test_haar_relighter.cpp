@@ -29,7 +29,7 @@ DenseScene random_dense_scene(int n, int channels, int64_t vertices, uint32_t se
       const int row = static_cast<int>(t % (n * n)) / n, col = static_cast<int>(t % n);
       const float omega = static_cast<float>(prt::cube_texel_solid_angle(n, col, row));
       for (int c = 0; c < channels; ++c)
-        s.transfer[(v * texels + t) * channels + c] = omega * dist(rng) / sh::kPiFloat;
+        s.transfer[(v * texels + t) * channels + c] = omega * dist(rng) / prt::sh::kPiFloat;
     }
   return s;
 }
@@ -145,7 +145,7 @@ TEST_CASE("A point light in one texel shades exactly the vertices that see it",
       if (cosine > 0 && (t + v) % 3 != 0) {
         sees[v][t] = true;
         scene.transfer[v * texels + t] = static_cast<float>(
-            prt::cube_texel_solid_angle(n, col, row) * (0.5 + 0.5 * cosine) / sh::kPi);
+            prt::cube_texel_solid_angle(n, col, row) * (0.5 + 0.5 * cosine) / prt::sh::kPi);
       }
     }
   }

@@ -10,7 +10,7 @@
 #include "sh/constants.h"
 
 using prt::ShLighting;
-using sh::kPi;
+using prt::sh::kPi;
 
 namespace {
 
@@ -45,14 +45,14 @@ TEST_CASE("a constant map projects to sqrt(4 pi) c in k = 0", "[lighting]") {
   for (int i = 0; i < w * h; ++i) {
     for (int c = 0; c < 3; ++c) pixels[3 * i + c] = rgb[c];
   }
-  const auto light = ShLighting::from_pixels(sh::EnvLayout::LatLong, w, h, pixels.data(), order);
+  const auto light = ShLighting::from_pixels(prt::sh::EnvLayout::LatLong, w, h, pixels.data(), order);
   REQUIRE(light.ok());
   REQUIRE(light->order() == order);
   for (int c = 0; c < 3; ++c) {
     // Exact texel solid angles: only rounding error remains (1e-9 relative in double).
     CHECK(light->coefficients_double(c)[0] == Approx(std::sqrt(4 * kPi) * rgb[c]).epsilon(1e-9));
     CHECK(light->coefficients(c)[0] == Approx(std::sqrt(4 * kPi) * rgb[c]).epsilon(1e-6));
-    // Higher bands vanish only to quadrature accuracy: sh::project samples Y at texel centres,
+    // Higher bands vanish only to quadrature accuracy: prt::sh::project samples Y at texel centres,
     // which leaks O(1/H²) into the even bands (measured 2.0e-4·c at H = 128 for k = 24; it
     // falls 4× per doubling of H). 5e-4·c fails for any real error in the projection.
     for (int k = 1; k < order * order; ++k) {
@@ -60,12 +60,12 @@ TEST_CASE("a constant map projects to sqrt(4 pi) c in k = 0", "[lighting]") {
     }
   }
   // Errors: a size that does not fit the layout, a NaN texel, a bad order.
-  const auto bad_size = ShLighting::from_pixels(sh::EnvLayout::LatLong, 63, 32, pixels.data(), 3);
+  const auto bad_size = ShLighting::from_pixels(prt::sh::EnvLayout::LatLong, 63, 32, pixels.data(), 3);
   REQUIRE_FALSE(bad_size.ok());
   CHECK(bad_size.status().message().rfind("lighting: ", 0) == 0);
   pixels[100] = NAN;
-  CHECK_FALSE(ShLighting::from_pixels(sh::EnvLayout::LatLong, w, h, pixels.data(), 3).ok());
-  CHECK_FALSE(ShLighting::from_pixels(sh::EnvLayout::LatLong, w, h, pixels.data(), 0).ok());
+  CHECK_FALSE(ShLighting::from_pixels(prt::sh::EnvLayout::LatLong, w, h, pixels.data(), 3).ok());
+  CHECK_FALSE(ShLighting::from_pixels(prt::sh::EnvLayout::LatLong, w, h, pixels.data(), 0).ok());
 }
 
 TEST_CASE("rotating by M then by its inverse returns the input", "[lighting]") {
@@ -125,7 +125,7 @@ TEST_CASE("a Laplacian window scales band l by 1/(1 + lambda l^2 (l+1)^2)", "[li
   const ShLighting original = random_lighting(4, 6);
   ShLighting light = original;
   const double lambda = 0.01;
-  REQUIRE(light.apply_window(sh::Window::Laplacian, lambda).ok());
+  REQUIRE(light.apply_window(prt::sh::Window::Laplacian, lambda).ok());
   for (int c = 0; c < 3; ++c) {
     for (int l = 0; l < 4; ++l) {
       const double h = 1.0 / (1.0 + lambda * l * l * (l + 1) * (l + 1));  // Sloan 2008
@@ -136,10 +136,10 @@ TEST_CASE("a Laplacian window scales band l by 1/(1 + lambda l^2 (l+1)^2)", "[li
       }
     }
   }
-  CHECK_FALSE(light.apply_window(sh::Window::Hanning, NAN).ok());
+  CHECK_FALSE(light.apply_window(prt::sh::Window::Hanning, NAN).ok());
   // None leaves everything as it was.
   ShLighting same = original;
-  REQUIRE(same.apply_window(sh::Window::None, 0).ok());
+  REQUIRE(same.apply_window(prt::sh::Window::None, 0).ok());
   for (int k = 0; k < 16; ++k)
     CHECK(same.coefficients_double(1)[k] == original.coefficients_double(1)[k]);
 }

@@ -20,7 +20,7 @@ using prt::Precision;
 using prt::Relighter;
 using prt::ShLighting;
 using prt::TransferData;
-using sh::kPi;
+using prt::sh::kPi;
 
 namespace {
 
@@ -209,7 +209,7 @@ TEST_CASE("unshadowed diffuse transfer under a constant sky gives albedo x radia
     double n[3] = {gauss(rng), gauss(rng), gauss(rng)};
     const double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
     double y[9];
-    sh::evaluate(3, n[0] / len, n[1] / len, n[2] / len, y);
+    prt::sh::evaluate(3, n[0] / len, n[1] / len, n[2] / len, y);
     for (int c = 0; c < 3; ++c) {
       for (int k = 0; k < 9; ++k) {
         const int l = k < 1 ? 0 : (k < 4 ? 1 : 2);

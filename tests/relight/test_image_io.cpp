@@ -29,7 +29,7 @@ using prt::test::error_of;
 
 namespace {
 
-using sh::kPi;
+using prt::sh::kPi;
 
 std::string scratch(const std::string& name) {
   fs::create_directories(prt::test::output_path("image_io"));
@@ -111,8 +111,8 @@ TEST_CASE("HDR (RGBE) round trips within its shared-exponent precision") {
   write_image(path, w, h, 3, pixels.data());
   CHECK(no_temporaries_beside(path));
   std::string note;
-  const sh::EnvMap env = read_environment(path, std::nullopt, &note);
-  CHECK(env.layout == sh::EnvLayout::LatLong);
+  const prt::sh::EnvMap env = read_environment(path, std::nullopt, &note);
+  CHECK(env.layout == prt::sh::EnvLayout::LatLong);
   CHECK(note.find("latlong") != std::string::npos);
   REQUIRE(env.width == w);
   REQUIRE(env.height == h);
@@ -143,7 +143,7 @@ TEST_CASE("PNG quantises encoded values to 8 bits, and grey images are replicate
   const std::string grey_hdr = scratch("grey_env.png");
   std::vector<float> square(8 * 8, 0.25f);
   write_image(grey_hdr, 8, 8, 1, square.data());
-  const sh::EnvMap env = read_environment(grey_hdr, sh::EnvLayout::Angular);
+  const prt::sh::EnvMap env = read_environment(grey_hdr, prt::sh::EnvLayout::Angular);
   REQUIRE(env.rgb.size() == 8u * 8u * 3u);
   CHECK(env.rgb[0] == env.rgb[1]);
   CHECK(env.rgb[1] == env.rgb[2]);
@@ -160,7 +160,7 @@ TEST_CASE("PFM files are read with row 0 at the top") {
     const float data[12] = {1, 1, 1, 2, 2, 2, 3, 3, 3, 4, 4, 4};
     out.write(reinterpret_cast<const char*>(data), sizeof data);
   }
-  const sh::EnvMap env = read_environment(path, sh::EnvLayout::Angular);
+  const prt::sh::EnvMap env = read_environment(path, prt::sh::EnvLayout::Angular);
   REQUIRE(env.rgb.size() == 12u);
   CHECK(env.rgb[0] == 3.0f);  // top-left
   CHECK(env.rgb[3] == 4.0f);
@@ -197,10 +197,10 @@ TEST_CASE("reading fails with one-line PATH: problem errors") {
   std::vector<float> wide_pixels(8 * 4 * 3, 1.0f);
   write_image(wide, 8, 4, 3, wide_pixels.data());
   const std::string layout_error =
-      error_of([&] { read_environment(wide, sh::EnvLayout::Angular); });
+      error_of([&] { read_environment(wide, prt::sh::EnvLayout::Angular); });
   check_one_line_error(layout_error, wide);
   CHECK(layout_error.find("angular") != std::string::npos);
-  CHECK_NOTHROW(read_environment(wide, sh::EnvLayout::LatLong));
+  CHECK_NOTHROW(read_environment(wide, prt::sh::EnvLayout::LatLong));
 }
 
 TEST_CASE("writes are atomic and failures leave nothing behind") {
@@ -233,8 +233,8 @@ TEST_CASE("six face files stack into a Faces map in the order px, nx, py, ny, pz
     write_image(path, s, s, 3, pixels.data());
   }
   std::string note;
-  const sh::EnvMap env = read_environment(pattern, sh::EnvLayout::Faces, &note);
-  CHECK(env.layout == sh::EnvLayout::Faces);
+  const prt::sh::EnvMap env = read_environment(pattern, prt::sh::EnvLayout::Faces, &note);
+  CHECK(env.layout == prt::sh::EnvLayout::Faces);
   REQUIRE(env.width == s);
   REQUIRE(env.height == 6 * s);
   for (int face = 0; face < 6; ++face)
@@ -242,7 +242,7 @@ TEST_CASE("six face files stack into a Faces map in the order px, nx, py, ny, pz
   // The +Z face (5th, value 5) is where direction +Z samples.
   const double plus_z[3] = {0, 0, 1};
   float rgb[3];
-  sh::sample_bilinear(env, plus_z, rgb);
+  prt::sh::sample_bilinear(env, plus_z, rgb);
   CHECK(rgb[0] == 5.0f);
   // A missing face names its file.
   std::vector<std::string> paths(6, scratch("cube_px.exr"));
@@ -253,19 +253,19 @@ TEST_CASE("six face files stack into a Faces map in the order px, nx, py, ny, pz
 TEST_CASE("real probes: the layout is guessed from the aspect ratio") {
   struct Case {
     const char* file;
-    sh::EnvLayout layout;
+    prt::sh::EnvLayout layout;
   };
-  const Case cases[] = {{"probes/grace_probe.hdr", sh::EnvLayout::Angular},
-                        {"probes/grace_cross.hdr", sh::EnvLayout::Cross},
-                        {"probes/small/grace.hdr", sh::EnvLayout::LatLong}};
+  const Case cases[] = {{"probes/grace_probe.hdr", prt::sh::EnvLayout::Angular},
+                        {"probes/grace_cross.hdr", prt::sh::EnvLayout::Cross},
+                        {"probes/small/grace.hdr", prt::sh::EnvLayout::LatLong}};
   for (const Case& c : cases) {
     const fs::path path = prt::test::shared_data(c.file);
     PRT_REQUIRE_SHARED_DATA(path);
     std::string note;
-    const sh::EnvMap env = read_environment(path.string(), std::nullopt, &note);
+    const prt::sh::EnvMap env = read_environment(path.string(), std::nullopt, &note);
     INFO(c.file << ": " << note);
     CHECK(env.layout == c.layout);
-    CHECK(note.find(sh::layout_name(c.layout)) != std::string::npos);
+    CHECK(note.find(prt::sh::layout_name(c.layout)) != std::string::npos);
     CHECK(note.find("auto") != std::string::npos);
     CHECK(env.rgb.size() == static_cast<std::size_t>(env.width) * env.height * 3);
   }
@@ -276,12 +276,12 @@ TEST_CASE("the same capture as angular probe and as vertical cross projects alik
   const fs::path cross_path = prt::test::shared_data("probes/grace_cross.hdr");
   PRT_REQUIRE_SHARED_DATA(probe_path);
   PRT_REQUIRE_SHARED_DATA(cross_path);
-  const sh::EnvMap probe = read_environment(probe_path.string(), sh::EnvLayout::Angular);
-  const sh::EnvMap cross = read_environment(cross_path.string(), sh::EnvLayout::Cross);
+  const prt::sh::EnvMap probe = read_environment(probe_path.string(), prt::sh::EnvLayout::Angular);
+  const prt::sh::EnvMap cross = read_environment(cross_path.string(), prt::sh::EnvLayout::Cross);
   const int order = 3;
-  sh::ProjectionStats probe_stats, cross_stats;
-  const std::vector<double> a = sh::project(probe, order, &probe_stats);
-  const std::vector<double> b = sh::project(cross, order, &cross_stats);
+  prt::sh::ProjectionStats probe_stats, cross_stats;
+  const std::vector<double> a = prt::sh::project(probe, order, &probe_stats);
+  const std::vector<double> b = prt::sh::project(cross, order, &cross_stats);
   REQUIRE(a.size() == 27u);
   REQUIRE(b.size() == 27u);
   // Both files are Debevec's 1999 Grace Cathedral, resampled by HDR Shop into the two layouts,
@@ -317,7 +317,7 @@ TEST_CASE("procedural sky: no NaN, the sun where configured, the sun dominates b
   params.sun_elevation_deg = 30.0;
   params.sun_azimuth_deg = -70.0;
   const std::array<double, 3> sun = prt::relight::sun_direction(params);
-  const sh::EnvMap sky = prt::relight::make_procedural_sky(256, 128, params);
+  const prt::sh::EnvMap sky = prt::relight::make_procedural_sky(256, 128, params);
   REQUIRE(sky.rgb.size() == 256u * 128u * 3u);
   bool finite_positive = true;
   std::size_t brightest = 0;
@@ -328,7 +328,7 @@ TEST_CASE("procedural sky: no NaN, the sun where configured, the sun dominates b
   CHECK(finite_positive);
   // The brightest texel is the sun's: the texel containing the sun direction (±1 texel).
   double col, row;
-  REQUIRE(sh::direction_to_texel(sh::EnvLayout::LatLong, 256, 128, sun.data(), &col, &row));
+  REQUIRE(prt::sh::direction_to_texel(prt::sh::EnvLayout::LatLong, 256, 128, sun.data(), &col, &row));
   const int texel = static_cast<int>(brightest / 3);
   CHECK(std::abs(texel % 256 - col) < 1.5);
   CHECK(std::abs(texel / 256 - row) < 1.5);
@@ -336,14 +336,14 @@ TEST_CASE("procedural sky: no NaN, the sun where configured, the sun dominates b
   CHECK(sky.rgb[2] > 2 * sky.rgb[(127 * 256) * 3 + 2]);
 
   const int order = 3;
-  const std::vector<double> with_sun = sh::project(sky, order);
+  const std::vector<double> with_sun = prt::sh::project(sky, order);
   // Sun + glow alone: their band-1 vector points at the sun up to the lat-long quadrature of a
   // 1°-radius disc on 1.4° texels (measured 0.05°; tolerance 0.5°).
   prt::relight::SkyParams no_sun = params;
   no_sun.sun_radiance = 0.0;
   no_sun.glow_radiance = 0.0;
   const std::vector<double> without_sun =
-      sh::project(prt::relight::make_procedural_sky(256, 128, no_sun), order);
+      prt::sh::project(prt::relight::make_procedural_sky(256, 128, no_sun), order);
   std::vector<double> sun_only(with_sun.size());
   for (std::size_t i = 0; i < sun_only.size(); ++i) sun_only[i] = with_sun[i] - without_sun[i];
   const std::array<double, 3> zenith = {0.0, 1.0, 0.0};

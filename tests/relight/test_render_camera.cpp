@@ -11,7 +11,7 @@
 #include "sh/constants.h"
 
 using prt::relight::Camera;
-using sh::kPi;
+using prt::sh::kPi;
 
 namespace {
 

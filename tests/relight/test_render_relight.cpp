@@ -27,7 +27,7 @@
 #include "sh/rotation.h"
 #include "support/test_data.h"
 
-using sh::kPi;
+using prt::sh::kPi;
 
 namespace {
 
@@ -44,9 +44,9 @@ Scene make_box_on_plane(glm::vec3 plane_albedo, glm::vec3 box_albedo) {
   return scene;
 }
 
-sh::EnvMap make_latlong(int width, int height, glm::dvec3 (*radiance)(const glm::dvec3&)) {
-  sh::EnvMap env;
-  env.layout = sh::EnvLayout::LatLong;
+prt::sh::EnvMap make_latlong(int width, int height, glm::dvec3 (*radiance)(const glm::dvec3&)) {
+  prt::sh::EnvMap env;
+  env.layout = prt::sh::EnvLayout::LatLong;
   env.width = width;
   env.height = height;
   env.rgb.resize(3 * static_cast<std::size_t>(width) * height);
@@ -119,7 +119,7 @@ TEST_CASE("relight: under a constant white sky, shadowed radiance = albedo × AO
   REQUIRE(data.channels == 3);
   REQUIRE(data.ao.size() == scene.vertex_count());
 
-  const sh::EnvMap env = make_latlong(128, 64, white_sky);
+  const prt::sh::EnvMap env = make_latlong(128, 64, white_sky);
   const prt::ShLighting lighting = prt::relight::project_lighting(env, order, {});
   const std::vector<float> radiance = shade(data, lighting);
 
@@ -150,7 +150,7 @@ TEST_CASE("relight: under a constant white sky, shadowed radiance = albedo × AO
 TEST_CASE("relight: radiance under a sunny sky equals a direct integration of L·V·cos·ρ/π") {
   const Scene scene = make_box_on_plane(glm::vec3(0.7f), glm::vec3(0.7f));
   const int order = 5, samples = 1024, seeds = 16;
-  const sh::EnvMap env = make_latlong(256, 128, sunny_sky);
+  const prt::sh::EnvMap env = make_latlong(256, 128, sunny_sky);
   const prt::ShLighting lighting = prt::relight::project_lighting(env, order, {});
   // The file under test (seed 1), and 15 more bakes with other seeds to measure the baker's
   // actual error (its scrambled low-discrepancy samples beat plain Monte Carlo by far).
@@ -168,7 +168,7 @@ TEST_CASE("relight: radiance under a sunny sky equals a direct integration of L�
 
   // Independent reference: an equal-area stratified grid on the sphere (cells uniform in
   // cos θ and φ about +Y, centre of each cell), with visibility from RayCaster::occluded and the
-  // SH-projected lighting from sh::reconstruct. B = ∫ L_proj V max(n·ω, 0) ρ/π dω: the relit
+  // SH-projected lighting from prt::sh::reconstruct. B = ∫ L_proj V max(n·ω, 0) ρ/π dω: the relit
   // value is exactly this integral when T is the exact projection of V·cos·ρ/π.
   const prt::bake::RayCaster caster(scene);
   struct Moments {
@@ -191,7 +191,7 @@ TEST_CASE("relight: radiance under a sunny sky equals a direct integration of L�
                           static_cast<float>(dir[2]));
         if (caster.occluded(origin, d, 0.f, INFINITY)) continue;
         double l[3];
-        sh::reconstruct(coefficients.data(), 3, order, dir, l);
+        prt::sh::reconstruct(coefficients.data(), 3, order, dir, l);
         for (int c = 0; c < 3; ++c) {
           const double g = scene.albedo[v][c] * l[c];  // the baker's per-sample value
           m.b[c] += g * cosine / kPi * cell;
@@ -244,20 +244,20 @@ TEST_CASE("relight: radiance under a sunny sky equals a direct integration of L�
 
 TEST_CASE("relight: SH-rotated lighting equals projecting the rotated (resampled) map") {
   const int order = 6;
-  const sh::EnvMap env = make_latlong(512, 256, smooth_sky);
-  const std::array<double, 9> m = sh::rotation_from_yaw_pitch_roll(70.0, -35.0, 20.0);
+  const prt::sh::EnvMap env = make_latlong(512, 256, smooth_sky);
+  const std::array<double, 9> m = prt::sh::rotation_from_yaw_pitch_roll(70.0, -35.0, 20.0);
   const prt::ShLighting rotated =
       prt::relight::rotate_lighting(prt::relight::project_lighting(env, order, {}), m);
 
   // Resample: texel of the new map in direction d takes the original at Mᵀd (g(d) = f(Mᵀd)).
-  sh::EnvMap resampled = env;
+  prt::sh::EnvMap resampled = env;
   for (int row = 0; row < env.height; ++row)
     for (int col = 0; col < env.width; ++col) {
       double d[3];
-      REQUIRE(sh::texel_direction(env.layout, env.width, env.height, col, row, d));
+      REQUIRE(prt::sh::texel_direction(env.layout, env.width, env.height, col, row, d));
       double source[3];
       for (int i = 0; i < 3; ++i) source[i] = m[i] * d[0] + m[3 + i] * d[1] + m[6 + i] * d[2];
-      sh::sample_bilinear(env, source,
+      prt::sh::sample_bilinear(env, source,
                           &resampled.rgb[3 * (static_cast<std::size_t>(row) * env.width + col)]);
     }
   const prt::ShLighting projected = prt::relight::project_lighting(resampled, order, {});
@@ -281,9 +281,9 @@ TEST_CASE("relight: SH-rotated lighting equals projecting the rotated (resampled
 }
 
 TEST_CASE("relight: turntable frames turn about +Y on top of --rotate") {
-  const std::array<double, 9> base = sh::rotation_from_yaw_pitch_roll(10.0, 20.0, 30.0);
+  const std::array<double, 9> base = prt::sh::rotation_from_yaw_pitch_roll(10.0, 20.0, 30.0);
   const std::array<double, 9> frame = prt::relight::turntable_rotation(base, 1, 4);
-  const std::array<double, 9> expected = sh::rotation_from_yaw_pitch_roll(100.0, 20.0, 30.0);
+  const std::array<double, 9> expected = prt::sh::rotation_from_yaw_pitch_roll(100.0, 20.0, 30.0);
   for (int i = 0; i < 9; ++i) CHECK(frame[i] == Approx(expected[i]).margin(1e-12));
   CHECK(prt::relight::turntable_frame_path("dir/out.png", 7) == "dir/out_007.png");
   CHECK(prt::relight::turntable_frame_path("out.exr", 123) == "out_123.exr");
@@ -304,7 +304,7 @@ TEST_CASE("relight: a mismatched or corrupt coefficient file is refused, nothing
   REQUIRE(prt::write_transfer_file(prt_path,
                                    bake(scene_a, prt::TransferKind::Unshadowed, 3, 16, false).data)
               .ok());
-  const sh::EnvMap env = make_latlong(64, 32, smooth_sky);
+  const prt::sh::EnvMap env = make_latlong(64, 32, smooth_sky);
   const std::string env_path = (dir / "sky.exr").string();
   prt::relight::write_image(env_path, env.width, env.height, 3, env.rgb.data());
 

@@ -11,7 +11,7 @@
 #include "sh/constants.h"
 #include "sh/env_map.h"
 
-using sh::kPi;
+using prt::sh::kPi;
 
 namespace {
 
@@ -36,9 +36,9 @@ glm::dvec3 analytic_sky(const glm::dvec3& d) {
   return glm::dvec3(1.5 + d.x, 2.0 * (1.5 + d.y), 3.0 * (1.5 + d.z));
 }
 
-sh::EnvMap make_analytic_latlong(int width, int height) {
-  sh::EnvMap env;
-  env.layout = sh::EnvLayout::LatLong;
+prt::sh::EnvMap make_analytic_latlong(int width, int height) {
+  prt::sh::EnvMap env;
+  env.layout = prt::sh::EnvLayout::LatLong;
   env.width = width;
   env.height = height;
   env.rgb.resize(3 * static_cast<std::size_t>(width) * height);
@@ -62,7 +62,7 @@ TEST_CASE("renderer: hits get the barycentric mix of vertex radiance, misses the
   const prt::bake::Scene scene = make_triangle_scene();
   const prt::bake::RayCaster caster(scene);
   const std::vector<float> radiance = {1.f, 2.f, 3.f, 10.f, 0.f, 5.f, 0.5f, 7.f, 20.f};
-  const sh::EnvMap env = make_analytic_latlong(512, 256);
+  const prt::sh::EnvMap env = make_analytic_latlong(512, 256);
   // Yaw 40°, pitch 25° (a rotation about +Y then +X), written out: M = Ry·Rx.
   const double cy = std::cos(40 * kPi / 180), sy = std::sin(40 * kPi / 180);
   const double cx = std::cos(25 * kPi / 180), sx = std::sin(25 * kPi / 180);

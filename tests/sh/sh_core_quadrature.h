@@ -23,7 +23,7 @@ struct Quadrature {
 inline void gauss_legendre(int n, std::vector<double>* nodes, std::vector<double>* weights) {
   nodes->assign(n, 0.0);
   weights->assign(n, 0.0);
-  const long double pi = sh::kPiLong;
+  const long double pi = prt::sh::kPiLong;
   for (int i = 0; i < n; ++i) {
     long double t = std::cos(pi * (i + 0.75L) / (n + 0.5L));  // Tricomi's initial guess
     long double dp = 0;
@@ -60,7 +60,7 @@ inline Quadrature make_zone_quadrature(int nt, int nphi, double t0 = -1.0, doubl
   std::vector<double> nodes, weights;
   gauss_legendre(nt, &nodes, &weights);
   Quadrature q;
-  const double pi = sh::kPi;
+  const double pi = prt::sh::kPi;
   for (int i = 0; i < nt; ++i) {
     const double t = 0.5 * (t1 + t0) + 0.5 * (t1 - t0) * nodes[i];
     const double s = std::sqrt(std::fmax(0.0, 1.0 - t * t));

@@ -1,4 +1,4 @@
-// tests/sh/test_basis.cpp — sh::evaluate against independent references.
+// tests/sh/test_basis.cpp — prt::sh::evaluate against independent references.
 #include <cmath>
 #include <random>
 #include <vector>
@@ -11,7 +11,7 @@
 
 namespace {
 
-using sh::kPi;
+using prt::sh::kPi;
 
 struct Direction {
   double x, y, z;
@@ -47,7 +47,7 @@ Reference reference_sh(int order, double xd, double yd, double zd) {
   const long double x = xd, y = yd, z = zd;
   const long double r = sqrtl(x * x + y * y + z * z);
   const long double ct = z / r, st = hypotl(x, y) / r, phi = atan2l(y, x);
-  const long double pi = sh::kPiLong;
+  const long double pi = prt::sh::kPiLong;
   Reference ref{order, std::vector<long double>(order * order),
                 std::vector<long double>(order * order), std::vector<long double>(order * order)};
   auto put = [&](int l, int m, long double p) {
@@ -148,7 +148,7 @@ TEST_CASE("evaluate is orthonormal under an exact quadrature up to order 16", "[
     std::vector<double> gram(n * n, 0.0), y(n);
     for (std::size_t p = 0; p < q.weights.size(); ++p) {
       const auto& d = q.directions[p];
-      sh::evaluate(order, d[0], d[1], d[2], y.data());
+      prt::sh::evaluate(order, d[0], d[1], d[2], y.data());
       for (int i = 0; i < n; ++i) {
         for (int j = 0; j < n; ++j) gram[i * n + j] += q.weights[p] * y[i] * y[j];
       }
@@ -196,9 +196,9 @@ TEST_CASE("evaluate matches the closed forms of bands 0..4", "[sh][basis]") {
         3.0 / 16.0 * std::sqrt(35.0 / kPi) * (x2 * (x2 - 3 * y2) - y2 * (3 * x2 - y2)),
     };
     double fast[25], recurrence[25], general[49];
-    sh::evaluate(5, x, y, z, fast);
-    sh::evaluate_recurrence(5, x, y, z, recurrence);
-    sh::evaluate(7, x, y, z, general);
+    prt::sh::evaluate(5, x, y, z, fast);
+    prt::sh::evaluate_recurrence(5, x, y, z, recurrence);
+    prt::sh::evaluate(7, x, y, z, general);
     for (int k = 0; k < 25; ++k) {
       INFO("k=" << k);
       REQUIRE(fast[k] == Approx(expected[k]).margin(1e-14));
@@ -208,14 +208,14 @@ TEST_CASE("evaluate matches the closed forms of bands 0..4", "[sh][basis]") {
   }
   // The GUIDE's printed constants (6 significant digits).
   double y[9];
-  sh::evaluate(3, 0.0, 0.0, 1.0, y);
+  prt::sh::evaluate(3, 0.0, 0.0, 1.0, y);
   REQUIRE(y[0] == Approx(0.282095).margin(1e-6));
   REQUIRE(y[2] == Approx(0.488603).margin(1e-6));
   REQUIRE(y[6] == Approx(0.315392 * 2).margin(1e-6));
   const double h = std::sqrt(0.5);
-  sh::evaluate(3, h, h, 0.0, y);
+  prt::sh::evaluate(3, h, h, 0.0, y);
   REQUIRE(y[4] == Approx(1.092548 * 0.5).margin(1e-6));
-  sh::evaluate(3, 1.0, 0.0, 0.0, y);
+  prt::sh::evaluate(3, 1.0, 0.0, 0.0, y);
   REQUIRE(y[3] == Approx(0.488603).margin(1e-6));
   REQUIRE(y[8] == Approx(0.546274).margin(1e-6));
 }
@@ -225,7 +225,7 @@ TEST_CASE("evaluate at the poles has only m = 0 terms, equal to sqrt((2l+1)/4pi)
   for (int order : {3, 6, 7, 40, 201}) {
     for (double sign : {1.0, -1.0}) {
       std::vector<double> y(order * order);
-      sh::evaluate(order, 0.0, 0.0, sign, y.data());
+      prt::sh::evaluate(order, 0.0, 0.0, sign, y.data());
       for (int l = 0; l < order; ++l) {
         // Exact value in closed form; 1e-12 relative covers the recurrence's roundoff at l=200.
         const double expected = std::sqrt((2.0 * l + 1.0) / (4.0 * kPi)) * std::pow(sign, l);
@@ -246,7 +246,7 @@ TEST_CASE("evaluate is stable at l = 100 and l = 200 against a long-double refer
   for (int order : {16, 64, 101, 201}) {
     std::vector<double> y(order * order);
     for (const Direction& d : stability_directions()) {
-      sh::evaluate(order, d.x, d.y, d.z, y.data());
+      prt::sh::evaluate(order, d.x, d.y, d.z, y.data());
       const Reference ref = reference_sh(order + 1, d.x, d.y, d.z);
       INFO("direction " << d.x << " " << d.y << " " << d.z);
       for (int l : {order - 1, order / 2})
@@ -277,7 +277,7 @@ TEST_CASE("float evaluate is usable up to l = 30", "[sh][basis]") {
   std::vector<float> y(order * order), fast(36);
   for (const Direction& d : stability_directions()) {
     const float x = float(d.x), yy = float(d.y), z = float(d.z);
-    sh::evaluate(order, x, yy, z, y.data());
+    prt::sh::evaluate(order, x, yy, z, y.data());
     const Reference ref = reference_sh(order, x, yy, z);
     for (int l = 0; l < order; ++l) {
       const double bound = std::sqrt((2.0 * l + 1.0) / (4.0 * kPi));
@@ -286,7 +286,7 @@ TEST_CASE("float evaluate is usable up to l = 30", "[sh][basis]") {
         REQUIRE(std::fabs(double(y[k]) - double(ref.y[k])) <= 2e-5 * bound);
       }
     }
-    sh::evaluate(6, x, yy, z, fast.data());
+    prt::sh::evaluate(6, x, yy, z, fast.data());
     for (int k = 0; k < 36; ++k) REQUIRE(std::fabs(double(fast[k]) - double(ref.y[k])) < 2e-6);
   }
 }
@@ -302,10 +302,10 @@ TEST_CASE("the order <= 6 fast path equals the recurrence", "[sh][basis]") {
     for (const Direction& d : dirs) {
       double a[36], b[36];
       float af[36], bf[36];
-      sh::evaluate(order, d.x, d.y, d.z, a);
-      sh::evaluate_recurrence(order, d.x, d.y, d.z, b);
-      sh::evaluate(order, float(d.x), float(d.y), float(d.z), af);
-      sh::evaluate_recurrence(order, float(d.x), float(d.y), float(d.z), bf);
+      prt::sh::evaluate(order, d.x, d.y, d.z, a);
+      prt::sh::evaluate_recurrence(order, d.x, d.y, d.z, b);
+      prt::sh::evaluate(order, float(d.x), float(d.y), float(d.z), af);
+      prt::sh::evaluate_recurrence(order, float(d.x), float(d.y), float(d.z), bf);
       for (int l = 0; l < order; ++l) {
         const double bound = std::sqrt((2.0 * l + 1.0) / (4.0 * kPi));
         for (int k = l * l; k < (l + 1) * (l + 1); ++k) {
@@ -323,9 +323,9 @@ TEST_CASE("the unrolled orders <= 16 agree with the general recurrence", "[sh][b
   // general loop. Same arithmetic, so they agree to roundoff (1e-15 of the band bound).
   for (const Direction& d : random_directions(200, 13)) {
     double a[17 * 17], b[16 * 16];
-    sh::evaluate(17, d.x, d.y, d.z, a);
+    prt::sh::evaluate(17, d.x, d.y, d.z, a);
     for (int order = 7; order <= 16; ++order) {
-      sh::evaluate(order, d.x, d.y, d.z, b);
+      prt::sh::evaluate(order, d.x, d.y, d.z, b);
       for (int l = 0; l < order; ++l) {
         const double bound = std::sqrt((2.0 * l + 1.0) / (4.0 * kPi));
         for (int k = l * l; k < (l + 1) * (l + 1); ++k) {
@@ -338,10 +338,10 @@ TEST_CASE("the unrolled orders <= 16 agree with the general recurrence", "[sh][b
 
 TEST_CASE("evaluate ignores an order outside [1, kMaxOrder]", "[sh][basis]") {
   double y[4] = {7.0, 7.0, 7.0, 7.0};
-  sh::evaluate(0, 0.0, 0.0, 1.0, y);
-  sh::evaluate(-3, 0.0, 0.0, 1.0, y);
-  sh::evaluate(sh::kMaxOrder + 1, 0.0, 0.0, 1.0, y);
+  prt::sh::evaluate(0, 0.0, 0.0, 1.0, y);
+  prt::sh::evaluate(-3, 0.0, 0.0, 1.0, y);
+  prt::sh::evaluate(prt::sh::kMaxOrder + 1, 0.0, 0.0, 1.0, y);
   for (double v : y) REQUIRE(v == 7.0);
-  REQUIRE(sh::coefficient_count(5) == 25);
-  REQUIRE(sh::index(2, -1) == 5);
+  REQUIRE(prt::sh::coefficient_count(5) == 25);
+  REQUIRE(prt::sh::index(2, -1) == 5);
 }

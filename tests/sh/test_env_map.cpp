@@ -12,15 +12,15 @@
 
 namespace {
 
-using sh::kPi;
+using prt::sh::kPi;
 
 struct Size {
-  sh::EnvLayout layout;
+  prt::sh::EnvLayout layout;
   int width, height;
 };
 
 std::vector<Size> sizes_to_check() {
-  using L = sh::EnvLayout;
+  using L = prt::sh::EnvLayout;
   return {
       {L::LatLong, 1, 1},  {L::LatLong, 2, 1},    {L::LatLong, 3, 2},     {L::LatLong, 7, 5},
       {L::LatLong, 16, 8}, {L::LatLong, 101, 50}, {L::LatLong, 512, 256}, {L::Angular, 1, 1},
@@ -37,13 +37,13 @@ double norm(const double v[3]) {
 }
 
 // Checks that the texel centre direction equals the expected (not necessarily unit) vector.
-void check_direction(sh::EnvLayout layout, int width, int height, int col, int row, double ex,
+void check_direction(prt::sh::EnvLayout layout, int width, int height, int col, int row, double ex,
                      double ey, double ez) {
   double dir[3];
-  REQUIRE(sh::texel_direction(layout, width, height, col, row, dir));
+  REQUIRE(prt::sh::texel_direction(layout, width, height, col, row, dir));
   const double expected[3] = {ex, ey, ez};
   const double length = norm(expected);
-  INFO(sh::layout_name(layout) << " " << width << "x" << height << " texel (" << col << ", " << row
+  INFO(prt::sh::layout_name(layout) << " " << width << "x" << height << " texel (" << col << ", " << row
                                << ")");
   // Closed-form directions; only rounding separates them (1e-12).
   for (int i = 0; i < 3; ++i) CHECK(dir[i] == Approx(expected[i] / length).margin(1e-12));
@@ -53,16 +53,16 @@ void check_direction(sh::EnvLayout layout, int width, int height, int col, int r
 
 TEST_CASE("texel solid angles sum to 4 pi for every layout and size, odd and tiny included") {
   for (const Size& size : sizes_to_check()) {
-    INFO(sh::layout_name(size.layout) << " " << size.width << "x" << size.height);
+    INFO(prt::sh::layout_name(size.layout) << " " << size.width << "x" << size.height);
     double sum_single = 0.0;
     bool all_nonnegative = true;
-    const std::vector<double> bulk = sh::texel_solid_angles(size.layout, size.width, size.height);
+    const std::vector<double> bulk = prt::sh::texel_solid_angles(size.layout, size.width, size.height);
     REQUIRE(bulk.size() == static_cast<std::size_t>(size.width) * size.height);
     double max_difference = 0.0;
     double sum_bulk = 0.0;
     for (int row = 0; row < size.height; ++row) {
       for (int col = 0; col < size.width; ++col) {
-        const double omega = sh::texel_solid_angle(size.layout, size.width, size.height, col, row);
+        const double omega = prt::sh::texel_solid_angle(size.layout, size.width, size.height, col, row);
         all_nonnegative = all_nonnegative && omega >= 0.0;
         sum_single += omega;
         const double from_bulk = bulk[static_cast<std::size_t>(row) * size.width + col];
@@ -81,13 +81,13 @@ TEST_CASE("texel solid angles sum to 4 pi for every layout and size, odd and tin
 }
 
 TEST_CASE("one lat-long texel covers the whole sphere and one angular texel too") {
-  CHECK(sh::texel_solid_angle(sh::EnvLayout::LatLong, 1, 1, 0, 0) == Approx(4 * kPi));
-  CHECK(sh::texel_solid_angle(sh::EnvLayout::Angular, 1, 1, 0, 0) == Approx(4 * kPi));
+  CHECK(prt::sh::texel_solid_angle(prt::sh::EnvLayout::LatLong, 1, 1, 0, 0) == Approx(4 * kPi));
+  CHECK(prt::sh::texel_solid_angle(prt::sh::EnvLayout::Angular, 1, 1, 0, 0) == Approx(4 * kPi));
   // A 2x1 lat-long map: two halves of the sphere (z < 0 and z > 0), 2π each.
-  CHECK(sh::texel_solid_angle(sh::EnvLayout::LatLong, 2, 1, 0, 0) == Approx(2 * kPi));
+  CHECK(prt::sh::texel_solid_angle(prt::sh::EnvLayout::LatLong, 2, 1, 0, 0) == Approx(2 * kPi));
   // A 1x6 stack of faces: each face is a sixth of the sphere.
   for (int row = 0; row < 6; ++row)
-    CHECK(sh::texel_solid_angle(sh::EnvLayout::Faces, 1, 6, 0, row) == Approx(4 * kPi / 6));
+    CHECK(prt::sh::texel_solid_angle(prt::sh::EnvLayout::Faces, 1, 6, 0, row) == Approx(4 * kPi / 6));
 }
 
 TEST_CASE("exact solid angles agree with brute-force integration of the Jacobians") {
@@ -117,12 +117,12 @@ TEST_CASE("exact solid angles agree with brute-force integration of the Jacobian
           sum += kPi * kPi * sinc * h * h;
         }
       }
-      const double exact = sh::texel_solid_angle(sh::EnvLayout::Angular, w, w, c.col, c.row);
+      const double exact = prt::sh::texel_solid_angle(prt::sh::EnvLayout::Angular, w, w, c.col, c.row);
       INFO("texel " << c.col << ", " << c.row << " exact " << exact << " brute force " << sum);
       CHECK(exact == Approx(sum).epsilon(c.tolerance).margin(1e-9));
     }
     // The corner texel lies entirely outside the disc.
-    CHECK(sh::texel_solid_angle(sh::EnvLayout::Angular, w, w, 0, 0) == 0.0);
+    CHECK(prt::sh::texel_solid_angle(prt::sh::EnvLayout::Angular, w, w, 0, 0) == 0.0);
   }
   SECTION("cube face texels") {
     const int s = 5;
@@ -138,9 +138,9 @@ TEST_CASE("exact solid angles agree with brute-force integration of the Jacobian
           }
         }
         // Same face (−Z) in the cross and in the stacked faces.
-        CHECK(sh::texel_solid_angle(sh::EnvLayout::Cross, 3 * s, 4 * s, s + face_col,
+        CHECK(prt::sh::texel_solid_angle(prt::sh::EnvLayout::Cross, 3 * s, 4 * s, s + face_col,
                                     s + face_row) == Approx(sum).epsilon(1e-6));
-        CHECK(sh::texel_solid_angle(sh::EnvLayout::Faces, s, 6 * s, face_col, 5 * s + face_row) ==
+        CHECK(prt::sh::texel_solid_angle(prt::sh::EnvLayout::Faces, s, 6 * s, face_col, 5 * s + face_row) ==
               Approx(sum).epsilon(1e-6));
       }
     }
@@ -152,7 +152,7 @@ TEST_CASE("exact solid angles agree with brute-force integration of the Jacobian
     for (int row = 0; row < h; ++row) {
       const double cap0 = 2 * kPi * (1 - std::cos(kPi * row / h));
       const double cap1 = 2 * kPi * (1 - std::cos(kPi * (row + 1) / h));
-      CHECK(sh::texel_solid_angle(sh::EnvLayout::LatLong, w, h, 3, row) ==
+      CHECK(prt::sh::texel_solid_angle(prt::sh::EnvLayout::LatLong, w, h, 3, row) ==
             Approx((cap1 - cap0) / w).epsilon(1e-13));
     }
   }
@@ -185,14 +185,14 @@ TEST_CASE("angular solid angles of a central block match a polar 1D integral to 
     const int first = c.width / 2 - c.half_block, last = c.width / 2 + c.half_block;
     for (int row = first; row < last; ++row)
       for (int col = first; col < last; ++col)
-        sum += sh::texel_solid_angle(sh::EnvLayout::Angular, c.width, c.width, col, row);
+        sum += prt::sh::texel_solid_angle(prt::sh::EnvLayout::Angular, c.width, c.width, col, row);
     INFO("w = " << c.width << ", a = " << a);
     CHECK(sum == Approx(reference).epsilon(1e-12));
   }
 }
 
 TEST_CASE("texel directions follow GUIDE.md's conventions") {
-  using L = sh::EnvLayout;
+  using L = prt::sh::EnvLayout;
   SECTION("lat-long: centre column +X, u = 1/4 is -Z, u = 3/4 is +Z, row 0 near +Y") {
     check_direction(L::LatLong, 5, 3, 2, 1, 1, 0, 0);                      // u = 0.5 at the horizon
     check_direction(L::LatLong, 6, 3, 1, 1, 0, 0, -1);                     // u = 0.25
@@ -208,14 +208,14 @@ TEST_CASE("texel directions follow GUIDE.md's conventions") {
     check_direction(L::Angular, 5, 5, 2, 0, 0, std::sin(0.8 * kPi), -std::cos(0.8 * kPi));
     check_direction(L::Angular, 5, 5, 2, 3, 0, -std::sin(0.4 * kPi), -std::cos(0.4 * kPi));
     double dir[3];
-    CHECK_FALSE(sh::texel_direction(L::Angular, 9, 9, 0, 0, dir));  // corner: outside the disc
+    CHECK_FALSE(prt::sh::texel_direction(L::Angular, 9, 9, 0, 0, dir));  // corner: outside the disc
     // The corner texel of a 5x5 map reaches into the disc (nearest point r = 0.85) although its
     // centre does not: it is on the sphere, next to +Z (the rim), with a small solid angle.
-    REQUIRE(sh::texel_direction(L::Angular, 5, 5, 0, 0, dir));
+    REQUIRE(prt::sh::texel_direction(L::Angular, 5, 5, 0, 0, dir));
     CHECK(dir[2] > 0.9);
     CHECK(dir[0] < 0.0);
     CHECK(dir[1] > 0.0);
-    CHECK(sh::texel_solid_angle(L::Angular, 5, 5, 0, 0) > 0.0);
+    CHECK(prt::sh::texel_solid_angle(L::Angular, 5, 5, 0, 0) > 0.0);
   }
   SECTION("vertical cross: the face table, +Z stored upside down") {
     // s = 3: a, b in {−2/3, 0, 2/3} at texel centres.
@@ -233,9 +233,9 @@ TEST_CASE("texel directions follow GUIDE.md's conventions") {
     check_direction(L::Cross, 9, 12, 3, 8, -t, -1, t);  // −Y (a, −1, b), a = −2/3, b = 2/3
     check_direction(L::Cross, 9, 12, 3, 9, -t, -t, 1);  // +Z (a, b, 1): its top row is −Y side
     double dir[3];
-    CHECK_FALSE(sh::texel_direction(L::Cross, 9, 12, 0, 0, dir));
-    CHECK_FALSE(sh::texel_direction(L::Cross, 9, 12, 8, 11, dir));
-    CHECK(sh::texel_solid_angle(L::Cross, 9, 12, 0, 0) == 0.0);
+    CHECK_FALSE(prt::sh::texel_direction(L::Cross, 9, 12, 0, 0, dir));
+    CHECK_FALSE(prt::sh::texel_direction(L::Cross, 9, 12, 8, 11, dir));
+    CHECK(prt::sh::texel_solid_angle(L::Cross, 9, 12, 0, 0) == 0.0);
   }
   SECTION("stacked faces: +X, -X, +Y, -Y, +Z, -Z, each seen from the centre") {
     const double t = 2.0 / 3.0;
@@ -255,14 +255,14 @@ TEST_CASE("texel directions follow GUIDE.md's conventions") {
 TEST_CASE("direction_to_texel inverts texel_direction") {
   for (const Size& size : sizes_to_check()) {
     if (size.width * size.height > 20000) continue;
-    INFO(sh::layout_name(size.layout) << " " << size.width << "x" << size.height);
+    INFO(prt::sh::layout_name(size.layout) << " " << size.width << "x" << size.height);
     double worst = 0.0;
     int checked = 0;
     for (int row = 0; row < size.height; ++row) {
       for (int col = 0; col < size.width; ++col) {
         double dir[3];
-        if (!sh::texel_direction(size.layout, size.width, size.height, col, row, dir)) continue;
-        if (size.layout == sh::EnvLayout::Angular) {
+        if (!prt::sh::texel_direction(size.layout, size.width, size.height, col, row, dir)) continue;
+        if (size.layout == prt::sh::EnvLayout::Angular) {
           // Only texels whose centre lies in the disc have their centre as direction.
           const double u = 2.0 * (col + 0.5) / size.width - 1.0;
           const double v = 1.0 - 2.0 * (row + 0.5) / size.width;
@@ -271,7 +271,7 @@ TEST_CASE("direction_to_texel inverts texel_direction") {
         }
         CHECK(std::abs(norm(dir) - 1.0) < 1e-14);
         double x, y;
-        REQUIRE(sh::direction_to_texel(size.layout, size.width, size.height, dir, &x, &y));
+        REQUIRE(prt::sh::direction_to_texel(size.layout, size.width, size.height, dir, &x, &y));
         worst = std::max({worst, std::abs(x - (col + 0.5)), std::abs(y - (row + 0.5))});
         ++checked;
       }
@@ -282,48 +282,48 @@ TEST_CASE("direction_to_texel inverts texel_direction") {
   }
   double col, row;
   const double zero[3] = {0, 0, 0};
-  CHECK_FALSE(sh::direction_to_texel(sh::EnvLayout::LatLong, 8, 4, zero, &col, &row));
+  CHECK_FALSE(prt::sh::direction_to_texel(prt::sh::EnvLayout::LatLong, 8, 4, zero, &col, &row));
   const double minus_z[3] = {0, 0, -2};  // not normalised on purpose
-  REQUIRE(sh::direction_to_texel(sh::EnvLayout::Angular, 10, 10, minus_z, &col, &row));
+  REQUIRE(prt::sh::direction_to_texel(prt::sh::EnvLayout::Angular, 10, 10, minus_z, &col, &row));
   CHECK(col == Approx(5.0));
   CHECK(row == Approx(5.0));
 }
 
 TEST_CASE("layout validation and guessing by aspect ratio") {
-  using L = sh::EnvLayout;
+  using L = prt::sh::EnvLayout;
   bool ok = false;
-  CHECK(sh::guess_layout(1024, 512, &ok) == L::LatLong);
+  CHECK(prt::sh::guess_layout(1024, 512, &ok) == L::LatLong);
   CHECK(ok);
-  CHECK(sh::guess_layout(1000, 1000, &ok) == L::Angular);
+  CHECK(prt::sh::guess_layout(1000, 1000, &ok) == L::Angular);
   CHECK(ok);
-  CHECK(sh::guess_layout(768, 1024, &ok) == L::Cross);
+  CHECK(prt::sh::guess_layout(768, 1024, &ok) == L::Cross);
   CHECK(ok);
-  CHECK(sh::guess_layout(256, 1536, &ok) == L::Faces);
+  CHECK(prt::sh::guess_layout(256, 1536, &ok) == L::Faces);
   CHECK(ok);
-  sh::guess_layout(100, 37, &ok);
+  prt::sh::guess_layout(100, 37, &ok);
   CHECK_FALSE(ok);
-  sh::guess_layout(0, 0, &ok);
+  prt::sh::guess_layout(0, 0, &ok);
   CHECK_FALSE(ok);
   std::string why;
-  CHECK_FALSE(sh::validate_layout(L::LatLong, 1000, 1000, &why));
+  CHECK_FALSE(prt::sh::validate_layout(L::LatLong, 1000, 1000, &why));
   CHECK_FALSE(why.empty());
-  CHECK_FALSE(sh::validate_layout(L::Angular, 1000, 999, &why));
-  CHECK_FALSE(sh::validate_layout(L::Cross, 768, 1000, &why));
-  CHECK_FALSE(sh::validate_layout(L::Faces, 256, 1535, &why));
-  CHECK_FALSE(sh::validate_layout(L::Angular, 0, 0, &why));
-  CHECK(sh::validate_layout(L::Cross, 3, 4, &why));
+  CHECK_FALSE(prt::sh::validate_layout(L::Angular, 1000, 999, &why));
+  CHECK_FALSE(prt::sh::validate_layout(L::Cross, 768, 1000, &why));
+  CHECK_FALSE(prt::sh::validate_layout(L::Faces, 256, 1535, &why));
+  CHECK_FALSE(prt::sh::validate_layout(L::Angular, 0, 0, &why));
+  CHECK(prt::sh::validate_layout(L::Cross, 3, 4, &why));
   for (L layout : {L::LatLong, L::Angular, L::Cross, L::Faces}) {
     L parsed;
-    REQUIRE(sh::parse_layout(sh::layout_name(layout), &parsed));
+    REQUIRE(prt::sh::parse_layout(prt::sh::layout_name(layout), &parsed));
     CHECK(parsed == layout);
   }
   L parsed;
-  CHECK_FALSE(sh::parse_layout("sphere", &parsed));
+  CHECK_FALSE(prt::sh::parse_layout("sphere", &parsed));
 }
 
 TEST_CASE("bilinear lookup returns texel values at centres and interpolates between them") {
-  sh::EnvMap env;
-  env.layout = sh::EnvLayout::LatLong;
+  prt::sh::EnvMap env;
+  env.layout = prt::sh::EnvLayout::LatLong;
   env.width = 8;
   env.height = 4;
   env.rgb.assign(8 * 4 * 3, 0.0f);
@@ -333,27 +333,27 @@ TEST_CASE("bilinear lookup returns texel values at centres and interpolates betw
         env.rgb[(row * 8 + col) * 3 + c] = static_cast<float>(100 * c + 10 * row + col);
   double dir[3];
   float rgb[3];
-  REQUIRE(sh::texel_direction(env.layout, 8, 4, 3, 2, dir));
-  sh::sample_bilinear(env, dir, rgb);
+  REQUIRE(prt::sh::texel_direction(env.layout, 8, 4, 3, 2, dir));
+  prt::sh::sample_bilinear(env, dir, rgb);
   CHECK(rgb[0] == Approx(23.0f));
   CHECK(rgb[2] == Approx(223.0f));
   // Halfway between columns 3 and 4 of row 1 (φ at u = 0.5 exactly: +X, θ at row centre).
   const double theta = kPi * 1.5 / 4;
   const double between[3] = {std::sin(theta), std::cos(theta), 0.0};
-  sh::sample_bilinear(env, between, rgb);
+  prt::sh::sample_bilinear(env, between, rgb);
   CHECK(rgb[0] == Approx(13.5f));
   // Across the seam at u = 0 / 1 (−X): halfway between columns 7 and 0, wrapping.
   const double seam[3] = {-std::sin(theta), std::cos(theta), 0.0};
-  sh::sample_bilinear(env, seam, rgb);
+  prt::sh::sample_bilinear(env, seam, rgb);
   CHECK(rgb[0] == Approx((17.0f + 10.0f) / 2));
   // Cube faces: the centre of a face of even size sits between four texels of that face.
-  sh::EnvMap faces;
-  faces.layout = sh::EnvLayout::Faces;
+  prt::sh::EnvMap faces;
+  faces.layout = prt::sh::EnvLayout::Faces;
   faces.width = 2;
   faces.height = 12;
   faces.rgb.assign(2 * 12 * 3, 0.0f);
   for (int i = 0; i < 4; ++i) faces.rgb[(4 * 4 + i) * 3] = static_cast<float>(i + 1);  // +Z face
   const double plus_z[3] = {0, 0, 1};
-  sh::sample_bilinear(faces, plus_z, rgb);
+  prt::sh::sample_bilinear(faces, plus_z, rgb);
   CHECK(rgb[0] == Approx(2.5f));
 }

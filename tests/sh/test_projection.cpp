@@ -15,12 +15,12 @@
 
 namespace {
 
-using sh::kPi;
-using sh::kY00;
+using prt::sh::kPi;
+using prt::sh::kY00;
 constexpr double kY1 = 0.48860251190291992;   // √(3/4π)
 
-sh::EnvMap make_map(sh::EnvLayout layout, int width, int height, float r, float g, float b) {
-  sh::EnvMap env;
+prt::sh::EnvMap make_map(prt::sh::EnvLayout layout, int width, int height, float r, float g, float b) {
+  prt::sh::EnvMap env;
   env.layout = layout;
   env.width = width;
   env.height = height;
@@ -33,7 +33,7 @@ sh::EnvMap make_map(sh::EnvLayout layout, int width, int height, float r, float 
   return env;
 }
 
-void set_texel(sh::EnvMap* env, int col, int row, float r, float g, float b) {
+void set_texel(prt::sh::EnvMap* env, int col, int row, float r, float g, float b) {
   float* texel = &env->rgb[(static_cast<std::size_t>(row) * env->width + col) * 3];
   texel[0] = r;
   texel[1] = g;
@@ -50,7 +50,7 @@ double max_abs(const std::vector<double>& v) {
 
 TEST_CASE("a constant environment projects to sqrt(4 pi) c in every layout") {
   struct Case {
-    sh::EnvLayout layout;
+    prt::sh::EnvLayout layout;
     int width, height;
     double higher_band_tolerance;
   };
@@ -60,17 +60,17 @@ TEST_CASE("a constant environment projects to sqrt(4 pi) c in every layout") {
   // near the rim span large angles); tolerance 2e-3 (2.5x margin). Cube maps are invariant under
   // the cube's rotations, which leave no function of bands 1–3 invariant: those coefficients
   // cancel to rounding (measured 3e-16), so the tolerance there is 1e-13.
-  const Case cases[] = {{sh::EnvLayout::LatLong, 64, 32, 2e-3},
-                        {sh::EnvLayout::Angular, 64, 64, 2e-3},
-                        {sh::EnvLayout::Cross, 48, 64, 1e-13},
-                        {sh::EnvLayout::Faces, 16, 96, 1e-13}};
+  const Case cases[] = {{prt::sh::EnvLayout::LatLong, 64, 32, 2e-3},
+                        {prt::sh::EnvLayout::Angular, 64, 64, 2e-3},
+                        {prt::sh::EnvLayout::Cross, 48, 64, 1e-13},
+                        {prt::sh::EnvLayout::Faces, 16, 96, 1e-13}};
   const float colour[3] = {0.5f, 1.25f, 3.0f};
   for (const Case& c : cases) {
-    INFO(sh::layout_name(c.layout));
-    const sh::EnvMap env = make_map(c.layout, c.width, c.height, colour[0], colour[1], colour[2]);
-    sh::ProjectionStats stats;
+    INFO(prt::sh::layout_name(c.layout));
+    const prt::sh::EnvMap env = make_map(c.layout, c.width, c.height, colour[0], colour[1], colour[2]);
+    prt::sh::ProjectionStats stats;
     const int order = 4;
-    const std::vector<double> coefficients = sh::project(env, order, &stats);
+    const std::vector<double> coefficients = prt::sh::project(env, order, &stats);
     REQUIRE(coefficients.size() == 3u * 16u);
     CHECK(stats.solid_angle_sum == Approx(4 * kPi).epsilon(1e-12));
     CHECK(stats.skipped_texels() == 0u);
@@ -91,40 +91,40 @@ TEST_CASE("a single bright texel lands in the direction the layout's convention 
   // With one lit texel, L_0 = ω f Y00 and (L_1,1, L_1,−1, L_1,0) = ω f 0.488603 (x, y, z):
   // exact up to rounding, so the direction must match to 1e-12.
   struct Case {
-    sh::EnvLayout layout;
+    prt::sh::EnvLayout layout;
     int width, height, col, row;
     double x, y, z;
   };
   const double t = 2.0 / 3.0;
   const Case cases[] = {
-      {sh::EnvLayout::LatLong, 5, 3, 2, 1, 1, 0, 0},         // centre column at the horizon: +X
-      {sh::EnvLayout::LatLong, 6, 3, 1, 1, 0, 0, -1},        // u = 1/4: −Z
-      {sh::EnvLayout::LatLong, 6, 3, 4, 1, 0, 0, 1},         // u = 3/4: +Z
-      {sh::EnvLayout::LatLong, 10, 5, 7, 0, 0.0, 0.0, 0.0},  // filled in below (row 0, +Y side)
-      {sh::EnvLayout::Angular, 5, 5, 2, 2, 0, 0, -1},        // centre: −Z
-      {sh::EnvLayout::Angular, 5, 5, 4, 2, std::sin(0.8 * kPi), 0, -std::cos(0.8 * kPi)},
-      {sh::EnvLayout::Angular, 5, 5, 2, 0, 0, std::sin(0.8 * kPi), -std::cos(0.8 * kPi)},
-      {sh::EnvLayout::Cross, 9, 12, 4, 10, 0, 0, 1},    // +Z cell centre
-      {sh::EnvLayout::Cross, 9, 12, 7, 4, 1, 0, 0},     // +X cell centre
-      {sh::EnvLayout::Cross, 9, 12, 3, 9, -t, -t, 1},   // +Z stored upside down
-      {sh::EnvLayout::Cross, 9, 12, 3, 0, -t, 1, t},    // +Y
-      {sh::EnvLayout::Faces, 3, 18, 2, 14, -t, -t, 1},  // +Z seen from the centre
-      {sh::EnvLayout::Faces, 3, 18, 2, 0, 1, t, t},     // +X
+      {prt::sh::EnvLayout::LatLong, 5, 3, 2, 1, 1, 0, 0},         // centre column at the horizon: +X
+      {prt::sh::EnvLayout::LatLong, 6, 3, 1, 1, 0, 0, -1},        // u = 1/4: −Z
+      {prt::sh::EnvLayout::LatLong, 6, 3, 4, 1, 0, 0, 1},         // u = 3/4: +Z
+      {prt::sh::EnvLayout::LatLong, 10, 5, 7, 0, 0.0, 0.0, 0.0},  // filled in below (row 0, +Y side)
+      {prt::sh::EnvLayout::Angular, 5, 5, 2, 2, 0, 0, -1},        // centre: −Z
+      {prt::sh::EnvLayout::Angular, 5, 5, 4, 2, std::sin(0.8 * kPi), 0, -std::cos(0.8 * kPi)},
+      {prt::sh::EnvLayout::Angular, 5, 5, 2, 0, 0, std::sin(0.8 * kPi), -std::cos(0.8 * kPi)},
+      {prt::sh::EnvLayout::Cross, 9, 12, 4, 10, 0, 0, 1},    // +Z cell centre
+      {prt::sh::EnvLayout::Cross, 9, 12, 7, 4, 1, 0, 0},     // +X cell centre
+      {prt::sh::EnvLayout::Cross, 9, 12, 3, 9, -t, -t, 1},   // +Z stored upside down
+      {prt::sh::EnvLayout::Cross, 9, 12, 3, 0, -t, 1, t},    // +Y
+      {prt::sh::EnvLayout::Faces, 3, 18, 2, 14, -t, -t, 1},  // +Z seen from the centre
+      {prt::sh::EnvLayout::Faces, 3, 18, 2, 0, 1, t, t},     // +X
   };
   for (Case c : cases) {
-    if (c.layout == sh::EnvLayout::LatLong && c.width == 10) {
+    if (c.layout == prt::sh::EnvLayout::LatLong && c.width == 10) {
       // Row 0 of 5 rows: θ = π/10 from +Y; column 7 of 10: φ = 2π(0.75 − 0.5) = π/2 → +Z side.
       c.x = 0.0;
       c.y = std::cos(kPi / 10);
       c.z = std::sin(kPi / 10);
     }
-    INFO(sh::layout_name(c.layout)
+    INFO(prt::sh::layout_name(c.layout)
          << " " << c.width << "x" << c.height << " texel " << c.col << ", " << c.row);
-    sh::EnvMap env = make_map(c.layout, c.width, c.height, 0, 0, 0);
+    prt::sh::EnvMap env = make_map(c.layout, c.width, c.height, 0, 0, 0);
     set_texel(&env, c.col, c.row, 1000.0f, 500.0f, 250.0f);
-    const double omega = sh::texel_solid_angle(c.layout, c.width, c.height, c.col, c.row);
+    const double omega = prt::sh::texel_solid_angle(c.layout, c.width, c.height, c.col, c.row);
     REQUIRE(omega > 0);
-    const std::vector<double> L = sh::project(env, 2);
+    const std::vector<double> L = prt::sh::project(env, 2);
     REQUIRE(L.size() == 12u);
     CHECK(L[0] == Approx(omega * 1000.0 * kY00).epsilon(1e-12));
     const double length = std::sqrt(c.x * c.x + c.y * c.y + c.z * c.z);
@@ -153,13 +153,13 @@ TEST_CASE("the separable lat-long projection equals the direct sum") {
                         {37, 13, 6}, {256, 128, 16}, {1024, 512, 3}};
   for (const Case& c : cases) {
     INFO(c.width << "x" << c.height << " order " << c.order);
-    sh::EnvMap env = make_map(sh::EnvLayout::LatLong, c.width, c.height, 0, 0, 0);
+    prt::sh::EnvMap env = make_map(prt::sh::EnvLayout::LatLong, c.width, c.height, 0, 0, 0);
     for (float& value : env.rgb) value = uniform(random);
     // A bright sun-like spot too, so high bands are far from zero.
     set_texel(&env, c.width / 3, c.height / 4, 5000.0f, 4000.0f, 3000.0f);
-    sh::ProjectionStats fast_stats, direct_stats;
-    const std::vector<double> fast = sh::project(env, c.order, &fast_stats);
-    const std::vector<double> direct = sh::project_direct(env, c.order, &direct_stats);
+    prt::sh::ProjectionStats fast_stats, direct_stats;
+    const std::vector<double> fast = prt::sh::project(env, c.order, &fast_stats);
+    const std::vector<double> direct = prt::sh::project_direct(env, c.order, &direct_stats);
     REQUIRE(fast.size() == direct.size());
     REQUIRE(fast.size() == 3u * c.order * c.order);
     // Same sum in a different order and through an orthogonal basis change: rounding only.
@@ -185,30 +185,30 @@ TEST_CASE("projection recovers a band-limited function in every layout") {
   for (int k = 0; k < 16; ++k) c[k] = ((k * 7) % 5 - 2) * 0.3 + (k % 2 ? 0.1 : -0.15);
   c[0] = 12.0;  // keeps f > 0 (asserted per texel below)
   struct Case {
-    sh::EnvLayout layout;
+    prt::sh::EnvLayout layout;
     int width, height;
   };
-  const Case cases[] = {{sh::EnvLayout::LatLong, 128, 64},
-                        {sh::EnvLayout::Angular, 128, 128},
-                        {sh::EnvLayout::Cross, 96, 128},
-                        {sh::EnvLayout::Faces, 32, 192}};
+  const Case cases[] = {{prt::sh::EnvLayout::LatLong, 128, 64},
+                        {prt::sh::EnvLayout::Angular, 128, 128},
+                        {prt::sh::EnvLayout::Cross, 96, 128},
+                        {prt::sh::EnvLayout::Faces, 32, 192}};
   for (const Case& cs : cases) {
-    INFO(sh::layout_name(cs.layout));
-    sh::EnvMap env = make_map(cs.layout, cs.width, cs.height, 0, 0, 0);
+    INFO(prt::sh::layout_name(cs.layout));
+    prt::sh::EnvMap env = make_map(cs.layout, cs.width, cs.height, 0, 0, 0);
     double basis[16];
     for (int row = 0; row < cs.height; ++row) {
       for (int col = 0; col < cs.width; ++col) {
         double dir[3];
-        if (!sh::texel_direction(cs.layout, cs.width, cs.height, col, row, dir)) continue;
-        sh::evaluate(order, dir[0], dir[1], dir[2], basis);
+        if (!prt::sh::texel_direction(cs.layout, cs.width, cs.height, col, row, dir)) continue;
+        prt::sh::evaluate(order, dir[0], dir[1], dir[2], basis);
         double f = 0.0;
         for (int k = 0; k < 16; ++k) f += c[k] * basis[k];
         REQUIRE(f > 0.0);
         set_texel(&env, col, row, static_cast<float>(f), static_cast<float>(2 * f), 0.0f);
       }
     }
-    sh::ProjectionStats stats;
-    const std::vector<double> L = sh::project(env, order, &stats);
+    prt::sh::ProjectionStats stats;
+    const std::vector<double> L = prt::sh::project(env, order, &stats);
     REQUIRE(L.size() == 48u);
     CHECK(stats.skipped_texels() == 0u);
     double worst = 0.0;
@@ -227,17 +227,17 @@ TEST_CASE("NaN, Inf and negative texels are skipped and counted") {
   const float nan = std::numeric_limits<float>::quiet_NaN();
   const float inf = std::numeric_limits<float>::infinity();
   struct Case {
-    sh::EnvLayout layout;
+    prt::sh::EnvLayout layout;
     int width, height;
   };
-  const Case cases[] = {{sh::EnvLayout::LatLong, 32, 16},
-                        {sh::EnvLayout::Angular, 24, 24},
-                        {sh::EnvLayout::Cross, 24, 32},
-                        {sh::EnvLayout::Faces, 8, 48}};
+  const Case cases[] = {{prt::sh::EnvLayout::LatLong, 32, 16},
+                        {prt::sh::EnvLayout::Angular, 24, 24},
+                        {prt::sh::EnvLayout::Cross, 24, 32},
+                        {prt::sh::EnvLayout::Faces, 8, 48}};
   for (const Case& c : cases) {
-    INFO(sh::layout_name(c.layout));
-    sh::EnvMap bad = make_map(c.layout, c.width, c.height, 1.0f, 2.0f, 3.0f);
-    sh::EnvMap clean = bad;
+    INFO(prt::sh::layout_name(c.layout));
+    prt::sh::EnvMap bad = make_map(c.layout, c.width, c.height, 1.0f, 2.0f, 3.0f);
+    prt::sh::EnvMap clean = bad;
     // Pick texels on the sphere (the centre row of the map is on the sphere in every layout).
     const int row = c.height / 2;
     double omega_skipped = 0.0;
@@ -247,16 +247,16 @@ TEST_CASE("NaN, Inf and negative texels are skipped and counted") {
                                     {1, -inf, 1}, {1, -0.5f, 1}, {nan, inf, -1}};
     for (int i = 0; i < 6; ++i) {
       double dir[3];
-      REQUIRE(sh::texel_direction(c.layout, c.width, c.height, cols[i], row, dir));
+      REQUIRE(prt::sh::texel_direction(c.layout, c.width, c.height, cols[i], row, dir));
       set_texel(&bad, cols[i], row, bad_values[i][0], bad_values[i][1], bad_values[i][2]);
       set_texel(&clean, cols[i], row, 0, 0, 0);
-      omega_skipped += sh::texel_solid_angle(c.layout, c.width, c.height, cols[i], row);
+      omega_skipped += prt::sh::texel_solid_angle(c.layout, c.width, c.height, cols[i], row);
     }
     for (int path = 0; path < 2; ++path) {
-      sh::ProjectionStats stats;
+      prt::sh::ProjectionStats stats;
       const std::vector<double> L =
-          path == 0 ? sh::project(bad, 3, &stats) : sh::project_direct(bad, 3, &stats);
-      const std::vector<double> expected = sh::project_direct(clean, 3);
+          path == 0 ? prt::sh::project(bad, 3, &stats) : prt::sh::project_direct(bad, 3, &stats);
+      const std::vector<double> expected = prt::sh::project_direct(clean, 3);
       REQUIRE(L.size() == expected.size());
       CHECK(stats.nan_texels == 3u);  // NaN wins over Inf and negative in the same texel
       CHECK(stats.inf_texels == 2u);
@@ -291,7 +291,7 @@ TEST_CASE("reconstruct evaluates an expansion with GUIDE.md's basis functions") 
     coefficients[k] = 1.0;
     coefficients[9 + k] = 2.0;
     double out[2];
-    sh::reconstruct(coefficients.data(), 2, 3, dir, out);
+    prt::sh::reconstruct(coefficients.data(), 2, 3, dir, out);
     // GUIDE.md's constants have 6-7 significant digits.
     CHECK(out[0] == Approx(expected[k]).margin(2e-6));
     CHECK(out[1] == Approx(2 * expected[k]).margin(4e-6));
@@ -299,20 +299,20 @@ TEST_CASE("reconstruct evaluates an expansion with GUIDE.md's basis functions") 
   const double zero[3] = {0, 0, 0};
   std::vector<double> coefficients(9, 1.0);
   double out[1] = {42};
-  sh::reconstruct(coefficients.data(), 1, 3, zero, out);
+  prt::sh::reconstruct(coefficients.data(), 1, 3, zero, out);
   CHECK(out[0] == 0.0);
 }
 
 TEST_CASE("projection refuses invalid input") {
-  const sh::EnvMap env = make_map(sh::EnvLayout::Angular, 8, 8, 1, 1, 1);
-  CHECK(sh::project(env, 0).empty());
-  CHECK(sh::project(env, sh::kMaxOrder + 1).empty());
-  sh::EnvMap wrong_aspect = make_map(sh::EnvLayout::Angular, 8, 6, 1, 1, 1);
-  CHECK(sh::project(wrong_aspect, 3).empty());
-  sh::EnvMap short_data = env;
+  const prt::sh::EnvMap env = make_map(prt::sh::EnvLayout::Angular, 8, 8, 1, 1, 1);
+  CHECK(prt::sh::project(env, 0).empty());
+  CHECK(prt::sh::project(env, prt::sh::kMaxOrder + 1).empty());
+  prt::sh::EnvMap wrong_aspect = make_map(prt::sh::EnvLayout::Angular, 8, 6, 1, 1, 1);
+  CHECK(prt::sh::project(wrong_aspect, 3).empty());
+  prt::sh::EnvMap short_data = env;
   short_data.rgb.pop_back();
-  CHECK(sh::project(short_data, 3).empty());
-  sh::EnvMap empty;
-  CHECK(sh::project(empty, 3).empty());
-  CHECK_FALSE(sh::project(env, 3).empty());
+  CHECK(prt::sh::project(short_data, 3).empty());
+  prt::sh::EnvMap empty;
+  CHECK(prt::sh::project(empty, 3).empty());
+  CHECK_FALSE(prt::sh::project(env, 3).empty());
 }

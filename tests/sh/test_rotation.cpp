@@ -1,4 +1,4 @@
-// tests/sh/test_rotation.cpp — sh::Rotation against numerical projection and group laws.
+// tests/sh/test_rotation.cpp — prt::sh::Rotation against numerical projection and group laws.
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -14,7 +14,7 @@
 
 namespace {
 
-using sh::kPi;
+using prt::sh::kPi;
 using Matrix3 = std::array<double, 9>;
 
 Matrix3 multiply(const Matrix3& a, const Matrix3& b) {
@@ -59,7 +59,7 @@ TEST_CASE("band matrices are orthogonal up to l = 20", "[sh][rotation]") {
   // brief's bound) leaves margin and still catches any wrong coefficient (O(1) errors).
   std::mt19937_64 rng(5);
   for (int trial = 0; trial < 5; ++trial) {
-    const sh::Rotation r(21, random_rotation(rng));
+    const prt::sh::Rotation r(21, random_rotation(rng));
     REQUIRE(r.order() == 21);
     for (int l = 0; l <= 20; ++l) {
       const int s = 2 * l + 1;
@@ -87,7 +87,7 @@ TEST_CASE("rotation composes: R(a)R(b) = R(ab), and R(I) = I", "[sh][rotation]")
   const int order = 12, n = order * order;
   for (int trial = 0; trial < 5; ++trial) {
     const Matrix3 a = random_rotation(rng), b = random_rotation(rng);
-    const sh::Rotation ra(order, a), rb(order, b), rab(order, multiply(a, b));
+    const prt::sh::Rotation ra(order, a), rb(order, b), rab(order, multiply(a, b));
     const std::vector<double> f = random_coefficients(n, rng);
     std::vector<double> g(n), h(n), direct(n);
     rb.apply(f.data(), g.data());
@@ -95,7 +95,7 @@ TEST_CASE("rotation composes: R(a)R(b) = R(ab), and R(I) = I", "[sh][rotation]")
     rab.apply(f.data(), direct.data());
     for (int k = 0; k < n; ++k) REQUIRE(h[k] == Approx(direct[k]).margin(1e-12));
   }
-  const sh::Rotation identity(order, {1, 0, 0, 0, 1, 0, 0, 0, 1});
+  const prt::sh::Rotation identity(order, {1, 0, 0, 0, 1, 0, 0, 0, 1});
   for (int l = 0; l < order; ++l) {
     const int s = 2 * l + 1;
     for (int i = 0; i < s * s; ++i) {
@@ -121,15 +121,15 @@ TEST_CASE("rotating coefficients equals projecting the rotated function", "[sh][
       const double u[3] = {m[0] * w[0] + m[3] * w[1] + m[6] * w[2],
                            m[1] * w[0] + m[4] * w[1] + m[7] * w[2],
                            m[2] * w[0] + m[5] * w[1] + m[8] * w[2]};
-      sh::evaluate(order, u[0], u[1], u[2], y.data());
+      prt::sh::evaluate(order, u[0], u[1], u[2], y.data());
       double value = 0.0;
       for (int k = 0; k < n; ++k) value += f[k] * y[k];
-      sh::evaluate(order, w[0], w[1], w[2], y.data());
+      prt::sh::evaluate(order, w[0], w[1], w[2], y.data());
       for (int k = 0; k < n; ++k) projected[k] += q.weights[p] * value * y[k];
     }
-    sh::Rotation(order, m).apply(f.data(), rotated.data());
+    prt::sh::Rotation(order, m).apply(f.data(), rotated.data());
     std::vector<float> ff(f.begin(), f.end()), rf(n);
-    sh::Rotation(order, m).apply(ff.data(), rf.data());
+    prt::sh::Rotation(order, m).apply(ff.data(), rf.data());
     for (int k = 0; k < n; ++k) {
       INFO("k=" << k);
       REQUIRE(rotated[k] == Approx(projected[k]).margin(1e-11));
@@ -141,7 +141,7 @@ TEST_CASE("rotating coefficients equals projecting the rotated function", "[sh][
 
 TEST_CASE("rotating Y1,0 (z) by 90 degrees about +x gives -y", "[sh][rotation]") {
   // Rx(90°) maps +z to −y, so g(ω) = f(Mᵀω) = (M·e_z)·ω = −y: coefficient −1 on Y1,−1.
-  const sh::Rotation r(2, axis_angle(1, 0, 0, kPi / 2));
+  const prt::sh::Rotation r(2, axis_angle(1, 0, 0, kPi / 2));
   const double f[4] = {0.0, 0.0, 1.0, 0.0};
   double g[4];
   r.apply(f, g);
@@ -150,14 +150,14 @@ TEST_CASE("rotating Y1,0 (z) by 90 degrees about +x gives -y", "[sh][rotation]")
   REQUIRE(g[2] == Approx(0.0).margin(1e-15));
   REQUIRE(g[3] == Approx(0.0).margin(1e-15));
   // Band 2: Y2,0 turned by 90° about +y (+z → +x) must equal Y2,0(Mᵀω) pointwise.
-  const sh::Rotation ry(3, axis_angle(0, 1, 0, kPi / 2));
+  const prt::sh::Rotation ry(3, axis_angle(0, 1, 0, kPi / 2));
   double c[9] = {0, 0, 0, 0, 0, 0, 1, 0, 0}, rc[9], y[9], y0[9];
   ry.apply(c, rc);
   for (const auto& w : {std::array<double, 3>{0.6, 0.0, 0.8}, std::array<double, 3>{0.0, 0.6, 0.8},
                         std::array<double, 3>{1.0, 0.0, 0.0}}) {
-    sh::evaluate(3, w[0], w[1], w[2], y);
+    prt::sh::evaluate(3, w[0], w[1], w[2], y);
     // Mᵀω for M = Ry(90°): Mᵀ(x, y, z) = (−z, y, x).
-    sh::evaluate(3, -w[2], w[1], w[0], y0);
+    prt::sh::evaluate(3, -w[2], w[1], w[0], y0);
     double value = 0.0;
     for (int k = 0; k < 9; ++k) value += rc[k] * y[k];
     REQUIRE(value == Approx(y0[6]).margin(1e-14));
@@ -169,10 +169,10 @@ TEST_CASE("rotation_from_yaw_pitch_roll is Ry(yaw) Rx(pitch) Rz(roll)", "[sh][ro
   const Matrix3 expected =
       multiply(axis_angle(0, 1, 0, yaw * d),
                multiply(axis_angle(1, 0, 0, pitch * d), axis_angle(0, 0, 1, roll * d)));
-  const Matrix3 m = sh::rotation_from_yaw_pitch_roll(yaw, pitch, roll);
+  const Matrix3 m = prt::sh::rotation_from_yaw_pitch_roll(yaw, pitch, roll);
   for (int i = 0; i < 9; ++i) REQUIRE(m[i] == Approx(expected[i]).margin(1e-15));
   // Yaw 90° turns +x toward −z (right-handed about +Y).
-  const Matrix3 y90 = sh::rotation_from_yaw_pitch_roll(90.0, 0.0, 0.0);
+  const Matrix3 y90 = prt::sh::rotation_from_yaw_pitch_roll(90.0, 0.0, 0.0);
   REQUIRE(y90[0] == Approx(0.0).margin(1e-15));
   REQUIRE(y90[6] == Approx(-1.0).margin(1e-15));
 }
@@ -199,8 +199,8 @@ TEST_CASE("closed-form band 2 and inline storage equal the plain recurrence", "[
   }
   for (const Matrix3& m : cases) {
     for (int order : {1, 2, 3, 4, 5, 6, 7, 12}) {
-      const sh::Rotation fast(order, m);
-      const sh::Rotation reference = sh::Rotation::build_with_recurrence(order, m);
+      const prt::sh::Rotation fast(order, m);
+      const prt::sh::Rotation reference = prt::sh::Rotation::build_with_recurrence(order, m);
       REQUIRE(fast.order() == order);
       REQUIRE(reference.order() == order);
       for (int l = 0; l < order; ++l) {
@@ -211,7 +211,7 @@ TEST_CASE("closed-form band 2 and inline storage equal the plain recurrence", "[
         }
       }
       // A copy (inline storage for order ≤ 6) must keep the same matrices.
-      const sh::Rotation copy = fast;
+      const prt::sh::Rotation copy = fast;
       const std::vector<double> f = random_coefficients(order * order, rng);
       std::vector<double> g(order * order), h(order * order);
       fast.apply(f.data(), g.data());
@@ -279,8 +279,8 @@ TEST_CASE("rotate_coefficients equals Rotation::apply", "[sh][rotation]") {
   const std::vector<Matrix3> cases = make_euler_stress_rotations(rng);
   std::vector<int> orders;
   for (int order = 1; order <= 10; ++order) orders.push_back(order);
-  orders.push_back(sh::kFastRotateOrder);      // the largest fast-path order
-  orders.push_back(sh::kFastRotateOrder + 1);  // falls back to Rotation
+  orders.push_back(prt::sh::kFastRotateOrder);      // the largest fast-path order
+  orders.push_back(prt::sh::kFastRotateOrder + 1);  // falls back to Rotation
   double worst = 0.0;
   for (std::size_t c = 0; c < cases.size(); ++c) {
     const Matrix3& m = cases[c];
@@ -289,8 +289,8 @@ TEST_CASE("rotate_coefficients equals Rotation::apply", "[sh][rotation]") {
       const int n = order * order;
       const std::vector<double> f = random_coefficients(n, rng);
       std::vector<double> expected(n), actual(n, std::nan(""));
-      sh::Rotation(order, m).apply(f.data(), expected.data());
-      sh::rotate_coefficients(order, m, f.data(), actual.data());
+      prt::sh::Rotation(order, m).apply(f.data(), expected.data());
+      prt::sh::rotate_coefficients(order, m, f.data(), actual.data());
       for (int k = 0; k < n; ++k) {
         INFO("case=" << c << " order=" << order << " k=" << k);
         REQUIRE(std::isfinite(actual[k]));
@@ -303,18 +303,18 @@ TEST_CASE("rotate_coefficients equals Rotation::apply", "[sh][rotation]") {
 }
 
 TEST_CASE("rotate_coefficients composes: R(a)(R(b) x) = R(ab) x", "[sh][rotation]") {
-  // The group law checks the factorisation independently of sh::Rotation. Two chained rotations
+  // The group law checks the factorisation independently of prt::sh::Rotation. Two chained rotations
   // against one: roundoff ~1e-14 at order 10, 1e-12 as above.
   std::mt19937_64 rng(92);
   for (int trial = 0; trial < 100; ++trial) {
     const Matrix3 a = random_rotation(rng), b = random_rotation(rng);
-    for (int order : {2, 3, 5, 8, 10, sh::kFastRotateOrder}) {
+    for (int order : {2, 3, 5, 8, 10, prt::sh::kFastRotateOrder}) {
       const int n = order * order;
       const std::vector<double> x = random_coefficients(n, rng);
       std::vector<double> bx(n), abx(n), direct(n);
-      sh::rotate_coefficients(order, b, x.data(), bx.data());
-      sh::rotate_coefficients(order, a, bx.data(), abx.data());
-      sh::rotate_coefficients(order, multiply(a, b), x.data(), direct.data());
+      prt::sh::rotate_coefficients(order, b, x.data(), bx.data());
+      prt::sh::rotate_coefficients(order, a, bx.data(), abx.data());
+      prt::sh::rotate_coefficients(order, multiply(a, b), x.data(), direct.data());
       for (int k = 0; k < n; ++k) {
         INFO("trial=" << trial << " order=" << order << " k=" << k);
         REQUIRE(std::abs(abx[k] - direct[k]) <= 1e-12);
@@ -324,7 +324,7 @@ TEST_CASE("rotate_coefficients composes: R(a)(R(b) x) = R(ab) x", "[sh][rotation
 }
 
 TEST_CASE("rotate_coefficients rotates an evaluated lobe to M·d", "[sh][rotation]") {
-  // Independent of sh::Rotation: the coefficients of a delta at d are Y(d), and f(Mᵀω) for that
+  // Independent of prt::sh::Rotation: the coefficients of a delta at d are Y(d), and f(Mᵀω) for that
   // delta is a delta at M·d, so R·Y(d) = Y(M·d) exactly. Roundoff ~1e-14; 1e-12 bound.
   std::mt19937_64 rng(93);
   std::normal_distribution<double> g;
@@ -339,9 +339,9 @@ TEST_CASE("rotate_coefficients rotates an evaluated lobe to M·d", "[sh][rotatio
     for (int order : {3, 5, 10}) {
       const int n = order * order;
       std::vector<double> y(n), rotated(n), expected(n);
-      sh::evaluate(order, d[0], d[1], d[2], y.data());
-      sh::evaluate(order, md[0], md[1], md[2], expected.data());
-      sh::rotate_coefficients(order, m, y.data(), rotated.data());
+      prt::sh::evaluate(order, d[0], d[1], d[2], y.data());
+      prt::sh::evaluate(order, md[0], md[1], md[2], expected.data());
+      prt::sh::rotate_coefficients(order, m, y.data(), rotated.data());
       for (int k = 0; k < n; ++k) {
         INFO("trial=" << trial << " order=" << order << " k=" << k);
         REQUIRE(rotated[k] == Approx(expected[k]).margin(1e-12));
@@ -357,13 +357,13 @@ TEST_CASE("rotate_coefficients float matches double", "[sh][rotation]") {
   std::mt19937_64 rng(94);
   for (int trial = 0; trial < 50; ++trial) {
     const Matrix3 m = random_rotation(rng);
-    for (int order : {1, 3, 5, 10, sh::kFastRotateOrder + 2}) {
+    for (int order : {1, 3, 5, 10, prt::sh::kFastRotateOrder + 2}) {
       const int n = order * order;
       const std::vector<double> x = random_coefficients(n, rng);
       std::vector<float> xf(x.begin(), x.end()), yf(n);
       std::vector<double> xd(xf.begin(), xf.end()), yd(n);
-      sh::rotate_coefficients(order, m, xf.data(), yf.data());
-      sh::rotate_coefficients(order, m, xd.data(), yd.data());
+      prt::sh::rotate_coefficients(order, m, xf.data(), yf.data());
+      prt::sh::rotate_coefficients(order, m, xd.data(), yd.data());
       for (int k = 0; k < n; ++k) REQUIRE(std::abs(double(yf[k]) - yd[k]) <= 1e-6);
     }
   }

@@ -13,7 +13,7 @@
 
 namespace {
 
-using sh::kPi;
+using prt::sh::kPi;
 
 // Radiance coefficients of a "sun": a cap of half-angle α about the unit axis with radiance
 // `value`, from the closed-form cap coefficients (GUIDE.md) rotated with rotate_zonal.
@@ -29,7 +29,7 @@ std::vector<double> sun_coefficients(int order, double alpha, double value,
     zonal[l] =
         value * 2 * kPi * std::sqrt((2 * l + 1) / (4 * kPi)) * (p[l - 1] - p[l + 1]) / (2 * l + 1);
   }
-  sh::rotate_zonal(order, zonal.data(), axis[0], axis[1], axis[2], out.data());
+  prt::sh::rotate_zonal(order, zonal.data(), axis[0], axis[1], axis[2], out.data());
   return out;
 }
 
@@ -42,12 +42,12 @@ double minimum_irradiance(const std::vector<double>& l_coeffs, int order,
   for (int i = 0; i <= 180; ++i) {
     for (int j = 0; j < 360; ++j) {
       const double theta = kPi * i / 180, phi = 2 * kPi * j / 360;
-      sh::evaluate(order, std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi),
+      prt::sh::evaluate(order, std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi),
                    std::cos(theta), y.data());
       double e = 0.0;
       for (int l = 0; l < order; ++l) {
         for (int k = l * l; k < (l + 1) * (l + 1); ++k) {
-          e += sh::clamped_cosine_band_factor(l) * h[l] * l_coeffs[k] * y[k];
+          e += prt::sh::clamped_cosine_band_factor(l) * h[l] * l_coeffs[k] * y[k];
         }
       }
       lowest = std::fmin(lowest, e);
@@ -59,12 +59,12 @@ double minimum_irradiance(const std::vector<double>& l_coeffs, int order,
 }  // namespace
 
 TEST_CASE("window factors lie in [0, 1] with h0 = 1", "[sh][window]") {
-  for (sh::Window w : {sh::Window::None, sh::Window::Hanning, sh::Window::Lanczos,
-                       sh::Window::Laplacian, sh::Window::Auto}) {
+  for (prt::sh::Window w : {prt::sh::Window::None, prt::sh::Window::Hanning, prt::sh::Window::Lanczos,
+                       prt::sh::Window::Laplacian, prt::sh::Window::Auto}) {
     for (int order : {1, 2, 3, 5, 9, 16}) {
       for (double strength : {0.0, 0.5, 1.0, 3.0, 1e-3, -1.0}) {
-        const std::vector<double> h = sh::window_band_factors(w, order, strength);
-        INFO(sh::window_name(w) << " order " << order << " strength " << strength);
+        const std::vector<double> h = prt::sh::window_band_factors(w, order, strength);
+        INFO(prt::sh::window_name(w) << " order " << order << " strength " << strength);
         REQUIRE(int(h.size()) == order);
         REQUIRE(h[0] == 1.0);
         for (int l = 1; l < order; ++l) {
@@ -72,49 +72,49 @@ TEST_CASE("window factors lie in [0, 1] with h0 = 1", "[sh][window]") {
           REQUIRE(h[l] <= 1.0);
           // Every window here is non-increasing in l (Hanning/Lanczos up to the cutoff).
           REQUIRE(h[l] <= h[l - 1] + 1e-15);
-          if (w == sh::Window::None || w == sh::Window::Auto) REQUIRE(h[l] == 1.0);
+          if (w == prt::sh::Window::None || w == prt::sh::Window::Auto) REQUIRE(h[l] == 1.0);
         }
       }
     }
   }
-  REQUIRE(sh::window_band_factors(sh::Window::Hanning, 0, 1.0).empty());
+  REQUIRE(prt::sh::window_band_factors(prt::sh::Window::Hanning, 0, 1.0).empty());
 }
 
 TEST_CASE("window factors follow their formulas and defaults", "[sh][window]") {
   // Hanning with width 4: ½(1 + cos(πl/4)), zero from l = 4 on.
-  const std::vector<double> hann = sh::window_band_factors(sh::Window::Hanning, 6, 4.0);
+  const std::vector<double> hann = prt::sh::window_band_factors(prt::sh::Window::Hanning, 6, 4.0);
   REQUIRE(hann[1] == Approx(0.5 * (1 + std::cos(kPi / 4))));
   REQUIRE(hann[2] == Approx(0.5));
   REQUIRE(hann[4] == 0.0);
   REQUIRE(hann[5] == 0.0);
   // Default width = order: the last band is attenuated, not removed.
-  const std::vector<double> hann_default = sh::window_band_factors(sh::Window::Hanning, 5, 0.0);
+  const std::vector<double> hann_default = prt::sh::window_band_factors(prt::sh::Window::Hanning, 5, 0.0);
   REQUIRE(hann_default[4] == Approx(0.5 * (1 + std::cos(kPi * 4 / 5))));
   // Lanczos: sinc(πl/order)^s.
-  const std::vector<double> lanczos = sh::window_band_factors(sh::Window::Lanczos, 4, 2.0);
+  const std::vector<double> lanczos = prt::sh::window_band_factors(prt::sh::Window::Lanczos, 4, 2.0);
   const double x = kPi * 3 / 4;
   REQUIRE(lanczos[3] == Approx(std::pow(std::sin(x) / x, 2.0)));
   // Laplacian: 1/(1 + λ l²(l+1)²); the default halves the last band.
-  const std::vector<double> lap = sh::window_band_factors(sh::Window::Laplacian, 5, 0.01);
+  const std::vector<double> lap = prt::sh::window_band_factors(prt::sh::Window::Laplacian, 5, 0.01);
   REQUIRE(lap[2] == Approx(1 / (1 + 0.01 * 36)));
-  REQUIRE(sh::window_band_factors(sh::Window::Laplacian, 5, 0.0)[4] == Approx(0.5));
+  REQUIRE(prt::sh::window_band_factors(prt::sh::Window::Laplacian, 5, 0.0)[4] == Approx(0.5));
 }
 
 TEST_CASE("window names round-trip", "[sh][window]") {
-  for (sh::Window w : {sh::Window::None, sh::Window::Hanning, sh::Window::Lanczos,
-                       sh::Window::Laplacian, sh::Window::Auto}) {
-    sh::Window parsed = sh::Window::None;
-    REQUIRE(sh::parse_window(sh::window_name(w), &parsed));
+  for (prt::sh::Window w : {prt::sh::Window::None, prt::sh::Window::Hanning, prt::sh::Window::Lanczos,
+                       prt::sh::Window::Laplacian, prt::sh::Window::Auto}) {
+    prt::sh::Window parsed = prt::sh::Window::None;
+    REQUIRE(prt::sh::parse_window(prt::sh::window_name(w), &parsed));
     REQUIRE(parsed == w);
   }
-  sh::Window w = sh::Window::Auto;
-  REQUIRE(sh::parse_window("LaPlacian", &w));
-  REQUIRE(w == sh::Window::Laplacian);
-  REQUIRE(sh::parse_window("hann", &w));
-  REQUIRE(w == sh::Window::Hanning);
-  REQUIRE_FALSE(sh::parse_window("gauss", &w));
-  REQUIRE(w == sh::Window::Hanning);  // untouched on failure
-  REQUIRE_FALSE(sh::parse_window("", &w));
+  prt::sh::Window w = prt::sh::Window::Auto;
+  REQUIRE(prt::sh::parse_window("LaPlacian", &w));
+  REQUIRE(w == prt::sh::Window::Laplacian);
+  REQUIRE(prt::sh::parse_window("hann", &w));
+  REQUIRE(w == prt::sh::Window::Hanning);
+  REQUIRE_FALSE(prt::sh::parse_window("gauss", &w));
+  REQUIRE(w == prt::sh::Window::Hanning);  // untouched on failure
+  REQUIRE_FALSE(prt::sh::parse_window("", &w));
 }
 
 TEST_CASE("auto window removes the negative irradiance of a sun", "[sh][window]") {
@@ -130,15 +130,15 @@ TEST_CASE("auto window removes the negative irradiance of a sun", "[sh][window]"
     for (int k = 0; k < n; ++k) rgb[c * n + k] = tint[c] * sun[k];
     rgb[c * n] += sky[c] * 2 * std::sqrt(kPi);  // constant sky: c00 = 2√π·value
   }
-  const sh::WindowChoice choice = sh::choose_window_auto(rgb.data(), 3, order);
+  const prt::sh::WindowChoice choice = prt::sh::choose_window_auto(rgb.data(), 3, order);
   REQUIRE(choice.min_irradiance_before < 0.0);
-  REQUIRE(choice.window == sh::Window::Laplacian);
+  REQUIRE(choice.window == prt::sh::Window::Laplacian);
   REQUIRE(choice.strength > 0.0);
   REQUIRE(choice.min_irradiance_after >= 0.0);
   // Independent check on a θ–φ grid, per channel. The library's set is a different (Fibonacci)
   // set, so allow a small dip: −1e-3 of the mean irradiance π·(sky + sun power) scale ~ 1.
   const std::vector<double> h =
-      sh::window_band_factors(sh::Window::Laplacian, order, choice.strength);
+      prt::sh::window_band_factors(prt::sh::Window::Laplacian, order, choice.strength);
   const std::vector<double> none(order, 1.0);
   for (int c = 0; c < 3; ++c) {
     const std::vector<double> channel(rgb.begin() + c * n, rgb.begin() + (c + 1) * n);
@@ -146,10 +146,10 @@ TEST_CASE("auto window removes the negative irradiance of a sun", "[sh][window]"
     REQUIRE(minimum_irradiance(channel, order, h) >= -1e-3);
   }
   // "Weakest": half the chosen λ must still leave negative irradiance somewhere.
-  const sh::WindowChoice again = sh::choose_window_auto(rgb.data(), 3, order);
+  const prt::sh::WindowChoice again = prt::sh::choose_window_auto(rgb.data(), 3, order);
   REQUIRE(again.strength == choice.strength);
   const std::vector<double> weaker =
-      sh::window_band_factors(sh::Window::Laplacian, order, choice.strength / 2);
+      prt::sh::window_band_factors(prt::sh::Window::Laplacian, order, choice.strength / 2);
   double weaker_min = 1e300;
   for (int c = 0; c < 3; ++c) {
     const std::vector<double> channel(rgb.begin() + c * n, rgb.begin() + (c + 1) * n);
@@ -165,8 +165,8 @@ TEST_CASE("auto window keeps already non-negative lighting unwindowed", "[sh][wi
   c[0] = 2.0 * 2 * std::sqrt(kPi);
   c[n] = 2 * std::sqrt(kPi);
   c[n + 2] = 0.5 / std::sqrt(3 / (4 * kPi));
-  const sh::WindowChoice choice = sh::choose_window_auto(c.data(), 2, order);
-  REQUIRE(choice.window == sh::Window::None);
+  const prt::sh::WindowChoice choice = prt::sh::choose_window_auto(c.data(), 2, order);
+  REQUIRE(choice.window == prt::sh::Window::None);
   REQUIRE(choice.strength == 0.0);
   // Minimum over both channels: channel 1 at −z gives π − (2π/3)·0.5 = 2π/3 < 2π.
   REQUIRE(choice.min_irradiance_before == Approx(2 * kPi / 3).epsilon(1e-12));
@@ -179,15 +179,15 @@ TEST_CASE("auto window reports lighting it cannot fix", "[sh][window]") {
   std::vector<double> c(n, 0.0);
   c[0] = -1.0;
   c[6] = 0.3;
-  const sh::WindowChoice choice = sh::choose_window_auto(c.data(), 1, order);
+  const prt::sh::WindowChoice choice = prt::sh::choose_window_auto(c.data(), 1, order);
   REQUIRE(choice.min_irradiance_after < 0.0);
   REQUIRE(choice.min_irradiance_after >= choice.min_irradiance_before);
   // Degenerate input.
-  const sh::WindowChoice empty = sh::choose_window_auto(c.data(), 0, order);
-  REQUIRE(empty.window == sh::Window::None);
+  const prt::sh::WindowChoice empty = prt::sh::choose_window_auto(c.data(), 0, order);
+  REQUIRE(empty.window == prt::sh::Window::None);
   std::vector<double> bad(n, 0.0);
   bad[0] = std::nan("");
-  const sh::WindowChoice nan_choice = sh::choose_window_auto(bad.data(), 1, order);
-  REQUIRE(nan_choice.window == sh::Window::None);
+  const prt::sh::WindowChoice nan_choice = prt::sh::choose_window_auto(bad.data(), 1, order);
+  REQUIRE(nan_choice.window == prt::sh::Window::None);
   REQUIRE(std::isnan(nan_choice.min_irradiance_before));
 }

@@ -12,7 +12,7 @@
 
 namespace {
 
-using sh::kPi;
+using prt::sh::kPi;
 
 // Legendre polynomial P_l(t) by Bonnet's recurrence (test-side, independent of the library).
 double legendre(int l, double t) {
@@ -34,7 +34,7 @@ double cap_coefficient(int l, double alpha) {
          (legendre(l - 1, t) - legendre(l + 1, t)) / (2 * l + 1);
 }
 
-// Projects the cap indicator (about `axis`) with sh::evaluate by an exact quadrature over the
+// Projects the cap indicator (about `axis`) with prt::sh::evaluate by an exact quadrature over the
 // cap (Gauss–Legendre in cos of the angle to the axis on [cos α, 1] × uniform φ): the integrand
 // Y_lm restricted to the cap is a polynomial, so the rule is exact for nt ≥ order, nphi > order.
 std::vector<double> project_cap(int order, double alpha, std::array<double, 3> axis) {
@@ -42,7 +42,7 @@ std::vector<double> project_cap(int order, double alpha, std::array<double, 3> a
       sh_test::make_zone_quadrature(order + 2, 2 * order + 2, std::cos(alpha), 1.0, axis);
   std::vector<double> c(order * order, 0.0), y(order * order);
   for (std::size_t p = 0; p < q.weights.size(); ++p) {
-    sh::evaluate(order, q.directions[p][0], q.directions[p][1], q.directions[p][2], y.data());
+    prt::sh::evaluate(order, q.directions[p][0], q.directions[p][1], q.directions[p][2], y.data());
     for (int k = 0; k < order * order; ++k) c[k] += q.weights[p] * y[k];
   }
   return c;
@@ -59,10 +59,10 @@ TEST_CASE("clamped-cosine factors and zonal coefficients match GUIDE.md", "[sh][
                         0.0499271, 0,         -0.0285469, 0, 0.0185081};
   for (int l = 0; l <= 10; ++l) {
     INFO("l=" << l);
-    REQUIRE(sh::clamped_cosine_band_factor(l) == Approx(a[l]).epsilon(1e-15).margin(1e-300));
-    REQUIRE(sh::clamped_cosine_zonal_coefficient(l) == Approx(z[l]).margin(5e-8));
+    REQUIRE(prt::sh::clamped_cosine_band_factor(l) == Approx(a[l]).epsilon(1e-15).margin(1e-300));
+    REQUIRE(prt::sh::clamped_cosine_zonal_coefficient(l) == Approx(z[l]).margin(5e-8));
   }
-  REQUIRE(sh::clamped_cosine_band_factor(-1) == 0.0);
+  REQUIRE(prt::sh::clamped_cosine_band_factor(-1) == 0.0);
 }
 
 TEST_CASE("clamped-cosine factors equal a numerical projection, to high l", "[sh][zonal]") {
@@ -78,10 +78,10 @@ TEST_CASE("clamped-cosine factors equal a numerical projection, to high l", "[sh
     }
     const double expected = 2.0 * kPi * std::sqrt((2 * l + 1) / (4 * kPi)) * integral;
     INFO("l=" << l);
-    REQUIRE(sh::clamped_cosine_zonal_coefficient(l) == Approx(expected).margin(1e-13));
+    REQUIRE(prt::sh::clamped_cosine_zonal_coefficient(l) == Approx(expected).margin(1e-13));
   }
   // Far beyond: |A_l| ~ l^(−5/2) stays finite and non-zero for even l (no factorial overflow).
-  const double a4000 = sh::clamped_cosine_band_factor(4000);
+  const double a4000 = prt::sh::clamped_cosine_band_factor(4000);
   REQUIRE(std::isfinite(a4000));
   REQUIRE(a4000 != 0.0);
   // Asymptotically A_l ≈ 2π(−1)^(l/2−1)/l² · √(2/(πl)); within 0.1 % at l = 4000.
@@ -121,7 +121,7 @@ TEST_CASE("rotate_zonal equals projecting the rotated zonal function", "[sh][zon
   const std::array<double, 3> axis = {-0.3 / n, 0.5 / n, 0.9 / n};
   std::vector<double> zonal(order), out(order * order);
   for (int l = 0; l < order; ++l) zonal[l] = cap_coefficient(l, alpha);
-  sh::rotate_zonal(order, zonal.data(), axis[0], axis[1], axis[2], out.data());
+  prt::sh::rotate_zonal(order, zonal.data(), axis[0], axis[1], axis[2], out.data());
   const std::vector<double> projected = project_cap(order, alpha, axis);
   for (int k = 0; k < order * order; ++k) {
     INFO("k=" << k);
@@ -129,7 +129,7 @@ TEST_CASE("rotate_zonal equals projecting the rotated zonal function", "[sh][zon
   }
   // Float overload: 1e-6 (float rounding of O(1) values).
   std::vector<float> zonal_f(zonal.begin(), zonal.end()), out_f(order * order);
-  sh::rotate_zonal(order, zonal_f.data(), float(axis[0]), float(axis[1]), float(axis[2]),
+  prt::sh::rotate_zonal(order, zonal_f.data(), float(axis[0]), float(axis[1]), float(axis[2]),
                    out_f.data());
   for (int k = 0; k < order * order; ++k)
     REQUIRE(double(out_f[k]) == Approx(projected[k]).margin(1e-6));
@@ -140,23 +140,23 @@ TEST_CASE("convolve_zonal with the clamped cosine gives irradiance", "[sh][zonal
   // normal +x is π·1 + (2π/3)·0.5 from bands 0 and 1 (exact; 1e-14 relative for roundoff).
   const int order = 3;
   std::vector<double> a(order), c(order * order, 0.0), y(order * order);
-  for (int l = 0; l < order; ++l) a[l] = sh::clamped_cosine_band_factor(l);
+  for (int l = 0; l < order; ++l) a[l] = prt::sh::clamped_cosine_band_factor(l);
   const double y00 = 0.5 / std::sqrt(kPi), y1 = std::sqrt(3 / (4 * kPi));
   c[0] = 1.0 / y00;  // constant 1
   c[3] = 0.5 / y1;   // 0.5·x
   c[5] = 7.0;        // a band-2 coefficient, to check its factor π/4
   std::vector<double> e = c;
-  sh::convolve_zonal(order, a.data(), e.data());
+  prt::sh::convolve_zonal(order, a.data(), e.data());
   REQUIRE(e[0] == Approx(c[0] * kPi).epsilon(1e-15));
   REQUIRE(e[3] == Approx(c[3] * 2 * kPi / 3).epsilon(1e-15));
   REQUIRE(e[5] == Approx(c[5] * kPi / 4).epsilon(1e-15));
   e[5] = 0.0;
-  sh::evaluate(order, 1.0, 0.0, 0.0, y.data());
+  prt::sh::evaluate(order, 1.0, 0.0, 0.0, y.data());
   double irradiance = 0.0;
   for (int k = 0; k < order * order; ++k) irradiance += e[k] * y[k];
   REQUIRE(irradiance == Approx(kPi + 2 * kPi / 3 * 0.5).epsilon(1e-14));
   // Float overload: float rounding, 1e-6 relative.
   std::vector<float> f(c.begin(), c.end());
-  sh::convolve_zonal(order, a.data(), f.data());
+  prt::sh::convolve_zonal(order, a.data(), f.data());
   REQUIRE(double(f[3]) == Approx(c[3] * 2 * kPi / 3).epsilon(1e-6));
 }

@@ -25,11 +25,11 @@
 
 #include "prt/status.h"
 
+namespace prt {
+
 namespace sh {
 struct EnvMap;  // sh/env_map.h
 }
-
-namespace prt {
 
 // Face indices in storage order.
 enum class CubeFace : int { PosX = 0, NegX = 1, PosY = 2, NegY = 3, PosZ = 4, NegZ = 5 };

@@ -17,7 +17,7 @@
 // Reference: P.-P. Sloan, "Efficient Spherical Harmonic Evaluation", JCGT 2(2), 2013.
 #pragma once
 
-namespace sh {
+namespace prt::sh {
 
 // Number of coefficients of an order-n expansion (bands 0..n−1).
 constexpr int coefficient_count(int order) noexcept {
@@ -57,4 +57,4 @@ void evaluate(int order, float x, float y, float z, float* out) noexcept;
 void evaluate_recurrence(int order, double x, double y, double z, double* out) noexcept;
 void evaluate_recurrence(int order, float x, float y, float z, float* out) noexcept;
 
-}  // namespace sh
+}  // namespace prt::sh

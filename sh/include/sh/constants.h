@@ -13,7 +13,7 @@
 // checks every value bit for bit.
 #pragma once
 
-namespace sh {
+namespace prt::sh {
 
 inline constexpr long double kPiLong = 3.141592653589793238462643383279502884L;  // π
 inline constexpr double kPi = static_cast<double>(kPiLong);                      // π
@@ -26,4 +26,4 @@ inline constexpr double kSqrtFourPi = 3.5449077018110318;                       
 // the single coefficient c·√(4π).
 inline constexpr double kY00 = 0.28209479177387814;
 
-}  // namespace sh
+}  // namespace prt::sh

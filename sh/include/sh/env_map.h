@@ -45,7 +45,7 @@
 #include <string_view>
 #include <vector>
 
-namespace sh {
+namespace prt::sh {
 
 enum class EnvLayout { LatLong, Angular, Cross, Faces };
 
@@ -97,4 +97,4 @@ bool direction_to_texel(EnvLayout layout, int width, int height, const double di
 // filtering across cube edges). Writes 0 for an invalid direction or an empty map.
 void sample_bilinear(const EnvMap& env, const double dir[3], float rgb[3]) noexcept;
 
-}  // namespace sh
+}  // namespace prt::sh

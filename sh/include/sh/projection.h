@@ -26,7 +26,7 @@
 
 #include "sh/env_map.h"
 
-namespace sh {
+namespace prt::sh {
 
 // Orders above this project lat-long maps by the direct sum.
 inline constexpr int kSeparableMaxOrder = 32;
@@ -55,4 +55,4 @@ std::vector<double> project_direct(const EnvMap& env, int order, ProjectionStats
 void reconstruct(const double* coefficients, int channels, int order, const double dir[3],
                  double* out);
 
-}  // namespace sh
+}  // namespace prt::sh

@@ -31,7 +31,7 @@
 
 #include "sh/basis.h"
 
-namespace sh {
+namespace prt::sh {
 
 // Largest order a Rotation accepts (its matrices take order·(4·order²−1)/3 doubles).
 inline constexpr int kMaxRotationOrder = 256;
@@ -112,4 +112,4 @@ void rotate_coefficients(int order, const std::array<double, 9>& m, const double
 void rotate_coefficients(int order, const std::array<double, 9>& m, const float* in,
                          float* out) noexcept;
 
-}  // namespace sh
+}  // namespace prt::sh

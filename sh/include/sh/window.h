@@ -23,7 +23,7 @@
 #include <string_view>
 #include <vector>
 
-namespace sh {
+namespace prt::sh {
 
 enum class Window { None, Hanning, Lanczos, Laplacian, Auto };
 
@@ -63,4 +63,4 @@ struct WindowChoice {
 // return None with minima 0 (or NaN for non-finite input).
 WindowChoice choose_window_auto(const double* coefficients, int channels, int order);
 
-}  // namespace sh
+}  // namespace prt::sh

@@ -14,7 +14,7 @@
 // (never with factorials), so the values are accurate at any l.
 #pragma once
 
-namespace sh {
+namespace prt::sh {
 
 // A_l, the convolution factor of the clamped cosine for band l (0 for l < 0).
 double clamped_cosine_band_factor(int l) noexcept;
@@ -33,4 +33,4 @@ void rotate_zonal(int order, const double* zonal, double x, double y, double z,
                   double* out) noexcept;
 void rotate_zonal(int order, const float* zonal, float x, float y, float z, float* out) noexcept;
 
-}  // namespace sh
+}  // namespace prt::sh
