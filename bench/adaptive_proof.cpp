@@ -1,5 +1,5 @@
-// adaptive_proof — `prt bake --auto` against the fixed recipe at equal measured error
-// (issue 7). Writes docs/adaptive/README.md (or the path given as argv[1]).
+// adaptive_proof — `prt bake --auto` against the fixed recipe at equal measured error.
+// Writes docs/adaptive/README.md (or the path given as argv[1]).
 //
 // Per scene: a reference (fixed interreflected bake, order 8, 2048 samples, solved to 1e-6),
 // the --auto bake (tolerance 0.01) and fixed interreflected bakes at the order --auto chose with

@@ -1,5 +1,5 @@
-// bench/haar_bytes_per_vertex.cpp — bytes per vertex of Haar transfer at a given error (issue 5,
-// "Bytes per vertex at 1% error"), against SH.
+// bench/haar_bytes_per_vertex.cpp — bytes per vertex of Haar transfer at a given error (1% by
+// default), against SH.
 //
 // Scene: the bunny on a ground plane of bench/haar_vs_sh.cpp (grey albedo 0.8, so one channel).
 // Reference: a shadowed Haar bake at N = 32, unquantised (Float32), every term kept, relit with

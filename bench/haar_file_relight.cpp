@@ -1,5 +1,5 @@
-// bench/haar_file_relight.cpp — issue 5: relight ~50k vertices in colour with K = 200 at N = 32
-// from a *real* baked Haar file, on one core.
+// bench/haar_file_relight.cpp — relight ~50k vertices in colour with K = 200 at N = 32 from a
+// *real* baked Haar file, on one core.
 //
 // Either bakes the scene (shadowed, N = 32, colour albedo, 16-bit, relative threshold T),
 // writes it with prt::write_haar_transfer_file and reads it back, or reads an existing file

@@ -3,10 +3,11 @@
 // ≥ 1 refused, degenerate geometry, scenes at 1e-3 and 1e4 scale, a vertex inside a closed box,
 // and float16 overflow of very bright transfer.
 //
-// Furnace (../shared/GUIDE.md): inside a sphere with an opening seen with cosine-weighted
-// fraction f from every inner point, under uniform sky radiance 1 and albedo ρ, the exit
-// radiance is B = ρf / (1 − ρ(1 − f)). Transfer: bake/transfer_baker.h (Sloan, Kautz & Snyder
-// 2002), B = Σ_k T_k L_k with L00 = √(4π) for radiance 1. Frame: glTF (+Y up).
+// Furnace: inside a sphere with an opening, every inner point sees the opening with the same
+// cosine-weighted fraction f = A_opening/(4πR²) (a property of the sphere), so under uniform sky
+// radiance 1 and albedo ρ the exit radiance is B = ρf / (1 − ρ(1 − f)). Transfer:
+// bake/transfer_baker.h (Sloan, Kautz & Snyder 2002), B = Σ_k T_k L_k with L00 = √(4π) for
+// radiance 1. Frame: glTF (+Y up).
 #include <unistd.h>
 
 #include <chrono>
@@ -70,8 +71,8 @@ CaseResult check_cavity_furnace(const CaseOptions& options, double albedo) {
       "mean exit radiance within 2% of ρf/(1−ρ(1−f)) with f ≈ 0.01 (f = the mesh's measured "
       "mean AO); the solver converges within 60 s; per-vertex spread reported",
       [&options, albedo](CaseResult& r) {
-        // Opening of half-angle 11.5°: f = (1 − cos 11.5°)/2 ≈ 0.010 for the true sphere, the
-        // GUIDE's stiff case (ρ(1 − f) = 0.989 at ρ = 0.999: ~1300 Jacobi bounces for 1e-6).
+        // Opening of half-angle 11.5°: f = (1 − cos 11.5°)/2 ≈ 0.010 for the true sphere, a stiff
+        // case (ρ(1 − f) = 0.989 at ρ = 0.999: ~1300 Jacobi bounces for 1e-6).
         const float half_angle = static_cast<float>(11.5 * kPi / 180.0);
         const int rings = options.quick ? 8 : 16, segments = options.quick ? 16 : 32;
         const bake::Scene scene = bake::make_spherical_cavity(

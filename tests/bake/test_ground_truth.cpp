@@ -1,6 +1,6 @@
 // Ground-truth integrator (bake/ground_truth.h): constant maps in every layout, the AO
-// configurations and the spherical-cavity furnace of GUIDE.md, agreement with SH relighting for a
-// band-limited map, determinism, and the refinement target.
+// configurations and the spherical-cavity furnace (B = ρf/(1 − ρ(1 − f))), agreement with SH
+// relighting for a band-limited map, determinism, and the refinement target.
 #include <cmath>
 #include <random>
 #include <vector>
@@ -117,7 +117,7 @@ TEST_CASE("unoccluded point under a constant white map: B = ρ in every layout")
 }
 
 TEST_CASE("AO configuration: a floor point beside a wall sees ρ·(1 − occluded fraction)") {
-  // GUIDE.md: a point at distance d from a wall of height H = 1 loses ½(1 − d/√(d²+H²)) of its
+  // A point at distance d from a wall of height H = 1 loses ½(1 − d/√(d²+H²)) of its
   // cosine-weighted sky (0.146447 at d = 1). The wall here is 40 long (long walls inflate the
   // ray caster's offset ε = 1e-4·extent), so the exact reference is Lambert's polygon form
   // factor of the finite wall; it is itself checked against the infinite-wall formula (within
@@ -151,8 +151,9 @@ TEST_CASE("AO configuration: a floor point beside a wall sees ρ·(1 − occlude
 }
 
 TEST_CASE("spherical-cavity furnace with interreflection: B = ρf/(1 − ρ(1 − f))") {
-  // GUIDE.md: inside a sphere with an opening under uniform radiance 1, every point sees the
-  // opening with cosine-weighted fraction f; with interreflection B = ρf/(1 − ρ(1 − f)).
+  // Inside a sphere with an opening under uniform radiance 1, every point sees the opening
+  // with the same cosine-weighted fraction f (a property of the sphere); with interreflection
+  // B = ρf/(1 − ρ(1 − f)).
   // f of the mesh is taken per vertex by Lambert's exact polygon formula (the rim is a 32-gon,
   // the wall an inscribed polyhedron: f varies by < 2% between vertices). Tolerance: 4 SE of the
   // mean over inner vertices plus 1.5% for the polyhedral wall (a vertex's indirect light comes

@@ -76,7 +76,7 @@ TEST_CASE("unshadowed transfer equals the clamped cosine rotated to the normal")
       CHECK(result.data.coefficients[3 * i * K + k] == Approx(0.5 * ref[k]).margin(2e-6));
     }
   }
-  // GUIDE.md's zonal coefficients for n = +Y (vertex 0): Y_{1,-1}(+Y) = √(3/4π) and
+  // The clamped cosine's zonal coefficients for n = +Y (vertex 0): Y_{1,-1}(+Y) = √(3/4π) and
   // Y_{2,0}(+Y) = −√(5/4π)/2, so T_1 = ρ/π · 1.0233267 and T_6 = −ρ/π · 0.4954159 / 2.
   CHECK(result.data.coefficients[0] == Approx(0.5 / kPi * 0.8862269).epsilon(1e-6));
   CHECK(result.data.coefficients[1] == Approx(0.5 / kPi * 1.0233267).epsilon(1e-6));

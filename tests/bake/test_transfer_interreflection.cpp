@@ -1,4 +1,4 @@
-// Interreflected transfer: the spherical-cavity furnace of GUIDE.md (B = ρf/(1 − ρ(1 − f))),
+// Interreflected transfer: the spherical-cavity furnace (B = ρf/(1 − ρ(1 − f))),
 // the stiff ρ = 0.999 case, monotone bounce energy and Jacobi-vs-Krylov agreement, and the
 // solver's gather (y = diag(ρ)·H·x) against a plain loop.
 #include <algorithm>

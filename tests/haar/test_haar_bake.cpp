@@ -222,7 +222,7 @@ TEST_CASE("Haar relight: rotating the environment by resampling preserves power 
   CHECK(face_power(turned, 5) > 10 * face_power(turned, 0));  // after: −Z lit, +X not
 }
 
-// Interreflected Haar bake in the spherical-cavity furnace of /work/shared/GUIDE.md: inside a
+// Interreflected Haar bake in the spherical-cavity furnace: inside a
 // sphere with an opening of polar half-angle a, under uniform white sky radiance 1, every inner
 // point sees the opening with cosine-weighted fraction f = (1 − cos a)/2, so the exit radiance
 // is B = ρf / (1 − ρ(1 − f)) at every vertex. All terms kept, unquantised, relit with a constant

@@ -15,7 +15,8 @@ namespace {
 
 using prt::sh::kPi;
 
-// GUIDE.md lat-long convention, written out independently of sh/: θ from +Y, φ = atan2(z, x).
+// The lat-long convention (README.md, "Conventions"), written out independently of sh/: θ from +Y,
+// φ = atan2(z, x).
 void latlong_direction(int w, int h, int col, int row, double dir[3]) {
   const double theta = kPi * (row + 0.5) / h;
   const double phi = 2.0 * kPi * ((col + 0.5) / w - 0.5);
@@ -120,7 +121,7 @@ TEST_CASE("Resampling lat-long to cube preserves power at any resolution", "[haa
                        << ", S² = " << st.subsamples_per_texel);
       CHECK(st.skipped_texels == 0);
       check_power_preserved(st);
-      // An independent total: Σ L·Ω with the GUIDE's exact lat-long row weights.
+      // An independent total: Σ L·Ω with the exact lat-long row weights (cos θ0 − cos θ1)·2π/W.
       double source = 0.0;
       for (int r = 0; r < w / 2; ++r) {
         const double band =
@@ -178,7 +179,7 @@ TEST_CASE("A single bright lat-long texel lands on the cube texel in its directi
           "[haar][cube]") {
   const int w = 128, h = 64, n = 32;
   struct Case {
-    int col, row, face;  // expected face from the GUIDE direction and the face table
+    int col, row, face;  // expected face from the convention's direction and the face table
   };
   // Centre column = +X; u = 0.75 → +Z; u = 0.25 → −Z; row 0 → +Y; last row → −Y; u = 0 → −X.
   for (const Case& k : {Case{64, 31, 0}, Case{96, 33, 4}, Case{32, 30, 5}, Case{17, 0, 2},

@@ -195,8 +195,9 @@ TEST_CASE("shading from several threads gives the single-thread result", "[relig
 
 TEST_CASE("unshadowed diffuse transfer under a constant sky gives albedo x radiance",
           "[relighter]") {
-  // Analytic: T_lm = ρ/π · A_l · Y_lm(n) (A_0 = π, A_1 = 2π/3, A_2 = π/4; GUIDE.md) and a sky
-  // of constant radiance c has L_00 = √(4π)·c, so B = ρ/π · π · Y_00 · √(4π) c = ρ c for any n.
+  // Analytic (Ramamoorthi & Hanrahan 2001): T_lm = ρ/π · A_l · Y_lm(n) with A_0 = π,
+  // A_1 = 2π/3, A_2 = π/4, and a sky of constant radiance c has L_00 = √(4π)·c, so
+  // B = ρ/π · π · Y_00 · √(4π) c = ρ c for any n.
   const double rho[3] = {0.8, 0.5, 0.2}, sky[3] = {1.5, 2.0, 4.0};
   const double a_l[3] = {kPi, 2 * kPi / 3, kPi / 4};
   TransferData d;

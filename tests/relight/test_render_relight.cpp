@@ -52,7 +52,7 @@ prt::sh::EnvMap make_latlong(int width, int height, glm::dvec3 (*radiance)(const
   env.rgb.resize(3 * static_cast<std::size_t>(width) * height);
   for (int row = 0; row < height; ++row)
     for (int col = 0; col < width; ++col) {
-      // GUIDE.md: u = 0.5 + atan2(z, x)/2π, v = acos(y)/π, written out independently.
+      // Lat-long: u = 0.5 + atan2(z, x)/2π, v = acos(y)/π, written out independently.
       const double phi = 2 * kPi * ((col + 0.5) / width - 0.5), theta = kPi * (row + 0.5) / height;
       const glm::dvec3 d(std::sin(theta) * std::cos(phi), std::cos(theta),
                          std::sin(theta) * std::sin(phi));

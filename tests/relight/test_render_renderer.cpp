@@ -44,7 +44,8 @@ prt::sh::EnvMap make_analytic_latlong(int width, int height) {
   env.rgb.resize(3 * static_cast<std::size_t>(width) * height);
   for (int row = 0; row < height; ++row)
     for (int col = 0; col < width; ++col) {
-      // GUIDE.md lat-long: u = 0.5 + atan2(z, x)/2π, v = acos(y)/π (written out here on purpose).
+      // Lat-long (README.md, "Conventions"): u = 0.5 + atan2(z, x)/2π, v = acos(y)/π (written out
+      // here on purpose).
       const double u = (col + 0.5) / width, v = (row + 0.5) / height;
       const double phi = 2 * kPi * (u - 0.5), theta = kPi * v;
       const glm::dvec3 d(std::sin(theta) * std::cos(phi), std::cos(theta),

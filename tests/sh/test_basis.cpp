@@ -206,7 +206,7 @@ TEST_CASE("evaluate matches the closed forms of bands 0..4", "[sh][basis]") {
       REQUIRE(general[k] == Approx(expected[k]).margin(1e-14));
     }
   }
-  // The GUIDE's printed constants (6 significant digits).
+  // The closed forms' constants to 6 significant digits (Ramamoorthi & Hanrahan 2001).
   double y[9];
   prt::sh::evaluate(3, 0.0, 0.0, 1.0, y);
   REQUIRE(y[0] == Approx(0.282095).margin(1e-6));

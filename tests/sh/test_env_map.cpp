@@ -1,4 +1,4 @@
-// Tests of sh/env_map.h: layouts, texel directions against GUIDE.md's conventions, exact solid
+// Tests of sh/env_map.h: layouts, texel directions against the README's conventions, exact solid
 // angles (against 4π and against an independent brute-force integration), the inverse mapping
 // and bilinear lookup.
 #include <cmath>
@@ -191,7 +191,7 @@ TEST_CASE("angular solid angles of a central block match a polar 1D integral to 
   }
 }
 
-TEST_CASE("texel directions follow GUIDE.md's conventions") {
+TEST_CASE("texel directions follow the README's conventions") {
   using L = prt::sh::EnvLayout;
   SECTION("lat-long: centre column +X, u = 1/4 is -Z, u = 3/4 is +Z, row 0 near +Y") {
     check_direction(L::LatLong, 5, 3, 2, 1, 1, 0, 0);                      // u = 0.5 at the horizon

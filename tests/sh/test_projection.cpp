@@ -1,6 +1,6 @@
 // Tests of sh/projection.h: constant maps in every layout, single bright texels landing where
-// GUIDE.md says, the separable lat-long path against the direct sum, recovery of a known
-// band-limited function, skipped NaN/Inf/negative texels, and reconstruct().
+// the README's conventions say, the separable lat-long path against the direct sum, recovery of a
+// known band-limited function, skipped NaN/Inf/negative texels, and reconstruct().
 #include <cmath>
 #include <limits>
 #include <random>
@@ -87,7 +87,7 @@ TEST_CASE("a constant environment projects to sqrt(4 pi) c in every layout") {
 }
 
 TEST_CASE("a single bright texel lands in the direction the layout's convention says") {
-  // Expected directions are GUIDE.md's closed forms (see test_env_map.cpp), not the code's.
+  // Expected directions are the conventions' closed forms (see test_env_map.cpp), not the code's.
   // With one lit texel, L_0 = ω f Y00 and (L_1,1, L_1,−1, L_1,0) = ω f 0.488603 (x, y, z):
   // exact up to rounding, so the direction must match to 1e-12.
   struct Case {
@@ -271,8 +271,8 @@ TEST_CASE("NaN, Inf and negative texels are skipped and counted") {
   }
 }
 
-TEST_CASE("reconstruct evaluates an expansion with GUIDE.md's basis functions") {
-  // Unit coefficient vectors reproduce the closed-form basis functions of GUIDE.md.
+TEST_CASE("reconstruct evaluates an expansion with the closed-form basis functions") {
+  // Unit coefficient vectors reproduce the closed-form basis functions of sh/basis.h.
   const double dir[3] = {0.3, -0.5, 0.8};
   const double n = std::sqrt(0.09 + 0.25 + 0.64);
   const double x = 0.3 / n, y = -0.5 / n, z = 0.8 / n;
@@ -292,7 +292,7 @@ TEST_CASE("reconstruct evaluates an expansion with GUIDE.md's basis functions") 
     coefficients[9 + k] = 2.0;
     double out[2];
     prt::sh::reconstruct(coefficients.data(), 2, 3, dir, out);
-    // GUIDE.md's constants have 6-7 significant digits.
+    // The closed forms' constants have 6-7 significant digits.
     CHECK(out[0] == Approx(expected[k]).margin(2e-6));
     CHECK(out[1] == Approx(2 * expected[k]).margin(4e-6));
   }

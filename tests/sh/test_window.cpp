@@ -16,7 +16,7 @@ namespace {
 using prt::sh::kPi;
 
 // Radiance coefficients of a "sun": a cap of half-angle α about the unit axis with radiance
-// `value`, from the closed-form cap coefficients (GUIDE.md) rotated with rotate_zonal.
+// `value`, from the closed-form cap coefficients rotated with rotate_zonal.
 std::vector<double> sun_coefficients(int order, double alpha, double value,
                                      std::array<double, 3> axis) {
   std::vector<double> zonal(order), out(order * order), p(order + 1);

@@ -26,7 +26,8 @@ double legendre(int l, double t) {
   return p1;
 }
 
-// GUIDE.md closed form of the indicator of the cap of half-angle α about +z.
+// Closed form of the indicator of the cap of half-angle α about +z:
+// c_l = 2π·√((2l+1)/4π)·(P_{l−1}(cos α) − P_{l+1}(cos α))/(2l+1), c_0 = √π·(1 − cos α).
 double cap_coefficient(int l, double alpha) {
   const double t = std::cos(alpha);
   if (l == 0) return std::sqrt(kPi) * (1.0 - t);
@@ -50,11 +51,12 @@ std::vector<double> project_cap(int order, double alpha, std::array<double, 3> a
 
 }  // namespace
 
-TEST_CASE("clamped-cosine factors and zonal coefficients match GUIDE.md", "[sh][zonal]") {
-  // Exact rational multiples of π from GUIDE.md; 1e-15 relative is a couple of ulps.
+TEST_CASE("clamped-cosine factors and zonal coefficients match the closed forms", "[sh][zonal]") {
+  // Exact rational multiples of π (Ramamoorthi & Hanrahan 2001); 1e-15 relative is a couple of
+  // ulps.
   const double a[11] = {kPi,      2 * kPi / 3, kPi / 4,    0, -kPi / 24,     0,
                         kPi / 64, 0,           -kPi / 128, 0, 7 * kPi / 1536};
-  // The GUIDE's 7-digit zonal coefficients: within 5e-8 (half a unit of the last digit).
+  // The zonal coefficients to 7 digits: within 5e-8 (half a unit of the last digit).
   const double z[11] = {0.8862269, 1.0233267, 0.4954159,  0, -0.1107784, 0,
                         0.0499271, 0,         -0.0285469, 0, 0.0185081};
   for (int l = 0; l <= 10; ++l) {
@@ -89,14 +91,14 @@ TEST_CASE("clamped-cosine factors equal a numerical projection, to high l", "[sh
           Approx(-2 * kPi / (4000.0 * 4000.0) * std::sqrt(2 / (kPi * 4000))).epsilon(1e-3));
 }
 
-TEST_CASE("spherical-cap coefficients by quadrature match GUIDE.md", "[sh][zonal]") {
+TEST_CASE("spherical-cap coefficients by quadrature match the closed form", "[sh][zonal]") {
   const int order = 12;
-  // α = π/6: GUIDE's 7-digit values (±5e-8) and the closed form c_l for all l < 12 (1e-13).
+  // α = π/6: the 7-digit values (±5e-8) and the closed form c_l for all l < 12 (1e-13).
   const std::vector<double> c = project_cap(order, kPi / 6, {0, 0, 1});
-  const double guide_cap[5] = {0.2374638, 0.3837475, 0.4290428, 0.4030015, 0.3237870};
+  const double reference_cap[5] = {0.2374638, 0.3837475, 0.4290428, 0.4030015, 0.3237870};
   for (int l = 0; l < order; ++l) {
     INFO("l=" << l);
-    if (l < 5) REQUIRE(c[l * (l + 1)] == Approx(guide_cap[l]).margin(5e-8));
+    if (l < 5) REQUIRE(c[l * (l + 1)] == Approx(reference_cap[l]).margin(5e-8));
     REQUIRE(c[l * (l + 1)] == Approx(cap_coefficient(l, kPi / 6)).margin(1e-13));
     for (int m = 1; m <= l; ++m) {  // zonal about +z: every m ≠ 0 term vanishes
       REQUIRE(c[l * (l + 1) + m] == Approx(0.0).margin(1e-13));
@@ -105,8 +107,9 @@ TEST_CASE("spherical-cap coefficients by quadrature match GUIDE.md", "[sh][zonal
   }
   // The hemisphere.
   const std::vector<double> h = project_cap(order, kPi / 2, {0, 0, 1});
-  const double guide_hemisphere[4] = {std::sqrt(kPi), 1.5349901, 0.0, -0.5861840};
-  for (int l = 0; l < 4; ++l) REQUIRE(h[l * (l + 1)] == Approx(guide_hemisphere[l]).margin(5e-8));
+  const double reference_hemisphere[4] = {std::sqrt(kPi), 1.5349901, 0.0, -0.5861840};
+  for (int l = 0; l < 4; ++l)
+    REQUIRE(h[l * (l + 1)] == Approx(reference_hemisphere[l]).margin(5e-8));
   for (int l = 0; l < order; ++l) {
     REQUIRE(h[l * (l + 1)] == Approx(cap_coefficient(l, kPi / 2)).margin(1e-13));
   }

@@ -9,7 +9,7 @@
 // Segment/ring counts below their minimum are raised to it (quad: 1, sphere: rings 2 and
 // segments 3, cavity: rings 1 and segments 3, well: segments 3 and rings 1).
 //
-// The cavity and the well exist for the analytic checks of /work/shared/GUIDE.md:
+// The cavity and the well exist for analytic checks with closed-form answers:
 //   - spherical cavity with an opening of polar half-angle a: every inner point sees the
 //     opening with cosine-weighted fraction f = (1 - cos a) / 2 (the cap area over 4 pi R^2);
 //     the mesh opening is a polygon inscribed in that circle, so f of the mesh is slightly

@@ -38,8 +38,8 @@
 namespace prt {
 
 // How the relighter lays out its copy of the transfer (see above). The defaults are tuned for
-// N = 32, 16-bit RGB on a core with ≥ 512 KiB of L2 (measured on a 50k-vertex Buddha: 1024
-// vertices per block 8.3 ms, 4096 7.3 ms, 16384 6.5 ms; longer slices stream better).
+// N = 32, 16-bit RGB on a core with ≥ 512 KiB of L2: larger blocks give longer slices, which
+// stream better (timings per block size: docs/BENCHMARKS.md, "Blocked relight layout").
 struct HaarRelighterLayout {
   int block_vertices = 16384;   // vertices per block, clamped to [1, 65536]
   double dense_fraction = 0.5;  // dense column when a slice has ≥ this fraction of the block

@@ -17,10 +17,9 @@
 // above 6N² collapse into "all"). One bake per N is shared by its K settings. Haar has no sample
 // count (its directions are the 6N² texel centres) and no SH order: those fields are 0 and are
 // printed empty. The bake cost grows about as N⁴ (the interreflection solve runs on all 6N²
-// wavelet columns, and each of the 6N² texel rays adds a gather entry): on the demo scene
-// (11k vertices, 2 cores) N = 8 takes ≈ 10 CPU-seconds, N = 16 ≈ 10× that, so quick keeps
-// N = 8 and N = 32 (estimated ≈ 10× N = 16 again, most of an hour; not measured) is opt-in
-// (ReportOptions::haar_cubes, `prt report --haar-cubes 8,16,32`).
+// wavelet columns, and each of the 6N² texel rays adds a gather entry), so quick keeps N = 8 and
+// N = 32 is opt-in (ReportOptions::haar_cubes, `prt report --haar-cubes 8,16,32`); costs on the
+// demo scene: docs/BENCHMARKS.md, "Report and ground truth".
 // Projection vs sampling error: a reference bake at the largest order and sample count
 // (converged transfer) truncated to order n gives the projection error of order n (against the
 // ground truth); the order-n bake at N samples against that truncated reference gives the

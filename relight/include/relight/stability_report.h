@@ -1,7 +1,7 @@
-// relight/stability_report.h — the stability cases of `prt report --stability` (issue 6):
+// relight/stability_report.h — the stability cases of `prt report --stability`:
 // numerics at high SH order and near the poles, extreme environments (bright suns, black maps,
 // NaN/Inf texels, 1×1 and 8192×4096 maps), stiff interreflection (the spherical-cavity furnace
-// at albedo 0.9 .. 0.999, ../shared/GUIDE.md), degenerate geometry, scale invariance, and
+// at albedo 0.9 .. 0.999, B = ρf/(1 − ρ(1 − f))), degenerate geometry, scale invariance, and
 // float16 overflow. The same case code runs in the tests (tests/relight/test_stability*.cpp).
 //
 // Conventions: SH basis of sh/basis.h (real, orthonormal, no Condon–Shortley phase,

@@ -1,6 +1,6 @@
 // sh/basis.h — evaluation of the real spherical-harmonic basis.
 //
-// Convention (the same everywhere in prt; see ../shared/GUIDE.md and README.md):
+// Convention (the same everywhere in prt; see README.md, "Conventions"):
 //   * Real, orthonormal SH, ∫ Y_lm Y_l'm' dω = δ_ll' δ_mm', with NO Condon–Shortley phase.
 //   * Functions of the unit vector (x, y, z) in the scene frame; the polar axis is +z.
 //     (The scene frame itself is glTF's: right-handed, +Y up.)

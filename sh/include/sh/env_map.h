@@ -1,11 +1,11 @@
 // sh/env_map.h — environment-map layouts: texel directions, exact texel solid angles,
 // the inverse mapping and bilinear lookup.
 //
-// Frame: glTF's, right-handed, +Y up, cameras look down −Z (../shared/GUIDE.md). All directions
-// are unit vectors (x, y, z) in that frame. Texel (col, row) covers the continuous image
+// Frame: glTF's, right-handed, +Y up, cameras look down −Z (README.md, "Conventions"). All
+// directions are unit vectors (x, y, z) in that frame. Texel (col, row) covers the continuous image
 // coordinates [col, col+1) × [row, row+1); row 0 is the top row; its centre is (col+½, row+½).
 //
-// Layouts (GUIDE.md fixes the first three):
+// Layouts:
 //   LatLong  W×H (2:1).  u = (col+½)/W, v = (row+½)/H; θ = π v from +Y (row 0 = zenith),
 //            φ = 2π(u − ½) = atan2(z, x): the centre column looks to +X, u = ¼ to −Z, u = ¾ to +Z.
 //            Direction (sin θ cos φ, cos θ, sin θ sin φ). Blender / glTF-environment convention.

@@ -15,8 +15,8 @@
 // the additions and corrections of J. Phys. Chem. A 102(45):9099–9100, 1998. The published V
 // term for m < 0 still carries a sign error; here it reads
 //   V(m < 0) = P(1, m+1)·(1 − δ_{m,−1}) + P(−1, −m−1)·√(1 + δ_{m,−1}).
-// Band l is built from band l − 1 and band 1 in O(l²). Its error grows with l (GUIDE.md warns
-// of ~100× per 20 bands); measured orthogonality error for a generic rotation: 5e-15 at l = 20,
+// Band l is built from band l − 1 and band 1 in O(l²). Its error grows with l (about 100× per
+// 20 bands in double); measured orthogonality error for a generic rotation: 5e-15 at l = 20,
 // 1e-13 at l = 40, 4e-12 at l = 60. The tests require < 1e-10 up to l = 20.
 //
 // The constructor writes band 2 in closed form (its entries are quadratic in M: Y2n(Mᵀω) is a
@@ -100,8 +100,8 @@ inline constexpr int kFastRotateOrder = 16;
 // X(+90°) only connects m and m' of equal parity under x → −x with (l+m even) ⇔ (m' ≥ 0), so it
 // is four dense square blocks holding about a quarter of its entries. Cost per band l ≈
 // 2·(l² + l + 1) + 12·l multiply–adds (applying a built band matrix alone takes (2l+1)²).
-// Measured on one loaded core (docs/BENCHMARKS.md): order 5 ≈ 60 ns including all setup, 4×
-// faster than building a Rotation and applying it; order 10 ≈ 0.34 µs (9×).
+// For one use it is several times faster than building a Rotation and applying it (timings:
+// docs/BENCHMARKS.md, "SH library").
 // References: J. Kautz, P.-P. Sloan, J. Snyder, "Fast, Arbitrary BRDF Shading for
 // Low-Frequency Lighting Using Spherical Harmonics", EGWR 2002 (the zxzxz factorisation);
 // P.-P. Sloan, "Stupid Spherical Harmonics (SH) Tricks", GDC 2008.
