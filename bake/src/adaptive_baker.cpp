@@ -238,8 +238,11 @@ std::string AutoBakeReport::json() const {
   return j.dump();
 }
 
-AutoBakeResult bake_transfer_auto(const Scene& scene, const AutoBakeOptions& o,
-                                  ProgressSink* progress) {
+namespace {
+
+// Throws BakeError for options bake_transfer_auto cannot honour, and for a scene no bake
+// accepts (albedo, normals), before any analysis.
+void validate_auto_inputs(const Scene& scene, const AutoBakeOptions& o) {
   const std::string name = detail::scene_label(scene);
   if (!(o.tolerance > 0.0 && o.tolerance < 1.0))
     throw BakeError(name + ": --auto tolerance must be in (0, 1)");
@@ -250,29 +253,32 @@ AutoBakeResult bake_transfer_auto(const Scene& scene, const AutoBakeOptions& o,
   if (o.max_order < 1 || o.pilot_order <= o.max_order || o.pilot_order > kMaxBakeOrder)
     throw BakeError(name +
                     ": need 1 <= max order < pilot order <= " + std::to_string(kMaxBakeOrder));
-  {
-    BakeOptions probe;  // validates the scene (albedo, normals) before any analysis
-    validate_bake_inputs(scene, probe);
-  }
-  AutoBakeResult result;
-  AutoBakeReport& rep = result.report;
-  const std::size_t V = scene.positions.size();
-  rep.vertices = V;
+  BakeOptions probe;  // validates the scene (albedo, normals) before any analysis
+  validate_bake_inputs(scene, probe);
+}
 
-  // 1. Analysis.
-  const VertexRayStarts starts = compute_vertex_ray_starts(scene);
-  const HemisphereAnalysis hemi = find_open_hemispheres(scene, starts);
-  // One BVH for the pilot and the bake, built on first use (never when every vertex is open).
-  std::shared_ptr<const RayCaster> caster;
-  auto shared_caster = [&] {
-    if (!caster && hemi.open_count < V) caster = std::make_shared<const RayCaster>(scene);
-    return caster;
-  };
-  const AlbedoAnalysis alb = analyze_albedo(scene);
+// One BVH for the pilot and the bake, built on first use (never when every vertex is open).
+class SharedCaster {
+ public:
+  SharedCaster(const Scene& scene, bool needed) : scene_(scene), needed_(needed) {}
+  std::shared_ptr<const RayCaster> get() {
+    if (!caster_ && needed_) caster_ = std::make_shared<const RayCaster>(scene_);
+    return caster_;
+  }
+
+ private:
+  const Scene& scene_;
+  bool needed_;
+  std::shared_ptr<const RayCaster> caster_;
+};
+
+// Section 1: records what the analysis without rays found; returns the transfer kind to bake
+// (shadowed when nothing reflects).
+prt::TransferKind record_analysis(const HemisphereAnalysis& hemi, const AlbedoAnalysis& alb,
+                                  prt::TransferKind kind, std::size_t V, AutoBakeReport& rep) {
   rep.analysis_seconds = hemi.seconds;
   rep.open_vertices = hemi.open_count;
   rep.grey = alb.grey;
-  prt::TransferKind kind = o.kind;
   if (kind == prt::TransferKind::Interreflected && alb.all_zero) {
     kind = prt::TransferKind::Shadowed;
     rep.left_out.push_back("interreflection: every albedo is zero, nothing is reflected");
@@ -283,109 +289,147 @@ AutoBakeResult bake_transfer_auto(const Scene& scene, const AutoBakeOptions& o,
                "(all geometry on or below the tangent plane), analytic unshadowed transfer",
                static_cast<double>(hemi.open_count), static_cast<double>(V)));
   if (alb.grey) rep.left_out.push_back("colour channels 2 and 3: the albedo is grey");
+  return kind;
+}
 
-  // 2. SH order from the lighting. When no order meets it, the line recommending Haar is
-  // left_out[haar_line] until the bake's predicted total is known (section 4).
+// Section 2, the pilots: bakes the grey transfer of a few vertices at pilot_order and chooses
+// the SH order from it and the lighting (rep.order_choice, rep.pilot_samples,
+// rep.pilot_seconds).
+void run_pilots(const Scene& scene, const AutoBakeOptions& o, int pilot_order,
+                const HemisphereAnalysis& hemi, SharedCaster& caster, AutoBakeReport& rep) {
+  const auto t0 = std::chrono::steady_clock::now();
+  std::vector<glm::vec3> pilot_albedo;
+  // The pilot's Monte Carlo noise adds to every predicted truncation error (it is an upper
+  // estimate), and under a sun, whose energy reaches the highest bands, it dominates: on
+  // data/demo.glb under data/sky.hdr, 256 samples predict 0.16 at order 12 where 4096 predict
+  // 0.04 and the report's ground truth measures 0.037-0.038 with the mesh's interpolation. So
+  // when no order meets the target, the pilot is baked again with 4× the samples, up to
+  // max_pilot_samples: a smooth sky meets it at the first pilot and pays nothing more.
+  // Truncation gets half the tolerance; when no order meets that but one meets kTruncationLimit
+  // of it, that order is baked and sampling gets the rest (√(1 − 0.8²) = 0.6 of it): the
+  // tolerance is still met, by SH, which is cheaper than the Haar basis.
+  const Scene grey = grey_scene(scene);
+  for (int samples = o.pilot_samples;; samples *= 4) {
+    const std::vector<double> pilot = bake_pilot(scene, grey, o, pilot_order, samples, hemi.open,
+                                                 pilot_albedo, caster.get(), nullptr);
+    rep.order_choice = choose_order(pilot, pilot_albedo, pilot_order, o.lighting, o.lighting_order,
+                                    0.5 * o.tolerance, o.max_order, kTruncationLimit * o.tolerance);
+    rep.pilot_samples = samples;
+    const bool settled = rep.order_choice.met && !rep.order_choice.beyond_target;
+    if (settled || samples * 4 > o.max_pilot_samples) break;
+  }
+  rep.pilot_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+// Section 2: the left_out line saying what the chosen order drops (or that no order meets the
+// tolerance and Haar is recommended).
+std::string order_choice_note(const AutoBakeReport& rep, const AutoBakeOptions& o,
+                              int pilot_order) {
+  if (rep.order_choice.met && rep.order_choice.beyond_target)
+    return format(
+        "SH bands >= %.0f (the file has order %.0f): predicted to carry %.2g of the exit "
+        "radiance, more than half the tolerance (no order <= %.0f carries less than half), so "
+        "the sampling gets less of it",
+        rep.order, rep.order, rep.predicted_truncation_error, o.max_order);
+  if (rep.order_choice.met)
+    return format(
+        "SH bands >= %.0f (the file has order %.0f): predicted to carry %.2g of the exit "
+        "radiance",
+        rep.order, rep.order, rep.predicted_truncation_error);
+  if (rep.order_choice.tail_bound > 0.0)
+    return format(
+        "nothing dropped, but no SH order <= %.0f keeps its truncation within %.0f%% of the "
+        "tolerance (predicted %.2g at that order from the bands the pilot sees, %.2g more at "
+        "most from the lighting's bands >= %.0f): the lighting is all-frequency, bake --basis "
+        "haar instead",
+        o.max_order, 100.0 * kTruncationLimit,
+        rep.predicted_truncation_error - rep.order_choice.tail_bound, rep.order_choice.tail_bound,
+        static_cast<double>(pilot_order));
+  return format(
+      "nothing dropped, but no SH order <= %.0f keeps its truncation within %.0f%% of "
+      "the tolerance (predicted %.2g at that order): the lighting is all-frequency, "
+      "bake --basis haar instead",
+      o.max_order, 100.0 * kTruncationLimit, rep.predicted_truncation_error);
+}
+
+// Section 2: the SH order from the lighting (rep.order; o.order without lighting). When no
+// order meets it, the line recommending Haar is left_out[returned index] until the bake's
+// predicted total is known (section 5); std::string::npos when there is no such line.
+std::size_t select_order(const Scene& scene, const AutoBakeOptions& o, prt::TransferKind kind,
+                         const HemisphereAnalysis& hemi, SharedCaster& caster,
+                         AutoBakeReport& rep) {
   std::size_t haar_line = std::string::npos;
   rep.order = o.order;
   const bool lit = !o.lighting.empty();
   if (lit && kind != prt::TransferKind::Unshadowed) {
-    const auto t0 = std::chrono::steady_clock::now();
-    std::vector<glm::vec3> pilot_albedo;
     // Bands ≥ the lighting's order carry nothing whatever the transfer holds there, so the
     // pilot need not see past them (a band-limited sky of order 6: a pilot of order 7, 49
     // coefficients instead of 256).
     const int pilot_order = std::min(o.pilot_order, std::max(2, o.lighting_order + 1));
-    // The pilot's Monte Carlo noise adds to every predicted truncation error (it is an upper
-    // estimate), and under a sun, whose energy reaches the highest bands, it dominates: on
-    // data/demo.glb under data/sky.hdr, 256 samples predict 0.16 at order 12 where 4096 predict
-    // 0.04 and the report's ground truth measures 0.037-0.038 with the mesh's interpolation. So
-    // when no order meets the target, the pilot is baked again with 4× the samples, up to
-    // max_pilot_samples: a smooth sky meets it at the first pilot and pays nothing more.
-    // Truncation gets half the tolerance; when no order meets that but one meets kTruncationLimit
-    // of it, that order is baked and sampling gets the rest (√(1 − 0.8²) = 0.6 of it): the
-    // tolerance is still met, by SH, which is cheaper than the Haar basis.
-    const Scene grey = grey_scene(scene);
-    for (int samples = o.pilot_samples;; samples *= 4) {
-      const std::vector<double> pilot = bake_pilot(scene, grey, o, pilot_order, samples, hemi.open,
-                                                   pilot_albedo, shared_caster(), nullptr);
-      rep.order_choice =
-          choose_order(pilot, pilot_albedo, pilot_order, o.lighting, o.lighting_order,
-                       0.5 * o.tolerance, o.max_order, kTruncationLimit * o.tolerance);
-      rep.pilot_samples = samples;
-      const bool settled = rep.order_choice.met && !rep.order_choice.beyond_target;
-      if (settled || samples * 4 > o.max_pilot_samples) break;
-    }
-    rep.pilot_seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    run_pilots(scene, o, pilot_order, hemi, caster, rep);
     rep.order_chosen = true;
     rep.order = rep.order_choice.order;
     rep.predicted_truncation_error = rep.order_choice.predicted_error;
     if (!rep.order_choice.met) haar_line = rep.left_out.size();  // the line pushed below
-    if (rep.order_choice.met && rep.order_choice.beyond_target)
-      rep.left_out.push_back(format(
-          "SH bands >= %.0f (the file has order %.0f): predicted to carry %.2g of the exit "
-          "radiance, more than half the tolerance (no order <= %.0f carries less than half), so "
-          "the sampling gets less of it",
-          rep.order, rep.order, rep.predicted_truncation_error, o.max_order));
-    else if (rep.order_choice.met)
-      rep.left_out.push_back(
-          format("SH bands >= %.0f (the file has order %.0f): predicted to carry %.2g of the exit "
-                 "radiance",
-                 rep.order, rep.order, rep.predicted_truncation_error));
-    else if (rep.order_choice.tail_bound > 0.0)
-      rep.left_out.push_back(format(
-          "nothing dropped, but no SH order <= %.0f keeps its truncation within %.0f%% of the "
-          "tolerance (predicted %.2g at that order from the bands the pilot sees, %.2g more at "
-          "most from the lighting's bands >= %.0f): the lighting is all-frequency, bake --basis "
-          "haar instead",
-          o.max_order, 100.0 * kTruncationLimit,
-          rep.predicted_truncation_error - rep.order_choice.tail_bound, rep.order_choice.tail_bound,
-          static_cast<double>(pilot_order)));
-    else
-      rep.left_out.push_back(
-          format("nothing dropped, but no SH order <= %.0f keeps its truncation within %.0f%% of "
-                 "the tolerance (predicted %.2g at that order): the lighting is all-frequency, "
-                 "bake --basis haar instead",
-                 o.max_order, 100.0 * kTruncationLimit, rep.predicted_truncation_error));
+    rep.left_out.push_back(order_choice_note(rep, o, pilot_order));
   } else if (!lit) {
     rep.left_out.push_back(
         format("SH order not chosen (no --env): kept at %.0f; errors predicted for a uniform sky",
                o.order));
   }
+  return haar_line;
+}
 
-  // 3. Vertices that may skip rays within a share of the tolerance (bounded error).
-  const std::vector<double> lighting = lit ? o.lighting : uniform_sky();
-  const int lighting_order = lit ? o.lighting_order : 1;
-  BoundedSkips skips;
-  skips.skip.assign(V, 0);
-  // One triangle hierarchy for the occlusion bounds here and the occluder caps of the bake.
-  std::shared_ptr<const TriangleHierarchy> hierarchy;
+// Section 3: one triangle hierarchy for the occlusion bounds and the occluder caps of the bake,
+// when either will use it (null otherwise). Its time counts as analysis.
+std::shared_ptr<const TriangleHierarchy> build_hierarchy_if_needed(const Scene& scene,
+                                                                   const AutoBakeOptions& o,
+                                                                   prt::TransferKind kind,
+                                                                   const HemisphereAnalysis& hemi,
+                                                                   AutoBakeReport& rep) {
   const bool needs_hierarchy = kind != prt::TransferKind::Unshadowed &&
                                (o.bounded_skip_share > 0.0 || o.cap_sampling) &&
-                               hemi.open_count < V;
-  if (needs_hierarchy) {
-    const auto t_h = std::chrono::steady_clock::now();
-    hierarchy = std::make_shared<const TriangleHierarchy>(build_triangle_hierarchy(scene));
-    rep.analysis_seconds +=
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - t_h).count();
-  }
-  if (o.bounded_skip_share > 0.0 && needs_hierarchy) {
-    double seconds = 0.0;
-    skips = select_bounded_skips(scene, starts, hemi.open, lighting, lighting_order,
-                                 o.bounded_skip_share * o.tolerance, o.bounded_skip_cutoff, alb,
-                                 *hierarchy, &seconds);
-    rep.analysis_seconds += seconds;
-    rep.bounded_skip_vertices = skips.count;
-    rep.predicted_skip_error = skips.error_bound;
-    if (skips.count > 0)
-      rep.left_out.push_back(
-          format("shadow rays for %.0f more vertices: geometry can block at most %.2g of their "
-                 "cosine-weighted hemisphere (bounded without rays), error bound %.2g relative RMS",
-                 static_cast<double>(skips.count), skips.max_bound, skips.error_bound));
-  }
+                               hemi.open_count < scene.positions.size();
+  if (!needs_hierarchy) return nullptr;
+  const auto t_h = std::chrono::steady_clock::now();
+  auto hierarchy = std::make_shared<const TriangleHierarchy>(build_triangle_hierarchy(scene));
+  rep.analysis_seconds +=
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t_h).count();
+  return hierarchy;
+}
 
-  // 4. The adaptive bake.
+// Section 3: the vertices that may skip rays within a share of the tolerance (bounded error).
+BoundedSkips choose_bounded_skips(const Scene& scene, const AutoBakeOptions& o,
+                                  const VertexRayStarts& starts, const HemisphereAnalysis& hemi,
+                                  const AlbedoAnalysis& alb, const std::vector<double>& lighting,
+                                  int lighting_order, const TriangleHierarchy* hierarchy,
+                                  AutoBakeReport& rep) {
+  BoundedSkips skips;
+  skips.skip.assign(scene.positions.size(), 0);
+  if (!(o.bounded_skip_share > 0.0 && hierarchy)) return skips;
+  double seconds = 0.0;
+  skips = select_bounded_skips(scene, starts, hemi.open, lighting, lighting_order,
+                               o.bounded_skip_share * o.tolerance, o.bounded_skip_cutoff, alb,
+                               *hierarchy, &seconds);
+  rep.analysis_seconds += seconds;
+  rep.bounded_skip_vertices = skips.count;
+  rep.predicted_skip_error = skips.error_bound;
+  if (skips.count > 0)
+    rep.left_out.push_back(
+        format("shadow rays for %.0f more vertices: geometry can block at most %.2g of their "
+               "cosine-weighted hemisphere (bounded without rays), error bound %.2g relative RMS",
+               static_cast<double>(skips.count), skips.max_bound, skips.error_bound));
+  return skips;
+}
+
+// Section 4: the options of the adaptive bake. `lit`: lighting is the user's (else the uniform
+// sky, which does not steer the allocation).
+BakeOptions adaptive_bake_options(const AutoBakeOptions& o, prt::TransferKind kind,
+                                  const AutoBakeReport& rep, const HemisphereAnalysis& hemi,
+                                  const BoundedSkips& skips,
+                                  std::shared_ptr<const TriangleHierarchy> hierarchy,
+                                  SharedCaster& caster, const std::vector<double>& lighting,
+                                  int lighting_order, bool lit) {
   BakeOptions b;
   b.kind = kind;
   b.order = rep.order;
@@ -398,8 +442,8 @@ AutoBakeResult bake_transfer_auto(const Scene& scene, const AutoBakeOptions& o,
   b.adaptive.min_samples = o.min_samples;
   b.adaptive.max_samples = o.max_samples;
   b.adaptive.cap_sampling = o.cap_sampling;
-  b.adaptive.hierarchy = hierarchy;
-  b.adaptive.caster = shared_caster();
+  b.adaptive.hierarchy = std::move(hierarchy);
+  b.adaptive.caster = caster.get();
   b.adaptive.max_caps = o.max_caps;
   b.adaptive.max_cap_solid_angle = o.max_cap_solid_angle;
   // The sampling error gets what the deterministic errors (truncation and skipped vertices,
@@ -413,75 +457,82 @@ AutoBakeResult bake_transfer_auto(const Scene& scene, const AutoBakeOptions& o,
                                     ? std::sqrt(o.tolerance * o.tolerance - fixed_part * fixed_part)
                                     : o.tolerance);
   b.adaptive.bounce_tolerance = 0.25 * o.tolerance;
+  const std::size_t V = skips.skip.size();  // one per vertex
   b.adaptive.vertex_mode.assign(V, kSampleVertex);
   for (std::size_t v = 0; v < V; ++v)
     if (hemi.open[v] || skips.skip[v]) b.adaptive.vertex_mode[v] = kAnalyticVertex;
-  const int KL = lighting_order * lighting_order;
-  double mean_radiance[3];
-  for (int c = 0; c < 3; ++c) mean_radiance[c] = lighting[c * KL] * kY00;
   if (lit) {
+    const int KL = lighting_order * lighting_order;
     b.adaptive.lighting_order = lighting_order;
     b.adaptive.lighting.resize(KL);
     for (int k = 0; k < KL; ++k)
       b.adaptive.lighting[k] =
           0.2126 * lighting[k] + 0.7152 * lighting[KL + k] + 0.0722 * lighting[2 * KL + k];
   }
-  result.bake = bake_transfer(scene, b, progress);
-  const BakeStatistics& st = result.bake.stats;
-  rep.stored_kind = st.stored_kind;
+  return b;
+}
 
-  // 4. What was skipped, and the predicted error.
-  uint64_t sampled = 0, sum = 0;
+// The range of the per-vertex sample counts over the vertices that took samples.
+struct SampleCounts {
+  uint64_t sampled = 0;  // vertices with samples
   uint32_t lo = 0, hi = 0;
+};
+
+// Section 5: the predicted sampling error (from the bake's per-vertex standard errors) and the
+// predicted total; returns the sample counts.
+SampleCounts predict_error(const Scene& scene, const BakeResult& bake,
+                           const std::vector<double>& lighting, int lighting_order,
+                           AutoBakeReport& rep) {
+  const BakeStatistics& st = bake.stats;
+  const int KL = lighting_order * lighting_order;
+  double mean_radiance[3];
+  for (int c = 0; c < 3; ++c) mean_radiance[c] = lighting[c * KL] * kY00;
+  SampleCounts n_range;
+  uint64_t sum = 0;
   double se2 = 0.0;
-  for (std::size_t v = 0; v < V; ++v) {
+  for (std::size_t v = 0; v < scene.positions.size(); ++v) {
     const uint32_t n = st.vertex_samples.empty() ? 0 : st.vertex_samples[v];
     if (n == 0) continue;
-    lo = sampled == 0 ? n : std::min(lo, n);
-    hi = std::max(hi, n);
-    ++sampled;
+    n_range.lo = n_range.sampled == 0 ? n : std::min(n_range.lo, n);
+    n_range.hi = std::max(n_range.hi, n);
+    ++n_range.sampled;
     sum += n;
     for (int c = 0; c < 3; ++c) {
       const double e = scene.albedo[v][c] * mean_radiance[c] * st.vertex_standard_error[v];
       se2 += e * e;
     }
   }
-  rep.mean_samples = sampled ? static_cast<double>(sum) / static_cast<double>(sampled) : 0.0;
-  const std::vector<double> radiance = exit_radiance(result.bake.data, lighting, lighting_order);
+  rep.mean_samples =
+      n_range.sampled ? static_cast<double>(sum) / static_cast<double>(n_range.sampled) : 0.0;
+  const std::vector<double> radiance = exit_radiance(bake.data, lighting, lighting_order);
   double b2 = 0.0;
   for (double x : radiance) b2 += x * x;
   rep.predicted_sampling_error = b2 > 0.0 ? std::sqrt(se2 / b2) : 0.0;
   rep.predicted_error = std::hypot(rep.predicted_truncation_error + rep.predicted_skip_error,
                                    rep.predicted_sampling_error);
-  // No order kept its truncation within kTruncationLimit of the tolerance, but the bake at the
-  // highest order, whose sampling got what truncation left, may still meet the tolerance as a
-  // whole (data/demo.glb under data/sky.hdr at 5%: truncation 0.040, total 0.048, measured
-  // 0.041 by `prt report`): Haar is recommended only when it does not.
-  if (haar_line != std::string::npos && rep.predicted_error <= o.tolerance) {
-    rep.order_choice.haar_recommended = false;
-    rep.left_out[haar_line] = format(
-        "nothing dropped: no SH order <= %.0f keeps its truncation within %.0f%% of the "
-        "tolerance (predicted %.2g at that order), but with the sampling error the predicted "
-        "total (%.2g) meets it",
-        o.max_order, 100.0 * kTruncationLimit, rep.predicted_truncation_error, rep.predicted_error);
-  }
+  return n_range;
+}
+
+// Section 5: what the bake itself left out (samples, rays toward the open sky, interreflection).
+void note_bake_savings(const BakeStatistics& st, const SampleCounts& n, prt::TransferKind kind,
+                       const AutoBakeOptions& o, AutoBakeReport& rep) {
   // Equal counts everywhere leave nothing out: the allocation either stopped where it started
   // (the tolerance was met there) or ran every vertex up to the cap without meeting it.
-  if (sampled > 0 && lo == hi)
+  if (n.sampled > 0 && n.lo == n.hi)
     rep.left_out.push_back(
         st.allocation_budget_met
             ? format("nothing from the sample count: every sampled vertex took %.0f samples, "
                      "which meet the tolerance's sampling share",
-                     lo)
+                     n.lo)
             : format("nothing from the sample count: every sampled vertex took the cap of %.0f "
                      "samples, short of the tolerance's sampling share (predicted sampling "
                      "error %.2g)",
-                     hi, rep.predicted_sampling_error));
-  else if (sampled > 0)
+                     n.hi, rep.predicted_sampling_error));
+  else if (n.sampled > 0)
     rep.left_out.push_back(
         format("a uniform sample count: %.0f to %.0f samples per vertex (mean %.1f), allocated "
                "to where the measured error is: fewer in open areas, more in crevices",
-               lo, hi, rep.mean_samples));
+               n.lo, n.hi, rep.mean_samples));
   if (st.cap_vertices > 0)
     rep.left_out.push_back(
         format("rays toward the open sky for %.0f vertices: they sample only the cones that can "
@@ -498,12 +549,69 @@ AutoBakeResult bake_transfer_auto(const Scene& scene, const AutoBakeOptions& o,
           "after %.0f: the next added < %.2g of the direct light",
           static_cast<double>(st.empty_gather_rows), st.jacobi_bounces, 0.25 * o.tolerance));
   }
+}
 
+// The report as the "auto" object of the file's metadata.
+void add_report_to_metadata(AutoBakeResult& result, double tolerance) {
   nlohmann::json meta = nlohmann::json::parse(result.bake.data.metadata_json, nullptr, false);
   if (meta.is_discarded() || !meta.is_object()) meta = nlohmann::json::object();
-  meta["auto"] = nlohmann::json::parse(rep.json());
-  meta["auto"]["tolerance"] = o.tolerance;
+  meta["auto"] = nlohmann::json::parse(result.report.json());
+  meta["auto"]["tolerance"] = tolerance;
   result.bake.data.metadata_json = meta.dump();
+}
+
+}  // namespace
+
+AutoBakeResult bake_transfer_auto(const Scene& scene, const AutoBakeOptions& o,
+                                  ProgressSink* progress) {
+  validate_auto_inputs(scene, o);
+  AutoBakeResult result;
+  AutoBakeReport& rep = result.report;
+  const std::size_t V = scene.positions.size();
+  rep.vertices = V;
+
+  // 1. Analysis.
+  const VertexRayStarts starts = compute_vertex_ray_starts(scene);
+  const HemisphereAnalysis hemi = find_open_hemispheres(scene, starts);
+  SharedCaster caster(scene, hemi.open_count < V);
+  const AlbedoAnalysis alb = analyze_albedo(scene);
+  const prt::TransferKind kind = record_analysis(hemi, alb, o.kind, V, rep);
+
+  // 2. SH order from the lighting.
+  const std::size_t haar_line = select_order(scene, o, kind, hemi, caster, rep);
+
+  // 3. Vertices that may skip rays within a share of the tolerance (bounded error).
+  const bool lit = !o.lighting.empty();
+  const std::vector<double> lighting = lit ? o.lighting : uniform_sky();
+  const int lighting_order = lit ? o.lighting_order : 1;
+  std::shared_ptr<const TriangleHierarchy> hierarchy =
+      build_hierarchy_if_needed(scene, o, kind, hemi, rep);
+  const BoundedSkips skips = choose_bounded_skips(scene, o, starts, hemi, alb, lighting,
+                                                  lighting_order, hierarchy.get(), rep);
+
+  // 4. The adaptive bake.
+  const BakeOptions b = adaptive_bake_options(o, kind, rep, hemi, skips, std::move(hierarchy),
+                                              caster, lighting, lighting_order, lit);
+  result.bake = bake_transfer(scene, b, progress);
+  rep.stored_kind = result.bake.stats.stored_kind;
+
+  // 5. What was skipped, and the predicted error.
+  const SampleCounts counts = predict_error(scene, result.bake, lighting, lighting_order, rep);
+  // No order kept its truncation within kTruncationLimit of the tolerance, but the bake at the
+  // highest order, whose sampling got what truncation left, may still meet the tolerance as a
+  // whole (data/demo.glb under data/sky.hdr at 5%: truncation 0.040, total 0.048, measured
+  // 0.041 by `prt report`): Haar is recommended only when it does not.
+  if (haar_line != std::string::npos && rep.predicted_error <= o.tolerance) {
+    rep.order_choice.haar_recommended = false;
+    rep.left_out[haar_line] = format(
+        "nothing dropped: no SH order <= %.0f keeps its truncation within %.0f%% of the "
+        "tolerance (predicted %.2g at that order), but with the sampling error the predicted "
+        "total (%.2g) meets it",
+        o.max_order, 100.0 * kTruncationLimit, rep.predicted_truncation_error, rep.predicted_error);
+  }
+  note_bake_savings(result.bake.stats, counts, kind, o, rep);
+
+  add_report_to_metadata(result, o.tolerance);
   return result;
 }
 

@@ -199,6 +199,169 @@ void validate_haar_options(const Scene& scene, const HaarBakeOptions& o) {
   }
 }
 
+// What every phase of one Haar bake shares: the scene, the options and the sizes derived from
+// them, the directions traced and the BVH, the progress sink and the rays cast per task.
+struct HaarBakeContext {
+  const Scene& scene;
+  const HaarBakeOptions& options;
+  const std::size_t V;  // vertices
+  const int N;          // cube size
+  const std::size_t W;  // texels = wavelet coefficients
+  const int C;          // channels: 1 when the albedo is grey
+  const bool shadows;
+  const TexelSamples& ts;
+  const RayCaster& caster;
+  ProgressSink* progress;
+  std::vector<uint64_t> task_rays;  // rays cast per task of kVerticesPerTask vertices
+
+  // Dense per-vertex transfer (texel domain, albedo/π applied), C channels interleaved.
+  uint64_t dense_transfer(uint32_t v, GatherRow* row, std::vector<float>& grey_dense,
+                          std::vector<float>& dense) const {
+    std::fill(grey_dense.begin(), grey_dense.end(), 0.f);
+    const uint64_t rays = trace_vertex(scene, caster, ts, v, shadows, row, grey_dense.data());
+    for (int c = 0; c < C; ++c) {
+      const float k = static_cast<float>(scene.albedo[v][c] * kInvPi);
+      for (std::size_t t = 0; t < W; ++t) dense[t * C + c] = grey_dense[t] * k;
+    }
+    return rays;
+  }
+};
+
+// Unshadowed or shadowed transfer: each vertex traced, compressed and added to the builder, a
+// chunk of vertices at a time.
+void bake_direct_haar(HaarBakeContext& ctx, prt::HaarTransferBuilder& builder) {
+  const std::size_t V = ctx.V, W = ctx.W;
+  const int N = ctx.N, C = ctx.C;
+  std::vector<prt::SparseVertexTransfer> sparse;
+  for (std::size_t first = 0; first < V; first += kVerticesPerChunk) {
+    const std::size_t end = std::min(V, first + kVerticesPerChunk);
+    sparse.assign(end - first, {});
+    tbb::parallel_for(first, end, kVerticesPerTask, [&](std::size_t task_first) {
+      std::vector<float> grey_dense(W), dense(W * C);
+      const std::size_t task_end = std::min(end, task_first + kVerticesPerTask);
+      uint64_t rays = 0;
+      for (std::size_t v = task_first; v < task_end; ++v) {
+        rays += ctx.dense_transfer(static_cast<uint32_t>(v), nullptr, grey_dense, dense);
+        prt::Result<prt::SparseVertexTransfer> s =
+            prt::compress_vertex_transfer(dense.data(), N, C, ctx.options.compression);
+        sparse[v - first] = std::move(s.value());  // size and channels were validated
+      }
+      ctx.task_rays[task_first / kVerticesPerTask] = rays;
+      if (ctx.progress) ctx.progress->advance(task_end - task_first, rays);
+    });
+    for (const prt::SparseVertexTransfer& s : sparse) {
+      const prt::Status added = builder.add_vertex(s);
+      if (!added.ok()) throw BakeError(ctx.scene.source_path + ": " + added.message());
+    }
+  }
+}
+
+// Merges a gather row's entries by column (sorted), dropping columns of zero weight.
+void merge_gather_row(GatherRow& row) {
+  std::sort(row.begin(), row.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  std::size_t kept = 0;
+  for (std::size_t i = 0; i < row.size();) {
+    const uint32_t col = row[i].first;
+    double w = 0.0;
+    for (; i < row.size() && row[i].first == col; ++i) w += row[i].second;
+    if (w > 0.0) row[kept++] = {col, static_cast<float>(w)};
+  }
+  row.resize(kept);
+}
+
+// Interreflection, pass 1: every vertex's direct transfer D̂ (wavelet domain, dense, into
+// coeffs: V × W × C) and its gather row of H (into rows).
+void trace_direct_wavelets(HaarBakeContext& ctx, std::vector<float>& coeffs,
+                           std::vector<GatherRow>& rows) {
+  const std::size_t V = ctx.V, W = ctx.W;
+  const int N = ctx.N, C = ctx.C;
+  tbb::parallel_for(std::size_t(0), V, kVerticesPerTask, [&](std::size_t task_first) {
+    std::vector<float> grey_dense(W);
+    const std::size_t task_end = std::min(V, task_first + kVerticesPerTask);
+    uint64_t rays = 0;
+    for (std::size_t v = task_first; v < task_end; ++v) {
+      std::vector<float> dense(W * C);
+      rays += ctx.dense_transfer(static_cast<uint32_t>(v), &rows[v], grey_dense, dense);
+      float* out = coeffs.data() + v * W * C;
+      std::copy(dense.begin(), dense.end(), out);
+      for (int face = 0; face < 6; ++face)
+        for (int c = 0; c < C; ++c)
+          prt::forward_haar_2d(out + std::size_t(face) * N * N * C + c, N, C);
+      merge_gather_row(rows[v]);
+    }
+    ctx.task_rays[task_first / kVerticesPerTask] = rays;
+    if (ctx.progress) ctx.progress->advance(task_end - task_first, rays);
+  });
+}
+
+// The gather rows as one sparse matrix H (rows are emptied).
+SparseTransferMatrix gather_matrix(std::vector<GatherRow>& rows) {
+  SparseTransferMatrix h;
+  h.row_offsets.reserve(rows.size() + 1);
+  for (const GatherRow& row : rows) {
+    for (const auto& [col, w] : row) {
+      h.columns.push_back(col);
+      h.weights.push_back(w);
+    }
+    h.row_offsets.push_back(h.columns.size());
+  }
+  rows = {};
+  return h;
+}
+
+// Interreflection, pass 2: T̂ = D̂ + diag(ρ) H T̂, per channel, in chunks of wavelet columns
+// (coeffs: D̂ in, T̂ out).
+void solve_wavelet_interreflection(const HaarBakeContext& ctx, const SparseTransferMatrix& h,
+                                   std::vector<float>& coeffs, HaarBakeStatistics& st) {
+  const std::size_t V = ctx.V, W = ctx.W;
+  const int C = ctx.C;
+  const Clock::time_point t_solve = Clock::now();
+  SolveOptions so;
+  so.bounces = ctx.options.bounces;
+  so.tolerance = ctx.options.bounce_tolerance;
+  so.max_iterations = ctx.options.max_solver_iterations;
+  std::vector<double> d(V * kSolveColumns), t(V * kSolveColumns);
+  for (int c = 0; c < C; ++c) {
+    std::vector<double> rho(V);
+    for (std::size_t v = 0; v < V; ++v) rho[v] = ctx.scene.albedo[v][c];
+    for (std::size_t first = 0; first < W; first += kSolveColumns) {
+      const int cols = static_cast<int>(std::min<std::size_t>(kSolveColumns, W - first));
+      for (std::size_t v = 0; v < V; ++v)
+        for (int k = 0; k < cols; ++k) d[v * cols + k] = coeffs[(v * W + first + k) * C + c];
+      const SolveReport r = solve_interreflection(h, rho, d.data(), cols, t.data(), so);
+      st.solver_iterations += r.krylov_iterations;
+      st.solver_residual = std::max(st.solver_residual, r.relative_residual);
+      st.solver_converged = st.solver_converged && r.converged;
+      for (std::size_t v = 0; v < V; ++v)
+        for (int k = 0; k < cols; ++k)
+          coeffs[(v * W + first + k) * C + c] = static_cast<float>(t[v * cols + k]);
+    }
+  }
+  st.seconds_solve = seconds_since(t_solve);
+}
+
+// Interreflected transfer: pass 1 traces (the rays' statistics are recorded when it ends),
+// pass 2 solves; then every vertex's T̂ is truncated and added to the builder.
+void bake_interreflected_haar(HaarBakeContext& ctx, prt::HaarTransferBuilder& builder,
+                              HaarBakeStatistics& st, Clock::time_point t_rays) {
+  const std::size_t V = ctx.V, W = ctx.W;
+  const int N = ctx.N, C = ctx.C;
+  std::vector<float> coeffs(V * W * C);
+  std::vector<GatherRow> rows(V);
+  trace_direct_wavelets(ctx, coeffs, rows);
+  if (ctx.progress) ctx.progress->finish();
+  for (uint64_t r : ctx.task_rays) st.rays += r;
+  st.seconds_rays = seconds_since(t_rays);
+  const SparseTransferMatrix h = gather_matrix(rows);
+  solve_wavelet_interreflection(ctx, h, coeffs, st);
+  for (std::size_t v = 0; v < V; ++v) {
+    const prt::SparseVertexTransfer s =
+        prt::truncate_vertex_coefficients(coeffs.data() + v * W * C, N, C, ctx.options.compression);
+    const prt::Status added = builder.add_vertex(s);
+    if (!added.ok()) throw BakeError(ctx.scene.source_path + ": " + added.message());
+  }
+}
+
 }  // namespace
 
 HaarBakeResult bake_haar_transfer(const Scene& scene, const HaarBakeOptions& options,
@@ -211,11 +374,9 @@ HaarBakeResult bake_haar_transfer(const Scene& scene, const HaarBakeOptions& opt
                                                   options.threads);
   const std::size_t V = scene.vertex_count();
   const int N = options.cube_size;
-  const std::size_t W = std::size_t{6} * N * N;  // texels = wavelet coefficients
   bool grey = true;
   for (const glm::vec3& a : scene.albedo) grey = grey && a.x == a.y && a.y == a.z;
   const int C = grey ? 1 : 3;
-  const bool shadows = options.transport != prt::TransferKind::Unshadowed;
   const bool interreflect = options.transport == prt::TransferKind::Interreflected;
 
   HaarBakeResult result;
@@ -225,122 +386,28 @@ HaarBakeResult bake_haar_transfer(const Scene& scene, const HaarBakeOptions& opt
   const TexelSamples ts = make_texel_samples(N, options.supersample, options.seed);
   const RayCaster caster(scene);
   prt::HaarTransferBuilder builder(N, C, options.compression.quantization);
-
-  // Dense per-vertex transfer (texel domain, albedo/π applied), C channels interleaved.
-  auto dense_transfer = [&](uint32_t v, GatherRow* row, std::vector<float>& grey_dense,
-                            std::vector<float>& dense) {
-    std::fill(grey_dense.begin(), grey_dense.end(), 0.f);
-    const uint64_t rays = trace_vertex(scene, caster, ts, v, shadows, row, grey_dense.data());
-    for (int c = 0; c < C; ++c) {
-      const float k = static_cast<float>(scene.albedo[v][c] * kInvPi);
-      for (std::size_t t = 0; t < W; ++t) dense[t * C + c] = grey_dense[t] * k;
-    }
-    return rays;
-  };
+  HaarBakeContext ctx{scene,
+                      options,
+                      V,
+                      N,
+                      std::size_t{6} * N * N,
+                      C,
+                      options.transport != prt::TransferKind::Unshadowed,
+                      ts,
+                      caster,
+                      progress,
+                      {}};
 
   const Clock::time_point t_rays = Clock::now();
-  std::vector<uint64_t> task_rays((V + kVerticesPerTask - 1) / kVerticesPerTask, 0);
+  ctx.task_rays.assign((V + kVerticesPerTask - 1) / kVerticesPerTask, 0);
   if (progress) progress->start("bake haar", V);
   if (!interreflect) {
-    std::vector<prt::SparseVertexTransfer> sparse;
-    for (std::size_t first = 0; first < V; first += kVerticesPerChunk) {
-      const std::size_t end = std::min(V, first + kVerticesPerChunk);
-      sparse.assign(end - first, {});
-      tbb::parallel_for(first, end, kVerticesPerTask, [&](std::size_t task_first) {
-        std::vector<float> grey_dense(W), dense(W * C);
-        const std::size_t task_end = std::min(end, task_first + kVerticesPerTask);
-        uint64_t rays = 0;
-        for (std::size_t v = task_first; v < task_end; ++v) {
-          rays += dense_transfer(static_cast<uint32_t>(v), nullptr, grey_dense, dense);
-          prt::Result<prt::SparseVertexTransfer> s =
-              prt::compress_vertex_transfer(dense.data(), N, C, options.compression);
-          sparse[v - first] = std::move(s.value());  // size and channels were validated
-        }
-        task_rays[task_first / kVerticesPerTask] = rays;
-        if (progress) progress->advance(task_end - task_first, rays);
-      });
-      for (const prt::SparseVertexTransfer& s : sparse) {
-        const prt::Status added = builder.add_vertex(s);
-        if (!added.ok()) throw BakeError(scene.source_path + ": " + added.message());
-      }
-    }
+    bake_direct_haar(ctx, builder);
     if (progress) progress->finish();
-    for (uint64_t r : task_rays) st.rays += r;
+    for (uint64_t r : ctx.task_rays) st.rays += r;
     st.seconds_rays = seconds_since(t_rays);
   } else {
-    // Pass 1: D̂ (wavelet domain, dense) and H.
-    std::vector<float> coeffs(V * W * C);
-    std::vector<GatherRow> rows(V);
-    tbb::parallel_for(std::size_t(0), V, kVerticesPerTask, [&](std::size_t task_first) {
-      std::vector<float> grey_dense(W);
-      const std::size_t task_end = std::min(V, task_first + kVerticesPerTask);
-      uint64_t rays = 0;
-      for (std::size_t v = task_first; v < task_end; ++v) {
-        std::vector<float> dense(W * C);
-        rays += dense_transfer(static_cast<uint32_t>(v), &rows[v], grey_dense, dense);
-        float* out = coeffs.data() + v * W * C;
-        std::copy(dense.begin(), dense.end(), out);
-        for (int face = 0; face < 6; ++face)
-          for (int c = 0; c < C; ++c)
-            prt::forward_haar_2d(out + std::size_t(face) * N * N * C + c, N, C);
-        GatherRow& row = rows[v];
-        std::sort(row.begin(), row.end(),
-                  [](const auto& a, const auto& b) { return a.first < b.first; });
-        std::size_t kept = 0;
-        for (std::size_t i = 0; i < row.size();) {
-          const uint32_t col = row[i].first;
-          double w = 0.0;
-          for (; i < row.size() && row[i].first == col; ++i) w += row[i].second;
-          if (w > 0.0) row[kept++] = {col, static_cast<float>(w)};
-        }
-        row.resize(kept);
-      }
-      task_rays[task_first / kVerticesPerTask] = rays;
-      if (progress) progress->advance(task_end - task_first, rays);
-    });
-    if (progress) progress->finish();
-    for (uint64_t r : task_rays) st.rays += r;
-    st.seconds_rays = seconds_since(t_rays);
-    SparseTransferMatrix h;
-    h.row_offsets.reserve(V + 1);
-    for (const GatherRow& row : rows) {
-      for (const auto& [col, w] : row) {
-        h.columns.push_back(col);
-        h.weights.push_back(w);
-      }
-      h.row_offsets.push_back(h.columns.size());
-    }
-    rows = {};
-    // Pass 2: T̂ = D̂ + diag(ρ) H T̂, per channel, in chunks of wavelet columns.
-    const Clock::time_point t_solve = Clock::now();
-    SolveOptions so;
-    so.bounces = options.bounces;
-    so.tolerance = options.bounce_tolerance;
-    so.max_iterations = options.max_solver_iterations;
-    std::vector<double> d(V * kSolveColumns), t(V * kSolveColumns);
-    for (int c = 0; c < C; ++c) {
-      std::vector<double> rho(V);
-      for (std::size_t v = 0; v < V; ++v) rho[v] = scene.albedo[v][c];
-      for (std::size_t first = 0; first < W; first += kSolveColumns) {
-        const int cols = static_cast<int>(std::min<std::size_t>(kSolveColumns, W - first));
-        for (std::size_t v = 0; v < V; ++v)
-          for (int k = 0; k < cols; ++k) d[v * cols + k] = coeffs[(v * W + first + k) * C + c];
-        const SolveReport r = solve_interreflection(h, rho, d.data(), cols, t.data(), so);
-        st.solver_iterations += r.krylov_iterations;
-        st.solver_residual = std::max(st.solver_residual, r.relative_residual);
-        st.solver_converged = st.solver_converged && r.converged;
-        for (std::size_t v = 0; v < V; ++v)
-          for (int k = 0; k < cols; ++k)
-            coeffs[(v * W + first + k) * C + c] = static_cast<float>(t[v * cols + k]);
-      }
-    }
-    st.seconds_solve = seconds_since(t_solve);
-    for (std::size_t v = 0; v < V; ++v) {
-      const prt::SparseVertexTransfer s =
-          prt::truncate_vertex_coefficients(coeffs.data() + v * W * C, N, C, options.compression);
-      const prt::Status added = builder.add_vertex(s);
-      if (!added.ok()) throw BakeError(scene.source_path + ": " + added.message());
-    }
+    bake_interreflected_haar(ctx, builder, st, t_rays);
   }
 
   prt::Result<prt::HaarTransfer> transfer = builder.finish();

@@ -108,6 +108,203 @@ void multiply_gather(const SparseTransferMatrix& h, const std::vector<double>& r
                     });
 }
 
+namespace {
+
+// Jacobi bounces: T = Σ_i (ρH)^i D, each term from the previous one (t holds D on entry).
+// Progress is shown when the bounces are the whole solve (options.bounces ≥ 0).
+void add_jacobi_bounces(const SparseTransferMatrix& h, const std::vector<double>& rho,
+                        const double* d, int k, int jacobi, double* t, const SolveOptions& options,
+                        ProgressSink* progress, SolveReport& report) {
+  const std::size_t rows = h.rows();
+  const std::size_t n = rows * static_cast<std::size_t>(k);
+  Block term(d, d + n), next(n);
+  if (progress && options.bounces >= 0) progress->start("bounces", jacobi);
+  for (int i = 0; i < jacobi; ++i) {
+    multiply_gather(h, rho, term.data(), k, next.data());
+    term.swap(next);
+    for_each_entry(rows, k, [&](std::size_t e, int) { t[e] += term[e]; });
+    report.bounce_energy.push_back(max_abs(term));
+    if (progress && options.bounces >= 0) progress->advance(1, 0);
+  }
+  if (progress && options.bounces >= 0) progress->finish();
+  report.jacobi_bounces = jacobi;
+}
+
+// After a fixed number of bounces: the largest relative residual over the columns, each against
+// max(‖D_c‖, 1e-3·max‖D‖), and whether it meets the tolerance.
+void report_bounce_residual(const SparseTransferMatrix& h, const std::vector<double>& rho,
+                            const double* d, int k, const double* t, double tolerance,
+                            SolveReport& report) {
+  const std::size_t rows = h.rows();
+  const std::size_t n = rows * static_cast<std::size_t>(k);
+  Block r(n);
+  apply_system(h, rho, t, k, r.data());
+  for (std::size_t e = 0; e < n; ++e) r[e] = d[e] - r[e];
+  const std::vector<double> rr = dot_columns(r.data(), r.data(), rows, k);
+  const std::vector<double> bb = dot_columns(d, d, rows, k);
+  double bmax = 0;
+  for (double b : bb) bmax = std::max(bmax, std::sqrt(b));
+  for (int c = 0; c < k; ++c) {
+    const double scale = std::max(std::sqrt(bb[c]), 1e-3 * bmax);
+    if (scale > 0)
+      report.relative_residual = std::max(report.relative_residual, std::sqrt(rr[c]) / scale);
+  }
+  report.converged = report.relative_residual <= tolerance;
+}
+
+// BiCGSTAB on all K columns at once, from the iterate in t (updated in place). A column's
+// residual is measured against scale[c]; a column stops updating once it meets tol.
+class ColumnBiCgStab {
+ public:
+  ColumnBiCgStab(const SparseTransferMatrix& h, const std::vector<double>& rho, const double* d,
+                 int k, double* t, std::vector<double> scale, double tol)
+      : h_(h),
+        rho_(rho),
+        d_(d),
+        k_(k),
+        t_(t),
+        rows_(h.rows()),
+        n_(rows_ * static_cast<std::size_t>(k)),
+        scale_(std::move(scale)),
+        tol_(tol),
+        r_(n_),
+        rhat_(n_),
+        p_(n_),
+        v_(n_),
+        s_(n_),
+        tt_(n_),
+        active_(k, 1),
+        rel_(k, 0.0) {}
+
+  // The true residual r = D − (I − ρH)T: each column's relative residual and whether it is
+  // still active. True when every column meets the tolerance.
+  bool true_residual() {
+    const std::size_t rows = rows_;
+    const int k = k_;
+    apply_system(h_, rho_, t_, k, r_.data());
+    for_each_entry(rows, k, [&](std::size_t e, int) { r_[e] = d_[e] - r_[e]; });
+    const std::vector<double> rr = dot_columns(r_.data(), r_.data(), rows, k);
+    bool all = true;
+    for (int c = 0; c < k; ++c) {
+      rel_[c] = std::sqrt(rr[c]) / scale_[c];
+      active_[c] = rel_[c] > tol_;
+      all = all && !active_[c];
+    }
+    return all;
+  }
+
+  // BiCGSTAB is not monotone and can diverge on stiff non-normal systems (eigenvalues of ρH
+  // spread around a circle of radius ~ρ): the iterate with the smallest true residual is kept,
+  // so an unconverged solve never returns worse than its Jacobi warm-up. The current iterate
+  // becomes the best so far.
+  void remember_as_best() {
+    best_t_.assign(t_, t_ + n_);
+    best_rel_ = rel_;
+  }
+  // Keeps the current iterate if its true residual is the smallest so far.
+  void keep_best() {
+    if (*std::max_element(rel_.begin(), rel_.end()) <
+        *std::max_element(best_rel_.begin(), best_rel_.end())) {
+      std::copy(t_, t_ + n_, best_t_.begin());
+      best_rel_ = rel_;
+    }
+  }
+  // Returns to the best iterate when it is better than the current one.
+  void restore_best_if_better() {
+    if (*std::max_element(best_rel_.begin(), best_rel_.end()) <
+        *std::max_element(rel_.begin(), rel_.end())) {
+      std::copy(best_t_.begin(), best_t_.end(), t_);
+      rel_ = best_rel_;
+    }
+  }
+  double max_relative_residual() const { return *std::max_element(rel_.begin(), rel_.end()); }
+
+  // One run from a (re)start (r̂ = r, p = 0, v = 0, ρ = α = ω = 1) until a breakdown, every
+  // column meeting the recursive residual check, or *iterations reaching max_iterations.
+  void run(int max_iterations, int* iterations, ProgressSink* progress);
+
+ private:
+  const SparseTransferMatrix& h_;
+  const std::vector<double>& rho_;
+  const double* const d_;
+  const int k_;
+  double* const t_;
+  const std::size_t rows_, n_;
+  const std::vector<double> scale_;
+  const double tol_;
+  Block r_, rhat_, p_, v_, s_, tt_;
+  std::vector<char> active_;
+  std::vector<double> rel_;
+  Block best_t_;
+  std::vector<double> best_rel_;
+};
+
+void ColumnBiCgStab::run(int max_iterations, int* iterations, ProgressSink* progress) {
+  const std::size_t rows = rows_;
+  const int k = k_;
+  Block &r = r_, &rhat = rhat_, &p = p_, &v = v_, &s = s_, &tt = tt_;
+  std::vector<char>& active = active_;
+  const std::vector<double>& scale = scale_;
+  double* const t = t_;
+  rhat = r;
+  std::fill(p.begin(), p.end(), 0.0);
+  std::fill(v.begin(), v.end(), 0.0);
+  std::vector<double> rho_old(k, 1.0), alpha(k, 1.0), omega(k, 1.0);
+  bool restart = false;
+  while (!restart && *iterations < max_iterations) {
+    ++*iterations;
+    const std::vector<double> rho_new = dot_columns(rhat.data(), r.data(), rows, k);
+    const std::vector<double> rhat2 = dot_columns(rhat.data(), rhat.data(), rows, k);
+    const std::vector<double> r2 = dot_columns(r.data(), r.data(), rows, k);
+    std::vector<double> beta(k, 0.0);
+    for (int c = 0; c < k; ++c) {
+      if (!active[c]) continue;
+      // Breakdown: r̂ nearly orthogonal to r.
+      if (std::fabs(rho_new[c]) <= 1e-14 * std::sqrt(rhat2[c] * r2[c])) restart = true;
+      beta[c] = (rho_new[c] / rho_old[c]) * (alpha[c] / omega[c]);
+    }
+    if (restart) break;
+    for_each_entry(rows, k, [&](std::size_t e, int c) {
+      if (active[c]) p[e] = r[e] + beta[c] * (p[e] - omega[c] * v[e]);
+    });
+    apply_system(h_, rho_, p.data(), k, v.data());
+    const std::vector<double> rv = dot_columns(rhat.data(), v.data(), rows, k);
+    for (int c = 0; c < k; ++c) {
+      if (!active[c]) continue;
+      if (rv[c] == 0.0) restart = true;
+      alpha[c] = rv[c] != 0.0 ? rho_new[c] / rv[c] : 0.0;
+    }
+    for_each_entry(rows, k, [&](std::size_t e, int c) {
+      if (active[c]) s[e] = r[e] - alpha[c] * v[e];
+    });
+    apply_system(h_, rho_, s.data(), k, tt.data());
+    const std::vector<double> ts = dot_columns(tt.data(), s.data(), rows, k);
+    const std::vector<double> t2 = dot_columns(tt.data(), tt.data(), rows, k);
+    for (int c = 0; c < k; ++c) {
+      if (!active[c]) continue;
+      omega[c] = t2[c] > 0 ? ts[c] / t2[c] : 0.0;
+      if (omega[c] == 0.0) restart = true;
+    }
+    for_each_entry(rows, k, [&](std::size_t e, int c) {
+      if (!active[c]) return;
+      t[e] += alpha[c] * p[e] + omega[c] * s[e];
+      r[e] = s[e] - omega[c] * tt[e];
+    });
+    rho_old = rho_new;
+    if (progress) progress->advance(1, 0);
+    // Recursive residual check; confirmed with the true residual (which may restart).
+    const std::vector<double> rr = dot_columns(r.data(), r.data(), rows, k);
+    bool all = true;
+    for (int c = 0; c < k; ++c) {
+      if (active[c] && std::sqrt(rr[c]) / scale[c] <= tol_) active[c] = 0;
+      all = all && !active[c];
+    }
+    if (all || restart) break;
+  }
+}
+
+}  // namespace
+
 SolveReport solve_interreflection(const SparseTransferMatrix& h, const std::vector<double>& rho,
                                   const double* d, int columns, double* t,
                                   const SolveOptions& options, ProgressSink* progress) {
@@ -118,35 +315,10 @@ SolveReport solve_interreflection(const SparseTransferMatrix& h, const std::vect
   std::copy(d, d + n, t);
   if (n == 0) return report;
 
-  // Jacobi bounces: T = Σ_i (ρH)^i D, each term from the previous one.
   const int jacobi = options.bounces >= 0 ? options.bounces : std::max(0, options.warmup_bounces);
-  {
-    Block term(d, d + n), next(n);
-    if (progress && options.bounces >= 0) progress->start("bounces", jacobi);
-    for (int i = 0; i < jacobi; ++i) {
-      multiply_gather(h, rho, term.data(), k, next.data());
-      term.swap(next);
-      for_each_entry(rows, k, [&](std::size_t e, int) { t[e] += term[e]; });
-      report.bounce_energy.push_back(max_abs(term));
-      if (progress && options.bounces >= 0) progress->advance(1, 0);
-    }
-    if (progress && options.bounces >= 0) progress->finish();
-    report.jacobi_bounces = jacobi;
-  }
+  add_jacobi_bounces(h, rho, d, k, jacobi, t, options, progress, report);
   if (options.bounces >= 0) {
-    Block r(n);
-    apply_system(h, rho, t, k, r.data());
-    for (std::size_t e = 0; e < n; ++e) r[e] = d[e] - r[e];
-    const std::vector<double> rr = dot_columns(r.data(), r.data(), rows, k);
-    const std::vector<double> bb = dot_columns(d, d, rows, k);
-    double bmax = 0;
-    for (double b : bb) bmax = std::max(bmax, std::sqrt(b));
-    for (int c = 0; c < k; ++c) {
-      const double scale = std::max(std::sqrt(bb[c]), 1e-3 * bmax);
-      if (scale > 0)
-        report.relative_residual = std::max(report.relative_residual, std::sqrt(rr[c]) / scale);
-    }
-    report.converged = report.relative_residual <= options.tolerance;
+    report_bounce_residual(h, rho, d, k, t, options.tolerance, report);
     return report;
   }
 
@@ -159,108 +331,21 @@ SolveReport solve_interreflection(const SparseTransferMatrix& h, const std::vect
   for (int c = 0; c < k; ++c) scale[c] = std::max(std::sqrt(bb[c]), 1e-3 * bmax);
   if (bmax == 0) return report;
 
-  Block r(n), rhat(n), p(n), v(n), s(n), tt(n);
-  std::vector<char> active(k, 1);
-  std::vector<double> rel(k, 0.0);
-  const double tol = options.tolerance;
+  ColumnBiCgStab solver(h, rho, d, k, t, std::move(scale), options.tolerance);
   int iterations = 0;
   if (progress) progress->start("solve iterations", 0);
-
-  auto true_residual = [&]() {
-    apply_system(h, rho, t, k, r.data());
-    for_each_entry(rows, k, [&](std::size_t e, int) { r[e] = d[e] - r[e]; });
-    const std::vector<double> rr = dot_columns(r.data(), r.data(), rows, k);
-    bool all = true;
-    for (int c = 0; c < k; ++c) {
-      rel[c] = std::sqrt(rr[c]) / scale[c];
-      active[c] = rel[c] > tol;
-      all = all && !active[c];
-    }
-    return all;
-  };
-
-  bool done = true_residual();
-  // BiCGSTAB is not monotone and can diverge on stiff non-normal systems (eigenvalues of ρH
-  // spread around a circle of radius ~ρ): keep the iterate with the smallest true residual, so
-  // an unconverged solve never returns worse than its Jacobi warm-up.
-  Block best_t(t, t + n);
-  std::vector<double> best_rel = rel;
-  auto keep_best = [&]() {
-    if (*std::max_element(rel.begin(), rel.end()) <
-        *std::max_element(best_rel.begin(), best_rel.end())) {
-      std::copy(t, t + n, best_t.begin());
-      best_rel = rel;
-    }
-  };
+  bool done = solver.true_residual();
+  solver.remember_as_best();
   while (!done && iterations < options.max_iterations) {
-    // (Re)start: r̂ = r, p = 0, v = 0, ρ = α = ω = 1.
-    rhat = r;
-    std::fill(p.begin(), p.end(), 0.0);
-    std::fill(v.begin(), v.end(), 0.0);
-    std::vector<double> rho_old(k, 1.0), alpha(k, 1.0), omega(k, 1.0);
-    bool restart = false;
-    while (!restart && iterations < options.max_iterations) {
-      ++iterations;
-      const std::vector<double> rho_new = dot_columns(rhat.data(), r.data(), rows, k);
-      const std::vector<double> rhat2 = dot_columns(rhat.data(), rhat.data(), rows, k);
-      const std::vector<double> r2 = dot_columns(r.data(), r.data(), rows, k);
-      std::vector<double> beta(k, 0.0);
-      for (int c = 0; c < k; ++c) {
-        if (!active[c]) continue;
-        // Breakdown: r̂ nearly orthogonal to r.
-        if (std::fabs(rho_new[c]) <= 1e-14 * std::sqrt(rhat2[c] * r2[c])) restart = true;
-        beta[c] = (rho_new[c] / rho_old[c]) * (alpha[c] / omega[c]);
-      }
-      if (restart) break;
-      for_each_entry(rows, k, [&](std::size_t e, int c) {
-        if (active[c]) p[e] = r[e] + beta[c] * (p[e] - omega[c] * v[e]);
-      });
-      apply_system(h, rho, p.data(), k, v.data());
-      const std::vector<double> rv = dot_columns(rhat.data(), v.data(), rows, k);
-      for (int c = 0; c < k; ++c) {
-        if (!active[c]) continue;
-        if (rv[c] == 0.0) restart = true;
-        alpha[c] = rv[c] != 0.0 ? rho_new[c] / rv[c] : 0.0;
-      }
-      for_each_entry(rows, k, [&](std::size_t e, int c) {
-        if (active[c]) s[e] = r[e] - alpha[c] * v[e];
-      });
-      apply_system(h, rho, s.data(), k, tt.data());
-      const std::vector<double> ts = dot_columns(tt.data(), s.data(), rows, k);
-      const std::vector<double> t2 = dot_columns(tt.data(), tt.data(), rows, k);
-      for (int c = 0; c < k; ++c) {
-        if (!active[c]) continue;
-        omega[c] = t2[c] > 0 ? ts[c] / t2[c] : 0.0;
-        if (omega[c] == 0.0) restart = true;
-      }
-      for_each_entry(rows, k, [&](std::size_t e, int c) {
-        if (!active[c]) return;
-        t[e] += alpha[c] * p[e] + omega[c] * s[e];
-        r[e] = s[e] - omega[c] * tt[e];
-      });
-      rho_old = rho_new;
-      if (progress) progress->advance(1, 0);
-      // Recursive residual check; confirmed with the true residual (which may restart).
-      const std::vector<double> rr = dot_columns(r.data(), r.data(), rows, k);
-      bool all = true;
-      for (int c = 0; c < k; ++c) {
-        if (active[c] && std::sqrt(rr[c]) / scale[c] <= tol) active[c] = 0;
-        all = all && !active[c];
-      }
-      if (all || restart) break;
-    }
-    done = true_residual();
-    keep_best();
+    solver.run(options.max_iterations, &iterations, progress);
+    done = solver.true_residual();
+    solver.keep_best();
   }
-  if (!done && *std::max_element(best_rel.begin(), best_rel.end()) <
-                   *std::max_element(rel.begin(), rel.end())) {
-    std::copy(best_t.begin(), best_t.end(), t);
-    rel = best_rel;
-  }
+  if (!done) solver.restore_best_if_better();
   if (progress) progress->finish();
   report.krylov_iterations = iterations;
-  report.relative_residual = *std::max_element(rel.begin(), rel.end());
-  report.converged = report.relative_residual <= tol;
+  report.relative_residual = solver.max_relative_residual();
+  report.converged = report.relative_residual <= options.tolerance;
   return report;
 }
 

@@ -319,10 +319,21 @@ Status write_transfer_file(const std::string& path, const TransferData& data) {
 }
 
 namespace detail {
+namespace {
 
-Status parse_transfer_file(const void* bytes_in, std::size_t size, const std::string& name,
-                           ParsedTransferFile* out, bool allow_haar) {
-  const auto* b = static_cast<const unsigned char*>(bytes_in);
+// The header fields parse_transfer_file checks and reads from.
+struct HeaderFields {
+  uint64_t file_size = 0;
+  uint32_t kind = 0, order = 0, channels = 0, storage = 0, flags = 0;
+  uint64_t v = 0;  // vertex count
+  uint64_t primitive_count = 0;
+  bool haar = false;
+  std::array<uint64_t, kSectionCount> offsets{}, sizes{};
+};
+
+// The container: header size, magic, version, file size against the buffer, checksum.
+Status check_container(const unsigned char* b, std::size_t size, const std::string& name,
+                       HeaderFields* h) {
   if (b == nullptr && size != 0) return fail(name, "null buffer");
   if (size < kHeaderSize) {
     return fail(name, "truncated: " + std::to_string(size) + " bytes, less than the " +
@@ -356,18 +367,26 @@ Status parse_transfer_file(const void* bytes_in, std::size_t size, const std::st
                   stored_crc, actual_crc);
     return fail(name, text);
   }
+  h->file_size = file_size;
+  return Status::Ok();
+}
+
+// The fields of a checksummed header: kind (Haar only when allowed), order or cube size,
+// channels, storage, flags, reserved fields, vertex count; then the section table.
+Status read_header_fields(const unsigned char* b, const std::string& name, bool allow_haar,
+                          HeaderFields* h) {
   // The bytes are what the writer wrote; now check that the writer was consistent.
-  const uint32_t kind = load_u32(b + kOffKind);
-  const uint32_t order = load_u32(b + kOffOrder);
-  const uint32_t channels = load_u32(b + kOffChannels);
-  const uint32_t storage = load_u32(b + kOffStorage);
-  const uint32_t flags = load_u32(b + kOffFlags);
-  const uint64_t v = load_u64(b + kOffVertexCount);
-  const uint64_t primitive_count = load_u64(b + kOffPrimitiveCount);
+  const uint32_t kind = h->kind = load_u32(b + kOffKind);
+  const uint32_t order = h->order = load_u32(b + kOffOrder);
+  const uint32_t channels = h->channels = load_u32(b + kOffChannels);
+  const uint32_t storage = h->storage = load_u32(b + kOffStorage);
+  const uint32_t flags = h->flags = load_u32(b + kOffFlags);
+  const uint64_t v = h->v = load_u64(b + kOffVertexCount);
+  h->primitive_count = load_u64(b + kOffPrimitiveCount);
   if (kind > static_cast<uint32_t>(TransferKind::Haar)) {
     return fail(name, "unknown transfer kind " + std::to_string(kind));
   }
-  const bool haar = kind == static_cast<uint32_t>(TransferKind::Haar);
+  const bool haar = h->haar = kind == static_cast<uint32_t>(TransferKind::Haar);
   if (haar && !allow_haar) {
     return fail(name,
                 "holds Haar-wavelet transfer (kind 3, cube size " + std::to_string(order) +
@@ -397,20 +416,30 @@ Status parse_transfer_file(const void* bytes_in, std::size_t size, const std::st
     return fail(name, "vertex count " + std::to_string(v) + " exceeds " +
                           std::to_string(kMaxTransferVertices));
   }
-  const uint64_t k = uint64_t{order} * order;
-  // Expected section sizes (all products bounded: v < 2^32, k <= 4096).
-  std::array<uint64_t, kSectionCount> offsets{}, sizes{};
   for (int s = 0; s < kSectionCount; ++s) {
-    offsets[s] = load_u64(b + kOffSections + 16 * s);
-    sizes[s] = load_u64(b + kOffSections + 16 * s + 8);
+    h->offsets[s] = load_u64(b + kOffSections + 16 * s);
+    h->sizes[s] = load_u64(b + kOffSections + 16 * s + 8);
   }
+  return Status::Ok();
+}
+
+// Sections: sizes as the header implies, inside the file and aligned, not overlapping; the
+// primitive count fits the primitive table.
+Status check_sections(const std::string& name, const HeaderFields& h) {
+  const uint64_t v = h.v, file_size = h.file_size;
+  const auto& offsets = h.offsets;
+  const auto& sizes = h.sizes;
+  const uint64_t k = uint64_t{h.order} * h.order;
+  // Expected section sizes (all products bounded: v < 2^32, k <= 4096).
   uint64_t coefficient_bytes = 0;
-  if (!haar) blocked_coefficient_bytes(v, channels, k, storage == 1 ? 2 : 4, &coefficient_bytes);
-  const bool has_ao = flags & kFlagHasAo, has_bent = flags & kFlagHasBentNormals;
+  if (!h.haar) {
+    blocked_coefficient_bytes(v, h.channels, k, h.storage == 1 ? 2 : 4, &coefficient_bytes);
+  }
+  const bool has_ao = h.flags & kFlagHasAo, has_bent = h.flags & kFlagHasBentNormals;
   const std::array<uint64_t, kSectionCount> expected = {
       0, 12 * v, 12 * v, coefficient_bytes, has_ao ? 4 * v : 0, has_bent ? 12 * v : 0, 0};
   for (int s = 0; s < kSectionCount; ++s) {
-    if (s != kPrimitives && s != kMetadata && !(haar && s == kCoefficients) &&
+    if (s != kPrimitives && s != kMetadata && !(h.haar && s == kCoefficients) &&
         sizes[s] != expected[s]) {
       return fail(name, std::string(section_name(s)) + " section holds " +
                             std::to_string(sizes[s]) + " bytes, expected " +
@@ -443,82 +472,116 @@ Status parse_transfer_file(const void* bytes_in, std::size_t size, const std::st
     }
     previous_end = offsets[s] + sizes[s];
   }
-  if (primitive_count > sizes[kPrimitives] / kPrimitiveRecordSize) {
-    return fail(name, "primitive count " + std::to_string(primitive_count) +
+  if (h.primitive_count > sizes[kPrimitives] / kPrimitiveRecordSize) {
+    return fail(name, "primitive count " + std::to_string(h.primitive_count) +
                           " does not fit in the " + std::to_string(sizes[kPrimitives]) +
                           "-byte primitive table");
   }
+  return Status::Ok();
+}
+
+// The primitive table: ranges within the vertices, names within the table. May throw
+// std::bad_alloc.
+Status read_primitives(const unsigned char* b, const std::string& name, const HeaderFields& h,
+                       TransferData& d) {
+  const unsigned char* prim = b + h.offsets[kPrimitives];
+  const uint64_t table_size = h.primitive_count * kPrimitiveRecordSize;
+  const uint64_t section_size = h.sizes[kPrimitives], v = h.v;
+  d.primitives.resize(static_cast<std::size_t>(h.primitive_count));
+  for (std::size_t i = 0; i < d.primitives.size(); ++i) {
+    const unsigned char* r = prim + i * kPrimitiveRecordSize;
+    PrimitiveRange& p = d.primitives[i];
+    p.first_vertex = load_u64(r);
+    p.vertex_count = load_u64(r + 8);
+    const uint64_t name_offset = load_u64(r + 16), name_size = load_u64(r + 24);
+    if (name_offset < table_size || name_offset > section_size ||
+        name_size > section_size - name_offset) {
+      return fail(name,
+                  "name of primitive " + std::to_string(i) + " lies outside the primitive table");
+    }
+    if (p.first_vertex > v || p.vertex_count > v - p.first_vertex) {
+      return fail(name, "primitive " + std::to_string(i) + " covers vertices beyond the " +
+                            std::to_string(v) + " vertices");
+    }
+    p.name.assign(reinterpret_cast<const char*>(prim + name_offset),
+                  static_cast<std::size_t>(name_size));
+  }
+  return Status::Ok();
+}
+
+// Finite coefficients (padding included: it must be zero, which is finite). The Haar payload is
+// checked by its decoder (prt/haar_transfer_file.h).
+Status check_finite_coefficients(const std::string& name, const HeaderFields& h,
+                                 const ParsedTransferFile& out) {
+  if (h.haar) {
+  } else if (h.storage == 1) {
+    for (std::size_t i = 0; i < out.coefficient_bytes; i += 2) {
+      const unsigned exponent = out.coefficients[i + 1] & 0x7cu;  // high byte: s eeeee mm
+      if (exponent == 0x7cu) {
+        return fail(name, "a float16 coefficient is Inf or NaN");
+      }
+    }
+  } else {
+    for (std::size_t i = 0; i < out.coefficient_bytes; i += 4) {
+      float f;
+      std::memcpy(&f, out.coefficients + i, 4);
+      if (!std::isfinite(f)) return fail(name, "a coefficient is Inf or NaN");
+    }
+  }
+  return Status::Ok();
+}
+
+// The file's contents once its header and sections have been checked. May throw
+// std::bad_alloc or std::length_error.
+Status read_contents(const unsigned char* b, const std::string& name, const HeaderFields& h,
+                     ParsedTransferFile* out) {
+  TransferData& d = out->data;
+  d = TransferData{};
+  d.kind = static_cast<TransferKind>(h.kind);
+  d.order = h.order;
+  d.channels = h.channels;
+  d.storage = h.haar ? Precision::F32 : static_cast<Precision>(h.storage);
+  out->storage_code = h.storage;
+  d.albedo_folded = h.flags & kFlagAlbedoFolded;
+  d.vertex_count = h.v;
+  d.fingerprint = load_u64(b + kOffFingerprint);
+  if (Status s = read_primitives(b, name, h, d); !s.ok()) return s;
+  auto read_floats = [&](int s, std::vector<float>& dst) {
+    dst.resize(static_cast<std::size_t>(h.sizes[s] / 4));
+    if (!dst.empty()) std::memcpy(dst.data(), b + h.offsets[s], dst.size() * sizeof(float));
+  };
+  read_floats(kPositions, d.positions);
+  read_floats(kNormals, d.normals);
+  read_floats(kAo, d.ao);
+  read_floats(kBentNormals, d.bent_normals);
+  d.metadata_json.assign(reinterpret_cast<const char*>(b + h.offsets[kMetadata]),
+                         static_cast<std::size_t>(h.sizes[kMetadata]));
+  if (Status s = check_finite_vertex_arrays(name, d); !s.ok()) return s;
+  out->coefficients = b + h.offsets[kCoefficients];
+  out->coefficient_bytes = static_cast<std::size_t>(h.sizes[kCoefficients]);
+  if (Status s = check_finite_coefficients(name, h, *out); !s.ok()) return s;
+  if (d.fingerprint != geometry_fingerprint(d.positions.data(), static_cast<std::size_t>(h.v))) {
+    return fail(name, "stored fingerprint does not match the stored positions");
+  }
+  return Status::Ok();
+}
+
+}  // namespace
+
+Status parse_transfer_file(const void* bytes_in, std::size_t size, const std::string& name,
+                           ParsedTransferFile* out, bool allow_haar) {
+  const auto* b = static_cast<const unsigned char*>(bytes_in);
+  HeaderFields h;
+  if (Status s = check_container(b, size, name, &h); !s.ok()) return s;
+  if (Status s = read_header_fields(b, name, allow_haar, &h); !s.ok()) return s;
+  if (Status s = check_sections(name, h); !s.ok()) return s;
   try {
-    TransferData& d = out->data;
-    d = TransferData{};
-    d.kind = static_cast<TransferKind>(kind);
-    d.order = order;
-    d.channels = channels;
-    d.storage = haar ? Precision::F32 : static_cast<Precision>(storage);
-    out->storage_code = storage;
-    d.albedo_folded = flags & kFlagAlbedoFolded;
-    d.vertex_count = v;
-    d.fingerprint = load_u64(b + kOffFingerprint);
-    const unsigned char* prim = b + offsets[kPrimitives];
-    const uint64_t table_size = primitive_count * kPrimitiveRecordSize;
-    d.primitives.resize(static_cast<std::size_t>(primitive_count));
-    for (std::size_t i = 0; i < d.primitives.size(); ++i) {
-      const unsigned char* r = prim + i * kPrimitiveRecordSize;
-      PrimitiveRange& p = d.primitives[i];
-      p.first_vertex = load_u64(r);
-      p.vertex_count = load_u64(r + 8);
-      const uint64_t name_offset = load_u64(r + 16), name_size = load_u64(r + 24);
-      if (name_offset < table_size || name_offset > sizes[kPrimitives] ||
-          name_size > sizes[kPrimitives] - name_offset) {
-        return fail(name,
-                    "name of primitive " + std::to_string(i) + " lies outside the primitive table");
-      }
-      if (p.first_vertex > v || p.vertex_count > v - p.first_vertex) {
-        return fail(name, "primitive " + std::to_string(i) + " covers vertices beyond the " +
-                              std::to_string(v) + " vertices");
-      }
-      p.name.assign(reinterpret_cast<const char*>(prim + name_offset),
-                    static_cast<std::size_t>(name_size));
-    }
-    auto read_floats = [&](int s, std::vector<float>& dst) {
-      dst.resize(static_cast<std::size_t>(sizes[s] / 4));
-      if (!dst.empty()) std::memcpy(dst.data(), b + offsets[s], dst.size() * sizeof(float));
-    };
-    read_floats(kPositions, d.positions);
-    read_floats(kNormals, d.normals);
-    read_floats(kAo, d.ao);
-    read_floats(kBentNormals, d.bent_normals);
-    d.metadata_json.assign(reinterpret_cast<const char*>(b + offsets[kMetadata]),
-                           static_cast<std::size_t>(sizes[kMetadata]));
-    if (Status s = check_finite_vertex_arrays(name, d); !s.ok()) return s;
-    out->coefficients = b + offsets[kCoefficients];
-    out->coefficient_bytes = static_cast<std::size_t>(sizes[kCoefficients]);
-    // Finite coefficients (padding included: it must be zero, which is finite). The Haar
-    // payload is checked by its decoder (prt/haar_transfer_file.h).
-    if (haar) {
-    } else if (storage == 1) {
-      for (std::size_t i = 0; i < out->coefficient_bytes; i += 2) {
-        const unsigned exponent = out->coefficients[i + 1] & 0x7cu;  // high byte: s eeeee mm
-        if (exponent == 0x7cu) {
-          return fail(name, "a float16 coefficient is Inf or NaN");
-        }
-      }
-    } else {
-      for (std::size_t i = 0; i < out->coefficient_bytes; i += 4) {
-        float f;
-        std::memcpy(&f, out->coefficients + i, 4);
-        if (!std::isfinite(f)) return fail(name, "a coefficient is Inf or NaN");
-      }
-    }
-    if (d.fingerprint != geometry_fingerprint(d.positions.data(), static_cast<std::size_t>(v))) {
-      return fail(name, "stored fingerprint does not match the stored positions");
-    }
+    return read_contents(b, name, h, out);
   } catch (const std::bad_alloc&) {
     return fail(name, "out of memory while reading");
   } catch (const std::length_error&) {
     return fail(name, "out of memory while reading");
   }
-  return Status::Ok();
 }
 
 }  // namespace detail

@@ -197,32 +197,36 @@ bool segment_meets(const Box& b, double ax, double ay, double bx, double by) {
 // Text box of a 10-px label (DejaVu Sans averages ≈ 6 px per character at that size).
 constexpr double kLabelCharWidth = 6.0, kLabelHeight = 10.0;
 
-}  // namespace
+// The plot area in pixels and the axes mapping data onto it.
+struct PlotFrame {
+  double W, H;                      // the plot's size (the document may grow for the legend)
+  double left, right, top, bottom;  // the plot area
+  Axis ax, ay;
+};
 
-std::string render_svg(const PlotSpec& spec) {
-  const double W = spec.width, H = spec.height;
-  const double left = 86, right = W - 24, top = 48, bottom = H - 64;
+// The plot area and axis ranges that hold every point and reference line of `spec`.
+PlotFrame plot_frame(const PlotSpec& spec) {
+  PlotFrame f;
+  f.W = spec.width, f.H = spec.height;
+  f.left = 86, f.right = f.W - 24, f.top = 48, f.bottom = f.H - 64;
   std::vector<double> xs, ys;
   for (const PlotSeries& s : spec.series) {
     xs.insert(xs.end(), s.x.begin(), s.x.end());
     ys.insert(ys.end(), s.y.begin(), s.y.end());
   }
   for (const auto& r : spec.reference_lines) ys.push_back(r.first);
-  Axis ax, ay;
-  choose_axis_range(xs, spec.log_x, &ax.lo, &ax.hi);
-  choose_axis_range(ys, spec.log_y, &ay.lo, &ay.hi);
-  ax.px0 = left, ax.px1 = right, ax.log = spec.log_x;
-  ay.px0 = bottom, ay.px1 = top, ay.log = spec.log_y;
+  choose_axis_range(xs, spec.log_x, &f.ax.lo, &f.ax.hi);
+  choose_axis_range(ys, spec.log_y, &f.ay.lo, &f.ay.hi);
+  f.ax.px0 = f.left, f.ax.px1 = f.right, f.ax.log = spec.log_x;
+  f.ay.px0 = f.bottom, f.ay.px1 = f.top, f.ay.log = spec.log_y;
+  return f;
+}
 
-  // The legend's size (its place is chosen once the data are drawn).
-  int entries = 0;
-  std::size_t longest = 0;
-  for (const PlotSeries& s : spec.series)
-    if (!s.label.empty()) ++entries, longest = std::max(longest, s.label.size());
-  const double lw = 46 + 6.6 * static_cast<double>(longest), lh = 8 + 19.0 * entries;
-
-  std::ostringstream o;  // everything after the document header
-  o << "<text x='" << number(W / 2) << "' y='28' text-anchor='middle' font-size='17' "
+// Title, grid lines and ticks, the plot's border and the axis labels.
+void draw_frame(std::ostream& o, const PlotSpec& spec, const PlotFrame& f) {
+  const double left = f.left, right = f.right, top = f.top, bottom = f.bottom;
+  const Axis &ax = f.ax, &ay = f.ay;
+  o << "<text x='" << number(f.W / 2) << "' y='28' text-anchor='middle' font-size='17' "
     << "font-weight='bold'>" << escape_xml(spec.title) << "</text>\n";
   // Grid and ticks.
   for (double v : minor_ticks(ax.lo, ax.hi, ax.log))
@@ -247,35 +251,45 @@ std::string render_svg(const PlotSpec& spec) {
   }
   o << "<rect x='" << left << "' y='" << top << "' width='" << right - left << "' height='"
     << bottom - top << "' fill='none' stroke='#333333'/>\n";
-  o << "<text x='" << number((left + right) / 2) << "' y='" << H - 18
+  o << "<text x='" << number((left + right) / 2) << "' y='" << f.H - 18
     << "' text-anchor='middle' font-size='14'>" << escape_xml(spec.x_label) << "</text>\n";
   o << "<text transform='translate(20," << number((top + bottom) / 2)
     << ") rotate(-90)' text-anchor='middle' font-size='14'>" << escape_xml(spec.y_label)
     << "</text>\n";
-  // Reference lines.
+}
+
+void draw_reference_lines(std::ostream& o, const PlotSpec& spec, const PlotFrame& f) {
   for (const auto& r : spec.reference_lines) {
-    if (!ay.inside(r.first) || r.first < ay.lo || r.first > ay.hi) continue;
-    const double y = ay.map(r.first);
-    o << "<line x1='" << left << "' y1='" << number(y) << "' x2='" << right << "' y2='" << number(y)
-      << "' stroke='#888888' stroke-dasharray='2,4' stroke-width='1.2'/>\n"
-      << "<text x='" << right - 4 << "' y='" << number(y - 4) << "' text-anchor='end' "
+    if (!f.ay.inside(r.first) || r.first < f.ay.lo || r.first > f.ay.hi) continue;
+    const double y = f.ay.map(r.first);
+    o << "<line x1='" << f.left << "' y1='" << number(y) << "' x2='" << f.right << "' y2='"
+      << number(y) << "' stroke='#888888' stroke-dasharray='2,4' stroke-width='1.2'/>\n"
+      << "<text x='" << f.right - 4 << "' y='" << number(y - 4) << "' text-anchor='end' "
       << "font-size='11' fill='#666666'>" << escape_xml(r.second) << "</text>\n";
   }
-  // Series.
-  std::vector<std::vector<std::pair<double, double>>> drawn;  // pixel points per series
-  std::vector<Box> label_boxes;
-  struct PendingLabel {
-    double x, y;
-    std::string text;
-  };
+}
+
+// A point label waiting for its place (placed once every marker is drawn).
+struct PendingLabel {
+  double x, y;
+  std::string text;
+};
+
+// What drawing the series leaves for the labels and the legend to avoid.
+struct DrawnSeries {
+  std::vector<std::vector<std::pair<double, double>>> drawn;  // pixel points per polyline
   std::vector<PendingLabel> pending;
-  o << "<g>\n";
+};
+
+// Lines and markers of every series.
+DrawnSeries draw_series(std::ostream& o, const PlotSpec& spec, const PlotFrame& f) {
+  DrawnSeries d;
   for (const PlotSeries& s : spec.series) {
     std::vector<std::pair<double, double>> pts;
     std::vector<std::string> labels;
     for (std::size_t i = 0; i < s.x.size() && i < s.y.size(); ++i)
-      if (ax.inside(s.x[i]) && ay.inside(s.y[i])) {
-        pts.emplace_back(ax.map(s.x[i]), ay.map(s.y[i]));
+      if (f.ax.inside(s.x[i]) && f.ay.inside(s.y[i])) {
+        pts.emplace_back(f.ax.map(s.x[i]), f.ay.map(s.y[i]));
         labels.push_back(i < s.point_labels.size() ? s.point_labels[i] : std::string());
       }
     if (s.line && pts.size() > 1) {
@@ -286,15 +300,21 @@ std::string render_svg(const PlotSpec& spec) {
     }
     for (std::size_t i = 0; i < pts.size(); ++i) {
       o << marker_svg(s.marker, pts[i].first, pts[i].second, s.marker_size, s.color) << "\n";
-      if (!labels[i].empty()) pending.push_back({pts[i].first, pts[i].second, labels[i]});
+      if (!labels[i].empty()) d.pending.push_back({pts[i].first, pts[i].second, labels[i]});
     }
     if (s.line)
-      drawn.push_back(pts);
+      d.drawn.push_back(pts);
     else  // markers only: the points, but no segments between them
-      for (const auto& pt : pts) drawn.push_back({pt});
+      for (const auto& pt : pts) d.drawn.push_back({pt});
   }
-  // Point labels, after every marker is known (placement: see the header).
-  for (const PendingLabel& l : pending) {
+  return d;
+}
+
+// Point labels, after every marker is known (placement: see the header). Returns the boxes of
+// the labels placed.
+std::vector<Box> draw_point_labels(std::ostream& o, const DrawnSeries& d, const PlotFrame& f) {
+  std::vector<Box> label_boxes;
+  for (const PendingLabel& l : d.pending) {
     const double px = l.x, py = l.y;
     const double w = kLabelCharWidth * static_cast<double>(l.text.size());
     const Box candidates[4] = {{px + 7, py - 6 - kLabelHeight, px + 7 + w, py - 4},
@@ -306,11 +326,11 @@ std::string render_svg(const PlotSpec& spec) {
     for (int pass = 0; pass < 2 && pick < 0; ++pass)
       for (int c = 0; c < 4 && pick < 0; ++c) {
         const Box& b = candidates[c];
-        bool free = b.x0 >= left && b.x1 <= right && b.y0 >= top && b.y1 <= bottom;
+        bool free = b.x0 >= f.left && b.x1 <= f.right && b.y0 >= f.top && b.y1 <= f.bottom;
         for (const Box& placed : label_boxes) free = free && !b.overlaps(placed);
         const Box grown{b.x0 - 3, b.y0 - 3, b.x1 + 3, b.y1 + 3};  // marker radius
         if (pass == 0)
-          for (const auto& series_pts : drawn)
+          for (const auto& series_pts : d.drawn)
             for (const auto& [x, y] : series_pts) free = free && !grown.contains(x, y);
         if (free) pick = c;
       }
@@ -321,60 +341,89 @@ std::string render_svg(const PlotSpec& spec) {
       << (pick < 2 ? "" : " text-anchor='end'") << " font-size='10' fill='#444444'>"
       << escape_xml(l.text) << "</text>\n";
   }
-  o << "</g>\n";
-  // Legend: in the corner the spec asks for, or (Auto) the first free corner, else outside.
-  double document_width = W;
-  if (entries > 0) {
-    const auto corner_box = [&](LegendCorner c) {
-      const bool at_left = c == LegendCorner::BottomLeft || c == LegendCorner::TopLeft;
-      const bool at_bottom = c == LegendCorner::BottomLeft || c == LegendCorner::BottomRight;
-      const double x0 = at_left ? left + 8 : right - lw - 8;
-      const double y0 = at_bottom ? bottom - lh - 8 : top + 8;
-      return Box{x0, y0, x0 + lw, y0 + lh};
-    };
-    const auto covers_nothing = [&](const Box& b) {
-      for (const auto& pts : drawn) {
-        for (const auto& [x, y] : pts)
-          if (Box{b.x0 - 5, b.y0 - 5, b.x1 + 5, b.y1 + 5}.contains(x, y)) return false;
-        for (std::size_t i = 1; i < pts.size(); ++i)
-          if (segment_meets(b, pts[i - 1].first, pts[i - 1].second, pts[i].first, pts[i].second))
-            return false;
+  return label_boxes;
+}
+
+// The legend's box: in the corner the spec asks for, or (Auto) the first corner that covers no
+// point, segment or label, else outside on the right (*outside).
+Box legend_box(const PlotSpec& spec, const PlotFrame& f, double lw, double lh, const DrawnSeries& d,
+               const std::vector<Box>& label_boxes, bool* outside) {
+  const auto corner_box = [&](LegendCorner c) {
+    const bool at_left = c == LegendCorner::BottomLeft || c == LegendCorner::TopLeft;
+    const bool at_bottom = c == LegendCorner::BottomLeft || c == LegendCorner::BottomRight;
+    const double x0 = at_left ? f.left + 8 : f.right - lw - 8;
+    const double y0 = at_bottom ? f.bottom - lh - 8 : f.top + 8;
+    return Box{x0, y0, x0 + lw, y0 + lh};
+  };
+  const auto covers_nothing = [&](const Box& b) {
+    for (const auto& pts : d.drawn) {
+      for (const auto& [x, y] : pts)
+        if (Box{b.x0 - 5, b.y0 - 5, b.x1 + 5, b.y1 + 5}.contains(x, y)) return false;
+      for (std::size_t i = 1; i < pts.size(); ++i)
+        if (segment_meets(b, pts[i - 1].first, pts[i - 1].second, pts[i].first, pts[i].second))
+          return false;
+    }
+    for (const Box& l : label_boxes)
+      if (b.overlaps(l)) return false;
+    return true;
+  };
+  LegendCorner where = spec.legend;
+  if (where == LegendCorner::Auto) {
+    where = LegendCorner::OutsideRight;
+    for (LegendCorner c : {LegendCorner::TopRight, LegendCorner::TopLeft, LegendCorner::BottomRight,
+                           LegendCorner::BottomLeft})
+      if (covers_nothing(corner_box(c))) {
+        where = c;
+        break;
       }
-      for (const Box& l : label_boxes)
-        if (b.overlaps(l)) return false;
-      return true;
-    };
-    LegendCorner where = spec.legend;
-    if (where == LegendCorner::Auto) {
-      where = LegendCorner::OutsideRight;
-      for (LegendCorner c : {LegendCorner::TopRight, LegendCorner::TopLeft,
-                             LegendCorner::BottomRight, LegendCorner::BottomLeft})
-        if (covers_nothing(corner_box(c))) {
-          where = c;
-          break;
-        }
-    }
-    Box box = corner_box(where);
-    if (where == LegendCorner::OutsideRight) {
-      box = Box{right + 16, top, right + 16 + lw, top + lh};
-      document_width = std::ceil(box.x1 + 12);
-    }
-    const double lx = box.x0, ly = box.y0;
-    o << "<rect x='" << number(lx) << "' y='" << number(ly) << "' width='" << number(lw)
-      << "' height='" << number(lh) << "' fill='white' fill-opacity='0.9' stroke='#999999'/>\n";
-    int row = 0;
-    for (const PlotSeries& s : spec.series) {
-      if (s.label.empty()) continue;
-      const double y = ly + 14 + 19.0 * row++;
-      if (s.line)
-        o << "<line x1='" << number(lx + 6) << "' y1='" << number(y) << "' x2='" << number(lx + 34)
-          << "' y2='" << number(y) << "' stroke='" << s.color << "' stroke-width='" << s.line_width
-          << "'" << (s.dashed ? " stroke-dasharray='7,5'" : "") << "/>\n";
-      o << marker_svg(s.marker, lx + 20, y, s.marker_size, s.color) << "\n";
-      o << "<text x='" << number(lx + 40) << "' y='" << number(y + 4) << "' font-size='12'>"
-        << escape_xml(s.label) << "</text>\n";
-    }
   }
+  *outside = where == LegendCorner::OutsideRight;
+  if (*outside) return Box{f.right + 16, f.top, f.right + 16 + lw, f.top + lh};
+  return corner_box(where);
+}
+
+// The legend (when any series has a label). Returns the document's width: the plot's, or wider
+// when the legend stands outside on the right.
+double draw_legend(std::ostream& o, const PlotSpec& spec, const PlotFrame& f, const DrawnSeries& d,
+                   const std::vector<Box>& label_boxes) {
+  int entries = 0;
+  std::size_t longest = 0;
+  for (const PlotSeries& s : spec.series)
+    if (!s.label.empty()) ++entries, longest = std::max(longest, s.label.size());
+  if (entries == 0) return f.W;
+  const double lw = 46 + 6.6 * static_cast<double>(longest), lh = 8 + 19.0 * entries;
+  bool outside = false;
+  const Box box = legend_box(spec, f, lw, lh, d, label_boxes, &outside);
+  const double lx = box.x0, ly = box.y0;
+  o << "<rect x='" << number(lx) << "' y='" << number(ly) << "' width='" << number(lw)
+    << "' height='" << number(lh) << "' fill='white' fill-opacity='0.9' stroke='#999999'/>\n";
+  int row = 0;
+  for (const PlotSeries& s : spec.series) {
+    if (s.label.empty()) continue;
+    const double y = ly + 14 + 19.0 * row++;
+    if (s.line)
+      o << "<line x1='" << number(lx + 6) << "' y1='" << number(y) << "' x2='" << number(lx + 34)
+        << "' y2='" << number(y) << "' stroke='" << s.color << "' stroke-width='" << s.line_width
+        << "'" << (s.dashed ? " stroke-dasharray='7,5'" : "") << "/>\n";
+    o << marker_svg(s.marker, lx + 20, y, s.marker_size, s.color) << "\n";
+    o << "<text x='" << number(lx + 40) << "' y='" << number(y + 4) << "' font-size='12'>"
+      << escape_xml(s.label) << "</text>\n";
+  }
+  return outside ? std::ceil(box.x1 + 12) : f.W;
+}
+
+}  // namespace
+
+std::string render_svg(const PlotSpec& spec) {
+  const PlotFrame frame = plot_frame(spec);
+  std::ostringstream o;  // everything after the document header
+  draw_frame(o, spec, frame);
+  draw_reference_lines(o, spec, frame);
+  o << "<g>\n";
+  const DrawnSeries drawn = draw_series(o, spec, frame);
+  const std::vector<Box> label_boxes = draw_point_labels(o, drawn, frame);
+  o << "</g>\n";
+  const double document_width = draw_legend(o, spec, frame, drawn, label_boxes);
   std::ostringstream doc;
   doc << "<?xml version='1.0' encoding='UTF-8'?>\n"
       << "<svg xmlns='http://www.w3.org/2000/svg' width='" << document_width << "' height='"

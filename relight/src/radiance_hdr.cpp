@@ -110,13 +110,11 @@ bool has_radiance_magic(const unsigned char* data, std::size_t size) noexcept {
   return size >= 2 && data[0] == '#' && data[1] == '?';
 }
 
-FloatImage decode_radiance_hdr(const unsigned char* data, std::size_t size, const std::string& name,
-                               std::size_t max_texels) {
-  if (!has_radiance_magic(data, size))
-    fail(name, "not a Radiance RGBE file (it does not start with \"#?\")");
-  const std::string_view text(reinterpret_cast<const char*>(data), size);
+namespace {
 
-  // --- header ---
+// The header after the "#?" line, up to the blank line that ends it: it must declare
+// FORMAT=32-bit_rle_rgbe. Returns the position after it.
+std::size_t read_header(std::string_view text, const std::string& name) {
   std::size_t pos = 0;
   std::string_view line;
   if (!next_line(text, &pos, &line)) fail(name, "truncated header (the first line never ends)");
@@ -136,16 +134,30 @@ FloatImage decode_radiance_hdr(const unsigned char* data, std::size_t size, cons
     }
   }
   if (!format_seen) fail(name, "the header has no FORMAT=32-bit_rle_rgbe line");
+  return pos;
+}
 
-  // --- resolution ---
-  if (!next_line(text, &pos, &line)) fail(name, "truncated: no resolution line after the header");
+// The resolution line: scanlines run along `minor`, one after another along `major`.
+struct Resolution {
   Axis major, minor;
+  std::uint32_t width = 0, height = 0;
+};
+
+// Reads the resolution line at *pos (advancing it) and checks the size against max_texels and
+// against the bytes left.
+Resolution read_resolution(std::string_view text, std::size_t* pos, const std::string& name,
+                           std::size_t max_texels) {
+  const std::size_t size = text.size();
+  std::string_view line;
+  if (!next_line(text, pos, &line)) fail(name, "truncated: no resolution line after the header");
+  Resolution r;
+  Axis &major = r.major, &minor = r.minor;
   std::size_t at = 0;
   if (!parse_axis(line, &at, &major) || !parse_axis(line, &at, &minor) ||
       !trim_right(line.substr(at)).empty() || major.letter == minor.letter)
     fail(name, "bad resolution line " + quoted(line) + " (expected e.g. \"-Y 512 +X 1024\")");
-  const std::uint32_t width = major.letter == 'X' ? major.size : minor.size;
-  const std::uint32_t height = major.letter == 'Y' ? major.size : minor.size;
+  const std::uint32_t width = r.width = major.letter == 'X' ? major.size : minor.size;
+  const std::uint32_t height = r.height = major.letter == 'Y' ? major.size : minor.size;
   if (width == 0 || height == 0)
     fail(name, "the image has zero size (" + size_text(width, height) + ")");
   const std::uint64_t texels = std::uint64_t{width} * height;
@@ -154,117 +166,165 @@ FloatImage decode_radiance_hdr(const unsigned char* data, std::size_t size, cons
                    " texels)");
   const std::uint32_t scanlines = major.size, length = minor.size;
   const std::uint64_t needed = std::uint64_t{scanlines} * min_scanline_bytes(length);
-  if (size - pos < needed)
+  if (size - *pos < needed)
     fail(name, "truncated: " + size_text(width, height) + " pixels need at least " +
-                   std::to_string(needed) + " bytes, the file has " + std::to_string(size - pos) +
+                   std::to_string(needed) + " bytes, the file has " + std::to_string(size - *pos) +
                    " after the header");
+  return r;
+}
+
+// Pixel i of scanline s goes to pixels[(first_row + s·row_per_scanline)·w·3 +
+// (first_col + s·col_per_scanline)·3 + i·step] (upright: row 0 at the top).
+struct ScanlinePlacement {
+  std::ptrdiff_t step = 0;
+  std::ptrdiff_t first_row = 0, first_col = 0, row_per_scanline = 0, col_per_scanline = 0;
+};
+
+ScanlinePlacement scanline_placement(const Resolution& r) {
+  const std::ptrdiff_t w = r.width, h = r.height;
+  ScanlinePlacement pl;
+  if (r.major.letter == 'Y') {  // scanlines are rows: "-Y" from the top, "+Y" from the bottom
+    pl.step = r.minor.increasing ? 3 : -3;
+    pl.first_row = r.major.increasing ? h - 1 : 0;
+    pl.row_per_scanline = r.major.increasing ? -1 : 1;
+    pl.first_col = r.minor.increasing ? 0 : w - 1;
+  } else {  // scanlines are columns: "+X" from the left, "-X" from the right
+    pl.step = r.minor.increasing ? -3 * w : 3 * w;
+    pl.first_col = r.major.increasing ? 0 : w - 1;
+    pl.col_per_scanline = r.major.increasing ? 1 : -1;
+    pl.first_row = r.minor.increasing ? h - 1 : 0;
+  }
+  return pl;
+}
+
+// Throws "NAME: scanline S of N: problem".
+struct ScanlineError {
+  const std::string& name;
+  std::uint32_t s, scanlines;
+  [[noreturn]] void operator()(const std::string& problem) const {
+    fail(name,
+         "scanline " + std::to_string(s + 1) + " of " + std::to_string(scanlines) + ": " + problem);
+  }
+};
+
+// A new-style RLE scanline at p (its 4-byte header checked and skipped) into the R, G, B, E
+// planes; returns the position after it.
+const unsigned char* decode_rle_scanline(const unsigned char* p, const unsigned char* end,
+                                         std::uint32_t length, unsigned char* planes,
+                                         const ScanlineError& bad) {
+  const std::uint32_t encoded = (std::uint32_t{p[2]} << 8) | p[3];
+  if (encoded != length)
+    bad("RLE length " + std::to_string(encoded) + " differs from the scanline length " +
+        std::to_string(length));
+  p += 4;
+  for (std::size_t c = 0; c < 4; ++c) {
+    unsigned char* plane = &planes[c * length];
+    std::uint32_t filled = 0;
+    while (filled < length) {
+      if (p == end) bad("the data ends inside the scanline");
+      const std::uint32_t code = *p++;
+      if (code > 128) {
+        const std::uint32_t run = code - 128;
+        if (run > length - filled)
+          bad("an RLE run of " + std::to_string(run) + " overflows the scanline");
+        if (p == end) bad("the data ends inside the scanline");
+        std::memset(plane + filled, *p++, run);
+        filled += run;
+      } else {
+        if (code == 0) bad("a zero-length RLE literal");
+        if (code > length - filled)
+          bad("an RLE literal of " + std::to_string(code) + " overflows the scanline");
+        if (static_cast<std::uint64_t>(end - p) < code) bad("the data ends inside the scanline");
+        std::memcpy(plane + filled, p, code);
+        p += code;
+        filled += code;
+      }
+    }
+  }
+  return p;
+}
+
+// A scanline of flat pixels, with old-style repeat records (1, 1, 1, n), into the R, G, B, E
+// planes; returns the position after it.
+const unsigned char* decode_flat_scanline(const unsigned char* p, const unsigned char* end,
+                                          std::uint32_t length, unsigned char* planes,
+                                          const ScanlineError& bad) {
+  std::uint32_t filled = 0;
+  int shift = 0;
+  while (filled < length) {
+    if (end - p < 4) bad("the data ends inside the scanline");
+    if (p[0] == 1 && p[1] == 1 && p[2] == 1) {
+      if (filled == 0) bad("an old-style RLE repeat with no pixel before it");
+      const std::uint64_t count = std::uint64_t{p[3]} << shift;  // shift <= 32
+      if (count > length - filled)
+        bad("an old-style RLE repeat of " + std::to_string(count) +
+            " pixels overflows the scanline");
+      for (std::size_t c = 0; c < 4; ++c) {
+        unsigned char* plane = &planes[c * length];
+        std::memset(plane + filled, plane[filled - 1], static_cast<std::size_t>(count));
+      }
+      filled += static_cast<std::uint32_t>(count);
+      shift = std::min(shift + 8, 32);
+    } else {
+      for (std::size_t c = 0; c < 4; ++c) planes[c * length + filled] = p[c];
+      ++filled;
+      shift = 0;
+    }
+    p += 4;
+  }
+  return p;
+}
+
+// Scanline s's R, G, B, E planes → float pixels of the image, m · 2^(e − 136).
+void store_scanline(const unsigned char* planes, std::uint32_t length, std::uint32_t s,
+                    const ScanlinePlacement& pl, FloatImage& image) {
+  const std::array<float, 256>& scale = exponent_scales();
+  const std::ptrdiff_t w = image.width;
+  const std::ptrdiff_t row = pl.first_row + pl.row_per_scanline * static_cast<std::ptrdiff_t>(s);
+  const std::ptrdiff_t col = pl.first_col + pl.col_per_scanline * static_cast<std::ptrdiff_t>(s);
+  float* const pixels = image.pixels.data();
+  std::ptrdiff_t index = (row * w + col) * 3;
+  const unsigned char* r = planes;
+  const unsigned char* g = r + length;
+  const unsigned char* b = g + length;
+  const unsigned char* e = b + length;
+  for (std::uint32_t i = 0; i < length; ++i, index += pl.step) {
+    float* out = pixels + index;
+    const float f = scale[e[i]];
+    out[0] = static_cast<float>(r[i]) * f;
+    out[1] = static_cast<float>(g[i]) * f;
+    out[2] = static_cast<float>(b[i]) * f;
+  }
+}
+
+}  // namespace
+
+FloatImage decode_radiance_hdr(const unsigned char* data, std::size_t size, const std::string& name,
+                               std::size_t max_texels) {
+  if (!has_radiance_magic(data, size))
+    fail(name, "not a Radiance RGBE file (it does not start with \"#?\")");
+  const std::string_view text(reinterpret_cast<const char*>(data), size);
+  std::size_t pos = read_header(text, name);
+  const Resolution res = read_resolution(text, &pos, name, max_texels);
 
   FloatImage image;
-  image.width = static_cast<int>(width);
-  image.height = static_cast<int>(height);
+  image.width = static_cast<int>(res.width);
+  image.height = static_cast<int>(res.height);
   image.channels = 3;
-  image.pixels.resize(static_cast<std::size_t>(texels) * 3);
+  image.pixels.resize(static_cast<std::size_t>(std::uint64_t{res.width} * res.height) * 3);
 
-  // Pixel i of scanline s goes to pixels[first(s) + i·step] (upright: row 0 at the top).
-  const std::ptrdiff_t w = width, h = height;
-  std::ptrdiff_t step;
-  std::ptrdiff_t first_row = 0, first_col = 0, row_per_scanline = 0, col_per_scanline = 0;
-  if (major.letter == 'Y') {  // scanlines are rows: "-Y" from the top, "+Y" from the bottom
-    step = minor.increasing ? 3 : -3;
-    first_row = major.increasing ? h - 1 : 0;
-    row_per_scanline = major.increasing ? -1 : 1;
-    first_col = minor.increasing ? 0 : w - 1;
-  } else {  // scanlines are columns: "+X" from the left, "-X" from the right
-    step = minor.increasing ? -3 * w : 3 * w;
-    first_col = major.increasing ? 0 : w - 1;
-    col_per_scanline = major.increasing ? 1 : -1;
-    first_row = minor.increasing ? h - 1 : 0;
-  }
-
-  const std::array<float, 256>& scale = exponent_scales();
+  const ScanlinePlacement placement = scanline_placement(res);
+  const std::uint32_t scanlines = res.major.size, length = res.minor.size;
   std::vector<unsigned char> planes(std::size_t{4} * length);  // R, G, B, E planes of a scanline
   const unsigned char* p = data + pos;
   const unsigned char* const end = data + size;
   for (std::uint32_t s = 0; s < scanlines; ++s) {
-    auto bad = [&](const std::string& problem) {
-      fail(name, "scanline " + std::to_string(s + 1) + " of " + std::to_string(scanlines) + ": " +
-                     problem);
-    };
+    const ScanlineError bad{name, s, scanlines};
     const bool new_rle = length >= 8 && length <= 0x7fff && end - p >= 4 && p[0] == 2 &&
                          p[1] == 2 && (p[2] & 0x80) == 0;
-    if (new_rle) {
-      const std::uint32_t encoded = (std::uint32_t{p[2]} << 8) | p[3];
-      if (encoded != length)
-        bad("RLE length " + std::to_string(encoded) + " differs from the scanline length " +
-            std::to_string(length));
-      p += 4;
-      for (std::size_t c = 0; c < 4; ++c) {
-        unsigned char* plane = &planes[c * length];
-        std::uint32_t filled = 0;
-        while (filled < length) {
-          if (p == end) bad("the data ends inside the scanline");
-          const std::uint32_t code = *p++;
-          if (code > 128) {
-            const std::uint32_t run = code - 128;
-            if (run > length - filled)
-              bad("an RLE run of " + std::to_string(run) + " overflows the scanline");
-            if (p == end) bad("the data ends inside the scanline");
-            std::memset(plane + filled, *p++, run);
-            filled += run;
-          } else {
-            if (code == 0) bad("a zero-length RLE literal");
-            if (code > length - filled)
-              bad("an RLE literal of " + std::to_string(code) + " overflows the scanline");
-            if (static_cast<std::uint64_t>(end - p) < code)
-              bad("the data ends inside the scanline");
-            std::memcpy(plane + filled, p, code);
-            p += code;
-            filled += code;
-          }
-        }
-      }
-    } else {
-      // Flat pixels, with old-style repeat records (1, 1, 1, n).
-      std::uint32_t filled = 0;
-      int shift = 0;
-      while (filled < length) {
-        if (end - p < 4) bad("the data ends inside the scanline");
-        if (p[0] == 1 && p[1] == 1 && p[2] == 1) {
-          if (filled == 0) bad("an old-style RLE repeat with no pixel before it");
-          const std::uint64_t count = std::uint64_t{p[3]} << shift;  // shift <= 32
-          if (count > length - filled)
-            bad("an old-style RLE repeat of " + std::to_string(count) +
-                " pixels overflows the scanline");
-          for (std::size_t c = 0; c < 4; ++c) {
-            unsigned char* plane = &planes[c * length];
-            std::memset(plane + filled, plane[filled - 1], static_cast<std::size_t>(count));
-          }
-          filled += static_cast<std::uint32_t>(count);
-          shift = std::min(shift + 8, 32);
-        } else {
-          for (std::size_t c = 0; c < 4; ++c) planes[c * length + filled] = p[c];
-          ++filled;
-          shift = 0;
-        }
-        p += 4;
-      }
-    }
-    // RGBE → float, m · 2^(e − 136).
-    const std::ptrdiff_t row = first_row + row_per_scanline * static_cast<std::ptrdiff_t>(s);
-    const std::ptrdiff_t col = first_col + col_per_scanline * static_cast<std::ptrdiff_t>(s);
-    float* const pixels = image.pixels.data();
-    std::ptrdiff_t index = (row * w + col) * 3;
-    const unsigned char* r = planes.data();
-    const unsigned char* g = r + length;
-    const unsigned char* b = g + length;
-    const unsigned char* e = b + length;
-    for (std::uint32_t i = 0; i < length; ++i, index += step) {
-      float* out = pixels + index;
-      const float f = scale[e[i]];
-      out[0] = static_cast<float>(r[i]) * f;
-      out[1] = static_cast<float>(g[i]) * f;
-      out[2] = static_cast<float>(b[i]) * f;
-    }
+    p = new_rle ? decode_rle_scanline(p, end, length, planes.data(), bad)
+                : decode_flat_scanline(p, end, length, planes.data(), bad);
+    store_scanline(planes.data(), length, s, placement, image);
   }
   return image;
 }
