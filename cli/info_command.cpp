@@ -1,20 +1,26 @@
-// `prt info FILE.prt [--json | --csv]`: describe a coefficient file.
-//   default  the header (kind, order, channels, precision, vertices, primitives, fingerprint,
-//            sections) and the metadata JSON, as text;
+// `prt info FILE.prt [--json | --csv]`: describe a coefficient file of any kind
+// (prt/coefficient_file.h).
+//   default  the header (kind, order or cube size, channels, precision, vertices, primitives,
+//            fingerprint, sections) and the metadata JSON, as text;
 //   --json   the same as one JSON object;
 //   --csv    one row per vertex: index, x, y, z, nx, ny, nz, [ao], [bx, by, bz], then the
-//            coefficients channel by channel, named c<channel>_<k> (k = l(l+1)+m).
+//            coefficients channel by channel: c<channel>_<k> for SH (k = l(l+1)+m), and for
+//            Haar the dense wavelet coefficients w<channel>_<i> (i = face·N² + q, zero where
+//            the file stores none).
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
 #include "command_registry.h"
+#include "prt/coefficient_file.h"
+#include "prt/haar_transform.h"
 #include "prt/transfer_data.h"
-#include "prt/transfer_file.h"
 #include "sh/basis.h"
 
 namespace prt::cli {
@@ -25,17 +31,42 @@ struct InfoArguments {
   bool json = false, csv = false;
 };
 
-nlohmann::json describe(const prt::TransferData& d, const std::string& path) {
+const char* precision_name(const prt::CoefficientFile& f) {
+  if (!f.haar) return f.data.storage == prt::Precision::F16 ? "f16" : "f32";
+  switch (f.haar->quantization) {
+    case prt::HaarQuantization::Bits8:
+      return "i8 (per-vertex step)";
+    case prt::HaarQuantization::Bits16:
+      return "i16 (per-vertex step)";
+    default:
+      return "f32";
+  }
+}
+
+uint64_t coefficients_per_channel(const prt::CoefficientFile& f) {
+  return f.haar ? 6ull * static_cast<uint64_t>(f.haar->size) * static_cast<uint64_t>(f.haar->size)
+                : f.data.coefficients_per_channel();
+}
+
+nlohmann::json describe(const prt::CoefficientFile& f, const std::string& path) {
+  const prt::TransferData& d = f.data;
   nlohmann::json j;
   j["file"] = path;
   std::error_code ec;
   const auto size = std::filesystem::file_size(path, ec);
   if (!ec) j["bytes"] = size;
   j["kind"] = prt::transfer_kind_name(d.kind);
-  j["order"] = d.order;
-  j["coefficients_per_channel"] = d.coefficients_per_channel();
+  if (f.haar) {
+    j["cube_size"] = f.haar->size;
+    j["stored_entries"] = f.haar->entry_count();
+    j["stored_bytes"] = f.haar->stored_bytes();
+    j["dense_bytes"] = f.haar->dense_bytes();
+  } else {
+    j["order"] = d.order;
+  }
+  j["coefficients_per_channel"] = coefficients_per_channel(f);
   j["channels"] = d.channels;
-  j["precision"] = d.storage == prt::Precision::F16 ? "f16" : "f32";
+  j["precision"] = precision_name(f);
   j["albedo_folded"] = d.albedo_folded;
   j["vertices"] = d.vertex_count;
   char fp[32];
@@ -51,7 +82,10 @@ nlohmann::json describe(const prt::TransferData& d, const std::string& path) {
     prims.push_back(
         {{"name", p.name}, {"first_vertex", p.first_vertex}, {"vertex_count", p.vertex_count}});
   j["primitives"] = prims;
-  j["sh_basis"] = prt::sh::kBasisConvention;
+  if (f.haar)
+    j["haar_basis"] = prt::kHaarBasisConvention;
+  else
+    j["sh_basis"] = prt::sh::kBasisConvention;
   if (!d.metadata_json.empty()) {
     nlohmann::json meta = nlohmann::json::parse(d.metadata_json, nullptr, false);
     j["metadata"] = meta.is_discarded() ? nlohmann::json(d.metadata_json) : meta;
@@ -59,14 +93,20 @@ nlohmann::json describe(const prt::TransferData& d, const std::string& path) {
   return j;
 }
 
-void print_text(const prt::TransferData& d, const nlohmann::json& j) {
+void print_text(const prt::CoefficientFile& f, const nlohmann::json& j) {
+  const prt::TransferData& d = f.data;
   std::printf("file          %s", j["file"].get<std::string>().c_str());
   if (j.contains("bytes")) std::printf(" (%llu bytes)", j["bytes"].get<unsigned long long>());
   std::printf("\nkind          %s\n", prt::transfer_kind_name(d.kind));
-  std::printf("order         %u (%u coefficients per channel)\n", d.order,
-              d.coefficients_per_channel());
+  if (f.haar)
+    std::printf("cube size     %d (%llu wavelet coefficients per channel, %llu stored entries)\n",
+                f.haar->size, static_cast<unsigned long long>(coefficients_per_channel(f)),
+                static_cast<unsigned long long>(f.haar->entry_count()));
+  else
+    std::printf("order         %u (%u coefficients per channel)\n", d.order,
+                d.coefficients_per_channel());
   std::printf("channels      %u\n", d.channels);
-  std::printf("precision     %s\n", d.storage == prt::Precision::F16 ? "f16" : "f32");
+  std::printf("precision     %s\n", precision_name(f));
   std::printf("albedo        %s\n",
               d.albedo_folded ? "folded in (T includes albedo/pi)" : "kept apart");
   std::printf("vertices      %llu\n", static_cast<unsigned long long>(d.vertex_count));
@@ -81,43 +121,72 @@ void print_text(const prt::TransferData& d, const nlohmann::json& j) {
   if (j.contains("metadata")) std::printf("metadata\n%s\n", j["metadata"].dump(2).c_str());
 }
 
-void print_csv(const prt::TransferData& d) {
-  const uint32_t K = d.coefficients_per_channel(), C = d.channels;
+// The dense coefficients of vertices [first, first + count), channel-major per vertex: SH rows
+// as stored, Haar rows expanded from the per-wavelet vertex lists (zero where none is stored).
+std::vector<float> dense_rows(const prt::CoefficientFile& f, uint64_t first, uint64_t count) {
+  const uint64_t K = coefficients_per_channel(f), C = f.data.channels;
+  if (!f.haar) {
+    const float* begin = &f.data.coefficients[first * C * K];
+    return std::vector<float>(begin, begin + count * C * K);
+  }
+  std::vector<float> rows(count * C * K, 0.f);
+  const prt::HaarTransfer& h = *f.haar;
+  for (uint64_t i = 0; i < K; ++i)
+    for (uint64_t e = h.offsets[i]; e < h.offsets[i + 1]; ++e) {
+      const uint64_t v = h.vertices[e];
+      if (v < first || v >= first + count) continue;
+      for (uint64_t c = 0; c < C; ++c)
+        rows[((v - first) * C + c) * K + i] = h.dequantized_value(e, static_cast<int>(c));
+    }
+  return rows;
+}
+
+void print_csv(const prt::CoefficientFile& f) {
+  const prt::TransferData& d = f.data;
+  const uint64_t K = coefficients_per_channel(f), C = d.channels;
   const bool ao = !d.ao.empty(), bent = !d.bent_normals.empty();
+  const char prefix = f.haar ? 'w' : 'c';
   std::printf("index,x,y,z,nx,ny,nz");
   if (ao) std::printf(",ao");
   if (bent) std::printf(",bx,by,bz");
-  for (uint32_t c = 0; c < C; ++c)
-    for (uint32_t k = 0; k < K; ++k) std::printf(",c%u_%u", c, k);
+  for (uint64_t c = 0; c < C; ++c)
+    for (uint64_t k = 0; k < K; ++k)
+      std::printf(",%c%llu_%llu", prefix, static_cast<unsigned long long>(c),
+                  static_cast<unsigned long long>(k));
   std::printf("\n");
-  for (uint64_t v = 0; v < d.vertex_count; ++v) {
-    std::printf("%llu", static_cast<unsigned long long>(v));
-    for (int a = 0; a < 3; ++a) std::printf(",%.9g", static_cast<double>(d.positions[3 * v + a]));
-    for (int a = 0; a < 3; ++a) std::printf(",%.9g", static_cast<double>(d.normals[3 * v + a]));
-    if (ao) std::printf(",%.9g", static_cast<double>(d.ao[v]));
-    if (bent)
-      for (int a = 0; a < 3; ++a)
-        std::printf(",%.9g", static_cast<double>(d.bent_normals[3 * v + a]));
-    const float* t = &d.coefficients[v * C * K];
-    for (uint32_t i = 0; i < C * K; ++i) std::printf(",%.9g", static_cast<double>(t[i]));
-    std::printf("\n");
+  constexpr uint64_t kChunk = 1024;  // vertices expanded at a time (Haar: one pass per chunk)
+  for (uint64_t first = 0; first < d.vertex_count; first += kChunk) {
+    const uint64_t count = std::min<uint64_t>(kChunk, d.vertex_count - first);
+    const std::vector<float> rows = dense_rows(f, first, count);
+    for (uint64_t v = first; v < first + count; ++v) {
+      std::printf("%llu", static_cast<unsigned long long>(v));
+      for (int a = 0; a < 3; ++a) std::printf(",%.9g", static_cast<double>(d.positions[3 * v + a]));
+      for (int a = 0; a < 3; ++a) std::printf(",%.9g", static_cast<double>(d.normals[3 * v + a]));
+      if (ao) std::printf(",%.9g", static_cast<double>(d.ao[v]));
+      if (bent)
+        for (int a = 0; a < 3; ++a)
+          std::printf(",%.9g", static_cast<double>(d.bent_normals[3 * v + a]));
+      const float* t = &rows[(v - first) * C * K];
+      for (uint64_t i = 0; i < C * K; ++i) std::printf(",%.9g", static_cast<double>(t[i]));
+      std::printf("\n");
+    }
   }
 }
 
 void run(const InfoArguments& args) {
   if (args.json && args.csv) throw CommandError("--json and --csv are exclusive");
-  prt::Result<prt::TransferData> read = prt::read_transfer_file(args.file);
+  prt::Result<prt::CoefficientFile> read = prt::read_coefficient_file(args.file);
   if (!read.ok()) throw CommandError(read.status().message());
-  const prt::TransferData& d = read.value();
+  const prt::CoefficientFile& f = read.value();
   if (args.csv) {
-    print_csv(d);
+    print_csv(f);
     return;
   }
-  const nlohmann::json j = describe(d, args.file);
+  const nlohmann::json j = describe(f, args.file);
   if (args.json)
     std::printf("%s\n", j.dump(2).c_str());
   else
-    print_text(d, j);
+    print_text(f, j);
 }
 
 void register_info(CLI::App& app) {

@@ -20,6 +20,7 @@
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>
 
+#include "prt/haar_transform.h"
 #include "relight/image_io.h"
 #include "sh/basis.h"
 #include "sh/constants.h"
@@ -363,4 +364,45 @@ TEST_CASE("cli: prt bake --auto says what it left out, and the file records it")
       run(prt_cli() + " bake " + scene + " -o " + bad.string() + " --auto --tolerance 2"),
       "tolerance");
   CHECK_FALSE(fs::exists(bad));
+}
+
+TEST_CASE("cli: prt info describes a Haar file, and its CSV holds every stored term") {
+  // One reader for every kind (prt/coefficient_file.h): a Haar bake is described with its cube
+  // size, and --csv expands the per-wavelet vertex lists into dense rows: with unquantised
+  // values (--haar-bits 32, every non-zero term kept) the non-zero cells are exactly the stored
+  // entries × channels.
+  const fs::path dir = scratch("info_haar");
+  const fs::path file = dir / "demo.prt";
+  const std::string scene = (fs::path(PRT_SOURCE_DIR) / "data" / "demo.glb").string();
+  RunResult baked = run(prt_cli() + " bake " + scene + " -o " + file.string() +
+                        " --basis haar --cube 8 --haar-bits 32 --quiet");
+  REQUIRE(baked.exit_code == 0);
+  RunResult json = run(prt_cli() + " info " + file.string() + " --json");
+  REQUIRE(json.exit_code == 0);
+  const nlohmann::json j = nlohmann::json::parse(json.out);
+  CHECK(j["kind"] == "haar");
+  CHECK(j["cube_size"] == 8);
+  CHECK(j["coefficients_per_channel"] == 384);
+  CHECK(j["haar_basis"] == prt::kHaarBasisConvention);
+  RunResult text = run(prt_cli() + " info " + file.string());
+  REQUIRE(text.exit_code == 0);
+  CHECK(text.out.find("cube size     8") != std::string::npos);
+  RunResult csv = run(prt_cli() + " info " + file.string() + " --csv");
+  REQUIRE(csv.exit_code == 0);
+  std::istringstream lines(csv.out);
+  std::string line;
+  std::getline(lines, line);
+  CHECK(line.find(",w0_0,") != std::string::npos);
+  const uint64_t channels = j["channels"].get<uint64_t>();
+  CHECK(line.find(",w" + std::to_string(channels - 1) + "_383") != std::string::npos);
+  uint64_t nonzero = 0, rows = 0;
+  while (std::getline(lines, line)) {
+    ++rows;
+    std::istringstream cells(line);
+    std::string cell;
+    for (int column = 0; std::getline(cells, cell, ','); ++column)
+      if (column >= 7 && std::stod(cell) != 0.0) ++nonzero;
+  }
+  CHECK(rows == j["vertices"].get<uint64_t>());
+  CHECK(nonzero == j["stored_entries"].get<uint64_t>() * channels);
 }

@@ -11,12 +11,15 @@
 
 #include <catch2/catch.hpp>
 
+#include "prt/coefficient_file.h"
 #include "prt/crc32c.h"
 #include "prt/haar_transfer_file.h"
 #include "prt/transfer_file.h"
 #include "support/test_data.h"
 
 namespace {
+
+namespace fs = std::filesystem;
 
 constexpr int kCube = 8;  // 384 wavelet indices: small, yet every level is present
 
@@ -226,4 +229,42 @@ TEST_CASE("Haar file: the writer validates and leaves nothing behind on error") 
   file.transfer.values_f32[0] = std::numeric_limits<float>::quiet_NaN();
   CHECK_THAT(prt::write_haar_transfer_file(path, file).message(), Catch::Contains("Inf or NaN"));
   CHECK_FALSE(std::filesystem::exists(path));
+}
+
+TEST_CASE("one reader opens every kind: read_coefficient_file gives SH and Haar files whole") {
+  const fs::path dir = prt::test::output_path("coefficient_file");
+  fs::create_directories(dir);
+  const prt::HaarTransferFile haar = make_file(7, 3, prt::HaarQuantization::Bits8, 11);
+  const std::string haar_path = (dir / "h.prt").string();
+  REQUIRE(prt::write_haar_transfer_file(haar_path, haar).ok());
+  prt::Result<prt::CoefficientFile> h = prt::read_coefficient_file(haar_path);
+  REQUIRE(h.ok());
+  REQUIRE(h->haar.has_value());
+  CHECK(h->data.kind == prt::TransferKind::Haar);
+  CHECK(h->data.order == static_cast<uint32_t>(kCube));
+  CHECK(h->data.positions == haar.info.positions);
+  CHECK(h->data.metadata_json == haar.info.metadata_json);
+  CHECK(h->haar->offsets == haar.transfer.offsets);
+  CHECK(h->haar->vertices == haar.transfer.vertices);
+  CHECK(h->haar->values_i8 == haar.transfer.values_i8);
+  CHECK(h->haar->vertex_step == haar.transfer.vertex_step);
+
+  prt::TransferData sh;
+  sh.order = 2;
+  sh.vertex_count = 1;
+  sh.positions = {0, 0, 0};
+  sh.normals = {0, 1, 0};
+  sh.coefficients = {1, 0.5f, 0, -0.25f};
+  const std::string sh_path = (dir / "s.prt").string();
+  REQUIRE(prt::write_transfer_file(sh_path, sh).ok());
+  prt::Result<prt::CoefficientFile> s = prt::read_coefficient_file(sh_path);
+  REQUIRE(s.ok());
+  CHECK_FALSE(s->haar.has_value());
+  CHECK(s->data.coefficients == sh.coefficients);
+
+  // Errors are those of the kind's own reader: one line naming the file.
+  prt::Result<prt::CoefficientFile> missing = prt::read_coefficient_file((dir / "no.prt").string());
+  REQUIRE_FALSE(missing.ok());
+  CHECK(missing.status().message() ==
+        prt::read_transfer_file((dir / "no.prt").string()).status().message());
 }

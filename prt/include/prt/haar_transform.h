@@ -32,6 +32,12 @@
 
 namespace prt {
 
+// The basis and index convention above, as every JSON output that describes Haar transfer
+// prints it.
+inline constexpr const char* kHaarBasisConvention =
+    "2D non-standard Haar wavelets per cube face (quadtree order, coarse to fine), index "
+    "i = face*N^2 + q, faces +X,-X,+Y,-Y,+Z,-Z, scene frame glTF (+Y up)";
+
 // Where a quadtree-ordered coefficient lives.
 struct HaarCoefficientInfo {
   int level = 0;         // j (0 for the scaling coefficient and the three coarsest details)
