@@ -29,7 +29,7 @@
 #include "prt/haar_relighter.h"
 #include "prt/haar_transform.h"
 #include "relight/image_io.h"
-#include "relight/plot_svg.h"
+#include "report/plot_svg.h"
 
 namespace {
 
@@ -144,7 +144,7 @@ int main(int argc, char** argv) {
                   s.mode, s.threshold, static_cast<long long>(s.top), bits, bpv, tpv,
                   100 * err[0][0], 100 * err[0][1], 100 * err[1][0], 100 * err[1][1]);
     }
-    prt::relight::write_text_file(out_dir + "/bytes_per_vertex.csv", csv);
+    prt::report::write_text_file(out_dir + "/bytes_per_vertex.csv", csv);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "haar_bytes_per_vertex: %s\n", e.what());
     return 1;

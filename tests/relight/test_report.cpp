@@ -16,12 +16,13 @@
 #include "bake/glb_writer.h"
 #include "bake/procedural_mesh.h"
 #include "relight/image_io.h"
-#include "relight/plot_svg.h"
-#include "relight/report.h"
-#include "relight/report_metrics.h"
+#include "report/plot_svg.h"
+#include "report/report.h"
+#include "report/report_metrics.h"
 #include "support/test_data.h"
 
 using namespace prt::relight;
+using namespace prt::report;
 
 TEST_CASE("vertex error statistics match hand-computed values") {
   // Reference |B_gt| = 1, 2 (two vertices, red only); B off by 0.1 and 0.4 (red) → e = 0.1, 0.4.

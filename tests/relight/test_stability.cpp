@@ -1,5 +1,5 @@
 // tests/relight/test_stability.cpp — the stability cases of `prt report --stability` as tests
-// (relight/src/stability_cases.h; quick sizes). Each case computes its own analytic or
+// (report/src/stability_cases.h; quick sizes). Each case computes its own analytic or
 // independent reference and pass criterion (stated in the case and in docs/STABILITY.md); the
 // tests require the case to pass and re-check the figures that matter, so a regression shows
 // which number moved.
@@ -13,11 +13,11 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "relight/stability_report.h"
+#include "report/stability_report.h"
 #include "stability_cases.h"
 #include "support/test_data.h"
 
-using namespace prt::relight::stability;
+using namespace prt::report::stability;
 
 namespace {
 
@@ -160,7 +160,7 @@ TEST_CASE("run_case turns exceptions and non-finite figures into failures", "[st
 TEST_CASE("run_stability_report writes stability.md and stability.json", "[stability]") {
   const std::filesystem::path dir = prt::test::output_path("stability_quick");
   std::filesystem::remove_all(dir);
-  const int failed = prt::relight::run_stability_report(dir.string(), true);
+  const int failed = prt::report::run_stability_report(dir.string(), true);
   CHECK(failed == 0);
   std::ifstream in(dir / "stability.json");
   REQUIRE(in);
@@ -185,5 +185,5 @@ TEST_CASE("run_stability_report writes stability.md and stability.json", "[stabi
 //   test_stability "[.full]"   (writes build/tests/output/stability_full/)
 TEST_CASE("Full stability report", "[.full]") {
   const std::filesystem::path dir = prt::test::output_path("stability_full");
-  CHECK(prt::relight::run_stability_report(dir.string(), false) == 0);
+  CHECK(prt::report::run_stability_report(dir.string(), false) == 0);
 }

@@ -1,7 +1,7 @@
 // bake/ground_truth.h — an independent reference for per-vertex exit radiance: Monte Carlo
 // integration against the actual environment map (not its SH projection), with visibility and
 // diffuse interreflection by path tracing. It shares no code with the SH or wavelet paths; the
-// report (relight/report.h) measures every PRT setting against it.
+// report (report/report.h) measures every PRT setting against it.
 //
 // Frame: glTF's (+Y up); map layouts and texel solid angles of sh/env_map.h; radiance in the
 // map's units. The map is taken as piecewise constant over texels (nearest texel, no filtering).
@@ -28,7 +28,7 @@
 // Standard error: every sample is an independent estimate of B_p (RGB); SE_p,c = the sample
 // standard deviation / √N. The summary statistic is the relative RMS standard error
 //     s = √(Σ_p Σ_c SE_p,c²) / √(Σ_p Σ_c B_p,c²),
-// the same RGB-norm RMS that relight/report.h uses for errors. refine() doubles the samples per
+// the same RGB-norm RMS that report/report.h uses for errors. refine() doubles the samples per
 // vertex until s ≤ target (or a sample cap), and says what it reached.
 // Determinism: the random numbers of sample s of vertex v come from hash(seed, v, s) only, so the
 // result is bit-identical for any thread count and any doubling schedule.

@@ -1,4 +1,4 @@
-// relight/src/stability_environment.cpp — stability cases on extreme environment maps: a sun
+// report/src/stability_environment.cpp — stability cases on extreme environment maps: a sun
 // 1e5–1e6 times the sky (ringing and negative lobes, per window), an all-black map, a single
 // bright texel, NaN/Inf/negative texels, and 1×1 .. 8192×4096 maps.
 //
@@ -25,7 +25,7 @@
 #include "sh/zonal.h"
 #include "stability_cases.h"
 
-namespace prt::relight::stability {
+namespace prt::report::stability {
 namespace {
 
 using sh::kPi;
@@ -399,4 +399,4 @@ CaseResult check_map_size(const CaseOptions&, int width, int height) {
       });
 }
 
-}  // namespace prt::relight::stability
+}  // namespace prt::report::stability

@@ -1,5 +1,5 @@
-// relight/src/report.cpp — `prt report` (see report.h).
-#include "relight/report.h"
+// report/src/report.cpp — `prt report` (see report.h).
+#include "report/report.h"
 
 #include <algorithm>
 #include <chrono>
@@ -31,14 +31,14 @@
 #include "relight/camera.h"
 #include "relight/haar_relight.h"
 #include "relight/image_io.h"
-#include "relight/plot_svg.h"
 #include "relight/relight_pipeline.h"
 #include "relight/renderer.h"
-#include "relight/report_metrics.h"
+#include "report/plot_svg.h"
+#include "report/report_metrics.h"
 #include "sh/basis.h"
 #include "sh/projection.h"
 
-namespace prt::relight {
+namespace prt::report {
 namespace {
 
 using Clock = std::chrono::steady_clock;
@@ -142,7 +142,8 @@ std::vector<float> relight(const prt::TransferData& data, prt::Precision precisi
   *seconds = INFINITY;
   for (int i = 0; i < repeats; ++i) {
     const auto t0 = Clock::now();
-    b = shade_all_vertices(*relighter, lighting, static_cast<std::size_t>(data.vertex_count));
+    b = relight::shade_all_vertices(*relighter, lighting,
+                                    static_cast<std::size_t>(data.vertex_count));
     *seconds = std::min(*seconds, since(t0));
   }
   return b;
@@ -288,7 +289,7 @@ struct ReportInputs {
 
   // Renders per-vertex RGB radiance with the report's camera: RGB floats per pixel.
   std::vector<float> render_radiance(const std::vector<float>& b) const {
-    return render(scene, caster, b, nullptr, kIdentityRotation, camera, ropt).rgb;
+    return relight::render(scene, caster, b, nullptr, relight::kIdentityRotation, camera, ropt).rgb;
   }
 
   bake::Scene scene;
@@ -296,21 +297,21 @@ struct ReportInputs {
   const sh::EnvMap env;
   bake::RayCaster caster;
   const std::size_t V;
-  RenderOptions ropt;
-  Camera camera;
+  relight::RenderOptions ropt;
+  relight::Camera camera;
   std::vector<uint8_t> mask;  // pixels fully covered by the scene
 };
 
 ReportInputs::ReportInputs(const ReportOptions& opt, const ReportLog& log)
     : scene(bake::load_scene(opt.scene_path)),
-      env(read_environment(opt.environment_path, opt.layout, &layout_note)),
+      env(relight::read_environment(opt.environment_path, opt.layout, &layout_note)),
       caster(scene),
       V(scene.vertex_count()) {
   log(opt.scene_path + ": " + std::to_string(V) + " vertices; " + opt.environment_path + ": " +
       layout_note);
   ropt.width = opt.image_width, ropt.height = opt.image_height, ropt.samples_per_axis = 2;
-  camera =
-      parse_camera("auto", scene, static_cast<float>(ropt.width) / static_cast<float>(ropt.height));
+  camera = relight::parse_camera("auto", scene,
+                                 static_cast<float>(ropt.width) / static_cast<float>(ropt.height));
   // Pixels fully covered by the scene: a rendering of radiance 1 everywhere is 1 there.
   const std::vector<float> ones = render_radiance(std::vector<float>(3 * V, 1.f));
   mask.resize(ones.size() / 3);
@@ -336,7 +337,7 @@ struct ReportState {
   const prt::ShLighting& lighting_for(int order) {
     auto it = lighting.find(order);
     if (it == lighting.end())
-      it = lighting.emplace(order, project_lighting(in.env, order, {})).first;
+      it = lighting.emplace(order, relight::project_lighting(in.env, order, {})).first;
     return it->second;
   }
   // The interreflected SH bake of a setting; shared between settings that differ only in
@@ -476,11 +477,11 @@ std::vector<float> measure_haar(ReportState& st, std::map<int, HaarBake>& haar_b
   m.file_bytes = hb.file_bytes;
   m.failure = hb.failure;
   if (hb.relighter) {
-    HaarLightingOptions lo;
+    relight::HaarLightingOptions lo;
     lo.terms = m.setting.terms;
     lo.linear = false;
     const prt::SparseLighting haar_lighting =
-        project_haar_lighting(st.in.env, m.setting.cube, kIdentityRotation, lo);
+        relight::project_haar_lighting(st.in.env, m.setting.cube, relight::kIdentityRotation, lo);
     b.assign(3 * st.in.V, 0.f);
     m.relight_seconds = INFINITY;
     for (int r = 0; r < 5; ++r) {
@@ -804,7 +805,7 @@ void write_results_csv(ReportState& st) {
   write_output(st, "results.csv", csv.str());
 }
 
-nlohmann::json error_definitions_json(const RenderOptions& ropt) {
+nlohmann::json error_definitions_json(const relight::RenderOptions& ropt) {
   return {{"relative_rms", "sqrt(sum_p |B_p - B_gt,p|^2) / sqrt(sum_p |B_gt,p|^2), |.| RGB norm"},
           {"p99_relative/max_relative",
            "per-vertex |B_p - B_gt,p| / max(|B_gt,p|, 0.05 * RMS_p |B_gt,p|): 99th percentile "
@@ -1420,4 +1421,4 @@ ReportResult run_report(const ReportOptions& opt) {
   return std::move(st.result);
 }
 
-}  // namespace prt::relight
+}  // namespace prt::report

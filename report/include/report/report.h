@@ -1,9 +1,9 @@
-// relight/report.h — `prt report`: error against run time for the PRT settings, measured against
+// report/report.h — `prt report`: error against run time for the PRT settings, measured against
 // the independent Monte Carlo ground truth of bake/ground_truth.h.
 //
 // Conventions: SH basis of sh/basis.h (real orthonormal, no Condon–Shortley phase,
 // k = l(l+1)+m); glTF frame (+Y up); radiance in the map's units; errors as defined in
-// relight/report_metrics.h (RGB-norm relative RMS over vertices, p99 and max of the floored
+// report/report_metrics.h (RGB-norm relative RMS over vertices, p99 and max of the floored
 // per-vertex relative error, relative RMS over the scene's pixels of a rendering).
 //
 // Sweep design: one axis at a time around a base setting (order 6, 1024 samples per vertex,
@@ -42,7 +42,7 @@
 #include "prt/transfer_data.h"
 #include "sh/env_map.h"
 
-namespace prt::relight {
+namespace prt::report {
 
 enum class ReportBasis { Sh, Haar };
 
@@ -130,4 +130,4 @@ std::vector<ReportAxis> report_axes(bool quick,
 // Runs everything and writes the files. Throws std::runtime_error on failure.
 ReportResult run_report(const ReportOptions& options);
 
-}  // namespace prt::relight
+}  // namespace prt::report

@@ -1,4 +1,4 @@
-// relight/src/stability_numerics.cpp — stability cases: SH evaluation at high order near and at
+// report/src/stability_numerics.cpp — stability cases: SH evaluation at high order near and at
 // the poles (double and float), and the orthogonality of high-order SH rotation matrices.
 //
 // Reference for evaluation: the normalised recurrence of P.-P. Sloan, "Efficient Spherical
@@ -17,7 +17,7 @@
 #include "sh/rotation.h"
 #include "stability_cases.h"
 
-namespace prt::relight::stability {
+namespace prt::report::stability {
 namespace {
 
 using sh::kPi;
@@ -217,4 +217,4 @@ CaseResult check_rotation_orthogonality(const CaseOptions& options) {
       });
 }
 
-}  // namespace prt::relight::stability
+}  // namespace prt::report::stability

@@ -1,4 +1,4 @@
-// relight/plot_svg.h — small self-contained SVG line/scatter plots for the report: axes with
+// report/plot_svg.h — small self-contained SVG line/scatter plots for the report: axes with
 // linear or logarithmic scales (decade ticks labelled 10^k with minor ticks at 2..9), axis
 // labels, a title, a legend, markers, lines (solid or dashed), and conversion to PNG with
 // rsvg-convert (Debian package librsvg2-bin) when it is installed.
@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-namespace prt::relight {
+namespace prt::report {
 
 enum class Marker { None, Circle, Square, Triangle, Diamond, Cross };
 
@@ -71,4 +71,4 @@ void write_text_file(const std::string& path, const std::string& text);
 bool convert_svg_to_png(const std::string& svg_path, const std::string& png_path, double zoom,
                         std::string* why);
 
-}  // namespace prt::relight
+}  // namespace prt::report

@@ -1,4 +1,4 @@
-// relight/src/stability_bake.cpp — stability cases of the baker: the spherical-cavity furnace at
+// report/src/stability_bake.cpp — stability cases of the baker: the spherical-cavity furnace at
 // albedo 0.9 .. 0.999 (stiff interreflection), a solver that must stop in bounded time, albedo
 // ≥ 1 refused, degenerate geometry, scenes at 1e-3 and 1e4 scale, a vertex inside a closed box,
 // and float16 overflow of very bright transfer.
@@ -29,7 +29,7 @@
 #include "sh/constants.h"
 #include "stability_cases.h"
 
-namespace prt::relight::stability {
+namespace prt::report::stability {
 namespace {
 
 using sh::kPi;
@@ -468,4 +468,4 @@ CaseResult check_half_overflow(const CaseOptions&) {
       });
 }
 
-}  // namespace prt::relight::stability
+}  // namespace prt::report::stability

@@ -1,6 +1,6 @@
-// relight/src/stability_report.cpp — runs the stability cases (stability_*.cpp) and writes
-// DIR/stability.md and DIR/stability.json (see relight/stability_report.h, docs/STABILITY.md).
-#include "relight/stability_report.h"
+// report/src/stability_report.cpp — runs the stability cases (stability_*.cpp) and writes
+// DIR/stability.md and DIR/stability.json (see report/stability_report.h, docs/STABILITY.md).
+#include "report/stability_report.h"
 
 #include <chrono>
 #include <cmath>
@@ -12,11 +12,11 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "relight/plot_svg.h"
+#include "report/plot_svg.h"
 #include "sh/basis.h"
 #include "stability_cases.h"
 
-namespace prt::relight::stability {
+namespace prt::report::stability {
 
 double CaseResult::number(const std::string& key) const {
   for (const auto& [k, v] : numbers)
@@ -76,9 +76,9 @@ std::vector<std::function<CaseResult()>> all_cases(const CaseOptions& o) {
   };
 }
 
-}  // namespace prt::relight::stability
+}  // namespace prt::report::stability
 
-namespace prt::relight {
+namespace prt::report {
 namespace {
 
 std::string format_number(double v) {
@@ -169,4 +169,4 @@ int run_stability_report(const std::string& out_dir, bool quick) {
   return failed;
 }
 
-}  // namespace prt::relight
+}  // namespace prt::report

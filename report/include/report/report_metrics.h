@@ -1,4 +1,4 @@
-// relight/report_metrics.h — the error and cost statistics of `prt report`.
+// report/report_metrics.h — the error and cost statistics of `prt report`.
 //
 // Per-vertex error of exit radiance B (RGB, linear, the map's units) against a reference B_gt:
 //   e_p = |B_p − B_gt,p|, |·| the Euclidean norm of the RGB vector.
@@ -18,7 +18,7 @@
 #include <cstdint>
 #include <vector>
 
-namespace prt::relight {
+namespace prt::report {
 
 struct VertexErrorStats {
   double relative_rms = 0;
@@ -50,4 +50,4 @@ std::vector<bool> pareto_front(const std::vector<double>& cost, const std::vecto
 long cheapest_reaching(const std::vector<double>& cost, const std::vector<double>& error,
                        double threshold);
 
-}  // namespace prt::relight
+}  // namespace prt::report

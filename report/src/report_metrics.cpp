@@ -1,10 +1,10 @@
-// relight/src/report_metrics.cpp — see report_metrics.h.
-#include "relight/report_metrics.h"
+// report/src/report_metrics.cpp — see report_metrics.h.
+#include "report/report_metrics.h"
 
 #include <algorithm>
 #include <cmath>
 
-namespace prt::relight {
+namespace prt::report {
 namespace {
 
 template <typename T>
@@ -103,4 +103,4 @@ long cheapest_reaching(const std::vector<double>& cost, const std::vector<double
   return best;
 }
 
-}  // namespace prt::relight
+}  // namespace prt::report

@@ -1,5 +1,5 @@
-// relight/src/stability_cases.h (private) — the stability cases behind run_stability_report()
-// (relight/stability_report.h), shared with tests/relight/test_stability*.cpp so the report and
+// report/src/stability_cases.h (private) — the stability cases behind run_stability_report()
+// (report/stability_report.h), shared with tests/relight/test_stability*.cpp so the report and
 // the tests run the same code.
 //
 // Conventions: SH basis of sh/basis.h (real, orthonormal, no Condon–Shortley phase,
@@ -13,7 +13,7 @@
 #include <utility>
 #include <vector>
 
-namespace prt::relight::stability {
+namespace prt::report::stability {
 
 struct CaseResult {
   std::string group;      // "numerics", "environment", "interreflection", "geometry", "storage"
@@ -63,4 +63,4 @@ std::vector<std::function<CaseResult()>> all_cases(const CaseOptions& options);
 CaseResult run_case(const std::string& group, const std::string& name, const std::string& criterion,
                     const std::function<void(CaseResult&)>& body);
 
-}  // namespace prt::relight::stability
+}  // namespace prt::report::stability

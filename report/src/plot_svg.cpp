@@ -1,5 +1,5 @@
-// relight/src/plot_svg.cpp — see plot_svg.h.
-#include "relight/plot_svg.h"
+// report/src/plot_svg.cpp — see plot_svg.h.
+#include "report/plot_svg.h"
 
 #include <algorithm>
 #include <cmath>
@@ -12,7 +12,7 @@
 
 #include "prt/atomic_file.h"
 
-namespace prt::relight {
+namespace prt::report {
 namespace {
 
 std::string escape_xml(const std::string& s) {
@@ -471,4 +471,4 @@ bool convert_svg_to_png(const std::string& svg_path, const std::string& png_path
   return written.ok();
 }
 
-}  // namespace prt::relight
+}  // namespace prt::report

@@ -1,4 +1,4 @@
-// relight/stability_report.h — the stability cases of `prt report --stability`:
+// report/stability_report.h — the stability cases of `prt report --stability`:
 // numerics at high SH order and near the poles, extreme environments (bright suns, black maps,
 // NaN/Inf texels, 1×1 and 8192×4096 maps), stiff interreflection (the spherical-cavity furnace
 // at albedo 0.9 .. 0.999, B = ρf/(1 − ρ(1 − f))), degenerate geometry, scale invariance, and
@@ -11,7 +11,7 @@
 
 #include <string>
 
-namespace prt::relight {
+namespace prt::report {
 
 // Runs every stability case, writes out_dir/stability.md and out_dir/stability.json (creating
 // out_dir; files are written atomically) and prints one line per case to stdout. `quick` uses
@@ -20,4 +20,4 @@ namespace prt::relight {
 // cannot be written; a case that throws is recorded as failed with its message.
 int run_stability_report(const std::string& out_dir, bool quick);
 
-}  // namespace prt::relight
+}  // namespace prt::report
