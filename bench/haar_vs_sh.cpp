@@ -32,12 +32,12 @@
 #include <tbb/parallel_for.h>
 
 #include "bake/haar_baker.h"
-#include "bake/scene_loader.h"
 #include "haar_bench_scene.h"
 #include "prt/haar_relighter.h"
 #include "prt/haar_transform.h"
 #include "relight/image_io.h"
 #include "report/plot_svg.h"
+#include "scene/scene_loader.h"
 #include "sh/basis.h"
 
 namespace {
@@ -80,7 +80,7 @@ int main(int argc, char** argv) {
   const auto t0 = std::chrono::steady_clock::now();
   try {
     // Scene: the bunny on a ground plane.
-    prt::bake::Scene scene = prt::bench::make_bunny_on_plane(data);
+    prt::scene::Scene scene = prt::bench::make_bunny_on_plane(data);
     const std::size_t V = scene.vertex_count();
     std::set<std::pair<uint32_t, uint32_t>> edge_set;
     for (const glm::uvec3& t : scene.triangles)

@@ -10,13 +10,13 @@
 #include <nlohmann/json.hpp>
 
 #include "bake/occlusion_bound.h"
-#include "bake/ray_caster.h"
 #include "bake/sampling.h"
 #include "bake/scene_analysis.h"
+#include "scene/ray_caster.h"
 #include "sh/constants.h"
 #include "sh/zonal.h"
 
-#include "scene_label.h"
+#include "scene/scene_label.h"
 
 namespace prt::bake {
 namespace {
@@ -42,17 +42,17 @@ std::vector<double> uniform_sky() {
 
 // The scene with albedo 0.5 everywhere: the pilot's transfer is then S = T / 0.5 exactly (a
 // power of two). Made once for all the pilots of a bake.
-Scene grey_scene(const Scene& scene) {
-  Scene grey = scene;
+scene::Scene grey_scene(const scene::Scene& scene) {
+  scene::Scene grey = scene;
   std::fill(grey.albedo.begin(), grey.albedo.end(), glm::vec3(0.5f));
   return grey;
 }
 
 // Grey transfer S (no albedo) of the pilot vertices at the pilot order; grey = grey_scene(scene).
-std::vector<double> bake_pilot(const Scene& scene, const Scene& grey, const AutoBakeOptions& o,
-                               int pilot_order, int samples, const std::vector<uint8_t>& open,
-                               std::vector<glm::vec3>& albedo,
-                               const std::shared_ptr<const RayCaster>& caster,
+std::vector<double> bake_pilot(const scene::Scene& scene, const scene::Scene& grey,
+                               const AutoBakeOptions& o, int pilot_order, int samples,
+                               const std::vector<uint8_t>& open, std::vector<glm::vec3>& albedo,
+                               const std::shared_ptr<const scene::RayCaster>& caster,
                                ProgressSink* progress) {
   const std::size_t V = scene.positions.size();
   const std::size_t P = std::min<std::size_t>(V, static_cast<std::size_t>(o.pilot_vertices));
@@ -107,7 +107,7 @@ struct BoundedSkips {
   double error_bound = 0.0;  // relative RMS bound of the skipped vertices' bias
 };
 
-BoundedSkips select_bounded_skips(const Scene& scene, const VertexRayStarts& starts,
+BoundedSkips select_bounded_skips(const scene::Scene& scene, const scene::VertexRayStarts& starts,
                                   const std::vector<uint8_t>& open,
                                   const std::vector<double>& lighting, int lighting_order,
                                   double error_budget, double cutoff, const AlbedoAnalysis& albedo,
@@ -242,8 +242,8 @@ namespace {
 
 // Throws BakeError for options bake_transfer_auto cannot honour, and for a scene no bake
 // accepts (albedo, normals), before any analysis.
-void validate_auto_inputs(const Scene& scene, const AutoBakeOptions& o) {
-  const std::string name = detail::scene_label(scene);
+void validate_auto_inputs(const scene::Scene& scene, const AutoBakeOptions& o) {
+  const std::string name = scene::scene_label(scene);
   if (!(o.tolerance > 0.0 && o.tolerance < 1.0))
     throw BakeError(name + ": --auto tolerance must be in (0, 1)");
   if (!o.lighting.empty() &&
@@ -260,16 +260,16 @@ void validate_auto_inputs(const Scene& scene, const AutoBakeOptions& o) {
 // One BVH for the pilot and the bake, built on first use (never when every vertex is open).
 class SharedCaster {
  public:
-  SharedCaster(const Scene& scene, bool needed) : scene_(scene), needed_(needed) {}
-  std::shared_ptr<const RayCaster> get() {
-    if (!caster_ && needed_) caster_ = std::make_shared<const RayCaster>(scene_);
+  SharedCaster(const scene::Scene& scene, bool needed) : scene_(scene), needed_(needed) {}
+  std::shared_ptr<const scene::RayCaster> get() {
+    if (!caster_ && needed_) caster_ = std::make_shared<const scene::RayCaster>(scene_);
     return caster_;
   }
 
  private:
-  const Scene& scene_;
+  const scene::Scene& scene_;
   bool needed_;
-  std::shared_ptr<const RayCaster> caster_;
+  std::shared_ptr<const scene::RayCaster> caster_;
 };
 
 // Section 1: records what the analysis without rays found; returns the transfer kind to bake
@@ -295,7 +295,7 @@ prt::TransferKind record_analysis(const HemisphereAnalysis& hemi, const AlbedoAn
 // Section 2, the pilots: bakes the grey transfer of a few vertices at pilot_order and chooses
 // the SH order from it and the lighting (rep.order_choice, rep.pilot_samples,
 // rep.pilot_seconds).
-void run_pilots(const Scene& scene, const AutoBakeOptions& o, int pilot_order,
+void run_pilots(const scene::Scene& scene, const AutoBakeOptions& o, int pilot_order,
                 const HemisphereAnalysis& hemi, SharedCaster& caster, AutoBakeReport& rep) {
   const auto t0 = std::chrono::steady_clock::now();
   std::vector<glm::vec3> pilot_albedo;
@@ -308,7 +308,7 @@ void run_pilots(const Scene& scene, const AutoBakeOptions& o, int pilot_order,
   // Truncation gets half the tolerance; when no order meets that but one meets kTruncationLimit
   // of it, that order is baked and sampling gets the rest (√(1 − 0.8²) = 0.6 of it): the
   // tolerance is still met, by SH, which is cheaper than the Haar basis.
-  const Scene grey = grey_scene(scene);
+  const scene::Scene grey = grey_scene(scene);
   for (int samples = o.pilot_samples;; samples *= 4) {
     const std::vector<double> pilot = bake_pilot(scene, grey, o, pilot_order, samples, hemi.open,
                                                  pilot_albedo, caster.get(), nullptr);
@@ -355,9 +355,9 @@ std::string order_choice_note(const AutoBakeReport& rep, const AutoBakeOptions& 
 // Section 2: the SH order from the lighting (rep.order; o.order without lighting). When no
 // order meets it, the line recommending Haar is left_out[returned index] until the bake's
 // predicted total is known (section 5); std::string::npos when there is no such line.
-std::size_t select_order(const Scene& scene, const AutoBakeOptions& o, prt::TransferKind kind,
-                         const HemisphereAnalysis& hemi, SharedCaster& caster,
-                         AutoBakeReport& rep) {
+std::size_t select_order(const scene::Scene& scene, const AutoBakeOptions& o,
+                         prt::TransferKind kind, const HemisphereAnalysis& hemi,
+                         SharedCaster& caster, AutoBakeReport& rep) {
   std::size_t haar_line = std::string::npos;
   rep.order = o.order;
   const bool lit = !o.lighting.empty();
@@ -382,7 +382,7 @@ std::size_t select_order(const Scene& scene, const AutoBakeOptions& o, prt::Tran
 
 // Section 3: one triangle hierarchy for the occlusion bounds and the occluder caps of the bake,
 // when either will use it (null otherwise). Its time counts as analysis.
-std::shared_ptr<const TriangleHierarchy> build_hierarchy_if_needed(const Scene& scene,
+std::shared_ptr<const TriangleHierarchy> build_hierarchy_if_needed(const scene::Scene& scene,
                                                                    const AutoBakeOptions& o,
                                                                    prt::TransferKind kind,
                                                                    const HemisphereAnalysis& hemi,
@@ -399,11 +399,11 @@ std::shared_ptr<const TriangleHierarchy> build_hierarchy_if_needed(const Scene& 
 }
 
 // Section 3: the vertices that may skip rays within a share of the tolerance (bounded error).
-BoundedSkips choose_bounded_skips(const Scene& scene, const AutoBakeOptions& o,
-                                  const VertexRayStarts& starts, const HemisphereAnalysis& hemi,
-                                  const AlbedoAnalysis& alb, const std::vector<double>& lighting,
-                                  int lighting_order, const TriangleHierarchy* hierarchy,
-                                  AutoBakeReport& rep) {
+BoundedSkips choose_bounded_skips(const scene::Scene& scene, const AutoBakeOptions& o,
+                                  const scene::VertexRayStarts& starts,
+                                  const HemisphereAnalysis& hemi, const AlbedoAnalysis& alb,
+                                  const std::vector<double>& lighting, int lighting_order,
+                                  const TriangleHierarchy* hierarchy, AutoBakeReport& rep) {
   BoundedSkips skips;
   skips.skip.assign(scene.positions.size(), 0);
   if (!(o.bounded_skip_share > 0.0 && hierarchy)) return skips;
@@ -480,7 +480,7 @@ struct SampleCounts {
 
 // Section 5: the predicted sampling error (from the bake's per-vertex standard errors) and the
 // predicted total; returns the sample counts.
-SampleCounts predict_error(const Scene& scene, const BakeResult& bake,
+SampleCounts predict_error(const scene::Scene& scene, const BakeResult& bake,
                            const std::vector<double>& lighting, int lighting_order,
                            AutoBakeReport& rep) {
   const BakeStatistics& st = bake.stats;
@@ -562,7 +562,7 @@ void add_report_to_metadata(AutoBakeResult& result, double tolerance) {
 
 }  // namespace
 
-AutoBakeResult bake_transfer_auto(const Scene& scene, const AutoBakeOptions& o,
+AutoBakeResult bake_transfer_auto(const scene::Scene& scene, const AutoBakeOptions& o,
                                   ProgressSink* progress) {
   validate_auto_inputs(scene, o);
   AutoBakeResult result;
@@ -571,7 +571,7 @@ AutoBakeResult bake_transfer_auto(const Scene& scene, const AutoBakeOptions& o,
   rep.vertices = V;
 
   // 1. Analysis.
-  const VertexRayStarts starts = compute_vertex_ray_starts(scene);
+  const scene::VertexRayStarts starts = scene::compute_vertex_ray_starts(scene);
   const HemisphereAnalysis hemi = find_open_hemispheres(scene, starts);
   SharedCaster caster(scene, hemi.open_count < V);
   const AlbedoAnalysis alb = analyze_albedo(scene);

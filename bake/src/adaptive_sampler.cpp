@@ -57,10 +57,10 @@ struct VertexState {
 
 // Adds a hit's vertices to the row being gathered; counts back-face hits.
 struct Gather {
-  const Scene& scene;
+  const scene::Scene& scene;
   std::vector<std::pair<uint32_t, float>>& gathered;
   uint64_t& back_hits;
-  bool operator()(const RayCaster::Hit& hit, const glm::vec3& dir, float weight) const {
+  bool operator()(const scene::RayCaster::Hit& hit, const glm::vec3& dir, float weight) const {
     const bool front = gather_front_hit(scene, hit, dir, weight, gathered);
     if (!front) ++back_hits;
     return front;
@@ -83,7 +83,7 @@ class AdaptiveSampler {
 
   SamplingPass& p_;
   const AdaptiveSampling& ad_;
-  const Scene& scene_;
+  const scene::Scene& scene_;
   std::size_t V_;
   int K_;
   int pair_, min_n_, max_n_, min_cap_n_, min_cap_audit_n_;
@@ -173,7 +173,7 @@ uint64_t AdaptiveSampler::sample_vertex(std::size_t v, const glm::vec3& n, int t
   double w[kPacketSize];
   int point[kPacketSize];  // the packet's point each cast ray came from
   bool occluded[kPacketSize];
-  RayCaster::Hit hits[kPacketSize];
+  scene::RayCaster::Hit hits[kPacketSize];
   std::vector<float> y(eval_k_);
   double* occ = &occluded_sum_[slot_[v] * K_];
   uint64_t cast = 0;

@@ -46,7 +46,7 @@ bool cap_of_ball(const glm::dvec3& to_center, double radius, DirectionCap& cap) 
   return true;
 }
 
-OccluderCaps find_occluder_caps(const Scene& scene, const VertexRayStarts& starts,
+OccluderCaps find_occluder_caps(const scene::Scene& scene, const scene::VertexRayStarts& starts,
                                 const std::vector<uint8_t>& wanted, int max_caps,
                                 double max_solid_angle, const TriangleHierarchy* hierarchy) {
   const auto t0 = std::chrono::steady_clock::now();

@@ -17,8 +17,8 @@ constexpr double kAcceptRatio = 0.25;  // accept a group's ball when r/d ≤ thi
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
 // Bound of one triangle as seen from p: 0 when it lies within τ of the tangent plane.
-double triangle_bound(const Scene& scene, uint32_t t, const glm::dvec3& p, const glm::dvec3& n,
-                      double threshold, double inflate) {
+double triangle_bound(const scene::Scene& scene, uint32_t t, const glm::dvec3& p,
+                      const glm::dvec3& n, double threshold, double inflate) {
   glm::dvec3 q[3];
   double top = -kInfinity;
   for (int k = 0; k < 3; ++k) {
@@ -47,8 +47,8 @@ double ball_projected_solid_angle_bound(const glm::dvec3& to_center, double radi
   return 2.0 * (1.0 - cos_a) * cos_max;
 }
 
-double occlusion_bound_brute_force(const Scene& scene, std::size_t vertex,
-                                   const VertexRayStarts& starts) {
+double occlusion_bound_brute_force(const scene::Scene& scene, std::size_t vertex,
+                                   const scene::VertexRayStarts& starts) {
   const glm::dvec3 p(scene.positions[vertex]);
   const glm::dvec3 n = glm::normalize(glm::dvec3(scene.normals[vertex]));
   const double threshold = starts.unreachable_height[vertex];
@@ -59,8 +59,8 @@ double occlusion_bound_brute_force(const Scene& scene, std::size_t vertex,
   return sum;
 }
 
-OcclusionBounds bound_occlusion(const Scene& scene, const VertexRayStarts& starts, double cutoff,
-                                const std::vector<uint8_t>& skip,
+OcclusionBounds bound_occlusion(const scene::Scene& scene, const scene::VertexRayStarts& starts,
+                                double cutoff, const std::vector<uint8_t>& skip,
                                 const TriangleHierarchy* hierarchy) {
   const auto t0 = std::chrono::steady_clock::now();
   const std::size_t V = scene.positions.size();

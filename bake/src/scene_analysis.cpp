@@ -70,7 +70,8 @@ struct PointHierarchy {
 
 }  // namespace
 
-bool is_hemisphere_open_brute_force(const Scene& scene, std::size_t vertex, double threshold) {
+bool is_hemisphere_open_brute_force(const scene::Scene& scene, std::size_t vertex,
+                                    double threshold) {
   const glm::dvec3 p(scene.positions[vertex]);
   const glm::dvec3 n = glm::normalize(glm::dvec3(scene.normals[vertex]));
   for (const glm::uvec3& t : scene.triangles)
@@ -79,7 +80,8 @@ bool is_hemisphere_open_brute_force(const Scene& scene, std::size_t vertex, doub
   return true;
 }
 
-HemisphereAnalysis find_open_hemispheres(const Scene& scene, const VertexRayStarts& starts) {
+HemisphereAnalysis find_open_hemispheres(const scene::Scene& scene,
+                                         const scene::VertexRayStarts& starts) {
   const auto t0 = std::chrono::steady_clock::now();
   HemisphereAnalysis result;
   const std::size_t V = scene.positions.size();
@@ -104,7 +106,7 @@ HemisphereAnalysis find_open_hemispheres(const Scene& scene, const VertexRayStar
   return result;
 }
 
-AlbedoAnalysis analyze_albedo(const Scene& scene) {
+AlbedoAnalysis analyze_albedo(const scene::Scene& scene) {
   AlbedoAnalysis a;
   for (const glm::vec3& c : scene.albedo) {
     a.grey = a.grey && c.x == c.y && c.y == c.z;

@@ -195,7 +195,7 @@ void compute_bounds(TriangleHierarchy& h) {
 
 }  // namespace
 
-TriangleHierarchy build_triangle_hierarchy(const Scene& scene, HierarchyBuild mode) {
+TriangleHierarchy build_triangle_hierarchy(const scene::Scene& scene, HierarchyBuild mode) {
   TriangleHierarchy h;
   h.scene = &scene;
   const std::size_t V = scene.positions.size();
@@ -203,7 +203,7 @@ TriangleHierarchy build_triangle_hierarchy(const Scene& scene, HierarchyBuild mo
   if (T == 0) return h;
   std::vector<uint32_t> vertex_primitive(V, 0);
   for (uint32_t p = 0; p < scene.primitives.size(); ++p) {
-    const ScenePrimitive& prim = scene.primitives[p];
+    const scene::ScenePrimitive& prim = scene.primitives[p];
     for (std::size_t v = prim.first_vertex; v < prim.first_vertex + prim.vertex_count && v < V; ++v)
       vertex_primitive[v] = p;
   }

@@ -19,8 +19,6 @@
 #include "bake/ground_truth.h"
 #include "bake/haar_baker.h"
 #include "bake/progress.h"
-#include "bake/ray_caster.h"
-#include "bake/scene_loader.h"
 #include "bake/transfer_baker.h"
 #include "prt/haar_cube_map.h"
 #include "prt/haar_relighter.h"
@@ -35,6 +33,8 @@
 #include "relight/renderer.h"
 #include "report/plot_svg.h"
 #include "report/report_metrics.h"
+#include "scene/ray_caster.h"
+#include "scene/scene_loader.h"
 #include "sh/basis.h"
 #include "sh/projection.h"
 
@@ -292,10 +292,10 @@ struct ReportInputs {
     return relight::render(scene, caster, b, nullptr, relight::kIdentityRotation, camera, ropt).rgb;
   }
 
-  bake::Scene scene;
+  scene::Scene scene;
   std::string layout_note;
   const sh::EnvMap env;
-  bake::RayCaster caster;
+  scene::RayCaster caster;
   const std::size_t V;
   relight::RenderOptions ropt;
   relight::Camera camera;
@@ -303,7 +303,7 @@ struct ReportInputs {
 };
 
 ReportInputs::ReportInputs(const ReportOptions& opt, const ReportLog& log)
-    : scene(bake::load_scene(opt.scene_path)),
+    : scene(scene::load_scene(opt.scene_path)),
       env(relight::read_environment(opt.environment_path, opt.layout, &layout_note)),
       caster(scene),
       V(scene.vertex_count()) {

@@ -21,11 +21,11 @@
 #include <vector>
 
 #include "bake/interreflection_solver.h"
-#include "bake/procedural_mesh.h"
-#include "bake/scene_loader.h"
 #include "bake/transfer_baker.h"
 #include "prt/half.h"
 #include "prt/transfer_file.h"
+#include "scene/procedural_mesh.h"
+#include "scene/scene_loader.h"
 #include "sh/constants.h"
 #include "stability_cases.h"
 
@@ -75,7 +75,7 @@ CaseResult check_cavity_furnace(const CaseOptions& options, double albedo) {
         // case (ρ(1 − f) = 0.989 at ρ = 0.999: ~1300 Jacobi bounces for 1e-6).
         const float half_angle = static_cast<float>(11.5 * kPi / 180.0);
         const int rings = options.quick ? 8 : 16, segments = options.quick ? 16 : 32;
-        const bake::Scene scene = bake::make_spherical_cavity(
+        const scene::Scene scene = scene::make_spherical_cavity(
             1.0f, half_angle, rings, segments, glm::vec3(static_cast<float>(albedo)));
         bake::BakeOptions bo;
         bo.kind = prt::TransferKind::Interreflected;
@@ -243,8 +243,8 @@ CaseResult check_albedo_refused(const CaseOptions&) {
         std::string example;
         const float nan = std::numeric_limits<float>::quiet_NaN();
         for (float a : {1.0f, 1.5f, nan, -0.1f}) {
-          const bake::Scene scene =
-              bake::make_quad({0, 0, 0}, {1, 0, 0}, {0, 0, -1}, 1, 1, glm::vec3(0.5f, a, 0.5f));
+          const scene::Scene scene =
+              scene::make_quad({0, 0, 0}, {1, 0, 0}, {0, 0, -1}, 1, 1, glm::vec3(0.5f, a, 0.5f));
           bake::BakeOptions bo;
           bo.kind = prt::TransferKind::Interreflected;
           try {
@@ -257,8 +257,8 @@ CaseResult check_albedo_refused(const CaseOptions&) {
         }
         bool accepted = true;
         try {
-          const bake::Scene scene =
-              bake::make_quad({0, 0, 0}, {1, 0, 0}, {0, 0, -1}, 1, 1, glm::vec3(0.999f));
+          const scene::Scene scene =
+              scene::make_quad({0, 0, 0}, {1, 0, 0}, {0, 0, -1}, 1, 1, glm::vec3(0.999f));
           bake::validate_bake_inputs(scene, bake::BakeOptions{});
         } catch (const std::exception&) {
           accepted = false;
@@ -290,9 +290,9 @@ CaseResult check_degenerate_geometry(const CaseOptions&) {
                  "# zero-area (collinear) and repeated-index triangles\n"
                  "v 0 0 0\nv 0.5 0 0\nf 1 9 3\nf 9 10 10\nf 9 9 9\n";
         }
-        bake::Scene scene;
+        scene::Scene scene;
         try {
-          scene = bake::load_scene(path.string());
+          scene = scene::load_scene(path.string());
         } catch (...) {
           std::filesystem::remove(path);
           throw;
@@ -339,13 +339,13 @@ CaseResult check_scene_scale(const CaseOptions& options, float scale) {
       "same transfer as at scale 1 (mean |ΔAO| <= 2e-3, max <= 0.05)",
       [&options, scale](CaseResult& r) {
         auto build = [&options](float s) {
-          bake::Scene scene =
-              bake::make_quad(glm::vec3(-2.f, 0.f, 2.f) * s, glm::vec3(4.f, 0.f, 0.f) * s,
-                              glm::vec3(0.f, 0.f, -4.f) * s, options.quick ? 8 : 16,
-                              options.quick ? 8 : 16, glm::vec3(0.5f), "ground");
-          bake::append_scene(scene, bake::make_box(glm::vec3(-0.5f, 0.f, -0.5f) * s,
-                                                   glm::vec3(0.5f, 1.f, 0.5f) * s, 2, false,
-                                                   glm::vec3(0.5f), "box"));
+          scene::Scene scene =
+              scene::make_quad(glm::vec3(-2.f, 0.f, 2.f) * s, glm::vec3(4.f, 0.f, 0.f) * s,
+                               glm::vec3(0.f, 0.f, -4.f) * s, options.quick ? 8 : 16,
+                               options.quick ? 8 : 16, glm::vec3(0.5f), "ground");
+          scene::append_scene(scene, scene::make_box(glm::vec3(-0.5f, 0.f, -0.5f) * s,
+                                                     glm::vec3(0.5f, 1.f, 0.5f) * s, 2, false,
+                                                     glm::vec3(0.5f), "box"));
           return scene;
         };
         bake::BakeOptions bo;
@@ -353,9 +353,9 @@ CaseResult check_scene_scale(const CaseOptions& options, float scale) {
         bo.samples = 256;
         bo.ao = true;
         // The isolated plane.
-        const bake::Scene plane =
-            bake::make_quad(glm::vec3(-1.f, 0.f, 1.f) * scale, glm::vec3(2.f, 0.f, 0.f) * scale,
-                            glm::vec3(0.f, 0.f, -2.f) * scale, 4, 4, glm::vec3(0.5f));
+        const scene::Scene plane =
+            scene::make_quad(glm::vec3(-1.f, 0.f, 1.f) * scale, glm::vec3(2.f, 0.f, 0.f) * scale,
+                             glm::vec3(0.f, 0.f, -2.f) * scale, 4, 4, glm::vec3(0.5f));
         const bake::BakeResult p = bake::bake_transfer(plane, bo);
         double plane_ao_min = 1;
         for (float a : p.data.ao) plane_ao_min = std::min(plane_ao_min, static_cast<double>(a));
@@ -393,10 +393,10 @@ CaseResult check_vertex_inside_box(const CaseOptions&) {
       "every vertex inside a closed box (its inward faces and a small quad floating inside) has "
       "AO = 0 and transfer exactly 0",
       [](CaseResult& r) {
-        bake::Scene scene = bake::make_box({-1, -1, -1}, {1, 1, 1}, 3, true, glm::vec3(0.5f));
-        bake::append_scene(
-            scene, bake::make_quad({-0.2f, 0.f, 0.2f}, {0.4f, 0.f, 0.f}, {0.f, 0.f, -0.4f}, 1, 1,
-                                   glm::vec3(0.5f), "inner"));
+        scene::Scene scene = scene::make_box({-1, -1, -1}, {1, 1, 1}, 3, true, glm::vec3(0.5f));
+        scene::append_scene(
+            scene, scene::make_quad({-0.2f, 0.f, 0.2f}, {0.4f, 0.f, 0.f}, {0.f, 0.f, -0.4f}, 1, 1,
+                                    glm::vec3(0.5f), "inner"));
         bake::BakeOptions bo;
         bo.order = 3;
         bo.samples = 1024;

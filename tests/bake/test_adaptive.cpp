@@ -10,15 +10,16 @@
 #include "bake/adaptive_baker.h"
 #include "bake/ground_truth.h"
 #include "bake/occlusion_bound.h"
-#include "bake/procedural_mesh.h"
 #include "bake/scene_analysis.h"
 #include "bake/transfer_baker.h"
+#include "scene/procedural_mesh.h"
 #include "sh/basis.h"
 #include "sh/constants.h"
 #include "sh/env_map.h"
 #include "sh/zonal.h"
 
 using namespace prt::bake;
+using namespace prt::scene;
 
 namespace {
 

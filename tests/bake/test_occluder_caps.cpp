@@ -13,15 +13,16 @@
 
 #include "bake/cap_sampling.h"
 #include "bake/occluder_caps.h"
-#include "bake/procedural_mesh.h"
-#include "bake/ray_caster.h"
 #include "bake/sampling.h"
 #include "bake/scene_analysis.h"
 #include "bake/transfer_baker.h"
+#include "scene/procedural_mesh.h"
+#include "scene/ray_caster.h"
 #include "sh/basis.h"
 #include "sh/constants.h"
 
 using namespace prt::bake;
+using namespace prt::scene;
 
 namespace {
 

@@ -1,4 +1,4 @@
-// Ray origins (bake/ray_offset.h, bake/ray_caster.h) in scenes that mix scales: unit objects on
+// Ray origins (scene/ray_offset.h, scene/ray_caster.h) in scenes that mix scales: unit objects on
 // grounds 1e3 and 1e5 across, at the origin and 1e4 away from it. Every ambient-occlusion closed
 // form (wall, well, tangent sphere, spherical cavity) must hold at contact, through the same
 // vertex origins the bakers use, and interreflected transfer at contact must match the
@@ -13,18 +13,19 @@
 #include "bake/ground_truth.h"
 #include "bake/haar_baker.h"
 #include "bake/occlusion_bound.h"
-#include "bake/procedural_mesh.h"
-#include "bake/ray_caster.h"
-#include "bake/ray_offset.h"
 #include "bake/sampling.h"
 #include "bake/scene_analysis.h"
 #include "bake/transfer_baker.h"
 #include "prt/haar_approximation.h"
 #include "prt/haar_relighter.h"
 #include "prt/haar_transform.h"
+#include "scene/procedural_mesh.h"
+#include "scene/ray_caster.h"
+#include "scene/ray_offset.h"
 #include "transfer_test_support.h"
 
 using namespace prt::bake;
+using namespace prt::scene;
 
 namespace {
 

@@ -1,4 +1,4 @@
-// GLB writing (bake/glb_writer.h): round trip through load_scene and tinygltf, atomicity.
+// GLB writing (scene/glb_writer.h): round trip through load_scene and tinygltf, atomicity.
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -7,20 +7,21 @@
 #include <catch2/catch.hpp>
 #include <glm/glm.hpp>
 
-#include "bake/glb_writer.h"
-#include "bake/procedural_mesh.h"
-#include "bake/scene_loader.h"
+#include "scene/glb_writer.h"
+#include "scene/procedural_mesh.h"
+#include "scene/scene_loader.h"
 #include "support/test_data.h"
 
-using prt::bake::Scene;
+using prt::scene::Scene;
 
 namespace {
 
 Scene make_test_scene() {
-  Scene s = prt::bake::make_quad({-1, 0, -1}, {0, 0, 2}, {2, 0, 0}, 4, 4, glm::vec3(0.7f), "floor");
-  prt::bake::append_scene(s, prt::bake::make_uv_sphere({0, 0.5f, 0}, 0.5f, 6, 12, false,
-                                                       glm::vec3(0.8f, 0.2f, 0.1f), "ball"));
-  prt::bake::SceneCamera camera;
+  Scene s =
+      prt::scene::make_quad({-1, 0, -1}, {0, 0, 2}, {2, 0, 0}, 4, 4, glm::vec3(0.7f), "floor");
+  prt::scene::append_scene(s, prt::scene::make_uv_sphere({0, 0.5f, 0}, 0.5f, 6, 12, false,
+                                                         glm::vec3(0.8f, 0.2f, 0.1f), "ball"));
+  prt::scene::SceneCamera camera;
   camera.name = "view";
   camera.eye = {2, 1.5f, 3};
   camera.target = {0, 0.3f, 0};
@@ -66,7 +67,7 @@ TEST_CASE("write_glb then load_scene gives back geometry, albedo and the camera"
     colors.emplace_back(static_cast<float>(v) * 0.01f, 0.5f, 2.5f);  // linear, may exceed 1
   }
   const std::string path = prt::test::output_path("round_trip.glb").string();
-  prt::bake::write_glb(path, s, &colors);
+  prt::scene::write_glb(path, s, &colors);
 
   // A GLB header: magic "glTF", version 2, total length = file size.
   std::ifstream in(path, std::ios::binary);
@@ -76,7 +77,7 @@ TEST_CASE("write_glb then load_scene gives back geometry, albedo and the camera"
   CHECK(header[1] == 2);
   CHECK(header[2] == std::filesystem::file_size(path));
 
-  const Scene back = prt::bake::load_scene(path);
+  const Scene back = prt::scene::load_scene(path);
   CHECK(back.positions == s.positions);  // float32 written and read: bit-exact
   CHECK(back.normals == s.normals);
   CHECK(back.triangles == s.triangles);
@@ -113,9 +114,9 @@ TEST_CASE("write_glb fails with one line and leaves nothing behind") {
   const Scene s = make_test_scene();
   const std::string path = prt::test::output_path("no_such_dir/out.glb").string();
   try {
-    prt::bake::write_glb(path, s);
+    prt::scene::write_glb(path, s);
     FAIL("write_glb into a missing directory did not throw");
-  } catch (const prt::bake::SceneError& e) {
+  } catch (const prt::scene::SceneError& e) {
     const std::string message = e.what();
     CHECK(message.rfind(path + ": ", 0) == 0);
     CHECK(message.find('\n') == std::string::npos);
@@ -124,7 +125,7 @@ TEST_CASE("write_glb fails with one line and leaves nothing behind") {
 
   const std::string wrong_colors = prt::test::output_path("wrong_colors.glb").string();
   const std::vector<glm::vec3> too_few(3, glm::vec3(1.f));
-  CHECK_THROWS_AS(prt::bake::write_glb(wrong_colors, s, &too_few), prt::bake::SceneError);
+  CHECK_THROWS_AS(prt::scene::write_glb(wrong_colors, s, &too_few), prt::scene::SceneError);
   CHECK_FALSE(std::filesystem::exists(wrong_colors));
 }
 
@@ -132,8 +133,8 @@ TEST_CASE("data/demo.glb is the current make_demo_scene") {
   const auto path = prt::test::project_data("demo.glb");
   REQUIRE(std::filesystem::exists(path));
   CHECK(std::filesystem::file_size(path) < 1500000);
-  const Scene demo = prt::bake::make_demo_scene();
-  const Scene loaded = prt::bake::load_scene(path.string());
+  const Scene demo = prt::scene::make_demo_scene();
+  const Scene loaded = prt::scene::load_scene(path.string());
   CHECK(loaded.positions == demo.positions);
   CHECK(loaded.triangles == demo.triangles);
   CHECK(loaded.albedo == demo.albedo);

@@ -1,4 +1,4 @@
-// glTF loading (bake/scene_loader.h) on small files written by the tests, and on real assets.
+// glTF loading (scene/scene_loader.h) on small files written by the tests, and on real assets.
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -11,12 +11,12 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <nlohmann/json.hpp>
 
-#include "bake/scene_loader.h"
+#include "scene/scene_loader.h"
 #include "support/test_data.h"
 
 using nlohmann::json;
-using prt::bake::Scene;
-using prt::bake::SceneError;
+using prt::scene::Scene;
+using prt::scene::SceneError;
 
 namespace {
 
@@ -104,9 +104,9 @@ const std::vector<glm::vec3> kTriangle = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
 const std::vector<glm::vec3> kQuad = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
 const std::vector<uint32_t> kQuadIndices = {0, 1, 2, 0, 2, 3};
 
-std::string error_of(const std::string& path, const prt::bake::LoadOptions& options = {}) {
+std::string error_of(const std::string& path, const prt::scene::LoadOptions& options = {}) {
   try {
-    prt::bake::load_scene(path, options);
+    prt::scene::load_scene(path, options);
   } catch (const SceneError& e) {
     return e.what();
   }
@@ -139,7 +139,7 @@ TEST_CASE("glTF node TRS is applied to positions and normals use the inverse tra
   g.doc["nodes"][0]["rotation"] = {axis.x * std::sin(angle / 2), axis.y * std::sin(angle / 2),
                                    axis.z * std::sin(angle / 2), std::cos(angle / 2)};
   g.doc["nodes"][0]["scale"] = {sc.x, sc.y, sc.z};
-  const Scene s = prt::bake::load_scene(g.write("trs"));
+  const Scene s = prt::scene::load_scene(g.write("trs"));
 
   // Independent reference: T * R(axis-angle) * S built with glm's matrix helpers.
   const glm::dmat4 m = glm::scale(glm::rotate(glm::translate(glm::dmat4(1.0), t), angle, axis), sc);
@@ -169,7 +169,7 @@ TEST_CASE("glTF hierarchy composes parent TRS with a child matrix, depth-first")
   const int sibling = g.add_mesh_node(kTriangle, {0, 1, 2});
   g.doc["nodes"].push_back({{"translation", {0, 10, 0}}, {"children", {child}}});
   g.doc["scenes"][0]["nodes"] = {g.doc["nodes"].size() - 1, sibling};
-  const Scene s = prt::bake::load_scene(g.write("hierarchy"));
+  const Scene s = prt::scene::load_scene(g.write("hierarchy"));
   REQUIRE(s.primitives.size() == 2);
   REQUIRE(s.positions.size() == 6);
   for (std::size_t v = 0; v < 3; ++v) {
@@ -187,7 +187,7 @@ TEST_CASE("glTF u8, u16, u32 and absent indices give the same triangles") {
   for (const int type : {kU8, kU16, kU32}) {
     MiniGltf g;
     g.add_mesh_node(kQuad, kQuadIndices, type);
-    scenes.push_back(prt::bake::load_scene(g.write("indices_" + std::to_string(type))));
+    scenes.push_back(prt::scene::load_scene(g.write("indices_" + std::to_string(type))));
   }
   for (const Scene& s : scenes) {
     REQUIRE(s.triangles.size() == 2);
@@ -199,7 +199,7 @@ TEST_CASE("glTF u8, u16, u32 and absent indices give the same triangles") {
   std::vector<glm::vec3> unrolled;
   for (uint32_t i : kQuadIndices) unrolled.push_back(kQuad[i]);
   flat.add_mesh_node(unrolled, {}, /*index_type=*/0);
-  const Scene s = prt::bake::load_scene(flat.write("non_indexed"));
+  const Scene s = prt::scene::load_scene(flat.write("non_indexed"));
   REQUIRE(s.triangles.size() == 2);
   CHECK(s.triangles[1] == glm::uvec3(3, 4, 5));
   CHECK(s.positions == unrolled);
@@ -251,7 +251,7 @@ TEST_CASE("glTF degenerate triangles are skipped and counted, never producing Na
   // Triangle 1 repeats an index, triangle 2 is collinear (0, 1 and 4 on the x axis).
   g.add_mesh_node({{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {2, 0, 0}},
                   {0, 1, 2, 0, 0, 3, 0, 1, 4, 0, 2, 3});
-  const Scene s = prt::bake::load_scene(g.write("degenerate"));
+  const Scene s = prt::scene::load_scene(g.write("degenerate"));
   CHECK(s.skipped_degenerate_triangles == 2);
   REQUIRE(s.triangles.size() == 2);
   CHECK(s.primitives[0].triangle_count == 2);
@@ -267,7 +267,7 @@ TEST_CASE("glTF mirrored node keeps the winding consistent with the transformed 
     const std::vector<glm::vec3> normals(3, glm::vec3(0, 0, 1));
     g.add_mesh_node(kTriangle, {0, 1, 2}, kU32, with_normals ? normals : std::vector<glm::vec3>{});
     g.doc["nodes"][0]["scale"] = {-1, 1, 1};
-    const Scene s = prt::bake::load_scene(g.write("mirrored"));
+    const Scene s = prt::scene::load_scene(g.write("mirrored"));
     const glm::dvec3 a(s.positions[s.triangles[0].x]), b(s.positions[s.triangles[0].y]),
         c(s.positions[s.triangles[0].z]);
     const glm::dvec3 face = glm::normalize(glm::cross(b - a, c - a));
@@ -299,7 +299,7 @@ TEST_CASE("glTF materials, albedo override, non-triangle primitives, textures no
   g.doc["nodes"][1]["translation"] = {0, 0, 1};
   g.doc["scenes"][0]["nodes"] = {0, 1};
   const std::string path = g.write("materials");
-  const Scene s = prt::bake::load_scene(path);
+  const Scene s = prt::scene::load_scene(path);
   REQUIRE(s.primitives.size() == 2);
   CHECK(s.triangles.size() == 2);
   CHECK(s.primitives[0].name == "m0/0");
@@ -308,9 +308,9 @@ TEST_CASE("glTF materials, albedo override, non-triangle primitives, textures no
   CHECK(s.albedo[0] == glm::vec3(0.25f, 0.5f, 0.75f));
   CHECK(s.albedo[3] == glm::vec3(0.8f));
 
-  prt::bake::LoadOptions options;
+  prt::scene::LoadOptions options;
   options.albedo_override = glm::vec3(0.1f, 0.2f, 0.3f);
-  const Scene overridden = prt::bake::load_scene(path, options);
+  const Scene overridden = prt::scene::load_scene(path, options);
   for (const auto& p : overridden.primitives) CHECK(p.albedo == glm::vec3(0.1f, 0.2f, 0.3f));
   for (const auto& a : overridden.albedo) CHECK(a == glm::vec3(0.1f, 0.2f, 0.3f));
 }
@@ -324,7 +324,7 @@ TEST_CASE("glTF perspective camera on a node: eye, -Z view direction, +Y up, yfo
   const double h = std::sqrt(0.5);
   g.doc["nodes"].push_back({{"camera", 0}, {"translation", {5, 1, 2}}, {"rotation", {0, h, 0, h}}});
   g.doc["scenes"][0]["nodes"] = {0, 1};
-  const Scene s = prt::bake::load_scene(g.write("camera"));
+  const Scene s = prt::scene::load_scene(g.write("camera"));
   REQUIRE(s.cameras.size() == 1);
   const auto& cam = s.cameras[0];
   CHECK(cam.name == "cam");
@@ -337,7 +337,7 @@ TEST_CASE("glTF perspective camera on a node: eye, -Z view direction, +Y up, yfo
 TEST_CASE("Real glTF: suzanne.gltf (embedded buffer, normals)") {
   const auto path = prt::test::shared_data("meshes/suzanne.gltf");
   PRT_REQUIRE_SHARED_DATA(path);
-  const Scene s = prt::bake::load_scene(path.string());
+  const Scene s = prt::scene::load_scene(path.string());
   CHECK(s.positions.size() == 10206);
   CHECK(s.triangles.size() + s.skipped_degenerate_triangles == 15744);
   CHECK(s.computed_normal_vertices == 0);
@@ -347,7 +347,7 @@ TEST_CASE("Real glTF: suzanne.gltf (embedded buffer, normals)") {
 TEST_CASE("Real glTF: dutch_ship loads geometry although its textures are missing") {
   const auto path = prt::test::shared_data("meshes/dutch_ship/dutch_ship_medium_1k.gltf");
   PRT_REQUIRE_SHARED_DATA(path);
-  const Scene s = prt::bake::load_scene(path.string());
+  const Scene s = prt::scene::load_scene(path.string());
   CHECK(s.primitives.size() >= 3);
   CHECK(s.positions.size() == 64496);
   CHECK(s.triangles.size() + s.skipped_degenerate_triangles == 69162);

@@ -1,15 +1,15 @@
-// Vertex normals and degenerate-triangle removal (bake/mesh_normals.h).
+// Vertex normals and degenerate-triangle removal (scene/mesh_normals.h).
 #include <cmath>
 #include <random>
 
 #include <catch2/catch.hpp>
 #include <glm/glm.hpp>
 
-#include "bake/mesh_normals.h"
-#include "bake/procedural_mesh.h"
+#include "scene/mesh_normals.h"
+#include "scene/procedural_mesh.h"
 #include "sh/constants.h"
 
-using prt::bake::Scene;
+using prt::scene::Scene;
 using prt::sh::kPi;
 
 namespace {
@@ -19,7 +19,7 @@ Scene one_primitive(std::vector<glm::vec3> positions, std::vector<glm::uvec3> tr
   s.positions = std::move(positions);
   s.triangles = std::move(triangles);
   s.albedo.assign(s.positions.size(), glm::vec3(0.5f));
-  prt::bake::ScenePrimitive p;
+  prt::scene::ScenePrimitive p;
   p.name = "p";
   p.vertex_count = static_cast<uint32_t>(s.positions.size());
   p.triangle_count = static_cast<uint32_t>(s.triangles.size());
@@ -54,7 +54,7 @@ TEST_CASE("compute_vertex_normals gives the exact plane normal on a randomly tri
     }
   }
   Scene s = one_primitive(positions, triangles);
-  const auto result = prt::bake::compute_vertex_normals(s, false);
+  const auto result = prt::scene::compute_vertex_normals(s, false);
   CHECK(result.computed == positions.size());
   CHECK(result.fallback == 0);
   CHECK(s.computed_normal_vertices == positions.size());
@@ -77,7 +77,7 @@ TEST_CASE("compute_vertex_normals: cube corners point along the diagonals (angle
     triangles.emplace_back(q[0], q[2], q[3]);
   }
   Scene s = one_primitive(positions, triangles);
-  prt::bake::compute_vertex_normals(s, false);
+  prt::scene::compute_vertex_normals(s, false);
   for (std::size_t v = 0; v < 8; ++v) {
     const glm::dvec3 expected =
         glm::normalize(glm::dvec3(positions[v]) - glm::dvec3(0.5, 0.5, 0.5));
@@ -87,10 +87,10 @@ TEST_CASE("compute_vertex_normals: cube corners point along the diagonals (angle
 }
 
 TEST_CASE("compute_vertex_normals on a closed UV sphere is close to radial") {
-  Scene s = prt::bake::make_uv_sphere({1, 2, 3}, 2.f, 32, 64, false, glm::vec3(0.5f));
+  Scene s = prt::scene::make_uv_sphere({1, 2, 3}, 2.f, 32, 64, false, glm::vec3(0.5f));
   const std::vector<glm::vec3> radial = s.normals;
   std::fill(s.normals.begin(), s.normals.end(), glm::vec3(0.f));
-  const auto result = prt::bake::compute_vertex_normals(s, /*only_missing=*/true);
+  const auto result = prt::scene::compute_vertex_normals(s, /*only_missing=*/true);
   CHECK(result.computed == s.positions.size());
   // The weighted face normals around a vertex are symmetric about the radial direction up to
   // the latitude asymmetry of the rings (the band above is narrower than the one below near
@@ -108,7 +108,7 @@ TEST_CASE("compute_vertex_normals(only_missing) keeps given normals and falls ba
                           {{0, 1, 2}, {0, 2, 3}});
   const glm::vec3 given = glm::normalize(glm::vec3(1, 1, 1));
   s.normals = {given, glm::vec3(0.f), glm::vec3(NAN, 0, 0), given, glm::vec3(0.f)};
-  const auto result = prt::bake::compute_vertex_normals(s, true);
+  const auto result = prt::scene::compute_vertex_normals(s, true);
   CHECK(result.computed == 3);
   CHECK(result.fallback == 1);
   CHECK(s.normals[0] == given);
@@ -120,7 +120,7 @@ TEST_CASE("compute_vertex_normals(only_missing) keeps given normals and falls ba
 
   // A vertex whose faces cancel exactly (two opposite copies of a triangle) also falls back.
   Scene folded = one_primitive({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, {{0, 1, 2}, {0, 2, 1}});
-  const auto folded_result = prt::bake::compute_vertex_normals(folded, false);
+  const auto folded_result = prt::scene::compute_vertex_normals(folded, false);
   CHECK(folded_result.fallback == 3);
   for (const glm::vec3& n : folded.normals) CHECK(n == glm::vec3(0, 1, 0));
 }
@@ -135,13 +135,13 @@ TEST_CASE(
        {0, 3, 1},    // collinear
        {0, 5, 4},    // area 1e-12: below threshold
        {1, 2, 3}});  // fine
-  prt::bake::ScenePrimitive second = s.primitives[0];
+  prt::scene::ScenePrimitive second = s.primitives[0];
   s.primitives[0].triangle_count = 3;
   second.name = "second";
   second.first_triangle = 3;
   second.triangle_count = 2;
   s.primitives.push_back(second);
-  const std::size_t removed = prt::bake::remove_degenerate_triangles(s);
+  const std::size_t removed = prt::scene::remove_degenerate_triangles(s);
   CHECK(removed == 3);
   CHECK(s.skipped_degenerate_triangles == 3);
   REQUIRE(s.triangles.size() == 2);
@@ -152,6 +152,7 @@ TEST_CASE(
   CHECK(s.primitives[1].first_triangle == 1);
   CHECK(s.primitives[1].triangle_count == 1);
   // The rule is relative to the extent: the same tiny triangle alone is not degenerate.
-  CHECK_FALSE(prt::bake::is_degenerate_triangle({0, 0, 0}, {2e-6f, 0, 0}, {1e-6f, 1e-6f, 0}, 2e-6));
-  CHECK(prt::bake::is_degenerate_triangle({0, 0, 0}, {1, 0, 0}, {NAN, 0, 0}, 1.0));
+  CHECK_FALSE(
+      prt::scene::is_degenerate_triangle({0, 0, 0}, {2e-6f, 0, 0}, {1e-6f, 1e-6f, 0}, 2e-6));
+  CHECK(prt::scene::is_degenerate_triangle({0, 0, 0}, {1, 0, 0}, {NAN, 0, 0}, 1.0));
 }

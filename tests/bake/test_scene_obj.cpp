@@ -1,4 +1,4 @@
-// Wavefront OBJ loading (bake/scene_loader.h) on small files written here and on real meshes.
+// Wavefront OBJ loading (scene/scene_loader.h) on small files written here and on real meshes.
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -9,11 +9,11 @@
 #include <catch2/catch.hpp>
 #include <glm/glm.hpp>
 
-#include "bake/scene_loader.h"
+#include "scene/scene_loader.h"
 #include "support/test_data.h"
 
-using prt::bake::Scene;
-using prt::bake::SceneError;
+using prt::scene::Scene;
+using prt::scene::SceneError;
 
 namespace {
 
@@ -25,7 +25,7 @@ std::string write_text(const std::string& name, const std::string& text) {
 
 std::string error_of(const std::string& path) {
   try {
-    prt::bake::load_scene(path);
+    prt::scene::load_scene(path);
   } catch (const SceneError& e) {
     return e.what();
   }
@@ -47,7 +47,7 @@ TEST_CASE("OBJ without normals: file vertex order, polygons triangulated, negati
       "f 1 2 3 4\r\n"
       "v 0 0 1\r\nv 2 0 1\r\nv 3 1 1\r\nv 1 2 1\r\nv -1 1 1\r\n"
       "f -5 -4 -3 -2 -1\r\n";
-  const Scene s = prt::bake::load_scene(write_text("polygons_crlf.obj", text));
+  const Scene s = prt::scene::load_scene(write_text("polygons_crlf.obj", text));
   REQUIRE(s.positions.size() == 9);
   CHECK(s.positions[0] == glm::vec3(0, 0, 0));
   CHECK(s.positions[4] == glm::vec3(0, 0, 1));
@@ -78,7 +78,7 @@ TEST_CASE("OBJ with vn: one vertex per unique (position, normal) pair, first-see
       "vn 0 0 1\nvn -1 0 0\n"
       "o front\nf 1//1 2//1 3//1 4//1\n"
       "o side\nf 5//2 1//2 4//2 6//2\n";
-  const Scene s = prt::bake::load_scene(write_text("with_normals.obj", text));
+  const Scene s = prt::scene::load_scene(write_text("with_normals.obj", text));
   REQUIRE(s.primitives.size() == 2);
   CHECK(s.primitives[0].name == "front");
   CHECK(s.primitives[1].name == "side");
@@ -96,7 +96,7 @@ TEST_CASE("OBJ albedo from the MTL's Kd, and one-line errors naming the file") {
   const std::string text =
       "mtllib coloured.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\n"
       "o a\nusemtl red\nf 1 2 3\no b\nusemtl blue\nf 1 3 4\n";
-  const Scene s = prt::bake::load_scene(write_text("coloured.obj", text));
+  const Scene s = prt::scene::load_scene(write_text("coloured.obj", text));
   REQUIRE(s.primitives.size() == 2);
   CHECK(s.primitives[0].albedo == glm::vec3(0.7f, 0.1f, 0.05f));
   CHECK(s.primitives[1].albedo == glm::vec3(0.1f, 0.2f, 0.6f));
@@ -118,7 +118,7 @@ TEST_CASE("OBJ albedo from the MTL's Kd, and one-line errors naming the file") {
 TEST_CASE("Real OBJ: stanford-bunny.obj keeps all 35,947 vertices in file order") {
   const auto path = prt::test::shared_data("meshes/stanford-bunny.obj");
   PRT_REQUIRE_SHARED_DATA(path);
-  const Scene s = prt::bake::load_scene(path.string());
+  const Scene s = prt::scene::load_scene(path.string());
   CHECK(s.positions.size() == 35947);
   CHECK(s.triangles.size() + s.skipped_degenerate_triangles == 69451);
   CHECK(s.computed_normal_vertices == 35947);
@@ -152,7 +152,7 @@ TEST_CASE("Real OBJ: stanford-bunny.obj keeps all 35,947 vertices in file order"
 TEST_CASE("Real OBJ: cornell_box albedo from MTL, dragon (CRLF), suzanne (vn)") {
   const auto cornell = prt::test::shared_data("meshes/cornell_box.obj");
   PRT_REQUIRE_SHARED_DATA(cornell);
-  const Scene box = prt::bake::load_scene(cornell.string());
+  const Scene box = prt::scene::load_scene(cornell.string());
   bool red = false, green = false;
   for (const auto& p : box.primitives) {
     red = red || (p.albedo.r > 0.5f && p.albedo.g < 0.2f);
@@ -165,14 +165,14 @@ TEST_CASE("Real OBJ: cornell_box albedo from MTL, dragon (CRLF), suzanne (vn)") 
 
   const auto dragon_path = prt::test::shared_data("meshes/dragon.obj");
   PRT_REQUIRE_SHARED_DATA(dragon_path);
-  const Scene dragon = prt::bake::load_scene(dragon_path.string());
+  const Scene dragon = prt::scene::load_scene(dragon_path.string());
   CHECK(dragon.positions.size() == 50000);
   CHECK(dragon.triangles.size() + dragon.skipped_degenerate_triangles == 100000);
   check_unit_normals(dragon);
 
   const auto suzanne_path = prt::test::shared_data("meshes/suzanne.obj");
   PRT_REQUIRE_SHARED_DATA(suzanne_path);
-  const Scene suzanne = prt::bake::load_scene(suzanne_path.string());
+  const Scene suzanne = prt::scene::load_scene(suzanne_path.string());
   CHECK(suzanne.computed_normal_vertices == 0);
   CHECK(suzanne.positions.size() >= 507);
   check_unit_normals(suzanne);

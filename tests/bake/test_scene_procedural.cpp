@@ -1,4 +1,4 @@
-// Procedural meshes (bake/procedural_mesh.h): counts, layout, normals, areas, winding.
+// Procedural meshes (scene/procedural_mesh.h): counts, layout, normals, areas, winding.
 #include <cmath>
 #include <map>
 #include <utility>
@@ -6,11 +6,11 @@
 #include <catch2/catch.hpp>
 #include <glm/glm.hpp>
 
-#include "bake/mesh_normals.h"
-#include "bake/procedural_mesh.h"
+#include "scene/mesh_normals.h"
+#include "scene/procedural_mesh.h"
 #include "sh/constants.h"
 
-using prt::bake::Scene;
+using prt::scene::Scene;
 
 namespace {
 
@@ -80,8 +80,8 @@ void check_basic_invariants(const Scene& s) {
   for (const glm::vec3& n : s.normals) REQUIRE(glm::length(n) == Approx(1.0).margin(1e-6));
   for (const glm::uvec3& t : s.triangles) {
     REQUIRE(std::max({t.x, t.y, t.z}) < s.positions.size());
-    REQUIRE_FALSE(prt::bake::is_degenerate_triangle(s.positions[t.x], s.positions[t.y],
-                                                    s.positions[t.z], extent));
+    REQUIRE_FALSE(prt::scene::is_degenerate_triangle(s.positions[t.x], s.positions[t.y],
+                                                     s.positions[t.z], extent));
   }
 }
 
@@ -89,7 +89,7 @@ void check_basic_invariants(const Scene& s) {
 
 TEST_CASE("make_quad lays out a (u+1)x(v+1) grid with the documented index and normal") {
   const glm::vec3 corner(1, 2, 3), eu(2, 0, 0), ev(0, 0, -3);
-  const Scene s = prt::bake::make_quad(corner, eu, ev, 4, 3, glm::vec3(0.5f), "floor");
+  const Scene s = prt::scene::make_quad(corner, eu, ev, 4, 3, glm::vec3(0.5f), "floor");
   check_basic_invariants(s);
   REQUIRE(s.primitives.size() == 1);
   CHECK(s.primitives[0].name == "floor");
@@ -113,7 +113,7 @@ TEST_CASE("make_box has 6 separate face grids, outward or inward, closed with th
   const glm::vec3 lo(-1, 0, 2), hi(1, 3, 2.5f);
   const glm::dvec3 centre = (glm::dvec3(lo) + glm::dvec3(hi)) / 2.0;
   for (const bool inward : {false, true}) {
-    const Scene s = prt::bake::make_box(lo, hi, 5, inward, glm::vec3(0.3f));
+    const Scene s = prt::scene::make_box(lo, hi, 5, inward, glm::vec3(0.3f));
     check_basic_invariants(s);
     REQUIRE(s.primitives.size() == 1);
     REQUIRE(s.positions.size() == 6 * 6 * 6);
@@ -138,7 +138,7 @@ TEST_CASE("make_box has 6 separate face grids, outward or inward, closed with th
 TEST_CASE("make_uv_sphere: vertices on the sphere, radial normals, closed, area converges") {
   const glm::vec3 c(0.5f, -1.f, 2.f);
   const float r = 1.5f;
-  const Scene s = prt::bake::make_uv_sphere(c, r, 24, 48, false, glm::vec3(0.9f, 0.1f, 0.1f));
+  const Scene s = prt::scene::make_uv_sphere(c, r, 24, 48, false, glm::vec3(0.9f, 0.1f, 0.1f));
   check_basic_invariants(s);
   REQUIRE(s.positions.size() == 2 + 23 * 48);
   REQUIRE(s.triangles.size() == 2 * 48 * 23);
@@ -156,7 +156,7 @@ TEST_CASE("make_uv_sphere: vertices on the sphere, radial normals, closed, area 
   // about (pi/24)^2/3 ~ 0.6%; accept below 1%.
   const double exact = 4.0 * kPi * r * r;
   const double coarse = 1.0 - total_area(s) / exact;
-  const Scene fine = prt::bake::make_uv_sphere(c, r, 48, 96, false, glm::vec3(0.5f));
+  const Scene fine = prt::scene::make_uv_sphere(c, r, 48, 96, false, glm::vec3(0.5f));
   const double finer = 1.0 - total_area(fine) / exact;
   CHECK(coarse > 0.0);
   CHECK(coarse < 0.01);
@@ -168,7 +168,7 @@ TEST_CASE("make_uv_sphere: vertices on the sphere, radial normals, closed, area 
   CHECK(volume < 4.0 / 3.0 * kPi * r * r * r);
   CHECK(volume > 0.97 * 4.0 / 3.0 * kPi * r * r * r);
 
-  const Scene in = prt::bake::make_uv_sphere(c, r, 24, 48, true, glm::vec3(0.5f));
+  const Scene in = prt::scene::make_uv_sphere(c, r, 24, 48, true, glm::vec3(0.5f));
   check_winding_matches_normals(in);
   CHECK(signed_volume(in) == Approx(-volume).epsilon(kFloatTolerance));
   for (std::size_t v = 0; v < in.positions.size(); ++v) {
@@ -179,7 +179,7 @@ TEST_CASE("make_uv_sphere: vertices on the sphere, radial normals, closed, area 
 TEST_CASE("make_spherical_cavity: vertices on the sphere, normals toward the centre, rim at a") {
   const float r = 2.0f;
   const float a = static_cast<float>(kPi / 6);
-  const Scene s = prt::bake::make_spherical_cavity(r, a, 30, 64, glm::vec3(0.99f));
+  const Scene s = prt::scene::make_spherical_cavity(r, a, 30, 64, glm::vec3(0.99f));
   check_basic_invariants(s);
   REQUIRE(s.primitives.size() == 1);
   REQUIRE(s.positions.size() == 30 * 64 + 1);
@@ -202,7 +202,7 @@ TEST_CASE("make_spherical_cavity: vertices on the sphere, normals toward the cen
   CHECK(total_area(s) == Approx(exact).epsilon(5e-3));
 
   // A closed cavity (a = 0) is a closed mesh wound inward: negative volume.
-  const Scene closed = prt::bake::make_spherical_cavity(r, 0.f, 20, 40, glm::vec3(0.5f));
+  const Scene closed = prt::scene::make_spherical_cavity(r, 0.f, 20, 40, glm::vec3(0.5f));
   check_basic_invariants(closed);
   check_closed_and_consistent(closed);
   check_winding_matches_normals(closed);
@@ -212,7 +212,7 @@ TEST_CASE("make_spherical_cavity: vertices on the sphere, normals toward the cen
 TEST_CASE("make_well: wall and bottom disc with exact prism/polygon areas and documented layout") {
   const float r = 1.0f, h = 2.0f;
   const int segments = 48, rings = 6;
-  const Scene s = prt::bake::make_well(r, h, segments, rings, glm::vec3(0.6f));
+  const Scene s = prt::scene::make_well(r, h, segments, rings, glm::vec3(0.6f));
   check_basic_invariants(s);
   REQUIRE(s.primitives.size() == 2);
   const auto& wall = s.primitives[0];
@@ -250,13 +250,13 @@ TEST_CASE("make_well: wall and bottom disc with exact prism/polygon areas and do
 }
 
 TEST_CASE("append_scene offsets indices and primitive ranges and sums the counters") {
-  Scene a = prt::bake::make_quad({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, 2, 2, glm::vec3(0.1f), "a");
+  Scene a = prt::scene::make_quad({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, 2, 2, glm::vec3(0.1f), "a");
   a.skipped_degenerate_triangles = 2;
-  Scene b = prt::bake::make_box({0, 0, 0}, {1, 1, 1}, 1, false, glm::vec3(0.2f), "b");
+  Scene b = prt::scene::make_box({0, 0, 0}, {1, 1, 1}, 1, false, glm::vec3(0.2f), "b");
   b.computed_normal_vertices = 5;
   b.cameras.push_back({});
   const Scene a_copy = a;
-  prt::bake::append_scene(a, b);
+  prt::scene::append_scene(a, b);
   check_basic_invariants(a);
   REQUIRE(a.primitives.size() == 2);
   CHECK(a.primitives[1].first_vertex == a_copy.positions.size());
@@ -271,7 +271,7 @@ TEST_CASE("append_scene offsets indices and primitive ranges and sums the counte
 }
 
 TEST_CASE("make_demo_scene is small, coloured, framed by its camera and clean") {
-  const Scene s = prt::bake::make_demo_scene();
+  const Scene s = prt::scene::make_demo_scene();
   check_basic_invariants(s);
   CHECK(s.positions.size() <= 20000);
   CHECK(s.positions.size() >= 8000);  // dense enough for per-vertex shadows

@@ -13,12 +13,12 @@
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>
 
-#include "bake/glb_writer.h"
-#include "bake/procedural_mesh.h"
 #include "relight/image_io.h"
 #include "report/plot_svg.h"
 #include "report/report.h"
 #include "report/report_metrics.h"
+#include "scene/glb_writer.h"
+#include "scene/procedural_mesh.h"
 #include "support/test_data.h"
 
 using namespace prt::relight;
@@ -222,16 +222,16 @@ TEST_CASE("the Haar axis: cube sizes x lighting terms with K >= 6N^2 collapsed i
 
 TEST_CASE("end-to-end quick report on a small scene writes consistent files") {
   // A box on a floor (~150 vertices) under a small lat-long sky with a bright sun texel.
-  prt::bake::Scene scene = prt::bake::make_quad(
+  prt::scene::Scene scene = prt::scene::make_quad(
       glm::vec3(-2, 0, 2), glm::vec3(4, 0, 0), glm::vec3(0, 0, -4), 6, 6, glm::vec3(0.6f), "floor");
-  prt::bake::append_scene(
-      scene, prt::bake::make_box(glm::vec3(-0.5f, 0, -0.5f), glm::vec3(0.5f, 1, 0.5f), 2, false,
-                                 glm::vec3(0.5f, 0.3f, 0.2f)));
+  prt::scene::append_scene(
+      scene, prt::scene::make_box(glm::vec3(-0.5f, 0, -0.5f), glm::vec3(0.5f, 1, 0.5f), 2, false,
+                                  glm::vec3(0.5f, 0.3f, 0.2f)));
   const auto dir = prt::test::output_path("report_e2e");
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   const std::string scene_path = (dir / "scene.glb").string();
-  prt::bake::write_glb(scene_path, scene);
+  prt::scene::write_glb(scene_path, scene);
   std::vector<float> sky(3 * 64 * 32);
   for (int r = 0; r < 32; ++r)
     for (int c = 0; c < 64; ++c)

@@ -8,7 +8,7 @@
 #include <fstream>
 #include <string>
 
-#include "bake/scene_loader.h"
+#include "scene/scene_loader.h"
 #include "support/test_data.h"
 
 namespace {
@@ -26,7 +26,7 @@ TEST_CASE("OBJ normals that are not unit length are normalised (fuzz_scene_obj)"
   const std::string path = write_file("regression_vn_not_unit.obj",
                                       "v 0 0 0\nv 1 0 0\nv 1 0 1\nv 0 0 1\nvn 5 1 0\nvn 0 0 0\n"
                                       "f 1//1 4//1 3//1\nf 1//2 3//2 2//2\n");
-  const prt::bake::Scene scene = prt::bake::load_scene(path);
+  const prt::scene::Scene scene = prt::scene::load_scene(path);
   REQUIRE(scene.vertex_count() > 0);
   for (const glm::vec3& n : scene.normals) {
     // Unit to float rounding (scene.h promises unit normals).
@@ -45,9 +45,9 @@ TEST_CASE(
                  R"({"asset":{"version":"2.0"},"scenes":[{"nodes":[0]}],"nodes":[{"mesh":0}],
 "meshes":[{"primitives":[{"attributes":{"POSITION":7}}]}]})");
   try {
-    (void)prt::bake::load_scene(path);
+    (void)prt::scene::load_scene(path);
     FAIL("the file was accepted");
-  } catch (const prt::bake::SceneError& e) {
+  } catch (const prt::scene::SceneError& e) {
     const std::string m = e.what();
     CHECK(m.rfind(path + ": ", 0) == 0);
     CHECK(m.find('\n') == std::string::npos);

@@ -40,8 +40,8 @@
 #include <vector>
 
 #include "bake/order_selection.h"
-#include "bake/scene.h"
 #include "bake/transfer_baker.h"
+#include "scene/scene.h"
 #include "sh/constants.h"
 
 namespace prt::bake {
@@ -110,7 +110,7 @@ struct AutoBakeResult {
 };
 
 // Throws BakeError (bad input) or std::runtime_error (Embree). `progress` may be null.
-AutoBakeResult bake_transfer_auto(const Scene& scene, const AutoBakeOptions& options,
+AutoBakeResult bake_transfer_auto(const scene::Scene& scene, const AutoBakeOptions& options,
                                   ProgressSink* progress = nullptr);
 
 // Exit radiance B_v,c = Σ_k T_v,c,k L_c,k of every vertex and channel (3 per vertex; a

@@ -39,13 +39,16 @@
 #include <memory>
 #include <vector>
 
-#include "bake/scene.h"
+#include "scene/scene.h"
 #include "sh/env_map.h"
+
+namespace prt::scene {
+class RayCaster;
+}  // namespace prt::scene
 
 namespace prt::bake {
 
 class ProgressSink;
-class RayCaster;
 
 struct GroundTruthOptions {
   int max_bounces = 64;              // reflections after the vertex (0: direct lighting only)
@@ -107,7 +110,7 @@ class GroundTruthIntegrator {
  public:
   // The scene and map must outlive the integrator. Throws BakeError for an empty scene, albedo
   // outside [0, 1), a bad map or options.
-  GroundTruthIntegrator(const Scene& scene, const sh::EnvMap& env,
+  GroundTruthIntegrator(const scene::Scene& scene, const sh::EnvMap& env,
                         const GroundTruthOptions& options);
   ~GroundTruthIntegrator();
   GroundTruthIntegrator(const GroundTruthIntegrator&) = delete;
@@ -129,7 +132,7 @@ class GroundTruthIntegrator {
 };
 
 // One call: GroundTruthIntegrator + refine(options.target_relative_se).
-GroundTruthResult compute_ground_truth(const Scene& scene, const sh::EnvMap& env,
+GroundTruthResult compute_ground_truth(const scene::Scene& scene, const sh::EnvMap& env,
                                        const GroundTruthOptions& options,
                                        ProgressSink* progress = nullptr);
 

@@ -8,10 +8,10 @@
 // Frame and units: the Scene's. The argument is that of bake/occlusion_bound.h, per group of
 // triangles of a hierarchy (bake/triangle_hierarchy.h):
 //   - a group whose every vertex lies within τ_v of p's tangent plane cannot be hit (the proof
-//     of bake/scene_analysis.h; τ_v of bake/ray_offset.h);
+//     of bake/scene_analysis.h; τ_v of scene/ray_offset.h);
 //   - a ball B(c, r) that holds the group, seen from p at distance d > r, covers the cap of
 //     half-angle α = asin(r/d) around the direction of c; rays leave from p + ε_v·n plus a
-//     tangential nudge ≤ ε_v (bake/ray_caster.h), so every radius is inflated by 2ε_v;
+//     tangential nudge ≤ ε_v (scene/ray_caster.h), so every radius is inflated by 2ε_v;
 //   - caps that lie wholly below the horizon (θ_c − α ≥ 90°) are dropped.
 // A group's ball is accepted when r/d ≤ ½ (α ≤ 30°), else its children are visited (a leaf's
 // triangles get a ball each). The vertex gets caps only when at most `max_caps` caps with a
@@ -25,9 +25,9 @@
 
 #include <glm/glm.hpp>
 
-#include "bake/ray_offset.h"
-#include "bake/scene.h"
 #include "bake/triangle_hierarchy.h"
+#include "scene/ray_offset.h"
+#include "scene/scene.h"
 
 namespace prt::bake {
 
@@ -54,9 +54,9 @@ struct OccluderCaps {
 inline constexpr int kDefaultMaxCaps = 8;
 
 // Caps of every vertex with wanted[v] != 0 (wanted empty = every vertex). `starts` holds ε_v
-// and τ_v (bake/ray_offset.h). Deterministic, parallel.
+// and τ_v (scene/ray_offset.h). Deterministic, parallel.
 // `hierarchy` (optional) is bake/triangle_hierarchy.h's over this scene; built when null.
-OccluderCaps find_occluder_caps(const Scene& scene, const VertexRayStarts& starts,
+OccluderCaps find_occluder_caps(const scene::Scene& scene, const scene::VertexRayStarts& starts,
                                 const std::vector<uint8_t>& wanted, int max_caps,
                                 double max_solid_angle,
                                 const TriangleHierarchy* hierarchy = nullptr);

@@ -8,9 +8,9 @@
 // h(q) = (q − p)·n be the height of a point q above p's tangent plane. A triangle is the convex
 // hull of its three vertices, and h is affine, so h ≤ max over the triangle's vertices on the
 // whole triangle. If every vertex q of every triangle has h(q) ≤ τ, all geometry lies in the
-// half-space h ≤ τ. The baker casts rays from o = p + ε·n + t⊥ (bake/ray_caster.h, t⊥ a nudge
+// half-space h ≤ τ. The baker casts rays from o = p + ε·n + t⊥ (scene/ray_caster.h, t⊥ a nudge
 // in the tangent plane) in directions ω with ω·n ≥ 0, so every point o + sω (s ≥ 0) has height
-// ε + s·(ω·n) ≥ ε, less the rounding of o. With τ_v of bake/ray_offset.h (half of ε_v after
+// ε + s·(ω·n) ≥ ε, less the rounding of o. With τ_v of scene/ray_offset.h (half of ε_v after
 // that rounding) no ray can reach any triangle: the vertex's visibility is 1 in every direction of
 // its hemisphere, and its shadowed (and interreflected: nothing is hit) transfer equals the
 // unshadowed one exactly. Examples: every vertex of a convex mesh whose normals lie in the normal
@@ -31,8 +31,8 @@
 
 #include <glm/glm.hpp>
 
-#include "bake/ray_offset.h"
-#include "bake/scene.h"
+#include "scene/ray_offset.h"
+#include "scene/scene.h"
 
 namespace prt::bake {
 
@@ -44,10 +44,12 @@ struct HemisphereAnalysis {
 
 // Runs the open-hemisphere test for every vertex with τ_v of `starts` (in parallel;
 // deterministic).
-HemisphereAnalysis find_open_hemispheres(const Scene& scene, const VertexRayStarts& starts);
+HemisphereAnalysis find_open_hemispheres(const scene::Scene& scene,
+                                         const scene::VertexRayStarts& starts);
 
 // Reference path for tests: the same test by brute force over every triangle vertex, O(V·T).
-bool is_hemisphere_open_brute_force(const Scene& scene, std::size_t vertex, double threshold);
+bool is_hemisphere_open_brute_force(const scene::Scene& scene, std::size_t vertex,
+                                    double threshold);
 
 // Albedo facts the adaptive baker acts on.
 struct AlbedoAnalysis {
@@ -55,6 +57,6 @@ struct AlbedoAnalysis {
   bool all_zero = true;  // no vertex reflects anything: no interreflection
   float max_albedo = 0.f;
 };
-AlbedoAnalysis analyze_albedo(const Scene& scene);
+AlbedoAnalysis analyze_albedo(const scene::Scene& scene);
 
 }  // namespace prt::bake

@@ -65,15 +65,18 @@
 #include <string>
 #include <vector>
 
-#include "bake/scene.h"
 #include "bake/triangle_hierarchy.h"
 #include "prt/transfer_data.h"
+#include "scene/scene.h"
 #include "sh/constants.h"
+
+namespace prt::scene {
+class RayCaster;
+}  // namespace prt::scene
 
 namespace prt::bake {
 
 class ProgressSink;
-class RayCaster;
 
 // Thrown for invalid scenes or options; one line "PATH: problem".
 struct BakeError : std::runtime_error {
@@ -110,7 +113,7 @@ struct AdaptiveSampling {
   std::shared_ptr<const TriangleHierarchy> hierarchy;
   // A ray caster over this scene's geometry (same positions, normals and triangles; the albedo
   // may differ) when the caller has one (built here when null).
-  std::shared_ptr<const RayCaster> caster;
+  std::shared_ptr<const scene::RayCaster> caster;
   // Shadowed or unshadowed only: TransferData::coefficients holds rows for the vertices that are
   // not kSkipVertex, in vertex order, instead of one per vertex (the file writer needs the
   // full layout; this is for in-memory callers such as the --auto pilot).
@@ -177,11 +180,11 @@ struct BakeResult {
 };
 
 // Checks the options and the scene's albedo; throws BakeError.
-void validate_bake_inputs(const Scene& scene, const BakeOptions& options);
+void validate_bake_inputs(const scene::Scene& scene, const BakeOptions& options);
 
 // Bakes transfer for every vertex of `scene`. Throws BakeError (bad input) or
 // std::runtime_error (Embree). `progress` may be null.
-BakeResult bake_transfer(const Scene& scene, const BakeOptions& options,
+BakeResult bake_transfer(const scene::Scene& scene, const BakeOptions& options,
                          ProgressSink* progress = nullptr);
 
 // "unshadowed" / "shadowed" / "interreflected" / "haar" (defined by the runtime,

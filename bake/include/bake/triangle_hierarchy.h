@@ -16,7 +16,7 @@
 
 #include <glm/glm.hpp>
 
-#include "bake/scene.h"
+#include "scene/scene.h"
 
 namespace prt::bake {
 
@@ -30,7 +30,7 @@ struct TriangleHierarchy {
     uint32_t size = 0;                          // triangles in the group
     uint32_t second = 0;                        // the second child (internal nodes)
   };
-  const Scene* scene = nullptr;
+  const scene::Scene* scene = nullptr;
   std::vector<uint32_t> order;  // triangle indices, grouped by primitive
   std::vector<Node> nodes;
 
@@ -46,7 +46,7 @@ enum class HierarchyBuild {
 
 // Builds the hierarchy over every triangle of `scene` (no nodes when it has none). Boxes and
 // balls are computed in parallel. Deterministic: both modes give the same nodes and order.
-TriangleHierarchy build_triangle_hierarchy(const Scene& scene,
+TriangleHierarchy build_triangle_hierarchy(const scene::Scene& scene,
                                            HierarchyBuild mode = HierarchyBuild::Parallel);
 
 }  // namespace prt::bake

@@ -1,11 +1,11 @@
 // Degenerate-triangle removal and angle-and-area weighted vertex normals (see
-// bake/mesh_normals.h).
-#include "bake/mesh_normals.h"
+// scene/mesh_normals.h).
+#include "scene/mesh_normals.h"
 
 #include <cmath>
 #include <vector>
 
-namespace prt::bake {
+namespace prt::scene {
 namespace {
 
 constexpr double kRelativeAreaEpsilon = 1e-12;
@@ -109,4 +109,4 @@ NormalComputation compute_vertex_normals(Scene& scene, bool only_missing) {
   return result;
 }
 
-}  // namespace prt::bake
+}  // namespace prt::scene

@@ -1,4 +1,4 @@
-// bake/glb_writer.h — writing a Scene as binary glTF 2.0 (.glb) that any glTF viewer opens.
+// scene/glb_writer.h — writing a Scene as binary glTF 2.0 (.glb) that any glTF viewer opens.
 //
 // Frame: glTF's (right-handed, +Y up, cameras look down -Z); positions are written as they are
 // (world space, identity node transforms), so load_scene(write_glb(s)) gives s back.
@@ -17,11 +17,11 @@
 
 #include <glm/glm.hpp>
 
-#include "bake/scene.h"
+#include "scene/scene.h"
 
-namespace prt::bake {
+namespace prt::scene {
 
 void write_glb(const std::string& path, const Scene& scene,
                const std::vector<glm::vec3>* vertex_colors = nullptr);
 
-}  // namespace prt::bake
+}  // namespace prt::scene

@@ -1,4 +1,4 @@
-// bake/scene_loader.h — loading a Scene from glTF 2.0 (.gltf, .glb) or Wavefront OBJ (.obj).
+// scene/scene_loader.h — loading a Scene from glTF 2.0 (.gltf, .glb) or Wavefront OBJ (.obj).
 //
 // Frame: glTF's (right-handed, +Y up, cameras look down -Z). OBJ files are taken as they are
 // (no axis change); units are the file's.
@@ -29,7 +29,7 @@
 // fallback normal), so vertex i is the file's i-th `v` (stanford-bunny.obj: 35,947 v lines,
 // 34,834 of them used, 35,947 vertices); with several shapes each keeps the entries it uses.
 //
-// Both: missing normals are computed (bake/mesh_normals.h: area x angle weighting, +Y
+// Both: missing normals are computed (scene/mesh_normals.h: area x angle weighting, +Y
 // fallback); degenerate triangles (repeated indices, or area <= 1e-12 * extent^2) are removed
 // and counted in Scene::skipped_degenerate_triangles; vertices keep the file's order per
 // primitive.
@@ -44,9 +44,9 @@
 
 #include <glm/glm.hpp>
 
-#include "bake/scene.h"
+#include "scene/scene.h"
 
-namespace prt::bake {
+namespace prt::scene {
 
 struct LoadOptions {
   std::optional<glm::vec3> albedo_override;  // replaces every material's albedo when set
@@ -55,4 +55,4 @@ struct LoadOptions {
 // Loads a scene, dispatching on the file extension (case-insensitive): .gltf, .glb, .obj.
 Scene load_scene(const std::string& path, const LoadOptions& options = {});
 
-}  // namespace prt::bake
+}  // namespace prt::scene

@@ -1,4 +1,5 @@
-// bake/src/scene_label.h (private) — the name a bake error message starts with.
+// scene/scene_label.h — the name an error message about a scene (loading, ray casting, baking)
+// starts with.
 //
 // Messages are one line "PATH: problem"; a scene built in memory (no source file) is named
 // "scene".
@@ -6,13 +7,13 @@
 
 #include <string>
 
-#include "bake/scene.h"
+#include "scene/scene.h"
 
-namespace prt::bake::detail {
+namespace prt::scene {
 
 // The scene's source path, or "scene" when it has none.
 inline std::string scene_label(const Scene& scene) {
   return scene.source_path.empty() ? std::string("scene") : scene.source_path;
 }
 
-}  // namespace prt::bake::detail
+}  // namespace prt::scene

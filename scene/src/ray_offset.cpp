@@ -1,11 +1,11 @@
-// bake/src/ray_offset.cpp — ray origins off surfaces by their rounding error (ray_offset.h).
-#include "bake/ray_offset.h"
+// scene/src/ray_offset.cpp — ray origins off surfaces by their rounding error (ray_offset.h).
+#include "scene/ray_offset.h"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
-namespace prt::bake {
+namespace prt::scene {
 namespace {
 
 constexpr double kUlpsOfPoint = 4.0;           // × U(p): origin rounding plus margin
@@ -64,4 +64,4 @@ VertexRayStarts compute_vertex_ray_starts(const Scene& scene) {
   return starts;
 }
 
-}  // namespace prt::bake
+}  // namespace prt::scene

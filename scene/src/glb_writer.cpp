@@ -1,5 +1,5 @@
-// Binary glTF writing through tinygltf's serializer (see bake/glb_writer.h).
-#include "bake/glb_writer.h"
+// Binary glTF writing through tinygltf's serializer (see scene/glb_writer.h).
+#include "scene/glb_writer.h"
 
 #include <algorithm>
 #include <cmath>
@@ -13,7 +13,7 @@
 #include "prt/atomic_file.h"
 #include "scene_file_errors.h"
 
-namespace prt::bake {
+namespace prt::scene {
 namespace {
 
 using detail::fail;
@@ -182,4 +182,4 @@ void write_glb(const std::string& path, const Scene& scene,
   if (!written.ok()) throw SceneError(written.message());
 }
 
-}  // namespace prt::bake
+}  // namespace prt::scene

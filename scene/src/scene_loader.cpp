@@ -1,5 +1,5 @@
-// Scene loading: extension dispatch and the common finishing steps (see bake/scene_loader.h).
-#include "bake/scene_loader.h"
+// Scene loading: extension dispatch and the common finishing steps (see scene/scene_loader.h).
+#include "scene/scene_loader.h"
 
 #include <algorithm>
 #include <cctype>
@@ -8,11 +8,11 @@
 #include <filesystem>
 #include <stdexcept>
 
-#include "bake/mesh_normals.h"
 #include "gltf_loader.h"
 #include "obj_loader.h"
+#include "scene/mesh_normals.h"
 
-namespace prt::bake {
+namespace prt::scene {
 namespace {
 
 bool is_finite(const glm::vec3& v) {
@@ -96,4 +96,4 @@ Scene load_scene(const std::string& path, const LoadOptions& options) {
   return scene;
 }
 
-}  // namespace prt::bake
+}  // namespace prt::scene

@@ -1,4 +1,4 @@
-// bake/src/scene_file_errors.h (private) — error messages shared by the scene-file readers and
+// scene/src/scene_file_errors.h (private) — error messages shared by the scene-file readers and
 // writer (gltf_loader.cpp, obj_loader.cpp, glb_writer.cpp).
 //
 // Every error is thrown as SceneError with one line "PATH: problem"; messages that come from a
@@ -8,9 +8,9 @@
 #include <sstream>
 #include <string>
 
-#include "bake/scene.h"
+#include "scene/scene.h"
 
-namespace prt::bake::detail {
+namespace prt::scene::detail {
 
 // Throws SceneError("PATH: problem").
 [[noreturn]] inline void fail(const std::string& path, const std::string& problem) {
@@ -31,4 +31,4 @@ inline std::string condense(const std::string& text) {
   return out;
 }
 
-}  // namespace prt::bake::detail
+}  // namespace prt::scene::detail

@@ -1,6 +1,6 @@
-// bake/src/obj_loader.h (private) — reads a Wavefront OBJ (+ MTL) file into a raw Scene.
+// scene/src/obj_loader.h (private) — reads a Wavefront OBJ (+ MTL) file into a raw Scene.
 //
-// See bake/scene_loader.h for the rules. The raw scene has positions, normals (zero vectors
+// See scene/scene_loader.h for the rules. The raw scene has positions, normals (zero vectors
 // where they must be computed), per-vertex albedo, triangles (indices checked) and one
 // primitive per non-empty shape. Degenerate triangles are still present; load_scene()
 // finishes the job. Throws SceneError("PATH: problem").
@@ -8,10 +8,10 @@
 
 #include <string>
 
-#include "bake/scene.h"
+#include "scene/scene.h"
 
-namespace prt::bake::detail {
+namespace prt::scene::detail {
 
 Scene read_obj_scene(const std::string& path);
 
-}  // namespace prt::bake::detail
+}  // namespace prt::scene::detail

@@ -1,5 +1,5 @@
-// bake/src/ray_caster.cpp — Embree 3 device, scene and queries (see ray_caster.h).
-#include "bake/ray_caster.h"
+// scene/src/ray_caster.cpp — Embree 3 device, scene and queries (see ray_caster.h).
+#include "scene/ray_caster.h"
 
 #include <algorithm>
 #include <cmath>
@@ -11,9 +11,9 @@
 
 #include <embree3/rtcore.h>
 
-#include "scene_label.h"
+#include "scene/scene_label.h"
 
-namespace prt::bake {
+namespace prt::scene {
 namespace {
 
 constexpr unsigned kMaskAll = 0xFFFFFFFFu;
@@ -40,8 +40,8 @@ std::string describe(RTCError e) {
 void throw_if_error(RTCDevice device, const Scene& scene, const char* what) {
   const RTCError e = rtcGetDeviceError(device);
   if (e != RTC_ERROR_NONE)
-    throw std::runtime_error(detail::scene_label(scene) + ": Embree " + what + " failed (" +
-                             describe(e) + ")");
+    throw std::runtime_error(scene_label(scene) + ": Embree " + what + " failed (" + describe(e) +
+                             ")");
 }
 
 void fill_ray16(RTCRay16& r, const glm::vec3& origin, const glm::vec3* dirs, int count, float tfar,
@@ -80,7 +80,7 @@ RayCaster::RayCaster(const Scene& scene) : scene_(&scene) {
   starts_ = compute_vertex_ray_starts(scene);
   RTCDevice device = rtcNewDevice(nullptr);
   if (!device)
-    throw std::runtime_error(detail::scene_label(scene) + ": cannot create the Embree device (" +
+    throw std::runtime_error(scene_label(scene) + ": cannot create the Embree device (" +
                              describe(rtcGetDeviceError(nullptr)) + ")");
   device_ = device;
   rtcSetDeviceMemoryMonitorFunction(device, &RayCaster::monitor_memory, this);
@@ -98,7 +98,7 @@ RayCaster::RayCaster(const Scene& scene) : scene_(&scene) {
   for (const glm::uvec3& t : scene.triangles)
     if (t.x < nv && t.y < nv && t.z < nv) tris.push_back(t);
   if (tris.size() != scene.triangles.size())
-    throw std::runtime_error(detail::scene_label(scene) + ": triangle index out of range");
+    throw std::runtime_error(scene_label(scene) + ": triangle index out of range");
   triangle_count_ = tris.size();
 
   // Per-vertex nudge toward the mean centroid of the vertex's triangles, tangentially.
@@ -137,7 +137,7 @@ RayCaster::RayCaster(const Scene& scene) : scene_(&scene) {
     if (!vb || !ib) {
       rtcReleaseGeometry(geom);
       throw_if_error(device, scene, "buffer allocation");
-      throw std::runtime_error(detail::scene_label(scene) + ": Embree buffer allocation failed");
+      throw std::runtime_error(scene_label(scene) + ": Embree buffer allocation failed");
     }
     for (std::size_t i = 0; i < nv; ++i) {
       vb[3 * i + 0] = scene.positions[i].x;
@@ -263,4 +263,4 @@ void RayCaster::intersect_packet(const glm::vec3& origin, const glm::vec3* dirs,
   }
 }
 
-}  // namespace prt::bake
+}  // namespace prt::scene

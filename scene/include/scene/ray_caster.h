@@ -1,4 +1,4 @@
-// bake/ray_caster.h — an RAII Embree 3 wrapper over a Scene: occlusion and closest-hit queries,
+// scene/ray_caster.h — an RAII Embree 3 wrapper over a Scene: occlusion and closest-hit queries,
 // single rays and 16-wide packets that share an origin (the baker's access pattern).
 //
 // Frame and units: the Scene's (glTF frame, +Y up; the file's units). Directions need not be
@@ -8,7 +8,7 @@
 // dot((p1 − p0) × (p2 − p0), d) < 0, computed from the scene's own positions.
 //
 // Self-intersection: rays leaving a scene vertex start at vertex_origin(v), which stands ε_v off
-// the surface along the vertex normal (bake/ray_offset.h: ε follows the float rounding of the
+// the surface along the vertex normal (scene/ray_offset.h: ε follows the float rounding of the
 // point and of its own triangles, not the scene's size). Vertices on a sharp edge whose faces do
 // not share the vertex (box edges) lie in the plane of the neighbouring face, so rays leaving
 // them would hit that face at t = 0; vertex_origin() therefore also nudges the point by
@@ -27,10 +27,10 @@
 
 #include <glm/glm.hpp>
 
-#include "bake/ray_offset.h"
-#include "bake/scene.h"
+#include "scene/ray_offset.h"
+#include "scene/scene.h"
 
-namespace prt::bake {
+namespace prt::scene {
 
 class RayCaster {
  public:
@@ -60,7 +60,7 @@ class RayCaster {
   void intersect_packet(const glm::vec3& origin, const glm::vec3* dirs, int count, float tfar,
                         Hit* out) const;
 
-  // ε_v and τ_v of every vertex (bake/ray_offset.h).
+  // ε_v and τ_v of every vertex (scene/ray_offset.h).
   const VertexRayStarts& vertex_ray_starts() const { return starts_; }
 
   // Ray origin for scene vertex v: ε_v along its normal, nudged into its own triangles.
@@ -71,7 +71,7 @@ class RayCaster {
   }
 
   // Ray origin for a point p on `triangle` (a hit point) leaving along the unit normal n of the
-  // side the ray continues on: p + ε·n with ε of that triangle (bake/ray_offset.h).
+  // side the ray continues on: p + ε·n with ε of that triangle (scene/ray_offset.h).
   glm::vec3 surface_origin(uint32_t triangle, const glm::vec3& p, const glm::vec3& n) const {
     return p + static_cast<float>(triangle_ray_offset(*scene_, triangle, glm::dvec3(p))) * n;
   }
@@ -95,4 +95,4 @@ class RayCaster {
   std::atomic<long long> bytes_peak_{0};
 };
 
-}  // namespace prt::bake
+}  // namespace prt::scene

@@ -1,5 +1,5 @@
-// Analytic test meshes and the demo scene (see bake/procedural_mesh.h).
-#include "bake/procedural_mesh.h"
+// Analytic test meshes and the demo scene (see scene/procedural_mesh.h).
+#include "scene/procedural_mesh.h"
 
 #include <algorithm>
 #include <cmath>
@@ -7,7 +7,7 @@
 
 #include "sh/constants.h"
 
-namespace prt::bake {
+namespace prt::scene {
 namespace {
 
 using sh::kPi;
@@ -267,4 +267,4 @@ Scene make_demo_scene() {
   return scene;
 }
 
-}  // namespace prt::bake
+}  // namespace prt::scene

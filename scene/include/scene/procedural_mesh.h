@@ -1,4 +1,4 @@
-// bake/procedural_mesh.h — analytic test meshes (quads, boxes, spheres, a spherical cavity, a
+// scene/procedural_mesh.h — analytic test meshes (quads, boxes, spheres, a spherical cavity, a
 // well) and the bundled demo scene.
 //
 // Frame: glTF's (right-handed, +Y up). Units: whatever the caller passes.
@@ -22,9 +22,9 @@
 
 #include <glm/glm.hpp>
 
-#include "bake/scene.h"
+#include "scene/scene.h"
 
-namespace prt::bake {
+namespace prt::scene {
 
 // A (segments_u+1) x (segments_v+1) grid spanning the parallelogram corner + s*edge_u + t*edge_v.
 // Front normal = normalize(cross(edge_u, edge_v)); vertex (i, j) sits at index
@@ -70,4 +70,4 @@ void append_scene(Scene& into, const Scene& part);
 // slightly down into the corner from the open side. About 12k vertices.
 Scene make_demo_scene();
 
-}  // namespace prt::bake
+}  // namespace prt::scene

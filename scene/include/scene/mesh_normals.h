@@ -1,4 +1,4 @@
-// bake/mesh_normals.h — cleaning a loaded triangle list and computing missing vertex normals.
+// scene/mesh_normals.h — cleaning a loaded triangle list and computing missing vertex normals.
 //
 // Frame and units: those of the scene (world space after node transforms).
 //
@@ -21,9 +21,9 @@
 
 #include <cstddef>
 
-#include "bake/scene.h"
+#include "scene/scene.h"
 
-namespace prt::bake {
+namespace prt::scene {
 
 // True when triangle (a, b, c) is degenerate by the rule above, for a scene of extent `extent`.
 bool is_degenerate_triangle(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c,
@@ -45,4 +45,4 @@ struct NormalComputation {
 // scene.computed_normal_vertices is increased by the number computed.
 NormalComputation compute_vertex_normals(Scene& scene, bool only_missing);
 
-}  // namespace prt::bake
+}  // namespace prt::scene

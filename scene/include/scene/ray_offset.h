@@ -1,4 +1,4 @@
-// bake/ray_offset.h — where a ray that leaves a surface starts: as close to the surface as float
+// scene/ray_offset.h — where a ray that leaves a surface starts: as close to the surface as float
 // arithmetic allows, and no closer. The offset follows the rounding error of the point and of
 // the triangles around it, never the scene's size, so a kilometre-wide level keeps the contact
 // shadows of its centimetre details (Wächter & Binder 2019, "A Fast and Robust Method for
@@ -24,9 +24,9 @@
 
 #include <glm/glm.hpp>
 
-#include "bake/scene.h"
+#include "scene/scene.h"
 
-namespace prt::bake {
+namespace prt::scene {
 
 // One ulp bound around p: 2^-23 · max_i |p_i| (≥ the float spacing of every coordinate of p).
 double float_spacing_bound(const glm::dvec3& p);
@@ -53,4 +53,4 @@ struct VertexRayStarts {
 // ε_v and τ_v for every vertex of `scene`, in one pass over its triangles.
 VertexRayStarts compute_vertex_ray_starts(const Scene& scene);
 
-}  // namespace prt::bake
+}  // namespace prt::scene

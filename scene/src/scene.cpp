@@ -1,10 +1,10 @@
-// Scene bounds (see bake/scene.h).
-#include "bake/scene.h"
+// Scene bounds (see scene/scene.h).
+#include "scene/scene.h"
 
 #include <cmath>
 #include <limits>
 
-namespace prt::bake {
+namespace prt::scene {
 
 glm::vec3 Scene::bounds_min() const {
   if (positions.empty()) return glm::vec3(0.f);
@@ -26,4 +26,4 @@ float Scene::extent() const {
   return static_cast<float>(std::sqrt(glm::dot(diagonal, diagonal)));
 }
 
-}  // namespace prt::bake
+}  // namespace prt::scene

@@ -1,4 +1,4 @@
-// bake/scene.h — a triangle scene, flattened to world space, as the baker and renderer see it.
+// scene/scene.h — a triangle scene, flattened to world space, as the baker and renderer see it.
 //
 // Frame: glTF's (right-handed, +Y up, cameras look down −Z); units are the file's.
 // Vertices keep the file's order, primitive by primitive (glTF: nodes of the default scene
@@ -16,7 +16,7 @@
 
 #include <glm/glm.hpp>
 
-namespace prt::bake {
+namespace prt::scene {
 
 struct ScenePrimitive {
   std::string name;           // "mesh/primitive" or OBJ shape name
@@ -61,4 +61,4 @@ struct SceneError : std::exception {
   std::string message;
 };
 
-}  // namespace prt::bake
+}  // namespace prt::scene

@@ -1,4 +1,4 @@
-// glTF 2.0 reading through tinygltf (see gltf_loader.h and bake/scene_loader.h).
+// glTF 2.0 reading through tinygltf (see gltf_loader.h and scene/scene_loader.h).
 #include "gltf_loader.h"
 #include "scene_file_errors.h"
 
@@ -13,7 +13,7 @@
 
 #include <tiny_gltf.h>
 
-namespace prt::bake::detail {
+namespace prt::scene::detail {
 namespace {
 
 // Image callback: accepts the bytes without decoding them (we only read baseColorFactor).
@@ -395,4 +395,4 @@ Scene read_gltf_scene(const std::string& path, bool binary) {
   return GltfReader(path, model).read();
 }
 
-}  // namespace prt::bake::detail
+}  // namespace prt::scene::detail

@@ -1,4 +1,4 @@
-// Wavefront OBJ reading through tinyobjloader (see obj_loader.h and bake/scene_loader.h).
+// Wavefront OBJ reading through tinyobjloader (see obj_loader.h and scene/scene_loader.h).
 #include "obj_loader.h"
 #include "scene_file_errors.h"
 
@@ -15,7 +15,7 @@
 
 #include <tiny_obj_loader.h>
 
-namespace prt::bake::detail {
+namespace prt::scene::detail {
 namespace {
 
 constexpr float kDefaultObjAlbedo = 0.8f;
@@ -176,4 +176,4 @@ Scene read_obj_scene(const std::string& path) {
   return scene;
 }
 
-}  // namespace prt::bake::detail
+}  // namespace prt::scene::detail
