@@ -18,10 +18,10 @@
 
 #include <unistd.h>
 
-#include "bake/adaptive_baker.h"
+#include "bake/adaptive/adaptive_baker.h"
+#include "bake/adaptive/triangle_hierarchy.h"
 #include "bake/ground_truth.h"
 #include "bake/transfer_baker.h"
-#include "bake/triangle_hierarchy.h"
 #include "prt/transfer_file.h"
 #include "scene/procedural_mesh.h"
 #include "scene/scene_loader.h"

@@ -15,7 +15,7 @@
 
 #include <CLI/CLI.hpp>
 
-#include "bake/adaptive_baker.h"
+#include "bake/adaptive/adaptive_baker.h"
 #include "bake/progress.h"
 #include "bake/transfer_baker.h"
 #include "cli_parsing.h"
@@ -43,7 +43,7 @@ struct BakeArguments {
   std::string precision = "f32";
   bool quiet = false;
   HaarBakeArguments haar;  // --basis haar and its options (haar_cli.h)
-  bool automatic = false;  // --auto (bake/adaptive_baker.h)
+  bool automatic = false;  // --auto (bake/adaptive/adaptive_baker.h)
   std::string env;         // --env: lighting that --auto chooses the SH order for
   bool tolerance_given = false, transfer_given = false;
 };

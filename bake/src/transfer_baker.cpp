@@ -36,8 +36,8 @@
 #include <tbb/parallel_for.h>
 #include <nlohmann/json.hpp>
 
+#include "bake/adaptive/occluder_caps.h"
 #include "bake/interreflection_solver.h"
-#include "bake/occluder_caps.h"
 #include "bake/progress.h"
 #include "bake/sampling.h"
 #include "scene/ray_caster.h"

@@ -15,8 +15,8 @@
 
 #include <glm/glm.hpp>
 
+#include "bake/adaptive/occluder_caps.h"
 #include "bake/interreflection_solver.h"
-#include "bake/occluder_caps.h"
 #include "bake/progress.h"
 #include "bake/transfer_baker.h"
 #include "scene/ray_caster.h"
@@ -104,9 +104,9 @@ void cast_packet(const scene::RayCaster& caster, const glm::vec3& origin, const 
                  int count, float tfar, scene::RayCaster::Hit* hits, bool* occluded);
 
 // Appends the hit triangle's vertices, weighted by barycentrics × the sample's weight (1 under
-// cosine-weighted sampling, bake/cap_sampling.h's w in caps), to a row being gathered; false
-// (nothing added) when the ray sees the back side: the flat facet's geometric normal, oriented
-// by the triangle's vertex normals (hit_side.h). A back face occludes only.
+// cosine-weighted sampling, bake/adaptive/cap_sampling.h's w in caps), to a row being gathered;
+// false (nothing added) when the ray sees the back side: the flat facet's geometric normal,
+// oriented by the triangle's vertex normals (hit_side.h). A back face occludes only.
 bool gather_front_hit(const scene::Scene& scene, const scene::RayCaster::Hit& hit,
                       const glm::vec3& dir, float weight,
                       std::vector<std::pair<uint32_t, float>>& gathered);

@@ -15,7 +15,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "bake/adaptive_baker.h"
+#include "bake/adaptive/adaptive_baker.h"
 #include "bake/ground_truth.h"
 #include "bake/haar_baker.h"
 #include "bake/progress.h"
@@ -1316,7 +1316,8 @@ void summarize_settings(std::ostream& md, const ReportState& st,
 // summary.md: the `prt bake --auto` rows (when there are any).
 void summarize_auto(std::ostream& md, const ReportResult& result) {
   md << "\n## Scene-adaptive bake (`prt bake --auto`)\n\n"
-     << "`prt bake --auto --env` at each tolerance (bake/adaptive_baker.h: the lighting it "
+     << "`prt bake --auto --env` at each tolerance (bake/adaptive/adaptive_baker.h: the lighting "
+        "it "
         "adapts to is this map projected at order "
      << bake::kMaxBakeOrder
      << "), measured against the same ground truth. Its prediction leaves out the mesh's "

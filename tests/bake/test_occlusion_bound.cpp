@@ -1,13 +1,14 @@
-// Tests of bake/occlusion_bound.h: the ray-free bound on the blockable projected solid angle.
+// Tests of bake/adaptive/occlusion_bound.h: the ray-free bound on the blockable projected solid
+// angle.
 #include <catch2/catch.hpp>
 
 #include <algorithm>
 #include <cmath>
 
-#include "bake/occlusion_bound.h"
+#include "bake/adaptive/occlusion_bound.h"
+#include "bake/adaptive/scene_analysis.h"
+#include "bake/adaptive/triangle_hierarchy.h"
 #include "bake/sampling.h"
-#include "bake/scene_analysis.h"
-#include "bake/triangle_hierarchy.h"
 #include "scene/procedural_mesh.h"
 #include "scene/ray_caster.h"
 

@@ -10,11 +10,11 @@
 
 #include <catch2/catch.hpp>
 
+#include "bake/adaptive/occlusion_bound.h"
+#include "bake/adaptive/scene_analysis.h"
 #include "bake/ground_truth.h"
 #include "bake/haar_baker.h"
-#include "bake/occlusion_bound.h"
 #include "bake/sampling.h"
-#include "bake/scene_analysis.h"
 #include "bake/transfer_baker.h"
 #include "prt/haar_approximation.h"
 #include "prt/haar_relighter.h"

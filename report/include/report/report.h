@@ -72,8 +72,8 @@ struct ReportOptions {
   // an empty list leaves the Haar axis out.
   std::optional<std::vector<int>> haar_cubes;
   bool verbose = true;  // progress lines on stderr
-  // Tolerances of the `prt bake --auto` rows (bake/adaptive_baker.h): nullopt = the default of
-  // the mode (quick {0.05}; full {0.01, 0.05, 0.1}); an empty list leaves them out.
+  // Tolerances of the `prt bake --auto` rows (bake/adaptive/adaptive_baker.h): nullopt = the
+  // default of the mode (quick {0.05}; full {0.01, 0.05, 0.1}); an empty list leaves them out.
   std::optional<std::vector<double>> auto_tolerances;
 };
 

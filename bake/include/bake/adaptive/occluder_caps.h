@@ -1,14 +1,14 @@
-// bake/occluder_caps.h — where a vertex's rays can hit anything: a few cones of directions
+// bake/adaptive/occluder_caps.h — where a vertex's rays can hit anything: a few cones of directions
 // (caps) that hold every blockable direction of its hemisphere, found without rays.
 //
-// `prt bake --auto` samples such a vertex only inside its caps (bake/cap_sampling.h) and takes
-// the rest of the hemisphere analytically: a floor vertex far from the objects on it needs rays
-// toward those objects only, not toward the open sky.
+// `prt bake --auto` samples such a vertex only inside its caps (bake/adaptive/cap_sampling.h) and
+// takes the rest of the hemisphere analytically: a floor vertex far from the objects on it needs
+// rays toward those objects only, not toward the open sky.
 //
-// Frame and units: the Scene's. The argument is that of bake/occlusion_bound.h, per group of
-// triangles of a hierarchy (bake/triangle_hierarchy.h):
+// Frame and units: the Scene's. The argument is that of bake/adaptive/occlusion_bound.h, per group
+// of triangles of a hierarchy (bake/adaptive/triangle_hierarchy.h):
 //   - a group whose every vertex lies within τ_v of p's tangent plane cannot be hit (the proof
-//     of bake/scene_analysis.h; τ_v of scene/ray_offset.h);
+//     of bake/adaptive/scene_analysis.h; τ_v of scene/ray_offset.h);
 //   - a ball B(c, r) that holds the group, seen from p at distance d > r, covers the cap of
 //     half-angle α = asin(r/d) around the direction of c; rays leave from p + ε_v·n plus a
 //     tangential nudge ≤ ε_v (scene/ray_caster.h), so every radius is inflated by 2ε_v;
@@ -25,7 +25,7 @@
 
 #include <glm/glm.hpp>
 
-#include "bake/triangle_hierarchy.h"
+#include "bake/adaptive/triangle_hierarchy.h"
 #include "scene/ray_offset.h"
 #include "scene/scene.h"
 
@@ -55,7 +55,7 @@ inline constexpr int kDefaultMaxCaps = 8;
 
 // Caps of every vertex with wanted[v] != 0 (wanted empty = every vertex). `starts` holds ε_v
 // and τ_v (scene/ray_offset.h). Deterministic, parallel.
-// `hierarchy` (optional) is bake/triangle_hierarchy.h's over this scene; built when null.
+// `hierarchy` (optional) is bake/adaptive/triangle_hierarchy.h's over this scene; built when null.
 OccluderCaps find_occluder_caps(const scene::Scene& scene, const scene::VertexRayStarts& starts,
                                 const std::vector<uint8_t>& wanted, int max_caps,
                                 double max_solid_angle,

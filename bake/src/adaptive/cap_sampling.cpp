@@ -1,5 +1,6 @@
-// bake/src/cap_sampling.cpp — directions in a union of caps and their weights (cap_sampling.h).
-#include "bake/cap_sampling.h"
+// bake/src/adaptive/cap_sampling.cpp — directions in a union of caps and their weights
+// (cap_sampling.h).
+#include "bake/adaptive/cap_sampling.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,13 +1,13 @@
-// bake/occlusion_bound.h — a conservative bound, without rays, on how much of a vertex's
+// bake/adaptive/occlusion_bound.h — a conservative bound, without rays, on how much of a vertex's
 // cosine-weighted hemisphere the scene can block: the projected solid angle
 //   G_v = (1/π) ∫_{ω·n > 0, the ray from v hits something} (ω·n) dω ∈ [0, 1]
 // is ≤ occlusion_bound(v). `prt bake --auto` gives vertices with a small bound the analytic
-// unshadowed transfer and charges the bound to the error budget (bake/adaptive_baker.h).
+// unshadowed transfer and charges the bound to the error budget (bake/adaptive/adaptive_baker.h).
 //
 // Frame and units: the Scene's. The bound is a sum over disjoint groups of triangles (a union
 // bound), each group either dismissed or bounded by a ball:
 //   - a group whose every vertex lies at height (q − p)·n ≤ τ_v above the tangent plane cannot
-//     be hit (the proof of bake/scene_analysis.h; τ_v of scene/ray_offset.h);
+//     be hit (the proof of bake/adaptive/scene_analysis.h; τ_v of scene/ray_offset.h);
 //   - otherwise, a ball B(c, r) that holds the group, seen from p at distance d > r, covers the
 //     cap of half-angle α = asin(r/d) around the direction of c; the cap's solid angle is
 //     2π(1 − cos α) and its largest cosine to n is cos(max(0, θ_c − α)), so its projected solid
@@ -23,7 +23,7 @@
 #include <cstddef>
 #include <vector>
 
-#include "bake/triangle_hierarchy.h"
+#include "bake/adaptive/triangle_hierarchy.h"
 #include "scene/ray_offset.h"
 #include "scene/scene.h"
 
@@ -36,7 +36,7 @@ struct OcclusionBounds {
 
 // Bounds every vertex whose `skip` entry is 0 (skip may be empty); others get 0. `starts` holds
 // ε_v and τ_v (scene/ray_offset.h). Deterministic, parallel.
-// `hierarchy` (optional) is bake/triangle_hierarchy.h's over this scene; built when null.
+// `hierarchy` (optional) is bake/adaptive/triangle_hierarchy.h's over this scene; built when null.
 OcclusionBounds bound_occlusion(const scene::Scene& scene, const scene::VertexRayStarts& starts,
                                 double cutoff, const std::vector<uint8_t>& skip = {},
                                 const TriangleHierarchy* hierarchy = nullptr);

@@ -1,6 +1,6 @@
-// bake/scene_analysis.h — cheap, conservative analysis of a scene before baking: which vertices
-// have a hemisphere that no ray can leave blocked (they get the analytic unshadowed transfer,
-// with no rays), and whether the albedo allows interreflection at all.
+// bake/adaptive/scene_analysis.h — cheap, conservative analysis of a scene before baking: which
+// vertices have a hemisphere that no ray can leave blocked (they get the analytic unshadowed
+// transfer, with no rays), and whether the albedo allows interreflection at all.
 //
 // Frame and units: the Scene's (glTF frame, +Y up; the file's units).
 //

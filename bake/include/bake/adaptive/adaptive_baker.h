@@ -1,25 +1,26 @@
-// bake/adaptive_baker.h — `prt bake --auto`: analyse the scene, do only the work it needs for a
-// stated accuracy, and say what was left out and the predicted error.
+// bake/adaptive/adaptive_baker.h — `prt bake --auto`: analyse the scene, do only the work it needs
+// for a stated accuracy, and say what was left out and the predicted error.
 //
 // Conventions: those of bake/transfer_baker.h (SH basis of sh/basis.h, no Condon–Shortley
 // phase, k = l(l+1)+m, glTF frame +Y up, T includes albedo/π). Lighting: channel-major RGB SH
 // coefficients of distant radiance (sh::project of an environment map).
 //
 // Steps (each one conservative or measured; see the headers cited):
-//  1. bake/scene_analysis.h: vertices with a provably open hemisphere get the analytic
+//  1. bake/adaptive/scene_analysis.h: vertices with a provably open hemisphere get the analytic
 //     unshadowed transfer with no rays; grey albedo → one channel; zero albedo → no
 //     interreflection.
 //  2. with lighting: a pilot bake (order pilot_order, or lighting_order + 1 when that is lower:
 //     bands the lighting lacks carry nothing; pilot_samples rays on pilot_vertices vertices, one
-//     at random from each of pilot_vertices equal index ranges) and bake/order_selection.h choose
-//     the smallest SH order whose predicted truncation error is ≤ tolerance/2; bands above it are
-//     dropped (the file simply has a lower order). The pilot's noise only adds to the prediction,
-//     so when no order meets it the pilot is repeated with 4× the samples (up to
+//     at random from each of pilot_vertices equal index ranges) and bake/adaptive/order_selection.h
+//     choose the smallest SH order whose predicted truncation error is ≤ tolerance/2; bands above
+//     it are dropped (the file simply has a lower order). The pilot's noise only adds to the
+//     prediction, so when no order meets it the pilot is repeated with 4× the samples (up to
 //     max_pilot_samples); when none meets it then, the smallest order whose truncation stays
 //     within 80% of the tolerance is baked (sampling gets the rest), and when there is none,
 //     max_order is baked and Haar is recommended unless the predicted total (step 5) still
 //     meets the tolerance.
-//  3. bake/occlusion_bound.h: vertices whose blockable projected solid angle is bounded, without
+//  3. bake/adaptive/occlusion_bound.h: vertices whose blockable projected solid angle is bounded,
+//  without
 //     rays, below bounded_skip_cutoff are ranked by their exit-radiance error bound ρ·G·M
 //     (adaptive_baker.cpp) and skip rays, smallest first, while the bounds' relative RMS stays
 //     ≤ bounded_skip_share × tolerance.
@@ -39,7 +40,7 @@
 #include <string>
 #include <vector>
 
-#include "bake/order_selection.h"
+#include "bake/adaptive/order_selection.h"
 #include "bake/transfer_baker.h"
 #include "scene/scene.h"
 #include "sh/constants.h"
@@ -70,13 +71,13 @@ struct AutoBakeOptions {
   int max_samples = 1024;
   uint64_t seed = 1;
   int threads = 0;
-  // Vertices whose occlusion is bounded without rays (bake/occlusion_bound.h) below
+  // Vertices whose occlusion is bounded without rays (bake/adaptive/occlusion_bound.h) below
   // bounded_skip_cutoff of the cosine-weighted hemisphere may skip rays while their summed
   // error bound stays ≤ bounded_skip_share × tolerance (relative RMS); 0 turns this off.
   double bounded_skip_share = 0.25;
   double bounded_skip_cutoff = 0.05;
   // Vertices whose blockable directions fit in a few small cones draw their rays inside them
-  // (bake/occluder_caps.h, bake/cap_sampling.h).
+  // (bake/adaptive/occluder_caps.h, bake/adaptive/cap_sampling.h).
   bool cap_sampling = true;
   int max_caps = 8;
   double max_cap_solid_angle = sh::kHalfPi;  // π/2 sr

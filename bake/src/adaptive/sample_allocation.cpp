@@ -1,5 +1,5 @@
-// bake/src/sample_allocation.cpp — Neyman allocation with bounds (sample_allocation.h).
-#include "bake/sample_allocation.h"
+// bake/src/adaptive/sample_allocation.cpp — Neyman allocation with bounds (sample_allocation.h).
+#include "bake/adaptive/sample_allocation.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,5 +1,5 @@
-// bake/src/order_selection.cpp — SH order from band energies (order_selection.h).
-#include "bake/order_selection.h"
+// bake/src/adaptive/order_selection.cpp — SH order from band energies (order_selection.h).
+#include "bake/adaptive/order_selection.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,5 +1,6 @@
-// bake/src/triangle_hierarchy.cpp — building the triangle-group hierarchy (triangle_hierarchy.h).
-#include "bake/triangle_hierarchy.h"
+// bake/src/adaptive/triangle_hierarchy.cpp — building the triangle-group hierarchy
+// (triangle_hierarchy.h).
+#include "bake/adaptive/triangle_hierarchy.h"
 
 #include <algorithm>
 #include <atomic>

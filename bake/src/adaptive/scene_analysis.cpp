@@ -1,5 +1,6 @@
-// bake/src/scene_analysis.cpp — the open-hemisphere test and albedo facts (scene_analysis.h).
-#include "bake/scene_analysis.h"
+// bake/src/adaptive/scene_analysis.cpp — the open-hemisphere test and albedo facts
+// (scene_analysis.h).
+#include "bake/adaptive/scene_analysis.h"
 
 #include <algorithm>
 #include <chrono>

@@ -1,24 +1,25 @@
-// bake/src/adaptive_sampler.cpp — adaptive sampling of the sampling pass (transfer_pass.h,
+// bake/src/adaptive/adaptive_sampler.cpp — adaptive sampling of the sampling pass (transfer_pass.h,
 // AdaptiveSampling in bake/transfer_baker.h).
 //
 // Phase 1 casts min_samples rays per sampled vertex, then rounds of Neyman allocation
-// (bake/sample_allocation.h) add rays until the calibrated error model meets the budget. Audit
-// vertices (every kAuditStride-th sampled vertex) draw from two independently scrambled
+// (bake/adaptive/sample_allocation.h) add rays until the calibrated error model meets the budget.
+// Audit vertices (every kAuditStride-th sampled vertex) draw from two independently scrambled
 // sequences in alternate packets; the others from the one sequence of the fixed recipe. Hits are
-// gathered into H in every round. A capped vertex (bake/occluder_caps.h) draws inside its caps
-// (bake/cap_sampling.h). The error model is derived in calibrate() and budget() below.
+// gathered into H in every round. A capped vertex (bake/adaptive/occluder_caps.h) draws inside its
+// caps (bake/adaptive/cap_sampling.h). The error model is derived in calibrate() and budget()
+// below.
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
 #include <tbb/parallel_for.h>
 
-#include "bake/cap_sampling.h"
-#include "bake/sample_allocation.h"
+#include "../transfer_pass.h"
+#include "bake/adaptive/cap_sampling.h"
+#include "bake/adaptive/sample_allocation.h"
 #include "bake/sampling.h"
 #include "sh/basis.h"
 #include "sh/constants.h"
-#include "transfer_pass.h"
 
 namespace prt::bake::detail {
 namespace {

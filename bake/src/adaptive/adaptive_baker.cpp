@@ -1,5 +1,5 @@
-// bake/src/adaptive_baker.cpp — the `--auto` pipeline (adaptive_baker.h).
-#include "bake/adaptive_baker.h"
+// bake/src/adaptive/adaptive_baker.cpp — the `--auto` pipeline (adaptive_baker.h).
+#include "bake/adaptive/adaptive_baker.h"
 
 #include <algorithm>
 #include <chrono>
@@ -9,9 +9,9 @@
 
 #include <nlohmann/json.hpp>
 
-#include "bake/occlusion_bound.h"
+#include "bake/adaptive/occlusion_bound.h"
+#include "bake/adaptive/scene_analysis.h"
 #include "bake/sampling.h"
-#include "bake/scene_analysis.h"
 #include "scene/ray_caster.h"
 #include "sh/constants.h"
 #include "sh/zonal.h"
@@ -87,8 +87,8 @@ std::vector<double> bake_pilot(const scene::Scene& scene, const scene::Scene& gr
 }
 
 // Vertices that may skip their rays although something can block them: those whose blocked
-// part, bounded without rays (bake/occlusion_bound.h), changes the exit radiance by so little
-// that all of them together stay within `share` of the tolerance (relative RMS).
+// part, bounded without rays (bake/adaptive/occlusion_bound.h), changes the exit radiance by so
+// little that all of them together stay within `share` of the tolerance (relative RMS).
 //   Exit radiance of a diffuse vertex: B = ρ/π ∫ [V·L_env + (1 − V)·L_hit] cos θ dω, and the
 //   unshadowed transfer gives B_u = ρ/π ∫ L_env cos θ dω, so |B − B_u| ≤ ρ·G·max|L_hit − L_env|
 //   with G the projected solid angle blocked (≤ the bound). Every surface's exit radiance lies

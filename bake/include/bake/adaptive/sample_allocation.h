@@ -1,4 +1,4 @@
-// bake/sample_allocation.h — how many samples each vertex gets so that the relative RMS
+// bake/adaptive/sample_allocation.h — how many samples each vertex gets so that the relative RMS
 // sampling error over the whole scene meets a budget at the least total cost.
 //
 // Model (i.i.d. Monte Carlo, conservative for the baker's scrambled Sobol' points): vertex v's

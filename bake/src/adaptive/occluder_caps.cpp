@@ -1,5 +1,5 @@
-// bake/src/occluder_caps.cpp — caps of blockable directions (occluder_caps.h).
-#include "bake/occluder_caps.h"
+// bake/src/adaptive/occluder_caps.cpp — caps of blockable directions (occluder_caps.h).
+#include "bake/adaptive/occluder_caps.h"
 
 #include <algorithm>
 #include <chrono>
@@ -7,7 +7,7 @@
 
 #include <tbb/parallel_for.h>
 
-#include "bake/triangle_hierarchy.h"
+#include "bake/adaptive/triangle_hierarchy.h"
 #include "sh/constants.h"
 
 namespace prt::bake {

@@ -1,5 +1,5 @@
-// bake/order_selection.h — choosing the SH order of a bake from the lighting's band energy and
-// the transfer's, so that the predicted error of the exit radiance meets a tolerance.
+// bake/adaptive/order_selection.h — choosing the SH order of a bake from the lighting's band energy
+// and the transfer's, so that the predicted error of the exit radiance meets a tolerance.
 //
 // Convention: sh/basis.h (real orthonormal SH, no Condon–Shortley phase, k = l(l+1)+m, scene
 // frame glTF +Y up). Lighting: channel-major RGB SH coefficients of distant radiance,

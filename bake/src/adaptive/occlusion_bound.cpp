@@ -1,5 +1,5 @@
-// bake/src/occlusion_bound.cpp — the ray-free occlusion bound (occlusion_bound.h).
-#include "bake/occlusion_bound.h"
+// bake/src/adaptive/occlusion_bound.cpp — the ray-free occlusion bound (occlusion_bound.h).
+#include "bake/adaptive/occlusion_bound.h"
 
 #include <algorithm>
 #include <chrono>
@@ -8,7 +8,7 @@
 
 #include <tbb/parallel_for.h>
 
-#include "bake/triangle_hierarchy.h"
+#include "bake/adaptive/triangle_hierarchy.h"
 
 namespace prt::bake {
 namespace {

@@ -1,5 +1,5 @@
-// bake/cap_sampling.h — Monte Carlo over a union of caps (bake/occluder_caps.h) instead of the
-// whole cosine-weighted hemisphere.
+// bake/adaptive/cap_sampling.h — Monte Carlo over a union of caps (bake/adaptive/occluder_caps.h)
+// instead of the whole cosine-weighted hemisphere.
 //
 // For a vertex whose blockable directions all lie in caps C_1..C_m, the occluded part of any
 // cosine-weighted integral, (1/π) ∫ (1 − V(ω)) f(ω) cos⁺θ dω, is an integral over the union
@@ -18,7 +18,7 @@
 
 #include <glm/glm.hpp>
 
-#include "bake/occluder_caps.h"
+#include "bake/adaptive/occluder_caps.h"
 
 namespace prt::bake {
 

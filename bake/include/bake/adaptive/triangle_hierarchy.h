@@ -1,6 +1,6 @@
-// bake/triangle_hierarchy.h — a bounding hierarchy of triangle groups with a box and a ball per
-// group, for the ray-free queries of bake/occlusion_bound.h and bake/occluder_caps.h (built once
-// per `prt bake --auto` and shared by both).
+// bake/adaptive/triangle_hierarchy.h — a bounding hierarchy of triangle groups with a box and a
+// ball per group, for the ray-free queries of bake/adaptive/occlusion_bound.h and
+// bake/adaptive/occluder_caps.h (built once per `prt bake --auto` and shared by both).
 //
 // Groups split between primitives first (a floor and the objects on it get separate groups, so
 // a group's ball is not stretched over the floor), then at the median centroid along the
