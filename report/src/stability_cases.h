@@ -1,5 +1,5 @@
 // report/src/stability_cases.h (private) — the stability cases behind run_stability_report()
-// (report/stability_report.h), shared with tests/relight/test_stability*.cpp so the report and
+// (report/stability_report.h), shared with tests/report/test_stability*.cpp so the report and
 // the tests run the same code.
 //
 // Conventions: SH basis of sh/basis.h (real, orthonormal, no Condon–Shortley phase,

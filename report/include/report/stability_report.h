@@ -2,7 +2,7 @@
 // numerics at high SH order and near the poles, extreme environments (bright suns, black maps,
 // NaN/Inf texels, 1×1 and 8192×4096 maps), stiff interreflection (the spherical-cavity furnace
 // at albedo 0.9 .. 0.999, B = ρf/(1 − ρ(1 − f))), degenerate geometry, scale invariance, and
-// float16 overflow. The same case code runs in the tests (tests/relight/test_stability*.cpp).
+// float16 overflow. The same case code runs in the tests (tests/report/test_stability*.cpp).
 //
 // Conventions: SH basis of sh/basis.h (real, orthonormal, no Condon–Shortley phase,
 // k = l(l+1)+m), glTF scene frame (+Y up), lat-long maps as in sh/env_map.h. Radiance in the

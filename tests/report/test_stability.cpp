@@ -1,4 +1,4 @@
-// tests/relight/test_stability.cpp — the stability cases of `prt report --stability` as tests
+// tests/report/test_stability.cpp — the stability cases of `prt report --stability` as tests
 // (report/src/stability_cases.h; quick sizes). Each case computes its own analytic or
 // independent reference and pass criterion (stated in the case and in docs/STABILITY.md); the
 // tests require the case to pass and re-check the figures that matter, so a regression shows

@@ -1,4 +1,4 @@
-// tests/relight/test_stability_regressions.cpp — regression tests for bugs found by the fuzzers
+// tests/report/test_stability_regressions.cpp — regression tests for bugs found by the fuzzers
 // (fuzz/) and the stability cases, in other modules' code. Each input is the minimal form of
 // the finding.
 #include <catch2/catch.hpp>

@@ -16,13 +16,13 @@
 #include "bake/haar_baker.h"
 #include "bake/sampling.h"
 #include "bake/transfer_baker.h"
+#include "bake/transfer_test_support.h"
 #include "prt/haar_approximation.h"
 #include "prt/haar_relighter.h"
 #include "prt/haar_transform.h"
 #include "scene/procedural_mesh.h"
 #include "scene/ray_caster.h"
 #include "scene/ray_offset.h"
-#include "transfer_test_support.h"
 
 using namespace prt::bake;
 using namespace prt::scene;
