@@ -18,19 +18,20 @@
 
 #include <unistd.h>
 
-#include "bake/adaptive_baker.h"
+#include "bake/adaptive/adaptive_baker.h"
+#include "bake/adaptive/triangle_hierarchy.h"
 #include "bake/ground_truth.h"
-#include "bake/procedural_mesh.h"
-#include "bake/scene_loader.h"
 #include "bake/transfer_baker.h"
-#include "bake/triangle_hierarchy.h"
 #include "prt/transfer_file.h"
+#include "scene/procedural_mesh.h"
+#include "scene/scene_loader.h"
 #include "sh/basis.h"
 #include "sh/constants.h"
 #include "sh/env_map.h"
 #include "sh/zonal.h"
 
 using namespace prt::bake;
+using namespace prt::scene;
 
 namespace {
 

@@ -21,11 +21,11 @@
 #include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
 
-#include "bake/ray_caster.h"
 #include "bake/sampling.h"
-#include "bake/scene_loader.h"
 #include "bake/transfer_baker.h"
 #include "prt/transfer_file.h"
+#include "scene/ray_caster.h"
+#include "scene/scene_loader.h"
 
 namespace {
 
@@ -54,7 +54,7 @@ double cpu_seconds() {
 }
 
 // The baker's ray pattern without any SH work; returns seconds (rays = V × samples).
-double cast_pure_rays(const prt::bake::Scene& scene, const prt::bake::RayCaster& caster,
+double cast_pure_rays(const prt::scene::Scene& scene, const prt::scene::RayCaster& caster,
                       int samples, uint64_t seed, uint64_t* occluded_total) {
   const std::size_t V = scene.positions.size(), block = 64;
   std::atomic<uint64_t> occluded{0};
@@ -107,7 +107,7 @@ int main(int argc, char** argv) {
     std::optional<tbb::global_control> limit;
     if (threads > 0) limit.emplace(tbb::global_control::max_allowed_parallelism, threads);
     Clock::time_point t = Clock::now();
-    const prt::bake::Scene scene = prt::bake::load_scene(mesh);
+    const prt::scene::Scene scene = prt::scene::load_scene(mesh);
     const double load_s = seconds_since(t);
     std::printf(
         "mesh %s: %zu vertices, %zu triangles (load %.2f s, peak RSS after loading %.1f MiB); "
@@ -120,7 +120,7 @@ int main(int argc, char** argv) {
     std::size_t bvh_bytes = 0;
     {
       t = Clock::now();
-      const prt::bake::RayCaster caster(scene);
+      const prt::scene::RayCaster caster(scene);
       const double build_s = seconds_since(t);
       bvh_bytes = caster.embree_peak_bytes();
       uint64_t occluded = 0;

@@ -9,10 +9,11 @@
 #include <cstdio>
 #include <cstdlib>
 
-#include "bake/procedural_mesh.h"
 #include "bake/transfer_baker.h"
+#include "scene/procedural_mesh.h"
 
 using namespace prt::bake;
+using namespace prt::scene;
 
 int main(int argc, char** argv) {
   const float extent = argc > 1 ? static_cast<float>(std::atof(argv[1])) : 1000.f;

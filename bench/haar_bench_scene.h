@@ -10,22 +10,22 @@
 
 #include <glm/glm.hpp>
 
-#include "bake/procedural_mesh.h"
-#include "bake/scene_loader.h"
 #include "prt/haar_transfer.h"
+#include "scene/procedural_mesh.h"
+#include "scene/scene_loader.h"
 #include "sh/env_map.h"
 
 namespace prt::bench {
 
 // bunny_small.obj on a 40×40-segment ground quad twice the bunny's footprint; albedo 0.8 grey.
-inline prt::bake::Scene make_bunny_on_plane(const std::string& shared_data_dir) {
-  prt::bake::Scene scene = prt::bake::load_scene(shared_data_dir + "/meshes/bunny_small.obj");
+inline prt::scene::Scene make_bunny_on_plane(const std::string& shared_data_dir) {
+  prt::scene::Scene scene = prt::scene::load_scene(shared_data_dir + "/meshes/bunny_small.obj");
   const glm::vec3 lo = scene.bounds_min(), hi = scene.bounds_max();
   const float ext = std::max(hi.x - lo.x, hi.z - lo.z);
   const glm::vec3 c = 0.5f * (lo + hi);
-  prt::bake::append_scene(
-      scene, prt::bake::make_quad({c.x - ext, lo.y, c.z + ext}, {2 * ext, 0, 0}, {0, 0, -2 * ext},
-                                  40, 40, glm::vec3(0.8f), "ground"));
+  prt::scene::append_scene(
+      scene, prt::scene::make_quad({c.x - ext, lo.y, c.z + ext}, {2 * ext, 0, 0}, {0, 0, -2 * ext},
+                                   40, 40, glm::vec3(0.8f), "ground"));
   for (glm::vec3& a : scene.albedo) a = glm::vec3(0.8f);
   return scene;
 }

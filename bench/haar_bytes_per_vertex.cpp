@@ -24,12 +24,12 @@
 #include <vector>
 
 #include "bake/haar_baker.h"
-#include "bake/scene_loader.h"
 #include "haar_bench_scene.h"
 #include "prt/haar_relighter.h"
 #include "prt/haar_transform.h"
 #include "relight/image_io.h"
-#include "relight/plot_svg.h"
+#include "report/plot_svg.h"
+#include "scene/scene_loader.h"
 
 namespace {
 
@@ -59,7 +59,7 @@ int main(int argc, char** argv) {
   const std::string data = argc > 1 ? argv[1] : PRT_SHARED_DATA_DIR;
   const std::string out_dir = argc > 2 ? argv[2] : ".";
   try {
-    prt::bake::Scene scene = prt::bench::make_bunny_on_plane(data);
+    prt::scene::Scene scene = prt::bench::make_bunny_on_plane(data);
     const std::size_t V = scene.vertex_count();
 
     prt::bake::HaarBakeOptions o;
@@ -144,7 +144,7 @@ int main(int argc, char** argv) {
                   s.mode, s.threshold, static_cast<long long>(s.top), bits, bpv, tpv,
                   100 * err[0][0], 100 * err[0][1], 100 * err[1][0], 100 * err[1][1]);
     }
-    prt::relight::write_text_file(out_dir + "/bytes_per_vertex.csv", csv);
+    prt::report::write_text_file(out_dir + "/bytes_per_vertex.csv", csv);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "haar_bytes_per_vertex: %s\n", e.what());
     return 1;

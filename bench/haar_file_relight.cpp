@@ -26,11 +26,11 @@
 #include <vector>
 
 #include "bake/haar_baker.h"
-#include "bake/scene_loader.h"
 #include "prt/haar_relighter.h"
 #include "prt/haar_transfer_file.h"
 #include "relight/haar_relight.h"
 #include "relight/image_io.h"
+#include "scene/scene_loader.h"
 
 namespace {
 
@@ -93,7 +93,7 @@ int main(int argc, char** argv) {
   }
   try {
     if (file.empty()) {
-      prt::bake::Scene scene = prt::bake::load_scene(mesh);
+      prt::scene::Scene scene = prt::scene::load_scene(mesh);
       for (glm::vec3& a : scene.albedo)
         a = glm::vec3(float(albedo[0]), float(albedo[1]), float(albedo[2]));
       prt::bake::HaarBakeOptions o;

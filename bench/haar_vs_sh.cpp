@@ -32,12 +32,12 @@
 #include <tbb/parallel_for.h>
 
 #include "bake/haar_baker.h"
-#include "bake/scene_loader.h"
 #include "haar_bench_scene.h"
 #include "prt/haar_relighter.h"
 #include "prt/haar_transform.h"
 #include "relight/image_io.h"
-#include "relight/plot_svg.h"
+#include "report/plot_svg.h"
+#include "scene/scene_loader.h"
 #include "sh/basis.h"
 
 namespace {
@@ -80,7 +80,7 @@ int main(int argc, char** argv) {
   const auto t0 = std::chrono::steady_clock::now();
   try {
     // Scene: the bunny on a ground plane.
-    prt::bake::Scene scene = prt::bench::make_bunny_on_plane(data);
+    prt::scene::Scene scene = prt::bench::make_bunny_on_plane(data);
     const std::size_t V = scene.vertex_count();
     std::set<std::pair<uint32_t, uint32_t>> edge_set;
     for (const glm::uvec3& t : scene.triangles)
@@ -148,13 +148,13 @@ int main(int argc, char** argv) {
 
     std::ofstream csv_tmp;
     std::string csv = "light,method,terms,l2,max,h1\n";
-    prt::relight::PlotSpec plot;
+    prt::report::PlotSpec plot;
     plot.title = "Bunny on a plane, N = 32: relative L2 error of exit radiance vs terms";
     plot.x_label = "lighting terms";
     plot.y_label = "relative L2 error";
     plot.log_x = plot.log_y = true;
     plot.y_as_percent = true;
-    plot.legend = prt::relight::LegendCorner::BottomLeft;  // the data leave that corner empty
+    plot.legend = prt::report::LegendCorner::BottomLeft;  // the data leave that corner empty
     const char* colors[3] = {"#d62728", "#2ca02c", "#1f77b4"};
     for (std::size_t li = 0; li < lights.size(); ++li) {
       const Light& light = lights[li];
@@ -164,13 +164,13 @@ int main(int argc, char** argv) {
       if (!wl.ok()) throw std::runtime_error(wl.status().message());
       std::vector<float> ref(3 * V), b(3 * V);
       if (!relighter.shade(prt::keep_all_terms(*wl), ref.data()).ok()) return 1;
-      prt::relight::PlotSeries series[3];
+      prt::report::PlotSeries series[3];
       const char* names[3] = {"SH", "linear Haar", "non-linear Haar"};
       for (int m = 0; m < 3; ++m) {
         series[m].label = light.name + ": " + names[m];
         series[m].color = colors[m];
         series[m].dashed = li == 1;
-        series[m].marker = li == 0 ? prt::relight::Marker::Circle : prt::relight::Marker::Square;
+        series[m].marker = li == 0 ? prt::report::Marker::Circle : prt::report::Marker::Square;
       }
       auto record = [&](int m, int terms, const Errors& e) {
         char line[256];
@@ -206,11 +206,11 @@ int main(int argc, char** argv) {
       for (auto& s : series) plot.series.push_back(s);
     }
     plot.reference_lines.push_back({0.01, "1%"});
-    prt::relight::write_text_file(out_dir + "/comparison.csv", csv);
-    prt::relight::write_text_file(out_dir + "/comparison.svg", prt::relight::render_svg(plot));
+    prt::report::write_text_file(out_dir + "/comparison.csv", csv);
+    prt::report::write_text_file(out_dir + "/comparison.svg", prt::report::render_svg(plot));
     std::string why;
-    if (!prt::relight::convert_svg_to_png(out_dir + "/comparison.svg", out_dir + "/comparison.png",
-                                          1.0, &why))
+    if (!prt::report::convert_svg_to_png(out_dir + "/comparison.svg", out_dir + "/comparison.png",
+                                         1.0, &why))
       std::fprintf(stderr, "haar_vs_sh: no PNG: %s\n", why.c_str());
     std::printf("total %.1f s\n",
                 std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());

@@ -15,15 +15,15 @@
 
 #include <CLI/CLI.hpp>
 
-#include "bake/adaptive_baker.h"
+#include "bake/adaptive/adaptive_baker.h"
 #include "bake/progress.h"
-#include "bake/scene_loader.h"
 #include "bake/transfer_baker.h"
 #include "cli_parsing.h"
 #include "command_registry.h"
 #include "haar_cli.h"
 #include "prt/transfer_file.h"
 #include "relight/image_io.h"
+#include "scene/scene_loader.h"
 #include "sh/projection.h"
 
 namespace prt::cli {
@@ -43,7 +43,7 @@ struct BakeArguments {
   std::string precision = "f32";
   bool quiet = false;
   HaarBakeArguments haar;  // --basis haar and its options (haar_cli.h)
-  bool automatic = false;  // --auto (bake/adaptive_baker.h)
+  bool automatic = false;  // --auto (bake/adaptive/adaptive_baker.h)
   std::string env;         // --env: lighting that --auto chooses the SH order for
   bool tolerance_given = false, transfer_given = false;
 };
@@ -83,7 +83,7 @@ void check_output_writable(const std::string& output) {
 
 // `--auto`: --tolerance (default 0.01) becomes the accuracy target; without --transfer the
 // most complete kind (interreflected) is requested and the analysis drops what is not needed.
-void run_auto(const BakeArguments& args, const bake::Scene& scene, const bake::BakeOptions& fixed,
+void run_auto(const BakeArguments& args, const scene::Scene& scene, const bake::BakeOptions& fixed,
               bake::ProgressSink& progress) {
   bake::AutoBakeOptions o;
   o.tolerance = args.tolerance_given ? args.tolerance : 0.01;
@@ -149,9 +149,9 @@ void run(const BakeArguments& args) {
   if (args.threads < 0) throw CommandError("--threads: must be >= 0");
   check_output_writable(args.output);
 
-  bake::LoadOptions load;
+  scene::LoadOptions load;
   if (!args.albedo.empty()) load.albedo_override = parse_albedo(args.albedo);
-  const bake::Scene scene = bake::load_scene(args.scene, load);
+  const scene::Scene scene = scene::load_scene(args.scene, load);
   if (args.haar.basis == "haar") {
     run_haar_bake(scene, args.output, options.kind, args.haar, args.seed, args.threads,
                   args.bounces, args.tolerance, args.quiet);

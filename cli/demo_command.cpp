@@ -14,11 +14,7 @@
 
 #include <CLI/CLI.hpp>
 
-#include "bake/glb_writer.h"
-#include "bake/procedural_mesh.h"
 #include "bake/progress.h"
-#include "bake/ray_caster.h"
-#include "bake/scene_loader.h"
 #include "bake/transfer_baker.h"
 #include "command_registry.h"
 #include "prt/relighter.h"
@@ -27,6 +23,10 @@
 #include "relight/image_io.h"
 #include "relight/relight_pipeline.h"
 #include "relight/renderer.h"
+#include "scene/glb_writer.h"
+#include "scene/procedural_mesh.h"
+#include "scene/ray_caster.h"
+#include "scene/scene_loader.h"
 #include "sh/rotation.h"
 
 #ifndef PRT_DEMO_DATA_DIR
@@ -75,7 +75,7 @@ fs::path find_data_dir(const std::string& requested) {
   throw CommandError("data/sky.hdr: not found (run from the repository root, or pass --data DIR)");
 }
 
-prt::TransferData bake_kind(const bake::Scene& scene, prt::TransferKind kind,
+prt::TransferData bake_kind(const scene::Scene& scene, prt::TransferKind kind,
                             const DemoSettings& settings, bool quiet, double* seconds) {
   bake::BakeOptions options;
   options.kind = kind;
@@ -129,15 +129,15 @@ void run(const DemoArguments& args) {
   std::vector<std::string> written;
 
   // 1. The scene.
-  bake::Scene scene;
+  scene::Scene scene;
   std::string scene_note;
   const fs::path bundled = data_dir / "demo.glb";
   if (fs::exists(bundled)) {
-    scene = bake::load_scene(bundled.string());
+    scene = scene::load_scene(bundled.string());
   } else {
-    scene = bake::make_demo_scene();
+    scene = scene::make_demo_scene();
     const std::string path = (out_dir / "demo.glb").string();
-    bake::write_glb(path, scene);
+    scene::write_glb(path, scene);
     scene.source_path = path;
     written.push_back(path);
     scene_note = " (" + bundled.string() + " is missing, so the procedural demo scene was used)";
@@ -174,7 +174,7 @@ void run(const DemoArguments& args) {
 
   // 4. Render.
   start = Clock::now();
-  const bake::RayCaster caster(scene);
+  const scene::RayCaster caster(scene);
   relight::RenderOptions render_options;
   render_options.width = settings.width;
   render_options.height = settings.height;

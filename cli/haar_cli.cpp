@@ -29,7 +29,7 @@ void add_haar_bake_options(CLI::App* cmd, HaarBakeArguments* a) {
       ->capture_default_str();
 }
 
-void run_haar_bake(const bake::Scene& scene, const std::string& output, prt::TransferKind kind,
+void run_haar_bake(const scene::Scene& scene, const std::string& output, prt::TransferKind kind,
                    const HaarBakeArguments& a, uint64_t seed, int threads, int bounces,
                    double tolerance, bool quiet) {
   bake::HaarBakeOptions o;

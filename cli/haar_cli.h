@@ -10,9 +10,9 @@
 
 #include <CLI/CLI.hpp>
 
-#include "bake/scene.h"
 #include "prt/transfer_data.h"
 #include "relight/relight_pipeline.h"
+#include "scene/scene.h"
 
 namespace prt::cli {
 
@@ -28,7 +28,7 @@ struct HaarBakeArguments {
 void add_haar_bake_options(CLI::App* command, HaarBakeArguments* args);
 
 // Bakes, writes and reports (stored vs dense size). Throws CommandError / BakeError.
-void run_haar_bake(const bake::Scene& scene, const std::string& output, prt::TransferKind kind,
+void run_haar_bake(const scene::Scene& scene, const std::string& output, prt::TransferKind kind,
                    const HaarBakeArguments& args, uint64_t seed, int threads, int bounces,
                    double tolerance, bool quiet);
 

@@ -1,4 +1,4 @@
-// `prt make-scene`: writes the bundled demo scene (bake/procedural_mesh.h) as a binary glTF.
+// `prt make-scene`: writes the bundled demo scene (scene/procedural_mesh.h) as a binary glTF.
 //
 //   prt make-scene -o data/demo.glb
 //
@@ -9,9 +9,9 @@
 
 #include <CLI/CLI.hpp>
 
-#include "bake/glb_writer.h"
-#include "bake/procedural_mesh.h"
 #include "command_registry.h"
+#include "scene/glb_writer.h"
+#include "scene/procedural_mesh.h"
 
 namespace prt::cli {
 namespace {
@@ -23,8 +23,8 @@ void register_make_scene(CLI::App& app) {
   auto output = std::make_shared<std::string>();
   command->add_option("-o,--output", *output, "Output .glb path")->required();
   command->callback([output] {
-    const bake::Scene scene = bake::make_demo_scene();
-    bake::write_glb(*output, scene);  // throws SceneError("PATH: problem")
+    const scene::Scene scene = scene::make_demo_scene();
+    scene::write_glb(*output, scene);  // throws SceneError("PATH: problem")
     std::printf("%s: %zu vertices, %zu triangles, %zu primitives, %zu camera(s)\n", output->c_str(),
                 scene.positions.size(), scene.triangles.size(), scene.primitives.size(),
                 scene.cameras.size());

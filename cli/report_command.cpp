@@ -2,10 +2,10 @@
 // order, samples per vertex, bounces and storage precision, and Haar cube size × lighting terms,
 // measures bake time, relight time, file size and error against an independent Monte Carlo
 // ground truth, and writes results.csv, results.json, pareto.svg/png, error_vs_order.svg/png,
-// haar_error_vs_terms.svg/png and summary.md (relight/report.h). --haar-cubes "8,16" overrides
+// haar_error_vs_terms.svg/png and summary.md (report/report.h). --haar-cubes "8,16" overrides
 // the Haar cube sizes of the mode, "none" leaves Haar out.
 // `prt report --stability -o DIR [--quick]`: the stiff and extreme cases of
-// relight/stability_report.h; exits with status 1 when any case fails.
+// report/stability_report.h; exits with status 1 when any case fails.
 #include <cstdio>
 #include <memory>
 #include <optional>
@@ -18,8 +18,8 @@
 
 #include "cli_parsing.h"
 #include "command_registry.h"
-#include "relight/report.h"
-#include "relight/stability_report.h"
+#include "report/report.h"
+#include "report/stability_report.h"
 
 namespace prt::cli {
 namespace {
@@ -89,7 +89,7 @@ std::optional<std::vector<double>> parse_auto_tolerances(const std::string& text
 
 void run(const ReportArguments& a) {
   if (a.stability) {
-    const int failed = prt::relight::run_stability_report(a.output, a.quick);
+    const int failed = prt::report::run_stability_report(a.output, a.quick);
     std::printf("stability: %d failed case(s); report in %s\n", failed, a.output.c_str());
     if (failed > 0)
       throw CommandError(a.output + ": " + std::to_string(failed) + " stability case(s) failed");
@@ -97,7 +97,7 @@ void run(const ReportArguments& a) {
   }
   if (a.scene.empty() || a.environment.empty())
     throw CommandError("report: SCENE and ENV are required (or pass --stability)");
-  prt::relight::ReportOptions o;
+  prt::report::ReportOptions o;
   o.scene_path = a.scene;
   o.environment_path = a.environment;
   o.output_dir = a.output;
@@ -107,7 +107,7 @@ void run(const ReportArguments& a) {
   o.layout = parse_layout_option(a.layout);
   o.haar_cubes = parse_haar_cubes(a.haar_cubes);
   o.auto_tolerances = parse_auto_tolerances(a.auto_tolerances);
-  const prt::relight::ReportResult r = prt::relight::run_report(o);
+  const prt::report::ReportResult r = prt::report::run_report(o);
   for (const std::string& f : r.files_written) std::printf("wrote %s\n", f.c_str());
 }
 

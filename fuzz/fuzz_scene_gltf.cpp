@@ -8,17 +8,17 @@
 #include <cstdint>
 #include <cstring>
 
-#include "bake/scene_loader.h"
 #include "fuzz_input_file.h"
+#include "scene/scene_loader.h"
 #include "scene_invariants.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const bool binary = size >= 4 && std::memcmp(data, "glTF", 4) == 0;
   const std::string path = prt::fuzz::write_scratch_file(binary ? ".glb" : ".gltf", data, size);
   try {
-    const prt::bake::Scene scene = prt::bake::load_scene(path);
+    const prt::scene::Scene scene = prt::scene::load_scene(path);
     prt::fuzz::check_scene_invariants(scene);
-  } catch (const prt::bake::SceneError& e) {
+  } catch (const prt::scene::SceneError& e) {
     prt::fuzz::check_one_line_message(e.what());
   }
   return 0;

@@ -3,7 +3,7 @@
 //   corpus/fuzz_transfer_file/  coefficient files: orders 1..3, 1 and 3 channels, F32 and F16,
 //                               with and without AO, bent normals and primitive ranges;
 //   corpus/fuzz_scene_obj/      small OBJ files (triangles, quads, vn/vt, negative indices);
-//   corpus/fuzz_scene_gltf/     GLB files from bake::write_glb and a .gltf with a data URI;
+//   corpus/fuzz_scene_gltf/     GLB files from scene::write_glb and a .gltf with a data URI;
 //   corpus/fuzz_env_map/        selector byte + small .hdr and .pfm maps of each layout;
 //   corpus/fuzz_env_map_exr/    selector byte + small .exr maps of each layout (its regression_*
 //                               files are kept findings of the target, not written here).
@@ -18,10 +18,10 @@
 #include <utility>
 #include <vector>
 
-#include "bake/glb_writer.h"
-#include "bake/procedural_mesh.h"
 #include "prt/transfer_file.h"
 #include "relight/image_io.h"
+#include "scene/glb_writer.h"
+#include "scene/procedural_mesh.h"
 
 namespace fs = std::filesystem;
 
@@ -87,11 +87,11 @@ void write_obj_seeds(const fs::path& dir) {
 
 void write_gltf_seeds(const fs::path& dir) {
   const fs::path tmp = dir / "tmp.glb";
-  prt::bake::write_glb(tmp.string(),
-                       prt::bake::make_box({-1, -1, -1}, {1, 1, 1}, 1, false, {0.5f, 0.5f, 0.5f}));
+  prt::scene::write_glb(
+      tmp.string(), prt::scene::make_box({-1, -1, -1}, {1, 1, 1}, 1, false, {0.5f, 0.5f, 0.5f}));
   fs::rename(tmp, dir / "box.glb");
-  prt::bake::write_glb(tmp.string(), prt::bake::make_quad({0, 0, 0}, {1, 0, 0}, {0, 0, -1}, 1, 1,
-                                                          {0.8f, 0.2f, 0.2f}));
+  prt::scene::write_glb(tmp.string(), prt::scene::make_quad({0, 0, 0}, {1, 0, 0}, {0, 0, -1}, 1, 1,
+                                                            {0.8f, 0.2f, 0.2f}));
   fs::rename(tmp, dir / "quad.glb");
   // One triangle, no normals, no indices, a node with TRS, a camera, positions in a data URI:
   // 3 vec3 floats (0,0,0) (1,0,0) (0,1,0) = 36 bytes in base64.

@@ -1,4 +1,4 @@
-// fuzz/scene_invariants.h — what every successfully loaded Scene must satisfy (bake/scene.h):
+// fuzz/scene_invariants.h — what every successfully loaded Scene must satisfy (scene/scene.h):
 // parallel per-vertex arrays, in-range triangle indices, finite positions, unit finite normals,
 // primitive ranges inside the arrays. A violation aborts (a finding for the fuzzer).
 #pragma once
@@ -7,11 +7,11 @@
 #include <cstdlib>
 #include <cstring>
 
-#include "bake/scene.h"
+#include "scene/scene.h"
 
 namespace prt::fuzz {
 
-inline void check_scene_invariants(const prt::bake::Scene& scene) {
+inline void check_scene_invariants(const prt::scene::Scene& scene) {
   const std::size_t n = scene.positions.size();
   if (scene.normals.size() != n || scene.albedo.size() != n) std::abort();
   for (std::size_t i = 0; i < n; ++i) {
@@ -23,7 +23,7 @@ inline void check_scene_invariants(const prt::bake::Scene& scene) {
   }
   for (const glm::uvec3& t : scene.triangles)
     if (t.x >= n || t.y >= n || t.z >= n) std::abort();
-  for (const prt::bake::ScenePrimitive& prim : scene.primitives) {
+  for (const prt::scene::ScenePrimitive& prim : scene.primitives) {
     if (static_cast<std::size_t>(prim.first_vertex) + prim.vertex_count > n) std::abort();
     if (static_cast<std::size_t>(prim.first_triangle) + prim.triangle_count >
         scene.triangles.size())

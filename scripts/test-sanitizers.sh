@@ -4,7 +4,7 @@
 # and runs it. Any sanitizer report fails the test that triggered it.
 #
 # Usage: scripts/test-sanitizers.sh [--all]
-#   default  the short CI pass: the sh/, prt/, bake/ and stability test executables
+#   default  the short CI pass: the sh/, prt/, scene/, bake/ and stability test executables
 #            (the runtime library, the SH maths, scene loading, the baker and the stiff cases);
 #   --all    every test target and the whole ctest suite.
 # Environment: BUILD_DIR (default <repo>/build-asan), JOBS (default 2).

@@ -18,7 +18,7 @@ struct FixedVertexSampler {
   std::size_t block;
   glm::vec3 dirs[kPacketSize];
   bool occluded[kPacketSize];
-  RayCaster::Hit hits[kPacketSize];
+  scene::RayCaster::Hit hits[kPacketSize];
   std::vector<float> y, packet_sum;
   std::vector<double> acc;
   std::vector<std::pair<uint32_t, float>> gathered;

@@ -12,11 +12,11 @@
 #include <tbb/parallel_for.h>
 
 #include "bake/progress.h"
-#include "bake/ray_caster.h"
 #include "bake/sampling.h"
 #include "bake/transfer_baker.h"
+#include "scene/ray_caster.h"
 
-#include "scene_label.h"
+#include "scene/scene_label.h"
 #include "sh/constants.h"
 
 namespace prt::bake {
@@ -82,7 +82,7 @@ int cross_face(int cell_col, int cell_row) {
 }
 
 // A triangle's geometric normal, oriented to the side its vertex normals point to.
-glm::vec3 oriented_face_normal(const Scene& s, uint32_t tri) {
+glm::vec3 oriented_face_normal(const scene::Scene& s, uint32_t tri) {
   const glm::uvec3 t = s.triangles[tri];
   glm::vec3 ng =
       glm::cross(s.positions[t.y] - s.positions[t.x], s.positions[t.z] - s.positions[t.x]);
@@ -202,16 +202,16 @@ bool EnvironmentSampler::sample(double u0, double u1, double u2, double dir[3], 
 }
 
 struct GroundTruthIntegrator::Impl {
-  const Scene& scene;
+  const scene::Scene& scene;
   GroundTruthOptions options;
   EnvironmentSampler light;
-  RayCaster caster;
+  scene::RayCaster caster;
   // Per vertex: Σ x_c and Σ x_c² over its samples (c = R, G, B).
   std::vector<double> sum, sum_squares;
   uint64_t rays = 0;
   double seconds = 0;
 
-  Impl(const Scene& s, const sh::EnvMap& env, const GroundTruthOptions& o)
+  Impl(const scene::Scene& s, const sh::EnvMap& env, const GroundTruthOptions& o)
       : scene(s),
         options(o),
         light(env),
@@ -258,7 +258,7 @@ uint32_t GroundTruthIntegrator::Impl::sample_vertex(uint32_t v, uint64_t sample_
     const double cosine = glm::dot(normal, d);
     if (!(cosine > 0)) break;
     ++cast;
-    const RayCaster::Hit hit = caster.intersect(origin, d, 0.f, far);
+    const scene::RayCaster::Hit hit = caster.intersect(origin, d, 0.f, far);
     if (!hit.hit) {
       const double dd[3] = {d.x, d.y, d.z};
       double rgb[3], lpdf_at;
@@ -295,9 +295,9 @@ uint32_t GroundTruthIntegrator::Impl::sample_vertex(uint32_t v, uint64_t sample_
   return cast;
 }
 
-GroundTruthIntegrator::GroundTruthIntegrator(const Scene& scene, const sh::EnvMap& env,
+GroundTruthIntegrator::GroundTruthIntegrator(const scene::Scene& scene, const sh::EnvMap& env,
                                              const GroundTruthOptions& o) {
-  const std::string name = detail::scene_label(scene);
+  const std::string name = scene::scene_label(scene);
   if (scene.vertex_count() == 0 || scene.triangles.empty())
     throw BakeError(name + ": the scene has no vertices or no triangles");
   if (scene.normals.size() != scene.vertex_count() || scene.albedo.size() != scene.vertex_count())
@@ -385,7 +385,7 @@ GroundTruthResult GroundTruthIntegrator::result() const {
   return r;
 }
 
-GroundTruthResult compute_ground_truth(const Scene& scene, const sh::EnvMap& env,
+GroundTruthResult compute_ground_truth(const scene::Scene& scene, const sh::EnvMap& env,
                                        const GroundTruthOptions& options, ProgressSink* progress) {
   GroundTruthIntegrator integrator(scene, env, options);
   integrator.refine(options.target_relative_se, progress);

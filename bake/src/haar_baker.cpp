@@ -16,11 +16,11 @@
 
 #include "bake/interreflection_solver.h"
 #include "bake/progress.h"
-#include "bake/ray_caster.h"
 #include "bake/sampling.h"
 #include "bake/transfer_baker.h"
 #include "prt/haar_cube_map.h"
 #include "prt/haar_transform.h"
+#include "scene/ray_caster.h"
 #include "sh/constants.h"
 
 #include "hit_side.h"
@@ -90,8 +90,9 @@ using GatherRow = std::vector<std::pair<uint32_t, float>>;
 // Traces vertex v's texel rays; writes the grey quadrature transfer Σ V·cos·Ω into
 // `dense` (6N² floats, albedo not applied) and, when `row` is given, its gather row. Returns
 // the rays cast.
-uint64_t trace_vertex(const Scene& scene, const RayCaster& caster, const TexelSamples& ts,
-                      uint32_t v, bool shadows, GatherRow* row, float* dense) {
+uint64_t trace_vertex(const scene::Scene& scene, const scene::RayCaster& caster,
+                      const TexelSamples& ts, uint32_t v, bool shadows, GatherRow* row,
+                      float* dense) {
   const glm::vec3 n = glm::normalize(scene.normals[v]);
   const glm::vec3 origin = caster.vertex_origin(v);
   const std::size_t samples = ts.direction.size();
@@ -100,7 +101,7 @@ uint64_t trace_vertex(const Scene& scene, const RayCaster& caster, const TexelSa
   uint32_t texel[kPacketSize];
   float weight[kPacketSize];
   bool occluded[kPacketSize];
-  RayCaster::Hit hits[kPacketSize];
+  scene::RayCaster::Hit hits[kPacketSize];
   int count = 0;
   uint64_t rays = 0;
   const float tfar = std::numeric_limits<float>::infinity();
@@ -145,7 +146,7 @@ uint64_t trace_vertex(const Scene& scene, const RayCaster& caster, const TexelSa
   return rays;
 }
 
-std::string metadata_json(const Scene& scene, const HaarBakeOptions& o, int channels) {
+std::string metadata_json(const scene::Scene& scene, const HaarBakeOptions& o, int channels) {
   nlohmann::json j;
   j["generator"] = "prt bake --basis haar";
   j["basis"] = "haar";
@@ -164,7 +165,7 @@ std::string metadata_json(const Scene& scene, const HaarBakeOptions& o, int chan
   return j.dump();
 }
 
-void validate_haar_options(const Scene& scene, const HaarBakeOptions& o) {
+void validate_haar_options(const scene::Scene& scene, const HaarBakeOptions& o) {
   const std::string name = scene.source_path.empty() ? "scene" : scene.source_path;
   if (o.transport != prt::TransferKind::Unshadowed && o.transport != prt::TransferKind::Shadowed &&
       o.transport != prt::TransferKind::Interreflected)
@@ -202,7 +203,7 @@ void validate_haar_options(const Scene& scene, const HaarBakeOptions& o) {
 // What every phase of one Haar bake shares: the scene, the options and the sizes derived from
 // them, the directions traced and the BVH, the progress sink and the rays cast per task.
 struct HaarBakeContext {
-  const Scene& scene;
+  const scene::Scene& scene;
   const HaarBakeOptions& options;
   const std::size_t V;  // vertices
   const int N;          // cube size
@@ -210,7 +211,7 @@ struct HaarBakeContext {
   const int C;          // channels: 1 when the albedo is grey
   const bool shadows;
   const TexelSamples& ts;
-  const RayCaster& caster;
+  const scene::RayCaster& caster;
   ProgressSink* progress;
   std::vector<uint64_t> task_rays;  // rays cast per task of kVerticesPerTask vertices
 
@@ -364,7 +365,7 @@ void bake_interreflected_haar(HaarBakeContext& ctx, prt::HaarTransferBuilder& bu
 
 }  // namespace
 
-HaarBakeResult bake_haar_transfer(const Scene& scene, const HaarBakeOptions& options,
+HaarBakeResult bake_haar_transfer(const scene::Scene& scene, const HaarBakeOptions& options,
                                   ProgressSink* progress) {
   const Clock::time_point t_start = Clock::now();
   validate_haar_options(scene, options);
@@ -384,7 +385,7 @@ HaarBakeResult bake_haar_transfer(const Scene& scene, const HaarBakeOptions& opt
   st.vertices = V;
   st.triangles = scene.triangles.size();
   const TexelSamples ts = make_texel_samples(N, options.supersample, options.seed);
-  const RayCaster caster(scene);
+  const scene::RayCaster caster(scene);
   prt::HaarTransferBuilder builder(N, C, options.compression.quantization);
   HaarBakeContext ctx{scene,
                       options,

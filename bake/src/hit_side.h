@@ -13,13 +13,14 @@
 
 #include <glm/glm.hpp>
 
-#include "bake/scene.h"
+#include "scene/scene.h"
 
 namespace prt::bake::detail {
 
 // True when a ray of direction `dir` (any length) hits the front of scene triangle `triangle`.
 // A degenerate triangle (n_g = 0) has no front.
-inline bool ray_hits_front_side(const Scene& scene, uint32_t triangle, const glm::vec3& dir) {
+inline bool ray_hits_front_side(const scene::Scene& scene, uint32_t triangle,
+                                const glm::vec3& dir) {
   const glm::uvec3 tri = scene.triangles[triangle];
   const glm::vec3 p0 = scene.positions[tri.x];
   const glm::vec3 ng = glm::cross(scene.positions[tri.y] - p0, scene.positions[tri.z] - p0);

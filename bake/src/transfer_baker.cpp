@@ -36,13 +36,13 @@
 #include <tbb/parallel_for.h>
 #include <nlohmann/json.hpp>
 
+#include "bake/adaptive/occluder_caps.h"
 #include "bake/interreflection_solver.h"
-#include "bake/occluder_caps.h"
 #include "bake/progress.h"
-#include "bake/ray_caster.h"
 #include "bake/sampling.h"
+#include "scene/ray_caster.h"
+#include "scene/scene_label.h"
 #include "sh/basis.h"
-#include "scene_label.h"
 #include "transfer_geometry.h"
 #include "transfer_pass.h"
 
@@ -65,8 +65,8 @@ double seconds_since(Clock::time_point t) {
   return std::chrono::duration<double>(Clock::now() - t).count();
 }
 
-std::string primitive_of(const Scene& scene, std::size_t v) {
-  for (const ScenePrimitive& p : scene.primitives)
+std::string primitive_of(const scene::Scene& scene, std::size_t v) {
+  for (const scene::ScenePrimitive& p : scene.primitives)
     if (v >= p.first_vertex && v < static_cast<std::size_t>(p.first_vertex) + p.vertex_count)
       return "primitive '" + p.name + "'";
   return "vertex " + std::to_string(v);
@@ -121,7 +121,7 @@ void solve_adaptively(const SparseTransferMatrix& h, const std::vector<double>& 
 
 // What one bake knows about itself: sizes, the kind of work, and what the phases fill in.
 struct BakeJob {
-  const Scene& scene;
+  const scene::Scene& scene;
   const BakeOptions& options;
   ProgressSink* progress;
   std::size_t V;
@@ -135,7 +135,7 @@ struct BakeJob {
   SparseTransferMatrix h;      // interreflected: the gather matrix
   double ray_offset_max = 0.0;
 
-  BakeJob(const Scene& s, const BakeOptions& o, ProgressSink* p, BakeResult& r, int channels)
+  BakeJob(const scene::Scene& s, const BakeOptions& o, ProgressSink* p, BakeResult& r, int channels)
       : scene(s),
         options(o),
         progress(p),
@@ -164,7 +164,7 @@ void choose_vertex_modes(BakeJob& job) {
   if (ad.cap_sampling) {
     std::vector<uint8_t> wanted(V, 0);
     for (std::size_t v = 0; v < V; ++v) wanted[v] = job.modes[v] == kSampleVertex;
-    job.caps = find_occluder_caps(job.scene, compute_vertex_ray_starts(job.scene), wanted,
+    job.caps = find_occluder_caps(job.scene, scene::compute_vertex_ray_starts(job.scene), wanted,
                                   ad.max_caps, ad.max_cap_solid_angle, ad.hierarchy.get());
     job.st().seconds_caps = job.caps.seconds;
     for (std::size_t v = 0; v < V; ++v) {
@@ -204,9 +204,9 @@ void run_sampling_pass(BakeJob& job) {
   BakeStatistics& st = job.st();
   const AdaptiveSampling& ad = job.options.adaptive;
   const Clock::time_point t_rays = Clock::now();
-  std::unique_ptr<RayCaster> own_caster;
-  if (!(job.adaptive && ad.caster)) own_caster = std::make_unique<RayCaster>(job.scene);
-  const RayCaster& caster = own_caster ? *own_caster : *ad.caster;
+  std::unique_ptr<scene::RayCaster> own_caster;
+  if (!(job.adaptive && ad.caster)) own_caster = std::make_unique<scene::RayCaster>(job.scene);
+  const scene::RayCaster& caster = own_caster ? *own_caster : *ad.caster;
   st.seconds_bvh = seconds_since(t_rays);
   for (const float eps : caster.vertex_ray_starts().offset)
     job.ray_offset_max = std::max(job.ray_offset_max, static_cast<double>(eps));
@@ -329,7 +329,7 @@ std::string bake_metadata(const BakeJob& job) {
   meta["triangles"] = st.triangles;
   meta["skipped_triangles"] = st.skipped_triangles;
   meta["rays"] = st.rays;
-  meta["ray_offset_max"] = job.ray_offset_max;  // largest ε_v (bake/ray_offset.h)
+  meta["ray_offset_max"] = job.ray_offset_max;  // largest ε_v (scene/ray_offset.h)
   meta["seconds"] = st.seconds_total;
   meta["seconds_rays"] = st.seconds_rays;
   if (job.adaptive) meta["adaptive"] = adaptive_metadata(job);
@@ -352,8 +352,8 @@ std::string bake_metadata(const BakeJob& job) {
 
 }  // namespace
 
-void validate_bake_inputs(const Scene& scene, const BakeOptions& o) {
-  const std::string name = detail::scene_label(scene);
+void validate_bake_inputs(const scene::Scene& scene, const BakeOptions& o) {
+  const std::string name = scene::scene_label(scene);
   if (o.kind != prt::TransferKind::Unshadowed && o.kind != prt::TransferKind::Shadowed &&
       o.kind != prt::TransferKind::Interreflected)
     throw BakeError(name + ": transfer kind '" + transfer_kind_name(o.kind) +
@@ -421,7 +421,8 @@ void validate_bake_inputs(const Scene& scene, const BakeOptions& o) {
       throw BakeError(name + ": a triangle index is out of range");
 }
 
-BakeResult bake_transfer(const Scene& scene, const BakeOptions& options, ProgressSink* progress) {
+BakeResult bake_transfer(const scene::Scene& scene, const BakeOptions& options,
+                         ProgressSink* progress) {
   const Clock::time_point t_start = Clock::now();
   validate_bake_inputs(scene, options);
   std::optional<tbb::global_control> thread_limit;

@@ -9,14 +9,14 @@
 
 #include <glm/glm.hpp>
 
-#include "bake/scene.h"
 #include "prt/geometry_check.h"
 #include "prt/transfer_data.h"
+#include "scene/scene.h"
 
 namespace prt::bake::detail {
 
 // Sets vertex_count, positions, normals, primitives and fingerprint of `data` from `scene`.
-inline void store_scene_geometry(const Scene& scene, prt::TransferData& data) {
+inline void store_scene_geometry(const scene::Scene& scene, prt::TransferData& data) {
   const std::size_t V = scene.vertex_count();
   data.vertex_count = V;
   data.positions.resize(3 * V);
@@ -28,7 +28,7 @@ inline void store_scene_geometry(const Scene& scene, prt::TransferData& data) {
       data.normals[3 * v + a] = n[a];
     }
   }
-  for (const ScenePrimitive& p : scene.primitives)
+  for (const scene::ScenePrimitive& p : scene.primitives)
     data.primitives.push_back({p.first_vertex, p.vertex_count, p.name});
   data.fingerprint = prt::geometry_fingerprint(data.positions.data(), V);
 }

@@ -16,7 +16,7 @@ using sh::kPi;
 
 }  // namespace
 
-DirectTransfer::DirectTransfer(const Scene& scene, const BakeOptions& options, int channels,
+DirectTransfer::DirectTransfer(const scene::Scene& scene, const BakeOptions& options, int channels,
                                prt::TransferData& data, VertexSums& sums)
     : scene_(scene),
       order_(options.order),
@@ -64,8 +64,8 @@ void DirectTransfer::store(std::size_t v, const double* s_k) {
   }
 }
 
-void cast_packet(const RayCaster& caster, const glm::vec3& origin, const glm::vec3* dirs, int count,
-                 float tfar, RayCaster::Hit* hits, bool* occluded) {
+void cast_packet(const scene::RayCaster& caster, const glm::vec3& origin, const glm::vec3* dirs,
+                 int count, float tfar, scene::RayCaster::Hit* hits, bool* occluded) {
   if (hits != nullptr) {
     caster.intersect_packet(origin, dirs, count, tfar, hits);
     for (int i = 0; i < count; ++i) occluded[i] = hits[i].hit;
@@ -74,8 +74,9 @@ void cast_packet(const RayCaster& caster, const glm::vec3& origin, const glm::ve
   }
 }
 
-bool gather_front_hit(const Scene& scene, const RayCaster::Hit& hit, const glm::vec3& dir,
-                      float weight, std::vector<std::pair<uint32_t, float>>& gathered) {
+bool gather_front_hit(const scene::Scene& scene, const scene::RayCaster::Hit& hit,
+                      const glm::vec3& dir, float weight,
+                      std::vector<std::pair<uint32_t, float>>& gathered) {
   if (!ray_hits_front_side(scene, hit.triangle, dir)) return false;
   const glm::uvec3 tri = scene.triangles[hit.triangle];
   const float b0 = (1.f - hit.u - hit.v) * weight, b1 = hit.u * weight, b2 = hit.v * weight;

@@ -15,11 +15,11 @@
 
 #include <glm/glm.hpp>
 
+#include "bake/adaptive/occluder_caps.h"
 #include "bake/interreflection_solver.h"
-#include "bake/occluder_caps.h"
 #include "bake/progress.h"
-#include "bake/ray_caster.h"
 #include "bake/transfer_baker.h"
+#include "scene/ray_caster.h"
 
 namespace prt::bake::detail {
 
@@ -46,7 +46,7 @@ struct VertexSums {
 // kSkipVertex only, in vertex order.
 class DirectTransfer {
  public:
-  DirectTransfer(const Scene& scene, const BakeOptions& options, int channels,
+  DirectTransfer(const scene::Scene& scene, const BakeOptions& options, int channels,
                  prt::TransferData& data, VertexSums& sums);
   // The analytic unshadowed transfer of vertex v, grey: (1/π) · rotate_zonal(clamped cosine, n).
   void unshadowed(std::size_t v, double* out) const;
@@ -54,7 +54,7 @@ class DirectTransfer {
   void store(std::size_t v, const double* s_k);
 
  private:
-  const Scene& scene_;
+  const scene::Scene& scene_;
   int order_, K_, C_;
   bool interreflect_;
   bool compact_;
@@ -67,9 +67,9 @@ class DirectTransfer {
 // The sampling pass: one of the samplers fills sums, the transfer (through `direct`), the rows
 // of H per block and the ray counts.
 struct SamplingPass {
-  const Scene& scene;
+  const scene::Scene& scene;
   const BakeOptions& options;
-  const RayCaster& caster;
+  const scene::RayCaster& caster;
   ProgressSink* progress;
   std::size_t V;
   int order, K;
@@ -100,15 +100,16 @@ void sample_adaptive(SamplingPass& pass);
 
 // Casts `count` ≤ kPacketSize rays from `origin`: closest hits into `hits` (occluded[i] = a hit)
 // when `hits` is not null, occlusion only otherwise.
-void cast_packet(const RayCaster& caster, const glm::vec3& origin, const glm::vec3* dirs, int count,
-                 float tfar, RayCaster::Hit* hits, bool* occluded);
+void cast_packet(const scene::RayCaster& caster, const glm::vec3& origin, const glm::vec3* dirs,
+                 int count, float tfar, scene::RayCaster::Hit* hits, bool* occluded);
 
 // Appends the hit triangle's vertices, weighted by barycentrics × the sample's weight (1 under
-// cosine-weighted sampling, bake/cap_sampling.h's w in caps), to a row being gathered; false
-// (nothing added) when the ray sees the back side: the flat facet's geometric normal, oriented
-// by the triangle's vertex normals (hit_side.h). A back face occludes only.
-bool gather_front_hit(const Scene& scene, const RayCaster::Hit& hit, const glm::vec3& dir,
-                      float weight, std::vector<std::pair<uint32_t, float>>& gathered);
+// cosine-weighted sampling, bake/adaptive/cap_sampling.h's w in caps), to a row being gathered;
+// false (nothing added) when the ray sees the back side: the flat facet's geometric normal,
+// oriented by the triangle's vertex normals (hit_side.h). A back face occludes only.
+bool gather_front_hit(const scene::Scene& scene, const scene::RayCaster::Hit& hit,
+                      const glm::vec3& dir, float weight,
+                      std::vector<std::pair<uint32_t, float>>& gathered);
 
 // Merges duplicate columns of the gathered entries into one row of H, scaled by row_scale.
 void append_row(std::vector<std::pair<uint32_t, float>>& gathered, double row_scale,

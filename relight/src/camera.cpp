@@ -68,7 +68,7 @@ Camera frame_bounds(glm::vec3 min, glm::vec3 max, float aspect) {
   return camera;
 }
 
-Camera from_scene_camera(const bake::SceneCamera& camera) {
+Camera from_scene_camera(const scene::SceneCamera& camera) {
   Camera out;
   out.eye = camera.eye;
   out.target = camera.target;
@@ -116,7 +116,7 @@ bool project_to_ndc(const CameraBasis& basis, const glm::vec3& eye, const glm::v
   return true;
 }
 
-Camera parse_camera(const std::string& spec, const bake::Scene& scene, float aspect) {
+Camera parse_camera(const std::string& spec, const scene::Scene& scene, float aspect) {
   if (spec.empty() || spec == "auto") {
     if (!scene.cameras.empty()) return from_scene_camera(scene.cameras.front());
     return frame_bounds(scene.bounds_min(), scene.bounds_max(), aspect);
@@ -143,10 +143,10 @@ Camera parse_camera(const std::string& spec, const bake::Scene& scene, float asp
     }
     return camera;
   }
-  for (const bake::SceneCamera& camera : scene.cameras)
+  for (const scene::SceneCamera& camera : scene.cameras)
     if (camera.name == spec) return from_scene_camera(camera);
   std::string available;
-  for (const bake::SceneCamera& camera : scene.cameras)
+  for (const scene::SceneCamera& camera : scene.cameras)
     available += (available.empty() ? "" : ", ") + ("'" + camera.name + "'");
   const std::string where = scene.source_path.empty() ? "--camera" : scene.source_path;
   throw std::runtime_error(where + ": no camera named '" + spec +

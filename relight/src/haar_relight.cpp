@@ -7,12 +7,12 @@
 #include <utility>
 #include <vector>
 
-#include "bake/scene_loader.h"
 #include "prt/haar_relighter.h"
 #include "prt/haar_transfer_file.h"
 #include "prt/haar_transform.h"
 #include "relight/image_io.h"
 #include "relight_frames.h"
+#include "scene/scene_loader.h"
 
 namespace prt::relight {
 namespace {
@@ -80,7 +80,7 @@ prt::SparseLighting project_haar_lighting(const sh::EnvMap& env, int size,
 RelightSummary run_haar_relight(const RelightRequest& request, const HaarLightingOptions& options) {
   check_relight_outputs(request);
   RelightSummary summary;
-  const bake::Scene scene = bake::load_scene(request.scene_path);
+  const scene::Scene scene = scene::load_scene(request.scene_path);
   prt::Result<prt::HaarTransferFile> file = prt::read_haar_transfer_file(request.transfer_path);
   if (!file.ok()) throw std::runtime_error(file.status().message());
   check_transfer_matches_scene(file->info, request.transfer_path, scene);

@@ -14,12 +14,12 @@
 #include <string>
 #include <vector>
 
-#include "bake/glb_writer.h"
-#include "bake/ray_caster.h"
-#include "bake/scene.h"
 #include "relight/camera.h"
 #include "relight/relight_pipeline.h"
 #include "relight/renderer.h"
+#include "scene/glb_writer.h"
+#include "scene/ray_caster.h"
+#include "scene/scene.h"
 #include "sh/env_map.h"
 #include "sh/rotation.h"
 
@@ -31,7 +31,7 @@ namespace prt::relight::detail {
 // the vertices with a negative channel and writes the vertex-coloured GLB and the CSV if asked.
 // Every file written is appended to summary->files_written.
 template <class LightFor, class Shade>
-void render_relight_frames(const RelightRequest& request, const bake::Scene& scene,
+void render_relight_frames(const RelightRequest& request, const scene::Scene& scene,
                            const sh::EnvMap& env, LightFor light_for, Shade shade,
                            RelightSummary* summary) {
   using Clock = std::chrono::steady_clock;
@@ -45,7 +45,7 @@ void render_relight_frames(const RelightRequest& request, const bake::Scene& sce
   const std::array<double, 9> rotation = sh::rotation_from_yaw_pitch_roll(
       request.lighting.yaw_pitch_roll_deg[0], request.lighting.yaw_pitch_roll_deg[1],
       request.lighting.yaw_pitch_roll_deg[2]);
-  const bake::RayCaster caster(scene);
+  const scene::RayCaster caster(scene);
 
   const int frames = std::max(1, request.turntable_frames);
   for (int frame = 0; frame < frames; ++frame) {
@@ -63,7 +63,7 @@ void render_relight_frames(const RelightRequest& request, const bake::Scene& sce
         std::vector<glm::vec3> colors(scene.vertex_count());
         for (std::size_t v = 0; v < colors.size(); ++v)
           colors[v] = glm::vec3(radiance[3 * v], radiance[3 * v + 1], radiance[3 * v + 2]);
-        bake::write_glb(request.vertex_colors_path, scene, &colors);
+        scene::write_glb(request.vertex_colors_path, scene, &colors);
         summary->files_written.push_back(request.vertex_colors_path);
       }
       if (!request.csv_path.empty()) {

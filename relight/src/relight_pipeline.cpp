@@ -11,13 +11,13 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
-#include "bake/scene_loader.h"
 #include "prt/atomic_file.h"
 #include "prt/geometry_check.h"
 #include "prt/transfer_file.h"
 #include "relight/image_io.h"
 #include "relight/tone_map.h"
 #include "relight_frames.h"
+#include "scene/scene_loader.h"
 #include "sh/rotation.h"
 
 namespace prt::relight {
@@ -42,7 +42,7 @@ void check_parent_directory(const std::string& path) {
     throw std::runtime_error(path + ": directory " + parent.string() + " does not exist");
 }
 
-std::vector<float> flatten_positions(const bake::Scene& scene) {
+std::vector<float> flatten_positions(const scene::Scene& scene) {
   std::vector<float> xyz(3 * scene.vertex_count());
   for (std::size_t i = 0; i < scene.vertex_count(); ++i)
     for (int c = 0; c < 3; ++c) xyz[3 * i + c] = scene.positions[i][c];
@@ -66,7 +66,7 @@ void check_relight_outputs(const RelightRequest& request) {
 }
 
 void check_transfer_matches_scene(const prt::TransferData& data, const std::string& transfer_path,
-                                  const bake::Scene& scene) {
+                                  const scene::Scene& scene) {
   const std::vector<float> positions = flatten_positions(scene);
   const prt::Status match =
       prt::check_geometry(data, positions.data(), scene.vertex_count(), kGeometryTolerance);
@@ -78,7 +78,7 @@ void check_transfer_matches_scene(const prt::TransferData& data, const std::stri
 }
 
 prt::TransferData load_transfer_for_scene(const std::string& transfer_path,
-                                          const bake::Scene& scene) {
+                                          const scene::Scene& scene) {
   prt::Result<prt::TransferData> data = prt::read_transfer_file(transfer_path);
   if (!data.ok()) {
     const std::string message = data.status().message();
@@ -179,7 +179,7 @@ void write_rendered_image(const std::string& path, const Image& image, float exp
   }
 }
 
-void write_vertex_csv(const std::string& path, const bake::Scene& scene,
+void write_vertex_csv(const std::string& path, const scene::Scene& scene,
                       const std::vector<float>& radiance_rgb) {
   if (radiance_rgb.size() != 3 * scene.vertex_count())
     throw std::runtime_error(path + ": radiance count does not match the scene's vertices");
@@ -210,7 +210,7 @@ RelightSummary run_relight(const RelightRequest& request) {
   // 1. Validate every input before writing anything.
   check_relight_outputs(request);
   RelightSummary summary;
-  const bake::Scene scene = bake::load_scene(request.scene_path);
+  const scene::Scene scene = scene::load_scene(request.scene_path);
   const prt::TransferData data = load_transfer_for_scene(request.transfer_path, scene);
   const sh::EnvMap env =
       read_environment(request.environment_path, request.layout, &summary.layout_note);

@@ -19,7 +19,7 @@ void look_up_background(const sh::EnvMap& background, const std::array<double, 9
   sh::sample_bilinear(background, source, rgb);
 }
 
-Image render(const bake::Scene& scene, const bake::RayCaster& caster,
+Image render(const scene::Scene& scene, const scene::RayCaster& caster,
              const std::vector<float>& vertex_radiance_rgb, const sh::EnvMap* background,
              const std::array<double, 9>& background_rotation, const Camera& camera,
              const RenderOptions& options) {
@@ -61,7 +61,7 @@ Image render(const bake::Scene& scene, const bake::RayCaster& caster,
                 const auto ndc_x = static_cast<float>(2.0 * px * inv_w - 1.0);
                 const auto ndc_y = static_cast<float>(1.0 - 2.0 * py * inv_h);
                 const glm::vec3 dir = ray_direction(basis, ndc_x, ndc_y);
-                const bake::RayCaster::Hit hit = caster.intersect(camera.eye, dir, 0.f, infinity);
+                const scene::RayCaster::Hit hit = caster.intersect(camera.eye, dir, 0.f, infinity);
                 float rgb[3] = {0.f, 0.f, 0.f};
                 if (hit.hit && hit.triangle < scene.triangles.size()) {
                   const glm::uvec3 tri = scene.triangles[hit.triangle];

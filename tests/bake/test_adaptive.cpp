@@ -1,5 +1,5 @@
-// Tests of `prt bake --auto` (bake/adaptive_baker.h, bake/scene_analysis.h,
-// bake/order_selection.h and the adaptive path of bake/transfer_baker.h).
+// Tests of `prt bake --auto` (bake/adaptive/adaptive_baker.h, bake/adaptive/scene_analysis.h,
+// bake/adaptive/order_selection.h and the adaptive path of bake/transfer_baker.h).
 #include <cmath>
 #include <cstdio>
 #include <vector>
@@ -7,18 +7,19 @@
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>
 
-#include "bake/adaptive_baker.h"
+#include "bake/adaptive/adaptive_baker.h"
+#include "bake/adaptive/occlusion_bound.h"
+#include "bake/adaptive/scene_analysis.h"
 #include "bake/ground_truth.h"
-#include "bake/occlusion_bound.h"
-#include "bake/procedural_mesh.h"
-#include "bake/scene_analysis.h"
 #include "bake/transfer_baker.h"
+#include "scene/procedural_mesh.h"
 #include "sh/basis.h"
 #include "sh/constants.h"
 #include "sh/env_map.h"
 #include "sh/zonal.h"
 
 using namespace prt::bake;
+using namespace prt::scene;
 
 namespace {
 
@@ -543,7 +544,7 @@ TEST_CASE("compact output holds exactly the rows of the bake's non-skipped verti
   CHECK_THROWS_AS(bake_transfer(scene, b), BakeError);
 }
 
-// The tail of bands ≥ the pilot order (bake/order_selection.h) against its closed form: a
+// The tail of bands ≥ the pilot order (bake/adaptive/order_selection.h) against its closed form: a
 // vertex's unshadowed transfer is the clamped cosine about its normal n, S_lm = z_l·√(4π/(2l+1))
 // ·Y_lm(n), and under a delta lobe L_lm = √(4π/(2l+1))·Y_lm(d) (cut at band 31) the bands ≥ 16
 // add ρ Σ_{l=16..31} z_l P_l(n·d) to its exit radiance (addition theorem), evaluated here from

@@ -9,14 +9,14 @@
 #include <catch2/catch.hpp>
 
 #include "bake/ground_truth.h"
-#include "bake/procedural_mesh.h"
 #include "bake/transfer_baker.h"
+#include "scene/procedural_mesh.h"
 #include "sh/basis.h"
 #include "sh/projection.h"
 #include "transfer_test_support.h"
 
 using prt::bake::GroundTruthOptions;
-using prt::bake::Scene;
+using prt::scene::Scene;
 
 namespace {
 
@@ -95,8 +95,8 @@ TEST_CASE("unoccluded point under a constant white map: B = ρ in every layout")
   // A single up-facing quad: every vertex sees the full upper hemisphere, B = ρ·1. A wrong light
   // pdf (Jacobian) would bias the MIS estimate, so each layout is checked. Tolerance: 4 standard
   // errors of the mean over the quad's vertices plus 1e-4 for float directions.
-  const Scene quad = prt::bake::make_quad(glm::vec3(-1, 0, 1), glm::vec3(2, 0, 0),
-                                          glm::vec3(0, 0, -2), 2, 2, glm::vec3(0.5f));
+  const Scene quad = prt::scene::make_quad(glm::vec3(-1, 0, 1), glm::vec3(2, 0, 0),
+                                           glm::vec3(0, 0, -2), 2, 2, glm::vec3(0.5f));
   struct Case {
     prt::sh::EnvLayout layout;
     int w, h;
@@ -123,11 +123,11 @@ TEST_CASE("AO configuration: a floor point beside a wall sees ρ·(1 − occlude
   // factor of the finite wall; it is itself checked against the infinite-wall formula (within
   // 1.5%: the ends of a 40-long wall subtend little). The wall is black and bounces are off,
   // so B = ρ·(1 − F). Tolerance: 4 SE + 1e-3 (the ray origin sits ε ≈ 4e-3 off the vertex).
-  Scene scene = prt::bake::make_quad(glm::vec3(-0.5f, 0, 0.5f), glm::vec3(1, 0, 0),
-                                     glm::vec3(0, 0, -1), 1, 1, glm::vec3(0.6f), "floor");
-  prt::bake::append_scene(
-      scene, prt::bake::make_quad(glm::vec3(1.5f, 0, -20), glm::vec3(0, 0, 40), glm::vec3(0, 1, 0),
-                                  1, 1, glm::vec3(0.0f), "wall"));
+  Scene scene = prt::scene::make_quad(glm::vec3(-0.5f, 0, 0.5f), glm::vec3(1, 0, 0),
+                                      glm::vec3(0, 0, -1), 1, 1, glm::vec3(0.6f), "floor");
+  prt::scene::append_scene(
+      scene, prt::scene::make_quad(glm::vec3(1.5f, 0, -20), glm::vec3(0, 0, 40), glm::vec3(0, 1, 0),
+                                   1, 1, glm::vec3(0.0f), "wall"));
   const std::vector<glm::dvec3> wall = {{1.5, 0, -20}, {1.5, 0, 20}, {1.5, 1, 20}, {1.5, 1, -20}};
   const prt::sh::EnvMap env = constant_map(prt::sh::EnvLayout::LatLong, 64, 32, 1.f);
   GroundTruthOptions o;
@@ -162,8 +162,8 @@ TEST_CASE("spherical-cavity furnace with interreflection: B = ρf/(1 − ρ(1 �
   const double a = 50.0 * kPi / 180.0;
   for (const double rho : {0.5, 0.9}) {
     INFO("rho " << rho);
-    const Scene cavity = prt::bake::make_spherical_cavity(1.f, static_cast<float>(a), kRings,
-                                                          kSegments, glm::vec3(float(rho)));
+    const Scene cavity = prt::scene::make_spherical_cavity(1.f, static_cast<float>(a), kRings,
+                                                           kSegments, glm::vec3(float(rho)));
     std::vector<glm::dvec3> rim;
     for (int i = 0; i < kSegments; ++i) rim.push_back(glm::dvec3(cavity.positions[i]));
     double f = 0;
@@ -210,11 +210,11 @@ TEST_CASE("band-limited environment: ground truth matches SH relighting of a sha
       p[0] = static_cast<float>(value), p[1] = static_cast<float>(0.8 * value),
       p[2] = static_cast<float>(0.6 * value);
     }
-  Scene scene = prt::bake::make_quad(glm::vec3(-2, 0, 2), glm::vec3(4, 0, 0), glm::vec3(0, 0, -4),
-                                     8, 8, glm::vec3(0.7f), "floor");
-  prt::bake::append_scene(
-      scene, prt::bake::make_box(glm::vec3(-0.5f, 0, -0.5f), glm::vec3(0.5f, 1, 0.5f), 2, false,
-                                 glm::vec3(0.7f)));
+  Scene scene = prt::scene::make_quad(glm::vec3(-2, 0, 2), glm::vec3(4, 0, 0), glm::vec3(0, 0, -4),
+                                      8, 8, glm::vec3(0.7f), "floor");
+  prt::scene::append_scene(
+      scene, prt::scene::make_box(glm::vec3(-0.5f, 0, -0.5f), glm::vec3(0.5f, 1, 0.5f), 2, false,
+                                  glm::vec3(0.7f)));
   const std::vector<double> light = prt::sh::project(env, 3);
   REQUIRE(light.size() == 27);
   prt::bake::BakeOptions bo;
@@ -262,7 +262,7 @@ TEST_CASE("band-limited environment: ground truth matches SH relighting of a sha
 }
 
 TEST_CASE("ground truth is deterministic per seed, for any thread count and schedule") {
-  const Scene scene = prt::bake::make_box(glm::vec3(-1), glm::vec3(1), 2, true, glm::vec3(0.5f));
+  const Scene scene = prt::scene::make_box(glm::vec3(-1), glm::vec3(1), 2, true, glm::vec3(0.5f));
   Scene open = scene;
   open.triangles.resize(open.triangles.size() - 4);  // drop part of one face: light gets in
   const prt::sh::EnvMap env = constant_map(prt::sh::EnvLayout::LatLong, 32, 16, 2.f);
@@ -297,11 +297,11 @@ TEST_CASE("ground truth is deterministic per seed, for any thread count and sche
 }
 
 TEST_CASE("refinement doubles samples until the relative RMS standard error meets the target") {
-  Scene scene = prt::bake::make_quad(glm::vec3(-2, 0, 2), glm::vec3(4, 0, 0), glm::vec3(0, 0, -4),
-                                     4, 4, glm::vec3(0.7f), "floor");
-  prt::bake::append_scene(
-      scene, prt::bake::make_box(glm::vec3(-0.5f, 0, -0.5f), glm::vec3(0.5f, 1, 0.5f), 1, false,
-                                 glm::vec3(0.7f)));
+  Scene scene = prt::scene::make_quad(glm::vec3(-2, 0, 2), glm::vec3(4, 0, 0), glm::vec3(0, 0, -4),
+                                      4, 4, glm::vec3(0.7f), "floor");
+  prt::scene::append_scene(
+      scene, prt::scene::make_box(glm::vec3(-0.5f, 0, -0.5f), glm::vec3(0.5f, 1, 0.5f), 1, false,
+                                  glm::vec3(0.7f)));
   // A small bright "sun" texel over a dim sky: a hard case for plain cosine sampling.
   prt::sh::EnvMap env = constant_map(prt::sh::EnvLayout::LatLong, 64, 32, 0.2f);
   float* sun = &env.rgb[3 * (8 * 64 + 40)];

@@ -1,5 +1,5 @@
-// Tests of bake/occluder_caps.h (per-vertex cones holding every blockable direction, found
-// without rays) and bake/cap_sampling.h (mixture sampling over a union of such cones).
+// Tests of bake/adaptive/occluder_caps.h (per-vertex cones holding every blockable direction, found
+// without rays) and bake/adaptive/cap_sampling.h (mixture sampling over a union of such cones).
 #include <catch2/catch.hpp>
 
 #include <algorithm>
@@ -11,17 +11,18 @@
 
 #include <tbb/parallel_for.h>
 
-#include "bake/cap_sampling.h"
-#include "bake/occluder_caps.h"
-#include "bake/procedural_mesh.h"
-#include "bake/ray_caster.h"
+#include "bake/adaptive/cap_sampling.h"
+#include "bake/adaptive/occluder_caps.h"
+#include "bake/adaptive/scene_analysis.h"
 #include "bake/sampling.h"
-#include "bake/scene_analysis.h"
 #include "bake/transfer_baker.h"
+#include "scene/procedural_mesh.h"
+#include "scene/ray_caster.h"
 #include "sh/basis.h"
 #include "sh/constants.h"
 
 using namespace prt::bake;
+using namespace prt::scene;
 
 namespace {
 
@@ -875,7 +876,7 @@ TEST_CASE("cap-sampled bake: a vertex whose caps all lie below its horizon is an
   // the 25 of the box's top face: everything else lies below their tangent planes): the baker
   // must cast no ray for them and store the unshadowed transfer exactly, with AO 1 and the
   // normal as bent normal. A cap is dropped only when its ball (which holds its triangles) lies
-  // below the horizon, so such a vertex is also provably open by bake/scene_analysis.h (47
+  // below the horizon, so such a vertex is also provably open by bake/adaptive/scene_analysis.h (47
   // here; the finder leaves the other 7 uncovered): checked too.
   CapBakeFixture& f = cap_fixture();
   REQUIRE(!f.open.empty());

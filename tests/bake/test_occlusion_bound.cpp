@@ -1,17 +1,19 @@
-// Tests of bake/occlusion_bound.h: the ray-free bound on the blockable projected solid angle.
+// Tests of bake/adaptive/occlusion_bound.h: the ray-free bound on the blockable projected solid
+// angle.
 #include <catch2/catch.hpp>
 
 #include <algorithm>
 #include <cmath>
 
-#include "bake/occlusion_bound.h"
-#include "bake/procedural_mesh.h"
-#include "bake/ray_caster.h"
+#include "bake/adaptive/occlusion_bound.h"
+#include "bake/adaptive/scene_analysis.h"
+#include "bake/adaptive/triangle_hierarchy.h"
 #include "bake/sampling.h"
-#include "bake/scene_analysis.h"
-#include "bake/triangle_hierarchy.h"
+#include "scene/procedural_mesh.h"
+#include "scene/ray_caster.h"
 
 using namespace prt::bake;
+using namespace prt::scene;
 
 namespace {
 
@@ -91,12 +93,12 @@ TEST_CASE("occlusion bound: never below the occluded fraction measured with rays
 // computations on disjoint ranges, only their numbering is deferred.
 TEST_CASE("triangle hierarchy: the parallel build equals the serial one node for node") {
   using prt::bake::HierarchyBuild;
-  prt::bake::Scene scene = prt::bake::make_quad(
+  prt::scene::Scene scene = prt::scene::make_quad(
       {-12.f, 0.f, 12.f}, {24.f, 0.f, 0.f}, {0.f, 0.f, -24.f}, 240, 240, glm::vec3(0.5f), "ground");
-  prt::bake::append_scene(
-      scene, prt::bake::make_uv_sphere({0.f, 1.f, 0.f}, 1.f, 32, 64, false, glm::vec3(0.5f)));
-  prt::bake::append_scene(
-      scene, prt::bake::make_box({2.f, 0.f, -1.f}, {3.f, 1.f, 1.f}, 8, false, glm::vec3(0.5f)));
+  prt::scene::append_scene(
+      scene, prt::scene::make_uv_sphere({0.f, 1.f, 0.f}, 1.f, 32, 64, false, glm::vec3(0.5f)));
+  prt::scene::append_scene(
+      scene, prt::scene::make_box({2.f, 0.f, -1.f}, {3.f, 1.f, 1.f}, 8, false, glm::vec3(0.5f)));
   REQUIRE(scene.triangles.size() > 100000);
   const prt::bake::TriangleHierarchy a =
       prt::bake::build_triangle_hierarchy(scene, HierarchyBuild::Serial);

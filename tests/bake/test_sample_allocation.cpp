@@ -1,10 +1,10 @@
-// Tests of bake/sample_allocation.h: Neyman allocation with bounds.
+// Tests of bake/adaptive/sample_allocation.h: Neyman allocation with bounds.
 #include <catch2/catch.hpp>
 
 #include <cmath>
 #include <numeric>
 
-#include "bake/sample_allocation.h"
+#include "bake/adaptive/sample_allocation.h"
 
 using namespace prt::bake;
 

@@ -5,9 +5,9 @@
 
 #include <catch2/catch.hpp>
 
-#include "bake/procedural_mesh.h"
 #include "bake/sampling.h"
 #include "bake/transfer_baker.h"
+#include "scene/procedural_mesh.h"
 #include "sh/basis.h"
 #include "transfer_test_support.h"
 
@@ -50,7 +50,7 @@ TEST_CASE("unshadowed transfer equals the clamped cosine rotated to the normal")
                                            {0, 0, 1},
                                            glm::normalize(glm::dvec3(1, 2, -3)),
                                            glm::normalize(glm::dvec3(-0.3, 0.1, 0.9))};
-  prt::bake::Scene scene;
+  prt::scene::Scene scene;
   for (std::size_t i = 0; i < normals.size(); ++i) {
     const glm::vec3 base(3.f * static_cast<float>(i), 0.f, 0.f);
     const auto v0 = static_cast<uint32_t>(scene.positions.size());
@@ -94,8 +94,8 @@ double mc_bound(double rho, int samples) {
 
 TEST_CASE("shadowed bake of an isolated quad's centre equals the unshadowed transfer") {
   // 2×2 grid on a unit quad facing +Y (cross(+Z, +X) = +Y); vertex 4 is the centre.
-  prt::bake::Scene quad =
-      prt::bake::make_quad({-0.5f, 0, -0.5f}, {0, 0, 1}, {1, 0, 0}, 2, 2, glm::vec3(0.6f), "quad");
+  prt::scene::Scene quad =
+      prt::scene::make_quad({-0.5f, 0, -0.5f}, {0, 0, 1}, {1, 0, 0}, 2, 2, glm::vec3(0.6f), "quad");
   REQUIRE(quad.normals[4].y == Approx(1.0));
   BakeOptions options;
   options.order = 3;
@@ -113,8 +113,8 @@ TEST_CASE("shadowed bake of an isolated quad's centre equals the unshadowed tran
 }
 
 TEST_CASE("a vertex in the middle of a large plane: shadowed equals unshadowed") {
-  prt::bake::Scene plane = prt::bake::make_quad({-50.f, 0, -50.f}, {0, 0, 100}, {100, 0, 0}, 10, 10,
-                                                glm::vec3(0.3f, 0.3f, 0.3f), "plane");
+  prt::scene::Scene plane = prt::scene::make_quad({-50.f, 0, -50.f}, {0, 0, 100}, {100, 0, 0}, 10,
+                                                  10, glm::vec3(0.3f, 0.3f, 0.3f), "plane");
   const std::size_t centre = 5 * 11 + 5;
   REQUIRE(plane.positions[centre].x == Approx(0.0).margin(1e-5));
   BakeOptions options;

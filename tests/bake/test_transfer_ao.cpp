@@ -5,8 +5,8 @@
 
 #include <catch2/catch.hpp>
 
-#include "bake/procedural_mesh.h"
 #include "bake/transfer_baker.h"
+#include "scene/procedural_mesh.h"
 #include "transfer_test_support.h"
 
 using prt::bake::bake_transfer;
@@ -33,13 +33,13 @@ double binomial_bound(double p, double count) {
 TEST_CASE("AO beside a wall of height H at distance d") {
   // Floor strip facing +Y (cross(+Z, +X) = +Y): rows z = −1 (d = 2) and z = 0 (d = 1),
   // x ∈ [−2, 2] in 20 steps; vertex (i, j) at index j·2 + i, i = 0 → z = −1, i = 1 → z = 0.
-  prt::bake::Scene scene =
-      prt::bake::make_quad({-2.f, 0, -1.f}, {0, 0, 1}, {4, 0, 0}, 1, 20, glm::vec3(0.5f), "floor");
+  prt::scene::Scene scene =
+      prt::scene::make_quad({-2.f, 0, -1.f}, {0, 0, 1}, {4, 0, 0}, 1, 20, glm::vec3(0.5f), "floor");
   // Wall z = 1, height H = 1, x ∈ [−20, 20]. Edge effect: the cosine-weighted fraction of the
   // infinite wall beyond |x| > L from a probe is ≤ 2∫_L^∞∫_0^H y d /(π x⁴) dy dx = H²d/(3πL³);
   // probes have |x| ≤ 2, so L ≥ 18 and the missing occlusion is < 2e-5 for d ≤ 2.
-  prt::bake::append_scene(scene, prt::bake::make_quad({-20.f, 0, 1.f}, {40, 0, 0}, {0, 1, 0}, 8, 1,
-                                                      glm::vec3(0.5f), "wall"));
+  prt::scene::append_scene(scene, prt::scene::make_quad({-20.f, 0, 1.f}, {40, 0, 0}, {0, 1, 0}, 8,
+                                                        1, glm::vec3(0.5f), "wall"));
   const int samples = 4096;
   const auto result = bake_transfer(scene, ao_options(samples));
   for (int row = 0; row < 2; ++row) {
@@ -59,8 +59,8 @@ TEST_CASE("AO beside a wall of height H at distance d") {
 TEST_CASE("AO at the bottom of a well is R²/(R²+h²)") {
   const float R = 1.f, h = 1.5f;
   const int segments = 64;
-  const prt::bake::Scene well = prt::bake::make_well(R, h, segments, 4, glm::vec3(0.5f));
-  const prt::bake::ScenePrimitive* bottom = nullptr;
+  const prt::scene::Scene well = prt::scene::make_well(R, h, segments, 4, glm::vec3(0.5f));
+  const prt::scene::ScenePrimitive* bottom = nullptr;
   for (const auto& p : well.primitives)
     if (p.name == "well_bottom") bottom = &p;
   REQUIRE(bottom != nullptr);
@@ -104,11 +104,11 @@ TEST_CASE("AO at the bottom of a well is R²/(R²+h²)") {
 TEST_CASE("AO of a ground point beside a tangent sphere is 1 − (R/L)³") {
   const float R = 1.f;
   // Ground facing +Y: vertex (i, j) at z = −3 + 0.5 i, x = −3 + 0.5 j, index j·13 + i.
-  prt::bake::Scene scene = prt::bake::make_quad({-3.f, 0, -3.f}, {0, 0, 6}, {6, 0, 0}, 12, 12,
-                                                glm::vec3(0.5f), "ground");
+  prt::scene::Scene scene = prt::scene::make_quad({-3.f, 0, -3.f}, {0, 0, 6}, {6, 0, 0}, 12, 12,
+                                                  glm::vec3(0.5f), "ground");
   const std::size_t ground = scene.positions.size();
-  prt::bake::append_scene(
-      scene, prt::bake::make_uv_sphere({0, R, 0}, R, 48, 96, false, glm::vec3(0.5f), "sphere"));
+  prt::scene::append_scene(
+      scene, prt::scene::make_uv_sphere({0, R, 0}, R, 48, 96, false, glm::vec3(0.5f), "sphere"));
   const int samples = 1024;
   const auto result = bake_transfer(scene, ao_options(samples));
   // The sphere lies entirely above every ground point's horizon, so its form factor is
@@ -137,8 +137,8 @@ TEST_CASE("AO of a ground point beside a tangent sphere is 1 − (R/L)³") {
 }
 
 TEST_CASE("AO is zero everywhere inside a closed box with inward normals") {
-  const prt::bake::Scene box =
-      prt::bake::make_box({-1.f, -2.f, -1.5f}, {1.f, 0.5f, 3.f}, 6, true, glm::vec3(0.5f));
+  const prt::scene::Scene box =
+      prt::scene::make_box({-1.f, -2.f, -1.5f}, {1.f, 0.5f, 3.f}, 6, true, glm::vec3(0.5f));
   const auto result = bake_transfer(box, ao_options(256));
   std::size_t leaks = 0;
   for (float ao : result.data.ao) leaks += ao != 0.f;
@@ -151,8 +151,8 @@ TEST_CASE("AO is zero everywhere inside a closed box with inward normals") {
 TEST_CASE("AO is scale invariant and flat planes have no self-shadowing acne") {
   // A plane alone: every vertex sees the whole hemisphere, exactly, at any scale and far from
   // the origin (where float spacing is coarse).
-  const prt::bake::Scene plane =
-      prt::bake::make_quad({-1.f, 0, -1.f}, {0, 0, 2}, {2, 0, 0}, 16, 16, glm::vec3(0.5f), "plane");
+  const prt::scene::Scene plane = prt::scene::make_quad({-1.f, 0, -1.f}, {0, 0, 2}, {2, 0, 0}, 16,
+                                                        16, glm::vec3(0.5f), "plane");
   for (const float s : {1e-3f, 1.f, 1e4f}) {
     for (const float offset : {0.f, 3e3f}) {
       const auto r =
@@ -166,11 +166,11 @@ TEST_CASE("AO is scale invariant and flat planes have no self-shadowing acne") {
   // Plane + box + sphere: AO at 1e-3 and 1e4 must match the unit-scale bake. Identical
   // directions are cast, so only rays grazing an edge may flip: allow 2/N per vertex and a
   // tiny mean difference.
-  prt::bake::Scene scene = plane;
-  prt::bake::append_scene(scene, prt::bake::make_box({-0.3f, 0, -0.3f}, {0.3f, 0.4f, 0.3f}, 3,
-                                                     false, glm::vec3(0.5f), "box"));
-  prt::bake::append_scene(scene, prt::bake::make_uv_sphere({0.6f, 0.2f, 0.5f}, 0.2f, 16, 32, false,
-                                                           glm::vec3(0.5f), "sphere"));
+  prt::scene::Scene scene = plane;
+  prt::scene::append_scene(scene, prt::scene::make_box({-0.3f, 0, -0.3f}, {0.3f, 0.4f, 0.3f}, 3,
+                                                       false, glm::vec3(0.5f), "box"));
+  prt::scene::append_scene(scene, prt::scene::make_uv_sphere({0.6f, 0.2f, 0.5f}, 0.2f, 16, 32,
+                                                             false, glm::vec3(0.5f), "sphere"));
   const auto ref = bake_transfer(scene, ao_options(256));
   double occluded_sum = 0;
   for (float ao : ref.data.ao) occluded_sum += 1.0 - ao;
@@ -193,8 +193,8 @@ TEST_CASE("edge vertices of a box (faces not sharing vertices) are not self-occl
   // A vertex on a box edge lies in the plane of the neighbouring face; a ray leaving it would
   // hit that face at t = 0 unless the origin is nudged into its own face. On an outward box,
   // the top face (+Y) sees the whole sky from every vertex, corners and edges included.
-  const prt::bake::Scene box =
-      prt::bake::make_box({-1.f, -1.f, -1.f}, {1.f, 1.f, 1.f}, 4, false, glm::vec3(0.5f));
+  const prt::scene::Scene box =
+      prt::scene::make_box({-1.f, -1.f, -1.f}, {1.f, 1.f, 1.f}, 4, false, glm::vec3(0.5f));
   const auto result = bake_transfer(box, ao_options(256));
   std::size_t top = 0, bad = 0;
   for (std::size_t v = 0; v < box.positions.size(); ++v) {

@@ -7,10 +7,10 @@
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>
 
-#include "bake/procedural_mesh.h"
-#include "bake/ray_caster.h"
 #include "bake/transfer_baker.h"
 #include "prt/transfer_file.h"
+#include "scene/procedural_mesh.h"
+#include "scene/ray_caster.h"
 #include "support/test_data.h"
 #include "transfer_test_support.h"
 
@@ -20,15 +20,15 @@ using prt::bake::BakeOptions;
 namespace {
 
 // A corner: grey floor, red and green walls, a white sphere: occlusion, colour bleeding.
-prt::bake::Scene make_corner_scene() {
-  prt::bake::Scene s =
-      prt::bake::make_quad({-1.f, 0, -1.f}, {0, 0, 2}, {2, 0, 0}, 12, 12, glm::vec3(0.7f), "floor");
-  prt::bake::append_scene(s, prt::bake::make_quad({-1.f, 0, -1.f}, {0, 1, 0}, {0, 0, 2}, 8, 12,
-                                                  glm::vec3(0.7f, 0.1f, 0.1f), "red wall"));
-  prt::bake::append_scene(s, prt::bake::make_quad({-1.f, 0, -1.f}, {2, 0, 0}, {0, 1, 0}, 12, 8,
-                                                  glm::vec3(0.1f, 0.7f, 0.1f), "green wall"));
-  prt::bake::append_scene(s, prt::bake::make_uv_sphere({0.2f, 0.3f, 0.1f}, 0.3f, 12, 24, false,
-                                                       glm::vec3(0.8f), "sphere"));
+prt::scene::Scene make_corner_scene() {
+  prt::scene::Scene s = prt::scene::make_quad({-1.f, 0, -1.f}, {0, 0, 2}, {2, 0, 0}, 12, 12,
+                                              glm::vec3(0.7f), "floor");
+  prt::scene::append_scene(s, prt::scene::make_quad({-1.f, 0, -1.f}, {0, 1, 0}, {0, 0, 2}, 8, 12,
+                                                    glm::vec3(0.7f, 0.1f, 0.1f), "red wall"));
+  prt::scene::append_scene(s, prt::scene::make_quad({-1.f, 0, -1.f}, {2, 0, 0}, {0, 1, 0}, 12, 8,
+                                                    glm::vec3(0.1f, 0.7f, 0.1f), "green wall"));
+  prt::scene::append_scene(s, prt::scene::make_uv_sphere({0.2f, 0.3f, 0.1f}, 0.3f, 12, 24, false,
+                                                         glm::vec3(0.8f), "sphere"));
   return s;
 }
 
@@ -40,7 +40,7 @@ bool same_bytes(const std::vector<T>& a, const std::vector<T>& b) {
 }  // namespace
 
 TEST_CASE("bakes are bit-identical for 1 and 2 threads") {
-  const prt::bake::Scene scene = make_corner_scene();
+  const prt::scene::Scene scene = make_corner_scene();
   BakeOptions o;
   o.kind = prt::TransferKind::Interreflected;
   o.order = 3;
@@ -63,7 +63,7 @@ TEST_CASE("bakes are bit-identical for 1 and 2 threads") {
 }
 
 TEST_CASE("colour bleeding: RGB albedo gives 3 channels and the red wall tints the floor") {
-  const prt::bake::Scene scene = make_corner_scene();
+  const prt::scene::Scene scene = make_corner_scene();
   BakeOptions o;
   o.kind = prt::TransferKind::Interreflected;
   o.order = 1;
@@ -92,11 +92,11 @@ TEST_CASE("colour bleeding: RGB albedo gives 3 channels and the red wall tints t
 TEST_CASE(
     "albedo not below 1 (or negative, NaN) and absurd options are refused with the primitive "
     "named") {
-  prt::bake::Scene scene = make_corner_scene();
+  prt::scene::Scene scene = make_corner_scene();
   BakeOptions o;
   for (const float bad : {1.0f, 1.5f, -0.1f, std::nanf("")}) {
-    prt::bake::Scene s = scene;
-    const prt::bake::ScenePrimitive& wall = s.primitives[1];
+    prt::scene::Scene s = scene;
+    const prt::scene::ScenePrimitive& wall = s.primitives[1];
     for (uint32_t v = wall.first_vertex; v < wall.first_vertex + wall.vertex_count; ++v)
       s.albedo[v].y = bad;
     CHECK_THROWS_WITH(bake_transfer(s, o),
@@ -110,11 +110,11 @@ TEST_CASE(
   o.samples = 16;
   o.kind = prt::TransferKind::Haar;
   CHECK_THROWS_AS(bake_transfer(scene, o), prt::bake::BakeError);
-  CHECK_THROWS_AS(bake_transfer(prt::bake::Scene{}, BakeOptions{}), prt::bake::BakeError);
+  CHECK_THROWS_AS(bake_transfer(prt::scene::Scene{}, BakeOptions{}), prt::bake::BakeError);
 }
 
 TEST_CASE("a baked scene survives write_transfer_file / read_transfer_file") {
-  const prt::bake::Scene scene = make_corner_scene();
+  const prt::scene::Scene scene = make_corner_scene();
   BakeOptions o;
   o.order = 4;
   o.samples = 32;
@@ -153,12 +153,12 @@ TEST_CASE("a baked scene survives write_transfer_file / read_transfer_file") {
 }
 
 TEST_CASE("ray caster: hits, barycentrics, faces, packets and an empty scene") {
-  prt::bake::Scene tri;
+  prt::scene::Scene tri;
   tri.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};  // CCW seen from +Z
   tri.normals = {{0, 0, 1}, {0, 0, 1}, {0, 0, 1}};
   tri.albedo = {glm::vec3(0.5f), glm::vec3(0.5f), glm::vec3(0.5f)};
   tri.triangles = {{0, 1, 2}};
-  const prt::bake::RayCaster caster(tri);
+  const prt::scene::RayCaster caster(tri);
   const auto h = caster.intersect({0.2f, 0.3f, 2.f}, {0, 0, -1}, 0.f, 10.f);
   REQUIRE(h.hit);
   CHECK(h.t == Approx(2.0));
@@ -173,7 +173,7 @@ TEST_CASE("ray caster: hits, barycentrics, faces, packets and an empty scene") {
   CHECK_FALSE(caster.occluded({0.2f, 0.3f, 2.f}, {0, 0, -1}, 0.f, 1.5f));  // tfar before it
   glm::vec3 dirs[16];
   bool occ[16];
-  prt::bake::RayCaster::Hit hits[16];
+  prt::scene::RayCaster::Hit hits[16];
   // Aim at (0.01 + 0.06 i, 0.25, 0) from (0, 0.25, 1): away from the edges x = 0, x + y = 1.
   auto x_of = [](int i) { return 0.01f + 0.06f * static_cast<float>(i); };
   for (int i = 0; i < 16; ++i) dirs[i] = glm::normalize(glm::vec3(x_of(i), 0.f, -1.f));
@@ -185,12 +185,12 @@ TEST_CASE("ray caster: hits, barycentrics, faces, packets and an empty scene") {
     CHECK(occ[i] == inside);
     CHECK(hits[i].hit == inside);
   }
-  // ε_v = 4·2^-23·max|p| + 2^-18·(longest edge) (bake/ray_offset.h): vertex 0 sits at the origin
+  // ε_v = 4·2^-23·max|p| + 2^-18·(longest edge) (scene/ray_offset.h): vertex 0 sits at the origin
   // (no ulp term), the others at 1; every vertex touches the √2 edge.
   const std::vector<float>& eps = caster.vertex_ray_starts().offset;
   CHECK(eps[0] == Approx(std::ldexp(std::sqrt(2.0), -18)).epsilon(1e-6));
   CHECK(eps[1] == Approx(std::ldexp(4.0, -23) + std::ldexp(std::sqrt(2.0), -18)).epsilon(1e-6));
-  const prt::bake::Scene empty;
-  const prt::bake::RayCaster none(empty);
+  const prt::scene::Scene empty;
+  const prt::scene::RayCaster none(empty);
   CHECK_FALSE(none.occluded({0, 0, 0}, {0, 0, 1}, 0.f, 1e30f));
 }

@@ -10,8 +10,8 @@
 #include <catch2/catch.hpp>
 
 #include "bake/interreflection_solver.h"
-#include "bake/procedural_mesh.h"
 #include "bake/transfer_baker.h"
+#include "scene/procedural_mesh.h"
 #include "transfer_test_support.h"
 
 using prt::bake::bake_transfer;
@@ -30,7 +30,7 @@ struct CavityStats {
 };
 
 // Inner vertices exclude ring 0 (the rim itself, where the opening is seen edge-on).
-CavityStats measure_cavity(const prt::bake::Scene& cavity, const prt::bake::BakeResult& r,
+CavityStats measure_cavity(const prt::scene::Scene& cavity, const prt::bake::BakeResult& r,
                            double half_angle) {
   CavityStats s;
   s.f_analytic = (1.0 - std::cos(half_angle)) / 2.0;
@@ -65,7 +65,7 @@ double furnace(double rho, double f) {
 TEST_CASE("spherical-cavity furnace: exit radiance is ρf/(1 − ρ(1 − f)) and AO is f") {
   const double a = 50.0 * prt::test::kPi / 180.0;
   for (const double rho : {0.5, 0.9, 0.99}) {
-    const prt::bake::Scene cavity = prt::bake::make_spherical_cavity(
+    const prt::scene::Scene cavity = prt::scene::make_spherical_cavity(
         1.f, static_cast<float>(a), kRings, kSegments, glm::vec3(static_cast<float>(rho)));
     BakeOptions o;
     o.kind = prt::TransferKind::Interreflected;
@@ -99,7 +99,7 @@ TEST_CASE("stiff cavity (ρ = 0.999, small opening) converges in bounded time") 
   // f ≈ 0.011: the Neumann series contracts by ρ(1 − f) ≈ 0.988 per bounce, so plain bounces
   // need ~750 iterations for 1e-4; the Krylov solver must do it in far fewer.
   const double a = 12.0 * prt::test::kPi / 180.0;
-  const prt::bake::Scene cavity = prt::bake::make_spherical_cavity(
+  const prt::scene::Scene cavity = prt::scene::make_spherical_cavity(
       1.f, static_cast<float>(a), kRings, kSegments, glm::vec3(0.999f));
   BakeOptions o;
   o.kind = prt::TransferKind::Interreflected;
@@ -125,7 +125,7 @@ TEST_CASE("stiff cavity (ρ = 0.999, small opening) converges in bounded time") 
 
 TEST_CASE("bounce energy never grows, and explicit bounces converge to the Krylov solution") {
   const double a = 30.0 * prt::test::kPi / 180.0;
-  const prt::bake::Scene cavity = prt::bake::make_spherical_cavity(
+  const prt::scene::Scene cavity = prt::scene::make_spherical_cavity(
       1.f, static_cast<float>(a), kRings, kSegments, glm::vec3(0.9f));
   BakeOptions o;
   o.kind = prt::TransferKind::Interreflected;
@@ -166,8 +166,8 @@ TEST_CASE("stiff box with a small opening: Krylov beats bounces and agrees with 
   // opening 0.44 of a 24 area, so f ≈ 0.02 and ρ(1 − f) ≈ 0.98 at ρ = 0.999. Unlike the
   // sphere, whose gather kernel is constant (rank one: Krylov solves it in one step), the box
   // has a genuinely non-symmetric, spread-out H.
-  prt::bake::Scene box =
-      prt::bake::make_box({-1.f, -1.f, -1.f}, {1.f, 1.f, 1.f}, 6, true, glm::vec3(0.999f));
+  prt::scene::Scene box =
+      prt::scene::make_box({-1.f, -1.f, -1.f}, {1.f, 1.f, 1.f}, 6, true, glm::vec3(0.999f));
   std::vector<glm::uvec3> kept;
   for (const glm::uvec3& t : box.triangles) {
     const glm::vec3 c = (box.positions[t.x] + box.positions[t.y] + box.positions[t.z]) / 3.f;

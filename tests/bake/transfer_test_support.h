@@ -7,7 +7,7 @@
 
 #include <glm/glm.hpp>
 
-#include "bake/scene.h"
+#include "scene/scene.h"
 #include "sh/constants.h"
 
 namespace prt::test {
@@ -34,19 +34,19 @@ inline double polygon_form_factor(const glm::dvec3& p, const glm::dvec3& n,
 }
 
 // Scales every position by s (normals unchanged) and translates by t afterwards.
-inline bake::Scene transformed(bake::Scene scene, float s, glm::vec3 t = glm::vec3(0.f)) {
+inline scene::Scene transformed(scene::Scene scene, float s, glm::vec3 t = glm::vec3(0.f)) {
   for (glm::vec3& p : scene.positions) p = p * s + t;
   return scene;
 }
 
 // Sets every vertex normal of a primitive-less scene range to n.
-inline void set_normals(bake::Scene& scene, std::size_t first, std::size_t count, glm::vec3 n) {
+inline void set_normals(scene::Scene& scene, std::size_t first, std::size_t count, glm::vec3 n) {
   for (std::size_t v = first; v < first + count; ++v) scene.normals[v] = n;
 }
 
-inline void set_albedo(bake::Scene& scene, glm::vec3 a) {
+inline void set_albedo(scene::Scene& scene, glm::vec3 a) {
   for (glm::vec3& x : scene.albedo) x = a;
-  for (bake::ScenePrimitive& p : scene.primitives) p.albedo = a;
+  for (scene::ScenePrimitive& p : scene.primitives) p.albedo = a;
 }
 
 }  // namespace prt::test

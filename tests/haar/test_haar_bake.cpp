@@ -7,28 +7,28 @@
 #include <catch2/catch.hpp>
 
 #include "bake/haar_baker.h"
-#include "bake/procedural_mesh.h"
-#include "bake/ray_caster.h"
 #include "bake/transfer_baker.h"
 #include "prt/haar_relighter.h"
 #include "prt/haar_transfer_file.h"
 #include "prt/haar_transform.h"
 #include "relight/haar_relight.h"
+#include "scene/procedural_mesh.h"
+#include "scene/ray_caster.h"
 #include "sh/constants.h"
 #include "support/test_data.h"
 
 namespace {
 
-using prt::bake::Scene;
+using prt::scene::Scene;
 using prt::sh::kPi;
 
 // A 2×2 floor (8×8 segments) with a box standing on its left half: the box shadows part of
 // the floor for low directions, and its own faces are occluded by the floor.
 Scene make_floor_with_box(float albedo) {
-  Scene s = prt::bake::make_quad({-1.f, 0.f, 1.f}, {2.f, 0.f, 0.f}, {0.f, 0.f, -2.f}, 8, 8,
-                                 glm::vec3(albedo), "floor");
-  prt::bake::append_scene(s, prt::bake::make_box({-0.6f, 0.f, -0.3f}, {-0.1f, 0.6f, 0.3f}, 1, false,
-                                                 glm::vec3(albedo), "box"));
+  Scene s = prt::scene::make_quad({-1.f, 0.f, 1.f}, {2.f, 0.f, 0.f}, {0.f, 0.f, -2.f}, 8, 8,
+                                  glm::vec3(albedo), "floor");
+  prt::scene::append_scene(s, prt::scene::make_box({-0.6f, 0.f, -0.3f}, {-0.1f, 0.6f, 0.3f}, 1,
+                                                   false, glm::vec3(albedo), "box"));
   s.source_path = "floor_with_box";
   return s;
 }
@@ -44,7 +44,7 @@ prt::bake::HaarBakeOptions exact_options(int cube) {
 // The second method: the dense transfer of vertex v, texel by texel, with single rays from
 // RayCaster::occluded (not the baker's packets), texel-centre directions, exact solid angles.
 std::vector<float> dense_transfer_by_single_rays(const Scene& scene,
-                                                 const prt::bake::RayCaster& caster, uint32_t v,
+                                                 const prt::scene::RayCaster& caster, uint32_t v,
                                                  int n) {
   std::vector<float> dense(std::size_t(6) * n * n, 0.f);
   const glm::vec3 normal = glm::normalize(scene.normals[v]);
@@ -81,7 +81,7 @@ TEST_CASE("Haar bake: all terms, unquantised, relights equal to the texel sum of
   const prt::bake::HaarBakeResult baked = prt::bake::bake_haar_transfer(scene, exact_options(n));
   REQUIRE(baked.file.transfer.vertex_count == int64_t(scene.vertex_count()));
   REQUIRE(baked.stats.rays > 0);
-  const prt::bake::RayCaster caster(scene);
+  const prt::scene::RayCaster caster(scene);
   std::vector<float> dense;
   for (uint32_t v = 0; v < scene.vertex_count(); ++v) {
     const std::vector<float> d = dense_transfer_by_single_rays(scene, caster, v, n);
@@ -113,7 +113,7 @@ TEST_CASE("Haar bake: a point light in one texel lights exactly the vertices tha
   const int n = 16;
   const prt::bake::HaarBakeResult baked = prt::bake::bake_haar_transfer(scene, exact_options(n));
   const prt::HaarRelighter relighter(baked.file.transfer);
-  const prt::bake::RayCaster caster(scene);
+  const prt::scene::RayCaster caster(scene);
   // A low light from the +X face (grazing, so the box shadows part of the floor): texel
   // (col 8, row 12) of +X looks along (1, −b, a) with b = 0.5625: about 29° above the horizon.
   const int face = 0, col = 8, row = 3;
@@ -238,7 +238,7 @@ TEST_CASE(
   REQUIRE(wavelets.ok());
   for (const float rho : {0.5f, 0.9f}) {
     CAPTURE(rho);
-    Scene scene = prt::bake::make_spherical_cavity(1.f, a, 12, 48, glm::vec3(rho));
+    Scene scene = prt::scene::make_spherical_cavity(1.f, a, 12, 48, glm::vec3(rho));
     scene.source_path = "cavity";
     prt::bake::HaarBakeOptions o = exact_options(n);
     o.transport = prt::TransferKind::Interreflected;

@@ -6,8 +6,8 @@
 
 #include <catch2/catch.hpp>
 
-#include "bake/scene.h"
 #include "relight/camera.h"
+#include "scene/scene.h"
 #include "sh/constants.h"
 
 using prt::relight::Camera;
@@ -15,8 +15,8 @@ using prt::sh::kPi;
 
 namespace {
 
-prt::bake::Scene make_two_point_scene(glm::vec3 a, glm::vec3 b) {
-  prt::bake::Scene scene;
+prt::scene::Scene make_two_point_scene(glm::vec3 a, glm::vec3 b) {
+  prt::scene::Scene scene;
   scene.positions = {a, b};
   scene.normals = {glm::vec3(0, 1, 0), glm::vec3(0, 1, 0)};
   scene.albedo = {glm::vec3(0.5f), glm::vec3(0.5f)};
@@ -87,7 +87,7 @@ TEST_CASE("ray_direction and project_to_ndc are inverse to each other") {
 }
 
 TEST_CASE("parse_camera: auto, names, explicit numbers and clear errors") {
-  prt::bake::Scene scene = make_two_point_scene(glm::vec3(-1.f), glm::vec3(2.f));
+  prt::scene::Scene scene = make_two_point_scene(glm::vec3(-1.f), glm::vec3(2.f));
   scene.source_path = "scene.glb";
 
   // auto without scene cameras frames the bounds.
@@ -96,7 +96,7 @@ TEST_CASE("parse_camera: auto, names, explicit numbers and clear errors") {
   CHECK(glm::length(framed.eye - expected.eye) < 1e-6f);
 
   // auto with cameras takes the first; NAME picks by name.
-  prt::bake::SceneCamera first, second;
+  prt::scene::SceneCamera first, second;
   first.eye = glm::vec3(0, 1, 5);
   first.name = "front";
   second.eye = glm::vec3(5, 1, 0);

@@ -13,14 +13,14 @@
 
 #include <catch2/catch.hpp>
 
-#include "bake/glb_writer.h"
-#include "bake/procedural_mesh.h"
-#include "bake/ray_caster.h"
 #include "bake/transfer_baker.h"
 #include "prt/relighter.h"
 #include "prt/transfer_file.h"
 #include "relight/image_io.h"
 #include "relight/relight_pipeline.h"
+#include "scene/glb_writer.h"
+#include "scene/procedural_mesh.h"
+#include "scene/ray_caster.h"
 #include "sh/constants.h"
 #include "sh/env_map.h"
 #include "sh/projection.h"
@@ -32,15 +32,15 @@ using prt::sh::kPi;
 namespace {
 
 namespace fs = std::filesystem;
-using prt::bake::Scene;
+using prt::scene::Scene;
 
 // A box standing on a plane: plenty of partial occlusion, contact shadows and a box top.
 Scene make_box_on_plane(glm::vec3 plane_albedo, glm::vec3 box_albedo) {
-  Scene scene = prt::bake::make_quad(glm::vec3(-2, 0, -2), glm::vec3(0, 0, 4), glm::vec3(4, 0, 0),
-                                     16, 16, plane_albedo, "ground");
-  prt::bake::append_scene(
-      scene, prt::bake::make_box(glm::vec3(-0.5f, 0.f, -0.5f), glm::vec3(0.5f, 1.f, 0.5f), 4, false,
-                                 box_albedo, "box"));
+  Scene scene = prt::scene::make_quad(glm::vec3(-2, 0, -2), glm::vec3(0, 0, 4), glm::vec3(4, 0, 0),
+                                      16, 16, plane_albedo, "ground");
+  prt::scene::append_scene(
+      scene, prt::scene::make_box(glm::vec3(-0.5f, 0.f, -0.5f), glm::vec3(0.5f, 1.f, 0.5f), 4,
+                                  false, box_albedo, "box"));
   return scene;
 }
 
@@ -170,7 +170,7 @@ TEST_CASE("relight: radiance under a sunny sky equals a direct integration of L�
   // cos θ and φ about +Y, centre of each cell), with visibility from RayCaster::occluded and the
   // SH-projected lighting from prt::sh::reconstruct. B = ∫ L_proj V max(n·ω, 0) ρ/π dω: the relit
   // value is exactly this integral when T is the exact projection of V·cos·ρ/π.
-  const prt::bake::RayCaster caster(scene);
+  const prt::scene::RayCaster caster(scene);
   struct Moments {
     double b[3] = {0, 0, 0}, second[3] = {0, 0, 0};
   };
@@ -298,8 +298,8 @@ TEST_CASE("relight: a mismatched or corrupt coefficient file is refused, nothing
   scene_b.positions[3].y += 0.25f;  // a different mesh with the same vertex count
   const std::string scene_a_path = (dir / "a.glb").string(),
                     scene_b_path = (dir / "b.glb").string();
-  prt::bake::write_glb(scene_a_path, scene_a);
-  prt::bake::write_glb(scene_b_path, scene_b);
+  prt::scene::write_glb(scene_a_path, scene_a);
+  prt::scene::write_glb(scene_b_path, scene_b);
   const std::string prt_path = (dir / "a.prt").string();
   REQUIRE(prt::write_transfer_file(prt_path,
                                    bake(scene_a, prt::TransferKind::Unshadowed, 3, 16, false).data)

@@ -5,9 +5,9 @@
 
 #include <catch2/catch.hpp>
 
-#include "bake/ray_caster.h"
-#include "bake/scene.h"
 #include "relight/renderer.h"
+#include "scene/ray_caster.h"
+#include "scene/scene.h"
 #include "sh/constants.h"
 #include "sh/env_map.h"
 
@@ -16,14 +16,14 @@ using prt::sh::kPi;
 namespace {
 
 // One large triangle in the plane z = 0, facing +z, vertices with distinct radiance.
-prt::bake::Scene make_triangle_scene() {
-  prt::bake::Scene scene;
+prt::scene::Scene make_triangle_scene() {
+  prt::scene::Scene scene;
   scene.positions = {glm::vec3(-2.f, -1.5f, 0.f), glm::vec3(2.5f, -1.f, 0.f),
                      glm::vec3(0.3f, 2.f, 0.f)};
   scene.normals.assign(3, glm::vec3(0, 0, 1));
   scene.albedo.assign(3, glm::vec3(0.5f));
   scene.triangles = {glm::uvec3(0, 1, 2)};
-  prt::bake::ScenePrimitive primitive;
+  prt::scene::ScenePrimitive primitive;
   primitive.name = "triangle";
   primitive.vertex_count = 3;
   primitive.triangle_count = 1;
@@ -60,8 +60,8 @@ prt::sh::EnvMap make_analytic_latlong(int width, int height) {
 }  // namespace
 
 TEST_CASE("renderer: hits get the barycentric mix of vertex radiance, misses the rotated sky") {
-  const prt::bake::Scene scene = make_triangle_scene();
-  const prt::bake::RayCaster caster(scene);
+  const prt::scene::Scene scene = make_triangle_scene();
+  const prt::scene::RayCaster caster(scene);
   const std::vector<float> radiance = {1.f, 2.f, 3.f, 10.f, 0.f, 5.f, 0.5f, 7.f, 20.f};
   const prt::sh::EnvMap env = make_analytic_latlong(512, 256);
   // Yaw 40°, pitch 25° (a rotation about +Y then +X), written out: M = Ry·Rx.
@@ -131,8 +131,8 @@ TEST_CASE("renderer: hits get the barycentric mix of vertex radiance, misses the
 }
 
 TEST_CASE("renderer: stratified sub-samples average a pixel; the output is deterministic") {
-  const prt::bake::Scene scene = make_triangle_scene();
-  const prt::bake::RayCaster caster(scene);
+  const prt::scene::Scene scene = make_triangle_scene();
+  const prt::scene::RayCaster caster(scene);
   const std::vector<float> radiance = {1.f, 1.f, 1.f, 1.f, 1.f, 1.f, 1.f, 1.f, 1.f};
   prt::relight::Camera camera;
   camera.eye = glm::vec3(0.f, 0.f, 4.f);
@@ -158,8 +158,8 @@ TEST_CASE("renderer: stratified sub-samples average a pixel; the output is deter
 }
 
 TEST_CASE("renderer: bad input is refused with one line") {
-  const prt::bake::Scene scene = make_triangle_scene();
-  const prt::bake::RayCaster caster(scene);
+  const prt::scene::Scene scene = make_triangle_scene();
+  const prt::scene::RayCaster caster(scene);
   prt::relight::Camera camera;
   prt::relight::RenderOptions options;
   options.width = 8;

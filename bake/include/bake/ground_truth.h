@@ -1,7 +1,7 @@
 // bake/ground_truth.h — an independent reference for per-vertex exit radiance: Monte Carlo
 // integration against the actual environment map (not its SH projection), with visibility and
 // diffuse interreflection by path tracing. It shares no code with the SH or wavelet paths; the
-// report (relight/report.h) measures every PRT setting against it.
+// report (report/report.h) measures every PRT setting against it.
 //
 // Frame: glTF's (+Y up); map layouts and texel solid angles of sh/env_map.h; radiance in the
 // map's units. The map is taken as piecewise constant over texels (nearest texel, no filtering).
@@ -28,7 +28,7 @@
 // Standard error: every sample is an independent estimate of B_p (RGB); SE_p,c = the sample
 // standard deviation / √N. The summary statistic is the relative RMS standard error
 //     s = √(Σ_p Σ_c SE_p,c²) / √(Σ_p Σ_c B_p,c²),
-// the same RGB-norm RMS that relight/report.h uses for errors. refine() doubles the samples per
+// the same RGB-norm RMS that report/report.h uses for errors. refine() doubles the samples per
 // vertex until s ≤ target (or a sample cap), and says what it reached.
 // Determinism: the random numbers of sample s of vertex v come from hash(seed, v, s) only, so the
 // result is bit-identical for any thread count and any doubling schedule.
@@ -39,13 +39,16 @@
 #include <memory>
 #include <vector>
 
-#include "bake/scene.h"
+#include "scene/scene.h"
 #include "sh/env_map.h"
+
+namespace prt::scene {
+class RayCaster;
+}  // namespace prt::scene
 
 namespace prt::bake {
 
 class ProgressSink;
-class RayCaster;
 
 struct GroundTruthOptions {
   int max_bounces = 64;              // reflections after the vertex (0: direct lighting only)
@@ -107,7 +110,7 @@ class GroundTruthIntegrator {
  public:
   // The scene and map must outlive the integrator. Throws BakeError for an empty scene, albedo
   // outside [0, 1), a bad map or options.
-  GroundTruthIntegrator(const Scene& scene, const sh::EnvMap& env,
+  GroundTruthIntegrator(const scene::Scene& scene, const sh::EnvMap& env,
                         const GroundTruthOptions& options);
   ~GroundTruthIntegrator();
   GroundTruthIntegrator(const GroundTruthIntegrator&) = delete;
@@ -129,7 +132,7 @@ class GroundTruthIntegrator {
 };
 
 // One call: GroundTruthIntegrator + refine(options.target_relative_se).
-GroundTruthResult compute_ground_truth(const Scene& scene, const sh::EnvMap& env,
+GroundTruthResult compute_ground_truth(const scene::Scene& scene, const sh::EnvMap& env,
                                        const GroundTruthOptions& options,
                                        ProgressSink* progress = nullptr);
 

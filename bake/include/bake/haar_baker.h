@@ -33,10 +33,10 @@
 
 #include <cstdint>
 
-#include "bake/scene.h"
 #include "prt/haar_transfer.h"
 #include "prt/haar_transfer_file.h"
 #include "prt/transfer_data.h"
+#include "scene/scene.h"
 
 namespace prt::bake {
 
@@ -80,7 +80,7 @@ struct HaarBakeResult {
 
 // Bakes Haar transfer for every vertex. Throws BakeError (bad options or scene, one line
 // "PATH: problem") or std::runtime_error (Embree). `progress` may be null.
-HaarBakeResult bake_haar_transfer(const Scene& scene, const HaarBakeOptions& options,
+HaarBakeResult bake_haar_transfer(const scene::Scene& scene, const HaarBakeOptions& options,
                                   ProgressSink* progress = nullptr);
 
 }  // namespace prt::bake

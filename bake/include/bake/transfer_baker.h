@@ -21,37 +21,37 @@
 // independently, and the solver reduces in a fixed order, so output is bit-identical for any
 // thread count.
 //
-// Adaptive sampling (BakeOptions::adaptive, used by `prt bake --auto`, bake/adaptive_baker.h):
+// Adaptive sampling (BakeOptions::adaptive, used by `prt bake --auto`,
+// bake/adaptive/adaptive_baker.h):
 //   - vertices marked kAnalyticVertex get the unshadowed transfer with no rays (the caller has
-//     proved their hemisphere unoccluded, bake/scene_analysis.h); kSkipVertex leaves zeros (a
-//     pilot bake of a vertex subset);
+//     proved their hemisphere unoccluded, bake/adaptive/scene_analysis.h); kSkipVertex leaves zeros
+//     (a pilot bake of a vertex subset);
 //   - sampled vertices use the analytic unshadowed transfer U as a control variate,
 //       S_k = U_k − (1/N) Σ_s (1 − V(ω_s)) Y_k(ω_s),
 //     unbiased like the plain estimator (E[(1/N) Σ Y_k] = U_k under pdf cos/π), and exact where no
 //     sample is occluded;
 //   - cap sampling (AdaptiveSampling::cap_sampling): a vertex whose blockable directions fit in
-//     a few small cones (bake/occluder_caps.h) draws its directions inside them with weights
-//     w_s (bake/cap_sampling.h) and its estimator becomes U_k − (1/N) Σ_s w_s(1 − V)Y_k (w = 1
-//     for hemisphere sampling); rays below its horizon are not cast. AO and the bent normal of
-//     such a vertex use 1 and (2/3)·n (their unoccluded values) as control variates too;
+//     a few small cones (bake/adaptive/occluder_caps.h) draws its directions inside them with
+//     weights w_s (bake/adaptive/cap_sampling.h) and its estimator becomes U_k − (1/N) Σ_s w_s(1 −
+//     V)Y_k (w = 1 for hemisphere sampling); rays below its horizon are not cast. AO and the bent
+//     normal of such a vertex use 1 and (2/3)·n (their unoccluded values) as control variates too;
 //   - sample counts: x_s = w_s·(1 − V(ω_s))·L(ω_s), L the lighting's luminance (up to the
 //     transfer's order) in direction ω_s over its mean (1 without lighting). Every sampled
 //     vertex first takes min_samples samples (capped vertices min_cap_samples); then rounds of
-//     Neyman allocation with costs (bake/sample_allocation.h: n_v ∝ a_v/√c_v, c_v the cost of a
-//     sample: its ray, 3× for one that hits) move every vertex toward its target at max_samples,
-//     growing it at most 4× per round, until the scene's relative RMS sampling error is
-//     predicted ≤ rms_error. The prediction is Σ_v a_v²/n_v over Σ_v B_v², a_v = c·ρ̄_v·σ_v
-//     (ρ̄: luminance albedo; σ_v²: the successive-difference variance of x over the point pairs
-//     (2i, 2i + 1), which share elementary intervals of the scrambled Sobol' net, floored at the
-//     Jeffreys (w_max)²·p(1 − p) of its occluded count) and B_v the direct exit radiance plus
-//     the first bounce read from the phase-1 rows of H (a lower bound: the budget stays
-//     conservative). c is measured by audit vertices: every 8th sampled vertex draws from two
-//     independently scrambled sequences in alternate packets (counts multiples of 32), and the
-//     spread of the two means is an unbiased estimate of its actual error; c is measured per
-//     class (hemisphere, caps) when a class has 64 audits (qmc_calibration, _caps). The other
-//     vertices use the fixed recipe's single sequence. Hits are gathered into H in every round;
-//     vertex_standard_error is c·σ_v/√n_v. The allocation reads every vertex in a fixed order:
-//     thread-count independent;
+//     Neyman allocation with costs (bake/adaptive/sample_allocation.h: n_v ∝ a_v/√c_v, c_v the cost
+//     of a sample: its ray, 3× for one that hits) move every vertex toward its target at
+//     max_samples, growing it at most 4× per round, until the scene's relative RMS sampling error
+//     is predicted ≤ rms_error. The prediction is Σ_v a_v²/n_v over Σ_v B_v², a_v = c·ρ̄_v·σ_v (ρ̄:
+//     luminance albedo; σ_v²: the successive-difference variance of x over the point pairs (2i, 2i
+//     + 1), which share elementary intervals of the scrambled Sobol' net, floored at the Jeffreys
+//     (w_max)²·p(1 − p) of its occluded count) and B_v the direct exit radiance plus the first
+//     bounce read from the phase-1 rows of H (a lower bound: the budget stays conservative). c is
+//     measured by audit vertices: every 8th sampled vertex draws from two independently scrambled
+//     sequences in alternate packets (counts multiples of 32), and the spread of the two means is
+//     an unbiased estimate of its actual error; c is measured per class (hemisphere, caps) when a
+//     class has 64 audits (qmc_calibration, _caps). The other vertices use the fixed recipe's
+//     single sequence. Hits are gathered into H in every round; vertex_standard_error is
+//     c·σ_v/√n_v. The allocation reads every vertex in a fixed order: thread-count independent;
 //   - the interreflection solve is skipped when H is empty or every albedo is zero; otherwise
 //     Jacobi bounces stop when a bounce adds less than bounce_tolerance × max|D| (BiCGSTAB takes
 //     over after 200 bounces); the stored kind is the simplest that is exact (unshadowed when
@@ -65,15 +65,18 @@
 #include <string>
 #include <vector>
 
-#include "bake/scene.h"
-#include "bake/triangle_hierarchy.h"
+#include "bake/adaptive/triangle_hierarchy.h"
 #include "prt/transfer_data.h"
+#include "scene/scene.h"
 #include "sh/constants.h"
+
+namespace prt::scene {
+class RayCaster;
+}  // namespace prt::scene
 
 namespace prt::bake {
 
 class ProgressSink;
-class RayCaster;
 
 // Thrown for invalid scenes or options; one line "PATH: problem".
 struct BakeError : std::runtime_error {
@@ -98,10 +101,10 @@ struct AdaptiveSampling {
   std::vector<double> lighting;
   int lighting_order = 0;
   double bounce_tolerance = 0.0025;  // a bounce adding < this × max|D| is the last
-  // Cap sampling (bake/occluder_caps.h, bake/cap_sampling.h): a sampled vertex whose blockable
-  // directions fit in ≤ max_caps cones of total solid angle ≤ max_cap_solid_angle draws its rays
-  // inside them only (w ≤ Ω/π ≤ ½ of the hemisphere estimator's weight) and starts at
-  // min_cap_samples; one whose caps all lie below its horizon gets the analytic transfer.
+  // Cap sampling (bake/adaptive/occluder_caps.h, bake/adaptive/cap_sampling.h): a sampled vertex
+  // whose blockable directions fit in ≤ max_caps cones of total solid angle ≤ max_cap_solid_angle
+  // draws its rays inside them only (w ≤ Ω/π ≤ ½ of the hemisphere estimator's weight) and starts
+  // at min_cap_samples; one whose caps all lie below its horizon gets the analytic transfer.
   bool cap_sampling = true;
   int max_caps = 8;
   double max_cap_solid_angle = sh::kHalfPi;  // π/2 sr
@@ -110,7 +113,7 @@ struct AdaptiveSampling {
   std::shared_ptr<const TriangleHierarchy> hierarchy;
   // A ray caster over this scene's geometry (same positions, normals and triangles; the albedo
   // may differ) when the caller has one (built here when null).
-  std::shared_ptr<const RayCaster> caster;
+  std::shared_ptr<const scene::RayCaster> caster;
   // Shadowed or unshadowed only: TransferData::coefficients holds rows for the vertices that are
   // not kSkipVertex, in vertex order, instead of one per vertex (the file writer needs the
   // full layout; this is for in-memory callers such as the --auto pilot).
@@ -177,11 +180,11 @@ struct BakeResult {
 };
 
 // Checks the options and the scene's albedo; throws BakeError.
-void validate_bake_inputs(const Scene& scene, const BakeOptions& options);
+void validate_bake_inputs(const scene::Scene& scene, const BakeOptions& options);
 
 // Bakes transfer for every vertex of `scene`. Throws BakeError (bad input) or
 // std::runtime_error (Embree). `progress` may be null.
-BakeResult bake_transfer(const Scene& scene, const BakeOptions& options,
+BakeResult bake_transfer(const scene::Scene& scene, const BakeOptions& options,
                          ProgressSink* progress = nullptr);
 
 // "unshadowed" / "shadowed" / "interreflected" / "haar" (defined by the runtime,

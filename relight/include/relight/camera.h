@@ -12,7 +12,7 @@
 
 #include <glm/glm.hpp>
 
-#include "bake/scene.h"
+#include "scene/scene.h"
 
 namespace prt::relight {
 
@@ -35,7 +35,7 @@ struct CameraBasis {
 // the given aspect ratio (with a 5% margin). An empty or point-like box gets radius 1.
 Camera frame_bounds(glm::vec3 min, glm::vec3 max, float aspect);
 
-Camera from_scene_camera(const bake::SceneCamera& camera);
+Camera from_scene_camera(const scene::SceneCamera& camera);
 
 // Parses `auto | NAME | ex,ey,ez,tx,ty,tz,ux,uy,uz,fov_deg`.
 //   auto: the scene's first camera if it has one, else frame_bounds(scene bounds, aspect);
@@ -43,7 +43,7 @@ Camera from_scene_camera(const bake::SceneCamera& camera);
 //   ten numbers: eye, target, up and the vertical field of view in degrees (0 < fov < 180).
 // Throws std::runtime_error with a one-line message for an unknown name, a malformed list, or a
 // degenerate camera (eye = target, up parallel to the view direction, non-finite values).
-Camera parse_camera(const std::string& spec, const bake::Scene& scene, float aspect);
+Camera parse_camera(const std::string& spec, const scene::Scene& scene, float aspect);
 
 // Throws std::runtime_error (one line) when the camera cannot form a basis.
 CameraBasis make_camera_basis(const Camera& camera, float aspect);

@@ -8,7 +8,7 @@
 // g(ω) = f(Mᵀω) (sh/rotation.h), so its SH coefficients are rotated, never re-projected.
 // The turntable turns the light about +Y by 360°·i/N on top of --rotate: M_i = Ry(360°·i/N)·M.
 // Exit radiance B_p = Σ_k T_p,k L_k (prt/transfer_data.h), linear.
-// Every error throws std::runtime_error (or bake::SceneError) with one line "PATH: problem";
+// Every error throws std::runtime_error (or scene::SceneError) with one line "PATH: problem";
 // run_relight() validates all inputs before it writes anything, and each file is written
 // atomically (temporary + rename) so nothing partial is left behind.
 #pragma once
@@ -19,11 +19,11 @@
 #include <string>
 #include <vector>
 
-#include "bake/scene.h"
 #include "prt/lighting.h"
 #include "prt/relighter.h"
 #include "prt/transfer_data.h"
 #include "relight/renderer.h"
+#include "scene/scene.h"
 #include "sh/env_map.h"
 #include "sh/window.h"
 
@@ -36,12 +36,12 @@ constexpr float kGeometryTolerance = 1e-5f;
 // Reads a coefficient file and checks that it was baked for `scene` (prt::check_geometry).
 // Throws "PATH: problem" for an unreadable or corrupt file or a geometry mismatch.
 prt::TransferData load_transfer_for_scene(const std::string& transfer_path,
-                                          const bake::Scene& scene);
+                                          const scene::Scene& scene);
 
 // Throws "TRANSFER_PATH: was not baked for SCENE: problem" unless `data` (a coefficient file's
 // header and positions, SH or Haar) was baked for `scene` (prt::check_geometry).
 void check_transfer_matches_scene(const prt::TransferData& data, const std::string& transfer_path,
-                                  const bake::Scene& scene);
+                                  const scene::Scene& scene);
 
 struct LightingOptions {
   std::array<double, 3> yaw_pitch_roll_deg{0.0, 0.0, 0.0};  // --rotate
@@ -74,7 +74,7 @@ std::vector<float> shade_all_vertices(const prt::Relighter& relighter,
 void write_rendered_image(const std::string& path, const Image& image, float exposure_ev);
 
 // One row per vertex: index,x,y,z,r,g,b (header row first), written atomically.
-void write_vertex_csv(const std::string& path, const bake::Scene& scene,
+void write_vertex_csv(const std::string& path, const scene::Scene& scene,
                       const std::vector<float>& radiance_rgb);
 
 // OUT.png → OUT_007.png for frame 7 (three digits at least).

@@ -15,9 +15,9 @@
 #include <array>
 #include <vector>
 
-#include "bake/ray_caster.h"
-#include "bake/scene.h"
 #include "relight/camera.h"
+#include "scene/ray_caster.h"
+#include "scene/scene.h"
 #include "sh/env_map.h"
 
 namespace prt::relight {
@@ -39,7 +39,7 @@ constexpr std::array<double, 9> kIdentityRotation{1, 0, 0, 0, 1, 0, 0, 0, 1};
 // Throws std::runtime_error (one line) when vertex_radiance_rgb is not 3 floats per scene vertex,
 // the size or sample count is out of range (1..16384 pixels a side, 1..16 samples per axis), or
 // the camera is degenerate.
-Image render(const bake::Scene& scene, const bake::RayCaster& caster,
+Image render(const scene::Scene& scene, const scene::RayCaster& caster,
              const std::vector<float>& vertex_radiance_rgb, const sh::EnvMap* background,
              const std::array<double, 9>& background_rotation, const Camera& camera,
              const RenderOptions& options);

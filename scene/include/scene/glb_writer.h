@@ -1,0 +1,27 @@
+// scene/glb_writer.h — writing a Scene as binary glTF 2.0 (.glb) that any glTF viewer opens.
+//
+// Frame: glTF's (right-handed, +Y up, cameras look down -Z); positions are written as they are
+// (world space, identity node transforms), so load_scene(write_glb(s)) gives s back.
+// Layout: one mesh (with one node) per scene primitive, named after it, with POSITION (with
+// min/max), NORMAL, u32 indices, and a material whose baseColorFactor is the primitive's albedo
+// (alpha 1, metallic 0, roughness 1: a diffuse surface). With vertex_colors (one linear RGB
+// float triple per scene vertex, e.g. baked radiance) each primitive also gets COLOR_0 (float
+// VEC3, linear as glTF requires). Each SceneCamera becomes a perspective camera on its own
+// node, rotated so that its -Z looks at the target with +Y as close to `up` as possible.
+// The file is written atomically: PATH.tmp-<pid> then rename; nothing is left on failure.
+// Errors throw SceneError("PATH: problem").
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "scene/scene.h"
+
+namespace prt::scene {
+
+void write_glb(const std::string& path, const Scene& scene,
+               const std::vector<glm::vec3>* vertex_colors = nullptr);
+
+}  // namespace prt::scene

@@ -1,0 +1,58 @@
+// scene/scene_loader.h — loading a Scene from glTF 2.0 (.gltf, .glb) or Wavefront OBJ (.obj).
+//
+// Frame: glTF's (right-handed, +Y up, cameras look down -Z). OBJ files are taken as they are
+// (no axis change); units are the file's.
+//
+// glTF (through tinygltf): every TRIANGLES primitive of every mesh of every node of the
+// default scene (scene 0 when none is set), nodes depth-first in child order, primitives in
+// order. Node transforms (matrix or TRS) are composed down the hierarchy and applied; NORMAL
+// is transformed by the inverse transpose and renormalised (a mirroring transform flips the
+// winding, which is restored). POSITION is required; indices may be u8/u16/u32 or absent.
+// Primitives of other modes (points, lines, strips, fans) are skipped and reported in one
+// warning line on stderr. Albedo = pbrMetallicRoughness.baseColorFactor rgb, stored as it
+// is (the baker refuses albedo >= 1); a primitive with no material, or whose colour comes
+// from a base-colour texture (factor left at 1, texture not read), gets 0.8 grey with a note
+// on stderr, instead of the spec's white. Perspective cameras attached to
+// nodes become SceneCameras: eye = the node's world position, target = eye + the node's -Z,
+// up = the node's +Y, yfov.
+// Textures: only baseColorFactor is read, so image pixels are never decoded, and textures
+// that are missing on disk are NOT an error: they are reported as one warning line on stderr
+// ("PATH: warning: ...") and loading continues (real assets are often shipped geometry-only).
+// Missing buffers (.bin) ARE an error.
+//
+// OBJ (through tinyobjloader): shapes in order; quads and polygons are triangulated; negative
+// indices and CRLF line endings are handled. Albedo = the MTL's Kd (0.8 grey when a face has
+// no material; a shape takes its first face's material). When every face corner of a shape
+// has a `vn`, one vertex is made per unique (position, normal) index pair, in first-seen order.
+// Otherwise normals are computed and the vertices are the file's `v` entries in file order: a
+// file with one shape keeps all of them, including `v` lines no face uses (they get the +Y
+// fallback normal), so vertex i is the file's i-th `v` (stanford-bunny.obj: 35,947 v lines,
+// 34,834 of them used, 35,947 vertices); with several shapes each keeps the entries it uses.
+//
+// Both: missing normals are computed (scene/mesh_normals.h: area x angle weighting, +Y
+// fallback); degenerate triangles (repeated indices, or area <= 1e-12 * extent^2) are removed
+// and counted in Scene::skipped_degenerate_triangles; vertices keep the file's order per
+// primitive.
+//
+// Errors throw SceneError with one line "PATH: problem": unreadable or unparsable file (the
+// parser's messages condensed to one line), missing buffer, index out of range, NaN/Inf
+// position (the vertex is named), no triangles at all, unsupported extension.
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include <glm/glm.hpp>
+
+#include "scene/scene.h"
+
+namespace prt::scene {
+
+struct LoadOptions {
+  std::optional<glm::vec3> albedo_override;  // replaces every material's albedo when set
+};
+
+// Loads a scene, dispatching on the file extension (case-insensitive): .gltf, .glb, .obj.
+Scene load_scene(const std::string& path, const LoadOptions& options = {});
+
+}  // namespace prt::scene

@@ -1,0 +1,185 @@
+// Binary glTF writing through tinygltf's serializer (see scene/glb_writer.h).
+#include "scene/glb_writer.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <limits>
+
+#include <tiny_gltf.h>
+#include <glm/gtc/quaternion.hpp>
+
+#include "prt/atomic_file.h"
+#include "scene_file_errors.h"
+
+namespace prt::scene {
+namespace {
+
+using detail::fail;
+
+// Appends raw bytes to the buffer (4-byte aligned) and returns a new buffer view's index.
+int add_buffer_view(tinygltf::Model& model, const void* bytes, std::size_t size, int target) {
+  std::vector<unsigned char>& data = model.buffers[0].data;
+  while (data.size() % 4 != 0) data.push_back(0);
+  tinygltf::BufferView view;
+  view.buffer = 0;
+  view.byteOffset = data.size();
+  view.byteLength = size;
+  view.target = target;
+  const auto* first = static_cast<const unsigned char*>(bytes);
+  data.insert(data.end(), first, first + size);
+  model.bufferViews.push_back(view);
+  return static_cast<int>(model.bufferViews.size() - 1);
+}
+
+int add_vec3_accessor(tinygltf::Model& model, const glm::vec3* values, std::size_t count,
+                      bool with_bounds) {
+  tinygltf::Accessor accessor;
+  accessor.bufferView =
+      add_buffer_view(model, values, count * sizeof(glm::vec3), TINYGLTF_TARGET_ARRAY_BUFFER);
+  accessor.componentType = TINYGLTF_COMPONENT_TYPE_FLOAT;
+  accessor.type = TINYGLTF_TYPE_VEC3;
+  accessor.count = count;
+  if (with_bounds && count > 0) {
+    glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
+    for (std::size_t i = 0; i < count; ++i) {
+      lo = glm::min(lo, values[i]);
+      hi = glm::max(hi, values[i]);
+    }
+    accessor.minValues = {lo.x, lo.y, lo.z};
+    accessor.maxValues = {hi.x, hi.y, hi.z};
+  }
+  model.accessors.push_back(accessor);
+  return static_cast<int>(model.accessors.size() - 1);
+}
+
+// Rotation taking the camera's local frame (looks down -Z, up +Y) to the look-at frame.
+glm::dquat look_at_rotation(const SceneCamera& camera) {
+  const glm::dvec3 forward = glm::normalize(glm::dvec3(camera.target) - glm::dvec3(camera.eye));
+  const glm::dvec3 z = -forward;
+  glm::dvec3 x = glm::cross(glm::dvec3(camera.up), z);
+  if (glm::length(x) < 1e-9) x = glm::cross(glm::dvec3(0, 0, 1), z);  // up parallel to view
+  if (glm::length(x) < 1e-9) x = glm::dvec3(1, 0, 0);
+  x = glm::normalize(x);
+  const glm::dvec3 y = glm::cross(z, x);
+  return glm::normalize(glm::quat_cast(glm::dmat3(x, y, z)));
+}
+
+tinygltf::Model build_model(const std::string& path, const Scene& scene,
+                            const std::vector<glm::vec3>* vertex_colors) {
+  tinygltf::Model model;
+  model.asset.version = "2.0";
+  model.asset.generator = "prt make-scene / write_glb";
+  model.buffers.resize(1);
+  tinygltf::Scene gltf_scene;
+  gltf_scene.name = "scene";
+
+  for (const ScenePrimitive& primitive : scene.primitives) {
+    if (static_cast<std::size_t>(primitive.first_vertex) + primitive.vertex_count >
+            scene.positions.size() ||
+        static_cast<std::size_t>(primitive.first_triangle) + primitive.triangle_count >
+            scene.triangles.size()) {
+      fail(path, "primitive '" + primitive.name + "' has ranges outside the scene");
+    }
+    std::vector<uint32_t> indices;
+    indices.reserve(primitive.triangle_count * 3u);
+    for (uint32_t t = 0; t < primitive.triangle_count; ++t) {
+      const glm::uvec3& tri = scene.triangles[primitive.first_triangle + t];
+      for (int k = 0; k < 3; ++k) {
+        if (tri[k] < primitive.first_vertex ||
+            tri[k] - primitive.first_vertex >= primitive.vertex_count) {
+          fail(path, "primitive '" + primitive.name + "' has a triangle using another's vertex");
+        }
+        indices.push_back(tri[k] - primitive.first_vertex);
+      }
+    }
+    tinygltf::Primitive gltf_primitive;
+    gltf_primitive.mode = TINYGLTF_MODE_TRIANGLES;
+    gltf_primitive.attributes["POSITION"] = add_vec3_accessor(
+        model, scene.positions.data() + primitive.first_vertex, primitive.vertex_count, true);
+    gltf_primitive.attributes["NORMAL"] = add_vec3_accessor(
+        model, scene.normals.data() + primitive.first_vertex, primitive.vertex_count, false);
+    if (vertex_colors) {
+      gltf_primitive.attributes["COLOR_0"] = add_vec3_accessor(
+          model, vertex_colors->data() + primitive.first_vertex, primitive.vertex_count, false);
+    }
+    tinygltf::Accessor index_accessor;
+    index_accessor.bufferView = add_buffer_view(model, indices.data(), indices.size() * 4,
+                                                TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
+    index_accessor.componentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
+    index_accessor.type = TINYGLTF_TYPE_SCALAR;
+    index_accessor.count = indices.size();
+    model.accessors.push_back(index_accessor);
+    gltf_primitive.indices = static_cast<int>(model.accessors.size() - 1);
+
+    tinygltf::Material material;
+    material.name = primitive.name;
+    material.pbrMetallicRoughness.baseColorFactor = {primitive.albedo.x, primitive.albedo.y,
+                                                     primitive.albedo.z, 1.0};
+    material.pbrMetallicRoughness.metallicFactor = 0.0;
+    material.pbrMetallicRoughness.roughnessFactor = 1.0;
+    model.materials.push_back(material);
+    gltf_primitive.material = static_cast<int>(model.materials.size() - 1);
+
+    tinygltf::Mesh mesh;
+    mesh.name = primitive.name;
+    mesh.primitives.push_back(gltf_primitive);
+    model.meshes.push_back(mesh);
+    tinygltf::Node node;
+    node.name = primitive.name;
+    node.mesh = static_cast<int>(model.meshes.size() - 1);
+    model.nodes.push_back(node);
+    gltf_scene.nodes.push_back(static_cast<int>(model.nodes.size() - 1));
+  }
+
+  const double far_plane = std::max(1.0, 100.0 * static_cast<double>(scene.extent()));
+  for (const SceneCamera& camera : scene.cameras) {
+    tinygltf::Camera gltf_camera;
+    gltf_camera.type = "perspective";
+    gltf_camera.name = camera.name;
+    gltf_camera.perspective.yfov = camera.yfov_radians;
+    gltf_camera.perspective.znear = far_plane * 1e-5;
+    gltf_camera.perspective.zfar = far_plane;
+    model.cameras.push_back(gltf_camera);
+    tinygltf::Node node;
+    node.name = camera.name.empty() ? "camera" : camera.name;
+    node.camera = static_cast<int>(model.cameras.size() - 1);
+    node.translation = {camera.eye.x, camera.eye.y, camera.eye.z};
+    const glm::dquat q = look_at_rotation(camera);
+    node.rotation = {q.x, q.y, q.z, q.w};
+    model.nodes.push_back(node);
+    gltf_scene.nodes.push_back(static_cast<int>(model.nodes.size() - 1));
+  }
+  model.scenes.push_back(gltf_scene);
+  model.defaultScene = 0;
+  return model;
+}
+
+}  // namespace
+
+void write_glb(const std::string& path, const Scene& scene,
+               const std::vector<glm::vec3>* vertex_colors) {
+  if (scene.normals.size() != scene.positions.size()) {
+    fail(path, "the scene has " + std::to_string(scene.normals.size()) + " normals for " +
+                   std::to_string(scene.positions.size()) + " vertices");
+  }
+  if (vertex_colors && vertex_colors->size() != scene.positions.size()) {
+    fail(path, "got " + std::to_string(vertex_colors->size()) + " vertex colours for " +
+                   std::to_string(scene.positions.size()) + " vertices");
+  }
+  const tinygltf::Model model = build_model(path, scene, vertex_colors);
+  const Status written = replace_file_atomically(path, [&](const std::string& temporary) {
+    tinygltf::TinyGLTF writer;
+    const bool ok = writer.WriteGltfSceneToFile(&model, temporary, /*embedImages=*/true,
+                                                /*embedBuffers=*/true, /*prettyPrint=*/false,
+                                                /*writeBinary=*/true);
+    std::error_code ec;
+    if (!ok || !std::filesystem::is_regular_file(temporary, ec))
+      return Status::Error(path + ": cannot write the file");
+    return Status::Ok();
+  });
+  if (!written.ok()) throw SceneError(written.message());
+}
+
+}  // namespace prt::scene

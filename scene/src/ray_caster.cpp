@@ -1,0 +1,266 @@
+// scene/src/ray_caster.cpp — Embree 3 device, scene and queries (see ray_caster.h).
+#include "scene/ray_caster.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <embree3/rtcore.h>
+
+#include "scene/scene_label.h"
+
+namespace prt::scene {
+namespace {
+
+constexpr unsigned kMaskAll = 0xFFFFFFFFu;
+
+std::string describe(RTCError e) {
+  switch (e) {
+    case RTC_ERROR_NONE:
+      return "no error";
+    case RTC_ERROR_INVALID_ARGUMENT:
+      return "invalid argument";
+    case RTC_ERROR_INVALID_OPERATION:
+      return "invalid operation";
+    case RTC_ERROR_OUT_OF_MEMORY:
+      return "out of memory";
+    case RTC_ERROR_UNSUPPORTED_CPU:
+      return "unsupported CPU";
+    case RTC_ERROR_CANCELLED:
+      return "cancelled";
+    default:
+      return "unknown error";
+  }
+}
+
+void throw_if_error(RTCDevice device, const Scene& scene, const char* what) {
+  const RTCError e = rtcGetDeviceError(device);
+  if (e != RTC_ERROR_NONE)
+    throw std::runtime_error(scene_label(scene) + ": Embree " + what + " failed (" + describe(e) +
+                             ")");
+}
+
+void fill_ray16(RTCRay16& r, const glm::vec3& origin, const glm::vec3* dirs, int count, float tfar,
+                int* valid) {
+  for (int i = 0; i < 16; ++i) {
+    const bool on = i < count;
+    valid[i] = on ? -1 : 0;
+    const glm::vec3 d = on ? dirs[i] : glm::vec3(0.f, 0.f, 1.f);
+    r.org_x[i] = origin.x;
+    r.org_y[i] = origin.y;
+    r.org_z[i] = origin.z;
+    r.dir_x[i] = d.x;
+    r.dir_y[i] = d.y;
+    r.dir_z[i] = d.z;
+    r.tnear[i] = 0.f;
+    r.tfar[i] = tfar;
+    r.time[i] = 0.f;
+    r.mask[i] = kMaskAll;
+    r.id[i] = static_cast<unsigned>(i);
+    r.flags[i] = 0;
+  }
+}
+
+}  // namespace
+
+bool RayCaster::monitor_memory(void* self, long bytes, bool /*post*/) {
+  auto* caster = static_cast<RayCaster*>(self);
+  const long long now = caster->bytes_now_.fetch_add(bytes) + bytes;
+  long long peak = caster->bytes_peak_.load();
+  while (now > peak && !caster->bytes_peak_.compare_exchange_weak(peak, now)) {
+  }
+  return true;
+}
+
+RayCaster::RayCaster(const Scene& scene) : scene_(&scene) {
+  starts_ = compute_vertex_ray_starts(scene);
+  RTCDevice device = rtcNewDevice(nullptr);
+  if (!device)
+    throw std::runtime_error(scene_label(scene) + ": cannot create the Embree device (" +
+                             describe(rtcGetDeviceError(nullptr)) + ")");
+  device_ = device;
+  rtcSetDeviceMemoryMonitorFunction(device, &RayCaster::monitor_memory, this);
+
+  RTCScene rs = rtcNewScene(device);
+  rtc_scene_ = rs;
+  throw_if_error(device, scene, "scene creation");
+  rtcSetSceneFlags(rs, RTC_SCENE_FLAG_ROBUST);
+  rtcSetSceneBuildQuality(rs, RTC_BUILD_QUALITY_HIGH);
+
+  const std::size_t nv = scene.positions.size();
+  // Only triangles whose indices are in range reach Embree (a loader bug must not crash it).
+  std::vector<glm::uvec3> tris;
+  tris.reserve(scene.triangles.size());
+  for (const glm::uvec3& t : scene.triangles)
+    if (t.x < nv && t.y < nv && t.z < nv) tris.push_back(t);
+  if (tris.size() != scene.triangles.size())
+    throw std::runtime_error(scene_label(scene) + ": triangle index out of range");
+  triangle_count_ = tris.size();
+
+  // Per-vertex nudge toward the mean centroid of the vertex's triangles, tangentially.
+  if (scene.normals.size() == nv) {
+    std::vector<glm::dvec3> centroid_sum(nv, glm::dvec3(0.0));
+    std::vector<uint32_t> count(nv, 0);
+    for (const glm::uvec3& t : tris) {
+      const glm::dvec3 c = (glm::dvec3(scene.positions[t.x]) + glm::dvec3(scene.positions[t.y]) +
+                            glm::dvec3(scene.positions[t.z])) /
+                           3.0;
+      for (const uint32_t v : {t.x, t.y, t.z}) {
+        centroid_sum[v] += c;
+        ++count[v];
+      }
+    }
+    inward_.assign(nv, glm::vec3(0.f));
+    for (std::size_t v = 0; v < nv; ++v) {
+      if (count[v] == 0) continue;
+      const glm::dvec3 p(scene.positions[v]);
+      const glm::dvec3 n = glm::normalize(glm::dvec3(scene.normals[v]));
+      glm::dvec3 to = centroid_sum[v] / static_cast<double>(count[v]) - p;
+      to -= n * glm::dot(n, to);
+      const double len = glm::length(to);
+      if (!(len > 0.0) || !std::isfinite(len)) continue;
+      inward_[v] =
+          glm::vec3(to / len * std::min(static_cast<double>(starts_.offset[v]), 0.5 * len));
+    }
+  }
+
+  if (!tris.empty()) {
+    RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+    auto* vb = static_cast<float*>(rtcSetNewGeometryBuffer(
+        geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), nv));
+    auto* ib = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
+        geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), tris.size()));
+    if (!vb || !ib) {
+      rtcReleaseGeometry(geom);
+      throw_if_error(device, scene, "buffer allocation");
+      throw std::runtime_error(scene_label(scene) + ": Embree buffer allocation failed");
+    }
+    for (std::size_t i = 0; i < nv; ++i) {
+      vb[3 * i + 0] = scene.positions[i].x;
+      vb[3 * i + 1] = scene.positions[i].y;
+      vb[3 * i + 2] = scene.positions[i].z;
+    }
+    std::memcpy(ib, tris.data(), tris.size() * sizeof(glm::uvec3));
+    rtcCommitGeometry(geom);
+    rtcAttachGeometryByID(rs, geom, 0);
+    rtcReleaseGeometry(geom);
+  }
+  rtcCommitScene(rs);
+  try {
+    throw_if_error(device, scene, "BVH build");
+  } catch (...) {
+    rtcReleaseScene(rs);
+    rtcReleaseDevice(device);
+    throw;
+  }
+}
+
+RayCaster::~RayCaster() {
+  if (rtc_scene_) rtcReleaseScene(static_cast<RTCScene>(rtc_scene_));
+  if (device_) rtcReleaseDevice(static_cast<RTCDevice>(device_));
+}
+
+bool RayCaster::front_facing(uint32_t triangle, const glm::vec3& d) const {
+  const glm::uvec3 t = scene_->triangles[triangle];
+  const glm::vec3 p0 = scene_->positions[t.x];
+  const glm::vec3 ng = glm::cross(scene_->positions[t.y] - p0, scene_->positions[t.z] - p0);
+  return glm::dot(ng, d) < 0.f;
+}
+
+bool RayCaster::occluded(const glm::vec3& o, const glm::vec3& d, float tnear, float tfar) const {
+  RTCIntersectContext ctx;
+  rtcInitIntersectContext(&ctx);
+  RTCRay ray;
+  ray.org_x = o.x;
+  ray.org_y = o.y;
+  ray.org_z = o.z;
+  ray.dir_x = d.x;
+  ray.dir_y = d.y;
+  ray.dir_z = d.z;
+  ray.tnear = tnear;
+  ray.tfar = tfar;
+  ray.time = 0.f;
+  ray.mask = kMaskAll;
+  ray.id = 0;
+  ray.flags = 0;
+  rtcOccluded1(static_cast<RTCScene>(rtc_scene_), &ctx, &ray);
+  return ray.tfar < 0.f;  // Embree sets tfar = −inf on occlusion
+}
+
+void RayCaster::occluded_packet(const glm::vec3& origin, const glm::vec3* dirs, int count,
+                                float tfar, bool* out) const {
+  count = std::clamp(count, 0, 16);
+  if (count == 0) return;
+  RTCIntersectContext ctx;
+  rtcInitIntersectContext(&ctx);
+  alignas(64) int valid[16];
+  alignas(64) RTCRay16 ray;
+  fill_ray16(ray, origin, dirs, count, tfar, valid);
+  rtcOccluded16(valid, static_cast<RTCScene>(rtc_scene_), &ctx, &ray);
+  for (int i = 0; i < count; ++i) out[i] = ray.tfar[i] < 0.f;
+}
+
+RayCaster::Hit RayCaster::intersect(const glm::vec3& o, const glm::vec3& d, float tnear,
+                                    float tfar) const {
+  RTCIntersectContext ctx;
+  rtcInitIntersectContext(&ctx);
+  RTCRayHit rh;
+  rh.ray.org_x = o.x;
+  rh.ray.org_y = o.y;
+  rh.ray.org_z = o.z;
+  rh.ray.dir_x = d.x;
+  rh.ray.dir_y = d.y;
+  rh.ray.dir_z = d.z;
+  rh.ray.tnear = tnear;
+  rh.ray.tfar = tfar;
+  rh.ray.time = 0.f;
+  rh.ray.mask = kMaskAll;
+  rh.ray.id = 0;
+  rh.ray.flags = 0;
+  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  rtcIntersect1(static_cast<RTCScene>(rtc_scene_), &ctx, &rh);
+  Hit h;
+  if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return h;
+  h.hit = true;
+  h.t = rh.ray.tfar;
+  h.triangle = rh.hit.primID;
+  h.u = rh.hit.u;
+  h.v = rh.hit.v;
+  h.front_face = front_facing(h.triangle, d);
+  return h;
+}
+
+void RayCaster::intersect_packet(const glm::vec3& origin, const glm::vec3* dirs, int count,
+                                 float tfar, Hit* out) const {
+  count = std::clamp(count, 0, 16);
+  if (count == 0) return;
+  RTCIntersectContext ctx;
+  rtcInitIntersectContext(&ctx);
+  alignas(64) int valid[16];
+  alignas(64) RTCRayHit16 rh;
+  fill_ray16(rh.ray, origin, dirs, count, tfar, valid);
+  for (int i = 0; i < 16; ++i) {
+    rh.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.instID[0][i] = RTC_INVALID_GEOMETRY_ID;
+  }
+  rtcIntersect16(valid, static_cast<RTCScene>(rtc_scene_), &ctx, &rh);
+  for (int i = 0; i < count; ++i) {
+    Hit h;
+    if (rh.hit.geomID[i] != RTC_INVALID_GEOMETRY_ID) {
+      h.hit = true;
+      h.t = rh.ray.tfar[i];
+      h.triangle = rh.hit.primID[i];
+      h.u = rh.hit.u[i];
+      h.v = rh.hit.v[i];
+      h.front_face = front_facing(h.triangle, dirs[i]);
+    }
+    out[i] = h;
+  }
+}
+
+}  // namespace prt::scene
