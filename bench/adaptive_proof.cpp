@@ -146,7 +146,7 @@ Row run_scene(const std::string& name, const Scene& scene, const std::vector<dou
     if (std::getenv("PRT_PROOF_SHADOWED")) {
       // The sampling prediction alone: a shadowed --auto bake against a shadowed fixed bake at
       // the same order with 4096 samples (no truncation, no interreflection in the difference).
-      o.kind = prt::TransferKind::Shadowed;
+      o.bake.kind = prt::TransferKind::Shadowed;
       const AutoBakeResult a = bake_transfer_auto(scene, o);
       BakeOptions f;
       f.kind = prt::TransferKind::Shadowed;

@@ -13,8 +13,8 @@
 #include <string>
 #include <vector>
 
-#include "prt/haar_approximation.h"
-#include "prt/haar_relighter.h"
+#include "prt/haar/approximation.h"
+#include "prt/haar/relighter.h"
 
 namespace {
 

@@ -10,7 +10,7 @@
 
 #include <glm/glm.hpp>
 
-#include "prt/haar_transfer.h"
+#include "prt/haar/transfer.h"
 #include "scene/procedural_mesh.h"
 #include "scene/scene_loader.h"
 #include "sh/env_map.h"

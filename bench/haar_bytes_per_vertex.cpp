@@ -25,8 +25,8 @@
 
 #include "bake/haar_baker.h"
 #include "haar_bench_scene.h"
-#include "prt/haar_relighter.h"
-#include "prt/haar_transform.h"
+#include "prt/haar/relighter.h"
+#include "prt/haar/transform.h"
 #include "relight/image_io.h"
 #include "report/plot_svg.h"
 #include "scene/scene_loader.h"
@@ -83,8 +83,8 @@ int main(int argc, char** argv) {
       std::vector<float> ref;
     };
     std::vector<Light> lights;
-    const prt::sh::EnvMap park = prt::relight::read_environment(data + "/hdri/rooitou_park_1k.hdr",
-                                                           prt::sh::EnvLayout::LatLong, nullptr);
+    const prt::sh::EnvMap park = prt::relight::read_environment(
+        data + "/hdri/rooitou_park_1k.hdr", prt::sh::EnvLayout::LatLong, nullptr);
     for (auto& [name, env] : std::vector<std::pair<std::string, prt::sh::EnvMap>>{
              {"park", park}, {"area light", prt::bench::make_area_light()}}) {
       prt::Result<prt::CubeMap> cube = prt::resample_to_cube(env, kCube);

@@ -33,8 +33,8 @@
 
 #include "bake/haar_baker.h"
 #include "haar_bench_scene.h"
-#include "prt/haar_relighter.h"
-#include "prt/haar_transform.h"
+#include "prt/haar/relighter.h"
+#include "prt/haar/transform.h"
 #include "relight/image_io.h"
 #include "report/plot_svg.h"
 #include "scene/scene_loader.h"
@@ -141,9 +141,9 @@ int main(int argc, char** argv) {
       prt::sh::EnvMap env;
     };
     std::vector<Light> lights;
-    lights.push_back(
-        {"park (rooitou, sun)", prt::relight::read_environment(data + "/hdri/rooitou_park_1k.hdr",
-                                                               prt::sh::EnvLayout::LatLong, nullptr)});
+    lights.push_back({"park (rooitou, sun)",
+                      prt::relight::read_environment(data + "/hdri/rooitou_park_1k.hdr",
+                                                     prt::sh::EnvLayout::LatLong, nullptr)});
     lights.push_back({"small area light", prt::bench::make_area_light()});
 
     std::ofstream csv_tmp;

@@ -87,13 +87,8 @@ void run_auto(const BakeArguments& args, const scene::Scene& scene, const bake::
               bake::ProgressSink& progress) {
   bake::AutoBakeOptions o;
   o.tolerance = args.tolerance_given ? args.tolerance : 0.01;
-  o.kind = args.transfer_given ? fixed.kind : prt::TransferKind::Interreflected;
-  o.order = fixed.order;
-  o.seed = fixed.seed;
-  o.threads = fixed.threads;
-  o.ao = fixed.ao;
-  o.bent_normals = fixed.bent_normals;
-  o.precision = fixed.precision;
+  o.bake = fixed;
+  o.bake.kind = args.transfer_given ? fixed.kind : prt::TransferKind::Interreflected;
   if (!args.env.empty()) {
     const prt::sh::EnvMap env = relight::read_environment(args.env, std::nullopt);
     o.lighting_order = bake::kMaxBakeOrder;

@@ -7,7 +7,7 @@
 #include "bake/progress.h"
 #include "bake/transfer_baker.h"
 #include "command_registry.h"
-#include "prt/haar_transfer_file.h"
+#include "prt/haar/transfer_file.h"
 #include "relight/haar_relight.h"
 
 namespace prt::cli {

@@ -19,7 +19,7 @@
 
 #include "command_registry.h"
 #include "prt/coefficient_file.h"
-#include "prt/haar_transform.h"
+#include "prt/haar/transform.h"
 #include "prt/transfer_data.h"
 #include "sh/basis.h"
 

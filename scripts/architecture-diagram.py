@@ -15,7 +15,7 @@ LAYERS = [  # (folder, CMake target, what it holds, third-party libraries)
      "TBB"),
     ("scene/", "prt::scene", "scene model, glTF/OBJ loaders, GLB writer, procedural meshes, ray caster",
      "Embree 3, tinygltf, tinyobjloader"),
-    ("prt/", "prt::prt", "engine runtime: coefficient files of every kind, float16, lighting, relight kernels, Haar",
+    ("prt/", "prt::prt", "engine runtime: coefficient files of every kind, float16, lighting, relight kernels, haar/",
      "none (C++17)"),
     ("sh/", "prt::sh", "SH maths: basis, rotation, zonal convolution, windows, layouts, projection",
      "none (C++17)"),

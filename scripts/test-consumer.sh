@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Installs the prt build into a temporary prefix and builds + runs tests/consumer (a tiny
+# Installs the prt build into a temporary prefix and builds + runs examples/ (a tiny
 # engine-like project using find_package(prt)) against the *installed* package only.
 # Exits non-zero if installing, configuring, building or running the consumer fails.
 #   PRT_BUILD_DIR  the build tree to install (default: <repo>/build; must be built already)
@@ -14,7 +14,7 @@ cmake --install "$build" --prefix "$tmp/prefix" > "$tmp/install.log" \
   || { cat "$tmp/install.log"; echo "test-consumer: install failed" >&2; exit 1; }
 
 # Only the prefix may provide prt: no package registry, no source tree on the include path.
-cmake -S "$root/tests/consumer" -B "$tmp/build" \
+cmake -S "$root/examples" -B "$tmp/build" \
   -DCMAKE_BUILD_TYPE=Release \
   -DCMAKE_PREFIX_PATH="$tmp/prefix" \
   -DCMAKE_FIND_USE_PACKAGE_REGISTRY=OFF \

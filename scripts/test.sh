@@ -5,7 +5,7 @@ set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 build="${PRT_BUILD_DIR:-$root/build}"
 bash "$root/scripts/build.sh"
-if [ -f "$root/tests/consumer/CMakeLists.txt" ]; then
+if [ -f "$root/examples/CMakeLists.txt" ]; then
   bash "$root/scripts/test-consumer.sh"
 fi
 cd "$build"

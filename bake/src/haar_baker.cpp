@@ -18,8 +18,8 @@
 #include "bake/progress.h"
 #include "bake/sampling.h"
 #include "bake/transfer_baker.h"
-#include "prt/haar_cube_map.h"
-#include "prt/haar_transform.h"
+#include "prt/haar/cube_map.h"
+#include "prt/haar/transform.h"
 #include "scene/ray_caster.h"
 #include "sh/constants.h"
 

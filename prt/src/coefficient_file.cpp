@@ -3,7 +3,7 @@
 
 #include <utility>
 
-#include "prt/haar_transfer_file.h"
+#include "prt/haar/transfer_file.h"
 #include "prt/transfer_file.h"
 
 namespace prt {

@@ -1,5 +1,5 @@
-// Non-linear and linear Haar lighting approximation; see prt/haar_approximation.h.
-#include "prt/haar_approximation.h"
+// Non-linear and linear Haar lighting approximation; see prt/haar/approximation.h.
+#include "prt/haar/approximation.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,5 +1,5 @@
-// Cube-map geometry for the Haar-wavelet relighting path; see prt/haar_cube_map.h.
-#include "prt/haar_cube_map.h"
+// Cube-map geometry for the Haar-wavelet relighting path; see prt/haar/cube_map.h.
+#include "prt/haar/cube_map.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,9 +1,9 @@
-// Power-preserving resampling of an environment map to a cube map; see prt/haar_cube_map.h.
+// Power-preserving resampling of an environment map to a cube map; see prt/haar/cube_map.h.
 #include <algorithm>
 #include <cmath>
 #include <string>
 
-#include "prt/haar_cube_map.h"
+#include "prt/haar/cube_map.h"
 #include "sh/constants.h"
 #include "sh/env_map.h"
 

@@ -1,5 +1,5 @@
-// Sparse Haar relighting; see prt/haar_relighter.h.
-#include "prt/haar_relighter.h"
+// Sparse Haar relighting; see prt/haar/relighter.h.
+#include "prt/haar/relighter.h"
 
 #include <algorithm>
 #include <string>

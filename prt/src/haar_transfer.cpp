@@ -1,12 +1,12 @@
-// Sparse, quantised Haar transfer; see prt/haar_transfer.h.
-#include "prt/haar_transfer.h"
+// Sparse, quantised Haar transfer; see prt/haar/transfer.h.
+#include "prt/haar/transfer.h"
 
 #include <algorithm>
 #include <cmath>
 #include <numeric>
 #include <string>
 
-#include "prt/haar_transform.h"
+#include "prt/haar/transform.h"
 
 namespace prt {
 

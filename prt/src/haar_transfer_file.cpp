@@ -1,6 +1,6 @@
 // haar_transfer_file.cpp — the Haar kind of the coefficient-file container (see
-// prt/haar_transfer_file.h and docs/FORMAT.md, "Haar-wavelet transfer").
-#include "prt/haar_transfer_file.h"
+// prt/haar/transfer_file.h and docs/FORMAT.md, "Haar-wavelet transfer").
+#include "prt/haar/transfer_file.h"
 
 #include <cmath>
 #include <cstdint>

@@ -1,5 +1,5 @@
-// 2D non-standard Haar transform in quadtree order; see prt/haar_transform.h.
-#include "prt/haar_transform.h"
+// 2D non-standard Haar transform in quadtree order; see prt/haar/transform.h.
+#include "prt/haar/transform.h"
 
 #include <string>
 

@@ -158,7 +158,7 @@ Status validate_transfer_data(const TransferData& d, const std::string& name) {
   if (d.kind == TransferKind::Haar) {
     return fail(name,
                 "Haar-wavelet transfer is stored with prt::write_haar_transfer_file "
-                "(prt/haar_transfer_file.h), not as SH coefficients");
+                "(prt/haar/transfer_file.h), not as SH coefficients");
   }
   if (d.storage != Precision::F32 && d.storage != Precision::F16) {
     return fail(name,
@@ -390,7 +390,7 @@ Status read_header_fields(const unsigned char* b, const std::string& name, bool 
   if (haar && !allow_haar) {
     return fail(name,
                 "holds Haar-wavelet transfer (kind 3, cube size " + std::to_string(order) +
-                    "): read it with prt::read_haar_transfer_file (prt/haar_transfer_file.h)");
+                    "): read it with prt::read_haar_transfer_file (prt/haar/transfer_file.h)");
   }
   if (haar) {
     if (order < 8 || order > 128 || (order & (order - 1)) != 0) {
@@ -510,7 +510,7 @@ Status read_primitives(const unsigned char* b, const std::string& name, const He
 }
 
 // Finite coefficients (padding included: it must be zero, which is finite). The Haar payload is
-// checked by its decoder (prt/haar_transfer_file.h).
+// checked by its decoder (prt/haar/transfer_file.h).
 Status check_finite_coefficients(const std::string& name, const HeaderFields& h,
                                  const ParsedTransferFile& out) {
   if (h.haar) {

@@ -53,7 +53,7 @@ struct ParsedTransferFile {
 // --- Haar kind (docs/FORMAT.md, "Haar-wavelet transfer") ---
 // For kind 3 the header's `order` field holds the cube size N (a power of two in 8..128), the
 // `storage` field the quantisation (32 f32, 16 i16, 8 i8), and the coefficient section holds
-// the sparse CSR payload decoded by prt/haar_transfer_file.h; parse_transfer_file checks only
+// the sparse CSR payload decoded by prt/haar/transfer_file.h; parse_transfer_file checks only
 // the container (the payload is checked by its decoder).
 inline constexpr uint32_t kHaarStorageF32 = 32, kHaarStorageI16 = 16, kHaarStorageI8 = 8;
 

@@ -7,9 +7,9 @@
 #include <utility>
 #include <vector>
 
-#include "prt/haar_relighter.h"
-#include "prt/haar_transfer_file.h"
-#include "prt/haar_transform.h"
+#include "prt/haar/relighter.h"
+#include "prt/haar/transfer_file.h"
+#include "prt/haar/transform.h"
 #include "relight/image_io.h"
 #include "relight_frames.h"
 #include "scene/scene_loader.h"

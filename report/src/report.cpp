@@ -20,9 +20,9 @@
 #include "bake/haar_baker.h"
 #include "bake/progress.h"
 #include "bake/transfer_baker.h"
-#include "prt/haar_cube_map.h"
-#include "prt/haar_relighter.h"
-#include "prt/haar_transfer_file.h"
+#include "prt/haar/cube_map.h"
+#include "prt/haar/relighter.h"
+#include "prt/haar/transfer_file.h"
 #include "prt/lighting.h"
 #include "prt/relighter.h"
 #include "prt/transfer_file.h"
@@ -722,7 +722,7 @@ void measure_auto_bakes(ReportState& st) {
       st.opt.auto_tolerances ? *st.opt.auto_tolerances : default_auto_tolerances(st.opt.quick);
   if (auto_tolerances.empty()) return;
   bake::AutoBakeOptions ao;
-  ao.seed = st.opt.seed;
+  ao.bake.seed = st.opt.seed;
   ao.lighting_order = bake::kMaxBakeOrder;  // as `prt bake --auto --env`
   ao.lighting = sh::project(st.in.env, ao.lighting_order);
   for (double tolerance : auto_tolerances) {

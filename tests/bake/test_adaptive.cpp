@@ -115,7 +115,7 @@ TEST_CASE("a convex mesh under --auto casts no rays and equals the unshadowed ba
                    : make_box({-1.f, 0.f, -2.f}, {1.f, 0.5f, 2.f}, 6, false, glm::vec3(0.6f));
     CAPTURE(shape);
     AutoBakeOptions o = quick_auto(0.01);
-    o.order = 4;
+    o.bake.order = 4;
     const AutoBakeResult a = bake_transfer_auto(scene, o);
     CHECK(a.bake.stats.rays == 0);
     CHECK(a.report.open_vertices == scene.vertex_count());
@@ -140,7 +140,8 @@ TEST_CASE("grey albedo gives one channel and coloured albedo gives three") {
   const glm::vec3 rgb(0.2f, 0.5f, 0.8f);
   const Scene coloured = make_plane_with_sphere(rgb);
   AutoBakeOptions o = quick_auto(0.02);
-  o.kind = prt::TransferKind::Shadowed;  // T_c = ρ_c·S exactly, so the channels can be compared
+  o.bake.kind =
+      prt::TransferKind::Shadowed;  // T_c = ρ_c·S exactly, so the channels can be compared
   const AutoBakeResult g = bake_transfer_auto(grey, o);
   const AutoBakeResult c = bake_transfer_auto(coloured, o);
   REQUIRE(g.bake.data.channels == 1);
@@ -266,12 +267,13 @@ TEST_CASE("under a sun the predicted truncation follows the measured one, and pi
   const int order = 32;
   std::vector<double> zonal(order, 1.0), lobe(order * order), lighting(3 * order * order);
   const glm::dvec3 d = glm::normalize(glm::dvec3(0.3, 0.9, 0.2));
-  prt::sh::rotate_zonal(order, zonal.data(), d.x, d.y, d.z, lobe.data());  // a delta, cut at band 31
+  prt::sh::rotate_zonal(order, zonal.data(), d.x, d.y, d.z,
+                        lobe.data());  // a delta, cut at band 31
   for (int c = 0; c < 3; ++c)
     for (int k = 0; k < order * order; ++k) lighting[c * order * order + k] = lobe[k];
   const std::vector<double> measured = measured_truncation(scene, lighting, order, 2048);
   AutoBakeOptions o = quick_auto(0.005);
-  o.kind = prt::TransferKind::Shadowed;
+  o.bake.kind = prt::TransferKind::Shadowed;
   o.lighting = lighting;
   o.lighting_order = order;
   const AutoBakeResult a = bake_transfer_auto(scene, o);
@@ -316,7 +318,7 @@ TEST_CASE("adding an occluder turns shadow rays on for exactly the affected vert
   Scene scene = make_uv_sphere({0.f, 0.f, 0.f}, 1.f, 18, 36, false, glm::vec3(0.5f));
   const std::size_t sphere_vertices = scene.vertex_count();
   AutoBakeOptions o = quick_auto(0.02);
-  o.kind = prt::TransferKind::Shadowed;
+  o.bake.kind = prt::TransferKind::Shadowed;
   REQUIRE(bake_transfer_auto(scene, o).bake.stats.rays == 0);
 
   append_scene(scene, make_box({1.3f, 0.2f, -0.3f}, {1.8f, 0.9f, 0.4f}, 2, false, glm::vec3(0.5f),
@@ -357,7 +359,7 @@ TEST_CASE("the bounded skip: only affected vertices cast rays, and skipped ones 
                           glm::vec3(0.5f), "ground");
   append_scene(scene, make_uv_sphere({0.f, 0.7f, 0.f}, 0.7f, 12, 24, false, glm::vec3(0.5f)));
   AutoBakeOptions o = quick_auto(0.02);
-  o.kind = prt::TransferKind::Shadowed;
+  o.bake.kind = prt::TransferKind::Shadowed;
   const AutoBakeResult a = bake_transfer_auto(scene, o);
   const HemisphereAnalysis open = find_open_hemispheres(scene, compute_vertex_ray_starts(scene));
   const OcclusionBounds bounds =
@@ -420,10 +422,10 @@ TEST_CASE("the open-hemisphere hierarchy agrees with the brute-force test") {
 TEST_CASE("samples adapt per vertex: few in the open, more near the contact, any thread count") {
   const Scene scene = make_plane_with_sphere(glm::vec3(0.5f));
   AutoBakeOptions o = quick_auto(0.01);
-  o.kind = prt::TransferKind::Shadowed;
-  o.threads = 1;
+  o.bake.kind = prt::TransferKind::Shadowed;
+  o.bake.threads = 1;
   const AutoBakeResult one = bake_transfer_auto(scene, o);
-  o.threads = 2;
+  o.bake.threads = 2;
   const AutoBakeResult two = bake_transfer_auto(scene, o);
   CHECK(one.bake.data.coefficients == two.bake.data.coefficients);
   CHECK(one.bake.stats.vertex_samples == two.bake.stats.vertex_samples);
@@ -446,7 +448,7 @@ TEST_CASE("equal sample counts are reported as such: met at the minimum, or shor
     return false;
   };
   AutoBakeOptions o = quick_auto(0.2);  // loose: 64 samples everywhere meet it
-  o.kind = prt::TransferKind::Shadowed;
+  o.bake.kind = prt::TransferKind::Shadowed;
   o.cap_sampling = false;  // capped vertices would start at fewer samples
   o.bounded_skip_share = 0.0;
   const AutoBakeResult met = bake_transfer_auto(scene, o);

@@ -20,7 +20,7 @@
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>
 
-#include "prt/haar_transform.h"
+#include "prt/haar/transform.h"
 #include "relight/image_io.h"
 #include "sh/basis.h"
 #include "sh/constants.h"

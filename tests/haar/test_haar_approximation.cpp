@@ -1,4 +1,4 @@
-// Tests of non-linear and linear Haar lighting approximation (prt/haar_approximation.h).
+// Tests of non-linear and linear Haar lighting approximation (prt/haar/approximation.h).
 #include <algorithm>
 #include <cmath>
 #include <numeric>
@@ -8,7 +8,7 @@
 
 #include <catch2/catch.hpp>
 
-#include "prt/haar_approximation.h"
+#include "prt/haar/approximation.h"
 #include "sh/constants.h"
 
 namespace {

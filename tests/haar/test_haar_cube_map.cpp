@@ -1,4 +1,4 @@
-// Tests of the cube-map geometry and the power-preserving resampling (prt/haar_cube_map.h).
+// Tests of the cube-map geometry and the power-preserving resampling (prt/haar/cube_map.h).
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -7,7 +7,7 @@
 
 #include <catch2/catch.hpp>
 
-#include "prt/haar_cube_map.h"
+#include "prt/haar/cube_map.h"
 #include "sh/constants.h"
 #include "sh/env_map.h"
 

@@ -1,4 +1,4 @@
-// Tests of sparse Haar relighting (prt/haar_relighter.h) against brute-force texel sums.
+// Tests of sparse Haar relighting (prt/haar/relighter.h) against brute-force texel sums.
 #include <algorithm>
 #include <cmath>
 #include <random>
@@ -6,7 +6,7 @@
 
 #include <catch2/catch.hpp>
 
-#include "prt/haar_relighter.h"
+#include "prt/haar/relighter.h"
 #include "sh/constants.h"
 
 namespace {

@@ -1,4 +1,4 @@
-// Tests of sparse, quantised Haar transfer (prt/haar_transfer.h).
+// Tests of sparse, quantised Haar transfer (prt/haar/transfer.h).
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -8,8 +8,8 @@
 
 #include <catch2/catch.hpp>
 
-#include "prt/haar_transfer.h"
-#include "prt/haar_transform.h"
+#include "prt/haar/transfer.h"
+#include "prt/haar/transform.h"
 
 namespace {
 

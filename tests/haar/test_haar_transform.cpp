@@ -1,11 +1,11 @@
-// Tests of the 2D non-standard Haar transform (prt/haar_transform.h).
+// Tests of the 2D non-standard Haar transform (prt/haar/transform.h).
 #include <cmath>
 #include <random>
 #include <vector>
 
 #include <catch2/catch.hpp>
 
-#include "prt/haar_transform.h"
+#include "prt/haar/transform.h"
 
 namespace {
 

@@ -1,4 +1,4 @@
-// docs/ENGINE.md quotes tests/consumer/engine_example.cpp verbatim; this keeps them identical.
+// docs/ENGINE.md quotes examples/engine_example.cpp verbatim; this keeps them identical.
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -22,9 +22,9 @@ std::string read_text(const std::string& path) {
 TEST_CASE("docs/ENGINE.md quotes engine_example.cpp exactly", "[docs]") {
   const std::string root = PRT_SOURCE_DIR;
   const std::string doc = read_text(root + "/docs/ENGINE.md");
-  const std::string source = read_text(root + "/tests/consumer/engine_example.cpp");
-  const std::string begin = "<!-- BEGIN tests/consumer/engine_example.cpp -->\n```cpp\n";
-  const std::string end = "```\n<!-- END tests/consumer/engine_example.cpp -->";
+  const std::string source = read_text(root + "/examples/engine_example.cpp");
+  const std::string begin = "<!-- BEGIN examples/engine_example.cpp -->\n```cpp\n";
+  const std::string end = "```\n<!-- END examples/engine_example.cpp -->";
   const std::size_t b = doc.find(begin);
   REQUIRE(b != std::string::npos);
   const std::size_t e = doc.find(end, b);

@@ -1,4 +1,4 @@
-// Tests of the Haar kind of the coefficient file (prt/haar_transfer_file.h, docs/FORMAT.md):
+// Tests of the Haar kind of the coefficient file (prt/haar/transfer_file.h, docs/FORMAT.md):
 // round trips for every quantisation, and corrupt or mismatched files refused with one-line
 // "NAME: problem" messages.
 #include <cstdio>
@@ -13,7 +13,7 @@
 
 #include "prt/coefficient_file.h"
 #include "prt/crc32c.h"
-#include "prt/haar_transfer_file.h"
+#include "prt/haar/transfer_file.h"
 #include "prt/transfer_file.h"
 #include "support/test_data.h"
 

@@ -2,9 +2,9 @@
 // wavelet basis (Ng, Ramamoorthi & Hanrahan, "All-Frequency Shadows Using Non-linear Wavelet
 // Lighting Approximation", SIGGRAPH 2003, Sec. 4–5).
 //
-// Conventions: cube map of prt/haar_cube_map.h (faces +X −X +Y −Y +Z −Z, N×N, glTF frame,
-// +Y up); wavelet indices and basis of prt/haar_transform.h; sparse storage of
-// prt/haar_transfer.h. Exit radiance B_v,c = Σ_t T_v,t,c · L_t,c with L the cube map's
+// Conventions: cube map of prt/haar/cube_map.h (faces +X −X +Y −Y +Z −Z, N×N, glTF frame,
+// +Y up); wavelet indices and basis of prt/haar/transform.h; sparse storage of
+// prt/haar/transfer.h. Exit radiance B_v,c = Σ_t T_v,t,c · L_t,c with L the cube map's
 // radiance, so T includes albedo/π (albedo_folded = true) and the texel solid angle:
 //   shadowed   T_v,t = (ρ_v/π) Σ_s V(ω_s) · max(n·ω_s, 0) · Ω_s
 //   unshadowed the same without V (no rays),
@@ -27,14 +27,14 @@
 //   The solve costs (6N²/64) BiCGSTAB runs of 64 columns each per channel.
 //
 // Then each vertex is truncated (relative threshold / top M) and quantised (8/16 bit with a
-// per-vertex step), per prt/haar_transfer.h. Vertices are computed independently in parallel
+// per-vertex step), per prt/haar/transfer.h. Vertices are computed independently in parallel
 // and added in order, so the output is identical for any thread count.
 #pragma once
 
 #include <cstdint>
 
-#include "prt/haar_transfer.h"
-#include "prt/haar_transfer_file.h"
+#include "prt/haar/transfer.h"
+#include "prt/haar/transfer_file.h"
 #include "prt/transfer_data.h"
 #include "scene/scene.h"
 

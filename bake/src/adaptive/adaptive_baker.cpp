@@ -59,8 +59,8 @@ std::vector<double> bake_pilot(const scene::Scene& scene, const scene::Scene& gr
   BakeOptions b;
   b.kind = prt::TransferKind::Shadowed;
   b.order = pilot_order;
-  b.seed = o.seed;
-  b.threads = o.threads;
+  b.seed = o.bake.seed;
+  b.threads = o.bake.threads;
   b.adaptive.enabled = true;
   b.adaptive.min_samples = b.adaptive.max_samples = samples;
   b.adaptive.cap_sampling = false;   // 256 vertices: not worth the caps' hierarchy
@@ -72,7 +72,8 @@ std::vector<double> bake_pilot(const scene::Scene& scene, const scene::Scene& gr
     // One vertex at random from each of P equal ranges of the index order (jittered: evenly
     // spaced picks alias with the row length of a grid or a UV sphere's rings).
     const std::size_t lo = i * V / P, hi = (i + 1) * V / P;
-    pick[i] = lo + static_cast<std::size_t>(hash_seed(o.seed ^ 0x70696c6f74ull, i) % (hi - lo));
+    pick[i] =
+        lo + static_cast<std::size_t>(hash_seed(o.bake.seed ^ 0x70696c6f74ull, i) % (hi - lo));
     b.adaptive.vertex_mode[pick[i]] = open[pick[i]] ? kAnalyticVertex : kSampleVertex;
   }
   const BakeResult r = bake_transfer(grey, b, progress);
@@ -352,14 +353,14 @@ std::string order_choice_note(const AutoBakeReport& rep, const AutoBakeOptions& 
       o.max_order, 100.0 * kTruncationLimit, rep.predicted_truncation_error);
 }
 
-// Section 2: the SH order from the lighting (rep.order; o.order without lighting). When no
+// Section 2: the SH order from the lighting (rep.order; o.bake.order without lighting). When no
 // order meets it, the line recommending Haar is left_out[returned index] until the bake's
 // predicted total is known (section 5); std::string::npos when there is no such line.
 std::size_t select_order(const scene::Scene& scene, const AutoBakeOptions& o,
                          prt::TransferKind kind, const HemisphereAnalysis& hemi,
                          SharedCaster& caster, AutoBakeReport& rep) {
   std::size_t haar_line = std::string::npos;
-  rep.order = o.order;
+  rep.order = o.bake.order;
   const bool lit = !o.lighting.empty();
   if (lit && kind != prt::TransferKind::Unshadowed) {
     // Bands ≥ the lighting's order carry nothing whatever the transfer holds there, so the
@@ -375,7 +376,7 @@ std::size_t select_order(const scene::Scene& scene, const AutoBakeOptions& o,
   } else if (!lit) {
     rep.left_out.push_back(
         format("SH order not chosen (no --env): kept at %.0f; errors predicted for a uniform sky",
-               o.order));
+               o.bake.order));
   }
   return haar_line;
 }
@@ -433,11 +434,11 @@ BakeOptions adaptive_bake_options(const AutoBakeOptions& o, prt::TransferKind ki
   BakeOptions b;
   b.kind = kind;
   b.order = rep.order;
-  b.seed = o.seed;
-  b.threads = o.threads;
-  b.ao = o.ao;
-  b.bent_normals = o.bent_normals;
-  b.precision = o.precision;
+  b.seed = o.bake.seed;
+  b.threads = o.bake.threads;
+  b.ao = o.bake.ao;
+  b.bent_normals = o.bake.bent_normals;
+  b.precision = o.bake.precision;
   b.adaptive.enabled = true;
   b.adaptive.min_samples = o.min_samples;
   b.adaptive.max_samples = o.max_samples;
@@ -575,7 +576,7 @@ AutoBakeResult bake_transfer_auto(const scene::Scene& scene, const AutoBakeOptio
   const HemisphereAnalysis hemi = find_open_hemispheres(scene, starts);
   SharedCaster caster(scene, hemi.open_count < V);
   const AlbedoAnalysis alb = analyze_albedo(scene);
-  const prt::TransferKind kind = record_analysis(hemi, alb, o.kind, V, rep);
+  const prt::TransferKind kind = record_analysis(hemi, alb, o.bake.kind, V, rep);
 
   // 2. SH order from the lighting.
   const std::size_t haar_line = select_order(scene, o, kind, hemi, caster, rep);

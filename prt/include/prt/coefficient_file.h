@@ -1,6 +1,6 @@
 // prt/coefficient_file.h — one way to open any coefficient file the prt tools write, whatever
 // its kind: SH transfer (unshadowed, shadowed, interreflected; prt/transfer_file.h) or
-// all-frequency Haar-wavelet transfer (prt/haar_transfer_file.h). The container is the same
+// all-frequency Haar-wavelet transfer (prt/haar/transfer_file.h). The container is the same
 // (docs/FORMAT.md); the header's kind says which payload follows.
 //
 //   prt::Result<prt::CoefficientFile> file = prt::read_coefficient_file("scene.prt");
@@ -14,7 +14,7 @@
 #include <optional>
 #include <string>
 
-#include "prt/haar_transfer.h"
+#include "prt/haar/transfer.h"
 #include "prt/status.h"
 #include "prt/transfer_data.h"
 

@@ -4,7 +4,7 @@
 // Steps: resample the environment to the file's cube size with exact area weighting
 // (prt::resample_to_cube), wavelet-transform it (prt::transform_cube), keep K terms
 // (non-linear: the K largest area-weighted coefficients; linear: the K coarsest;
-// prt/haar_approximation.h), shade every vertex with the sparse product of prt::HaarRelighter,
+// prt/haar/approximation.h), shade every vertex with the sparse product of prt::HaarRelighter,
 // then render as for SH (relight/renderer.h).
 // Rotation (--rotate, --turntable): a wavelet-projected map has no cheap rotation (unlike SH,
 // whose bands rotate among themselves, a rotated Haar basis function is not a short sum of
@@ -21,8 +21,8 @@
 #include <cstdint>
 #include <string>
 
-#include "prt/haar_approximation.h"
-#include "prt/haar_cube_map.h"
+#include "prt/haar/approximation.h"
+#include "prt/haar/cube_map.h"
 #include "relight/relight_pipeline.h"
 #include "sh/env_map.h"
 

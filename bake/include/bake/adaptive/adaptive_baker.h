@@ -47,10 +47,20 @@
 
 namespace prt::bake {
 
+// Default BakeOptions asking for transfer of `kind`.
+inline BakeOptions bake_options_of_kind(prt::TransferKind kind) {
+  BakeOptions options;
+  options.kind = kind;
+  return options;
+}
+
 struct AutoBakeOptions {
   double tolerance = 0.01;  // relative RMS error of the exit radiance
-  prt::TransferKind kind = prt::TransferKind::Interreflected;  // the most the scene may need
-  int order = 3;                                               // SH order when no lighting is given
+  // What a fixed bake would be asked for, composed rather than copied: `kind` is the most the
+  // scene may need (interreflected by default), `order` the SH order when no lighting is given;
+  // seed, threads, AO, bent normals and precision pass through to the bakes --auto makes. Its
+  // samples and bounces are not used: --auto chooses them.
+  BakeOptions bake = bake_options_of_kind(prt::TransferKind::Interreflected);
   std::vector<double> lighting;  // 3 × lighting_order² (channel-major), or empty
   int lighting_order = 0;
   int max_order = 12;  // highest SH order the lighting may ask for
@@ -69,8 +79,6 @@ struct AutoBakeOptions {
   int max_pilot_samples = 4096;
   int min_samples = 64;
   int max_samples = 1024;
-  uint64_t seed = 1;
-  int threads = 0;
   // Vertices whose occlusion is bounded without rays (bake/adaptive/occlusion_bound.h) below
   // bounded_skip_cutoff of the cosine-weighted hemisphere may skip rays while their summed
   // error bound stays ≤ bounded_skip_share × tolerance (relative RMS); 0 turns this off.
@@ -81,8 +89,6 @@ struct AutoBakeOptions {
   bool cap_sampling = true;
   int max_caps = 8;
   double max_cap_solid_angle = sh::kHalfPi;  // π/2 sr
-  bool ao = false, bent_normals = false;
-  prt::Precision precision = prt::Precision::F32;
 };
 
 struct AutoBakeReport {

@@ -1,4 +1,4 @@
-// prt/haar_transform.h — the 2D non-standard Haar wavelet transform of cube-map faces.
+// prt/haar/transform.h — the 2D non-standard Haar wavelet transform of cube-map faces.
 //
 // Ng, Ramamoorthi & Hanrahan (SIGGRAPH 2003) project lighting and transfer onto the 2D Haar
 // basis of each cube face; we use the non-standard (quadtree) decomposition of Stollnitz,
@@ -27,7 +27,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "prt/haar_cube_map.h"
+#include "prt/haar/cube_map.h"
 #include "prt/status.h"
 
 namespace prt {

@@ -1,14 +1,14 @@
-// prt/haar_transfer_file.h — reading and writing all-frequency (Haar-wavelet) transfer in the
+// prt/haar/transfer_file.h — reading and writing all-frequency (Haar-wavelet) transfer in the
 // coefficient-file container (docs/FORMAT.md, "Haar-wavelet transfer", kind 3).
 //
 // The file is the same container as SH transfer (magic "PRTC", version 1, CRC-32C, 16-byte
 // aligned sections, positions/normals/primitives/AO/metadata as for SH); for kind Haar the
 // header's `order` field holds the cube size N, the `storage` field the quantisation bits
 // (32 f32, 16 i16, 8 i8), and the coefficient section holds the sparse transport matrix of
-// prt/haar_transfer.h ("for each lighting coefficient, the list of vertices that have it",
+// prt/haar/transfer.h ("for each lighting coefficient, the list of vertices that have it",
 // Ng, Ramamoorthi & Hanrahan, SIGGRAPH 2003, Sec. 5) with per-vertex dequantisation steps.
-// Wavelet indices i = face·N² + q (prt/haar_transform.h); cube conventions of
-// prt/haar_cube_map.h (glTF frame, +Y up). Exit radiance B_v,c = Σ_i T̂_v,i,c · L̂_i,c with
+// Wavelet indices i = face·N² + q (prt/haar/transform.h); cube conventions of
+// prt/haar/cube_map.h (glTF frame, +Y up). Exit radiance B_v,c = Σ_i T̂_v,i,c · L̂_i,c with
 // L̂ the Haar coefficients of the lighting's radiance; T includes albedo/π when
 // info.albedo_folded.
 //
@@ -22,7 +22,7 @@
 #include <string>
 #include <vector>
 
-#include "prt/haar_transfer.h"
+#include "prt/haar/transfer.h"
 #include "prt/status.h"
 #include "prt/transfer_data.h"
 

@@ -1,8 +1,8 @@
-// prt/haar_relighter.h — relighting with sparse Haar lighting × sparse Haar transfer.
+// prt/haar/relighter.h — relighting with sparse Haar lighting × sparse Haar transfer.
 //
 // Ng, Ramamoorthi & Hanrahan, SIGGRAPH 2003, Sec. 6: exit radiance is the product of a
-// sparse lighting vector (prt/haar_approximation.h) and the sparse transport matrix stored
-// per lighting coefficient (prt/haar_transfer.h):
+// sparse lighting vector (prt/haar/approximation.h) and the sparse transport matrix stored
+// per lighting coefficient (prt/haar/transfer.h):
 //     B_v,c = Σ_{kept i} T̂_v,i,c · L̂_i,c
 // (grey transfer, channels = 1, uses the same T̂ for R, G and B). With every term kept and no
 // quantisation it equals the brute-force texel sum Σ_t T_v,t,c · L_t,c, because the Haar
@@ -30,9 +30,9 @@
 #include <cstdint>
 #include <vector>
 
-#include "prt/haar_approximation.h"
-#include "prt/haar_cube_map.h"
-#include "prt/haar_transfer.h"
+#include "prt/haar/approximation.h"
+#include "prt/haar/cube_map.h"
+#include "prt/haar/transfer.h"
 #include "prt/status.h"
 
 namespace prt {
@@ -89,7 +89,7 @@ class HaarRelighter {
   uint64_t dense_entries_ = 0;
 };
 
-// The plain walk of prt/haar_transfer.h's per-index lists (Ng et al.'s layout, no blocking):
+// The plain walk of prt/haar/transfer.h's per-index lists (Ng et al.'s layout, no blocking):
 // for each kept term, every (vertex, value) of its list, accumulated into out_rgb in float,
 // then the per-vertex step. The reference for shade()'s blocked layout, and the "before" of
 // the benchmarks. Same errors as shade().
@@ -97,7 +97,7 @@ Status shade_index_lists(const HaarTransfer& transfer, const SparseLighting& lig
                          float* out_rgb);
 
 // Brute-force reference in double: out_rgb[3v + c] = Σ_t T_v,t,c · L_t,c over all 6N² texels,
-// with dense transfer laid out as in prt/haar_transfer.h (vertex-major, 6N²·channels floats per
+// with dense transfer laid out as in prt/haar/transfer.h (vertex-major, 6N²·channels floats per
 // vertex). Slow; for tests. Errors: size or channel mismatch.
 Status shade_dense_reference(const float* dense_transfer, int64_t vertex_count, int size,
                              int channels, const CubeMap& lighting, double* out_rgb);

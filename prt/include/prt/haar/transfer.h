@@ -1,4 +1,4 @@
-// prt/haar_transfer.h — sparse, quantised per-vertex transfer in the Haar basis.
+// prt/haar/transfer.h — sparse, quantised per-vertex transfer in the Haar basis.
 //
 // Ng, Ramamoorthi & Hanrahan, SIGGRAPH 2003, Sec. 5: each vertex's transfer vector over the
 // 6N² cube texels is wavelet-transformed, truncated to its significant terms and quantised;
@@ -7,13 +7,13 @@
 //
 // Conventions:
 //   * Dense input, one vertex: 6N²·channels floats, texel t = face·N² + row·N + col (the
-//     CubeMap layout of prt/haar_cube_map.h), channels interleaved: dense[t·channels + c].
+//     CubeMap layout of prt/haar/cube_map.h), channels interleaved: dense[t·channels + c].
 //     The value already includes everything but the lighting: texel solid angle ×
 //     visibility × max(n·ω, 0) × albedo/π (or more generally the transfer of interreflection),
 //     so exit radiance B_v,c = Σ_t T_v,t,c · L_t,c with L the cube map's radiance.
 //     channels = 1 (grey transfer: the same T for R, G, B) or 3.
 //   * Because the Haar transform is orthonormal, B_v,c = Σ_i T̂_v,i,c · L̂_i,c over wavelet
-//     indices i = face·N² + q (prt/haar_transform.h).
+//     indices i = face·N² + q (prt/haar/transform.h).
 //   * Truncation per vertex, by max over channels of |T̂| (transfer already carries solid
 //     angle, so no area weight): keep terms with |T̂| ≥ relative_threshold · (the vertex's
 //     largest |T̂|), then at most max_terms_per_vertex of them (the largest; equal magnitudes
@@ -30,7 +30,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "prt/haar_cube_map.h"
+#include "prt/haar/cube_map.h"
 #include "prt/status.h"
 
 namespace prt {

@@ -1,4 +1,4 @@
-// prt/haar_approximation.h — choosing which Haar lighting coefficients to keep.
+// prt/haar/approximation.h — choosing which Haar lighting coefficients to keep.
 //
 // Ng, Ramamoorthi & Hanrahan, "All-Frequency Shadows Using Non-linear Wavelet Lighting
 // Approximation" (SIGGRAPH 2003), Sec. 4–5: a *non-linear* approximation keeps the K
@@ -7,7 +7,7 @@
 // before choosing, notably by the area their basis functions cover ("area-weighted").
 //
 // Our area weight, precisely: the term c·ψ_q changes radiance by ±c/s over its s×s-texel
-// support (see prt/haar_transform.h), so the power it moves is
+// support (see prt/haar/transform.h), so the power it moves is
 //     |c| · w_q,   w_q = ∫ |ψ_q| dω = Ω_support(q) / s,
 // with Ω_support the exact solid angle of the support (sum of exact texel solid angles).
 // Because the support spans s² texels of solid angle ≈ Ω/s², w_q ≈ √(Ω_support · ω_texel):
@@ -16,13 +16,13 @@
 // keeps its terms). The K highest scores are kept; equal scores go to the lower wavelet index
 // (deterministic). Non-finite coefficients count as 0 (score and value).
 //
-// Indices are wavelet indices i = face·N² + q (prt/haar_transform.h). Compiles as C++17.
+// Indices are wavelet indices i = face·N² + q (prt/haar/transform.h). Compiles as C++17.
 #pragma once
 
 #include <cstdint>
 #include <vector>
 
-#include "prt/haar_transform.h"
+#include "prt/haar/transform.h"
 
 namespace prt {
 

@@ -1,4 +1,4 @@
-// prt/haar_cube_map.h — the cube-map domain of all-frequency (Haar-wavelet) relighting.
+// prt/haar/cube_map.h — the cube-map domain of all-frequency (Haar-wavelet) relighting.
 //
 // Ng, Ramamoorthi & Hanrahan, "All-Frequency Shadows Using Non-linear Wavelet Lighting
 // Approximation", SIGGRAPH 2003, represent lighting and transfer on the six faces of a cube
