@@ -33,6 +33,7 @@
 // Determinism: the random numbers of sample s of vertex v come from hash(seed, v, s) only, so the
 // result is bit-identical for any thread count and any doubling schedule.
 // Errors: bad inputs throw BakeError ("PATH: problem"), Embree errors std::runtime_error.
+// References: [13] of docs/REFERENCES.md.
 #pragma once
 
 #include <cstdint>

@@ -29,6 +29,7 @@
 // Then each vertex is truncated (relative threshold / top M) and quantised (8/16 bit with a
 // per-vertex step), per prt/haar/transfer.h. Vertices are computed independently in parallel
 // and added in order, so the output is identical for any thread count.
+// References: [4], [16] of docs/REFERENCES.md.
 #pragma once
 
 #include <cstdint>

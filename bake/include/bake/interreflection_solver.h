@@ -16,6 +16,7 @@
 // merging), plus 8 bytes per row. The Krylov solver holds 7 V × K double blocks.
 // Determinism: row-parallel mat-vecs; dot products reduce fixed 512-row blocks in block order,
 // so results are bit-identical for any thread count.
+// References: [2], [16] of docs/REFERENCES.md.
 #pragma once
 
 #include <cstddef>

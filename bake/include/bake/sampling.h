@@ -11,6 +11,7 @@
 // lifted to the hemisphere), pdf(ω) = cos θ / π, around a unit normal with the branchless
 // orthonormal basis of Duff et al., "Building an Orthonormal Basis, Revisited", JCGT 6(1), 2017.
 // Frame: any (the scene's, +Y up, for the baker); local +z is the normal.
+// References: [10], [11], [12] of docs/REFERENCES.md.
 #pragma once
 
 #include <cstdint>

@@ -57,6 +57,7 @@
 //     over after 200 bounces); the stored kind is the simplest that is exact (unshadowed when
 //     every vertex was analytic, shadowed when no sample hit a front face).
 // With adaptive.enabled = false the bake is exactly the fixed recipe above (bit-identical).
+// References: [2], [10], [15], [16] of docs/REFERENCES.md.
 #pragma once
 
 #include <cstdint>

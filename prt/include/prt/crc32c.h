@@ -5,6 +5,7 @@
 // crc32c("123456789") = 0xE3069283. Uses the SSE4.2 instruction when the CPU has it
 // (runtime dispatch), otherwise slice-by-8 tables (Kounavis & Berry 2005); both give the
 // same result. Thread-safe. Compiles as C++17.
+// References: [21] of docs/REFERENCES.md.
 #pragma once
 
 #include <cstddef>

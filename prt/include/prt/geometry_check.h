@@ -11,6 +11,7 @@
 // Each step is a bijection of the state, so changing any single coordinate (even by 1 ulp)
 // always changes the fingerprint. Positions are in the scene frame (glTF, +Y up), scene
 // units. Compiles as C++17.
+// References: [17] of docs/REFERENCES.md.
 #pragma once
 
 #include <cstddef>

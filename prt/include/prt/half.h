@@ -13,6 +13,7 @@
 // The relative rounding error of a normal half is at most 2^-11.
 // The bulk functions use F16C when the CPU has it (runtime dispatch) and give bit-identical
 // results to the scalar functions. Thread-safe; no allocation. Compiles as C++17.
+// References: [22] of docs/REFERENCES.md.
 #pragma once
 
 #include <cstddef>

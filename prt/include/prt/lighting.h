@@ -13,6 +13,7 @@
 // Laplacian penalty 1/(1+λ l²(l+1)²); Sloan, "Stupid SH tricks", 2008) to trade blur for
 // ringing. Projection: sh::project (exact texel solid angles).
 // Nothing here throws; failures return prt::Status. Compiles as C++17.
+// References: [2], [5] of docs/REFERENCES.md.
 #pragma once
 
 #include <array>

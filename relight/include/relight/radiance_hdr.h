@@ -32,6 +32,7 @@
 // texels are refused before anything is allocated, and so is a file too short to hold even the
 // most compact encoding of its announced size, so memory is only allocated for pixels the data
 // can fill. Bytes after the last scanline are ignored.
+// References: [19] of docs/REFERENCES.md.
 #pragma once
 
 #include <cstddef>

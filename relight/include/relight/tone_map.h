@@ -10,6 +10,7 @@
 //      The curve is applied per channel (as in the original fit), not to luminance.
 //   3. the sRGB OETF (IEC 61966-2-1): 12.92x below 0.0031308, else 1.055x^(1/2.4) − 0.055.
 // NaN and negative values map to 0, +Inf to 1: the output is always a finite value in [0, 1].
+// References: [20] of docs/REFERENCES.md.
 #pragma once
 
 #include <cstddef>

@@ -17,6 +17,7 @@
 // (Max 1999, "Weights for computing vertex normals from facet normals", compares the schemes).
 // A vertex used by no triangle, or whose weighted sum has length <= 1e-30 (opposite faces
 // cancelling), gets the deterministic fallback normal +Y and is counted.
+// References: [18] of docs/REFERENCES.md.
 #pragma once
 
 #include <cstddef>

@@ -17,6 +17,7 @@
 // surface_origin(), ε of the hit triangle off it. All queries start at tnear ≥ 0.
 // Every ray is cast with mask 0xFFFFFFFF. Embree device and build errors throw std::runtime_error
 // with a one-line message. Queries are const and thread-safe.
+// References: [14] of docs/REFERENCES.md.
 #pragma once
 
 #include <atomic>

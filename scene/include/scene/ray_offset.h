@@ -17,6 +17,7 @@
 //     vertices translated to o, whose error is a few units of 2^-24 times |vertex − o| ≤ L
 //     for the triangles that meet at p; 2^-18·L is 64 times 2^-24·L.
 // Nothing in ε depends on the scene's extent or on other objects.
+// References: [14] of docs/REFERENCES.md.
 #pragma once
 
 #include <cstdint>

@@ -15,6 +15,7 @@
 // so there are no factorials, no atan2 and no division by sin θ: it is exact at the
 // poles and stable to high order (tested to l = 200 in double).
 // Reference: P.-P. Sloan, "Efficient Spherical Harmonic Evaluation", JCGT 2(2), 2013.
+// References: [1], [7] of docs/REFERENCES.md.
 #pragma once
 
 namespace prt::sh {

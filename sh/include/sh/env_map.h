@@ -39,6 +39,7 @@
 // For every layout and size the texels' solid angles sum to 4π to rounding.
 //
 // Header only needs the C++17 standard library.
+// References: [23] of docs/REFERENCES.md.
 #pragma once
 
 #include <string>

@@ -19,6 +19,7 @@
 // trapezoid rule that integrates band-l products exactly, and c = Mᵀ c'. This path is used up to
 // order kSeparableMaxOrder (M costs O(order⁵)); larger orders use the direct sum.
 // (Separable SH transforms of equiangular grids: Driscoll & Healy 1994; Healy et al. 2003.)
+// References: [8] of docs/REFERENCES.md.
 #pragma once
 
 #include <cstddef>

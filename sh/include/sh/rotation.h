@@ -23,6 +23,7 @@
 // quadratic form in ω; see write_band2 in src/rotation.cpp) and runs the recurrence from
 // l = 3; matrices of order ≤ kInlineRotationOrder live inside the object (no heap allocation).
 // build_with_recurrence() runs the recurrence from l = 2 and is the tests' reference.
+// References: [2], [5] of docs/REFERENCES.md.
 #pragma once
 
 #include <array>

@@ -18,6 +18,7 @@
 //              for order 1).
 //   Auto       not a fixed window: window_band_factors returns all ones; use
 //              choose_window_auto, which returns a concrete window and strength.
+// References: [6] of docs/REFERENCES.md.
 #pragma once
 
 #include <string_view>

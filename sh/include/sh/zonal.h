@@ -12,6 +12,7 @@
 //   A_l = 2π·(−1)^(l/2−1) / ((l+2)(l−1)) · l! / (2^l ((l/2)!)²),
 // where the last ratio, C(l, l/2)/2^l, is computed by the product Π_{j=1..l/2} (2j−1)/(2j)
 // (never with factorials), so the values are accurate at any l.
+// References: [1] of docs/REFERENCES.md.
 #pragma once
 
 namespace prt::sh {

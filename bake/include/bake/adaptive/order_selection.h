@@ -23,6 +23,7 @@
 // ≤ max_order with predicted(n) + tail ≤ target; when there is none, the smallest with
 // predicted(n) + tail ≤ limit (the caller then leaves less of its tolerance to sampling); when
 // there is none either (a sun: energy in every band), the Haar basis is recommended.
+// References: [1], [2] of docs/REFERENCES.md.
 #pragma once
 
 #include <vector>

@@ -11,6 +11,7 @@
 // budget (bisection; the error is non-increasing in λ). Against a per-vertex stop rule that
 // gives every vertex the same standard error (n_v ∝ a_v²), this spends less on the few
 // high-variance vertices that dominate the cost and whose error the RMS shares with all others.
+// References: [15] of docs/REFERENCES.md.
 #pragma once
 
 #include <cstdint>

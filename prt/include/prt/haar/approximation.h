@@ -17,6 +17,7 @@
 // (deterministic). Non-finite coefficients count as 0 (score and value).
 //
 // Indices are wavelet indices i = face·N² + q (prt/haar/transform.h). Compiles as C++17.
+// References: [4] of docs/REFERENCES.md.
 #pragma once
 
 #include <cstdint>

@@ -18,6 +18,7 @@
 //     at unit distance subtends F(a1,b1) − F(a0,b1) − F(a1,b0) + F(a0,b0) with
 //     F(a, b) = atan2(a·b, √(a² + b² + 1)). Every face has the same table; Σ = 4π.
 // Compiles as C++17.
+// References: [4] of docs/REFERENCES.md.
 #pragma once
 
 #include <cstdint>

@@ -25,6 +25,7 @@
 // of Σ|T̂·L̂|, in practice √K of that); the per-vertex dequantisation step is applied once at
 // the end.
 // Compiles as C++17.
+// References: [4] of docs/REFERENCES.md.
 #pragma once
 
 #include <cstdint>

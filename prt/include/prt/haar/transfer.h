@@ -25,6 +25,7 @@
 //     float rounding of step and of the product); see haar_quantization_error_bound().
 //     HaarQuantization::Float32 stores the kept values exactly (step = 1).
 // Compiles as C++17.
+// References: [4] of docs/REFERENCES.md.
 #pragma once
 
 #include <cstdint>

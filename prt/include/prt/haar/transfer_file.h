@@ -16,6 +16,7 @@
 //   auto file = prt::read_haar_transfer_file("scene.prt");
 //   prt::HaarRelighter relighter(std::move(file.value().transfer));
 // Nothing here throws: errors are one-line "NAME: problem" Statuses. Compiles as C++17.
+// References: [4] of docs/REFERENCES.md.
 #pragma once
 
 #include <cstddef>

@@ -22,6 +22,7 @@
 // On a cube map the wavelet index is i = face·N² + q (faces +X, −X, +Y, −Y, +Z, −Z); the
 // coefficients of a 6-face RGB cube are stored like CubeMap::rgb: rgb[3i + c].
 // Compiles as C++17.
+// References: [4], [9] of docs/REFERENCES.md.
 #pragma once
 
 #include <cstdint>
