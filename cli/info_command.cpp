@@ -131,13 +131,17 @@ std::vector<float> dense_rows(const prt::CoefficientFile& f, uint64_t first, uin
   }
   std::vector<float> rows(count * C * K, 0.f);
   const prt::HaarTransfer& h = *f.haar;
-  for (uint64_t i = 0; i < K; ++i)
-    for (uint64_t e = h.offsets[i]; e < h.offsets[i + 1]; ++e) {
-      const uint64_t v = h.vertices[e];
-      if (v < first || v >= first + count) continue;
+  // Each wavelet's vertex list is ascending: a binary search finds the chunk's part of it.
+  for (uint64_t i = 0; i < K; ++i) {
+    const auto list_end = h.vertices.begin() + static_cast<std::ptrdiff_t>(h.offsets[i + 1]);
+    auto it = std::lower_bound(h.vertices.begin() + static_cast<std::ptrdiff_t>(h.offsets[i]),
+                               list_end, static_cast<uint32_t>(first));
+    for (; it != list_end && *it < first + count; ++it) {
+      const uint64_t e = static_cast<uint64_t>(it - h.vertices.begin()), v = *it;
       for (uint64_t c = 0; c < C; ++c)
         rows[((v - first) * C + c) * K + i] = h.dequantized_value(e, static_cast<int>(c));
     }
+  }
   return rows;
 }
 

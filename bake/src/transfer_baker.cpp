@@ -164,8 +164,13 @@ void choose_vertex_modes(BakeJob& job) {
   if (ad.cap_sampling) {
     std::vector<uint8_t> wanted(V, 0);
     for (std::size_t v = 0; v < V; ++v) wanted[v] = job.modes[v] == kSampleVertex;
-    job.caps = find_occluder_caps(job.scene, scene::compute_vertex_ray_starts(job.scene), wanted,
-                                  ad.max_caps, ad.max_cap_solid_angle, ad.hierarchy.get());
+    // The caller's ray caster already holds the starts of this geometry.
+    std::optional<scene::VertexRayStarts> own;
+    const scene::VertexRayStarts& starts =
+        ad.caster ? ad.caster->vertex_ray_starts()
+                  : own.emplace(scene::compute_vertex_ray_starts(job.scene));
+    job.caps = find_occluder_caps(job.scene, starts, wanted, ad.max_caps, ad.max_cap_solid_angle,
+                                  ad.hierarchy.get());
     job.st().seconds_caps = job.caps.seconds;
     for (std::size_t v = 0; v < V; ++v) {
       if (!wanted[v] || !job.caps.covered[v]) continue;

@@ -4,24 +4,18 @@
 #include <dlfcn.h>
 #include <unistd.h>
 
-#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <mutex>
 #include <stdexcept>
 #include <vector>
 
+#include "message_text.h"
+
 namespace prt::relight::detail {
 namespace {
 
 constexpr const char* kPluginName = "libprt_image_oiio.so";
-
-// One line: OpenImageIO messages may span several.
-std::string one_line(std::string text) {
-  std::replace(text.begin(), text.end(), '\n', ' ');
-  while (!text.empty() && (text.back() == ' ' || text.back() == '\r')) text.pop_back();
-  return text;
-}
 
 std::vector<std::string> plugin_candidates() {
   std::vector<std::string> paths;

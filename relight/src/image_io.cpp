@@ -22,16 +22,12 @@
 #include "relight/radiance_hdr.h"
 
 #include "image_codec.h"
+#include "message_text.h"
 
 namespace prt::relight {
 namespace {
 
-// One line: OpenImageIO messages may span several.
-std::string one_line(std::string text) {
-  std::replace(text.begin(), text.end(), '\n', ' ');
-  while (!text.empty() && (text.back() == ' ' || text.back() == '\r')) text.pop_back();
-  return text;
-}
+using detail::one_line;
 
 [[noreturn]] void fail(const std::string& path, const std::string& problem) {
   throw std::runtime_error(path + ": " + one_line(problem));
