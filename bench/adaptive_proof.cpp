@@ -20,9 +20,9 @@
 
 #include "bake/adaptive/adaptive_baker.h"
 #include "bake/adaptive/triangle_hierarchy.h"
-#include "bake/ground_truth.h"
 #include "bake/transfer_baker.h"
 #include "prt/transfer_file.h"
+#include "report/ground_truth.h"
 #include "scene/procedural_mesh.h"
 #include "scene/scene_loader.h"
 #include "sh/basis.h"
@@ -32,6 +32,9 @@
 
 using namespace prt::bake;
 using namespace prt::scene;
+using prt::report::compute_ground_truth;
+using prt::report::GroundTruthOptions;
+using prt::report::GroundTruthResult;
 
 namespace {
 
@@ -391,7 +394,7 @@ Row run_scene(const std::string& name, const Scene& scene, const std::vector<dou
   // setting at equal error (its truncation error is lower).
   sweep(row.order + 1, row.fixed_table_higher, row.sweep2_error, row.sweep2_seconds,
         [](int, double, double, const BakeResult&) {});
-  // The prediction checked against the ground truth (bake/ground_truth.h) on every
+  // The prediction checked against the ground truth (report/ground_truth.h) on every
   // gt_stride-th vertex, at 1% relative standard error (its noise is removed, see above).
   {
     GroundTruthOptions g;
@@ -564,7 +567,7 @@ int main(int argc, char** argv) {
        "counts, at the auto order (same file size) and the cheaper of that and one order higher. "
        "Times are bake wall times on this 2-core VM (auto includes analysis and the pilot), the "
        "best of 3 for bakes under 2 s. "
-       "Ground truth: bake/ground_truth.h (path tracing against the sky as a 256×128 map) on "
+       "Ground truth: report/ground_truth.h (path tracing against the sky as a 256×128 map) on "
        "every 8th (small planes, sphere), 16th (bunny) or 32nd (48×48 plane, ship) vertex at 1% "
        "relative standard "
        "error s; the error against it has its own noise removed (Σ(b − g)² − Σ SE²).\n\n"

@@ -16,7 +16,7 @@ JOBS="${JOBS:-2}"
 ALL=0
 if [ "${1:-}" = "--all" ]; then ALL=1; fi
 
-SHORT_TARGETS=(test_sh_core test_sh_env prt_runtime_tests test_bake_scene test_bake_transfer
+SHORT_TARGETS=(test_sh_core test_sh_env test_prt_runtime test_scene test_transfer_baker
                test_stability)
 
 start=$(date +%s)

@@ -27,7 +27,7 @@
 #include "scene/procedural_mesh.h"
 #include "scene/scene_loader.h"
 #include "sh/constants.h"
-#include "stability_cases.h"
+#include "report/stability_cases.h"
 
 namespace prt::report::stability {
 namespace {

@@ -23,7 +23,7 @@
 #include "sh/projection.h"
 #include "sh/window.h"
 #include "sh/zonal.h"
-#include "stability_cases.h"
+#include "report/stability_cases.h"
 
 namespace prt::report::stability {
 namespace {

@@ -15,7 +15,7 @@
 #include "sh/basis.h"
 #include "sh/constants.h"
 #include "sh/rotation.h"
-#include "stability_cases.h"
+#include "report/stability_cases.h"
 
 namespace prt::report::stability {
 namespace {

@@ -14,7 +14,7 @@
 
 #include "report/plot_svg.h"
 #include "sh/basis.h"
-#include "stability_cases.h"
+#include "report/stability_cases.h"
 
 namespace prt::report::stability {
 

@@ -10,8 +10,8 @@
 #include "bake/adaptive/adaptive_baker.h"
 #include "bake/adaptive/occlusion_bound.h"
 #include "bake/adaptive/scene_analysis.h"
-#include "bake/ground_truth.h"
 #include "bake/transfer_baker.h"
+#include "report/ground_truth.h"
 #include "scene/procedural_mesh.h"
 #include "sh/basis.h"
 #include "sh/constants.h"
@@ -20,6 +20,9 @@
 
 using namespace prt::bake;
 using namespace prt::scene;
+using prt::report::compute_ground_truth;
+using prt::report::GroundTruthOptions;
+using prt::report::GroundTruthResult;
 
 namespace {
 
@@ -209,7 +212,7 @@ TEST_CASE(
   CHECK(truncation <= 0.5 * tolerance);
   CHECK(measured <= a.report.predicted_error + 0.002);
 
-  // The ground truth (bake/ground_truth.h: path tracing against the lighting as a 128×64
+  // The ground truth (report/ground_truth.h: path tracing against the lighting as a 128×64
   // lat-long map, no SH anywhere) on every 3rd vertex at 1% relative standard error; its own
   // noise is removed from the squared error (E[(b − g)²] = (b − t)² + Var g). Measured: 1.44%
   // against 1.06% from the converged reference; the difference is what no PRT bake sees: the

@@ -7,7 +7,7 @@
 
 #include "bake/transfer_baker.h"
 #include "scene/procedural_mesh.h"
-#include "transfer_test_support.h"
+#include "support/transfer_references.h"
 
 using prt::bake::bake_transfer;
 using prt::bake::BakeOptions;

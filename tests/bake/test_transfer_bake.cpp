@@ -12,7 +12,7 @@
 #include "scene/procedural_mesh.h"
 #include "scene/ray_caster.h"
 #include "support/test_data.h"
-#include "transfer_test_support.h"
+#include "support/transfer_references.h"
 
 using prt::bake::bake_transfer;
 using prt::bake::BakeOptions;

@@ -1,5 +1,5 @@
 // tests/report/test_stability.cpp — the stability cases of `prt report --stability` as tests
-// (report/src/stability_cases.h; quick sizes). Each case computes its own analytic or
+// (report/stability_cases.h; quick sizes). Each case computes its own analytic or
 // independent reference and pass criterion (stated in the case and in docs/STABILITY.md); the
 // tests require the case to pass and re-check the figures that matter, so a regression shows
 // which number moved.
@@ -14,7 +14,7 @@
 #include <string>
 
 #include "report/stability_report.h"
-#include "stability_cases.h"
+#include "report/stability_cases.h"
 #include "support/test_data.h"
 
 using namespace prt::report::stability;

@@ -12,20 +12,23 @@
 
 #include "bake/adaptive/occlusion_bound.h"
 #include "bake/adaptive/scene_analysis.h"
-#include "bake/ground_truth.h"
 #include "bake/haar_baker.h"
 #include "bake/sampling.h"
 #include "bake/transfer_baker.h"
-#include "bake/transfer_test_support.h"
 #include "prt/haar/approximation.h"
 #include "prt/haar/relighter.h"
 #include "prt/haar/transform.h"
+#include "report/ground_truth.h"
 #include "scene/procedural_mesh.h"
 #include "scene/ray_caster.h"
 #include "scene/ray_offset.h"
+#include "support/transfer_references.h"
 
 using namespace prt::bake;
 using namespace prt::scene;
+using prt::report::GroundTruthIntegrator;
+using prt::report::GroundTruthOptions;
+using prt::report::GroundTruthResult;
 
 namespace {
 

@@ -1,5 +1,5 @@
 // report/report.h — `prt report`: error against run time for the PRT settings, measured against
-// the independent Monte Carlo ground truth of bake/ground_truth.h.
+// the independent Monte Carlo ground truth of report/ground_truth.h.
 //
 // Conventions: SH basis of sh/basis.h (real orthonormal, no Condon–Shortley phase,
 // k = l(l+1)+m); glTF frame (+Y up); radiance in the map's units; errors as defined in

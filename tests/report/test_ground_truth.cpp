@@ -1,4 +1,4 @@
-// Ground-truth integrator (bake/ground_truth.h): constant maps in every layout, the AO
+// Ground-truth integrator (report/ground_truth.h): constant maps in every layout, the AO
 // configurations and the spherical-cavity furnace (B = ρf/(1 − ρ(1 − f))), agreement with SH
 // relighting for a band-limited map, determinism, and the refinement target.
 #include <cmath>
@@ -8,14 +8,14 @@
 #include <tbb/global_control.h>
 #include <catch2/catch.hpp>
 
-#include "bake/ground_truth.h"
 #include "bake/transfer_baker.h"
+#include "report/ground_truth.h"
 #include "scene/procedural_mesh.h"
 #include "sh/basis.h"
 #include "sh/projection.h"
-#include "transfer_test_support.h"
+#include "support/transfer_references.h"
 
-using prt::bake::GroundTruthOptions;
+using prt::report::GroundTruthOptions;
 using prt::scene::Scene;
 
 namespace {
@@ -33,7 +33,7 @@ prt::sh::EnvMap constant_map(prt::sh::EnvLayout layout, int w, int h, float valu
 struct Mean {
   double value = 0, se = 0;
 };
-Mean mean_red(const prt::bake::GroundTruthResult& r, std::size_t first, std::size_t end) {
+Mean mean_red(const prt::report::GroundTruthResult& r, std::size_t first, std::size_t end) {
   Mean m;
   double se2 = 0;
   for (std::size_t v = first; v < end; ++v) {
@@ -67,7 +67,7 @@ TEST_CASE("image_point_direction agrees with prt::sh::direction_to_texel in ever
     for (int i = 0; i < 4000; ++i) {
       const double x = u(rng) * c.w, y = u(rng) * c.h;
       double d[3], jac, bx, by;
-      if (!prt::bake::image_point_direction(c.layout, c.w, c.h, x, y, d, &jac)) continue;
+      if (!prt::report::image_point_direction(c.layout, c.w, c.h, x, y, d, &jac)) continue;
       REQUIRE(std::fabs(d[0] * d[0] + d[1] * d[1] + d[2] * d[2] - 1.0) < 1e-12);
       REQUIRE(jac > 0);
       if (c.layout == prt::sh::EnvLayout::LatLong && (y < 1e-3 || y > c.h - 1e-3)) continue;
@@ -83,7 +83,7 @@ TEST_CASE("image_point_direction agrees with prt::sh::direction_to_texel in ever
     for (int row = 0; row < c.h * sub; ++row)
       for (int col = 0; col < c.w * sub; ++col) {
         double d[3], jac;
-        if (prt::bake::image_point_direction(c.layout, c.w, c.h, (col + 0.5) / sub,
+        if (prt::report::image_point_direction(c.layout, c.w, c.h, (col + 0.5) / sub,
                                              (row + 0.5) / sub, d, &jac))
           total_j += jac / (sub * sub);
       }
@@ -101,14 +101,15 @@ TEST_CASE("unoccluded point under a constant white map: B = ρ in every layout")
     prt::sh::EnvLayout layout;
     int w, h;
   };
-  for (const Case c : {Case{prt::sh::EnvLayout::LatLong, 64, 32}, Case{prt::sh::EnvLayout::Angular, 64, 64},
-                       Case{prt::sh::EnvLayout::Cross, 48, 64}, Case{prt::sh::EnvLayout::Faces, 16, 96}}) {
+  for (const Case c :
+       {Case{prt::sh::EnvLayout::LatLong, 64, 32}, Case{prt::sh::EnvLayout::Angular, 64, 64},
+        Case{prt::sh::EnvLayout::Cross, 48, 64}, Case{prt::sh::EnvLayout::Faces, 16, 96}}) {
     INFO(prt::sh::layout_name(c.layout));
     const prt::sh::EnvMap env = constant_map(c.layout, c.w, c.h, 1.f);
     GroundTruthOptions o;
     o.initial_samples = 2048;
     o.max_samples = 2048;
-    const auto r = prt::bake::compute_ground_truth(quad, env, o);
+    const auto r = prt::report::compute_ground_truth(quad, env, o);
     const Mean m = mean_red(r, 0, quad.vertex_count());
     INFO("mean " << m.value << " ± " << m.se);
     CHECK(m.se < 0.01);
@@ -134,7 +135,7 @@ TEST_CASE("AO configuration: a floor point beside a wall sees ρ·(1 − occlude
   o.max_bounces = 0;
   o.initial_samples = 16384;
   o.max_samples = 16384;
-  const auto r = prt::bake::compute_ground_truth(scene, env, o);
+  const auto r = prt::report::compute_ground_truth(scene, env, o);
   // Floor vertices 0..3 at x = −0.5 (d = 2) and x = 0.5 (d = 1).
   for (int v = 0; v < 4; ++v) {
     const double d = 1.5 - scene.positions[v].x;
@@ -175,14 +176,14 @@ TEST_CASE("spherical-cavity furnace with interreflection: B = ρf/(1 − ρ(1 �
     GroundTruthOptions o;
     o.initial_samples = 512;
     o.max_samples = 512;
-    const auto r = prt::bake::compute_ground_truth(cavity, env, o);
+    const auto r = prt::report::compute_ground_truth(cavity, env, o);
     const Mean m = mean_red(r, kSegments, cavity.vertex_count());
     const double expected = rho * f / (1.0 - rho * (1.0 - f));
     INFO("f " << f << ": mean " << m.value << " ± " << m.se << " vs " << expected);
     CHECK(m.value == Approx(expected).margin(4 * m.se + 0.015 * expected));
     // Without interreflection the same cavity gives ρ·f (direct light only).
     o.max_bounces = 0;
-    const auto direct = prt::bake::compute_ground_truth(cavity, env, o);
+    const auto direct = prt::report::compute_ground_truth(cavity, env, o);
     const Mean md = mean_red(direct, kSegments, cavity.vertex_count());
     CHECK(md.value == Approx(rho * f).margin(4 * md.se + 0.005 * rho * f));
   }
@@ -241,7 +242,7 @@ TEST_CASE("band-limited environment: ground truth matches SH relighting of a sha
   o.max_bounces = 0;
   o.initial_samples = 16384;
   o.max_samples = 16384;
-  const auto gt = prt::bake::compute_ground_truth(scene, env, o);
+  const auto gt = prt::report::compute_ground_truth(scene, env, o);
   double diff2 = 0, ref2 = 0, seed2 = 0, se2 = 0;
   for (std::size_t i = 0; i < b1.size(); ++i) {
     diff2 += (b1[i] - gt.radiance[i]) * (b1[i] - gt.radiance[i]);
@@ -271,10 +272,10 @@ TEST_CASE("ground truth is deterministic per seed, for any thread count and sche
   o.max_samples = 256;
   o.target_relative_se = 1e-9;  // run to max_samples
   o.threads = 1;
-  const auto one = prt::bake::compute_ground_truth(open, env, o);
+  const auto one = prt::report::compute_ground_truth(open, env, o);
   o.threads = 2;
   o.initial_samples = 32;  // different doubling schedule: 32, 64, 128, 256
-  const auto two = prt::bake::compute_ground_truth(open, env, o);
+  const auto two = prt::report::compute_ground_truth(open, env, o);
   REQUIRE(one.samples_per_vertex == 256);
   REQUIRE(two.samples_per_vertex == 256);
   // Per-sample values are identical; only the order of the pass sums differs (≤ 1e-12).
@@ -284,12 +285,12 @@ TEST_CASE("ground truth is deterministic per seed, for any thread count and sche
   // Same schedule, other thread count: bit-identical.
   o.initial_samples = 64;
   o.threads = 2;
-  const auto same = prt::bake::compute_ground_truth(open, env, o);
+  const auto same = prt::report::compute_ground_truth(open, env, o);
   for (std::size_t i = 0; i < one.radiance.size(); ++i)
     REQUIRE(one.radiance[i] == same.radiance[i]);
   o.initial_samples = 32;
   o.seed = 99;
-  const auto other = prt::bake::compute_ground_truth(open, env, o);
+  const auto other = prt::report::compute_ground_truth(open, env, o);
   bool differs = false;
   for (std::size_t i = 0; i < one.radiance.size(); ++i)
     differs |= one.radiance[i] != other.radiance[i];
@@ -309,7 +310,7 @@ TEST_CASE("refinement doubles samples until the relative RMS standard error meet
   GroundTruthOptions o;
   o.initial_samples = 16;
   o.target_relative_se = 0.02;
-  const auto r = prt::bake::compute_ground_truth(scene, env, o);
+  const auto r = prt::report::compute_ground_truth(scene, env, o);
   INFO("samples " << r.samples_per_vertex << ", s " << r.relative_rms_se);
   CHECK(r.reached_target);
   CHECK(r.relative_rms_se <= 0.02);
@@ -320,11 +321,11 @@ TEST_CASE("refinement doubles samples until the relative RMS standard error meet
   sun[0] = NAN;
   env.rgb[0] = INFINITY;
   o.target_relative_se = 0.05;
-  const auto bad = prt::bake::compute_ground_truth(scene, env, o);
+  const auto bad = prt::report::compute_ground_truth(scene, env, o);
   CHECK(bad.skipped_texels == 2);
   for (double x : bad.radiance) REQUIRE(std::isfinite(x));
   // Albedo ≥ 1 is refused.
   Scene white = scene;
   white.albedo[0] = glm::vec3(1.f);
-  CHECK_THROWS_AS(prt::bake::compute_ground_truth(white, env, o), prt::bake::BakeError);
+  CHECK_THROWS_AS(prt::report::compute_ground_truth(white, env, o), prt::bake::BakeError);
 }

@@ -1,4 +1,5 @@
-// tests/bake/transfer_test_support.h — small references shared by the baker tests:
+// tests/support/transfer_references.h — small references shared by the transfer tests (baker,
+// ray offsets, ground truth):
 // Lambert's exact polygon form factor (an independent check of AO) and scene helpers.
 #pragma once
 

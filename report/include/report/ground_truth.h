@@ -1,4 +1,4 @@
-// bake/ground_truth.h — an independent reference for per-vertex exit radiance: Monte Carlo
+// report/ground_truth.h — an independent reference for per-vertex exit radiance: Monte Carlo
 // integration against the actual environment map (not its SH projection), with visibility and
 // diffuse interreflection by path tracing. It shares no code with the SH or wavelet paths; the
 // report (report/report.h) measures every PRT setting against it.
@@ -48,8 +48,12 @@ class RayCaster;
 }  // namespace prt::scene
 
 namespace prt::bake {
-
 class ProgressSink;
+}  // namespace prt::bake
+
+namespace prt::report {
+
+using bake::ProgressSink;
 
 struct GroundTruthOptions {
   int max_bounces = 64;              // reflections after the vertex (0: direct lighting only)
@@ -137,4 +141,4 @@ GroundTruthResult compute_ground_truth(const scene::Scene& scene, const sh::EnvM
                                        const GroundTruthOptions& options,
                                        ProgressSink* progress = nullptr);
 
-}  // namespace prt::bake
+}  // namespace prt::report

@@ -1,5 +1,5 @@
-// bake/src/ground_truth.cpp — the Monte Carlo reference of bake/ground_truth.h.
-#include "bake/ground_truth.h"
+// report/src/ground_truth.cpp — the Monte Carlo reference of report/ground_truth.h.
+#include "report/ground_truth.h"
 
 #include <algorithm>
 #include <atomic>
@@ -19,8 +19,13 @@
 #include "scene/scene_label.h"
 #include "sh/constants.h"
 
-namespace prt::bake {
+namespace prt::report {
 namespace {
+
+using bake::BakeError;
+using bake::build_orthonormal_basis;
+using bake::hash_seed;
+using bake::sample_cosine_hemisphere;
 
 using sh::kPi;
 constexpr int kRouletteFromDepth = 2;  // path vertices 0 and 1 never roulette
@@ -392,4 +397,4 @@ GroundTruthResult compute_ground_truth(const scene::Scene& scene, const sh::EnvM
   return integrator.result();
 }
 
-}  // namespace prt::bake
+}  // namespace prt::report

@@ -1,6 +1,6 @@
-// report/src/stability_cases.h (private) — the stability cases behind run_stability_report()
-// (report/stability_report.h), shared with tests/report/test_stability*.cpp so the report and
-// the tests run the same code.
+// report/stability_cases.h — the stability cases behind run_stability_report()
+// (report/stability_report.h), one function each, so that a single case can be run on its own
+// (the tests run them one by one, with the same code as the report).
 //
 // Conventions: SH basis of sh/basis.h (real, orthonormal, no Condon–Shortley phase,
 // k = l(l+1)+m, polar axis +z), glTF frame (+Y up), lat-long maps as in sh/env_map.h.
