@@ -8,10 +8,10 @@ import sys
 
 LAYERS = [  # (folder, CMake target, what it holds, third-party libraries)
     ("cli/", "prt", "argument mapping, one file per subcommand", "CLI11"),
-    ("report/", "prt::report", "ground-truth comparisons, sweeps, plots, stability suite", "nlohmann-json"),
+    ("report/", "prt::report", "path-traced ground truth, sweeps, plots, stability suite", "nlohmann-json"),
     ("relight/", "prt::relight", "image I/O, camera, renderer, tone mapping, sky, relight pipeline",
      "OpenImageIO (plugin, on first use)"),
-    ("bake/", "prt::bake", "transfer baker, samplers, interreflection, Haar baker, ground truth, adaptive/",
+    ("bake/", "prt::bake", "transfer baker, samplers, interreflection, Haar baker, adaptive/",
      "TBB"),
     ("scene/", "prt::scene", "scene model, glTF/OBJ loaders, GLB writer, procedural meshes, ray caster",
      "Embree 3, tinygltf, tinyobjloader"),
