@@ -49,8 +49,7 @@ float free_distance(const scene::RayCaster& caster, glm::vec3 p, glm::vec3 d, gl
 
 // A camera at `eye` looking along unit `forward`, its field of view fitted to the box's
 // cross-section at 80% of the way to where the view leaves the box.
-Camera inside_camera(glm::vec3 eye, glm::vec3 forward,
-                     glm::vec3 lo, glm::vec3 hi, float aspect) {
+Camera inside_camera(glm::vec3 eye, glm::vec3 forward, glm::vec3 lo, glm::vec3 hi, float aspect) {
   Camera camera;
   camera.eye = eye;
   camera.target = eye + forward;
@@ -88,8 +87,7 @@ Camera closed_room_camera(const scene::RayCaster& caster, glm::vec3 centre, glm:
       best_behind = std::min(ahead, behind);
     }
   }
-  return inside_camera(centre - 0.8f * best_behind * best_forward, best_forward, lo, hi,
-                       aspect);
+  return inside_camera(centre - 0.8f * best_behind * best_forward, best_forward, lo, hi, aspect);
 }
 
 }  // namespace
@@ -153,8 +151,8 @@ AutoCamera choose_auto_camera(const scene::Scene& scene, const scene::RayCaster&
   const bool open = out.probe.open_fraction >= kOpenThreshold;
   if (open) {
     const glm::vec3 d = out.probe.open_direction;
-    const float reach = std::min(distance_to_box(centre, d, lo, hi),
-                                 free_distance(caster, centre, d, lo, hi));
+    const float reach =
+        std::min(distance_to_box(centre, d, lo, hi), free_distance(caster, centre, d, lo, hi));
     out.camera = inside_camera(centre + 0.95f * reach * d, -d, lo, hi, aspect);
   } else {
     out.camera = closed_room_camera(caster, centre, lo, hi, aspect);
@@ -176,7 +174,7 @@ Camera resolve_camera(const std::string& spec, const scene::Scene& scene,
     return chosen.camera;
   }
   if (note) {
-    *note = spec.empty() || spec == "auto" ? "camera auto: the scene's first camera"
+    *note = spec.empty() || spec == "auto"        ? "camera auto: the scene's first camera"
             : spec.find(',') != std::string::npos ? "camera as given"
                                                   : "camera '" + spec + "'";
   }

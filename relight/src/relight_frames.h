@@ -70,7 +70,8 @@ void render_relight_frames(const RelightRequest& request, const scene::Scene& sc
   const float aspect = static_cast<float>(request.render.width) /
                        static_cast<float>(std::max(1, request.render.height));
   const scene::RayCaster caster(scene);
-  const Camera camera = resolve_camera(request.camera, scene, caster, aspect, &summary->camera_note);
+  const Camera camera =
+      resolve_camera(request.camera, scene, caster, aspect, &summary->camera_note);
   make_camera_basis(camera, aspect);  // throws for a degenerate scene camera
   const std::array<double, 9> rotation = sh::rotation_from_yaw_pitch_roll(
       request.lighting.yaw_pitch_roll_deg[0], request.lighting.yaw_pitch_roll_deg[1],
@@ -92,8 +93,8 @@ void render_relight_frames(const RelightRequest& request, const scene::Scene& sc
       summary->exposure_ev =
           request.exposure_ev ? *request.exposure_ev : choose_auto_exposure(radiance);
       if (!request.vertex_colors_path.empty()) {
-        const std::vector<glm::vec3> colors = vertex_colors(
-            radiance, request.vertex_colors_tonemapped, summary->exposure_ev);
+        const std::vector<glm::vec3> colors =
+            vertex_colors(radiance, request.vertex_colors_tonemapped, summary->exposure_ev);
         scene::write_glb(request.vertex_colors_path, scene, &colors);
         summary->files_written.push_back(request.vertex_colors_path);
       }

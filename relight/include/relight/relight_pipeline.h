@@ -89,14 +89,14 @@ struct RelightRequest {
   // the first frame by choose_auto_exposure (relight/auto_exposure.h) and kept for every frame.
   std::optional<float> exposure_ev;
   RenderOptions render;
-  std::string camera = "auto";  // relight/auto_camera.h resolve_camera()
+  std::string camera = "auto";     // relight/auto_camera.h resolve_camera()
   std::string vertex_colors_path;  // .glb, optional (unlit, see scene/glb_writer.h)
   // false: COLOR_0 is the linear exit radiance (may exceed 1); true: COLOR_0 is the PNG's
   // exposure and filmic curve before sRGB encoding (tone_map.h), in [0, 1] and still linear, so
   // an LDR viewer's sRGB output shows what the PNG shows.
   bool vertex_colors_tonemapped = false;
-  std::string csv_path;            // optional
-  int turntable_frames = 0;        // 0: one image at output_path
+  std::string csv_path;      // optional
+  int turntable_frames = 0;  // 0: one image at output_path
 };
 
 struct RelightSummary {
