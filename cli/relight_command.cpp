@@ -109,8 +109,8 @@ void register_relight(CLI::App& app) {
   cmd->add_option("--rotate", args->rotate, "Rotate the lighting: yaw,pitch,roll in degrees")
       ->capture_default_str();
   cmd->add_option("--window", args->window,
-                  "none|hanning|lanczos|laplacian|auto (auto: the weakest Laplacian window that "
-                  "keeps the irradiance non-negative, i.e. no ringing)")
+                  "none|hanning|lanczos|laplacian|auto (auto: the weakest window, none or "
+                  "Laplacian, that keeps the irradiance non-negative: no ringing)")
       ->capture_default_str();
   cmd->add_option("--window-strength", args->window_strength,
                   "Window strength (negative: the window's default)");
@@ -120,7 +120,9 @@ void register_relight(CLI::App& app) {
       "to 0.3 before the filmic curve, rounded to 1/4 EV; the output says which)");
   cmd->add_option("--size", args->size, "Image size WIDTHxHEIGHT")->capture_default_str();
   cmd->add_option("--spp", args->spp, "N: N×N stratified samples per pixel")->capture_default_str();
-  cmd->add_option("--camera", args->camera, "auto | NAME | ex,ey,ez,tx,ty,tz,ux,uy,uz,fov_deg")
+  cmd->add_option("--camera", args->camera,
+                  "auto | NAME | ex,ey,ez,tx,ty,tz,ux,uy,uz,fov_deg (auto: the scene's first "
+                  "camera, else outside an object, inside a room)")
       ->capture_default_str();
   cmd->add_option("--vertex-colors", args->vertex_colors,
                   "Also write a .glb with COLOR_0 = exit radiance (linear) and an unlit white "
