@@ -19,6 +19,7 @@
 #include "command_registry.h"
 #include "prt/relighter.h"
 #include "prt/transfer_file.h"
+#include "relight/auto_exposure.h"
 #include "relight/camera.h"
 #include "relight/image_io.h"
 #include "relight/relight_pipeline.h"
@@ -51,9 +52,7 @@ struct DemoSettings {
   int order = 5;
   int samples = 1024;
   int width = 960, height = 540, samples_per_axis = 3;
-  // Exposure: the median vertex luminance is brought to kKeyRadiance before the filmic curve
-  // (0.3 → about 0.69 after ACES and sRGB), rounded to 1/4 EV.
-  static constexpr double kKeyRadiance = 0.3;
+  // Exposure: automatic, as prt relight's default (relight/auto_exposure.h).
   // The sky turned so the sun comes from the front right, casting the shadows of
   // the sphere and the box toward the green wall (chosen by eye).
   std::array<double, 3> yaw_pitch_roll{300.0, 0.0, 0.0};
@@ -87,22 +86,6 @@ prt::TransferData bake_kind(const scene::Scene& scene, prt::TransferKind kind,
   bake::BakeResult result = bake_transfer(scene, options, &progress);
   *seconds = seconds_since(start);
   return std::move(result.data);
-}
-
-// Automatic exposure from the median Rec. 709 luminance of the vertices' exit radiance.
-float choose_exposure(const std::vector<float>& radiance_rgb) {
-  std::vector<double> luminance;
-  luminance.reserve(radiance_rgb.size() / 3);
-  for (std::size_t v = 0; v + 2 < radiance_rgb.size(); v += 3) {
-    const double y =
-        0.2126 * radiance_rgb[v] + 0.7152 * radiance_rgb[v + 1] + 0.0722 * radiance_rgb[v + 2];
-    if (std::isfinite(y) && y > 0) luminance.push_back(y);
-  }
-  if (luminance.empty()) return 0.f;
-  const auto middle = luminance.begin() + static_cast<std::ptrdiff_t>(luminance.size() / 2);
-  std::nth_element(luminance.begin(), middle, luminance.end());
-  const double ev = std::log2(DemoSettings::kKeyRadiance / *middle);
-  return static_cast<float>(std::round(4 * ev) / 4);
 }
 
 std::vector<float> shade(const prt::TransferData& data, const prt::ShLighting& lighting) {
@@ -170,7 +153,7 @@ void run(const DemoArguments& args) {
       relight::project_lighting(sky, settings.order, lighting_options, &window_note), rotation);
   const std::vector<float> radiance = shade(interreflected, lighting);
   const double shade_seconds = seconds_since(start);
-  const float exposure_ev = choose_exposure(radiance);
+  const float exposure_ev = relight::choose_auto_exposure(radiance);
 
   // 4. Render.
   start = Clock::now();

@@ -94,7 +94,7 @@ bool relight_if_haar(const relight::RelightRequest& request, const HaarRelightAr
               s.window_note.c_str(), 1e3 * s.shade_seconds, s.render_seconds);
   if (s.negative_vertices > 0)
     std::printf("; %zu vertices got negative radiance", s.negative_vertices);
-  std::printf(".\nwrote:");
+  std::printf(".\n%s\nwrote:", relight::describe_view(request, s).c_str());
   for (const std::string& file : s.files_written) std::printf(" %s", file.c_str());
   std::printf("\n");
   return true;

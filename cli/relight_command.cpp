@@ -22,13 +22,15 @@ struct RelightArguments {
   std::string scene, transfer, environment, output;
   std::string layout = "auto";
   std::string rotate = "0,0,0";
-  std::string window = "none";
+  std::string window = "auto";
   double window_strength = -1.0;
   float exposure = 0.f;
+  bool exposure_given = false;  // false: automatic (relight/auto_exposure.h)
   std::string size = "960x540";
   int spp = 3;
   std::string camera = "auto";
   std::string vertex_colors, csv;
+  bool vertex_colors_tonemap = false;
   int turntable = 0;
   bool quiet = false;
   HaarRelightArguments haar;  // --terms, --approx for Haar files (haar_cli.h)
@@ -62,13 +64,16 @@ void run(const RelightArguments& args) {
     throw CommandError("--window " + args.window +
                        ": expected none|hanning|lanczos|laplacian|auto");
   request.lighting.window_strength = args.window_strength;
-  request.exposure_ev = args.exposure;
+  if (args.exposure_given) request.exposure_ev = args.exposure;
   parse_size(args.size, &request.render.width, &request.render.height);
   if (args.spp < 1 || args.spp > 16)
     throw CommandError("--spp " + std::to_string(args.spp) + ": must be in 1..16 (N×N per pixel)");
   request.render.samples_per_axis = args.spp;
   request.camera = args.camera;
   request.vertex_colors_path = args.vertex_colors;
+  request.vertex_colors_tonemapped = args.vertex_colors_tonemap;
+  if (args.vertex_colors_tonemap && args.vertex_colors.empty())
+    throw CommandError("--vertex-colors-tonemap: needs --vertex-colors OUT.glb");
   request.csv_path = args.csv;
   request.turntable_frames = args.turntable;
 
@@ -82,7 +87,8 @@ void run(const RelightArguments& args) {
   if (summary.negative_vertices > 0)
     std::printf("; %zu vertices got negative radiance (SH ringing: try --window auto)",
                 summary.negative_vertices);
-  std::printf(".\nwrote:");
+  std::printf(".\n%s\n", describe_view(request, summary).c_str());
+  std::printf("wrote:");
   for (const std::string& file : summary.files_written) std::printf(" %s", file.c_str());
   std::printf("\n");
 }
@@ -102,24 +108,37 @@ void register_relight(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--rotate", args->rotate, "Rotate the lighting: yaw,pitch,roll in degrees")
       ->capture_default_str();
-  cmd->add_option("--window", args->window, "none|hanning|lanczos|laplacian|auto")
+  cmd->add_option("--window", args->window,
+                  "none|hanning|lanczos|laplacian|auto (auto: the weakest window, none or "
+                  "Laplacian, that keeps the irradiance non-negative: no ringing)")
       ->capture_default_str();
   cmd->add_option("--window-strength", args->window_strength,
                   "Window strength (negative: the window's default)");
-  cmd->add_option("--exposure", args->exposure, "Exposure in EV for PNG output")
-      ->capture_default_str();
+  CLI::Option* exposure = cmd->add_option(
+      "--exposure", args->exposure,
+      "Exposure in EV for PNG output (default: automatic, the median vertex luminance brought "
+      "to 0.3 before the filmic curve, rounded to 1/4 EV; the output says which)");
   cmd->add_option("--size", args->size, "Image size WIDTHxHEIGHT")->capture_default_str();
   cmd->add_option("--spp", args->spp, "N: N×N stratified samples per pixel")->capture_default_str();
-  cmd->add_option("--camera", args->camera, "auto | NAME | ex,ey,ez,tx,ty,tz,ux,uy,uz,fov_deg")
+  cmd->add_option("--camera", args->camera,
+                  "auto | NAME | ex,ey,ez,tx,ty,tz,ux,uy,uz,fov_deg (auto: the scene's first "
+                  "camera, else outside an object, inside a room)")
       ->capture_default_str();
   cmd->add_option("--vertex-colors", args->vertex_colors,
-                  "Also write a .glb with COLOR_0 = exit radiance (linear)");
+                  "Also write a .glb with COLOR_0 = exit radiance (linear) and an unlit white "
+                  "material (KHR_materials_unlit), so viewers show the colours as baked");
+  cmd->add_flag("--vertex-colors-tonemap", args->vertex_colors_tonemap,
+                "For LDR viewers: COLOR_0 gets the PNG's exposure and filmic curve (values in "
+                "[0, 1], still linear; the viewer's sRGB output then matches the PNG)");
   cmd->add_option("--csv", args->csv, "Also write index,x,y,z,r,g,b per vertex");
   cmd->add_option("--turntable", args->turntable,
                   "Write N frames OUT_000… with the light turning about +Y");
   cmd->add_flag("--quiet", args->quiet, "Print nothing on success");
   add_haar_relight_options(cmd, &args->haar);
-  cmd->callback([args] { run(*args); });
+  cmd->callback([args, exposure] {
+    args->exposure_given = exposure->count() > 0;
+    run(*args);
+  });
 }
 
 }  // namespace

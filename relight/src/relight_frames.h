@@ -11,12 +11,16 @@
 #include <algorithm>
 #include <array>
 #include <chrono>
+#include <cmath>
 #include <string>
 #include <vector>
 
+#include "relight/auto_camera.h"
+#include "relight/auto_exposure.h"
 #include "relight/camera.h"
 #include "relight/relight_pipeline.h"
 #include "relight/renderer.h"
+#include "relight/tone_map.h"
 #include "scene/glb_writer.h"
 #include "scene/ray_caster.h"
 #include "scene/scene.h"
@@ -25,11 +29,36 @@
 
 namespace prt::relight::detail {
 
-// Checks the camera, then for each frame: lighting = light_for(M_i) (not timed), radiance =
-// shade(lighting) (timed as shade_seconds, must return 3 floats per vertex), render (timed as
-// render_seconds) and write the image (OUT_iii for a turntable). The first frame also counts
-// the vertices with a negative channel and writes the vertex-coloured GLB and the CSV if asked.
-// Every file written is appended to summary->files_written.
+// Vertices with a negative channel in `radiance` (3 floats per vertex).
+inline std::size_t count_negative_vertices(const std::vector<float>& radiance) {
+  std::size_t count = 0;
+  for (std::size_t v = 0; v + 2 < radiance.size(); v += 3)
+    count += (radiance[v] < 0.f || radiance[v + 1] < 0.f || radiance[v + 2] < 0.f) ? 1 : 0;
+  return count;
+}
+
+// COLOR_0 for the vertex-coloured GLB: the radiance itself, or (tonemapped) exposure and the
+// filmic curve without the sRGB step, in [0, 1] (relight/relight_pipeline.h RelightRequest).
+inline std::vector<glm::vec3> vertex_colors(const std::vector<float>& radiance, bool tonemapped,
+                                            float exposure_ev) {
+  std::vector<glm::vec3> colors(radiance.size() / 3);
+  const float scale = std::exp2(exposure_ev);
+  for (std::size_t v = 0; v < colors.size(); ++v) {
+    for (int c = 0; c < 3; ++c) {
+      const float x = radiance[3 * v + c];
+      colors[v][c] = tonemapped ? apply_aces_filmic(x * scale) : x;
+    }
+  }
+  return colors;
+}
+
+// Resolves the camera (relight/auto_camera.h), then for each frame: lighting = light_for(M_i)
+// (not timed), radiance = shade(lighting) (timed as shade_seconds, must return 3 floats per
+// vertex), render (timed as render_seconds) and write the image (OUT_iii for a turntable).
+// Every frame counts its vertices with a negative channel (summary: the most in a frame and the
+// number of frames with any). The first frame fixes the exposure (given or automatic) and
+// writes the vertex-coloured GLB and the CSV if asked. Every file written is appended to
+// summary->files_written.
 template <class LightFor, class Shade>
 void render_relight_frames(const RelightRequest& request, const scene::Scene& scene,
                            const sh::EnvMap& env, LightFor light_for, Shade shade,
@@ -40,12 +69,13 @@ void render_relight_frames(const RelightRequest& request, const scene::Scene& sc
   };
   const float aspect = static_cast<float>(request.render.width) /
                        static_cast<float>(std::max(1, request.render.height));
-  const Camera camera = parse_camera(request.camera, scene, aspect);
+  const scene::RayCaster caster(scene);
+  const Camera camera =
+      resolve_camera(request.camera, scene, caster, aspect, &summary->camera_note);
   make_camera_basis(camera, aspect);  // throws for a degenerate scene camera
   const std::array<double, 9> rotation = sh::rotation_from_yaw_pitch_roll(
       request.lighting.yaw_pitch_roll_deg[0], request.lighting.yaw_pitch_roll_deg[1],
       request.lighting.yaw_pitch_roll_deg[2]);
-  const scene::RayCaster caster(scene);
 
   const int frames = std::max(1, request.turntable_frames);
   for (int frame = 0; frame < frames; ++frame) {
@@ -55,14 +85,16 @@ void render_relight_frames(const RelightRequest& request, const scene::Scene& sc
     auto start = Clock::now();
     const std::vector<float> radiance = shade(lighting);
     summary->shade_seconds += seconds_since(start);
+    const std::size_t negative = count_negative_vertices(radiance);
+    summary->negative_vertices = std::max(summary->negative_vertices, negative);
+    summary->negative_frames += negative > 0 ? 1 : 0;
     if (frame == 0) {
-      for (std::size_t v = 0; v < scene.vertex_count(); ++v)
-        if (radiance[3 * v] < 0.f || radiance[3 * v + 1] < 0.f || radiance[3 * v + 2] < 0.f)
-          ++summary->negative_vertices;
+      summary->exposure_auto = !request.exposure_ev.has_value();
+      summary->exposure_ev =
+          request.exposure_ev ? *request.exposure_ev : choose_auto_exposure(radiance);
       if (!request.vertex_colors_path.empty()) {
-        std::vector<glm::vec3> colors(scene.vertex_count());
-        for (std::size_t v = 0; v < colors.size(); ++v)
-          colors[v] = glm::vec3(radiance[3 * v], radiance[3 * v + 1], radiance[3 * v + 2]);
+        const std::vector<glm::vec3> colors =
+            vertex_colors(radiance, request.vertex_colors_tonemapped, summary->exposure_ev);
         scene::write_glb(request.vertex_colors_path, scene, &colors);
         summary->files_written.push_back(request.vertex_colors_path);
       }
@@ -77,7 +109,7 @@ void render_relight_frames(const RelightRequest& request, const scene::Scene& sc
     const std::string path = request.turntable_frames > 0
                                  ? turntable_frame_path(request.output_path, frame)
                                  : request.output_path;
-    write_rendered_image(path, image, request.exposure_ev);
+    write_rendered_image(path, image, summary->exposure_ev);
     summary->files_written.push_back(path);
   }
 }

@@ -14,6 +14,7 @@
 #include "prt/atomic_file.h"
 #include "prt/geometry_check.h"
 #include "prt/transfer_file.h"
+#include "relight/auto_exposure.h"
 #include "relight/image_io.h"
 #include "relight/tone_map.h"
 #include "relight_frames.h"
@@ -230,6 +231,26 @@ RelightSummary run_relight(const RelightRequest& request) {
       },
       &summary);
   return summary;
+}
+
+std::string describe_view(const RelightRequest& request, const RelightSummary& summary) {
+  char text[200];
+  const bool png = lower_extension(request.output_path) == ".png";
+  if (png || request.vertex_colors_tonemapped) {
+    if (summary.exposure_auto)
+      std::snprintf(text, sizeof text,
+                    "exposure %+.2f EV (automatic: median vertex luminance brought to %.2g; "
+                    "--exposure EV sets it)",
+                    double(summary.exposure_ev), kAutoExposureKey);
+    else
+      std::snprintf(text, sizeof text, "exposure %+.2f EV (--exposure)",
+                    double(summary.exposure_ev));
+  } else {
+    std::snprintf(text, sizeof text, "linear image, no exposure applied");
+  }
+  std::string line = text;
+  if (!summary.camera_note.empty()) line += "; " + summary.camera_note;
+  return line;
 }
 
 }  // namespace prt::relight

@@ -54,6 +54,25 @@ int add_vec3_accessor(tinygltf::Model& model, const glm::vec3* values, std::size
   return static_cast<int>(model.accessors.size() - 1);
 }
 
+constexpr const char* kUnlitExtension = "KHR_materials_unlit";
+
+// A diffuse material of the primitive's albedo; with baked colours, an unlit white one, so that
+// a viewer shows COLOR_0 as it is instead of lighting it (and multiplying by the albedo) again.
+tinygltf::Material make_material(const ScenePrimitive& primitive, bool baked_colors) {
+  tinygltf::Material material;
+  material.name = primitive.name;
+  material.pbrMetallicRoughness.metallicFactor = 0.0;
+  material.pbrMetallicRoughness.roughnessFactor = 1.0;
+  if (baked_colors) {
+    material.pbrMetallicRoughness.baseColorFactor = {1.0, 1.0, 1.0, 1.0};
+    material.extensions[kUnlitExtension] = tinygltf::Value(tinygltf::Value::Object());
+  } else {
+    material.pbrMetallicRoughness.baseColorFactor = {primitive.albedo.x, primitive.albedo.y,
+                                                     primitive.albedo.z, 1.0};
+  }
+  return material;
+}
+
 // Rotation taking the camera's local frame (looks down -Z, up +Y) to the look-at frame.
 glm::dquat look_at_rotation(const SceneCamera& camera) {
   const glm::dvec3 forward = glm::normalize(glm::dvec3(camera.target) - glm::dvec3(camera.eye));
@@ -113,13 +132,7 @@ tinygltf::Model build_model(const std::string& path, const Scene& scene,
     model.accessors.push_back(index_accessor);
     gltf_primitive.indices = static_cast<int>(model.accessors.size() - 1);
 
-    tinygltf::Material material;
-    material.name = primitive.name;
-    material.pbrMetallicRoughness.baseColorFactor = {primitive.albedo.x, primitive.albedo.y,
-                                                     primitive.albedo.z, 1.0};
-    material.pbrMetallicRoughness.metallicFactor = 0.0;
-    material.pbrMetallicRoughness.roughnessFactor = 1.0;
-    model.materials.push_back(material);
+    model.materials.push_back(make_material(primitive, vertex_colors != nullptr));
     gltf_primitive.material = static_cast<int>(model.materials.size() - 1);
 
     tinygltf::Mesh mesh;
@@ -153,6 +166,7 @@ tinygltf::Model build_model(const std::string& path, const Scene& scene,
   }
   model.scenes.push_back(gltf_scene);
   model.defaultScene = 0;
+  if (vertex_colors) model.extensionsUsed.push_back(kUnlitExtension);
   return model;
 }
 

@@ -1,5 +1,6 @@
 // glTF 2.0 reading through tinygltf (see gltf_loader.h and scene/scene_loader.h).
 #include "gltf_loader.h"
+#include "gltf_extensions.h"
 #include "scene_file_errors.h"
 
 #include <cctype>
@@ -374,11 +375,13 @@ Scene read_gltf_scene(const std::string& path, bool binary) {
   std::string error, warning;
   const bool ok = binary ? loader.LoadBinaryFromFile(&model, &error, &warning, path)
                          : loader.LoadASCIIFromFile(&model, &error, &warning, path);
+  check_required_extensions(path, model.extensionsRequired);  // filled even when loading fails
   if (!ok) {
     std::string message = condense(error);
     if (message.empty()) message = condense(warning);
     fail(path, "cannot load glTF: " + (message.empty() ? "unknown error" : message));
   }
+  note_optional_extensions(path, model.extensionsUsed, model.extensionsRequired);
   const std::vector<std::string> missing_images = find_missing_images(path, model);
   if (!missing_images.empty()) {
     std::string list;

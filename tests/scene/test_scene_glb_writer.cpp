@@ -62,12 +62,8 @@ std::vector<glm::vec3> read_colors(const std::string& path) {
 
 TEST_CASE("write_glb then load_scene gives back geometry, albedo and the camera") {
   const Scene s = make_test_scene();
-  std::vector<glm::vec3> colors;
-  for (std::size_t v = 0; v < s.positions.size(); ++v) {
-    colors.emplace_back(static_cast<float>(v) * 0.01f, 0.5f, 2.5f);  // linear, may exceed 1
-  }
   const std::string path = prt::test::output_path("round_trip.glb").string();
-  prt::scene::write_glb(path, s, &colors);
+  prt::scene::write_glb(path, s);
 
   // A GLB header: magic "glTF", version 2, total length = file size.
   std::ifstream in(path, std::ios::binary);
@@ -104,10 +100,43 @@ TEST_CASE("write_glb then load_scene gives back geometry, albedo and the camera"
   CHECK(cam.up.y > 0.f);
   CHECK(cam.yfov_radians == Approx(0.7f));
 
-  CHECK(read_colors(path) == colors);
   for (const auto& entry : std::filesystem::directory_iterator(prt::test::output_path(""))) {
     CHECK(entry.path().filename().string().find("round_trip.glb.tmp-") == std::string::npos);
   }
+}
+
+TEST_CASE("write_glb with vertex colours: COLOR_0 as given, on unlit white materials") {
+  // Baked colours already hold the lighting and the albedo: a viewer must show them as they are,
+  // so every material is KHR_materials_unlit (declared in extensionsUsed, not required: a viewer
+  // without it falls back to a lit white material) with a white base colour.
+  const Scene s = make_test_scene();
+  std::vector<glm::vec3> colors;
+  for (std::size_t v = 0; v < s.positions.size(); ++v) {
+    colors.emplace_back(static_cast<float>(v) * 0.01f, 0.5f, 2.5f);  // linear, may exceed 1
+  }
+  const std::string path = prt::test::output_path("baked_colors.glb").string();
+  prt::scene::write_glb(path, s, &colors);
+  CHECK(read_colors(path) == colors);
+
+  tinygltf::TinyGLTF loader;
+  tinygltf::Model model;
+  std::string error, warning;
+  REQUIRE(loader.LoadBinaryFromFile(&model, &error, &warning, path));
+  CHECK(model.extensionsUsed == std::vector<std::string>{"KHR_materials_unlit"});
+  CHECK(model.extensionsRequired.empty());
+  REQUIRE(model.materials.size() == s.primitives.size());
+  for (const tinygltf::Material& material : model.materials) {
+    CHECK(material.extensions.count("KHR_materials_unlit") == 1);
+    CHECK(material.pbrMetallicRoughness.baseColorFactor == std::vector<double>{1, 1, 1, 1});
+  }
+  // Without colours the materials stay lit, with the albedo, and no extension is declared.
+  const std::string plain = prt::test::output_path("plain_materials.glb").string();
+  prt::scene::write_glb(plain, s);
+  tinygltf::Model plain_model;
+  REQUIRE(loader.LoadBinaryFromFile(&plain_model, &error, &warning, plain));
+  CHECK(plain_model.extensionsUsed.empty());
+  CHECK(plain_model.materials.at(1).extensions.empty());
+  CHECK(plain_model.materials.at(1).pbrMetallicRoughness.baseColorFactor.at(0) == Approx(0.8));
 }
 
 TEST_CASE("write_glb fails with one line and leaves nothing behind") {

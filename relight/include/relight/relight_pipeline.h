@@ -85,20 +85,31 @@ struct RelightRequest {
   std::string output_path;              // .exr, .hdr or .png
   std::optional<sh::EnvLayout> layout;  // nullopt: guess from the aspect ratio
   LightingOptions lighting;
-  float exposure_ev = 0.f;
+  // PNG exposure in EV (and that of tone-mapped vertex colours); nullopt: automatic, chosen on
+  // the first frame by choose_auto_exposure (relight/auto_exposure.h) and kept for every frame.
+  std::optional<float> exposure_ev;
   RenderOptions render;
-  std::string camera = "auto";
-  std::string vertex_colors_path;  // .glb, optional
-  std::string csv_path;            // optional
-  int turntable_frames = 0;        // 0: one image at output_path
+  std::string camera = "auto";     // relight/auto_camera.h resolve_camera()
+  std::string vertex_colors_path;  // .glb, optional (unlit, see scene/glb_writer.h)
+  // false: COLOR_0 is the linear exit radiance (may exceed 1); true: COLOR_0 is the PNG's
+  // exposure and filmic curve before sRGB encoding (tone_map.h), in [0, 1] and still linear, so
+  // an LDR viewer's sRGB output shows what the PNG shows.
+  bool vertex_colors_tonemapped = false;
+  std::string csv_path;      // optional
+  int turntable_frames = 0;  // 0: one image at output_path
 };
 
 struct RelightSummary {
   std::size_t vertex_count = 0;
   int order = 0;
   double shade_seconds = 0, render_seconds = 0;
-  std::size_t negative_vertices = 0;  // vertices with a negative channel (SH ringing)
-  std::string window_note, layout_note;
+  // Vertices with a negative channel (SH ringing): the most in any frame, and how many frames
+  // had any.
+  std::size_t negative_vertices = 0;
+  int negative_frames = 0;
+  float exposure_ev = 0.f;     // the exposure used (given, or chosen)
+  bool exposure_auto = false;  // true: chosen by choose_auto_exposure
+  std::string window_note, layout_note, camera_note;
   std::vector<std::string> files_written;
 };
 
@@ -107,5 +118,9 @@ struct RelightSummary {
 void check_relight_outputs(const RelightRequest& request);
 
 RelightSummary run_relight(const RelightRequest& request);
+
+// One line for the user: the exposure of PNG images and tone-mapped vertex colours (given or
+// automatic, and how the automatic one is chosen), and the camera (summary.camera_note).
+std::string describe_view(const RelightRequest& request, const RelightSummary& summary);
 
 }  // namespace prt::relight

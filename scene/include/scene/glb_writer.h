@@ -5,9 +5,13 @@
 // Layout: one mesh (with one node) per scene primitive, named after it, with POSITION (with
 // min/max), NORMAL, u32 indices, and a material whose baseColorFactor is the primitive's albedo
 // (alpha 1, metallic 0, roughness 1: a diffuse surface). With vertex_colors (one linear RGB
-// float triple per scene vertex, e.g. baked radiance) each primitive also gets COLOR_0 (float
-// VEC3, linear as glTF requires). Each SceneCamera becomes a perspective camera on its own
-// node, rotated so that its -Z looks at the target with +Y as close to `up` as possible.
+// float triple per scene vertex, e.g. baked exit radiance) each primitive also gets COLOR_0
+// (float VEC3, linear as glTF requires) and the material becomes unlit (KHR_materials_unlit,
+// listed in extensionsUsed) with a white baseColorFactor: a viewer then shows COLOR_0 as it is,
+// instead of lighting the bake again and multiplying by the albedo a second time. Such a file
+// is for display: loading it back gives an albedo of 1 (which the baker refuses); bake the
+// original scene. Each SceneCamera becomes a perspective camera on its own node, rotated so
+// that its -Z looks at the target with +Y as close to `up` as possible.
 // The file is written atomically: PATH.tmp-<pid> then rename; nothing is left on failure.
 // Errors throw SceneError("PATH: problem").
 #pragma once
