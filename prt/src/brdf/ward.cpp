@@ -20,7 +20,8 @@ Result<Ward> Ward::create(const WardParams& p) {
   if (s) s = detail::check_rgb("Ward", "rho_d", p.rho_d);
   if (s) s = detail::check_rgb("Ward", "rho_s", p.rho_s);
   if (s) s = detail::check_rgb("Ward", "rho_d + rho_s", p.rho_d + p.rho_s);
-  if (s && p.form != WardForm::kOriginal && p.form != WardForm::kNormalized) {
+  if (s && p.form != WardForm::kOriginal && p.form != WardForm::kDuer &&
+      p.form != WardForm::kNormalized) {
     s = Status::Error("Ward: unknown form");
   }
   if (!s) return s;
@@ -41,6 +42,8 @@ Rgb Ward::eval(const Vec3& wi, const Vec3& wo) const {
   double spec;
   if (params_.form == WardForm::kOriginal) {
     spec = std::exp(-e) / (4.0 * kPi * axy * std::sqrt(wi.z * wo.z));
+  } else if (params_.form == WardForm::kDuer) {
+    spec = std::exp(-e) / (4.0 * kPi * axy * wi.z * wo.z);
   } else {
     const double hz2 = h.z * h.z;
     spec = std::exp(-e) * dot(h, h) / (kPi * axy * hz2 * hz2);

@@ -76,6 +76,7 @@ std::vector<NamedBrdf> analytic_models() {
   m.push_back({"ward normalized rd=0.2 a=(0.1,0.4)",
                ward(WardForm::kNormalized, 0.2, 0.8, 0.1, 0.4), true});
   m.push_back({"ward original a=(0.3,0.1)", ward(WardForm::kOriginal, 0, 1, 0.3, 0.1), false});
+  m.push_back({"ward duer rd=0.3 a=0.2", ward(WardForm::kDuer, 0.3, 0.7, 0.2, 0.2), false});
   m.push_back({"ggx a=0.1", microfacet(ggx, 0.1, 0.1), true});
   m.push_back({"ggx a=0.5", microfacet(ggx, 0.5, 0.5), true});
   m.push_back({"ggx a=1", microfacet(ggx, 1.0, 1.0), true});
