@@ -17,15 +17,18 @@
 #include "prt/brdf/lambert.h"
 #include "prt/brdf/microfacet.h"
 #include "prt/brdf/ward.h"
+#include "sh/constants.h"
 
 using namespace prt::brdf;
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using prt::sh::kPi;
 const double kThetas[] = {0.0, 30.0, 60.0, 75.0, 85.0, 89.0};
 
-Vec3 outgoing(double deg, double phi) { return spherical_direction(std::cos(deg * kPi / 180.0), phi); }
+Vec3 outgoing(double deg, double phi) {
+  return spherical_direction(std::cos(deg * kPi / 180.0), phi);
+}
 
 double discarded_fraction(const Brdf& b, const Vec3& wo, int n) {
   int none = 0;
@@ -81,7 +84,8 @@ Ward ward(WardForm form, double a) {
 const double kAlphas[] = {0.05, 0.1, 0.2, 0.3, 0.5, 0.7, 1.0};
 
 void microfacet_tables(int n) {
-  std::printf("\n### Microfacet, F = 1 (white furnace; 1 − albedo is the single-scattering loss)\n\n");
+  std::printf(
+      "\n### Microfacet, F = 1 (white furnace; 1 − albedo is the single-scattering loss)\n\n");
   header("model, α");
   for (auto d : {NormalDistribution::kGgx, NormalDistribution::kBeckmann}) {
     for (double a : kAlphas) {
@@ -92,8 +96,8 @@ void microfacet_tables(int n) {
   for (auto d : {NormalDistribution::kGgx, NormalDistribution::kBeckmann}) {
     albedo_row(std::string(distribution_name(d)) + " (0.1, 0.5), φo = 0", microfacet(d, 0.1, 0.5),
                n, 0.0);
-    albedo_row(std::string(distribution_name(d)) + " (0.1, 0.5), φo = 90°",
-               microfacet(d, 0.1, 0.5), n, 0.5 * kPi);
+    albedo_row(std::string(distribution_name(d)) + " (0.1, 0.5), φo = 90°", microfacet(d, 0.1, 0.5),
+               n, 0.5 * kPi);
   }
   std::printf("\n### Microfacet: fraction of draws discarded by sample()\n\n");
   header("model, α");
@@ -113,8 +117,7 @@ void ward_tables(int n) {
                        : form == WardForm::kOriginal ? "original"
                                                      : "Dür";
     for (double a : {0.05, 0.1, 0.2, 0.3, 0.5, 1.0}) {
-      albedo_row(std::string(name) + " " + std::to_string(a).substr(0, 4),
-                 ward(form, a), n);
+      albedo_row(std::string(name) + " " + std::to_string(a).substr(0, 4), ward(form, a), n);
     }
   }
 }

@@ -6,15 +6,15 @@
 #include "lobe_mix.h"
 #include "parameter_check.h"
 #include "prt/brdf/lambert.h"
+#include "sh/constants.h"
 
 namespace prt::brdf {
 
 namespace {
-constexpr double kPi = 3.14159265358979323846;
+using sh::kPi;
 }
 
-Result<BlinnPhong> BlinnPhong::create(const Rgb& k_diffuse, const Rgb& k_glossy,
-                                      double exponent) {
+Result<BlinnPhong> BlinnPhong::create(const Rgb& k_diffuse, const Rgb& k_glossy, double exponent) {
   Status s = detail::check_range("Blinn-Phong", "exponent", exponent, 0.0, 1e5);
   if (s) s = detail::check_rgb("Blinn-Phong", "k_L", k_diffuse);
   if (s) s = detail::check_rgb("Blinn-Phong", "k_G", k_glossy);

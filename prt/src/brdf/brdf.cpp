@@ -31,8 +31,8 @@ Rgb directional_albedo(const Brdf& brdf, const Vec3& wo, int n, uint64_t seed,
     for (int j = 0; j < n; ++j) {
       const double u1 = (i + rng.next()) / n;
       const double u2 = (j + rng.next()) / n;
-      const BrdfSample s = brdf.sample(wo, std::min(u1, 0x1.fffffffffffffp-1),
-                                       std::min(u2, 0x1.fffffffffffffp-1));
+      const BrdfSample s =
+          brdf.sample(wo, std::min(u1, 0x1.fffffffffffffp-1), std::min(u2, 0x1.fffffffffffffp-1));
       if (!(s.pdf > 0.0) || s.wi.z <= 0.0) continue;
       const double w = s.wi.z / s.pdf;
       const double v[3] = {s.f.r * w, s.f.g * w, s.f.b * w};

@@ -9,7 +9,7 @@ namespace prt::brdf {
 double fresnel_dielectric(double cos_i, double eta) {
   cos_i = std::clamp(cos_i, 0.0, 1.0);
   const double sin2_t = (1.0 - cos_i * cos_i) / (eta * eta);  // Snell
-  if (sin2_t >= 1.0) return 1.0;                                // total internal reflection
+  if (sin2_t >= 1.0) return 1.0;                              // total internal reflection
   const double cos_t = std::sqrt(1.0 - sin2_t);
   const double rs = (cos_i - eta * cos_t) / (cos_i + eta * cos_t);
   const double rp = (eta * cos_i - cos_t) / (eta * cos_i + cos_t);

@@ -4,11 +4,12 @@
 #include <cmath>
 
 #include "parameter_check.h"
+#include "sh/constants.h"
 
 namespace prt::brdf {
 
 namespace {
-constexpr double kPi = 3.14159265358979323846;
+using sh::kPi;
 }
 
 Result<Lambert> Lambert::create(const Rgb& reflectance) {

@@ -9,12 +9,13 @@
 #include <iterator>
 
 #include "prt/brdf/lambert.h"
+#include "sh/constants.h"
 
 namespace prt::brdf {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using sh::kPi;
 constexpr std::size_t kCells = std::size_t{kMerlThetaH} * kMerlThetaD * kMerlPhiD;
 
 Vec3 rotate_z(const Vec3& v, double a) {
@@ -88,7 +89,8 @@ Rgb MerlBrdf::eval(const Vec3& wi, const Vec3& wo) const {
   const int ih = clamp_index(std::sqrt(a.theta_h / (kPi / 2)) * kMerlThetaH, kMerlThetaH);
   const int id = clamp_index(a.theta_d / (kPi / 2) * kMerlThetaD, kMerlThetaD);
   const int ip = clamp_index(phi_d / kPi * kMerlPhiD, kMerlPhiD);
-  const std::size_t i = (std::size_t{static_cast<unsigned>(ih)} * kMerlThetaD + id) * kMerlPhiD + ip;
+  const std::size_t i =
+      (std::size_t{static_cast<unsigned>(ih)} * kMerlThetaD + id) * kMerlPhiD + ip;
   return {table_[i], table_[kCells + i], table_[2 * kCells + i]};
 }
 

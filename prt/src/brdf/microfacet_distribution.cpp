@@ -1,12 +1,13 @@
 // GGX and Beckmann microfacet distributions.
 #include "prt/brdf/microfacet_distribution.h"
+#include "sh/constants.h"
 
 #include <cmath>
 
 namespace prt::brdf {
 
 namespace {
-constexpr double kPi = 3.14159265358979323846;
+using sh::kPi;
 }
 
 const char* distribution_name(NormalDistribution d) {
@@ -45,8 +46,8 @@ Vec3 MicrofacetDistribution::sample_normal(double u1, double u2) const {
   cy /= len;
   // 1/α(φ)² = cos²φ/α_x² + sin²φ/α_y².
   const double inv_a2 = cx * cx / (alpha_x * alpha_x) + cy * cy / (alpha_y * alpha_y);
-  const double tan2 = type == NormalDistribution::kGgx ? u1 / ((1.0 - u1) * inv_a2)
-                                                       : -std::log1p(-u1) / inv_a2;
+  const double tan2 =
+      type == NormalDistribution::kGgx ? u1 / ((1.0 - u1) * inv_a2) : -std::log1p(-u1) / inv_a2;
   const double cos_t = 1.0 / std::sqrt(1.0 + tan2);
   const double sin_t = std::sqrt(std::fmax(0.0, 1.0 - cos_t * cos_t));
   return {sin_t * cx, sin_t * cy, cos_t};

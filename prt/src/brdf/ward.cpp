@@ -7,11 +7,12 @@
 #include "parameter_check.h"
 #include "prt/brdf/lambert.h"
 #include "prt/brdf/microfacet.h"
+#include "sh/constants.h"
 
 namespace prt::brdf {
 
 namespace {
-constexpr double kPi = 3.14159265358979323846;
+using sh::kPi;
 }
 
 Result<Ward> Ward::create(const WardParams& p) {

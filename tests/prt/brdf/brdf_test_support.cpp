@@ -9,6 +9,7 @@
 #include "prt/brdf/lambert.h"
 #include "prt/brdf/microfacet.h"
 #include "prt/brdf/ward.h"
+#include "sh/constants.h"
 
 namespace brdf_test {
 
@@ -16,7 +17,7 @@ using namespace prt::brdf;
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using prt::sh::kPi;
 
 template <class T>
 std::shared_ptr<const Brdf> must(prt::Result<T> r) {
@@ -65,12 +66,12 @@ std::vector<NamedBrdf> analytic_models() {
   const auto beck = NormalDistribution::kBeckmann;
   std::vector<NamedBrdf> m;
   m.push_back({"lambert rho=0.8", must(Lambert::create(grey(0.8))), true});
-  m.push_back({"blinn-phong kL=0.3 kG=0.7 s=1",
-               must(BlinnPhong::create(grey(0.3), grey(0.7), 1.0)), false});
+  m.push_back({"blinn-phong kL=0.3 kG=0.7 s=1", must(BlinnPhong::create(grey(0.3), grey(0.7), 1.0)),
+               false});
   m.push_back({"blinn-phong kL=0.3 kG=0.7 s=20",
                must(BlinnPhong::create(grey(0.3), grey(0.7), 20.0)), false});
-  m.push_back({"blinn-phong kL=0 kG=1 s=200",
-               must(BlinnPhong::create(grey(0.0), grey(1.0), 200.0)), false});
+  m.push_back({"blinn-phong kL=0 kG=1 s=200", must(BlinnPhong::create(grey(0.0), grey(1.0), 200.0)),
+               false});
   m.push_back({"ward normalized a=0.1", ward(WardForm::kNormalized, 0, 1, 0.1, 0.1), true});
   m.push_back({"ward normalized a=0.5", ward(WardForm::kNormalized, 0, 1, 0.5, 0.5), true});
   m.push_back({"ward normalized rd=0.2 a=(0.1,0.4)",
@@ -81,13 +82,12 @@ std::vector<NamedBrdf> analytic_models() {
   m.push_back({"ggx a=0.5", microfacet(ggx, 0.5, 0.5), true});
   m.push_back({"ggx a=1", microfacet(ggx, 1.0, 1.0), true});
   m.push_back({"ggx a=(0.1,0.5)", microfacet(ggx, 0.1, 0.5), true});
-  m.push_back({"ggx a=0.3 dielectric", microfacet(ggx, 0.3, 0.3, FresnelMode::kDielectric),
-               true});
+  m.push_back({"ggx a=0.3 dielectric", microfacet(ggx, 0.3, 0.3, FresnelMode::kDielectric), true});
   m.push_back({"beckmann a=0.1", microfacet(beck, 0.1, 0.1), true});
   m.push_back({"beckmann a=0.5", microfacet(beck, 0.5, 0.5), true});
   m.push_back({"beckmann a=1", microfacet(beck, 1.0, 1.0), true});
-  m.push_back({"beckmann a=(0.5,0.15) schlick",
-               microfacet(beck, 0.5, 0.15, FresnelMode::kSchlick), true});
+  m.push_back(
+      {"beckmann a=(0.5,0.15) schlick", microfacet(beck, 0.5, 0.15, FresnelMode::kSchlick), true});
   return m;
 }
 
@@ -151,9 +151,9 @@ double integrate_pdf_sphere(const Brdf& brdf, const Vec3& wo, int res_theta, int
   const int res_phi = 2 * res_theta;
   for (int i = 0; i < res_theta; ++i) {
     for (int j = 0; j < res_phi; ++j) {
-      total += integrate_pdf_cell(brdf, wo, -1.0 + 2.0 * i / res_theta,
-                                  -1.0 + 2.0 * (i + 1) / res_theta, 2.0 * kPi * j / res_phi,
-                                  2.0 * kPi * (j + 1) / res_phi, sub);
+      total +=
+          integrate_pdf_cell(brdf, wo, -1.0 + 2.0 * i / res_theta, -1.0 + 2.0 * (i + 1) / res_theta,
+                             2.0 * kPi * j / res_phi, 2.0 * kPi * (j + 1) / res_phi, sub);
     }
   }
   return total;
@@ -217,8 +217,9 @@ ChiSquareResult chi_square(const Brdf& brdf, const Vec3& wo, long long samples, 
   }
   for (int i = 0; i < res_theta; ++i) {
     for (int j = 0; j < res_phi; ++j) {
-      const double e = integrate_pdf_cell(
-          brdf, wo, double(i) / res_theta, double(i + 1) / res_theta, 2.0 * kPi * j / res_phi, 2.0 * kPi * (j + 1) / res_phi, sub);
+      const double e =
+          integrate_pdf_cell(brdf, wo, double(i) / res_theta, double(i + 1) / res_theta,
+                             2.0 * kPi * j / res_phi, 2.0 * kPi * (j + 1) / res_phi, sub);
       r.pdf_integral += e;
       expected[i * res_phi + j] = e * n;
     }

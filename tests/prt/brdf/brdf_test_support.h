@@ -44,10 +44,10 @@ struct ChiSquareResult {
   int dof = 0;
   double p_value = 0;
   long long samples = 0;
-  long long no_sample = 0;          // draws that returned pdf = 0
-  long long below_horizon = 0;      // draws with pdf > 0 but ωi·n ≤ 0 (a failure)
-  double pdf_integral = 0;          // ∫ pdf over the upper hemisphere, from the cells
-  std::string failure;              // non-empty when a cell with zero expectation was hit
+  long long no_sample = 0;      // draws that returned pdf = 0
+  long long below_horizon = 0;  // draws with pdf > 0 but ωi·n ≤ 0 (a failure)
+  double pdf_integral = 0;      // ∫ pdf over the upper hemisphere, from the cells
+  std::string failure;          // non-empty when a cell with zero expectation was hit
 };
 
 // Draws `samples` directions from brdf.sample(wo, ·) with a fixed-seed generator, bins them on a

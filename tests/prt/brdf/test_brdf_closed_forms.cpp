@@ -9,12 +9,13 @@
 #include "prt/brdf/fresnel.h"
 #include "prt/brdf/lambert.h"
 #include "prt/brdf/microfacet_distribution.h"
+#include "sh/constants.h"
 
 using namespace prt::brdf;
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using prt::sh::kPi;
 
 // ∫ g(m) dm over the upper hemisphere by the midpoint rule in (θ, φ), dm = sin θ dθ dφ.
 template <class F>
@@ -43,8 +44,8 @@ TEST_CASE("Lambert's directional albedo is its reflectance", "[brdf][closed]") {
     CHECK(a.r == Approx(0.2).epsilon(1e-12));
     CHECK(a.b == Approx(0.9).epsilon(1e-12));
     // Independently, by quadrature of f cos θi (midpoint rule, error ~1e-6 at 2000 × 16).
-    const double q = hemisphere_integral([&](const Vec3& wi) { return l.eval(wi, wo).g * wi.z; },
-                                         2000, 16);
+    const double q =
+        hemisphere_integral([&](const Vec3& wi) { return l.eval(wi, wo).g * wi.z; }, 2000, 16);
     CHECK(q == Approx(0.5).epsilon(1e-5));
   }
 }
@@ -78,8 +79,8 @@ TEST_CASE("normalised Blinn-Phong matches its closed-form normal-incidence albed
 // 512 φ steps (the α = (0.1, 0.6) lobe is narrow in φ); tolerance 2e-5.
 TEST_CASE("GGX and Beckmann distributions are normalised", "[brdf][closed]") {
   for (auto type : {NormalDistribution::kGgx, NormalDistribution::kBeckmann}) {
-    for (auto [ax, ay] : {std::pair{0.05, 0.05}, {0.2, 0.2}, {0.5, 0.5}, {1.0, 1.0},
-                          {0.1, 0.6}, {0.8, 0.3}}) {
+    for (auto [ax, ay] :
+         {std::pair{0.05, 0.05}, {0.2, 0.2}, {0.5, 0.5}, {1.0, 1.0}, {0.1, 0.6}, {0.8, 0.3}}) {
       const MicrofacetDistribution d{type, ax, ay};
       const double integral =
           hemisphere_integral([&](const Vec3& m) { return d.d(m) * m.z; }, 10000, 512);
@@ -102,8 +103,7 @@ TEST_CASE("Smith G1 closed forms satisfy the projected-area identity", "[brdf][c
         const double projected = hemisphere_integral(
             [&](const Vec3& m) { return d.d(m) * std::fmax(0.0, dot(w, m)); }, 6000, 384);
         INFO(distribution_name(type) << " alpha = (" << ax << ", " << ay << "), theta = " << deg
-                                     << ": integral " << projected << ", closed "
-                                     << w.z / d.g1(w));
+                                     << ": integral " << projected << ", closed " << w.z / d.g1(w));
         CHECK(projected == Approx(w.z / d.g1(w)).epsilon(2e-4));
       }
     }

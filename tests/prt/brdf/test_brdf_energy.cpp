@@ -8,12 +8,13 @@
 #include "brdf_test_support.h"
 #include "prt/brdf/microfacet.h"
 #include "prt/brdf/ward.h"
+#include "sh/constants.h"
 
 using namespace brdf_test;
 using namespace prt::brdf;
 
 namespace {
-constexpr double kPi = 3.14159265358979323846;
+using prt::sh::kPi;
 
 // ∫ f(ωi, ωo) cos θi dωi (red channel) by the midpoint rule in (cos θi, φi).
 double quadrature_albedo(const Brdf& b, const Vec3& wo, int n_cos, int n_phi) {

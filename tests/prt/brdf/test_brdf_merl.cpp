@@ -15,13 +15,14 @@
 #include "prt/brdf/lambert.h"
 #include "prt/brdf/merl.h"
 #include "prt/brdf/microfacet.h"
+#include "sh/constants.h"
 
 using namespace prt::brdf;
 using brdf_test::Rng;
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using prt::sh::kPi;
 constexpr int kH = 90, kD = 90, kP = 180;
 const double kScale[3] = {1.0 / 1500.0, 1.15 / 1500.0, 1.66 / 1500.0};
 
@@ -136,8 +137,8 @@ TEST_CASE("a MERL file written from an analytic model reads back exactly at cell
   for (double deg : {30.0, 60.0}) {
     const Vec3 wo = spherical_direction(std::cos(deg * kPi / 180.0), 0.3);
     const Rgb a_merl = directional_albedo(*merl, wo, 512, 5);
-    const Rgb a_ref = directional_albedo(ref.diffuse, wo, 512, 5) +
-                      directional_albedo(ref.glossy, wo, 512, 5);
+    const Rgb a_ref =
+        directional_albedo(ref.diffuse, wo, 512, 5) + directional_albedo(ref.glossy, wo, 512, 5);
     std::printf("MERL albedo at theta_o = %g: table %.5f %.5f %.5f, model %.5f %.5f %.5f\n", deg,
                 a_merl.r, a_merl.g, a_merl.b, a_ref.r, a_ref.g, a_ref.b);
     INFO("theta_o = " << deg << ": MERL " << a_merl.r << " " << a_merl.g << " " << a_merl.b

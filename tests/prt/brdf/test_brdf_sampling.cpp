@@ -6,11 +6,12 @@
 #include <catch2/catch.hpp>
 
 #include "brdf_test_support.h"
+#include "sh/constants.h"
 
 using namespace brdf_test;
 
 namespace {
-constexpr double kPi = 3.14159265358979323846;
+using prt::sh::kPi;
 }
 
 // ∫ pdf over the sphere = 1 − P(no sample). The no-sample probability is estimated from 2e5
@@ -67,8 +68,7 @@ TEST_CASE("every sampler passes a chi-square test against its pdf", "[brdf][chi2
   const double threshold = 1.0 - std::pow(1.0 - 0.01, 1.0 / tests);
   uint64_t seed = 1000;
   std::printf("chi-square: per-test threshold p >= %.3g (%d tests)\n", threshold, int(tests));
-  std::printf("%-36s %7s %9s %5s %8s %8s\n", "model", "theta_o", "chi2", "dof", "p",
-              "discarded");
+  std::printf("%-36s %7s %9s %5s %8s %8s\n", "model", "theta_o", "chi2", "dof", "p", "discarded");
   for (const NamedBrdf& m : models) {
     for (const Vec3& wo : dirs) {
       const ChiSquareResult r = chi_square(*m.brdf, wo, 1000000, ++seed, 32, 2);

@@ -9,9 +9,8 @@
 // the model has no shadowing, so its albedo can exceed k_L + k_G. Reciprocal.
 // Sampling: the diffuse lobe is cosine-weighted; the glossy lobe draws h with density
 // (s + 1)/(2π) (h·n)^s and reflects ωo about it (pdf(ωi) = that density / (4 ωo·h)); draws that
-// land below the horizon or meet a back-facing h are discarded (brdf.h). The lobe is chosen by the channel
-// means of k_L and k_G. Compiles as C++17.
-// References: [35] of docs/REFERENCES.md.
+// land below the horizon or meet a back-facing h are discarded (brdf.h). The lobe is chosen by the
+// channel means of k_L and k_G. Compiles as C++17. References: [35] of docs/REFERENCES.md.
 #pragma once
 
 #include "prt/brdf/brdf.h"

@@ -13,8 +13,8 @@
 // Sampling draws h with density D(h) h_z and reflects ωo about it:
 //   pdf(ωi) = D(h) h_z / (4 |ωo·h|).
 // Draws whose ωi falls below the horizon (or whose m faces away from ωo) are discarded (brdf.h);
-// their share grows with roughness and with grazing ωo. Roughness must lie in [0.001, 1]. Compiles as C++17.
-// References: [28], [29], [30], [31], [33], [34] of docs/REFERENCES.md.
+// their share grows with roughness and with grazing ωo. Roughness must lie in [0.001, 1]. Compiles
+// as C++17. References: [28], [29], [30], [31], [33], [34] of docs/REFERENCES.md.
 #pragma once
 
 #include "prt/brdf/brdf.h"

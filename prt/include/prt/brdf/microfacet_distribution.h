@@ -36,9 +36,7 @@ struct MicrofacetDistribution {
   double d(const Vec3& m) const;
   double lambda(const Vec3& w) const;
   double g1(const Vec3& w) const { return 1.0 / (1.0 + lambda(w)); }
-  double g2(const Vec3& wi, const Vec3& wo) const {
-    return 1.0 / (1.0 + lambda(wi) + lambda(wo));
-  }
+  double g2(const Vec3& wi, const Vec3& wo) const { return 1.0 / (1.0 + lambda(wi) + lambda(wo)); }
   // A micro-normal with density D(m) m_z over the upper hemisphere; u1, u2 in [0, 1).
   Vec3 sample_normal(double u1, double u2) const;
 };
