@@ -55,18 +55,24 @@ double reflected_normal_pdf(const MicrofacetDistribution& dist, const Vec3& wo, 
 
 BrdfSample Microfacet::sample(const Vec3& wo, double u1, double u2) const {
   if (wo.z <= 0.0) return {};
-  const Vec3 m = dist_.sample_normal(u1, u2);
+  const bool visible = params_.distribution == NormalDistribution::kGgx;
+  const Vec3 m = visible ? dist_.sample_visible_normal(wo, u1, u2) : dist_.sample_normal(u1, u2);
   if (dot(wo, m) <= 0.0) return {};  // a back-facing micro-normal: no sample
   BrdfSample s;
   s.wi = reflect(wo, m);
   if (s.wi.z <= 0.0) return {};  // below the horizon: discarded
-  s.pdf = reflected_normal_pdf(dist_, wo, s.wi);
+  s.pdf = pdf(wo, s.wi);
   s.f = eval(s.wi, wo);
   return s;
 }
 
 double Microfacet::pdf(const Vec3& wo, const Vec3& wi) const {
-  return reflected_normal_pdf(dist_, wo, wi);
+  if (params_.distribution != NormalDistribution::kGgx) return reflected_normal_pdf(dist_, wo, wi);
+  // Visible normals: D_ωo(h) / (4 ωo·h) = G1(ωo) D(h) / (4 ωo_z).
+  if (wo.z <= 0.0 || wi.z <= 0.0) return 0.0;
+  const Vec3 sum = wi + wo;
+  if (dot(sum, sum) <= 1e-24) return 0.0;
+  return dist_.g1(wo) * dist_.d(normalize(sum)) / (4.0 * wo.z);
 }
 
 }  // namespace prt::brdf

@@ -53,4 +53,22 @@ Vec3 MicrofacetDistribution::sample_normal(double u1, double u2) const {
   return {sin_t * cx, sin_t * cy, cos_t};
 }
 
+Vec3 MicrofacetDistribution::sample_visible_normal(const Vec3& wo, double u1, double u2) const {
+  // In the stretched configuration (α = 1) the visible normals are those of a hemisphere seen
+  // from v: uniform on its projected disc, which is the unit disc with its far half squashed
+  // onto the visible ellipse.
+  const Vec3 v = normalize({alpha_x * wo.x, alpha_y * wo.y, wo.z});
+  const double len2 = v.x * v.x + v.y * v.y;
+  const Vec3 t1 = len2 > 0.0 ? (1.0 / std::sqrt(len2)) * Vec3{-v.y, v.x, 0.0} : Vec3{1.0, 0.0, 0.0};
+  const Vec3 t2{v.y * t1.z - v.z * t1.y, v.z * t1.x - v.x * t1.z, v.x * t1.y - v.y * t1.x};
+  const double r = std::sqrt(u1), phi = 2.0 * kPi * u2;
+  const double p1 = r * std::cos(phi);
+  const double s = 0.5 * (1.0 + v.z);
+  const double p2 = (1.0 - s) * std::sqrt(std::fmax(0.0, 1.0 - p1 * p1)) + s * r * std::sin(phi);
+  const double pz = std::sqrt(std::fmax(0.0, 1.0 - p1 * p1 - p2 * p2));
+  const Vec3 n = p1 * t1 + p2 * t2 + pz * v;
+  // Unstretch.
+  return normalize({alpha_x * n.x, alpha_y * n.y, std::fmax(1e-12, n.z)});
+}
+
 }  // namespace prt::brdf

@@ -10,11 +10,13 @@
 // Frame and conventions: prt/brdf/brdf.h. Single scattering only: light that bounces more
 // than once between microfacets is lost, so the albedo falls below 1 at high roughness even
 // with F = 1 (measured in docs/BRDF.md). Reciprocal.
-// Sampling draws h with density D(h) h_z and reflects ωo about it:
-//   pdf(ωi) = D(h) h_z / (4 |ωo·h|).
+// Sampling reflects ωo about a sampled micro-normal. GGX samples the normals visible from ωo
+// [42]: pdf(ωi) = G1(ωo) D(h) / (4 cos θo), so f cos θi / pdf = F G2/G1(ωo) ≤ 1. Beckmann (no
+// closed-form visible-normal sampler) draws h with density D(h) h_z: pdf(ωi) = D(h) h_z /
+// (4 ωo·h), whose weights grow at grazing ωo (docs/BRDF.md compares the two).
 // Draws whose ωi falls below the horizon (or whose m faces away from ωo) are discarded (brdf.h);
 // their share grows with roughness and with grazing ωo. Roughness must lie in [0.001, 1]. Compiles
-// as C++17. References: [28], [29], [30], [31], [33], [34] of docs/REFERENCES.md.
+// as C++17. References: [28]-[31], [33], [34], [42] of docs/REFERENCES.md.
 #pragma once
 
 #include "prt/brdf/brdf.h"

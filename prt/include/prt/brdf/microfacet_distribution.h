@@ -14,9 +14,12 @@
 // G2(ωi, ωo) = 1/(1 + Λ(ωi) + Λ(ωo)) [31]. Both satisfy the projected-area identity
 // ∫ D(m) max(0, ω·m) dm = ω_z (1 + Λ(ω)), which the tests check by quadrature.
 // sample_normal() draws m with density D(m) m_z in solid angle (the classic "sample D cos"
-// scheme, not visible normals; a reflected ωi can therefore fall below the horizon).
+// scheme [30]). sample_visible_normal() (GGX only) draws from the distribution of normals
+// visible from ωo, D_ωo(m) = G1(ωo) max(0, ωo·m) D(m) / ωo_z, by Heitz's 2018 method [42]:
+// never a back-facing m, and reflecting ωo about it gives ωi the bounded density
+// G1(ωo) D(h) / (4 ωo_z).
 // Compiles as C++17.
-// References: [29], [30], [31], [32] of docs/REFERENCES.md.
+// References: [29], [30], [31], [32], [42] of docs/REFERENCES.md.
 #pragma once
 
 #include "prt/brdf/vec3.h"
@@ -39,6 +42,8 @@ struct MicrofacetDistribution {
   double g2(const Vec3& wi, const Vec3& wo) const { return 1.0 / (1.0 + lambda(wi) + lambda(wo)); }
   // A micro-normal with density D(m) m_z over the upper hemisphere; u1, u2 in [0, 1).
   Vec3 sample_normal(double u1, double u2) const;
+  // GGX only: a micro-normal with density D_ωo(m) (above); wo must be above the horizon.
+  Vec3 sample_visible_normal(const Vec3& wo, double u1, double u2) const;
 };
 
 }  // namespace prt::brdf
