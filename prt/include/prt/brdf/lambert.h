@@ -1,0 +1,35 @@
+// prt/brdf/lambert.h — the Lambertian (ideal diffuse) BRDF: f = ρ/π.
+//
+// Frame and conventions: prt/brdf/brdf.h. ρ is the linear-RGB reflectance, each channel in
+// [0, 1]; the directional albedo is exactly ρ for every ωo above the horizon. Sampling is
+// cosine-weighted over the upper hemisphere (pdf = cos θi / π), so no sample goes below the
+// horizon and f cos θi / pdf = ρ exactly. Reciprocal. Compiles as C++17.
+#pragma once
+
+#include "prt/brdf/brdf.h"
+#include "prt/status.h"
+
+namespace prt::brdf {
+
+class Lambert final : public Brdf {
+ public:
+  // Refuses a channel that is NaN, negative or above 1.
+  static Result<Lambert> create(const Rgb& reflectance);
+
+  Rgb eval(const Vec3& wi, const Vec3& wo) const override;
+  BrdfSample sample(const Vec3& wo, double u1, double u2) const override;
+  double pdf(const Vec3& wo, const Vec3& wi) const override;
+  bool reciprocal() const override { return true; }
+
+  const Rgb& reflectance() const { return rho_; }
+
+ private:
+  explicit Lambert(const Rgb& rho) : rho_(rho) {}
+  Rgb rho_;
+};
+
+// Cosine-weighted direction on the upper hemisphere (Malley's method: uniform on the disc,
+// projected up); its pdf is cos θ / π.
+Vec3 sample_cosine_hemisphere(double u1, double u2);
+
+}  // namespace prt::brdf

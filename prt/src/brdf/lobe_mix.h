@@ -1,0 +1,26 @@
+// Choosing between a diffuse and a glossy lobe with one uniform number (internal header).
+#pragma once
+
+#include "prt/brdf/vec3.h"
+
+namespace prt::brdf::detail {
+
+// Probability of sampling the diffuse lobe: proportional to the channel means of the two
+// weights (0.5 when both are zero).
+inline double diffuse_probability(const Rgb& diffuse, const Rgb& glossy) {
+  const double d = channel_mean(diffuse), g = channel_mean(glossy);
+  return d + g > 0.0 ? d / (d + g) : 0.5;
+}
+
+// Picks a lobe with u and rescales u to [0, 1) within it. Returns true for the diffuse lobe.
+inline bool pick_diffuse(double p_diffuse, double& u) {
+  if (u < p_diffuse) {
+    u = u / p_diffuse;
+    return true;
+  }
+  u = (u - p_diffuse) / (1.0 - p_diffuse);
+  if (u >= 1.0) u = 0x1.fffffffffffffp-1;
+  return false;
+}
+
+}  // namespace prt::brdf::detail
