@@ -89,16 +89,17 @@ void run(const RadiosityArguments& args) {
   const radiosity::EnergyAccount& e = solution.energy;
   const double emitted = e.emitted.x + e.emitted.y + e.emitted.z;
   const auto share = [&](const glm::dvec3& v) { return (v.x + v.y + v.z) / emitted; };
-  std::printf("%zu patches, %zu vertices; form factors %.2f s, solve %.2f s (%zu %s%s), "
-              "render %.2f s\n",
-              s.patches, s.vertices, s.form_factor_seconds, s.solve_seconds, solution.iterations,
-              args.solver == "progressive" ? "shots" : "sweeps",
-              solution.converged ? "" : ", NOT converged: raise --max-iterations",
-              s.render_seconds);
-  std::printf("unshot power %.3g of emitted; absorbed %.6f, escaped %.6f; balance error %.2g; "
-              "exposure %+.2f EV\n",
-              solution.relative_unshot, share(e.absorbed), share(e.escaped),
-              e.balance_error(), double(s.exposure_ev));
+  std::printf(
+      "%zu patches, %zu vertices; form factors %.2f s, solve %.2f s (%zu %s%s), "
+      "render %.2f s\n",
+      s.patches, s.vertices, s.form_factor_seconds, s.solve_seconds, solution.iterations,
+      args.solver == "progressive" ? "shots" : "sweeps",
+      solution.converged ? "" : ", NOT converged: raise --max-iterations", s.render_seconds);
+  std::printf(
+      "unshot power %.3g of emitted; absorbed %.6f, escaped %.6f; balance error %.2g; "
+      "exposure %+.2f EV\n",
+      solution.relative_unshot, share(e.absorbed), share(e.escaped), e.balance_error(),
+      double(s.exposure_ev));
   std::printf("wrote:");
   for (const std::string& file : s.files_written) std::printf(" %s", file.c_str());
   std::printf("\n");
@@ -109,7 +110,8 @@ void register_radiosity(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand(
       "radiosity", "Light a scene by its own emitters (diffuse radiosity) and render it");
   cmd->add_option("scene", args->scene, "Scene (.glb, .gltf, .obj)")->required();
-  cmd->add_option("-o,--output", args->output, "Image to write: .exr/.hdr linear, .png tone mapped");
+  cmd->add_option("-o,--output", args->output,
+                  "Image to write: .exr/.hdr linear, .png tone mapped");
   cmd->add_option("--vertex-colors", args->vertex_colors,
                   "Also write a .glb with COLOR_0 = exit radiance (linear)");
   cmd->add_option("--csv", args->csv, "Also write index,x,y,z,r,g,b per vertex");
@@ -128,10 +130,12 @@ void register_radiosity(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--rays", args->rays, "Rays per patch for --form-factors rays")
       ->capture_default_str();
-  cmd->add_option("--quadrature", args->quadrature,
-                  "Analytic form factors: points per sending patch (1 or 3), one visibility ray each")
+  cmd->add_option(
+         "--quadrature", args->quadrature,
+         "Analytic form factors: points per sending patch (1 or 3), one visibility ray each")
       ->capture_default_str();
-  cmd->add_option("--exposure", args->exposure, "Exposure in EV for PNG output (default: automatic)");
+  cmd->add_option("--exposure", args->exposure,
+                  "Exposure in EV for PNG output (default: automatic)");
   cmd->add_option("--size", args->size, "Image size WIDTHxHEIGHT")->capture_default_str();
   cmd->add_option("--spp", args->spp, "N: N×N stratified samples per pixel")->capture_default_str();
   cmd->add_option("--camera", args->camera, "auto | NAME | ex,ey,ez,tx,ty,tz,ux,uy,uz,fov_deg")

@@ -137,8 +137,8 @@ double polygon_polygon_form_factor(const std::vector<glm::dvec3>& a,
   return area > 0.0 ? weighted / area : 0.0;
 }
 
-void form_factor_row(const std::vector<Patch>& patches, const scene::RayCaster& caster,
-                     uint32_t i, const FormFactorOptions& options, std::vector<float>* row) {
+void form_factor_row(const std::vector<Patch>& patches, const scene::RayCaster& caster, uint32_t i,
+                     const FormFactorOptions& options, std::vector<float>* row) {
   row->assign(patches.size(), 0.f);
   if (options.method == FormFactorMethod::Analytic) {
     if (options.quadrature_points != 1 && options.quadrature_points != 3)

@@ -30,9 +30,9 @@ void apply(scene::Scene& scene, const std::vector<MaterialValue>& values, const 
     for (scene::ScenePrimitive& p : scene.primitives)
       if (p.material == value.material) found = true, set(p, value.rgb);
     if (!found)
-      throw std::invalid_argument(std::string(option) + " " + value.material + ": no primitive of " +
-                                  scene.source_path + " uses this material (materials: " +
-                                  material_list(scene) + ")");
+      throw std::invalid_argument(std::string(option) + " " + value.material +
+                                  ": no primitive of " + scene.source_path +
+                                  " uses this material (materials: " + material_list(scene) + ")");
   }
 }
 
@@ -88,14 +88,14 @@ void check_materials(const scene::Scene& scene) {
         throw std::invalid_argument(where + "emission " + describe(p.emission) +
                                     " must be finite and non-negative");
       if (!std::isfinite(p.albedo[c]) || p.albedo[c] < 0.f || p.albedo[c] > 1.f)
-        throw std::invalid_argument(where + "albedo " + describe(p.albedo) +
-                                    " must be in [0, 1]");
+        throw std::invalid_argument(where + "albedo " + describe(p.albedo) + " must be in [0, 1]");
     }
     for (uint32_t v = 0; v < p.vertex_count && p.first_vertex + v < scene.albedo.size(); ++v) {
       const glm::vec3 a = scene.albedo[p.first_vertex + v];
       for (int c = 0; c < 3; ++c)
         if (!std::isfinite(a[c]) || a[c] < 0.f || a[c] > 1.f)
-          throw std::invalid_argument(where + "vertex albedo " + describe(a) + " must be in [0, 1]");
+          throw std::invalid_argument(where + "vertex albedo " + describe(a) +
+                                      " must be in [0, 1]");
     }
   }
 }

@@ -11,7 +11,9 @@
 namespace prt::radiosity {
 namespace {
 
-double channel_sum(const glm::dvec3& v) { return v.x + v.y + v.z; }
+double channel_sum(const glm::dvec3& v) {
+  return v.x + v.y + v.z;
+}
 
 double emitted_power(const std::vector<Patch>& patches) {
   double total = 0.0;
@@ -109,14 +111,37 @@ glm::dvec3 ambient(const std::vector<Patch>& patches, const std::vector<glm::dve
   return out;
 }
 
+// Computes the missing row of `shooter` and, in parallel with it, those of the next patches by
+// unshot power that have none yet (they are likely to shoot soon). A row does not depend on
+// which others are computed, so the result does not depend on the batch or the thread count.
+std::size_t compute_rows(const std::vector<Patch>& patches, const scene::RayCaster& caster,
+                         const FormFactorOptions& ff_options, const std::vector<glm::dvec3>& unshot,
+                         std::size_t shooter, std::vector<std::vector<float>>* rows) {
+  constexpr std::size_t kBatch = 16;
+  std::vector<std::pair<double, std::size_t>> waiting;
+  for (std::size_t i = 0; i < patches.size(); ++i)
+    if (i != shooter && (*rows)[i].empty() && channel_sum(unshot[i]) > 0.0)
+      waiting.emplace_back(-patches[i].area * channel_sum(unshot[i]), i);
+  const std::size_t extra = std::min(kBatch - 1, waiting.size());
+  std::partial_sort(waiting.begin(), waiting.begin() + static_cast<std::ptrdiff_t>(extra),
+                    waiting.end());
+  std::vector<std::size_t> batch{shooter};
+  for (std::size_t k = 0; k < extra; ++k) batch.push_back(waiting[k].second);
+  tbb::parallel_for(std::size_t(0), batch.size(), [&](std::size_t k) {
+    form_factor_row(patches, caster, static_cast<uint32_t>(batch[k]), ff_options,
+                    &(*rows)[batch[k]]);
+  });
+  return batch.size();
+}
+
 }  // namespace
 
 double EnergyAccount::balance_error() const {
   double worst = 0.0;
   for (int c = 0; c < 3; ++c)
     if (emitted[c] > 0.0)
-      worst = std::max(worst,
-                       std::abs(emitted[c] - absorbed[c] - escaped[c] - unshot[c]) / emitted[c]);
+      worst =
+          std::max(worst, std::abs(emitted[c] - absorbed[c] - escaped[c] - unshot[c]) / emitted[c]);
   return worst;
 }
 
@@ -135,8 +160,8 @@ EnergyAccount energy_account(const std::vector<Patch>& patches, const FormFactor
   for (std::size_t j = 0; j < n; ++j) {
     account.absorbed += (glm::dvec3(1.0) - patches[j].albedo) * arrived[j];
     // r_j = E_j + ρ_j·arrived_j/A_j − L_j, weighted by A_j
-    account.unshot += patches[j].area * (patches[j].emission - radiance[j]) +
-                      patches[j].albedo * arrived[j];
+    account.unshot +=
+        patches[j].area * (patches[j].emission - radiance[j]) + patches[j].albedo * arrived[j];
   }
   return account;
 }
@@ -181,7 +206,7 @@ Solution solve_progressive(const std::vector<Patch>& patches, const scene::RayCa
     s.energy.emitted += patches[i].area * patches[i].emission;
   }
   std::vector<std::vector<float>> rows(n);
-  std::vector<double> row_sums(n, 0.0);
+  std::vector<double> row_sums(n, -1.0);  // −1: not summed yet
   EnergyMonitor monitor(emitted);
   for (;;) {
     double total = 0.0, best = -1.0;
@@ -199,10 +224,11 @@ Solution solve_progressive(const std::vector<Patch>& patches, const scene::RayCa
       break;
     }
     if (s.iterations >= options.max_iterations) break;
-    if (rows[shooter].empty()) {
-      form_factor_row(patches, caster, static_cast<uint32_t>(shooter), ff_options, &rows[shooter]);
+    if (rows[shooter].empty())
+      s.rows_computed += compute_rows(patches, caster, ff_options, unshot, shooter, &rows);
+    if (row_sums[shooter] < 0.0) {
+      row_sums[shooter] = 0.0;
       for (float v : rows[shooter]) row_sums[shooter] += v;
-      ++s.rows_computed;
     }
     const glm::dvec3 power = patches[shooter].area * unshot[shooter];
     unshot[shooter] = glm::dvec3(0.0);

@@ -17,7 +17,9 @@ namespace prt::relight {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+double since(Clock::time_point t) {
+  return std::chrono::duration<double>(Clock::now() - t).count();
+}
 
 std::string extension_of(const std::string& path) {
   std::string ext = std::filesystem::path(path).extension().string();
@@ -64,9 +66,10 @@ scene::Scene prepare_scene(const RadiosityRequest& r) {
   for (const scene::ScenePrimitive& p : scene.primitives)
     emits = emits || (p.triangle_count > 0 && p.emission != glm::vec3(0.f));
   if (!emits)
-    throw std::runtime_error(r.scene_path +
-                             ": nothing emits light (give a material glTF emissiveFactor or OBJ Ke, "
-                             "or --emission MATERIAL=r,g,b)");
+    throw std::runtime_error(
+        r.scene_path +
+        ": nothing emits light (give a material glTF emissiveFactor or OBJ Ke, "
+        "or --emission MATERIAL=r,g,b)");
   if (r.max_edge) scene = scene::subdivide_to_edge_length(scene, *r.max_edge);
   return scene;
 }
@@ -80,8 +83,8 @@ void solve(const RadiosityRequest& r, const std::vector<radiosity::Patch>& patch
     return;
   }
   Clock::time_point t = Clock::now();
-  const radiosity::FormFactorMatrix f = radiosity::compute_form_factors(patches, caster,
-                                                                        r.form_factors);
+  const radiosity::FormFactorMatrix f =
+      radiosity::compute_form_factors(patches, caster, r.form_factors);
   summary->form_factor_seconds = since(t);
   t = Clock::now();
   summary->solution = radiosity::solve_matrix(patches, f, r.solve);
@@ -127,7 +130,8 @@ RadiositySummary run_radiosity(const RadiosityRequest& r) {
 
   if (!r.output_path.empty()) {
     const Clock::time_point t = Clock::now();
-    const Image image = render(scene, caster, radiance, nullptr, kIdentityRotation, camera, r.render);
+    const Image image =
+        render(scene, caster, radiance, nullptr, kIdentityRotation, camera, r.render);
     summary.render_seconds = since(t);
     summary.exposure_ev = r.exposure_ev ? *r.exposure_ev : automatic_exposure_ev(image);
     write_rendered_image(r.output_path, image, summary.exposure_ev);

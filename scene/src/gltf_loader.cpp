@@ -299,7 +299,8 @@ class GltfReader {
       if (!known_albedo) ++defaulted_albedo_primitives_;
       if (primitive.material >= 0 &&
           primitive.material < static_cast<int>(model_.materials.size())) {
-        const tinygltf::Material& m = model_.materials[static_cast<std::size_t>(primitive.material)];
+        const tinygltf::Material& m =
+            model_.materials[static_cast<std::size_t>(primitive.material)];
         out.material = m.name;
         out.emission = gltf_emission(m);
       }

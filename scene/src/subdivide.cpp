@@ -13,8 +13,7 @@ namespace {
 
 int split_count(const Scene& scene, const glm::uvec3& t, double max_edge) {
   const glm::dvec3 a(scene.positions[t.x]), b(scene.positions[t.y]), c(scene.positions[t.z]);
-  const double longest =
-      std::max({glm::length(b - a), glm::length(c - b), glm::length(a - c)});
+  const double longest = std::max({glm::length(b - a), glm::length(c - b), glm::length(a - c)});
   return std::max(1, static_cast<int>(std::ceil(longest / max_edge - 1e-9)));
 }
 
@@ -33,7 +32,8 @@ class PrimitiveSplitter {
     for (int j = 0; j < n; ++j) {
       for (int i = 0; i + j < n; ++i) {
         out_.triangles.emplace_back(id(i, j), id(i + 1, j), id(i, j + 1));
-        if (i + j < n - 1) out_.triangles.emplace_back(id(i + 1, j), id(i + 1, j + 1), id(i, j + 1));
+        if (i + j < n - 1)
+          out_.triangles.emplace_back(id(i + 1, j), id(i + 1, j + 1), id(i, j + 1));
       }
     }
   }

@@ -33,17 +33,20 @@ inline void append(scene::Scene& scene, scene::Scene part, const std::string& ma
 // (facing −z) or perpendicular in x = 0 (facing +x) sharing A's edge x = 0.
 inline scene::Scene two_squares(bool perpendicular, int segments = 1) {
   scene::Scene s;
-  append(s, scene::make_quad({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, segments, segments, glm::vec3(0.5f),
-                             "A"),
-         "a");
+  append(
+      s,
+      scene::make_quad({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, segments, segments, glm::vec3(0.5f), "A"),
+      "a");
   if (perpendicular)
-    append(s, scene::make_quad({0, 0, 0}, {0, 1, 0}, {0, 0, 1}, segments, segments,
-                               glm::vec3(0.5f), "B"),
-           "b");
+    append(
+        s,
+        scene::make_quad({0, 0, 0}, {0, 1, 0}, {0, 0, 1}, segments, segments, glm::vec3(0.5f), "B"),
+        "b");
   else
-    append(s, scene::make_quad({0, 0, 1}, {0, 1, 0}, {1, 0, 0}, segments, segments,
-                               glm::vec3(0.5f), "B"),
-           "b");
+    append(
+        s,
+        scene::make_quad({0, 0, 1}, {0, 1, 0}, {1, 0, 0}, segments, segments, glm::vec3(0.5f), "B"),
+        "b");
   return s;
 }
 

@@ -3,8 +3,8 @@
 #include <cmath>
 #include <vector>
 
-#include <catch2/catch.hpp>
 #include <tbb/global_control.h>
+#include <catch2/catch.hpp>
 
 #include "radiosity/form_factors.h"
 #include "radiosity/patches.h"
@@ -77,7 +77,8 @@ TEST_CASE("analytic patch-to-patch form factors match the closed forms to 1e-4",
 
 TEST_CASE("reciprocity: A_i F_ij = A_j F_ji for patches of different sizes",
           "[radiosity][form-factors]") {
-  const std::vector<glm::dvec3> small = {{0.2, 0.1, 0}, {0.7, 0.1, 0}, {0.7, 0.5, 0}, {0.2, 0.5, 0}};
+  const std::vector<glm::dvec3> small = {
+      {0.2, 0.1, 0}, {0.7, 0.1, 0}, {0.7, 0.5, 0}, {0.2, 0.5, 0}};
   const std::vector<glm::dvec3> tall = {{0, 0, 0.2}, {0, 1, 0.2}, {0, 1, 1.5}, {0, 0, 1.5}};
   // tall faces +x (toward small), small faces +z.
   const double a_small = 0.5 * 0.4, a_tall = 1.3;
@@ -165,7 +166,8 @@ TEST_CASE("in a closed box every row of F sums to 1 and F is reciprocal up to qu
   CHECK(e1 > 3 * e3);
 }
 
-TEST_CASE("ray form factors are reciprocal up to their sampling noise", "[radiosity][form-factors]") {
+TEST_CASE("ray form factors are reciprocal up to their sampling noise",
+          "[radiosity][form-factors]") {
   // One patch per face pair-triangle of a 1 × 1.5 × 2 box (12 patches, F ~ 0.02..0.3):
   // 200000 rays per patch give a relative standard error of ~1% on the smallest entries.
   const prt::scene::Scene box =

@@ -37,8 +37,8 @@ fs::path scratch(const std::string& name) {
 // Runs `prt radiosity ARGS` with stdout and stderr captured in files of `dir`.
 RunResult run(const fs::path& dir, const std::string& args) {
   const fs::path out = dir / "stdout.txt", err = dir / "stderr.txt";
-  const std::string command = std::string(PRT_CLI_PATH) + " radiosity " + args + " >" +
-                              out.string() + " 2>" + err.string();
+  const std::string command =
+      std::string(PRT_CLI_PATH) + " radiosity " + args + " >" + out.string() + " 2>" + err.string();
   const int status = std::system(command.c_str());
   RunResult r{status == -1 ? -1 : WEXITSTATUS(status), slurp(out), slurp(err)};
   fs::remove(out);
@@ -50,19 +50,20 @@ RunResult run(const fs::path& dir, const std::string& args) {
 // `lamp_ke`), white walls of albedo `white_kd`; `closed` adds the front wall.
 fs::path write_room(const fs::path& dir, const std::string& lamp_ke, const std::string& white_kd,
                     bool closed) {
-  std::ofstream(dir / "room.mtl") << "newmtl white\nKd " << white_kd << "\nnewmtl lamp\nKd 0.5 0.5 0.5\n"
+  std::ofstream(dir / "room.mtl") << "newmtl white\nKd " << white_kd
+                                  << "\nnewmtl lamp\nKd 0.5 0.5 0.5\n"
                                   << (lamp_ke.empty() ? "" : "Ke " + lamp_ke + "\n");
   std::ofstream obj(dir / "room.obj");
   obj << "mtllib room.mtl\n"
          "v 0 0 0\nv 1 0 0\nv 1 0 1\nv 0 0 1\nv 0 1 0\nv 1 1 0\nv 1 1 1\nv 0 1 1\n"
          "v 0.4 0.99 0.4\nv 0.6 0.99 0.4\nv 0.6 0.99 0.6\nv 0.4 0.99 0.6\n"
          "o walls\nusemtl white\n"
-         "f 1 4 3 2\n"   // floor, facing +y
-         "f 5 6 7 8\n"   // ceiling, facing -y
-         "f 1 5 8 4\n"   // x = 0, facing +x
-         "f 2 3 7 6\n"   // x = 1, facing -x
-         "f 4 8 7 3\n";  // z = 1, facing -z
-  if (closed) obj << "f 1 2 6 5\n";  // z = 0, facing +z
+         "f 1 4 3 2\n"                           // floor, facing +y
+         "f 5 6 7 8\n"                           // ceiling, facing -y
+         "f 1 5 8 4\n"                           // x = 0, facing +x
+         "f 2 3 7 6\n"                           // x = 1, facing -x
+         "f 4 8 7 3\n";                          // z = 1, facing -z
+  if (closed) obj << "f 1 2 6 5\n";              // z = 0, facing +z
   obj << "o lamp\nusemtl lamp\nf 9 10 11 12\n";  // facing -y
   return dir / "room.obj";
 }
@@ -113,9 +114,9 @@ TEST_CASE("prt radiosity lights a room from its lamp: CSV radiance and energy su
           "[radiosity][cli]") {
   const fs::path dir = scratch("room");
   const std::string room = write_room(dir, "5 5 5", "0.7 0.5 0.3", false).string();
-  const RunResult r = run(dir, room + " --max-edge 0.2 --tolerance 1e-8 --csv " +
-                                   (dir / "out.csv").string() + " -o " +
-                                   (dir / "out.exr").string() + " --size 64x48 --spp 1");
+  const RunResult r =
+      run(dir, room + " --max-edge 0.2 --tolerance 1e-8 --csv " + (dir / "out.csv").string() +
+                   " -o " + (dir / "out.exr").string() + " --size 64x48 --spp 1");
   INFO(r.err);
   REQUIRE(r.exit_code == 0);
   CHECK(r.out.find("balance error") != std::string::npos);

@@ -39,12 +39,13 @@ TEST_CASE("subdivision keeps area, orientation and the original vertices; edges 
   const prt::scene::Scene fine = prt::scene::subdivide_to_edge_length(box, 0.4);
   CHECK(fine.triangles.size() > 10 * box.triangles.size());
   CHECK(total_area(fine) == Approx(total_area(box)).epsilon(1e-6));
-  for (std::size_t v = 0; v < box.positions.size(); ++v) CHECK(fine.positions[v] == box.positions[v]);
+  for (std::size_t v = 0; v < box.positions.size(); ++v)
+    CHECK(fine.positions[v] == box.positions[v]);
   double longest = 0.0;
   for (const glm::uvec3& t : fine.triangles)
     for (int k = 0; k < 3; ++k)
-      longest = std::max(longest, double(glm::length(fine.positions[t[k]] -
-                                                      fine.positions[t[(k + 1) % 3]])));
+      longest = std::max(
+          longest, double(glm::length(fine.positions[t[k]] - fine.positions[t[(k + 1) % 3]])));
   CHECK(longest <= 0.4 * (1 + 1e-6));
   // Every sub-triangle faces the way its vertex normals (the original face's) point.
   const std::vector<Patch> patches = make_patches(fine);
@@ -85,6 +86,34 @@ TEST_CASE("OBJ Ke is read as emission; MATERIAL=r,g,b overrides it", "[radiosity
                     Catch::Contains("no primitive") && Catch::Contains("lamp, wall"));
 }
 
+TEST_CASE("glTF emission is emissiveFactor times KHR_materials_emissive_strength",
+          "[radiosity][scene]") {
+  const float xyz[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+  {
+    std::ofstream bin(std::string(PRT_TEST_OUTPUT_DIR) + "/emissive.bin", std::ios::binary);
+    bin.write(reinterpret_cast<const char*>(xyz), sizeof xyz);
+  }
+  const std::string gltf = write_text(
+      "emissive.gltf",
+      R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0,1]}],
+ "nodes":[{"mesh":0},{"mesh":1}],
+ "meshes":[{"primitives":[{"attributes":{"POSITION":0},"material":0}]},
+           {"primitives":[{"attributes":{"POSITION":0},"material":1}]}],
+ "materials":[{"name":"lamp","emissiveFactor":[1,0.5,0.25],
+               "extensions":{"KHR_materials_emissive_strength":{"emissiveStrength":8}}},
+              {"name":"plain","emissiveFactor":[0.5,0.5,0.5]}],
+ "extensionsUsed":["KHR_materials_emissive_strength"],
+ "buffers":[{"uri":"emissive.bin","byteLength":36}],
+ "bufferViews":[{"buffer":0,"byteLength":36}],
+ "accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3",
+               "min":[0,0,0],"max":[1,1,0]}]})");
+  const prt::scene::Scene scene = prt::scene::load_scene(gltf);
+  REQUIRE(scene.primitives.size() == 2);
+  CHECK(scene.primitives[0].material == "lamp");
+  CHECK(scene.primitives[0].emission == glm::vec3(8.f, 4.f, 2.f));
+  CHECK(scene.primitives[1].emission == glm::vec3(0.5f));
+}
+
 TEST_CASE("bad emission and albedo values are refused with one line", "[radiosity][scene]") {
   for (const char* text : {"light=-1,0,0", "light=nan", "light=inf,1,1", "light=1,2", "=1",
                            "light=", "light", "light=1,x,2"})
@@ -93,8 +122,8 @@ TEST_CASE("bad emission and albedo values are refused with one line", "[radiosit
       prt::scene::make_quad({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, 1, 1, glm::vec3(0.5f));
   scene.source_path = "quad.obj";
   scene.primitives[0].emission = glm::vec3(1.f, -0.5f, 0.f);
-  CHECK_THROWS_WITH(check_materials(scene), Catch::Contains("quad.obj") &&
-                                                Catch::Contains("emission"));
+  CHECK_THROWS_WITH(check_materials(scene),
+                    Catch::Contains("quad.obj") && Catch::Contains("emission"));
   scene.primitives[0].emission = glm::vec3(1.f, std::nanf(""), 0.f);
   CHECK_THROWS_AS(check_materials(scene), std::invalid_argument);
   scene.primitives[0].emission = glm::vec3(1.f);

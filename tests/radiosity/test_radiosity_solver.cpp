@@ -5,8 +5,8 @@
 #include <cmath>
 #include <vector>
 
-#include <catch2/catch.hpp>
 #include <tbb/global_control.h>
+#include <catch2/catch.hpp>
 
 #include "radiosity/form_factors.h"
 #include "radiosity/patches.h"
@@ -36,16 +36,17 @@ prt::scene::Scene open_room() {
                     "white");
   prt::test::append(s, make_quad({0, 0, 0}, {0, 1, 0}, {0, 0, 1}, 4, 4, {0.7f, 0.1f, 0.1f}, "left"),
                     "red");
-  prt::test::append(s, make_quad({1, 0, 0}, {0, 0, 1}, {0, 1, 0}, 4, 4, {0.1f, 0.7f, 0.1f}, "right"),
-                    "green");
+  prt::test::append(
+      s, make_quad({1, 0, 0}, {0, 0, 1}, {0, 1, 0}, 4, 4, {0.1f, 0.7f, 0.1f}, "right"), "green");
   prt::test::append(s, make_quad({0, 0, 1}, {1, 0, 0}, {0, 1, 0}, 4, 4, glm::vec3(0.7f), "back"),
                     "white");
-  prt::test::append(s, prt::scene::make_box({0.3f, 0, 0.4f}, {0.6f, 0.4f, 0.7f}, 1, false,
-                                            glm::vec3(0.6f), "block"),
-                    "white");
-  prt::test::append(s, make_quad({0.35f, 0.9f, 0.35f}, {0.3f, 0, 0}, {0, 0, 0.3f}, 2, 2,
-                                 glm::vec3(0.5f), "lamp"),
-                    "light", glm::vec3(10.f));
+  prt::test::append(
+      s,
+      prt::scene::make_box({0.3f, 0, 0.4f}, {0.6f, 0.4f, 0.7f}, 1, false, glm::vec3(0.6f), "block"),
+      "white");
+  prt::test::append(
+      s, make_quad({0.35f, 0.9f, 0.35f}, {0.3f, 0, 0}, {0, 0, 0.3f}, 2, 2, glm::vec3(0.5f), "lamp"),
+      "light", glm::vec3(10.f));
   return s;
 }
 
@@ -182,4 +183,33 @@ TEST_CASE("solutions do not depend on the thread count", "[radiosity][solver]") 
   const Solution jacobi_one = solve_matrix(patches, compute_form_factors(patches, caster, ff), so);
   CHECK(many.radiance == one.radiance);
   CHECK(jacobi_many.radiance == jacobi_one.radiance);
+}
+
+TEST_CASE("progressive refinement's ambient term brings an early estimate closer",
+          "[radiosity][solver]") {
+  // Closed box with a lamp patch: after a few shots the unshot power is large, and the ambient
+  // term of Cohen et al. 1988 (unshot radiance spread by the mean albedo's bounce series)
+  // should cut the area-weighted error against the converged solution.
+  prt::scene::Scene box =
+      prt::scene::make_box({0, 0, 0}, {1, 1, 1}, 4, /*normals_inward=*/true, glm::vec3(0.6f));
+  const prt::scene::RayCaster caster(box);
+  std::vector<Patch> patches = make_patches(box);
+  for (Patch& p : patches)
+    if (p.centroid.y > 0.99 && std::abs(p.centroid.x - 0.5) < 0.2 &&
+        std::abs(p.centroid.z - 0.5) < 0.2)
+      p.emission = glm::dvec3(5.0);
+  SolveOptions so;
+  so.solver = SolverKind::Progressive;
+  so.tolerance = 1e-9;
+  const Solution exact = solve_progressive(patches, caster, FormFactorOptions{}, so);
+  so.max_iterations = 20;
+  const Solution early = solve_progressive(patches, caster, FormFactorOptions{}, so);
+  REQUIRE_FALSE(early.converged);
+  double plain = 0.0, with_ambient = 0.0;
+  for (std::size_t i = 0; i < patches.size(); ++i) {
+    plain += patches[i].area * std::abs(early.radiance[i].x - exact.radiance[i].x);
+    with_ambient += patches[i].area * std::abs(early.display_radiance[i].x - exact.radiance[i].x);
+  }
+  INFO("area-weighted error: without ambient " << plain << ", with " << with_ambient);
+  CHECK(with_ambient < 0.5 * plain);
 }

@@ -51,14 +51,14 @@ enum class FormFactorMethod { Analytic, Rays };
 
 struct FormFactorOptions {
   FormFactorMethod method = FormFactorMethod::Analytic;
-  int quadrature_points = 3;   // analytic: 1 (centroid) or 3 (degree-2 rule)
-  int rays_per_patch = 4096;   // rays
-  uint64_t seed = 1;           // rays
+  int quadrature_points = 3;  // analytic: 1 (centroid) or 3 (degree-2 rule)
+  int rays_per_patch = 4096;  // rays
+  uint64_t seed = 1;          // rays
 };
 
 // Row i of F (sender i), `patches.size()` floats.
-void form_factor_row(const std::vector<Patch>& patches, const scene::RayCaster& caster,
-                     uint32_t i, const FormFactorOptions& options, std::vector<float>* row);
+void form_factor_row(const std::vector<Patch>& patches, const scene::RayCaster& caster, uint32_t i,
+                     const FormFactorOptions& options, std::vector<float>* row);
 
 // The whole matrix, row-major (row i = sender i), rows computed in parallel (TBB).
 struct FormFactorMatrix {

@@ -20,10 +20,10 @@ namespace prt::radiosity {
 struct Patch {
   std::array<glm::dvec3, 3> corners;  // scene positions, in the triangle's winding
   glm::dvec3 centroid{0.0};
-  glm::dvec3 normal{0.0, 1.0, 0.0};   // unit front-face normal
+  glm::dvec3 normal{0.0, 1.0, 0.0};  // unit front-face normal
   double area = 0.0;
-  glm::dvec3 albedo{0.0};             // the mean of its corners' albedo
-  glm::dvec3 emission{0.0};           // its primitive's emission (exit radiance)
+  glm::dvec3 albedo{0.0};    // the mean of its corners' albedo
+  glm::dvec3 emission{0.0};  // its primitive's emission (exit radiance)
 };
 
 // Patch t is scene triangle t. The scene's primitives must cover its triangles (the loaders and

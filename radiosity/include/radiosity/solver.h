@@ -13,8 +13,9 @@
 //   GaussSeidel, Jacobi: iterate on the full matrix from L = E; one sweep per iteration.
 //   Progressive: repeatedly shoot the unshot radiance of the patch with the most unshot power
 //     A_i·Σ_c ΔL_i,c (ties: the lowest index), its form-factor row computed when first needed
-//     and kept. The display estimate adds the ambient term of [25]: L_i + ρ_i·L_amb with
-//     L_amb = Σ_j A_j ΔL_j / Σ_j A_j / (1 − ρ̄), ρ̄ the area-weighted mean albedo.
+//     and kept (in parallel with the rows of up to 15 further patches with the most unshot
+//     power that have none yet). The display estimate adds the ambient term of [25]: L_i +
+//     ρ_i·L_amb with L_amb = Σ_j A_j ΔL_j / Σ_j A_j / (1 − ρ̄), ρ̄ the area-weighted mean albedo.
 // Stop criterion (all three): the unshot power Σ_i A_i Σ_c r_i,c, with the residual
 // r = E + ρ·K·L − L (progressive: r = ΔL), is at most tolerance × the emitted power Σ A Σ_c E,
 // or max_iterations (sweeps; progressive: shots) is reached (Solution::converged = false).
@@ -39,7 +40,7 @@ enum class SolverKind { GaussSeidel, Jacobi, Progressive };
 
 struct SolveOptions {
   SolverKind solver = SolverKind::GaussSeidel;
-  double tolerance = 1e-6;     // relative unshot power at which to stop
+  double tolerance = 1e-6;  // relative unshot power at which to stop
   std::size_t max_iterations = 100000;
 };
 
@@ -58,10 +59,10 @@ struct Solution {
   std::vector<glm::dvec3> display_radiance;  // progressive: with the ambient term; else = radiance
   std::size_t iterations = 0;                // sweeps or shots
   bool converged = false;
-  double relative_unshot = 0.0;              // unshot / emitted power at the end
-  std::vector<double> unshot_history;        // relative unshot power after each step
+  double relative_unshot = 0.0;        // unshot / emitted power at the end
+  std::vector<double> unshot_history;  // relative unshot power after each step
   EnergyAccount energy;
-  std::size_t rows_computed = 0;             // progressive: distinct form-factor rows
+  std::size_t rows_computed = 0;  // progressive: form-factor rows computed
 };
 
 // Full-matrix solvers (GaussSeidel or Jacobi).
