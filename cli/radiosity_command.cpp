@@ -23,6 +23,7 @@ struct RadiosityArguments {
   double tolerance = 1e-4;
   int rays = 1024;
   int quadrature = 3;
+  int hemicube = 64;
   std::size_t max_iterations = 100000;
   std::optional<float> exposure;
   std::string size = "960x540";
@@ -56,8 +57,10 @@ relight::RadiosityRequest make_request(const RadiosityArguments& a) {
     r.form_factors.method = radiosity::FormFactorMethod::Analytic;
   } else if (a.form_factors == "rays") {
     r.form_factors.method = radiosity::FormFactorMethod::Rays;
+  } else if (a.form_factors == "hemicube") {
+    r.form_factors.method = radiosity::FormFactorMethod::Hemicube;
   } else {
-    throw CommandError("--form-factors " + a.form_factors + ": expected analytic|rays");
+    throw CommandError("--form-factors " + a.form_factors + ": expected analytic|rays|hemicube");
   }
   if (a.solver == "gauss-seidel") {
     r.solve.solver = radiosity::SolverKind::GaussSeidel;
@@ -70,7 +73,10 @@ relight::RadiosityRequest make_request(const RadiosityArguments& a) {
   }
   if (a.rays < 1 || a.rays > 1 << 24) throw CommandError("--rays: must be in 1..16777216");
   if (a.quadrature != 1 && a.quadrature != 3) throw CommandError("--quadrature: must be 1 or 3");
+  if (a.hemicube < 2 || a.hemicube > 4096 || a.hemicube % 2 != 0)
+    throw CommandError("--hemicube: must be even, 2..4096");
   r.form_factors.rays_per_patch = a.rays;
+  r.form_factors.hemicube_resolution = a.hemicube;
   r.form_factors.quadrature_points = a.quadrature;
   r.solve.tolerance = a.tolerance;
   r.solve.max_iterations = a.max_iterations;
@@ -120,7 +126,11 @@ void register_radiosity(CLI::App& app) {
   cmd->add_option("--albedo", args->albedo, "MATERIAL=r,g,b: albedo of a material (repeatable)");
   cmd->add_option("--max-edge", args->max_edge,
                   "Subdivide into patches with edges at most this long (scene units)");
-  cmd->add_option("--form-factors", args->form_factors, "analytic|rays")->capture_default_str();
+  cmd->add_option("--form-factors", args->form_factors, "analytic|rays|hemicube")
+      ->capture_default_str();
+  cmd->add_option("--hemicube", args->hemicube,
+                  "Cells across the hemicube's top face for --form-factors hemicube")
+      ->capture_default_str();
   cmd->add_option("--solver", args->solver, "gauss-seidel|jacobi|progressive")
       ->capture_default_str();
   cmd->add_option("--tolerance", args->tolerance,

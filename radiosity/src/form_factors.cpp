@@ -151,6 +151,8 @@ void form_factor_row(const std::vector<Patch>& patches, const scene::RayCaster& 
     for (float v : *row) sum += v;
     if (sum > 1.0)
       for (float& v : *row) v = static_cast<float>(v / sum);
+  } else if (options.method == FormFactorMethod::Hemicube) {
+    hemicube_row(patches, caster, i, options.hemicube_resolution, row);
   } else {
     if (options.rays_per_patch < 1)
       throw std::invalid_argument("form factors: rays_per_patch must be at least 1");

@@ -200,3 +200,40 @@ TEST_CASE("ray form factors do not depend on the thread count", "[radiosity][for
   }
   CHECK(many.f == one.f);
 }
+
+TEST_CASE("hemicube form factors converge to Lambert's formula at the same point",
+          "[radiosity][form-factors]") {
+  // The hemicube stands at the sender's centroid, so its reference is the exact
+  // point-to-polygon value there (not the patch-to-patch one). Its error is aliasing on the
+  // receiver's edges, O(1/R); both square configurations, both triangles of A.
+  for (bool perpendicular : {false, true}) {
+    const prt::scene::Scene scene = two_squares(perpendicular);
+    const prt::scene::RayCaster caster(scene);
+    const std::vector<Patch> patches = make_patches(scene);
+    const std::vector<glm::dvec3>& b = perpendicular ? kPerpendicular : kOpposite;
+    std::vector<double> worst;
+    for (int r : {16, 256}) {
+      double w = 0.0;
+      for (uint32_t i = 0; i < 2; ++i) {
+        std::vector<float> row;
+        hemicube_row(patches, caster, i, r, &row);
+        const double exact = point_polygon_form_factor(patches[i].centroid, patches[i].normal, b);
+        w = std::max(w, std::abs(double(row[2]) + double(row[3]) - exact));
+      }
+      worst.push_back(w);
+    }
+    INFO("hemicube error at R = 16: " << worst[0] << ", R = 256: " << worst[1]);
+    CHECK(worst[1] < 2e-3);
+    CHECK(worst[0] > 2 * worst[1]);
+  }
+  // In a closed box every cell hits a front face: rows sum to 1.
+  const prt::scene::Scene box =
+      prt::scene::make_box({0, 0, 0}, {1, 1.5, 2}, 2, /*normals_inward=*/true, glm::vec3(0.5f));
+  const prt::scene::RayCaster caster(box);
+  const std::vector<Patch> patches = make_patches(box);
+  FormFactorOptions o;
+  o.method = FormFactorMethod::Hemicube;
+  o.hemicube_resolution = 32;
+  const FormFactorMatrix f = compute_form_factors(patches, caster, o);
+  for (std::size_t i = 0; i < patches.size(); ++i) CHECK(f.row_sum(i) == Approx(1.0).margin(1e-6));
+}

@@ -15,6 +15,12 @@
 //   rays: Monte Carlo — `rays_per_patch` cosine-distributed rays leave uniformly distributed
 //     points of patch i; F_ij is the fraction whose closest hit is the front face of patch j
 //     (the estimator is unbiased, its standard error √(F(1 − F)/N)).
+//   hemicube: Cohen & Greenberg 1985 ([24]): a hemicube of `hemicube_resolution` cells across
+//     its top face (R × R/2 on each side face) around the centroid of patch i; each cell's
+//     centre is sampled by one Embree ray (the same item buffer a z-buffer would produce) and
+//     credits the patch whose front face it hits with the cell's delta form factor,
+//     ΔA / (π (u² + v² + 1)²) on top and w·ΔA / (π (u² + w² + 1)²) on the sides, normalised so
+//     the cells sum to exactly 1.
 //
 // F_ij is the fraction of the power leaving patch i that arrives at the front of patch j; patch
 // i's row is computed at i (the sender), so every row sums to at most 1 (analytic: up to float
@@ -47,18 +53,23 @@ double point_polygon_form_factor(const glm::dvec3& x, const glm::dvec3& n,
 double polygon_polygon_form_factor(const std::vector<glm::dvec3>& a,
                                    const std::vector<glm::dvec3>& b, int quadrature_steps);
 
-enum class FormFactorMethod { Analytic, Rays };
+enum class FormFactorMethod { Analytic, Rays, Hemicube };
 
 struct FormFactorOptions {
   FormFactorMethod method = FormFactorMethod::Analytic;
-  int quadrature_points = 3;  // analytic: 1 (centroid) or 3 (degree-2 rule)
-  int rays_per_patch = 4096;  // rays
-  uint64_t seed = 1;          // rays
+  int quadrature_points = 3;     // analytic: 1 (centroid) or 3 (degree-2 rule)
+  int rays_per_patch = 4096;     // rays
+  uint64_t seed = 1;             // rays
+  int hemicube_resolution = 64;  // hemicube: cells across the top face (even, 2..4096)
 };
 
 // Row i of F (sender i), `patches.size()` floats.
 void form_factor_row(const std::vector<Patch>& patches, const scene::RayCaster& caster, uint32_t i,
                      const FormFactorOptions& options, std::vector<float>* row);
+
+// The hemicube row of patch i (see above).
+void hemicube_row(const std::vector<Patch>& patches, const scene::RayCaster& caster, uint32_t i,
+                  int resolution, std::vector<float>* row);
 
 // The whole matrix, row-major (row i = sender i), rows computed in parallel (TBB).
 struct FormFactorMatrix {
