@@ -107,12 +107,17 @@ float automatic_exposure_ev(const Image& image) {
 RadiositySummary run_radiosity(const RadiosityRequest& r) {
   check_request(r);
   const scene::Scene scene = prepare_scene(r);
+  if (scene.triangles.size() > radiosity::kMaxPatches)
+    throw std::runtime_error(r.scene_path + ": " + std::to_string(scene.triangles.size()) +
+                             " patches (at most " + std::to_string(radiosity::kMaxPatches) +
+                             ": form factors are stored densely); use a longer --max-edge");
   RadiositySummary summary;
   const float aspect = float(r.render.width) / float(r.render.height);
   const Camera camera = parse_camera(r.camera, scene, aspect);
   const scene::RayCaster caster(scene);
   const std::vector<radiosity::Patch> patches = radiosity::make_patches(scene);
   summary.patches = patches.size();
+
   summary.vertices = scene.vertex_count();
   if (radiosity::has_unit_albedo(scene)) {
     summary.escape_probe = radiosity::escape_fraction(patches, caster, 64, 7);

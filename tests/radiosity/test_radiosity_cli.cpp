@@ -97,6 +97,10 @@ TEST_CASE("prt radiosity refuses bad emission, albedo and --max-edge; nothing is
   check_refused(dir, room + outputs + " --emission glass=1", "glass");
   check_refused(dir, room + outputs + " --max-edge 0", "--max-edge");
   check_refused(dir, room + outputs + " --albedo white=1.2", "albedo");
+  check_refused(dir, room + outputs + " --form-factors hemicube --hemicube 3", "--hemicube");
+  check_refused(dir, room + outputs + " --form-factors radiance", "--form-factors");
+  check_refused(dir, room + outputs + " --max-edge 0.0001", "--max-edge");  // > 2e7 triangles
+  check_refused(dir, room + outputs + " --max-edge 0.005", "patches");      // > 16384 patches
   room = write_room(dir, "-5 5 5", "0.7 0.7 0.7", false).string();
   check_refused(dir, room + outputs, "emission");
   room = write_room(dir, "", "0.7 0.7 0.7", false).string();

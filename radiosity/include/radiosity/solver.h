@@ -38,6 +38,11 @@ namespace prt::radiosity {
 
 enum class SolverKind { GaussSeidel, Jacobi, Progressive };
 
+// Every solver keeps N² floats of form factors (progressive: the rows it has computed; the
+// full-matrix solvers: F and K, 8·N² bytes). Callers refuse scenes with more patches than this
+// (8·16384² bytes = 2 GiB).
+constexpr std::size_t kMaxPatches = 16384;
+
 struct SolveOptions {
   SolverKind solver = SolverKind::GaussSeidel;
   double tolerance = 1e-6;  // relative unshot power at which to stop
