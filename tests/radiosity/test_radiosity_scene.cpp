@@ -10,6 +10,7 @@
 
 #include "radiosity/materials.h"
 #include "radiosity/patches.h"
+#include "relight/radiosity_pipeline.h"
 #include "scene/procedural_mesh.h"
 #include "scene/scene_loader.h"
 #include "scene/subdivide.h"
@@ -148,4 +149,16 @@ TEST_CASE("vertex radiance is the area-weighted mean of the patches around a ver
   CHECK(v[0] == Approx(1.0));
   CHECK(v[3 * 3] == Approx(4.0));
   CHECK(v[3 * 1] == Approx((0.5 * 1 + 1.5 * 4) / 2.0));
+}
+
+TEST_CASE("automatic exposure maps the log-average luminance of lit pixels to 0.18",
+          "[radiosity][scene]") {
+  prt::relight::Image image;
+  image.width = 4;
+  image.height = 1;
+  // Two grey pixels of luminance 0.09 and 1.44 (log-average 0.36), two black ones (ignored).
+  image.rgb = {0.09f, 0.09f, 0.09f, 1.44f, 1.44f, 1.44f, 0.f, 0.f, 0.f, 0.f, 0.f, 0.f};
+  CHECK(prt::relight::automatic_exposure_ev(image) == Approx(-1.0).margin(1e-5));
+  image.rgb.assign(12, 0.f);
+  CHECK(prt::relight::automatic_exposure_ev(image) == 0.f);
 }
