@@ -11,6 +11,8 @@ LAYERS = [  # (folder, CMake target, what it holds, third-party libraries)
     ("report/", "prt::report", "path-traced ground truth, sweeps, plots, stability suite", "nlohmann-json"),
     ("relight/", "prt::relight", "image I/O, camera, renderer, tone mapping, sky, relight pipeline",
      "OpenImageIO (plugin, on first use)"),
+    ("radiosity/", "prt::radiosity", "emitters, patches, analytic and ray form factors, radiosity solvers",
+     "TBB"),
     ("bake/", "prt::bake", "transfer baker, samplers, interreflection, Haar baker, adaptive/",
      "TBB"),
     ("scene/", "prt::scene", "scene model, glTF/OBJ loaders, GLB writer, procedural meshes, ray caster",

@@ -36,7 +36,7 @@ def functions(path):
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--limit", type=int, default=150)
-    ap.add_argument("folders", nargs="*", default=["sh", "prt", "scene", "bake", "relight", "report", "cli"])
+    ap.add_argument("folders", nargs="*", default=["sh", "prt", "scene", "bake", "radiosity", "relight", "report", "cli"])
     args = ap.parse_args()
     root = pathlib.Path(__file__).resolve().parent.parent
     found = []

@@ -1,5 +1,6 @@
 // glTF 2.0 reading through tinygltf (see gltf_loader.h and scene/scene_loader.h).
 #include "gltf_loader.h"
+#include "gltf_emission.h"
 #include "gltf_extensions.h"
 #include "scene_file_errors.h"
 
@@ -297,6 +298,13 @@ class GltfReader {
         }
       }
       if (!known_albedo) ++defaulted_albedo_primitives_;
+      if (primitive.material >= 0 &&
+          primitive.material < static_cast<int>(model_.materials.size())) {
+        const tinygltf::Material& m =
+            model_.materials[static_cast<std::size_t>(primitive.material)];
+        out.material = m.name;
+        out.emission = gltf_emission(m);
+      }
 
       for (std::size_t v = 0; v < positions.size(); ++v) {
         scene_.positions.emplace_back(glm::vec3(glm::dvec3(world * glm::dvec4(positions[v], 1.0))));

@@ -109,6 +109,9 @@ Scene read_obj_scene(const std::string& path) {
     if (material >= 0 && static_cast<std::size_t>(material) < materials.size()) {
       const tinyobj::real_t* kd = materials[static_cast<std::size_t>(material)].diffuse;
       primitive.albedo = glm::vec3(kd[0], kd[1], kd[2]);
+      const tinyobj::material_t& m = materials[static_cast<std::size_t>(material)];
+      primitive.material = m.name;
+      primitive.emission = glm::vec3(m.emission[0], m.emission[1], m.emission[2]);  // Ke
     }
     if (std::any_of(mesh.material_ids.begin(), mesh.material_ids.end(),
                     [&](int id) { return id != material; })) {

@@ -25,6 +25,10 @@ struct ScenePrimitive {
   uint32_t first_triangle = 0;  // into Scene::triangles
   uint32_t triangle_count = 0;
   glm::vec3 albedo{0.8f};  // linear RGB reflectance in [0, 1)
+  // Emitters (radiosity): the material's name ("" when none) and the exit radiance its front
+  // faces emit, linear RGB (glTF emissiveFactor × KHR_materials_emissive_strength; OBJ Ke).
+  std::string material;
+  glm::vec3 emission{0.f};
 };
 
 struct SceneCamera {

@@ -29,6 +29,11 @@
 // fallback normal), so vertex i is the file's i-th `v` (stanford-bunny.obj: 35,947 v lines,
 // 34,834 of them used, 35,947 vertices); with several shapes each keeps the entries it uses.
 //
+// Emitters (both formats): ScenePrimitive::material is the material's name and
+// ScenePrimitive::emission its emitted radiance: glTF emissiveFactor × the
+// KHR_materials_emissive_strength extension's emissiveStrength (1 when absent); OBJ Ke. Values
+// are stored as they are (consumers that use them check them).
+//
 // Both: missing normals are computed (scene/mesh_normals.h: area x angle weighting, +Y
 // fallback); degenerate triangles (repeated indices, or area <= 1e-12 * extent^2) are removed
 // and counted in Scene::skipped_degenerate_triangles; vertices keep the file's order per

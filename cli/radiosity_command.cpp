@@ -1,0 +1,161 @@
+// `prt radiosity SCENE -o OUT [...]`: light a scene by its own emitters (diffuse radiosity) and
+// render it (relight/radiosity_pipeline.h does the work).
+#include <cstdio>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+#include "command_registry.h"
+#include "relight/radiosity_pipeline.h"
+
+namespace prt::cli {
+namespace {
+
+struct RadiosityArguments {
+  std::string scene, output, vertex_colors, csv;
+  std::string form_factors = "analytic";
+  std::string solver = "gauss-seidel";
+  std::vector<std::string> emission, albedo;
+  std::optional<double> max_edge;
+  double tolerance = 1e-4;
+  int rays = 1024;
+  int quadrature = 3;
+  int hemicube = 64;
+  std::size_t max_iterations = 100000;
+  std::optional<float> exposure;
+  std::string size = "960x540";
+  int spp = 3;
+  std::string camera = "auto";
+  bool quiet = false;
+};
+
+void parse_size(const std::string& text, relight::RenderOptions* render) {
+  int w = 0, h = 0;
+  char x = 0, extra = 0;
+  if (std::sscanf(text.c_str(), "%d%c%d%c", &w, &x, &h, &extra) != 3 || (x != 'x' && x != 'X') ||
+      w < 1 || h < 1 || w > 16384 || h > 16384)
+    throw CommandError("--size " + text + ": expected WIDTHxHEIGHT, each side in 1..16384");
+  render->width = w;
+  render->height = h;
+}
+
+relight::RadiosityRequest make_request(const RadiosityArguments& a) {
+  relight::RadiosityRequest r;
+  r.scene_path = a.scene;
+  r.output_path = a.output;
+  r.vertex_colors_path = a.vertex_colors;
+  r.csv_path = a.csv;
+  for (const std::string& e : a.emission)
+    r.emission.push_back(radiosity::parse_material_value("--emission", e));
+  for (const std::string& e : a.albedo)
+    r.albedo.push_back(radiosity::parse_material_value("--albedo", e));
+  r.max_edge = a.max_edge;
+  if (a.form_factors == "analytic") {
+    r.form_factors.method = radiosity::FormFactorMethod::Analytic;
+  } else if (a.form_factors == "rays") {
+    r.form_factors.method = radiosity::FormFactorMethod::Rays;
+  } else if (a.form_factors == "hemicube") {
+    r.form_factors.method = radiosity::FormFactorMethod::Hemicube;
+  } else {
+    throw CommandError("--form-factors " + a.form_factors + ": expected analytic|rays|hemicube");
+  }
+  if (a.solver == "gauss-seidel") {
+    r.solve.solver = radiosity::SolverKind::GaussSeidel;
+  } else if (a.solver == "jacobi") {
+    r.solve.solver = radiosity::SolverKind::Jacobi;
+  } else if (a.solver == "progressive") {
+    r.solve.solver = radiosity::SolverKind::Progressive;
+  } else {
+    throw CommandError("--solver " + a.solver + ": expected gauss-seidel|jacobi|progressive");
+  }
+  if (a.rays < 1 || a.rays > 1 << 24) throw CommandError("--rays: must be in 1..16777216");
+  if (a.quadrature != 1 && a.quadrature != 3) throw CommandError("--quadrature: must be 1 or 3");
+  if (a.hemicube < 2 || a.hemicube > 4096 || a.hemicube % 2 != 0)
+    throw CommandError("--hemicube: must be even, 2..4096");
+  r.form_factors.rays_per_patch = a.rays;
+  r.form_factors.hemicube_resolution = a.hemicube;
+  r.form_factors.quadrature_points = a.quadrature;
+  r.solve.tolerance = a.tolerance;
+  r.solve.max_iterations = a.max_iterations;
+  r.exposure_ev = a.exposure;
+  parse_size(a.size, &r.render);
+  if (a.spp < 1 || a.spp > 16) throw CommandError("--spp: must be in 1..16 (N×N per pixel)");
+  r.render.samples_per_axis = a.spp;
+  r.camera = a.camera;
+  return r;
+}
+
+void run(const RadiosityArguments& args) {
+  const relight::RadiositySummary s = relight::run_radiosity(make_request(args));
+  if (args.quiet) return;
+  const radiosity::Solution& solution = s.solution;
+  const radiosity::EnergyAccount& e = solution.energy;
+  const double emitted = e.emitted.x + e.emitted.y + e.emitted.z;
+  const auto share = [&](const glm::dvec3& v) { return (v.x + v.y + v.z) / emitted; };
+  std::printf(
+      "%zu patches, %zu vertices; form factors %.2f s, solve %.2f s (%zu %s%s), "
+      "render %.2f s\n",
+      s.patches, s.vertices, s.form_factor_seconds, s.solve_seconds, solution.iterations,
+      args.solver == "progressive" ? "shots" : "sweeps",
+      solution.converged ? "" : ", NOT converged: raise --max-iterations", s.render_seconds);
+  std::printf(
+      "unshot power %.3g of emitted; absorbed %.6f, escaped %.6f; balance error %.2g; "
+      "exposure %+.2f EV\n",
+      solution.relative_unshot, share(e.absorbed), share(e.escaped), e.balance_error(),
+      double(s.exposure_ev));
+  std::printf("wrote:");
+  for (const std::string& file : s.files_written) std::printf(" %s", file.c_str());
+  std::printf("\n");
+}
+
+void register_radiosity(CLI::App& app) {
+  auto args = std::make_shared<RadiosityArguments>();
+  CLI::App* cmd = app.add_subcommand(
+      "radiosity", "Light a scene by its own emitters (diffuse radiosity) and render it");
+  cmd->add_option("scene", args->scene, "Scene (.glb, .gltf, .obj)")->required();
+  cmd->add_option("-o,--output", args->output,
+                  "Image to write: .exr/.hdr linear, .png tone mapped");
+  cmd->add_option("--vertex-colors", args->vertex_colors,
+                  "Also write a .glb with COLOR_0 = exit radiance (linear)");
+  cmd->add_option("--csv", args->csv, "Also write index,x,y,z,r,g,b per vertex");
+  cmd->add_option("--emission", args->emission,
+                  "MATERIAL=r,g,b: emitted radiance of a material (repeatable)");
+  cmd->add_option("--albedo", args->albedo, "MATERIAL=r,g,b: albedo of a material (repeatable)");
+  cmd->add_option("--max-edge", args->max_edge,
+                  "Subdivide into patches with edges at most this long (scene units)");
+  cmd->add_option("--form-factors", args->form_factors, "analytic|rays|hemicube")
+      ->capture_default_str();
+  cmd->add_option("--hemicube", args->hemicube,
+                  "Cells across the hemicube's top face for --form-factors hemicube")
+      ->capture_default_str();
+  cmd->add_option("--solver", args->solver, "gauss-seidel|jacobi|progressive")
+      ->capture_default_str();
+  cmd->add_option("--tolerance", args->tolerance,
+                  "Stop when the unshot power is this fraction of the emitted power")
+      ->capture_default_str();
+  cmd->add_option("--max-iterations", args->max_iterations, "Sweeps (progressive: shots) at most")
+      ->capture_default_str();
+  cmd->add_option("--rays", args->rays, "Rays per patch for --form-factors rays")
+      ->capture_default_str();
+  cmd->add_option(
+         "--quadrature", args->quadrature,
+         "Analytic form factors: points per sending patch (1 or 3), one visibility ray each")
+      ->capture_default_str();
+  cmd->add_option("--exposure", args->exposure,
+                  "Exposure in EV for PNG output (default: automatic)");
+  cmd->add_option("--size", args->size, "Image size WIDTHxHEIGHT")->capture_default_str();
+  cmd->add_option("--spp", args->spp, "N: N×N stratified samples per pixel")->capture_default_str();
+  cmd->add_option("--camera", args->camera, "auto | NAME | ex,ey,ez,tx,ty,tz,ux,uy,uz,fov_deg")
+      ->capture_default_str();
+  cmd->add_flag("--quiet", args->quiet, "Print nothing on success");
+  cmd->callback([args] { run(*args); });
+}
+
+}  // namespace
+
+PRT_REGISTER_COMMAND(35, register_radiosity);
+
+}  // namespace prt::cli

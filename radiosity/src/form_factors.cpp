@@ -1,0 +1,212 @@
+#include "radiosity/form_factors.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include "random.h"
+
+namespace prt::radiosity {
+namespace {
+
+// The part of `polygon` on the side n·(y − x) ≥ 0 (Sutherland–Hodgman against one plane).
+std::vector<glm::dvec3> clip_to_front(const glm::dvec3& x, const glm::dvec3& n,
+                                      const std::vector<glm::dvec3>& polygon) {
+  std::vector<glm::dvec3> out;
+  const std::size_t m = polygon.size();
+  for (std::size_t k = 0; k < m; ++k) {
+    const glm::dvec3& a = polygon[k];
+    const glm::dvec3& b = polygon[(k + 1) % m];
+    const double ha = glm::dot(n, a - x), hb = glm::dot(n, b - x);
+    if (ha >= 0.0) out.push_back(a);
+    if ((ha >= 0.0) != (hb >= 0.0)) out.push_back(a + (b - a) * (ha / (ha - hb)));
+  }
+  return out;
+}
+
+glm::dvec3 newell_normal(const std::vector<glm::dvec3>& polygon) {
+  glm::dvec3 n(0.0);
+  for (std::size_t k = 0; k < polygon.size(); ++k)
+    n += glm::cross(polygon[k], polygon[(k + 1) % polygon.size()]);
+  const double length = glm::length(n);
+  return length > 0.0 ? n / length : n;
+}
+
+// The quadrature points of a triangle: its centroid (1 point), or the degree-2 rule with
+// barycentrics (2/3, 1/6, 1/6) and their permutations (3 points, equal weights).
+std::vector<glm::dvec3> quadrature_points(const Patch& p, int count) {
+  if (count == 1) return {p.centroid};
+  const auto mix = [&](double a, double b, double c) {
+    return p.corners[0] * a + p.corners[1] * b + p.corners[2] * c;
+  };
+  return {mix(4.0 / 6, 1.0 / 6, 1.0 / 6), mix(1.0 / 6, 4.0 / 6, 1.0 / 6),
+          mix(1.0 / 6, 1.0 / 6, 4.0 / 6)};
+}
+
+void analytic_row(const std::vector<Patch>& patches, const scene::RayCaster& caster, uint32_t i,
+                  int points, std::vector<float>* row) {
+  const Patch& s = patches[i];
+  const std::vector<glm::dvec3> xs = quadrature_points(s, points);
+  std::vector<glm::vec3> origins;
+  for (const glm::dvec3& x : xs)
+    origins.push_back(caster.surface_origin(i, glm::vec3(x), glm::vec3(s.normal)));
+  std::vector<glm::dvec3> polygon(3);
+  for (uint32_t j = 0; j < patches.size(); ++j) {
+    const Patch& r = patches[j];
+    if (j == i || r.area <= 0.0) continue;
+    polygon.assign(r.corners.begin(), r.corners.end());
+    std::vector<glm::dvec3> ys;
+    double sum = 0.0;
+    for (int k = 0; k < points; ++k) {
+      // One-sided receivers: x must lie in front of patch j.
+      if (glm::dot(r.normal, xs[k] - r.centroid) <= 0.0) continue;
+      const double f = point_polygon_form_factor(xs[k], s.normal, polygon);
+      if (f <= 0.0) continue;
+      if (ys.empty()) ys = quadrature_points(r, points);
+      const glm::vec3 target = caster.surface_origin(j, glm::vec3(ys[k]), glm::vec3(r.normal));
+      const glm::vec3 d = target - origins[k];
+      const float length = glm::length(d);
+      if (!(length > 0.f) || !caster.occluded(origins[k], d / length, 0.f, length)) sum += f;
+    }
+    (*row)[j] = static_cast<float>(sum / points);
+  }
+}
+
+void ray_row(const std::vector<Patch>& patches, const scene::RayCaster& caster, uint32_t i,
+             const FormFactorOptions& options, std::vector<float>* row) {
+  const Patch& s = patches[i];
+  if (s.area <= 0.0) return;
+  detail::PatchRandom random(options.seed, i);
+  std::vector<uint32_t> hits(patches.size(), 0);
+  const float inf = std::numeric_limits<float>::infinity();
+  for (int k = 0; k < options.rays_per_patch; ++k) {
+    const glm::dvec3 p = random.point_on(s);
+    const glm::dvec3 d = random.cosine_direction(s.normal);
+    const glm::vec3 o = caster.surface_origin(i, glm::vec3(p), glm::vec3(s.normal));
+    const scene::RayCaster::Hit hit = caster.intersect(o, glm::vec3(d), 0.f, inf);
+    if (hit.hit && hit.front_face && hit.triangle != i) ++hits[hit.triangle];
+  }
+  for (std::size_t j = 0; j < patches.size(); ++j)
+    (*row)[j] = static_cast<float>(double(hits[j]) / options.rays_per_patch);
+}
+
+}  // namespace
+
+double point_polygon_form_factor(const glm::dvec3& x, const glm::dvec3& n,
+                                 const std::vector<glm::dvec3>& polygon) {
+  const std::vector<glm::dvec3> q = clip_to_front(x, n, polygon);
+  if (q.size() < 3) return 0.0;
+  double sum = 0.0;
+  for (std::size_t k = 0; k < q.size(); ++k) {
+    const glm::dvec3 a = q[k] - x, b = q[(k + 1) % q.size()] - x;
+    const glm::dvec3 c = glm::cross(a, b);
+    const double length = glm::length(c);
+    if (!(length > 0.0)) continue;  // an edge through x, or a zero-length edge
+    const double beta = std::atan2(length, glm::dot(a, b));
+    sum += beta * glm::dot(n, c) / length;
+  }
+  return std::clamp(std::abs(sum) / (2.0 * M_PI), 0.0, 1.0);
+}
+
+double polygon_polygon_form_factor(const std::vector<glm::dvec3>& a,
+                                   const std::vector<glm::dvec3>& b, int quadrature_steps) {
+  if (a.size() < 3 || b.size() < 3 || quadrature_steps < 1)
+    throw std::invalid_argument("polygon_polygon_form_factor: polygons need 3 corners, m ≥ 1");
+  const glm::dvec3 n = newell_normal(a);
+  const int m = quadrature_steps;
+  double weighted = 0.0, area = 0.0;
+  for (std::size_t k = 1; k + 1 < a.size(); ++k) {
+    const glm::dvec3 o = a[0], e1 = a[k] - a[0], e2 = a[k + 1] - a[0];
+    const double cell = 0.5 * glm::length(glm::cross(e1, e2)) / (double(m) * m);
+    for (int j = 0; j < m; ++j) {
+      for (int i = 0; i + j < m; ++i) {
+        weighted += cell * point_polygon_form_factor(
+                               o + e1 * ((i + 1.0 / 3) / m) + e2 * ((j + 1.0 / 3) / m), n, b);
+        if (i + j < m - 1)
+          weighted += cell * point_polygon_form_factor(
+                                 o + e1 * ((i + 2.0 / 3) / m) + e2 * ((j + 2.0 / 3) / m), n, b);
+      }
+    }
+    area += cell * double(m) * m;
+  }
+  return area > 0.0 ? weighted / area : 0.0;
+}
+
+void form_factor_row(const std::vector<Patch>& patches, const scene::RayCaster& caster, uint32_t i,
+                     const FormFactorOptions& options, std::vector<float>* row) {
+  row->assign(patches.size(), 0.f);
+  if (options.method == FormFactorMethod::Analytic) {
+    if (options.quadrature_points != 1 && options.quadrature_points != 3)
+      throw std::invalid_argument("form factors: quadrature_points must be 1 or 3");
+    analytic_row(patches, caster, i, options.quadrature_points, row);
+    // Sampled visibility can let overlapping polygons (an occluder and the wall behind it)
+    // both count in full; a row may then sum above 1. It is scaled back to 1 so that no patch
+    // sends more power than it has.
+    double sum = 0.0;
+    for (float v : *row) sum += v;
+    if (sum > 1.0)
+      for (float& v : *row) v = static_cast<float>(v / sum);
+  } else if (options.method == FormFactorMethod::Hemicube) {
+    hemicube_row(patches, caster, i, options.hemicube_resolution, row);
+  } else {
+    if (options.rays_per_patch < 1)
+      throw std::invalid_argument("form factors: rays_per_patch must be at least 1");
+    ray_row(patches, caster, i, options, row);
+  }
+}
+
+double FormFactorMatrix::row_sum(std::size_t i) const {
+  double sum = 0.0;
+  for (std::size_t j = 0; j < size; ++j) sum += f[i * size + j];
+  return sum;
+}
+
+FormFactorMatrix compute_form_factors(const std::vector<Patch>& patches,
+                                      const scene::RayCaster& caster,
+                                      const FormFactorOptions& options) {
+  FormFactorMatrix m;
+  m.size = patches.size();
+  m.f.assign(m.size * m.size, 0.f);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, m.size, 8),
+                    [&](const tbb::blocked_range<std::size_t>& range) {
+                      std::vector<float> row;
+                      for (std::size_t i = range.begin(); i != range.end(); ++i) {
+                        form_factor_row(patches, caster, static_cast<uint32_t>(i), options, &row);
+                        std::copy(row.begin(), row.end(), m.f.begin() + i * m.size);
+                      }
+                    });
+  return m;
+}
+
+double escape_fraction(const std::vector<Patch>& patches, const scene::RayCaster& caster,
+                       int rays_per_patch, uint64_t seed) {
+  std::vector<double> escaped(patches.size(), 0.0);
+  const float inf = std::numeric_limits<float>::infinity();
+  tbb::parallel_for(std::size_t(0), patches.size(), [&](std::size_t i) {
+    const Patch& s = patches[i];
+    if (s.area <= 0.0) return;
+    detail::PatchRandom random(seed, i);
+    int count = 0;
+    for (int k = 0; k < rays_per_patch; ++k) {
+      const glm::dvec3 p = random.point_on(s);
+      const glm::dvec3 d = random.cosine_direction(s.normal);
+      const glm::vec3 o =
+          caster.surface_origin(static_cast<uint32_t>(i), glm::vec3(p), glm::vec3(s.normal));
+      if (!caster.intersect(o, glm::vec3(d), 0.f, inf).hit) ++count;
+    }
+    escaped[i] = s.area * count / rays_per_patch;
+  });
+  double total = 0.0, area = 0.0;
+  for (std::size_t i = 0; i < patches.size(); ++i) {
+    total += escaped[i];
+    area += patches[i].area;
+  }
+  return area > 0.0 ? total / area : 0.0;
+}
+
+}  // namespace prt::radiosity

@@ -1,0 +1,144 @@
+// `prt radiosity` as a user runs it: bad emission, albedo and --max-edge refused with one line
+// on stderr, a non-zero exit and nothing written; a small lit room written and lit.
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include <catch2/catch.hpp>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct RunResult {
+  int exit_code = 0;
+  std::string out, err;
+};
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+fs::path scratch(const std::string& name) {
+  const fs::path dir = fs::path(PRT_TEST_OUTPUT_DIR) / "radiosity_cli" / name;
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+// Runs `prt radiosity ARGS` with stdout and stderr captured in files of `dir`.
+RunResult run(const fs::path& dir, const std::string& args) {
+  const fs::path out = dir / "stdout.txt", err = dir / "stderr.txt";
+  const std::string command =
+      std::string(PRT_CLI_PATH) + " radiosity " + args + " >" + out.string() + " 2>" + err.string();
+  const int status = std::system(command.c_str());
+  RunResult r{status == -1 ? -1 : WEXITSTATUS(status), slurp(out), slurp(err)};
+  fs::remove(out);
+  fs::remove(err);
+  return r;
+}
+
+// A room without a front wall, 1 unit wide, a lamp under the ceiling (material `lamp`, Ke from
+// `lamp_ke`), white walls of albedo `white_kd`; `closed` adds the front wall.
+fs::path write_room(const fs::path& dir, const std::string& lamp_ke, const std::string& white_kd,
+                    bool closed) {
+  std::ofstream(dir / "room.mtl") << "newmtl white\nKd " << white_kd
+                                  << "\nnewmtl lamp\nKd 0.5 0.5 0.5\n"
+                                  << (lamp_ke.empty() ? "" : "Ke " + lamp_ke + "\n");
+  std::ofstream obj(dir / "room.obj");
+  obj << "mtllib room.mtl\n"
+         "v 0 0 0\nv 1 0 0\nv 1 0 1\nv 0 0 1\nv 0 1 0\nv 1 1 0\nv 1 1 1\nv 0 1 1\n"
+         "v 0.4 0.99 0.4\nv 0.6 0.99 0.4\nv 0.6 0.99 0.6\nv 0.4 0.99 0.6\n"
+         "o walls\nusemtl white\n"
+         "f 1 4 3 2\n"                           // floor, facing +y
+         "f 5 6 7 8\n"                           // ceiling, facing -y
+         "f 1 5 8 4\n"                           // x = 0, facing +x
+         "f 2 3 7 6\n"                           // x = 1, facing -x
+         "f 4 8 7 3\n";                          // z = 1, facing -z
+  if (closed) obj << "f 1 2 6 5\n";              // z = 0, facing +z
+  obj << "o lamp\nusemtl lamp\nf 9 10 11 12\n";  // facing -y
+  return dir / "room.obj";
+}
+
+std::size_t lines(const std::string& text) {
+  std::size_t n = 0;
+  for (char c : text) n += c == '\n';
+  return n;
+}
+
+void check_refused(const fs::path& dir, const std::string& args, const std::string& expected) {
+  const RunResult r = run(dir, args);
+  INFO(args << "\nstderr: " << r.err);
+  CHECK(r.exit_code == 1);
+  CHECK(lines(r.err) == 1);
+  CHECK(r.err.find(expected) != std::string::npos);
+  for (const char* name : {"out.png", "out.glb", "out.csv"}) CHECK_FALSE(fs::exists(dir / name));
+}
+
+}  // namespace
+
+TEST_CASE("prt radiosity refuses bad emission, albedo and --max-edge; nothing is written",
+          "[radiosity][cli]") {
+  const fs::path dir = scratch("refused");
+  const std::string outputs = " -o " + (dir / "out.png").string() + " --vertex-colors " +
+                              (dir / "out.glb").string() + " --csv " + (dir / "out.csv").string();
+  std::string room = write_room(dir, "5 5 5", "0.7 0.7 0.7", false).string();
+  check_refused(dir, room + outputs + " --emission lamp=-1,2,3", "--emission lamp=-1,2,3");
+  check_refused(dir, room + outputs + " --emission lamp=nan", "non-negative");
+  check_refused(dir, room + outputs + " --emission lamp=1,inf,1", "finite");
+  check_refused(dir, room + outputs + " --emission glass=1", "glass");
+  check_refused(dir, room + outputs + " --max-edge 0", "--max-edge");
+  check_refused(dir, room + outputs + " --albedo white=1.2", "albedo");
+  check_refused(dir, room + outputs + " --form-factors hemicube --hemicube 3", "--hemicube");
+  check_refused(dir, room + outputs + " --form-factors radiance", "--form-factors");
+  check_refused(dir, room + outputs + " --max-edge 0.0001", "--max-edge");  // > 2e7 triangles
+  check_refused(dir, room + outputs + " --max-edge 0.005", "patches");      // > 16384 patches
+  room = write_room(dir, "-5 5 5", "0.7 0.7 0.7", false).string();
+  check_refused(dir, room + outputs, "emission");
+  room = write_room(dir, "", "0.7 0.7 0.7", false).string();
+  check_refused(dir, room + outputs, "nothing emits light");
+  room = write_room(dir, "5 5 5", "1 1 1", true).string();
+  check_refused(dir, room + outputs, "closed scene");
+  // The same closed room with albedo below 1 is accepted.
+  const RunResult ok = run(dir, room + outputs + " --albedo white=0.9 --size 64x48 --spp 1");
+  INFO(ok.err);
+  CHECK(ok.exit_code == 0);
+  CHECK(fs::exists(dir / "out.png"));
+}
+
+TEST_CASE("prt radiosity lights a room from its lamp: CSV radiance and energy summary",
+          "[radiosity][cli]") {
+  const fs::path dir = scratch("room");
+  const std::string room = write_room(dir, "5 5 5", "0.7 0.5 0.3", false).string();
+  const RunResult r =
+      run(dir, room + " --max-edge 0.2 --tolerance 1e-8 --csv " + (dir / "out.csv").string() +
+                   " -o " + (dir / "out.exr").string() + " --size 64x48 --spp 1");
+  INFO(r.err);
+  REQUIRE(r.exit_code == 0);
+  CHECK(r.out.find("balance error") != std::string::npos);
+  // Every wall vertex receives light (all see the lamp or a lit wall); colours follow albedo.
+  std::ifstream csv(dir / "out.csv");
+  std::string line;
+  std::getline(csv, line);
+  std::size_t rows = 0, lit = 0, warm = 0;
+  while (std::getline(csv, line)) {
+    double i, x, y, z, red, green, blue;
+    char c;
+    std::istringstream s(line);
+    s >> i >> c >> x >> c >> y >> c >> z >> c >> red >> c >> green >> c >> blue;
+    ++rows;
+    lit += red > 0;
+    warm += red > green && green > blue;
+  }
+  CHECK(rows > 40);
+  CHECK(lit == rows);
+  CHECK(warm > rows * 9 / 10);  // walls of albedo (0.7, 0.5, 0.3) under a white lamp
+}
