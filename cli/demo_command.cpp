@@ -17,9 +17,11 @@
 #include "bake/progress.h"
 #include "bake/transfer_baker.h"
 #include "command_registry.h"
+#include "output_safety.h"
 #include "prt/relighter.h"
 #include "prt/transfer_file.h"
 #include "relight/camera.h"
+#include "relight/environment_input.h"
 #include "relight/image_io.h"
 #include "relight/relight_pipeline.h"
 #include "relight/renderer.h"
@@ -67,7 +69,7 @@ double seconds_since(Clock::time_point start) {
 fs::path find_data_dir(const std::string& requested) {
   if (!requested.empty()) {
     if (!fs::is_directory(requested))
-      throw CommandError(requested + ": data directory does not exist");
+      throw CommandError("--data " + requested + ": is not a directory");
     return requested;
   }
   for (const fs::path& candidate : {fs::path("data"), fs::path(PRT_DEMO_DATA_DIR)})
@@ -122,6 +124,14 @@ void run(const DemoArguments& args) {
   }
   const fs::path data_dir = find_data_dir(args.data_dir);
   const fs::path out_dir = args.output_dir;
+  CommandFiles files;
+  if (fs::exists(data_dir / "demo.glb")) files.add_scene((data_dir / "demo.glb").string());
+  files.add_environment((data_dir / "sky.hdr").string());
+  files.add_output("-o", args.output_dir);
+  for (const char* name : {"demo.glb", "demo.prt", "demo.png", "demo.exr", "demo_compare.png"})
+    files.add_output("-o", (out_dir / name).string());
+  files.refuse_overwrites();
+  check_output_directory("-o", args.output_dir);
   std::error_code error;
   fs::create_directories(out_dir, error);
   if (!fs::is_directory(out_dir))
@@ -159,7 +169,10 @@ void run(const DemoArguments& args) {
   // 3. Relight under the bundled sky.
   auto start = Clock::now();
   const std::string sky_path = (data_dir / "sky.hdr").string();
-  const prt::sh::EnvMap sky = relight::read_environment(sky_path, prt::sh::EnvLayout::LatLong, nullptr);
+  relight::EnvironmentUse sky_use;
+  sky_use.sh_order = settings.order;
+  const prt::sh::EnvMap sky =
+      relight::read_checked_environment(sky_path, prt::sh::EnvLayout::LatLong, sky_use).env;
   relight::LightingOptions lighting_options;
   lighting_options.yaw_pitch_roll_deg = settings.yaw_pitch_roll;
   lighting_options.window = prt::sh::Window::Auto;
@@ -237,7 +250,7 @@ void register_demo(CLI::App& app) {
   cmd->add_option("--data", args->data_dir,
                   "Directory holding demo.glb and sky.hdr (default: ./data, else the source tree)");
   cmd->add_flag("--quick", args->quick, "Fewer samples, lower order, smaller images");
-  cmd->add_flag("--quiet", args->quiet, "Print nothing on success");
+  cmd->add_flag("--quiet", args->quiet, "No progress or summary (warnings still print)");
   cmd->callback([args] { run(*args); });
 }
 

@@ -14,6 +14,7 @@
 #include "prt/atomic_file.h"
 #include "prt/geometry_check.h"
 #include "prt/transfer_file.h"
+#include "relight/environment_input.h"
 #include "relight/image_io.h"
 #include "relight/tone_map.h"
 #include "relight_frames.h"
@@ -212,8 +213,11 @@ RelightSummary run_relight(const RelightRequest& request) {
   RelightSummary summary;
   const scene::Scene scene = scene::load_scene(request.scene_path);
   const prt::TransferData data = load_transfer_for_scene(request.transfer_path, scene);
-  const sh::EnvMap env =
-      read_environment(request.environment_path, request.layout, &summary.layout_note);
+  EnvironmentUse use;
+  use.sh_order = static_cast<int>(data.order);
+  EnvironmentInput input = read_checked_environment(request.environment_path, request.layout, use);
+  const sh::EnvMap env = std::move(input.env);
+  summary.layout_note = input.layout_note;
   summary.vertex_count = scene.vertex_count();
   summary.order = static_cast<int>(data.order);
   const prt::ShLighting base =

@@ -27,6 +27,7 @@
 #include "prt/relighter.h"
 #include "prt/transfer_file.h"
 #include "relight/camera.h"
+#include "relight/environment_input.h"
 #include "relight/haar_relight.h"
 #include "relight/image_io.h"
 #include "relight/relight_pipeline.h"
@@ -282,6 +283,21 @@ struct ReportLog {
   }
 };
 
+// The largest SH order the sweep projects the map to (the reference's).
+int largest_sweep_order(bool quick) {
+  return quick ? base_setting(true).order : 16;
+}
+
+// The map, checked and screened for the largest order of the sweep (relight/environment_input.h).
+sh::EnvMap read_report_environment(const ReportOptions& opt, std::string* layout_note) {
+  relight::EnvironmentUse use;
+  use.sh_order = largest_sweep_order(opt.quick);
+  relight::EnvironmentInput in =
+      relight::read_checked_environment(opt.environment_path, opt.layout, use);
+  *layout_note = in.layout_note;
+  return std::move(in.env);
+}
+
 // The scene, the map and the renderer every phase measures with.
 struct ReportInputs {
   // Loads the scene and the map, logs them, and finds the pixels the scene covers.
@@ -304,7 +320,7 @@ struct ReportInputs {
 
 ReportInputs::ReportInputs(const ReportOptions& opt, const ReportLog& log)
     : scene(scene::load_scene(opt.scene_path)),
-      env(relight::read_environment(opt.environment_path, opt.layout, &layout_note)),
+      env(read_report_environment(opt, &layout_note)),
       caster(scene),
       V(scene.vertex_count()) {
   log(opt.scene_path + ": " + std::to_string(V) + " vertices; " + opt.environment_path + ": " +
@@ -391,9 +407,10 @@ ReportState::ReportState(const ReportOptions& options, Clock::time_point start)
       gto(report_ground_truth_options(options)),
       gt(in.scene, in.env, gto),
       progress(!options.verbose),
-      budget(options.quick ? std::min(options.ground_truth_budget_seconds, 15.0)
-                           : options.ground_truth_budget_seconds),
-      reference_order(options.quick ? base_setting(true).order : 16),
+      budget(options.quick
+                 ? std::min(options.ground_truth_budget_seconds, kQuickGroundTruthBudgetSeconds)
+                 : options.ground_truth_budget_seconds),
+      reference_order(largest_sweep_order(options.quick)),
       reference_samples(options.quick ? 1024 : 8192) {}
 
 // ---- Phase 1: the sweep ----
@@ -723,7 +740,7 @@ void measure_auto_bakes(ReportState& st) {
   if (auto_tolerances.empty()) return;
   bake::AutoBakeOptions ao;
   ao.bake.seed = st.opt.seed;
-  ao.lighting_order = bake::kMaxBakeOrder;  // as `prt bake --auto --env`
+  ao.lighting_order = bake::auto_lighting_order(st.in.env);  // as `prt bake --auto --env`
   ao.lighting = sh::project(st.in.env, ao.lighting_order);
   for (double tolerance : auto_tolerances) {
     ao.tolerance = tolerance;
@@ -1398,11 +1415,18 @@ void write_outputs(ReportState& st) {
 
 }  // namespace
 
+std::vector<std::string> report_file_names() {
+  std::vector<std::string> names = {"results.csv", "results.json", "summary.md"};
+  for (const char* stem : {"pareto", "error_vs_order", "haar_error_vs_terms"})
+    for (const char* extension : {".svg", ".png"}) names.push_back(std::string(stem) + extension);
+  return names;
+}
+
 ReportResult run_report(const ReportOptions& opt) {
   const auto t_start = Clock::now();
   check_haar_cubes(opt);
+  ReportState st(opt, t_start);  // loads and checks the inputs before anything is written
   create_output_dir(opt);
-  ReportState st(opt, t_start);
   // Phase 1: the sweep, against a first estimate of the ground truth.
   estimate_ground_truth(st);
   run_sweep(st);
