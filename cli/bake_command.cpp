@@ -137,7 +137,7 @@ void check_files(const BakeArguments& a) {
   files.add_scene(a.scene);
   if (!a.env.empty()) files.add_environment(a.env);
   files.add_output("-o", a.output);
-  files.refuse_overwrites();
+  files.check();
   check_output_file("-o", a.output, {".prt"}, "a coefficient file");
 }
 

@@ -41,6 +41,15 @@ namespace {
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
 
+// The files the demo writes into its output folder (the scene only when data/ has none).
+constexpr const char* kSceneName = "demo.glb";
+constexpr const char* kTransferName = "demo.prt";
+constexpr const char* kImageName = "demo.png";
+constexpr const char* kLinearImageName = "demo.exr";
+constexpr const char* kCompareName = "demo_compare.png";
+constexpr const char* kOutputNames[] = {kSceneName, kTransferName, kImageName, kLinearImageName,
+                                        kCompareName};
+
 struct DemoArguments {
   std::string output_dir = "out";
   std::string data_dir;
@@ -128,9 +137,9 @@ void run(const DemoArguments& args) {
   if (fs::exists(data_dir / "demo.glb")) files.add_scene((data_dir / "demo.glb").string());
   files.add_environment((data_dir / "sky.hdr").string());
   files.add_output("-o", args.output_dir);
-  for (const char* name : {"demo.glb", "demo.prt", "demo.png", "demo.exr", "demo_compare.png"})
+  for (const char* name : kOutputNames)
     files.add_output("-o", (out_dir / name).string());
-  files.refuse_overwrites();
+  files.check();
   check_output_directory("-o", args.output_dir);
   std::error_code error;
   fs::create_directories(out_dir, error);
@@ -146,7 +155,7 @@ void run(const DemoArguments& args) {
     scene = scene::load_scene(bundled.string());
   } else {
     scene = scene::make_demo_scene();
-    const std::string path = (out_dir / "demo.glb").string();
+    const std::string path = (out_dir / kSceneName).string();
     scene::write_glb(path, scene);
     scene.source_path = path;
     written.push_back(path);
@@ -157,7 +166,7 @@ void run(const DemoArguments& args) {
   double bake_seconds = 0, unshadowed_seconds = 0, shadowed_seconds = 0;
   const prt::TransferData interreflected =
       bake_kind(scene, prt::TransferKind::Interreflected, settings, args.quiet, &bake_seconds);
-  const std::string prt_path = (out_dir / "demo.prt").string();
+  const std::string prt_path = (out_dir / kTransferName).string();
   const prt::Status saved = prt::write_transfer_file(prt_path, interreflected);
   if (!saved.ok()) throw CommandError(saved.message());
   written.push_back(prt_path);
@@ -196,7 +205,7 @@ void run(const DemoArguments& args) {
   const relight::Camera camera = relight::parse_camera("auto", scene, aspect);
   const relight::Image image =
       relight::render(scene, caster, radiance, &sky, rotation, camera, render_options);
-  for (const char* name : {"demo.png", "demo.exr"}) {
+  for (const char* name : {kImageName, kLinearImageName}) {
     const std::string path = (out_dir / name).string();
     relight::write_rendered_image(path, image, exposure_ev);
     written.push_back(path);
@@ -221,7 +230,7 @@ void run(const DemoArguments& args) {
                 strip.rgb.begin() +
                     3 * (static_cast<std::ptrdiff_t>(row) * strip.width + p * panel.width));
   }
-  const std::string compare_path = (out_dir / "demo_compare.png").string();
+  const std::string compare_path = (out_dir / kCompareName).string();
   relight::write_rendered_image(compare_path, strip, exposure_ev);
   written.push_back(compare_path);
   const double render_seconds = seconds_since(start);

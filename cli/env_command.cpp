@@ -225,7 +225,7 @@ void run(const EnvArguments& args, const CLI::App& cmd) {
   const Settings settings = parse_settings(args, cmd);
   CommandFiles files;  // no files are written: only stdout must not be an input
   for (const std::string& file : args.files) files.add_environment(file);
-  files.refuse_overwrites();
+  files.check();
   std::vector<FileResult> results;
   for (const std::string& file : args.files) results.push_back(process(file, args, settings));
   if (args.json) {

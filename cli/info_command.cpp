@@ -181,7 +181,7 @@ void print_csv(const prt::CoefficientFile& f) {
 void run(const InfoArguments& args) {
   CommandFiles files;  // no files are written: only stdout must not be the input
   files.add_input("coefficient file", args.file);
-  files.refuse_overwrites();
+  files.check();
   prt::Result<prt::CoefficientFile> read = prt::read_coefficient_file(args.file);
   if (!read.ok()) throw CommandError(read.status().message());
   const prt::CoefficientFile& f = read.value();

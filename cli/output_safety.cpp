@@ -79,8 +79,8 @@ bool same_file(const std::string& a, const std::string& b) {
   return same_identity(identify(a), identify(b));
 }
 
-void CommandFiles::add_input(const std::string& role, const std::string& path) {
-  if (!path.empty()) inputs_.push_back({role, path});
+void CommandFiles::add_input(const std::string& role, const std::string& path, bool required) {
+  if (!path.empty()) inputs_.push_back({role, path, required});
 }
 
 void CommandFiles::add_inputs(const std::string& role, const std::vector<std::string>& paths) {
@@ -91,7 +91,7 @@ void CommandFiles::add_scene(const std::string& scene_path) {
   const std::vector<std::string> files = scene_files(scene_path);
   add_input("scene", files.front());
   for (std::size_t i = 1; i < files.size(); ++i)
-    add_input("file read by the scene " + scene_path + ":", files[i]);
+    add_input("file read by the scene " + scene_path + ":", files[i], /*required=*/false);
 }
 
 void CommandFiles::add_environment(const std::string& environment_path) {
@@ -99,10 +99,17 @@ void CommandFiles::add_environment(const std::string& environment_path) {
 }
 
 void CommandFiles::add_output(const std::string& option, const std::string& path) {
-  if (!path.empty()) outputs_.push_back({option, path});
+  if (!path.empty()) outputs_.push_back({option, path, false});
 }
 
-void CommandFiles::refuse_overwrites() const {
+void CommandFiles::check() const {
+  for (const Named& input : inputs_) {
+    if (!input.required) continue;
+    std::error_code ec;
+    const fs::file_status status = fs::status(input.path, ec);
+    if (!fs::exists(status)) throw CommandError(input.path + ": no such file");
+    if (fs::is_directory(status)) throw CommandError(input.path + ": is a directory, not a file");
+  }
   std::vector<Identity> inputs;
   for (const Named& input : inputs_) inputs.push_back(identify(input.path));
   std::vector<Identity> outputs;

@@ -14,7 +14,8 @@
 //                 input)", "OPTION PATH: is the same file as OPTION2 PATH2 (two outputs cannot
 //                 share a file)", "stdout is the same file as the ROLE INPUT (... )",
 //                 "OPTION PATH: expected an image (.exr, .hdr or .png), not '.jpg'";
-//   CommandError "OPTION PATH: is a directory, not a file", "OPTION PATH: is a file, not a
+//   CommandError "PATH: no such file", "PATH: is a directory, not a file" (inputs),
+//                "OPTION PATH: is a directory, not a file", "OPTION PATH: is a file, not a
 //                 directory", "OPTION PATH: folder DIR does not exist", "OPTION PATH: folder DIR
 //                 is not writable".
 #pragma once
@@ -28,7 +29,9 @@ namespace prt::cli {
 // map", ...); `option` names an output ("-o", "--csv", "--turntable frame", ...).
 class CommandFiles {
  public:
-  void add_input(const std::string& role, const std::string& path);
+  // A file the command reads. `required`: it must exist (the files a scene refers to need not:
+  // their loader decides).
+  void add_input(const std::string& role, const std::string& path, bool required = true);
   void add_inputs(const std::string& role, const std::vector<std::string>& paths);
   void add_output(const std::string& option, const std::string& path);
   // A scene and every file it refers to (input_files.h): roles "scene" and "file read by the
@@ -37,13 +40,16 @@ class CommandFiles {
   // An environment map, or the six faces of a %s pattern: role "environment map".
   void add_environment(const std::string& environment_path);
 
-  // Throws UsageError when an output is the same file as an input or as an earlier output, or
-  // when stdout is redirected to one of the inputs (`prt info s.prt --csv >> s.prt`).
-  void refuse_overwrites() const;
+  // Throws CommandError "PATH: no such file" or "PATH: is a directory, not a file" for a
+  // required input; then UsageError when an output is the same file as an input or as an
+  // earlier output, or when stdout is redirected to one of the inputs
+  // (`prt info s.prt --csv >> s.prt`).
+  void check() const;
 
  private:
   struct Named {
     std::string label, path;
+    bool required = true;
   };
   std::vector<Named> inputs_, outputs_;
 };

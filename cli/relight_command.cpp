@@ -111,7 +111,7 @@ void check_files(const RelightArguments& args) {
   }
   files.add_output("--vertex-colors", args.vertex_colors);
   files.add_output("--csv", args.csv);
-  files.refuse_overwrites();
+  files.check();
   check_output_file("-o", args.output, {".exr", ".hdr", ".png"}, "an image");
   if (!args.vertex_colors.empty())
     check_output_file("--vertex-colors", args.vertex_colors, {".glb"}, "a binary glTF");

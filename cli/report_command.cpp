@@ -122,7 +122,7 @@ void check_files(const ReportArguments& a) {
       a.stability ? prt::report::stability_file_names() : prt::report::report_file_names();
   for (const std::string& name : names)
     files.add_output("-o", (std::filesystem::path(a.output) / name).string());
-  files.refuse_overwrites();
+  files.check();
   check_output_directory("-o", a.output);
 }
 

@@ -247,3 +247,36 @@ TEST_CASE("cli files: relight --help says an interrupted turntable keeps its fin
   REQUIRE(r.exit_code == 0);
   CHECK(r.out.find("interrupted turntable keeps the frames it finished") != std::string::npos);
 }
+
+TEST_CASE("cli files: an input that is missing or a folder gets the same message everywhere") {
+  const Inputs in = make_inputs("files_input_folder");
+  const fs::path folder = in.dir / "a_folder";
+  fs::create_directory(folder);
+  const fs::path out = in.dir / "out";
+  fs::create_directory(out);
+  for (const auto& [bad, problem] :
+       {std::pair<fs::path, std::string>{folder, "is a directory, not a file"},
+        std::pair<fs::path, std::string>{in.dir / "missing.file", "no such file"}}) {
+    const std::string b = bad.string();
+    const std::vector<std::string> commands = {
+        "env " + b,
+        "info " + b,
+        "bake " + b + " -o " + (out / "x.prt").string(),
+        "bake " + in.scene.string() + " -o " + (out / "x.prt").string() + " --auto --env " + b,
+        "relight " + b + " " + in.transfer.string() + " " + in.env.string() + " -o " +
+            (out / "x.png").string(),
+        "relight " + in.scene.string() + " " + b + " " + in.env.string() + " -o " +
+            (out / "x.png").string(),
+        "relight " + in.scene.string() + " " + in.transfer.string() + " " + b + " -o " +
+            (out / "x.png").string(),
+        "report " + b + " " + in.env.string() + " -o " + (out / "r").string(),
+    };
+    for (const std::string& command : commands) {
+      INFO(command);
+      const RunResult r = run(prt_cli() + " " + command);
+      require_one_line_error(r, b + ": " + problem);
+      CHECK(r.exit_code == 1);
+    }
+  }
+  CHECK(files_in(out).empty());
+}
