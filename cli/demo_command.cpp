@@ -137,8 +137,7 @@ void run(const DemoArguments& args) {
   if (fs::exists(data_dir / "demo.glb")) files.add_scene((data_dir / "demo.glb").string());
   files.add_environment((data_dir / "sky.hdr").string());
   files.add_output("-o", args.output_dir);
-  for (const char* name : kOutputNames)
-    files.add_output("-o", (out_dir / name).string());
+  for (const char* name : kOutputNames) files.add_output("-o", (out_dir / name).string());
   files.check();
   check_output_directory("-o", args.output_dir);
   std::error_code error;
