@@ -82,8 +82,8 @@ void check_options(const RelightArguments& args, const CLI::App& cmd) {
     throw UsageError("--spp " + std::to_string(args.spp) + ": must be in 1..16 (N×N per pixel)");
   if (args.turntable < 0 || args.turntable > 3600)
     throw UsageError("--turntable " + std::to_string(args.turntable) + ": must be in 0..3600");
-  // The kind of the coefficient file decides which options apply (an unreadable file is
-  // reported by the pipeline with its own message).
+  // The kind of the coefficient file decides which options apply (a missing file is reported
+  // by check_files, an unreadable one by the pipeline).
   if (!std::filesystem::exists(args.transfer)) return;
   const bool haar = prt::is_haar_transfer_file(args.transfer);
   for (const char* option : {"--terms", "--approx"})
