@@ -11,18 +11,19 @@
 #include <string>
 #include <vector>
 
-#include <unistd.h>
-
 #include <CLI/CLI.hpp>
 
 #include "bake/adaptive/adaptive_baker.h"
+#include "bake/haar_baker.h"
 #include "bake/progress.h"
 #include "bake/transfer_baker.h"
 #include "cli_parsing.h"
 #include "command_registry.h"
 #include "haar_cli.h"
+#include "output_safety.h"
+#include "prt/haar/cube_map.h"
 #include "prt/transfer_file.h"
-#include "relight/image_io.h"
+#include "relight/environment_input.h"
 #include "scene/scene_loader.h"
 #include "sh/projection.h"
 
@@ -52,12 +53,12 @@ struct BakeArguments {
 glm::vec3 parse_albedo(const std::string& text) {
   std::vector<double> values = parse_number_list("--albedo", text);
   if (values.size() == 1) values = {values[0], values[0], values[0]};
-  if (values.size() != 3) throw CommandError("--albedo " + text + ": expected r,g,b or one value");
+  if (values.size() != 3) throw UsageError("--albedo " + text + ": expected r,g,b or one value");
   glm::vec3 albedo;
   for (int c = 0; c < 3; ++c) {
     albedo[c] = static_cast<float>(values[c]);
     if (!(albedo[c] >= 0.f && albedo[c] < 1.f))
-      throw CommandError("--albedo " + text + ": every component must be in [0, 1)");
+      throw UsageError("--albedo " + text + ": every component must be in [0, 1)");
   }
   return albedo;
 }
@@ -66,19 +67,88 @@ prt::TransferKind parse_kind(const std::string& text) {
   if (text == "unshadowed") return prt::TransferKind::Unshadowed;
   if (text == "shadowed") return prt::TransferKind::Shadowed;
   if (text == "interreflected") return prt::TransferKind::Interreflected;
-  throw CommandError("--transfer " + text + ": expected unshadowed, shadowed or interreflected");
+  throw UsageError("--transfer " + text + ": expected unshadowed, shadowed or interreflected");
 }
 
-// Fails early (before a long bake) when the output's directory is missing or read-only.
-void check_output_writable(const std::string& output) {
-  namespace fs = std::filesystem;
-  if (output.empty()) throw CommandError("-o: an output path is required");
-  const fs::path path(output);
-  std::error_code ec;
-  if (fs::is_directory(path, ec)) throw CommandError(output + ": is a directory");
-  const fs::path dir = path.has_parent_path() ? path.parent_path() : fs::path(".");
-  if (!fs::is_directory(dir, ec)) throw CommandError(output + ": directory does not exist");
-  if (access(dir.c_str(), W_OK) != 0) throw CommandError(output + ": directory is not writable");
+// Options that do not apply to this bake are refused by name (`given`: on the command line).
+void check_applicable(const BakeArguments& a, const CLI::App& cmd, prt::TransferKind kind) {
+  const auto given = [&cmd](const std::string& option) { return cmd.count(option) > 0; };
+  const auto refuse_given = [&given](const std::vector<std::string>& options,
+                                     const std::string& why) {
+    for (const std::string& option : options)
+      if (given(option)) throw UsageError(option + " " + why);
+  };
+  if (a.haar.basis == "haar") {
+    if (a.automatic) throw UsageError("--auto does not apply to --basis haar (it plans SH bakes)");
+    refuse_given({"--order"}, "does not apply to --basis haar (see --cube)");
+    refuse_given({"--samples"}, "does not apply to --basis haar (see --haar-supersample)");
+    refuse_given({"--precision"}, "does not apply to --basis haar (see --haar-bits)");
+    refuse_given({"--ao", "--bent-normals"}, "does not apply to --basis haar (not stored)");
+  } else {
+    refuse_given(
+        {"--cube", "--haar-threshold", "--haar-terms", "--haar-bits", "--haar-supersample"},
+        "applies to --basis haar only");
+  }
+  if (!a.automatic) {
+    refuse_given({"--env"}, "applies to --auto only (the lighting it chooses the order for)");
+    if (kind != prt::TransferKind::Interreflected)
+      refuse_given({"--bounces", "--tolerance"}, "applies to --transfer interreflected only");
+    if (a.bounces >= 0)
+      refuse_given({"--tolerance"}, "applies to a solve to convergence (--bounces -1) only");
+  } else {
+    refuse_given({"--samples", "--bounces"}, "does not apply to --auto (it chooses them)");
+    if (!a.env.empty()) refuse_given({"--order"}, "does not apply to --auto --env (it chooses it)");
+  }
+}
+
+// Values out of range, refused before any file is read.
+void check_values(const BakeArguments& a, const CLI::App& cmd) {
+  if (a.order < 1 || a.order > bake::kMaxBakeOrder)
+    throw UsageError("--order " + std::to_string(a.order) + ": must be in [1, " +
+                     std::to_string(bake::kMaxBakeOrder) + "]");
+  if (a.samples < 1 || a.samples > bake::kMaxBakeSamples)
+    throw UsageError("--samples " + std::to_string(a.samples) + ": must be in [1, " +
+                     std::to_string(bake::kMaxBakeSamples) + "]");
+  if (a.bounces < -1)
+    throw UsageError("--bounces " + std::to_string(a.bounces) +
+                     ": must be >= 0, or -1 (until converged)");
+  if (!(a.tolerance > 0 && a.tolerance < 1)) throw UsageError("--tolerance: must be in (0, 1)");
+  if (a.threads < 0) throw UsageError("--threads " + std::to_string(a.threads) + ": must be >= 0");
+  if (a.precision != "f32" && a.precision != "f16")
+    throw UsageError("--precision " + a.precision + ": expected f32 or f16");
+  const HaarBakeArguments& h = a.haar;
+  if (!prt::is_valid_cube_size(h.cube))
+    throw UsageError("--cube " + std::to_string(h.cube) + ": must be a power of two in [" +
+                     std::to_string(prt::kMinCubeSize) + ", " + std::to_string(prt::kMaxCubeSize) +
+                     "]");
+  if (cmd.count("--haar-threshold") && !(h.threshold >= 0 && h.threshold < 1))
+    throw UsageError("--haar-threshold: must be in [0, 1)");
+  if (cmd.count("--haar-terms") && h.terms < 1)
+    throw UsageError("--haar-terms " + std::to_string(h.terms) +
+                     ": must be >= 1 (leave it out to keep every term above --haar-threshold)");
+  if (h.supersample < 1 || h.supersample > bake::kMaxHaarSupersample)
+    throw UsageError("--haar-supersample " + std::to_string(h.supersample) + ": must be in [1, " +
+                     std::to_string(bake::kMaxHaarSupersample) + "]");
+}
+
+// The output can be written, and is none of the files the bake reads.
+void check_files(const BakeArguments& a) {
+  CommandFiles files;
+  files.add_scene(a.scene);
+  if (!a.env.empty()) files.add_environment(a.env);
+  files.add_output("-o", a.output);
+  files.check();
+  check_output_file("-o", a.output, {".prt"}, "a coefficient file");
+}
+
+// The loader's count of primitives that got the default albedo, said once (not with --quiet).
+void note_default_albedo(const scene::Scene& scene, bool quiet) {
+  if (quiet || scene.default_albedo_primitives == 0) return;
+  std::fprintf(stderr,
+               "prt bake: note: %s: %zu primitive(s) have no material colour (none, or a texture "
+               "that is not read): albedo %.2f grey (--albedo r,g,b overrides it)\n",
+               scene.source_path.c_str(), scene.default_albedo_primitives,
+               double(scene::kDefaultAlbedo));
 }
 
 // `--auto`: --tolerance (default 0.01) becomes the accuracy target; without --transfer the
@@ -90,8 +160,8 @@ void run_auto(const BakeArguments& args, const scene::Scene& scene, const bake::
   o.bake = fixed;
   o.bake.kind = args.transfer_given ? fixed.kind : prt::TransferKind::Interreflected;
   if (!args.env.empty()) {
-    const prt::sh::EnvMap env = relight::read_environment(args.env, std::nullopt);
-    o.lighting_order = bake::kMaxBakeOrder;
+    const prt::sh::EnvMap env = relight::read_checked_environment(args.env, std::nullopt).env;
+    o.lighting_order = bake::auto_lighting_order(env);
     o.lighting = prt::sh::project(env, o.lighting_order);
     if (o.lighting.empty()) throw CommandError(args.env + ": cannot project the environment");
   }
@@ -115,7 +185,10 @@ void run_auto(const BakeArguments& args, const scene::Scene& scene, const bake::
   std::printf("  wrote %s\n", args.output.c_str());
 }
 
-void run(const BakeArguments& args) {
+void run(const BakeArguments& args, const CLI::App& cmd) {
+  check_values(args, cmd);
+  check_applicable(args, cmd, parse_kind(args.transfer));
+  check_files(args);
   bake::BakeOptions options;
   options.kind = parse_kind(args.transfer);
   options.order = args.order;
@@ -126,27 +199,12 @@ void run(const BakeArguments& args) {
   options.threads = args.threads;
   options.ao = args.ao;
   options.bent_normals = args.bent_normals;
-  if (args.precision == "f32")
-    options.precision = prt::Precision::F32;
-  else if (args.precision == "f16")
-    options.precision = prt::Precision::F16;
-  else
-    throw CommandError("--precision " + args.precision + ": expected f32 or f16");
-  if (args.order < 1 || args.order > bake::kMaxBakeOrder)
-    throw CommandError("--order " + std::to_string(args.order) + ": must be in [1, " +
-                       std::to_string(bake::kMaxBakeOrder) + "]");
-  if (args.samples < 1 || args.samples > bake::kMaxBakeSamples)
-    throw CommandError("--samples " + std::to_string(args.samples) + ": must be in [1, " +
-                       std::to_string(bake::kMaxBakeSamples) + "]");
-  if (args.bounces < -1) throw CommandError("--bounces: must be >= 0, or -1 (until converged)");
-  if (!(args.tolerance > 0 && args.tolerance < 1))
-    throw CommandError("--tolerance: must be in (0, 1)");
-  if (args.threads < 0) throw CommandError("--threads: must be >= 0");
-  check_output_writable(args.output);
+  options.precision = args.precision == "f16" ? prt::Precision::F16 : prt::Precision::F32;
 
   scene::LoadOptions load;
   if (!args.albedo.empty()) load.albedo_override = parse_albedo(args.albedo);
   const scene::Scene scene = scene::load_scene(args.scene, load);
+  if (args.albedo.empty()) note_default_albedo(scene, args.quiet);
   if (args.haar.basis == "haar") {
     run_haar_bake(scene, args.output, options.kind, args.haar, args.seed, args.threads,
                   args.bounces, args.tolerance, args.quiet);
@@ -213,7 +271,7 @@ void register_bake(CLI::App& app) {
   cmd->add_option("--threads", args->threads, "Worker threads (0 = all)")->capture_default_str();
   cmd->add_option("--precision", args->precision, "Coefficient storage: f32 | f16")
       ->capture_default_str();
-  cmd->add_flag("--quiet", args->quiet, "No progress and no summary");
+  cmd->add_flag("--quiet", args->quiet, "No progress, summary or notes (warnings still print)");
   add_haar_bake_options(cmd, &args->haar);
   cmd->add_flag("--auto", args->automatic,
                 "Analyse the scene and bake only what it needs for --tolerance (default 0.01)");
@@ -221,7 +279,7 @@ void register_bake(CLI::App& app) {
   cmd->callback([args, cmd] {
     args->tolerance_given = cmd->count("--tolerance") > 0;
     args->transfer_given = cmd->count("--transfer") > 0;
-    run(*args);
+    run(*args, *cmd);
   });
 }
 

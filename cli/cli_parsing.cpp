@@ -20,7 +20,7 @@ std::vector<double> parse_number_list(const std::string& option, const std::stri
       if (used != part.size() || !std::isfinite(v)) throw std::invalid_argument(part);
       values.push_back(v);
     } catch (const std::exception&) {
-      throw CommandError(option + " " + text + ": '" + part + "' is not a number");
+      throw UsageError(option + " " + text + ": '" + part + "' is not a number");
     }
   }
   return values;
@@ -28,8 +28,7 @@ std::vector<double> parse_number_list(const std::string& option, const std::stri
 
 std::array<double, 3> parse_yaw_pitch_roll(const std::string& text) {
   const std::vector<double> v = parse_number_list("--rotate", text);
-  if (v.size() != 3)
-    throw CommandError("--rotate " + text + ": expected yaw,pitch,roll in degrees");
+  if (v.size() != 3) throw UsageError("--rotate " + text + ": expected yaw,pitch,roll in degrees");
   return {v[0], v[1], v[2]};
 }
 
@@ -37,7 +36,7 @@ std::optional<prt::sh::EnvLayout> parse_layout_option(const std::string& text) {
   if (text == "auto") return std::nullopt;
   prt::sh::EnvLayout layout;
   if (!prt::sh::parse_layout(text, &layout))
-    throw CommandError("--layout " + text + ": expected auto|latlong|angular|cross|faces");
+    throw UsageError("--layout " + text + ": expected auto|latlong|angular|cross|faces");
   return layout;
 }
 

@@ -1,8 +1,8 @@
 // cli/cli_parsing.h — parsing of option values shared by the subcommands.
 //
-// Every error throws CommandError with one line "OPTION TEXT: problem" (command_registry.h).
-// Angles are in degrees; --rotate's yaw, pitch, roll are those of prt::sh::rotation_from_yaw_pitch_roll
-// (sh/rotation.h, glTF frame, +Y up).
+// Every error throws UsageError with one line "OPTION TEXT: problem" (command_registry.h).
+// Angles are in degrees; --rotate's yaw, pitch, roll are those of
+// prt::sh::rotation_from_yaw_pitch_roll (sh/rotation.h, glTF frame, +Y up).
 #pragma once
 
 #include <array>
@@ -21,7 +21,8 @@ std::vector<double> parse_number_list(const std::string& option, const std::stri
 // --rotate "yaw,pitch,roll" in degrees: exactly three finite numbers.
 std::array<double, 3> parse_yaw_pitch_roll(const std::string& text);
 
-// --layout: "auto" (guess from the aspect ratio: nullopt) or a layout name of prt::sh::parse_layout.
+// --layout: "auto" (guess from the aspect ratio: nullopt) or a layout name of
+// prt::sh::parse_layout.
 std::optional<prt::sh::EnvLayout> parse_layout_option(const std::string& text);
 
 }  // namespace prt::cli

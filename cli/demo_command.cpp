@@ -17,10 +17,12 @@
 #include "bake/progress.h"
 #include "bake/transfer_baker.h"
 #include "command_registry.h"
+#include "output_safety.h"
 #include "prt/relighter.h"
 #include "prt/transfer_file.h"
 #include "relight/auto_exposure.h"
 #include "relight/camera.h"
+#include "relight/environment_input.h"
 #include "relight/image_io.h"
 #include "relight/relight_pipeline.h"
 #include "relight/renderer.h"
@@ -39,6 +41,15 @@ namespace {
 
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
+
+// The files the demo writes into its output folder (the scene only when data/ has none).
+constexpr const char* kSceneName = "demo.glb";
+constexpr const char* kTransferName = "demo.prt";
+constexpr const char* kImageName = "demo.png";
+constexpr const char* kLinearImageName = "demo.exr";
+constexpr const char* kCompareName = "demo_compare.png";
+constexpr const char* kOutputNames[] = {kSceneName, kTransferName, kImageName, kLinearImageName,
+                                        kCompareName};
 
 struct DemoArguments {
   std::string output_dir = "out";
@@ -66,7 +77,7 @@ double seconds_since(Clock::time_point start) {
 fs::path find_data_dir(const std::string& requested) {
   if (!requested.empty()) {
     if (!fs::is_directory(requested))
-      throw CommandError(requested + ": data directory does not exist");
+      throw CommandError("--data " + requested + ": is not a directory");
     return requested;
   }
   for (const fs::path& candidate : {fs::path("data"), fs::path(PRT_DEMO_DATA_DIR)})
@@ -105,6 +116,13 @@ void run(const DemoArguments& args) {
   }
   const fs::path data_dir = find_data_dir(args.data_dir);
   const fs::path out_dir = args.output_dir;
+  CommandFiles files;
+  if (fs::exists(data_dir / "demo.glb")) files.add_scene((data_dir / "demo.glb").string());
+  files.add_environment((data_dir / "sky.hdr").string());
+  files.add_output("-o", args.output_dir);
+  for (const char* name : kOutputNames) files.add_output("-o", (out_dir / name).string());
+  files.check();
+  check_output_directory("-o", args.output_dir);
   std::error_code error;
   fs::create_directories(out_dir, error);
   if (!fs::is_directory(out_dir))
@@ -119,7 +137,7 @@ void run(const DemoArguments& args) {
     scene = scene::load_scene(bundled.string());
   } else {
     scene = scene::make_demo_scene();
-    const std::string path = (out_dir / "demo.glb").string();
+    const std::string path = (out_dir / kSceneName).string();
     scene::write_glb(path, scene);
     scene.source_path = path;
     written.push_back(path);
@@ -130,7 +148,7 @@ void run(const DemoArguments& args) {
   double bake_seconds = 0, unshadowed_seconds = 0, shadowed_seconds = 0;
   const prt::TransferData interreflected =
       bake_kind(scene, prt::TransferKind::Interreflected, settings, args.quiet, &bake_seconds);
-  const std::string prt_path = (out_dir / "demo.prt").string();
+  const std::string prt_path = (out_dir / kTransferName).string();
   const prt::Status saved = prt::write_transfer_file(prt_path, interreflected);
   if (!saved.ok()) throw CommandError(saved.message());
   written.push_back(prt_path);
@@ -142,7 +160,10 @@ void run(const DemoArguments& args) {
   // 3. Relight under the bundled sky.
   auto start = Clock::now();
   const std::string sky_path = (data_dir / "sky.hdr").string();
-  const prt::sh::EnvMap sky = relight::read_environment(sky_path, prt::sh::EnvLayout::LatLong, nullptr);
+  relight::EnvironmentUse sky_use;
+  sky_use.sh_order = settings.order;
+  const prt::sh::EnvMap sky =
+      relight::read_checked_environment(sky_path, prt::sh::EnvLayout::LatLong, sky_use).env;
   relight::LightingOptions lighting_options;
   lighting_options.yaw_pitch_roll_deg = settings.yaw_pitch_roll;
   lighting_options.window = prt::sh::Window::Auto;
@@ -166,7 +187,7 @@ void run(const DemoArguments& args) {
   const relight::Camera camera = relight::parse_camera("auto", scene, aspect);
   const relight::Image image =
       relight::render(scene, caster, radiance, &sky, rotation, camera, render_options);
-  for (const char* name : {"demo.png", "demo.exr"}) {
+  for (const char* name : {kImageName, kLinearImageName}) {
     const std::string path = (out_dir / name).string();
     relight::write_rendered_image(path, image, exposure_ev);
     written.push_back(path);
@@ -191,7 +212,7 @@ void run(const DemoArguments& args) {
                 strip.rgb.begin() +
                     3 * (static_cast<std::ptrdiff_t>(row) * strip.width + p * panel.width));
   }
-  const std::string compare_path = (out_dir / "demo_compare.png").string();
+  const std::string compare_path = (out_dir / kCompareName).string();
   relight::write_rendered_image(compare_path, strip, exposure_ev);
   written.push_back(compare_path);
   const double render_seconds = seconds_since(start);
@@ -220,7 +241,7 @@ void register_demo(CLI::App& app) {
   cmd->add_option("--data", args->data_dir,
                   "Directory holding demo.glb and sky.hdr (default: ./data, else the source tree)");
   cmd->add_flag("--quick", args->quick, "Fewer samples, lower order, smaller images");
-  cmd->add_flag("--quiet", args->quiet, "Print nothing on success");
+  cmd->add_flag("--quiet", args->quiet, "No progress or summary (warnings still print)");
   cmd->callback([args] { run(*args); });
 }
 

@@ -6,10 +6,13 @@
 //   * Order of operations: project → window (band factors h_l) → rotate → irradiance.
 //   * --rotate turns the environment by M = Ry(yaw)·Rx(pitch)·Rz(roll) (degrees; sh/rotation.h):
 //     a light from direction d ends up coming from M·d.
-//   * NaN/Inf/negative texels are skipped and reported; --strict makes them an error.
+//   * Maps are read, screened and checked as every command does (relight/environment_input.h):
+//     NaN/Inf texels are taken as black and negative channels clamped to 0, with a warning
+//     (--strict makes them an error); a map too coarse for --order is refused, one that aliases
+//     is warned about.
 //   * Text output: a header with the layout, order, basis and frame, then one line per index
 //     k = l(l+1)+m with l, m, r, g, b. --json: one object per file (an array for several files).
-// Errors: one line "PATH: problem", exit status 1.
+// Errors: one line "PATH: problem", exit status 1 (2 for a bad option).
 #include <array>
 #include <cmath>
 #include <cstdio>
@@ -23,8 +26,10 @@
 
 #include "cli_parsing.h"
 #include "command_registry.h"
-#include "relight/image_io.h"
+#include "output_safety.h"
+#include "relight/environment_input.h"
 #include "sh/basis.h"
+#include "sh/constants.h"
 #include "sh/env_map.h"
 #include "sh/projection.h"
 #include "sh/rotation.h"
@@ -54,40 +59,31 @@ struct Settings {
   std::optional<std::array<double, 3>> yaw_pitch_roll;
 };
 
-Settings parse_settings(const EnvArguments& args) {
+Settings parse_settings(const EnvArguments& args, const CLI::App& cmd) {
   Settings settings;
   settings.layout = parse_layout_option(args.layout);
   if (!prt::sh::parse_window(args.window, &settings.window))
-    throw CommandError("--window " + args.window +
-                       ": unknown window (none, hanning, lanczos, laplacian or auto)");
+    throw UsageError("--window " + args.window +
+                     ": unknown window (none, hanning, lanczos, laplacian or auto)");
   if (args.order < 1 || args.order > prt::sh::kMaxOrder)
-    throw CommandError("--order " + std::to_string(args.order) + ": must be in [1, " +
-                       std::to_string(prt::sh::kMaxOrder) + "]");
-  if (!std::isfinite(args.window_strength))
-    throw CommandError("--window-strength: must be a finite number");
+    throw UsageError("--order " + std::to_string(args.order) + ": must be in [1, " +
+                     std::to_string(prt::sh::kMaxOrder) + "]");
+  if (cmd.count("--window-strength") > 0) {
+    if (!std::isfinite(args.window_strength) || !(args.window_strength > 0))
+      throw UsageError("--window-strength: must be a positive number");
+    if (settings.window == prt::sh::Window::None)
+      throw UsageError("--window-strength needs a --window (it is none)");
+    if (settings.window == prt::sh::Window::Auto)
+      throw UsageError("--window-strength does not apply to --window auto (it chooses its own)");
+  }
   if (!args.rotate.empty()) {
     const std::array<double, 3> angles = parse_yaw_pitch_roll(args.rotate);
     if (args.order > prt::sh::kMaxRotationOrder)
-      throw CommandError("--rotate: orders above " + std::to_string(prt::sh::kMaxRotationOrder) +
-                         " cannot be rotated");
+      throw UsageError("--rotate: orders above " + std::to_string(prt::sh::kMaxRotationOrder) +
+                       " cannot be rotated (--order " + std::to_string(args.order) + ")");
     settings.yaw_pitch_roll = angles;
   }
   return settings;
-}
-
-// Texels along a great circle: a rough measure of the bands a map can resolve (≈ half of it).
-int great_circle_texels(const prt::sh::EnvMap& env) {
-  switch (env.layout) {
-    case prt::sh::EnvLayout::LatLong:
-      return env.width;
-    case prt::sh::EnvLayout::Angular:
-      return env.width;
-    case prt::sh::EnvLayout::Cross:
-      return 4 * (env.width / 3);
-    case prt::sh::EnvLayout::Faces:
-      return 4 * env.width;
-  }
-  return env.width;
 }
 
 struct FileResult {
@@ -102,40 +98,27 @@ std::string format_row(int l, int m, double r, double g, double b) {
 }
 
 FileResult process(const std::string& path, const EnvArguments& args, const Settings& settings) {
-  std::string layout_note;
-  const prt::sh::EnvMap env = relight::read_environment(path, settings.layout, &layout_note);
+  // Read, screen and check against the order (relight/environment_input.h): refusals throw,
+  // warnings are printed as "PATH: warning: ..." and kept for the JSON.
+  relight::EnvironmentUse use;
+  use.sh_order = args.order;
+  use.strict = args.strict;
+  relight::EnvironmentInput input = relight::read_checked_environment(path, settings.layout, use);
+  const prt::sh::EnvMap& env = input.env;
+  const std::string& layout_note = input.layout_note;
+  const prt::sh::EnvTexelReport& texels = input.texels;
+  std::vector<std::string> warnings = input.warnings;
   const int order = args.order;
   const int n2 = prt::sh::coefficient_count(order);
 
-  // Resolution: a map with C texels around a great circle resolves bands up to about C/2.
-  const int circle = great_circle_texels(env);
-  if (order - 1 > circle)
-    throw CommandError(path + ": " + std::to_string(env.width) + "x" + std::to_string(env.height) +
-                       " is far too small for order " + std::to_string(order) +
-                       " (it resolves bands up to about l = " + std::to_string(circle / 2) + ")");
-  std::vector<std::string> warnings;
-  if (order - 1 > circle / 2)
-    warnings.push_back(path + ": " + std::to_string(env.width) + "x" + std::to_string(env.height) +
-                       " resolves bands up to about l = " + std::to_string(circle / 2) +
-                       "; order " + std::to_string(order) +
-                       " asks for l = " + std::to_string(order - 1) + " (aliasing)");
-
-  prt::sh::ProjectionStats stats;
-  std::vector<double> coefficients = prt::sh::project(env, order, &stats);
+  std::vector<double> coefficients = prt::sh::project(env, order);
   if (coefficients.size() != 3 * static_cast<std::size_t>(n2))
     throw CommandError(path + ": projection failed (invalid map)");
-  const std::size_t skipped = stats.skipped_texels();
-  std::string skipped_note = "skipped texels: none";
-  if (skipped > 0) {
-    skipped_note = "skipped texels: " + std::to_string(skipped) + " (" +
-                   std::to_string(stats.nan_texels) + " NaN, " + std::to_string(stats.inf_texels) +
-                   " Inf, " + std::to_string(stats.negative_texels) + " negative)";
-    if (args.strict)
-      throw CommandError(path + ": " + std::to_string(skipped) +
-                         " texels are NaN, Inf or negative (" + std::to_string(stats.nan_texels) +
-                         " NaN, " + std::to_string(stats.inf_texels) + " Inf, " +
-                         std::to_string(stats.negative_texels) + " negative; --strict)");
-  }
+  std::string texel_note = "texels: all finite and non-negative";
+  if (texels.invalid_texels() + texels.negative_texels > 0)
+    texel_note = "texels: " + std::to_string(texels.nan_texels) + " NaN and " +
+                 std::to_string(texels.inf_texels) + " Inf (taken as black), " +
+                 std::to_string(texels.negative_texels) + " with a negative channel (clamped to 0)";
 
   // Window.
   nlohmann::json window_json;
@@ -148,9 +131,11 @@ FileResult process(const std::string& path, const EnvArguments& args, const Sett
     window_json["requested"] = "auto";
     window_json["min_irradiance_before"] = choice.min_irradiance_before;
     window_json["min_irradiance_after"] = choice.min_irradiance_after;
-    if (choice.min_irradiance_after < 0)
-      warnings.push_back(path + ": no window keeps the irradiance non-negative (minimum " +
+    if (choice.min_irradiance_after < 0) {
+      warnings.push_back("no window keeps the irradiance non-negative (minimum " +
                          std::to_string(choice.min_irradiance_after) + ")");
+      std::fprintf(stderr, "%s: warning: %s\n", path.c_str(), warnings.back().c_str());
+    }
   } else if (!(strength > 0)) {
     strength = prt::sh::default_window_strength(window, order);
   }
@@ -186,9 +171,6 @@ FileResult process(const std::string& path, const EnvArguments& args, const Sett
       prt::sh::convolve_zonal(order, band_factors.data(), &coefficients[c * n2]);
   }
 
-  for (const std::string& warning : warnings)
-    std::fprintf(stderr, "warning: %s\n", warning.c_str());
-
   FileResult result;
   const char* quantity = args.irradiance ? "irradiance" : "radiance";
   nlohmann::json& j = result.json;
@@ -203,10 +185,11 @@ FileResult process(const std::string& path, const EnvArguments& args, const Sett
   j["window"] = window_json;
   j["quantity"] = quantity;
   j["rotation"] = rotation_json;
-  j["skipped_texels"] = {{"nan", stats.nan_texels},
-                         {"inf", stats.inf_texels},
-                         {"negative", stats.negative_texels},
-                         {"solid_angle_used_sr", stats.solid_angle_sum}};
+  j["skipped_texels"] = {{"nan", texels.nan_texels},
+                         {"inf", texels.inf_texels},
+                         {"solid_angle_used_sr", 4.0 * prt::sh::kPi - texels.invalid_solid_angle}};
+  j["clamped_texels"] = {{"negative", texels.negative_texels}};
+  j["warnings"] = warnings;
   nlohmann::json list = nlohmann::json::array();
   for (int k = 0; k < n2; ++k)
     list.push_back({coefficients[k], coefficients[n2 + k], coefficients[2 * n2 + k]});
@@ -216,7 +199,8 @@ FileResult process(const std::string& path, const EnvArguments& args, const Sett
   text += "# " + path + ": " + layout_note + ", " + std::to_string(env.width) + "x" +
           std::to_string(env.height) + "\n";
   text += "# order " + std::to_string(order) + " (" + std::to_string(n2) +
-          " coefficients per channel); basis: " + prt::sh::kBasisConvention + "; frame " + kFrame + "\n";
+          " coefficients per channel); basis: " + prt::sh::kBasisConvention + "; frame " + kFrame +
+          "\n";
   text += std::string("# quantity ") + quantity +
           (args.irradiance ? " (E_lm = A_l L_lm; constant radiance L gives E = pi L)" : "") +
           "; window " + prt::sh::window_name(window);
@@ -227,7 +211,7 @@ FileResult process(const std::string& path, const EnvArguments& args, const Sett
     text += "; rotation yaw " + std::to_string(a[0]) + ", pitch " + std::to_string(a[1]) +
             ", roll " + std::to_string(a[2]) + " deg";
   }
-  text += "\n# " + skipped_note + "\n";
+  text += "\n# " + texel_note + "\n";
   text += "#  l    m                 r                g                b\n";
   for (int l = 0; l < order; ++l)
     for (int m = -l; m <= l; ++m) {
@@ -237,8 +221,11 @@ FileResult process(const std::string& path, const EnvArguments& args, const Sett
   return result;
 }
 
-void run(const EnvArguments& args) {
-  const Settings settings = parse_settings(args);
+void run(const EnvArguments& args, const CLI::App& cmd) {
+  const Settings settings = parse_settings(args, cmd);
+  CommandFiles files;  // no files are written: only stdout must not be an input
+  for (const std::string& file : args.files) files.add_environment(file);
+  files.check();
   std::vector<FileResult> results;
   for (const std::string& file : args.files) results.push_back(process(file, args, settings));
   if (args.json) {
@@ -269,15 +256,15 @@ void register_env(CLI::App& app) {
   cmd->add_option("--window", args->window, "none|hanning|lanczos|laplacian|auto")
       ->default_str("none");
   cmd->add_option("--window-strength", args->window_strength,
-                  "Window parameter (Hanning width, Lanczos exponent, Laplacian lambda); "
-                  "0 = the window's default");
+                  "Window parameter (Hanning width, Lanczos exponent, Laplacian lambda; "
+                  "default: the window's own)");
   cmd->add_flag("--irradiance", args->irradiance,
                 "Print irradiance E_lm = A_l L_lm instead of radiance");
   cmd->add_option("--rotate", args->rotate,
                   "yaw,pitch,roll in degrees: M = Ry(yaw) Rx(pitch) Rz(roll)");
   cmd->add_flag("--json", args->json, "Print JSON (an array when several files are given)");
   cmd->add_flag("--strict", args->strict, "Fail on NaN, Inf or negative texels");
-  cmd->callback([args] { run(*args); });
+  cmd->callback([args, cmd] { run(*args, *cmd); });
 }
 
 }  // namespace

@@ -84,11 +84,18 @@ void add_haar_relight_options(CLI::App* cmd, HaarRelightArguments* a) {
 bool relight_if_haar(const relight::RelightRequest& request, const HaarRelightArguments& a,
                      bool quiet) {
   if (!prt::is_haar_transfer_file(request.transfer_path)) return false;
-  if (a.terms < 0) throw CommandError("--terms: must be >= 0 (0 = all)");
+  if (a.terms < 0)
+    throw UsageError("--terms " + std::to_string(a.terms) + ": must be >= 0 (0 = all)");
   relight::HaarLightingOptions options;
   options.terms = a.terms;
   options.linear = a.approx == "linear";
   const relight::RelightSummary s = relight::run_haar_relight(request, options);
+  const int64_t coefficients = int64_t{6} * s.order * s.order;  // summary.order = cube size
+  if (a.terms > coefficients)
+    std::fprintf(stderr,
+                 "prt relight: warning: --terms %lld is more than the %lld wavelet coefficients "
+                 "of the cube (size %d): all of them were used\n",
+                 static_cast<long long>(a.terms), static_cast<long long>(coefficients), s.order);
   if (quiet) return true;
   std::printf("relit %zu vertices (%s); shading %.2f ms, rendering %.3f s", s.vertex_count,
               s.window_note.c_str(), 1e3 * s.shade_seconds, s.render_seconds);

@@ -1,7 +1,15 @@
-// The `prt` executable: subcommands env, bake, info, relight, report, demo.
+// The `prt` executable: subcommands env, bake, info, relight, report, demo, make-sky, make-scene.
+//
+// Exit status (README "Exit status"): 0 success (and --help, --version); 1 an input file is
+// unreadable or invalid, an output cannot be written, or the run failed; 2 the command line is
+// wrong: a parse error of CLI11 (unknown option, missing argument, a value of the wrong type),
+// an option value out of range, options that do not apply together, or an output that names
+// an input or another output (UsageError). Every failure prints one line on stderr:
+// "prt SUBCOMMAND: problem".
 #include <algorithm>
 #include <cstdio>
 #include <exception>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -9,11 +17,30 @@
 
 #include "command_registry.h"
 
+#ifndef PRT_VERSION
+#define PRT_VERSION "unknown"
+#endif
+
 namespace prt::cli {
 namespace {
 std::vector<std::pair<int, CommandRegistration>>& registry() {
   static std::vector<std::pair<int, CommandRegistration>> commands;
   return commands;
+}
+
+// "prt" and the subcommand being run, if parsing got that far.
+std::string command_name(const CLI::App& app) {
+  std::string name = "prt";
+  for (const CLI::App* sub : app.get_subcommands()) name += " " + sub->get_name();
+  return name;
+}
+
+// One line: newlines of multi-line messages become "; ".
+std::string one_line(std::string text) {
+  while (!text.empty() && (text.back() == '\n' || text.back() == ' ')) text.pop_back();
+  for (std::size_t at = text.find('\n'); at != std::string::npos; at = text.find('\n', at))
+    text.replace(at, 1, "; ");
+  return text;
 }
 }  // namespace
 
@@ -24,7 +51,10 @@ bool register_command(int order, CommandRegistration registration) {
 }  // namespace prt::cli
 
 int main(int argc, char** argv) {
+  using prt::cli::command_name;
+  using prt::cli::one_line;
   CLI::App app{"prt — precomputed radiance transfer: bake, relight, report"};
+  app.set_version_flag("--version", std::string("prt ") + PRT_VERSION);
   app.require_subcommand(1);
   auto& commands = prt::cli::registry();
   std::stable_sort(commands.begin(), commands.end(),
@@ -34,11 +64,16 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
+    const std::string name = command_name(app);
+    std::fprintf(stderr, "%s: %s (see %s --help)\n", name.c_str(), one_line(e.what()).c_str(),
+                 name.c_str());
+    return 2;
+  } catch (const prt::cli::UsageError& e) {
+    std::fprintf(stderr, "%s: %s\n", command_name(app).c_str(), one_line(e.what()).c_str());
+    return 2;
   } catch (const std::exception& e) {
-    std::string name = "prt";
-    for (const CLI::App* sub : app.get_subcommands()) name += " " + sub->get_name();
-    std::fprintf(stderr, "%s: %s\n", name.c_str(), e.what());
+    std::fprintf(stderr, "%s: %s\n", command_name(app).c_str(), one_line(e.what()).c_str());
     return 1;
   }
   return 0;

@@ -10,6 +10,7 @@
 #include <CLI/CLI.hpp>
 
 #include "command_registry.h"
+#include "output_safety.h"
 #include "scene/glb_writer.h"
 #include "scene/procedural_mesh.h"
 
@@ -23,6 +24,7 @@ void register_make_scene(CLI::App& app) {
   auto output = std::make_shared<std::string>();
   command->add_option("-o,--output", *output, "Output .glb path")->required();
   command->callback([output] {
+    check_output_file("-o", *output, {".glb"}, "a binary glTF");
     const scene::Scene scene = scene::make_demo_scene();
     scene::write_glb(*output, scene);  // throws SceneError("PATH: problem")
     std::printf("%s: %zu vertices, %zu triangles, %zu primitives, %zu camera(s)\n", output->c_str(),

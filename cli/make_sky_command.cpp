@@ -11,6 +11,7 @@
 #include <CLI/CLI.hpp>
 
 #include "command_registry.h"
+#include "output_safety.h"
 #include "relight/image_io.h"
 #include "relight/sky_model.h"
 #include "sh/constants.h"
@@ -19,24 +20,42 @@
 namespace prt::cli {
 namespace {
 
+constexpr int kMaxHeight = 8192;  // 16384 x 8192: 1.5 GB of float RGB
+
 struct MakeSkyArguments {
   std::string output;
   int width = 512, height = 256;
   relight::SkyParams params;
 };
 
-void run(const MakeSkyArguments& args) {
-  if (args.width <= 0 || args.height <= 0 || args.width != 2 * args.height)
-    throw CommandError(args.output +
-                       ": the sky is a lat-long map: --width must be 2 x --height (got " +
-                       std::to_string(args.width) + "x" + std::to_string(args.height) + ")");
+// Every parameter in range, refused by name.
+void check_parameters(const MakeSkyArguments& args) {
+  if (args.height < 1 || args.height > kMaxHeight || args.width != 2 * args.height)
+    throw UsageError("--width " + std::to_string(args.width) + " --height " +
+                     std::to_string(args.height) +
+                     ": the sky is a lat-long map: width = 2 x height, height in 1.." +
+                     std::to_string(kMaxHeight));
   const relight::SkyParams& p = args.params;
-  if (!(p.sun_radius_deg > 0) || !(p.sun_radiance >= 0) || !(p.glow_radiance >= 0) ||
-      !(p.glow_width_deg >= 0) || p.supersampling < 1 || p.supersampling > 64 ||
-      !std::isfinite(p.sun_elevation_deg) || !std::isfinite(p.sun_azimuth_deg))
-    throw CommandError(args.output +
-                       ": invalid sky parameters (radius > 0, radiances >= 0, "
-                       "1 <= supersampling <= 64)");
+  const auto require = [](bool ok, const char* option, const char* range) {
+    if (!ok) throw UsageError(std::string(option) + ": must be " + range);
+  };
+  require(std::isfinite(p.sun_elevation_deg) && std::fabs(p.sun_elevation_deg) <= 90,
+          "--sun-elevation", "in [-90, 90] degrees");
+  require(std::isfinite(p.sun_azimuth_deg), "--sun-azimuth", "a finite number of degrees");
+  require(p.sun_radius_deg > 0 && p.sun_radius_deg <= 90, "--sun-radius", "in (0, 90] degrees");
+  require(std::isfinite(p.sun_radiance) && p.sun_radiance >= 0, "--sun-radiance",
+          "a finite radiance >= 0");
+  require(std::isfinite(p.glow_radiance) && p.glow_radiance >= 0, "--glow-radiance",
+          "a finite radiance >= 0");
+  require(std::isfinite(p.glow_width_deg) && p.glow_width_deg >= 0, "--glow-width",
+          "a finite number of degrees >= 0");
+  require(p.supersampling >= 1 && p.supersampling <= 64, "--supersampling", "in 1..64");
+}
+
+void run(const MakeSkyArguments& args) {
+  check_parameters(args);
+  check_output_file("-o", args.output, {".hdr", ".exr"}, "an HDR image");
+  const relight::SkyParams& p = args.params;
   const prt::sh::EnvMap sky = relight::make_procedural_sky(args.width, args.height, p);
   relight::write_image(args.output, sky.width, sky.height, 3, sky.rgb.data());
   // Mean radiance = L_00·Y_00 (∫L dω = L_00/Y_00 and Y_00² = 1/4π).

@@ -1,6 +1,9 @@
 // `prt relight SCENE FILE.prt ENV -o OUT.(exr|png|hdr) [...]`: shade a baked scene under an
 // environment map and render it (relight/relight_pipeline.h does the work).
+#include <cctype>
+#include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -11,6 +14,8 @@
 #include "cli_parsing.h"
 #include "command_registry.h"
 #include "haar_cli.h"
+#include "output_safety.h"
+#include "prt/haar/transfer_file.h"
 #include "relight/relight_pipeline.h"
 #include "sh/env_map.h"
 #include "sh/window.h"
@@ -36,6 +41,12 @@ struct RelightArguments {
   HaarRelightArguments haar;  // --terms, --approx for Haar files (haar_cli.h)
 };
 
+std::string lower_extension(const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return ext;
+}
+
 void parse_size(const std::string& text, int* width, int* height) {
   const std::size_t x = text.find_first_of("xX");
   try {
@@ -46,13 +57,81 @@ void parse_size(const std::string& text, int* width, int* height) {
     *height = std::stoi(h, &used_h);
     if (used_w != w.size() || used_h != h.size()) throw std::invalid_argument(text);
   } catch (const std::exception&) {
-    throw CommandError("--size " + text + ": expected WIDTHxHEIGHT, e.g. 960x540");
+    throw UsageError("--size " + text + ": expected WIDTHxHEIGHT, e.g. 960x540");
   }
   if (*width < 1 || *height < 1 || *width > 16384 || *height > 16384)
-    throw CommandError("--size " + text + ": each side must be in 1..16384");
+    throw UsageError("--size " + text + ": each side must be in 1..16384");
 }
 
-void run(const RelightArguments& args) {
+// Options that do not apply to this run are refused by name (`given` = on the command line).
+void check_options(const RelightArguments& args, const CLI::App& cmd) {
+  const auto given = [&cmd](const char* option) { return cmd.count(option) > 0; };
+  if (!std::isfinite(args.exposure) || std::fabs(args.exposure) > 64.f)
+    throw UsageError("--exposure " + cmd.get_option("--exposure")->as<std::string>() +
+                     ": must be a number of EV in [-64, 64]");
+  const std::string ext = lower_extension(args.output);
+  if (given("--exposure") && ext != ".png")
+    throw UsageError("--exposure applies to .png output; " + args.output +
+                     " is written linear, without exposure");
+  if (given("--window-strength")) {
+    if (!std::isfinite(args.window_strength) || !(args.window_strength > 0))
+      throw UsageError("--window-strength: must be a positive number");
+    if (args.window == "none") throw UsageError("--window-strength needs a --window (it is none)");
+    if (args.window == "auto")
+      throw UsageError("--window-strength does not apply to --window auto (it chooses its own)");
+  }
+  if (args.vertex_colors_tonemap && args.vertex_colors.empty())
+    throw UsageError("--vertex-colors-tonemap: needs --vertex-colors OUT.glb");
+  if (args.spp < 1 || args.spp > 16)
+    throw UsageError("--spp " + std::to_string(args.spp) + ": must be in 1..16 (N×N per pixel)");
+  if (args.turntable < 0 || args.turntable > 3600)
+    throw UsageError("--turntable " + std::to_string(args.turntable) + ": must be in 0..3600");
+  // The kind of the coefficient file decides which options apply (a missing file is reported
+  // by check_files, an unreadable one by the pipeline).
+  if (!std::filesystem::exists(args.transfer)) return;
+  const bool haar = prt::is_haar_transfer_file(args.transfer);
+  for (const char* option : {"--terms", "--approx"})
+    if (!haar && given(option))
+      throw UsageError(std::string(option) + " applies to Haar files; " + args.transfer +
+                       " holds SH coefficients");
+  if (haar && given("--window") && args.window != "none")
+    throw UsageError("--window applies to SH files; " + args.transfer + " holds Haar wavelets");
+  if (haar && given("--window-strength"))
+    throw UsageError("--window-strength applies to SH files; " + args.transfer +
+                     " holds Haar wavelets");
+}
+
+// Every output can be written and none overwrites an input or another output.
+void check_files(const RelightArguments& args) {
+  CommandFiles files;
+  files.add_scene(args.scene);
+  files.add_input("coefficient file", args.transfer);
+  files.add_environment(args.environment);
+  if (args.turntable > 0) {
+    for (int frame = 0; frame < args.turntable; ++frame)
+      files.add_output("--turntable frame", relight::turntable_frame_path(args.output, frame));
+  } else {
+    files.add_output("-o", args.output);
+  }
+  files.add_output("--vertex-colors", args.vertex_colors);
+  files.add_output("--csv", args.csv);
+  files.check();
+  check_output_file("-o", args.output, {".exr", ".hdr", ".png"}, "an image");
+  if (!args.vertex_colors.empty())
+    check_output_file("--vertex-colors", args.vertex_colors, {".glb"}, "a binary glTF");
+  if (!args.csv.empty()) check_output_file("--csv", args.csv, {".csv"});
+}
+
+// What to say about vertices with a negative channel (SH ringing), true for the window used.
+std::string ringing_advice(const std::string& window) {
+  if (window == "none") return "SH ringing: try --window auto";
+  if (window == "auto") return "SH ringing that the auto window could not remove";
+  return "SH ringing that the " + window + " window did not remove: try --window auto";
+}
+
+void run(const RelightArguments& args, const CLI::App& cmd) {
+  check_options(args, cmd);
+  check_files(args);
   relight::RelightRequest request;
   request.scene_path = args.scene;
   request.transfer_path = args.transfer;
@@ -61,19 +140,14 @@ void run(const RelightArguments& args) {
   request.layout = parse_layout_option(args.layout);
   request.lighting.yaw_pitch_roll_deg = parse_yaw_pitch_roll(args.rotate);
   if (!prt::sh::parse_window(args.window, &request.lighting.window))
-    throw CommandError("--window " + args.window +
-                       ": expected none|hanning|lanczos|laplacian|auto");
+    throw UsageError("--window " + args.window + ": expected none|hanning|lanczos|laplacian|auto");
   request.lighting.window_strength = args.window_strength;
   if (args.exposure_given) request.exposure_ev = args.exposure;
   parse_size(args.size, &request.render.width, &request.render.height);
-  if (args.spp < 1 || args.spp > 16)
-    throw CommandError("--spp " + std::to_string(args.spp) + ": must be in 1..16 (N×N per pixel)");
   request.render.samples_per_axis = args.spp;
   request.camera = args.camera;
   request.vertex_colors_path = args.vertex_colors;
   request.vertex_colors_tonemapped = args.vertex_colors_tonemap;
-  if (args.vertex_colors_tonemap && args.vertex_colors.empty())
-    throw CommandError("--vertex-colors-tonemap: needs --vertex-colors OUT.glb");
   request.csv_path = args.csv;
   request.turntable_frames = args.turntable;
 
@@ -85,8 +159,8 @@ void run(const RelightArguments& args) {
               summary.layout_note.empty() ? "" : "; ", summary.layout_note.c_str(),
               1e3 * summary.shade_seconds, summary.render_seconds);
   if (summary.negative_vertices > 0)
-    std::printf("; %zu vertices got negative radiance (SH ringing: try --window auto)",
-                summary.negative_vertices);
+    std::printf("; %zu vertices got negative radiance (%s)", summary.negative_vertices,
+                ringing_advice(args.window).c_str());
   std::printf(".\n%s\n", describe_view(request, summary).c_str());
   std::printf("wrote:");
   for (const std::string& file : summary.files_written) std::printf(" %s", file.c_str());
@@ -113,11 +187,11 @@ void register_relight(CLI::App& app) {
                   "Laplacian, that keeps the irradiance non-negative: no ringing)")
       ->capture_default_str();
   cmd->add_option("--window-strength", args->window_strength,
-                  "Window strength (negative: the window's default)");
-  CLI::Option* exposure = cmd->add_option(
-      "--exposure", args->exposure,
-      "Exposure in EV for PNG output (default: automatic, the median vertex luminance brought "
-      "to 0.3 before the filmic curve, rounded to 1/4 EV; the output says which)");
+                  "Strength of a hanning|lanczos|laplacian window (default: the window's own)");
+  cmd->add_option("--exposure", args->exposure,
+                  "Exposure in EV, for .png output only (default: automatic, the median vertex "
+                  "luminance brought to 0.3 before the filmic curve, rounded to 1/4 EV; the "
+                  "output says which)");
   cmd->add_option("--size", args->size, "Image size WIDTHxHEIGHT")->capture_default_str();
   cmd->add_option("--spp", args->spp, "N: N×N stratified samples per pixel")->capture_default_str();
   cmd->add_option("--camera", args->camera,
@@ -130,14 +204,16 @@ void register_relight(CLI::App& app) {
   cmd->add_flag("--vertex-colors-tonemap", args->vertex_colors_tonemap,
                 "For LDR viewers: COLOR_0 gets the PNG's exposure and filmic curve (values in "
                 "[0, 1], still linear; the viewer's sRGB output then matches the PNG)");
-  cmd->add_option("--csv", args->csv, "Also write index,x,y,z,r,g,b per vertex");
+  cmd->add_option("--csv", args->csv,
+                  "Also write a .csv of index,x,y,z,r,g,b per vertex (the first frame's)");
   cmd->add_option("--turntable", args->turntable,
-                  "Write N frames OUT_000… with the light turning about +Y");
-  cmd->add_flag("--quiet", args->quiet, "Print nothing on success");
+                  "Write N frames OUT_000… with the light turning about +Y (an interrupted "
+                  "turntable keeps the frames it finished)");
+  cmd->add_flag("--quiet", args->quiet, "No summary (warnings still go to stderr)");
   add_haar_relight_options(cmd, &args->haar);
-  cmd->callback([args, exposure] {
-    args->exposure_given = exposure->count() > 0;
-    run(*args);
+  cmd->callback([args, cmd] {
+    args->exposure_given = cmd->count("--exposure") > 0;
+    run(*args, *cmd);
   });
 }
 

@@ -6,7 +6,9 @@
 // the Haar cube sizes of the mode, "none" leaves Haar out.
 // `prt report --stability -o DIR [--quick]`: the stiff and extreme cases of
 // report/stability_report.h; exits with status 1 when any case fails.
+#include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <memory>
 #include <optional>
 #include <sstream>
@@ -18,6 +20,7 @@
 
 #include "cli_parsing.h"
 #include "command_registry.h"
+#include "output_safety.h"
 #include "report/report.h"
 #include "report/stability_report.h"
 
@@ -45,7 +48,7 @@ std::optional<std::vector<T>> parse_list(const std::string& option, const std::s
   for (std::string item; std::getline(in, item, ',');) {
     const std::optional<T> value = parse(item);
     if (!value)
-      throw CommandError(option + ": '" + item + "' is not " + expected + " (or pass none)");
+      throw UsageError(option + ": '" + item + "' is not " + expected + " (or pass none)");
     items.push_back(*value);
   }
   return items;
@@ -87,7 +90,45 @@ std::optional<std::vector<double>> parse_auto_tolerances(const std::string& text
                             });
 }
 
-void run(const ReportArguments& a) {
+// Options that do not apply are refused by name; values out of range too.
+void check_options(const ReportArguments& a, const CLI::App& cmd) {
+  if (a.stability) {
+    if (!a.scene.empty() || !a.environment.empty())
+      throw UsageError("--stability takes no SCENE or ENV (its cases make their own)");
+    for (const char* option :
+         {"--layout", "--seed", "--haar-cubes", "--auto-tolerances", "--ground-truth-budget"})
+      if (cmd.count(option) > 0)
+        throw UsageError(std::string(option) + " does not apply to --stability");
+    return;
+  }
+  if (a.scene.empty() || a.environment.empty())
+    throw UsageError("SCENE and ENV are required (or pass --stability)");
+  if (!std::isfinite(a.budget) || !(a.budget > 0))
+    throw UsageError("--ground-truth-budget: must be a positive number of seconds");
+  if (a.quick && cmd.count("--ground-truth-budget") > 0 &&
+      a.budget > prt::report::kQuickGroundTruthBudgetSeconds)
+    throw UsageError("--ground-truth-budget: --quick caps it at " +
+                     std::to_string(static_cast<int>(prt::report::kQuickGroundTruthBudgetSeconds)) +
+                     " s");
+}
+
+// The output folder, and every file the run would write there, against the inputs.
+void check_files(const ReportArguments& a) {
+  CommandFiles files;
+  if (!a.scene.empty()) files.add_scene(a.scene);
+  if (!a.environment.empty()) files.add_environment(a.environment);
+  files.add_output("-o", a.output);
+  const std::vector<std::string> names =
+      a.stability ? prt::report::stability_file_names() : prt::report::report_file_names();
+  for (const std::string& name : names)
+    files.add_output("-o", (std::filesystem::path(a.output) / name).string());
+  files.check();
+  check_output_directory("-o", a.output);
+}
+
+void run(const ReportArguments& a, const CLI::App& cmd) {
+  check_options(a, cmd);
+  check_files(a);
   if (a.stability) {
     const int failed = prt::report::run_stability_report(a.output, a.quick);
     std::printf("stability: %d failed case(s); report in %s\n", failed, a.output.c_str());
@@ -95,8 +136,6 @@ void run(const ReportArguments& a) {
       throw CommandError(a.output + ": " + std::to_string(failed) + " stability case(s) failed");
     return;
   }
-  if (a.scene.empty() || a.environment.empty())
-    throw CommandError("report: SCENE and ENV are required (or pass --stability)");
   prt::report::ReportOptions o;
   o.scene_path = a.scene;
   o.environment_path = a.environment;
@@ -131,9 +170,9 @@ void register_report(CLI::App& app) {
                   "Tolerances of the prt bake --auto rows, e.g. 0.01,0.05 (default: quick 0.05; "
                   "full 0.01,0.05,0.1), or none");
   cmd->add_option("--ground-truth-budget", args->budget,
-                  "Seconds the ground-truth refinement may take (full run)")
+                  "Seconds the ground-truth refinement may take (--quick: at most 15)")
       ->capture_default_str();
-  cmd->callback([args] { run(*args); });
+  cmd->callback([args, cmd] { run(*args, *cmd); });
 }
 
 }  // namespace

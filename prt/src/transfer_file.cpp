@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <limits>
 #include <new>
 #include <sstream>
@@ -630,6 +631,8 @@ Result<TransferData> read_transfer_file(const std::string& path) {
 
 Status detail::read_file_bytes(const std::string& path, std::vector<unsigned char>* out) {
   std::vector<unsigned char>& bytes = *out;
+  std::error_code ec;  // a folder opens on some systems and reports a huge length
+  if (std::filesystem::is_directory(path, ec)) return fail(path, "is a directory, not a file");
   std::FILE* f = std::fopen(path.c_str(), "rb");
   if (f == nullptr) return fail(path, std::string("cannot open: ") + std::strerror(errno));
   bool read_error = std::fseek(f, 0, SEEK_END) != 0;

@@ -10,6 +10,7 @@
 #include "prt/haar/relighter.h"
 #include "prt/haar/transfer_file.h"
 #include "prt/haar/transform.h"
+#include "relight/environment_input.h"
 #include "relight/image_io.h"
 #include "relight_frames.h"
 #include "scene/scene_loader.h"
@@ -84,15 +85,19 @@ RelightSummary run_haar_relight(const RelightRequest& request, const HaarLightin
   prt::Result<prt::HaarTransferFile> file = prt::read_haar_transfer_file(request.transfer_path);
   if (!file.ok()) throw std::runtime_error(file.status().message());
   check_transfer_matches_scene(file->info, request.transfer_path, scene);
-  const sh::EnvMap env =
-      read_environment(request.environment_path, request.layout, &summary.layout_note);
+  EnvironmentInput input = read_checked_environment(request.environment_path, request.layout);
+  const sh::EnvMap env = std::move(input.env);
+  summary.layout_note = input.layout_note;
   const int size = file->transfer.size;
   const prt::HaarRelighter relighter(std::move(file->transfer));
   summary.vertex_count = scene.vertex_count();
   summary.order = size;
-  summary.window_note = std::string(options.linear ? "linear" : "non-linear") + " Haar, " +
-                        (options.terms > 0 ? std::to_string(options.terms) : "all") +
-                        " terms, cube " + std::to_string(size);
+  const int64_t coefficients = int64_t{6} * size * size;  // terms beyond these: all of them
+  summary.window_note =
+      std::string(options.linear ? "linear" : "non-linear") + " Haar, " +
+      (options.terms > 0 && options.terms < coefficients ? std::to_string(options.terms)
+                                                         : "all " + std::to_string(coefficients)) +
+      " terms, cube " + std::to_string(size);
   detail::render_relight_frames(
       request, scene, env,
       [&](const std::array<double, 9>& m) { return project_haar_lighting(env, size, m, options); },

@@ -15,6 +15,7 @@
 #include "prt/geometry_check.h"
 #include "prt/transfer_file.h"
 #include "relight/auto_exposure.h"
+#include "relight/environment_input.h"
 #include "relight/image_io.h"
 #include "relight/tone_map.h"
 #include "relight_frames.h"
@@ -213,8 +214,11 @@ RelightSummary run_relight(const RelightRequest& request) {
   RelightSummary summary;
   const scene::Scene scene = scene::load_scene(request.scene_path);
   const prt::TransferData data = load_transfer_for_scene(request.transfer_path, scene);
-  const sh::EnvMap env =
-      read_environment(request.environment_path, request.layout, &summary.layout_note);
+  EnvironmentUse use;
+  use.sh_order = static_cast<int>(data.order);
+  EnvironmentInput input = read_checked_environment(request.environment_path, request.layout, use);
+  const sh::EnvMap env = std::move(input.env);
+  summary.layout_note = input.layout_note;
   summary.vertex_count = scene.vertex_count();
   summary.order = static_cast<int>(data.order);
   const prt::ShLighting base =

@@ -4,6 +4,7 @@
 
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "report_state.h"
 
@@ -11,11 +12,18 @@ namespace prt::report {
 
 using namespace detail;
 
+std::vector<std::string> report_file_names() {
+  std::vector<std::string> names = {"results.csv", "results.json", "summary.md"};
+  for (const char* stem : {"pareto", "error_vs_order", "haar_error_vs_terms"})
+    for (const char* extension : {".svg", ".png"}) names.push_back(std::string(stem) + extension);
+  return names;
+}
+
 ReportResult run_report(const ReportOptions& opt) {
   const auto t_start = Clock::now();
   check_haar_cubes(opt);
+  ReportState st(opt, t_start);  // loads and checks the inputs before anything is written
   create_output_dir(opt);
-  ReportState st(opt, t_start);
   // Phase 1: the sweep, against a first estimate of the ground truth.
   estimate_ground_truth(st);
   run_sweep(st);

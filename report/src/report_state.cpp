@@ -6,9 +6,10 @@
 #include <stdexcept>
 #include <string>
 #include <system_error>
+#include <utility>
 
 #include "prt/haar/cube_map.h"
-#include "relight/image_io.h"
+#include "relight/environment_input.h"
 #include "scene/scene_loader.h"
 
 namespace prt::report::detail {
@@ -38,11 +39,26 @@ GroundTruthOptions report_ground_truth_options(const ReportOptions& opt) {
   return gto;
 }
 
+// The largest SH order the sweep projects the map to (the reference's).
+int largest_sweep_order(bool quick) {
+  return quick ? base_setting(true).order : 16;
+}
+
+// The map, checked and screened for the largest order of the sweep (relight/environment_input.h).
+sh::EnvMap read_report_environment(const ReportOptions& opt, std::string* layout_note) {
+  relight::EnvironmentUse use;
+  use.sh_order = largest_sweep_order(opt.quick);
+  relight::EnvironmentInput in =
+      relight::read_checked_environment(opt.environment_path, opt.layout, use);
+  *layout_note = in.layout_note;
+  return std::move(in.env);
+}
+
 }  // namespace
 
 ReportInputs::ReportInputs(const ReportOptions& opt, const ReportLog& log)
     : scene(scene::load_scene(opt.scene_path)),
-      env(relight::read_environment(opt.environment_path, opt.layout, &layout_note)),
+      env(read_report_environment(opt, &layout_note)),
       caster(scene),
       V(scene.vertex_count()) {
   log(opt.scene_path + ": " + std::to_string(V) + " vertices; " + opt.environment_path + ": " +
@@ -66,9 +82,10 @@ ReportState::ReportState(const ReportOptions& options, Clock::time_point start)
       gto(report_ground_truth_options(options)),
       gt(in.scene, in.env, gto),
       progress(!options.verbose),
-      budget(options.quick ? std::min(options.ground_truth_budget_seconds, 15.0)
-                           : options.ground_truth_budget_seconds),
-      reference_order(options.quick ? base_setting(true).order : 16),
+      budget(options.quick
+                 ? std::min(options.ground_truth_budget_seconds, kQuickGroundTruthBudgetSeconds)
+                 : options.ground_truth_budget_seconds),
+      reference_order(largest_sweep_order(options.quick)),
       reference_samples(options.quick ? 1024 : 8192) {}
 
 }  // namespace prt::report::detail

@@ -320,7 +320,7 @@ void measure_auto_bakes(ReportState& st) {
   if (auto_tolerances.empty()) return;
   bake::AutoBakeOptions ao;
   ao.bake.seed = st.opt.seed;
-  ao.lighting_order = bake::kMaxBakeOrder;  // as `prt bake --auto --env`
+  ao.lighting_order = bake::auto_lighting_order(st.in.env);  // as `prt bake --auto --env`
   ao.lighting = sh::project(st.in.env, ao.lighting_order);
   for (double tolerance : auto_tolerances) {
     ao.tolerance = tolerance;

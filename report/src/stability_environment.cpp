@@ -271,9 +271,9 @@ CaseResult check_single_bright_texel(const CaseOptions&) {
 CaseResult check_nan_inf_pixels(const CaseOptions&) {
   return run_case(
       "environment", "nan_inf_pixels",
-      "NaN, ±Inf and negative texels are skipped and counted exactly; the coefficients equal the "
-      "projection with those texels zeroed (1e-12); prt::ShLighting (and `prt env --strict`) "
-      "refuse such a map with a message",
+      "NaN and ±Inf texels are skipped, negative channels clamped to 0, all counted exactly; the "
+      "coefficients equal the projection with those texels (channels) zeroed (1e-12); "
+      "prt::ShLighting (and `prt env --strict`) refuse such a map with a message",
       [](CaseResult& r) {
         const int width = 64, height = 32;
         sh::EnvMap env = make_constant_latlong(width, height, 1.f, 0.5f, 0.25f);
@@ -292,7 +292,10 @@ CaseResult check_nan_inf_pixels(const CaseOptions&) {
                                 {1999, 2, -2.0f}};
         for (const Plant& p : plants) {
           env.rgb[static_cast<std::size_t>(p.texel) * 3 + p.channel] = p.value;
-          for (int c = 0; c < 3; ++c) zeroed.rgb[static_cast<std::size_t>(p.texel) * 3 + c] = 0.f;
+          const bool negative = std::isfinite(p.value) && p.value < 0.f;  // clamped channel only
+          for (int c = 0; c < 3; ++c)
+            if (!negative || c == p.channel)
+              zeroed.rgb[static_cast<std::size_t>(p.texel) * 3 + c] = 0.f;
         }
         sh::ProjectionStats stats, stats_zeroed;
         const auto with_bad = sh::project(env, 9, &stats);
@@ -318,7 +321,7 @@ CaseResult check_nan_inf_pixels(const CaseOptions&) {
                    refusal.find("NaN") != std::string::npos && strict_refuses &&
                    stats_zeroed.skipped_texels() == 0;
         r.detail = "skipped " + std::to_string(stats.skipped_texels()) +
-                   " texels (5 NaN, 4 Inf, 3 negative planted); ShLighting refuses: " +
+                   " texels (5 NaN, 4 Inf planted; 3 negative clamped); ShLighting refuses: " +
                    (lighting.ok() ? std::string("NOT refused") : refusal);
       });
 }

@@ -164,9 +164,14 @@ int run_stability_report(const std::string& out_dir, bool quick) {
     }
   }
   const std::filesystem::path dir(out_dir);
-  write_text_file((dir / "stability.json").string(), j.dump(2) + "\n");
-  write_text_file((dir / "stability.md").string(), md.str());
+  const std::vector<std::string> names = stability_file_names();
+  write_text_file((dir / names[0]).string(), j.dump(2) + "\n");
+  write_text_file((dir / names[1]).string(), md.str());
   return failed;
+}
+
+std::vector<std::string> stability_file_names() {
+  return {"stability.json", "stability.md"};
 }
 
 }  // namespace prt::report

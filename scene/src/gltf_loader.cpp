@@ -71,7 +71,7 @@ glm::dmat4 local_transform(const tinygltf::Node& node) {
 }
 
 // Albedo of primitives whose material gives no colour we read (see add_mesh).
-constexpr float kDefaultGltfAlbedo = 0.8f;
+constexpr float kDefaultGltfAlbedo = kDefaultAlbedo;
 
 class GltfReader {
  public:
@@ -91,12 +91,7 @@ class GltfReader {
       std::fprintf(stderr, "%s: warning: skipped %zu non-triangle primitive(s)\n", path_.c_str(),
                    skipped_primitives_);
     }
-    if (defaulted_albedo_primitives_ > 0) {
-      std::fprintf(stderr,
-                   "%s: note: %zu primitive(s) have no material colour (none, or a texture that "
-                   "is not read): albedo %.2f grey (override with --albedo r,g,b)\n",
-                   path_.c_str(), defaulted_albedo_primitives_, double(kDefaultGltfAlbedo));
-    }
+    scene_.default_albedo_primitives = defaulted_albedo_primitives_;
     return std::move(scene_);
   }
 

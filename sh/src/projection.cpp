@@ -7,17 +7,13 @@
 #include "gauss_legendre.h"
 #include "sh/basis.h"
 #include "sh/constants.h"
+#include "sh/env_check.h"
 
 namespace prt::sh {
 namespace {
 
-enum class TexelClass { Good, NaN, Inf, Negative };
-
-TexelClass classify(const float* rgb) {
-  if (std::isnan(rgb[0]) || std::isnan(rgb[1]) || std::isnan(rgb[2])) return TexelClass::NaN;
-  if (std::isinf(rgb[0]) || std::isinf(rgb[1]) || std::isinf(rgb[2])) return TexelClass::Inf;
-  if (rgb[0] < 0.0f || rgb[1] < 0.0f || rgb[2] < 0.0f) return TexelClass::Negative;
-  return TexelClass::Good;
+bool skipped(TexelClass kind) {
+  return kind == TexelClass::NaN || kind == TexelClass::Inf;
 }
 
 void count(TexelClass kind, ProjectionStats* stats) {
@@ -95,17 +91,13 @@ std::vector<double> project_latlong_separable(const EnvMap& env, int order,
     const float* texels = &env.rgb[static_cast<std::size_t>(row) * width * 3];
     int used = 0;
     for (int col = 0; col < width; ++col) {
-      const float* texel = texels + 3 * col;
-      const TexelClass kind = classify(texel);
-      if (kind == TexelClass::Good) {
-        red[col] = texel[0];
-        green[col] = texel[1];
-        blue[col] = texel[2];
-        ++used;
-      } else {
-        red[col] = green[col] = blue[col] = 0.0;
-        if (stats) count(kind, stats);
-      }
+      float texel[3];  // the texel policy of sh/env_check.h
+      const TexelClass kind = screen_texel(texels + 3 * col, texel);
+      if (stats) count(kind, stats);
+      red[col] = texel[0];
+      green[col] = texel[1];
+      blue[col] = texel[2];
+      if (!skipped(kind)) ++used;
     }
     const double omega = texel_solid_angle(EnvLayout::LatLong, width, height, 0, row);
     if (stats) stats->solid_angle_sum += omega * used;
@@ -188,12 +180,10 @@ std::vector<double> project_direct(const EnvMap& env, int order, ProjectionStats
       double dir[3];
       if (!(omega > 0.0) || !texel_direction(env.layout, env.width, env.height, col, row, dir))
         continue;
-      const float* rgb = &env.rgb[texel * 3];
-      const TexelClass kind = classify(rgb);
-      if (kind != TexelClass::Good) {
-        if (stats) count(kind, stats);
-        continue;
-      }
+      float rgb[3];  // the texel policy of sh/env_check.h
+      const TexelClass kind = screen_texel(&env.rgb[texel * 3], rgb);
+      if (stats) count(kind, stats);
+      if (skipped(kind)) continue;
       if (stats) stats->solid_angle_sum += omega;
       evaluate(order, dir[0], dir[1], dir[2], basis.data());
       for (int channel = 0; channel < 3; ++channel) {

@@ -20,6 +20,7 @@
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>
 
+#include "cli_test_support.h"
 #include "prt/haar/transform.h"
 #include "relight/image_io.h"
 #include "sh/basis.h"
@@ -28,83 +29,7 @@
 
 namespace fs = std::filesystem;
 
-namespace {
-
-struct RunResult {
-  int exit_code = 0;
-  std::string out, err;
-};
-
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-// Runs `command` through the shell, capturing stdout and stderr into files. ctest runs every
-// test case as its own process, several at once (-j), all sharing the output directory: the
-// capture files are named by process id as well as by a per-process counter, so that parallel
-// cases never read each other's output, and are removed once read.
-RunResult run(const std::string& command) {
-  static int counter = 0;
-  const fs::path dir = prt::test::output_path("cli");
-  fs::create_directories(dir);
-  const std::string stem = "run" + std::to_string(::getpid()) + "_" + std::to_string(counter++);
-  const fs::path out = dir / (stem + ".out");
-  const fs::path err = dir / (stem + ".err");
-  const std::string full = command + " >" + out.string() + " 2>" + err.string();
-  const int status = std::system(full.c_str());
-  RunResult r;
-  r.exit_code = (status == -1) ? -1 : WEXITSTATUS(status);
-  r.out = slurp(out);
-  r.err = slurp(err);
-  fs::remove(out);  // a later process given the same pid starts clean
-  fs::remove(err);
-  return r;
-}
-
-std::string prt_cli() {
-  return PRT_CLI_PATH;
-}
-
-// A fresh, empty scratch directory for one test case.
-fs::path scratch(const std::string& name) {
-  const fs::path dir = prt::test::output_path("cli") / name;
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
-
-std::size_t line_count(const std::string& text) {
-  std::size_t n = 0;
-  for (char c : text) n += (c == '\n');
-  if (!text.empty() && text.back() != '\n') ++n;
-  return n;
-}
-
-// Every file in `dir` (recursively), to show that a failed command wrote nothing.
-std::vector<std::string> files_in(const fs::path& dir) {
-  std::vector<std::string> names;
-  for (const auto& e : fs::recursive_directory_iterator(dir)) names.push_back(e.path().string());
-  return names;
-}
-
-// The shape of a refusal: non-zero exit, a single stderr line that mentions `must_mention`.
-void require_one_line_error(const RunResult& r, const std::string& must_mention) {
-  INFO("stderr: " << r.err);
-  CHECK(r.exit_code != 0);
-  CHECK(line_count(r.err) == 1);
-  CHECK(r.err.find(must_mention) != std::string::npos);
-}
-
-void write_constant_env(const fs::path& path, int width, int height, const float rgb[3]) {
-  std::vector<float> pixels(static_cast<std::size_t>(3 * width * height));
-  for (std::size_t i = 0; i < pixels.size(); ++i) pixels[i] = rgb[i % 3];
-  prt::relight::write_image(path.string(), width, height, 3, pixels.data());
-}
-
-}  // namespace
+using namespace prt::test::cli;
 
 TEST_CASE("cli: prt env refuses bad input with one line naming the file") {
   const fs::path dir = scratch("env_errors");
@@ -143,7 +68,7 @@ TEST_CASE("cli: prt env counts NaN and negative texels, and --strict refuses the
   REQUIRE(lenient.exit_code == 0);
   const auto j = nlohmann::json::parse(lenient.out);
   CHECK(j["skipped_texels"]["nan"] == 1);
-  CHECK(j["skipped_texels"]["negative"] == 1);
+  CHECK(j["clamped_texels"]["negative"] == 1);  // clamped per channel, no longer skipped
   for (const auto& rgb : j["coefficients"])
     for (const auto& v : rgb) CHECK(std::isfinite(v.get<double>()));
 

@@ -276,6 +276,11 @@ TEST_CASE("invalid transfer data is refused and leaves the old file in place", "
   const auto r = prt::read_transfer_file(missing);
   REQUIRE_FALSE(r.ok());
   CHECK(r.status().message().rfind(missing + ": ", 0) == 0);
+  // Reading a folder: said so (it once reported "out of memory while reading 2^63 bytes").
+  const std::string folder = PRT_SOURCE_DIR;  // exists in every build
+  const auto f = prt::read_transfer_file(folder);
+  REQUIRE_FALSE(f.ok());
+  CHECK(f.status().message() == folder + ": is a directory, not a file");
 }
 
 TEST_CASE("a zero fingerprint is filled in by the writer", "[transfer_file]") {

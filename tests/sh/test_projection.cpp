@@ -223,7 +223,9 @@ TEST_CASE("projection recovers a band-limited function in every layout") {
   }
 }
 
-TEST_CASE("NaN, Inf and negative texels are skipped and counted") {
+TEST_CASE("NaN and Inf texels are skipped, negative channels clamped to 0, and all counted") {
+  // The texel policy of sh/env_check.h: the negative texel {1, -0.5, 1} is used as {1, 0, 1}
+  // (per channel), not dropped whole; the reference map holds exactly that.
   const float nan = std::numeric_limits<float>::quiet_NaN();
   const float inf = std::numeric_limits<float>::infinity();
   struct Case {
@@ -249,6 +251,10 @@ TEST_CASE("NaN, Inf and negative texels are skipped and counted") {
       double dir[3];
       REQUIRE(prt::sh::texel_direction(c.layout, c.width, c.height, cols[i], row, dir));
       set_texel(&bad, cols[i], row, bad_values[i][0], bad_values[i][1], bad_values[i][2]);
+      if (i == 4) {  // {1, -0.5, 1}: clamped per channel, still used
+        set_texel(&clean, cols[i], row, 1, 0, 1);
+        continue;
+      }
       set_texel(&clean, cols[i], row, 0, 0, 0);
       omega_skipped += prt::sh::texel_solid_angle(c.layout, c.width, c.height, cols[i], row);
     }
@@ -261,7 +267,7 @@ TEST_CASE("NaN, Inf and negative texels are skipped and counted") {
       CHECK(stats.nan_texels == 3u);  // NaN wins over Inf and negative in the same texel
       CHECK(stats.inf_texels == 2u);
       CHECK(stats.negative_texels == 1u);
-      CHECK(stats.skipped_texels() == 6u);
+      CHECK(stats.skipped_texels() == 5u);
       CHECK(stats.solid_angle_sum == Approx(4 * kPi - omega_skipped).epsilon(1e-12));
       for (std::size_t i = 0; i < L.size(); ++i) {
         CHECK(std::isfinite(L[i]));

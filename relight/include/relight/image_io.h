@@ -6,7 +6,7 @@
 // .png, ...) by OpenImageIO. Alpha and extra channels are dropped, one- and two-channel images
 // are treated as grey (channel 0 replicated). No colour-space conversion is applied: HDR formats
 // hold linear radiance. NaN, infinite and negative texels are passed through as stored
-// (sh::project skips and counts them).
+// (relight/environment_input.h applies the commands' policy to them, sh/env_check.h).
 //
 // Which decoder reads a file: the magic "#?" → Radiance; "PF"/"Pf" + whitespace → PFM; otherwise
 // the extension .hdr/.rgbe → Radiance and .pfm → PFM (which then refuse the file's magic), and

@@ -61,6 +61,9 @@ struct ReportAxis {
   std::vector<ReportSetting> settings;
 };
 
+// --quick caps the ground truth's refinement budget at this many seconds.
+inline constexpr double kQuickGroundTruthBudgetSeconds = 15.0;
+
 struct ReportOptions {
   std::string scene_path, environment_path, output_dir;
   std::optional<sh::EnvLayout> layout;
@@ -126,6 +129,10 @@ std::vector<double> default_auto_tolerances(bool quick);
 std::vector<int64_t> haar_terms(bool quick);  // K values (0 = all) before collapsing at 6N²
 std::vector<ReportAxis> report_axes(bool quick,
                                     const std::optional<std::vector<int>>& haar_cubes = {});
+
+// The names of every file run_report may write into the output directory (so a caller can
+// check them before the run).
+std::vector<std::string> report_file_names();
 
 // Runs everything and writes the files. Throws std::runtime_error on failure.
 ReportResult run_report(const ReportOptions& options);

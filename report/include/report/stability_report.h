@@ -10,6 +10,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 namespace prt::report {
 
@@ -19,5 +20,8 @@ namespace prt::report {
 // cases (0 = all passed). Throws std::runtime_error "PATH: problem" only when the report
 // cannot be written; a case that throws is recorded as failed with its message.
 int run_stability_report(const std::string& out_dir, bool quick);
+
+// The names of the files run_stability_report writes into out_dir.
+std::vector<std::string> stability_file_names();
 
 }  // namespace prt::report

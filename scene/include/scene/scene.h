@@ -18,6 +18,9 @@
 
 namespace prt::scene {
 
+// The albedo (grey) of a primitive whose material gives no colour the loaders read.
+inline constexpr float kDefaultAlbedo = 0.8f;
+
 struct ScenePrimitive {
   std::string name;           // "mesh/primitive" or OBJ shape name
   uint32_t first_vertex = 0;  // into Scene::positions
@@ -47,6 +50,10 @@ struct Scene {
 
   std::size_t skipped_degenerate_triangles = 0;  // zero-area or repeated-index triangles
   std::size_t computed_normal_vertices = 0;      // vertices whose normal was computed
+  // glTF primitives whose material gives no colour the loader reads (no material, or a texture
+  // that is not read): they got kDefaultAlbedo grey. The loader prints nothing
+  // about them; a command that uses the albedo (prt bake) says so.
+  std::size_t default_albedo_primitives = 0;
 
   std::string source_path;
 

@@ -11,8 +11,8 @@
 // Primitives of other modes (points, lines, strips, fans) are skipped and reported in one
 // warning line on stderr. Albedo = pbrMetallicRoughness.baseColorFactor rgb, stored as it
 // is (the baker refuses albedo >= 1); a primitive with no material, or whose colour comes
-// from a base-colour texture (factor left at 1, texture not read), gets 0.8 grey with a note
-// on stderr, instead of the spec's white. Perspective cameras attached to
+// from a base-colour texture (factor left at 1, texture not read), gets 0.8 grey instead of the
+// spec's white, counted in Scene::default_albedo_primitives. Perspective cameras attached to
 // nodes become SceneCameras: eye = the node's world position, target = eye + the node's -Z,
 // up = the node's +Y, yfov.
 // Textures: only baseColorFactor is read, so image pixels are never decoded, and textures

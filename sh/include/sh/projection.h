@@ -33,13 +33,15 @@ namespace prt::sh {
 inline constexpr int kSeparableMaxOrder = 32;
 
 // What the projection saw. Only texels on the sphere count (not the empty cells of a cross or
-// the corners of an angular map). A texel with any NaN component counts as NaN; otherwise any
-// ±Inf as Inf; otherwise any negative component as negative. Such texels are skipped.
+// the corners of an angular map). Texels follow the policy of sh/env_check.h (screen_texel): a
+// texel with any NaN component counts as NaN, otherwise any ±Inf as Inf, and such texels are
+// skipped (they contribute nothing); otherwise a texel with a negative component counts as
+// negative and is used with its negative components clamped to 0.
 struct ProjectionStats {
   std::size_t nan_texels = 0, inf_texels = 0, negative_texels = 0;
   double solid_angle_sum = 0;  // solid angle of the texels used (4π when none were skipped)
 
-  std::size_t skipped_texels() const { return nan_texels + inf_texels + negative_texels; }
+  std::size_t skipped_texels() const { return nan_texels + inf_texels; }
 };
 
 // Projects the RGB radiance of env to order `order` (1 ≤ order ≤ kMaxOrder). Returns channel-major

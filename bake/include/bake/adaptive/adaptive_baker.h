@@ -36,6 +36,7 @@
 // The report goes to AutoBakeReport::json() and into the file's metadata as "auto".
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -44,6 +45,7 @@
 #include "bake/transfer_baker.h"
 #include "scene/scene.h"
 #include "sh/constants.h"
+#include "sh/env_check.h"
 
 namespace prt::bake {
 
@@ -90,6 +92,13 @@ struct AutoBakeOptions {
   int max_caps = 8;
   double max_cap_solid_angle = sh::kHalfPi;  // π/2 sr
 };
+
+// The lighting order `prt bake --auto --env` projects a map to: kMaxBakeOrder, or fewer bands
+// when the map resolves fewer (sh/env_check.h): the bands beyond hold only sampling noise,
+// whose "energy" would make the order selection ask for bands the lighting does not have.
+inline int auto_lighting_order(const sh::EnvMap& env) {
+  return std::min(kMaxBakeOrder, sh::resolved_band(env) + 1);
+}
 
 struct AutoBakeReport {
   std::size_t vertices = 0;
