@@ -163,7 +163,8 @@ TEST_CASE("cli options: options that do not apply, or values out of range, are r
           {"relight " + scene + " " + q.sh.string() + " " + env + " -o " + out +
                "/img.exr --exposure 1",
            "--exposure applies to .png output"},
-          {relight_sh + "--window-strength 2", "--window-strength needs a --window"},
+          {relight_sh + "--window none --window-strength 2", "--window-strength needs a --window"},
+          {relight_sh + "--window-strength 2", "--window-strength does not apply to --window auto"},
           {relight_sh + "--window auto --window-strength 2",
            "--window-strength does not apply to --window auto"},
           {relight_sh + "--window lanczos --window-strength -1",
