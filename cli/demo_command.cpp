@@ -14,7 +14,7 @@
 
 #include <CLI/CLI.hpp>
 
-#include "bake/progress.h"
+#include "progress_reporter.h"
 #include "bake/transfer_baker.h"
 #include "command_registry.h"
 #include "prt/relighter.h"
@@ -82,7 +82,7 @@ prt::TransferData bake_kind(const scene::Scene& scene, prt::TransferKind kind,
   options.order = settings.order;
   options.samples = settings.samples;
   options.ao = kind == prt::TransferKind::Interreflected;
-  bake::ConsoleProgress progress(quiet);
+  ProgressReporter progress(quiet);
   const auto start = Clock::now();
   bake::BakeResult result = bake_transfer(scene, options, &progress);
   *seconds = seconds_since(start);

@@ -1,5 +1,5 @@
 // `prt env FILE... [--layout L] [--order N] [--window W] [--window-strength X] [--irradiance]
-//                  [--rotate yaw,pitch,roll] [--json] [--strict]`
+//                  [--rotate yaw,pitch,roll] [--json] [--strict] [--quiet]`
 // Projects environment maps onto SH and prints the RGB coefficients.
 //   * Radiance coefficients L_lm by default; --irradiance prints E_lm = A_l·L_lm (A_l the
 //     clamped-cosine factors of sh/zonal.h, so a constant radiance L gives E = πL).
@@ -9,6 +9,8 @@
 //   * NaN/Inf/negative texels are skipped and reported; --strict makes them an error.
 //   * Text output: a header with the layout, order, basis and frame, then one line per index
 //     k = l(l+1)+m with l, m, r, g, b. --json: one object per file (an array for several files).
+//   * Long projections (high orders; maps that are not lat-long take the direct sum) show progress
+//     on stderr (cli/progress_reporter.h); --quiet silences it.
 // Errors: one line "PATH: problem", exit status 1.
 #include <array>
 #include <cmath>
@@ -23,6 +25,7 @@
 
 #include "cli_parsing.h"
 #include "command_registry.h"
+#include "progress_reporter.h"
 #include "relight/image_io.h"
 #include "sh/basis.h"
 #include "sh/env_map.h"
@@ -46,6 +49,7 @@ struct EnvArguments {
   std::string rotate;
   bool json = false;
   bool strict = false;
+  bool quiet = false;
 };
 
 struct Settings {
@@ -101,7 +105,8 @@ std::string format_row(int l, int m, double r, double g, double b) {
   return line;
 }
 
-FileResult process(const std::string& path, const EnvArguments& args, const Settings& settings) {
+FileResult process(const std::string& path, const EnvArguments& args, const Settings& settings,
+                   ProgressReporter& progress) {
   std::string layout_note;
   const prt::sh::EnvMap env = relight::read_environment(path, settings.layout, &layout_note);
   const int order = args.order;
@@ -121,7 +126,9 @@ FileResult process(const std::string& path, const EnvArguments& args, const Sett
                        " asks for l = " + std::to_string(order - 1) + " (aliasing)");
 
   prt::sh::ProjectionStats stats;
-  std::vector<double> coefficients = prt::sh::project(env, order, &stats);
+  std::vector<double> coefficients = prt::sh::project(
+      env, order, &stats, progress.projection("projecting " + path + " to order " + std::to_string(order)));
+  progress.finish();
   if (coefficients.size() != 3 * static_cast<std::size_t>(n2))
     throw CommandError(path + ": projection failed (invalid map)");
   const std::size_t skipped = stats.skipped_texels();
@@ -208,8 +215,9 @@ FileResult process(const std::string& path, const EnvArguments& args, const Sett
                          {"negative", stats.negative_texels},
                          {"solid_angle_used_sr", stats.solid_angle_sum}};
   nlohmann::json list = nlohmann::json::array();
-  for (int k = 0; k < n2; ++k)
-    list.push_back({coefficients[k], coefficients[n2 + k], coefficients[2 * n2 + k]});
+  if (args.json)  // (a million rows at order 1000: only the output asked for is built)
+    for (int k = 0; k < n2; ++k)
+      list.push_back({coefficients[k], coefficients[n2 + k], coefficients[2 * n2 + k]});
   j["coefficients"] = list;
 
   std::string& text = result.text;
@@ -240,7 +248,9 @@ FileResult process(const std::string& path, const EnvArguments& args, const Sett
 void run(const EnvArguments& args) {
   const Settings settings = parse_settings(args);
   std::vector<FileResult> results;
-  for (const std::string& file : args.files) results.push_back(process(file, args, settings));
+  ProgressReporter progress(args.quiet);
+  for (const std::string& file : args.files)
+    results.push_back(process(file, args, settings, progress));
   if (args.json) {
     if (results.size() == 1) {
       std::printf("%s\n", results[0].json.dump(2).c_str());
@@ -277,6 +287,7 @@ void register_env(CLI::App& app) {
                   "yaw,pitch,roll in degrees: M = Ry(yaw) Rx(pitch) Rz(roll)");
   cmd->add_flag("--json", args->json, "Print JSON (an array when several files are given)");
   cmd->add_flag("--strict", args->strict, "Fail on NaN, Inf or negative texels");
+  cmd->add_flag("--quiet", args->quiet, "No progress lines on stderr");
   cmd->callback([args] { run(*args); });
 }
 

@@ -11,6 +11,7 @@
 #include "cli_parsing.h"
 #include "command_registry.h"
 #include "haar_cli.h"
+#include "progress_reporter.h"
 #include "relight/relight_pipeline.h"
 #include "sh/env_map.h"
 #include "sh/window.h"
@@ -71,9 +72,18 @@ void run(const RelightArguments& args) {
   request.vertex_colors_path = args.vertex_colors;
   request.csv_path = args.csv;
   request.turntable_frames = args.turntable;
+  ProgressReporter progress(args.quiet);
+  if (request.turntable_frames > 0) {
+    progress.start_items("turntable " + args.output, request.turntable_frames, "frame");
+    request.image_written = [&progress](int done, int total) { progress.set_done(done, total); };
+  }
 
-  if (relight_if_haar(request, args.haar, args.quiet)) return;
+  if (relight_if_haar(request, args.haar, args.quiet)) {
+    progress.finish();
+    return;
+  }
   const relight::RelightSummary summary = relight::run_relight(request);
+  progress.finish();
   if (args.quiet) return;
   std::printf("relit %zu vertices at SH order %d (%s%s%s); shading %.2f ms, rendering %.3f s",
               summary.vertex_count, summary.order, summary.window_note.c_str(),

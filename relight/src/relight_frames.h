@@ -29,7 +29,8 @@ namespace prt::relight::detail {
 // shade(lighting) (timed as shade_seconds, must return 3 floats per vertex), render (timed as
 // render_seconds) and write the image (OUT_iii for a turntable). The first frame also counts
 // the vertices with a negative channel and writes the vertex-coloured GLB and the CSV if asked.
-// Every file written is appended to summary->files_written.
+// Every file written is appended to summary->files_written; request.image_written (if set) is
+// called after each image.
 template <class LightFor, class Shade>
 void render_relight_frames(const RelightRequest& request, const scene::Scene& scene,
                            const sh::EnvMap& env, LightFor light_for, Shade shade,
@@ -79,6 +80,7 @@ void render_relight_frames(const RelightRequest& request, const scene::Scene& sc
                                  : request.output_path;
     write_rendered_image(path, image, request.exposure_ev);
     summary->files_written.push_back(path);
+    if (request.image_written) request.image_written(frame + 1, frames);
   }
 }
 
