@@ -39,34 +39,25 @@ bool valid_input(const EnvMap& env, int order) {
 
 // ---- separable lat-long projection (see the header) ---------------------------------------
 
-// *a = Σ f·x, *b = Σ f·y over n entries, with four partial sums each (independent chains the
-// compiler can pipeline or pack; the order of the additions differs from a plain loop only by
-// rounding).
-void dot_pair(const double* f, const double* x, const double* y, int n, double* a, double* b) {
-  double a0 = 0, a1 = 0, a2 = 0, a3 = 0, b0 = 0, b1 = 0, b2 = 0, b3 = 0;
-  int i = 0;
-  for (; i + 4 <= n; i += 4) {
-    a0 += f[i] * x[i];
-    a1 += f[i + 1] * x[i + 1];
-    a2 += f[i + 2] * x[i + 2];
-    a3 += f[i + 3] * x[i + 3];
-    b0 += f[i] * y[i];
-    b1 += f[i + 1] * y[i + 1];
-    b2 += f[i + 2] * y[i + 2];
-    b3 += f[i + 3] * y[i + 3];
+// Σ f_ch·x and Σ f_ch·y over n entries for the three channels f_0, f_1, f_2 (spaced `stride`
+// apart): out = {Σ f_0 x, Σ f_1 x, Σ f_2 x, Σ f_0 y, Σ f_1 y, Σ f_2 y}. One pass, six independent
+// chains, so each table entry is loaded once for the three channels.
+void dot_three(const double* f, std::size_t stride, const double* x, const double* y, int n,
+               double out[6]) {
+  const double* f0 = f;
+  const double* f1 = f + stride;
+  const double* f2 = f + 2 * stride;
+  double a0 = 0, a1 = 0, a2 = 0, b0 = 0, b1 = 0, b2 = 0;
+  for (int i = 0; i < n; ++i) {
+    a0 += f0[i] * x[i];
+    a1 += f1[i] * x[i];
+    a2 += f2[i] * x[i];
+    b0 += f0[i] * y[i];
+    b1 += f1[i] * y[i];
+    b2 += f2[i] * y[i];
   }
-  for (; i < n; ++i) {
-    a0 += f[i] * x[i];
-    b0 += f[i] * y[i];
-  }
-  *a = (a0 + a1) + (a2 + a3);
-  *b = (b0 + b1) + (b2 + b3);
+  out[0] = a0, out[1] = a1, out[2] = a2, out[3] = b0, out[4] = b1, out[5] = b2;
 }
-
-// Work units reported to the progress callback: about one multiply-add each.
-struct SeparableCost {
-  std::uint64_t fourier_per_row, legendre_per_frequency_pair_row, axis_total, total;
-};
 
 // Stage 1: per row r and frequency m < order, the row's Fourier sums times the row's solid angle
 //   F[r][m] = ω_r Σ_col f_col (cos mφ'_col, sin mφ'_col),  φ'_col = π/2 − φ_col,
@@ -94,28 +85,32 @@ class FourierStage {
   // Rows [first, first + count) into out (layout above); counts skipped texels into stats.
   void run(int first, int count, ProjectionStats* stats, double* out) {
     const int w = width_;
-    rows_.assign(static_cast<std::size_t>(count) * 3 * w, 0.0);
+    rows_.resize(static_cast<std::size_t>(count) * 3 * w);  // every entry written by load_row
     omega_.resize(count);
     for (int i = 0; i < count; ++i)
       omega_[i] = load_row(first + i, &rows_[3 * i * std::size_t(w)], stats);
-    re_.assign(static_cast<std::size_t>(count) * computed_ * 3, 0.0);
+    re_.assign(static_cast<std::size_t>(count) * computed_ * 3, 0.0);  // rows without texels: 0
     im_.assign(re_.size(), 0.0);
     row_cos_.resize(w);
     row_sin_.resize(w);
+    const int period = 2 * w;
     for (int k = 0; k < computed_; ++k) {
-      for (int c = 0; c < w; ++c) {  // e^(−2πi k (c+½)/W) = cos(πj/W) − i sin(πj/W)
-        const std::size_t j = (static_cast<std::size_t>(k) * (2 * c + 1)) % (2 * std::size_t(w));
+      // e^(−2πi k (c+½)/W) = cos(πj/W) − i sin(πj/W), j = k(2c+1) mod 2W, stepping by 2k.
+      const int step = (2 * k) % period;
+      int j = k % period;
+      for (int c = 0; c < w; ++c) {
         row_cos_[c] = cos_[j];
         row_sin_[c] = sin_[j];
+        j += step;
+        if (j >= period) j -= period;
       }
       for (int i = 0; i < count; ++i) {
         if (omega_[i] == 0.0) continue;
+        double sums[6];
+        dot_three(&rows_[3 * std::size_t(i) * w], w, row_cos_.data(), row_sin_.data(), w, sums);
         for (int ch = 0; ch < 3; ++ch) {
-          const double* f = &rows_[(3 * std::size_t(i) + ch) * w];
-          double re, im;
-          dot_pair(f, row_cos_.data(), row_sin_.data(), w, &re, &im);
-          re_[(std::size_t(i) * computed_ + k) * 3 + ch] = re;
-          im_[(std::size_t(i) * computed_ + k) * 3 + ch] = -im;
+          re_[(std::size_t(i) * computed_ + k) * 3 + ch] = sums[ch];
+          im_[(std::size_t(i) * computed_ + k) * 3 + ch] = -sums[3 + ch];
         }
       }
     }
@@ -133,12 +128,10 @@ class FourierStage {
     for (int col = 0; col < w; ++col) {
       const float* texel = texels + 3 * col;
       const TexelClass kind = classify(texel);
-      if (kind != TexelClass::Good) {
-        if (stats) count(kind, stats);
-        continue;
-      }
-      for (int ch = 0; ch < 3; ++ch) channels[std::size_t(ch) * w + col] = texel[ch];
-      ++used;
+      const bool good = kind == TexelClass::Good;
+      if (!good && stats) count(kind, stats);
+      for (int ch = 0; ch < 3; ++ch) channels[std::size_t(ch) * w + col] = good ? texel[ch] : 0.0;
+      used += good;
     }
     const double omega = texel_solid_angle(EnvLayout::LatLong, w, env_.height, 0, row);
     if (stats) stats->solid_angle_sum += omega * used;
