@@ -16,10 +16,10 @@
 #include <CLI/CLI.hpp>
 
 #include "bake/adaptive/adaptive_baker.h"
-#include "progress_reporter.h"
 #include "bake/transfer_baker.h"
 #include "cli_parsing.h"
 #include "command_registry.h"
+#include "progress_reporter.h"
 #include "haar_cli.h"
 #include "prt/transfer_file.h"
 #include "relight/image_io.h"

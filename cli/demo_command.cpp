@@ -14,9 +14,9 @@
 
 #include <CLI/CLI.hpp>
 
-#include "progress_reporter.h"
 #include "bake/transfer_baker.h"
 #include "command_registry.h"
+#include "progress_reporter.h"
 #include "prt/relighter.h"
 #include "prt/transfer_file.h"
 #include "relight/camera.h"

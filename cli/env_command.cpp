@@ -126,8 +126,9 @@ FileResult process(const std::string& path, const EnvArguments& args, const Sett
                        " asks for l = " + std::to_string(order - 1) + " (aliasing)");
 
   prt::sh::ProjectionStats stats;
-  std::vector<double> coefficients = prt::sh::project(
-      env, order, &stats, progress.projection("projecting " + path + " to order " + std::to_string(order)));
+  const std::string phase = "projecting " + path + " to order " + std::to_string(order);
+  std::vector<double> coefficients =
+      prt::sh::project(env, order, &stats, progress.projection(phase));
   progress.finish();
   if (coefficients.size() != 3 * static_cast<std::size_t>(n2))
     throw CommandError(path + ": projection failed (invalid map)");

@@ -4,9 +4,9 @@
 #include <cstdio>
 
 #include "bake/haar_baker.h"
-#include "progress_reporter.h"
 #include "bake/transfer_baker.h"
 #include "command_registry.h"
+#include "progress_reporter.h"
 #include "prt/haar/transfer_file.h"
 #include "relight/haar_relight.h"
 

@@ -320,6 +320,9 @@ std::vector<double> project_direct(const EnvMap& env, int order, ProjectionStats
   std::vector<double> result(3 * static_cast<std::size_t>(n2), 0.0);
   std::vector<double> row_sum(result.size());
   std::vector<double> basis(n2);
+  // Progress in texels on the sphere (rows of angular maps and crosses hold different numbers).
+  std::uint64_t total = 0, done = 0;
+  for (double omega : solid_angles) total += omega > 0.0;
   for (int row = 0; row < env.height; ++row) {
     std::fill(row_sum.begin(), row_sum.end(), 0.0);
     for (int col = 0; col < env.width; ++col) {
@@ -344,7 +347,9 @@ std::vector<double> project_direct(const EnvMap& env, int order, ProjectionStats
       }
     }
     for (std::size_t i = 0; i < result.size(); ++i) result[i] += row_sum[i];
-    if (progress) progress(std::uint64_t(row) + 1, std::uint64_t(env.height));
+    for (int col = 0; col < env.width; ++col)
+      done += solid_angles[static_cast<std::size_t>(row) * env.width + col] > 0.0;
+    if (progress && total > 0) progress(done, total);
   }
   return result;
 }

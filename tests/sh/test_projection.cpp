@@ -414,3 +414,26 @@ TEST_CASE("a constant map projects to sqrt(4 pi) c at order 1001") {
   for (double v : L) finite = finite && std::isfinite(v);
   CHECK(finite);
 }
+
+TEST_CASE("the direct sum reports progress in texels on the sphere") {
+  // An angular map's rows hold different numbers of texels on the disc: progress counts them,
+  // so it is proportional to the work; it ends at the number of texels with a solid angle.
+  const prt::sh::EnvMap env = make_map(prt::sh::EnvLayout::Angular, 24, 24, 1, 1, 1);
+  std::uint64_t on_sphere = 0;
+  for (int row = 0; row < 24; ++row)
+    for (int col = 0; col < 24; ++col)
+      on_sphere += prt::sh::texel_solid_angle(env.layout, 24, 24, col, row) > 0.0;
+  std::vector<std::uint64_t> seen;
+  std::uint64_t total = 0;
+  const std::vector<double> L =
+      prt::sh::project(env, 4, nullptr, [&](std::uint64_t done, std::uint64_t all) {
+        seen.push_back(done);
+        total = all;
+      });
+  REQUIRE(L.size() == 48u);
+  REQUIRE(seen.size() == 24u);  // once per row
+  CHECK(total == on_sphere);
+  CHECK(seen.back() == on_sphere);
+  for (std::size_t i = 1; i < seen.size(); ++i) CHECK(seen[i] > seen[i - 1]);
+  CHECK(seen.front() < seen[12] - seen[11]);  // the top row holds fewer texels than the middle
+}

@@ -38,8 +38,9 @@
 namespace prt::sh {
 
 // Progress of a projection: called from the calling thread with the work done so far and the
-// total, in units proportional to the expected time (0 < done ≤ total, non-decreasing; the last
-// call has done == total). Lat-long maps report a few hundred times; other layouts once per row.
+// total, in units proportional to the expected time (0 ≤ done ≤ total, non-decreasing; the last
+// call has done == total). Lat-long maps report a few hundred times; other layouts once per row,
+// counting texels on the sphere.
 using ProjectionProgress = std::function<void(std::uint64_t done, std::uint64_t total)>;
 
 // What the projection saw. Only texels on the sphere count (not the empty cells of a cross or
