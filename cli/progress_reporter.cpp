@@ -9,9 +9,10 @@
 namespace prt::cli {
 namespace {
 
-constexpr double kTerminalDelay = 0.3;     // seconds before a terminal status line appears
-constexpr double kTerminalInterval = 0.1;  // seconds between redraws on a terminal
-constexpr double kDefaultInterval = 5.0;   // seconds between plain lines
+constexpr double kTerminalDelay = 0.3;          // seconds before a terminal status line appears
+constexpr double kTerminalInterval = 0.1;       // seconds between redraws on a terminal
+constexpr double kDefaultInterval = 5.0;        // seconds between plain lines
+constexpr const char* kEraseLine = "\r\033[K";  // carriage return, erase to the end of line
 
 double interval_from_environment() {
   const char* text = std::getenv("PRT_PROGRESS_INTERVAL");
@@ -52,6 +53,12 @@ ProgressReporter::ProgressReporter(bool quiet, std::FILE* out, bool interactive,
       out_(out),
       interactive_(interactive),
       interval_(interval_seconds) {}
+
+ProgressReporter::~ProgressReporter() {
+  if (quiet_ || !open_line_) return;
+  std::fputs(kEraseLine, out_);
+  std::fflush(out_);
+}
 
 void ProgressReporter::begin(const std::string& phase, uint64_t total, Style style,
                              const std::string& item) {
@@ -177,7 +184,7 @@ void ProgressReporter::draw(bool final_line) {
   const double elapsed = std::chrono::duration<double>(Clock::now() - start_time_).count();
   const std::string line = format_line(final_line, elapsed);
   if (interactive_) {
-    std::fprintf(out_, "\r%-78s%s", line.c_str(), final_line ? "\n" : "");
+    std::fprintf(out_, "%s%s%s", kEraseLine, line.c_str(), final_line ? "\n" : "");
     open_line_ = !final_line;
   } else {
     std::fprintf(out_, "%s\n", line.c_str());

@@ -7,8 +7,9 @@
 //
 // Policy (all output on stderr, stdout is left to results):
 //   * --quiet: nothing at all.
-//   * A terminal: one status line redrawn in place (\r, at most 10 times a second) once a phase
-//     has run 0.3 s; when the phase ends the line is completed ("done in …") and kept.
+//   * A terminal: one status line redrawn in place (\r and ESC[K, at most 10 times a second)
+//     once a phase has run 0.3 s; when the phase ends the line is completed ("done in …") and
+//     kept; a phase cut short by an error has its line erased.
 //   * Not a terminal (logs, pipes, tests): a plain line once a phase has run `interval` seconds,
 //     then one every `interval` seconds, and a final "done" line for a phase that printed any.
 //     `interval` is 5 s, or the value of the environment variable PRT_PROGRESS_INTERVAL in
@@ -38,6 +39,9 @@ class ProgressReporter final : public bake::ProgressSink {
   // stderr; interactive when it is a terminal; interval from PRT_PROGRESS_INTERVAL or 5 s.
   explicit ProgressReporter(bool quiet);
   ProgressReporter(bool quiet, std::FILE* out, bool interactive, double interval_seconds);
+  // Clears a terminal status line left open (a phase ended by an exception), so that the error
+  // message main() prints starts on a clean line.
+  ~ProgressReporter() override;
 
   // bake::ProgressSink: a counted phase (units and rays; total 0 = open-ended).
   void start(const std::string& phase, uint64_t total) override;

@@ -219,8 +219,26 @@ TEST_CASE("progress reporter: a terminal gets one status line redrawn in place")
   std::fclose(file);
   const std::string text = read_all(log);
   INFO(text);
-  CHECK(text.find("\rturntable: frame 1/3") != std::string::npos);
+  // Each redraw returns the carriage and erases the old line (ESC[K) before writing.
+  CHECK(text.find("\r\033[Kturntable: frame 1/3") != std::string::npos);
   CHECK(text.find("\na note\n") != std::string::npos);
-  CHECK(text.find("\rturntable: 3 frames done in") != std::string::npos);
+  CHECK(text.find("\r\033[Kturntable: 3 frames done in") != std::string::npos);
   CHECK(text.back() == '\n');
+
+  // A phase cut short (an exception unwinding past the reporter) leaves an erased line, not a
+  // half-drawn one that the error message would be appended to.
+  std::FILE* cut = std::fopen(log.string().c_str(), "w");
+  REQUIRE(cut);
+  {
+    prt::cli::ProgressReporter reporter(false, cut, true, 5.0);
+    reporter.start_fraction("projecting");
+    std::this_thread::sleep_for(std::chrono::milliseconds(350));
+    reporter.set_done(1, 4);
+  }
+  std::fclose(cut);
+  const std::string cut_text = read_all(log);
+  INFO(cut_text);
+  CHECK(cut_text.find("projecting:  25%") != std::string::npos);
+  CHECK(cut_text.size() >= 4);
+  CHECK(cut_text.substr(cut_text.size() - 4) == "\r\033[K");
 }
