@@ -171,6 +171,9 @@ std::string ProgressReporter::format_line(bool final_line, double elapsed) const
     if (rays > 0 && n > 0 && static_cast<std::size_t>(n) < sizeof line)
       std::snprintf(line + n, sizeof line - n, " (%.0f/s, %.2f Mrays/s)", rate,
                     static_cast<double>(rays) / elapsed * 1e-6);
+  } else if (rays == 0) {
+    std::snprintf(line, sizeof line, "%s: %5.1f%% %llu/%llu  %.0f/s  %s left", phase_.c_str(), pct,
+                  count(done), count(total), rate, format_duration(left).c_str());
   } else {
     std::snprintf(line, sizeof line, "%s: %5.1f%% %llu/%llu  %.0f/s  %.2f Mrays/s  %s left",
                   phase_.c_str(), pct, count(done), count(total), rate,

@@ -15,9 +15,10 @@
 //     `interval` is 5 s, or the value of the environment variable PRT_PROGRESS_INTERVAL in
 //     seconds (0: a line on every update — for tests and verbose logs).
 //   So commands that finish quickly print nothing, and anything longer shows where it is.
-// Lines: "PHASE: 42.0% 2100/5000  1234/s  0.35 Mrays/s  3.1s left" for counted phases (bakes),
-// "PHASE: frame 7/36  1.2/s  24s left" for items, "PHASE: 42%  3.1s left" for fractions of
-// abstract work (projections), "PHASE: 12 so far in 3.0s" for open-ended phases.
+// Lines: "PHASE: 42.0% 2100/5000  1234/s  0.35 Mrays/s  3.1s left" for counted phases (bakes,
+// image rows; the ray rate only when rays are counted), "PHASE: frame 7/36  1.2/s  24s left" for
+// items, "PHASE: 42%  3.1s left" for fractions of abstract work (projections), and
+// "PHASE: 12 so far in 3.0s" for open-ended phases.
 // Thread-safe: advance() may be called from any thread; the others from one thread at a time.
 #pragma once
 

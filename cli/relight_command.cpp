@@ -76,6 +76,9 @@ void run(const RelightArguments& args) {
   if (request.turntable_frames > 0) {
     progress.start_items("turntable " + args.output, request.turntable_frames, "frame");
     request.image_written = [&progress](int done, int total) { progress.set_done(done, total); };
+  } else {  // one image: its rows (the phase starts with loading, which is short)
+    progress.start("rendering " + args.output + " (rows)", request.render.height);
+    request.render.rows_done = [&progress](int rows) { progress.advance(rows, 0); };
   }
 
   if (relight_if_haar(request, args.haar, args.quiet)) {

@@ -92,7 +92,7 @@ void write_env(const fs::path& path, int width, int height) {
 
 }  // namespace
 
-TEST_CASE("cli progress: a turntable reports frame i/N on stderr and --quiet silences it") {
+TEST_CASE("cli progress: relight reports turntable frames i/N and image rows; --quiet silences") {
   const fs::path dir = scratch("turntable");
   const fs::path scene = dir / "quad.obj";
   std::ofstream(scene) << "v 0 0 0\nv 1 0 0\nv 1 0 -1\nv 0 0 -1\nf 1 2 3\nf 1 3 4\n";
@@ -119,6 +119,15 @@ TEST_CASE("cli progress: a turntable reports frame i/N on stderr and --quiet sil
   CHECK(quiet.err.empty());
   CHECK(quiet.out.empty());
   CHECK(fs::exists(dir / "hush_003.png"));
+
+  // A single image reports its rows (24 of them here), then the usual summary on stdout.
+  const Run single = run(prt_cli() + relight.substr(0, relight.find(" --turntable")) + " -o " +
+                         (dir / "still.png").string());
+  INFO("single image stderr:\n" << single.err);
+  REQUIRE(single.exit_code == 0);
+  CHECK(count_containing(single.err, "(rows): ") >= 1);
+  CHECK(count_containing(single.err, "(rows): 24/24 done in") == 1);
+  CHECK(single.out.find("wrote:") != std::string::npos);
 
   // With the default 5 s interval a run that takes less prints no progress at all.
   const Run quick = run(prt_cli("5") + relight + (dir / "quick.png").string());
