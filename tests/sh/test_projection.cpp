@@ -321,7 +321,7 @@ TEST_CASE("projection refuses invalid input") {
 TEST_CASE("the separable lat-long projection equals the direct sum at high orders") {
   // Orders past the old 32 limit, on maps small enough for the direct sum. The sizes make the
   // separable path fold frequencies: W/2 < order (the sums for m > W/2 come from A_(W−m)) and
-  // order > W (from A_(m−W)), with odd W and odd H (an unpaired equator row).
+  // order > W (from A_(m−W)), with odd W and odd H (an unpaired equator row), down to 1×1.
   // The two paths add the same terms in different orders and the separable one runs three
   // recurrences (Legendre in l, Wigner d(π/2), exponentials by index): measured worst difference
   // ≤ 3.6e-15 of the largest coefficient; bound 1e-12.
@@ -330,8 +330,8 @@ TEST_CASE("the separable lat-long projection equals the direct sum at high order
   struct Case {
     int width, height, order;
   };
-  const Case cases[] = {{37, 19, 8},  {96, 48, 33},  {45, 21, 33},
-                        {30, 15, 40}, {160, 80, 64}, {200, 100, 128}};
+  const Case cases[] = {{37, 19, 8},  {96, 48, 33},  {45, 21, 33},    {30, 15, 40},
+                        {160, 80, 64}, {200, 100, 128}, {1, 1, 5}, {2, 1, 6}, {3, 2, 7}};
   for (const Case& c : cases) {
     INFO(c.width << "x" << c.height << " order " << c.order);
     prt::sh::EnvMap env = make_map(prt::sh::EnvLayout::LatLong, c.width, c.height, 0, 0, 0);
