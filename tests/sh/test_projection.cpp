@@ -330,8 +330,8 @@ TEST_CASE("the separable lat-long projection equals the direct sum at high order
   struct Case {
     int width, height, order;
   };
-  const Case cases[] = {{37, 19, 8},  {96, 48, 33},  {45, 21, 33},    {30, 15, 40},
-                        {160, 80, 64}, {200, 100, 128}, {1, 1, 5}, {2, 1, 6}, {3, 2, 7}};
+  const Case cases[] = {{37, 19, 8},     {96, 48, 33}, {45, 21, 33}, {30, 15, 40}, {160, 80, 64},
+                        {200, 100, 128}, {1, 1, 5},    {2, 1, 6},    {3, 2, 7}};
   for (const Case& c : cases) {
     INFO(c.width << "x" << c.height << " order " << c.order);
     prt::sh::EnvMap env = make_map(prt::sh::EnvLayout::LatLong, c.width, c.height, 0, 0, 0);
@@ -360,8 +360,8 @@ TEST_CASE("a single texel projects to omega v Y_k(direction) up to l = 1000") {
   struct Case {
     int width, height, col, row, order;
   };
-  const Case cases[] = {{64, 32, 17, 9, 201}, {64, 32, 40, 0, 201}, {50, 25, 7, 12, 1001},
-                        {64, 32, 45, 31, 1001}};
+  const Case cases[] = {
+      {64, 32, 17, 9, 201}, {64, 32, 40, 0, 201}, {50, 25, 7, 12, 1001}, {64, 32, 45, 31, 1001}};
   for (const Case& c : cases) {
     INFO(c.width << "x" << c.height << " texel " << c.col << ", " << c.row << " order " << c.order);
     prt::sh::EnvMap env = make_map(prt::sh::EnvLayout::LatLong, c.width, c.height, 0, 0, 0);
