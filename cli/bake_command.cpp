@@ -19,6 +19,7 @@
 #include "bake/transfer_baker.h"
 #include "cli_parsing.h"
 #include "command_registry.h"
+#include "progress_reporter.h"
 #include "haar_cli.h"
 #include "output_safety.h"
 #include "prt/haar/cube_map.h"
@@ -154,7 +155,7 @@ void note_default_albedo(const scene::Scene& scene, bool quiet) {
 // `--auto`: --tolerance (default 0.01) becomes the accuracy target; without --transfer the
 // most complete kind (interreflected) is requested and the analysis drops what is not needed.
 void run_auto(const BakeArguments& args, const scene::Scene& scene, const bake::BakeOptions& fixed,
-              bake::ProgressSink& progress) {
+              ProgressReporter& progress) {
   bake::AutoBakeOptions o;
   o.tolerance = args.tolerance_given ? args.tolerance : 0.01;
   o.bake = fixed;
@@ -162,7 +163,9 @@ void run_auto(const BakeArguments& args, const scene::Scene& scene, const bake::
   if (!args.env.empty()) {
     const prt::sh::EnvMap env = relight::read_checked_environment(args.env, std::nullopt).env;
     o.lighting_order = bake::auto_lighting_order(env);
-    o.lighting = prt::sh::project(env, o.lighting_order);
+    o.lighting = prt::sh::project(env, o.lighting_order, nullptr,
+                                  progress.projection("projecting " + args.env));
+    progress.finish();
     if (o.lighting.empty()) throw CommandError(args.env + ": cannot project the environment");
   }
   const bake::AutoBakeResult result = bake::bake_transfer_auto(scene, o, &progress);
@@ -211,7 +214,7 @@ void run(const BakeArguments& args, const CLI::App& cmd) {
     return;
   }
 
-  bake::ConsoleProgress progress(args.quiet);
+  ProgressReporter progress(args.quiet);
   if (args.automatic) return run_auto(args, scene, options, progress);
   const bake::BakeResult result = bake::bake_transfer(scene, options, &progress);
   const prt::Status written = prt::write_transfer_file(args.output, result.data);

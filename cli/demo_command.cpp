@@ -14,10 +14,10 @@
 
 #include <CLI/CLI.hpp>
 
-#include "bake/progress.h"
 #include "bake/transfer_baker.h"
 #include "command_registry.h"
 #include "output_safety.h"
+#include "progress_reporter.h"
 #include "prt/relighter.h"
 #include "prt/transfer_file.h"
 #include "relight/auto_exposure.h"
@@ -92,7 +92,7 @@ prt::TransferData bake_kind(const scene::Scene& scene, prt::TransferKind kind,
   options.order = settings.order;
   options.samples = settings.samples;
   options.ao = kind == prt::TransferKind::Interreflected;
-  bake::ConsoleProgress progress(quiet);
+  ProgressReporter progress(quiet);
   const auto start = Clock::now();
   bake::BakeResult result = bake_transfer(scene, options, &progress);
   *seconds = seconds_since(start);

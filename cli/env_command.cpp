@@ -1,5 +1,5 @@
 // `prt env FILE... [--layout L] [--order N] [--window W] [--window-strength X] [--irradiance]
-//                  [--rotate yaw,pitch,roll] [--json] [--strict]`
+//                  [--rotate yaw,pitch,roll] [--json] [--strict] [--quiet]`
 // Projects environment maps onto SH and prints the RGB coefficients.
 //   * Radiance coefficients L_lm by default; --irradiance prints E_lm = A_l·L_lm (A_l the
 //     clamped-cosine factors of sh/zonal.h, so a constant radiance L gives E = πL).
@@ -12,6 +12,8 @@
 //     is warned about.
 //   * Text output: a header with the layout, order, basis and frame, then one line per index
 //     k = l(l+1)+m with l, m, r, g, b. --json: one object per file (an array for several files).
+//   * Long projections (high orders; maps that are not lat-long take the direct sum) show progress
+//     on stderr (cli/progress_reporter.h); --quiet silences it.
 // Errors: one line "PATH: problem", exit status 1 (2 for a bad option).
 #include <array>
 #include <cmath>
@@ -28,6 +30,7 @@
 #include "command_registry.h"
 #include "output_safety.h"
 #include "relight/environment_input.h"
+#include "progress_reporter.h"
 #include "sh/basis.h"
 #include "sh/constants.h"
 #include "sh/env_map.h"
@@ -51,6 +54,7 @@ struct EnvArguments {
   std::string rotate;
   bool json = false;
   bool strict = false;
+  bool quiet = false;
 };
 
 struct Settings {
@@ -97,7 +101,8 @@ std::string format_row(int l, int m, double r, double g, double b) {
   return line;
 }
 
-FileResult process(const std::string& path, const EnvArguments& args, const Settings& settings) {
+FileResult process(const std::string& path, const EnvArguments& args, const Settings& settings,
+                   ProgressReporter& progress) {
   // Read, screen and check against the order (relight/environment_input.h): refusals throw,
   // warnings are printed as "PATH: warning: ..." and kept for the JSON.
   relight::EnvironmentUse use;
@@ -111,7 +116,10 @@ FileResult process(const std::string& path, const EnvArguments& args, const Sett
   const int order = args.order;
   const int n2 = prt::sh::coefficient_count(order);
 
-  std::vector<double> coefficients = prt::sh::project(env, order);
+  const std::string phase = "projecting " + path + " to order " + std::to_string(order);
+  std::vector<double> coefficients =
+      prt::sh::project(env, order, nullptr, progress.projection(phase));
+  progress.finish();
   if (coefficients.size() != 3 * static_cast<std::size_t>(n2))
     throw CommandError(path + ": projection failed (invalid map)");
   std::string texel_note = "texels: all finite and non-negative";
@@ -191,8 +199,9 @@ FileResult process(const std::string& path, const EnvArguments& args, const Sett
   j["clamped_texels"] = {{"negative", texels.negative_texels}};
   j["warnings"] = warnings;
   nlohmann::json list = nlohmann::json::array();
-  for (int k = 0; k < n2; ++k)
-    list.push_back({coefficients[k], coefficients[n2 + k], coefficients[2 * n2 + k]});
+  if (args.json)  // (a million rows at order 1000: only the output asked for is built)
+    for (int k = 0; k < n2; ++k)
+      list.push_back({coefficients[k], coefficients[n2 + k], coefficients[2 * n2 + k]});
   j["coefficients"] = list;
 
   std::string& text = result.text;
@@ -227,7 +236,9 @@ void run(const EnvArguments& args, const CLI::App& cmd) {
   for (const std::string& file : args.files) files.add_environment(file);
   files.check();
   std::vector<FileResult> results;
-  for (const std::string& file : args.files) results.push_back(process(file, args, settings));
+  ProgressReporter progress(args.quiet);
+  for (const std::string& file : args.files)
+    results.push_back(process(file, args, settings, progress));
   if (args.json) {
     if (results.size() == 1) {
       std::printf("%s\n", results[0].json.dump(2).c_str());
@@ -264,6 +275,7 @@ void register_env(CLI::App& app) {
                   "yaw,pitch,roll in degrees: M = Ry(yaw) Rx(pitch) Rz(roll)");
   cmd->add_flag("--json", args->json, "Print JSON (an array when several files are given)");
   cmd->add_flag("--strict", args->strict, "Fail on NaN, Inf or negative texels");
+  cmd->add_flag("--quiet", args->quiet, "No progress lines on stderr");
   cmd->callback([args, cmd] { run(*args, *cmd); });
 }
 

@@ -4,9 +4,9 @@
 #include <cstdio>
 
 #include "bake/haar_baker.h"
-#include "bake/progress.h"
 #include "bake/transfer_baker.h"
 #include "command_registry.h"
+#include "progress_reporter.h"
 #include "prt/haar/transfer_file.h"
 #include "relight/haar_relight.h"
 
@@ -45,7 +45,7 @@ void run_haar_bake(const scene::Scene& scene, const std::string& output, prt::Tr
   o.threads = threads;
   o.bounces = bounces;
   o.bounce_tolerance = tolerance;
-  bake::ConsoleProgress progress(quiet);
+  ProgressReporter progress(quiet);
   const bake::HaarBakeResult r = bake::bake_haar_transfer(scene, o, &progress);
   const prt::Status written = prt::write_haar_transfer_file(output, r.file);
   if (!written.ok()) throw CommandError(written.message());

@@ -16,6 +16,7 @@
 #include "haar_cli.h"
 #include "output_safety.h"
 #include "prt/haar/transfer_file.h"
+#include "progress_reporter.h"
 #include "relight/relight_pipeline.h"
 #include "sh/env_map.h"
 #include "sh/window.h"
@@ -150,9 +151,21 @@ void run(const RelightArguments& args, const CLI::App& cmd) {
   request.vertex_colors_tonemapped = args.vertex_colors_tonemap;
   request.csv_path = args.csv;
   request.turntable_frames = args.turntable;
+  ProgressReporter progress(args.quiet);
+  if (request.turntable_frames > 0) {
+    progress.start_items("turntable " + args.output, request.turntable_frames, "frame");
+    request.image_written = [&progress](int done, int total) { progress.set_done(done, total); };
+  } else {  // one image: its rows (the phase starts with loading, which is short)
+    progress.start("rendering " + args.output + " (rows)", request.render.height);
+    request.render.rows_done = [&progress](int rows) { progress.advance(rows, 0); };
+  }
 
-  if (relight_if_haar(request, args.haar, args.quiet)) return;
+  if (relight_if_haar(request, args.haar, args.quiet)) {
+    progress.finish();
+    return;
+  }
   const relight::RelightSummary summary = relight::run_relight(request);
+  progress.finish();
   if (args.quiet) return;
   std::printf("relit %zu vertices at SH order %d (%s%s%s); shading %.2f ms, rendering %.3f s",
               summary.vertex_count, summary.order, summary.window_note.c_str(),

@@ -21,6 +21,7 @@
 #include "cli_parsing.h"
 #include "command_registry.h"
 #include "output_safety.h"
+#include "progress_reporter.h"
 #include "report/report.h"
 #include "report/stability_report.h"
 
@@ -29,7 +30,7 @@ namespace {
 
 struct ReportArguments {
   std::string scene, environment, output, layout = "auto", haar_cubes, auto_tolerances;
-  bool quick = false, stability = false;
+  bool quick = false, stability = false, quiet = false;
   uint64_t seed = 1;
   double budget = 110;
 };
@@ -146,6 +147,9 @@ void run(const ReportArguments& a, const CLI::App& cmd) {
   o.layout = parse_layout_option(a.layout);
   o.haar_cubes = parse_haar_cubes(a.haar_cubes);
   o.auto_tolerances = parse_auto_tolerances(a.auto_tolerances);
+  ProgressReporter progress(a.quiet);
+  o.log = [&progress](const std::string& line) { progress.message(line); };
+  o.progress = &progress;
   const prt::report::ReportResult r = prt::report::run_report(o);
   for (const std::string& f : r.files_written) std::printf("wrote %s\n", f.c_str());
 }
@@ -160,6 +164,7 @@ void register_report(CLI::App& app) {
   cmd->add_option("-o,--output", args->output, "Output directory")->required();
   cmd->add_flag("--quick", args->quick, "Small sweep (under a minute on data/)");
   cmd->add_flag("--stability", args->stability, "Run the stability cases instead of the sweep");
+  cmd->add_flag("--quiet", args->quiet, "No progress lines on stderr");
   cmd->add_option("--layout", args->layout, "auto|latlong|angular|cross|faces")
       ->capture_default_str();
   cmd->add_option("--seed", args->seed, "Seed of the bakes and the ground truth")

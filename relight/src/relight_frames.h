@@ -58,7 +58,7 @@ inline std::vector<glm::vec3> vertex_colors(const std::vector<float>& radiance, 
 // Every frame counts its vertices with a negative channel (summary: the most in a frame and the
 // number of frames with any). The first frame fixes the exposure (given or automatic) and
 // writes the vertex-coloured GLB and the CSV if asked. Every file written is appended to
-// summary->files_written.
+// summary->files_written; request.image_written (if set) is called after each image.
 template <class LightFor, class Shade>
 void render_relight_frames(const RelightRequest& request, const scene::Scene& scene,
                            const sh::EnvMap& env, LightFor light_for, Shade shade,
@@ -111,6 +111,7 @@ void render_relight_frames(const RelightRequest& request, const scene::Scene& sc
                                  : request.output_path;
     write_rendered_image(path, image, summary->exposure_ev);
     summary->files_written.push_back(path);
+    if (request.image_written) request.image_written(frame + 1, frames);
   }
 }
 

@@ -81,6 +81,7 @@ Image render(const scene::Scene& scene, const scene::RayCaster& caster,
             for (int c = 0; c < 3; ++c) out[c] = static_cast<float>(sum[c] * inv_samples);
           }
         }
+        if (options.rows_done) options.rows_done(rows.end() - rows.begin());
       });
   return image;
 }

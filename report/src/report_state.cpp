@@ -76,12 +76,12 @@ ReportInputs::ReportInputs(const ReportOptions& opt, const ReportLog& log)
 
 ReportState::ReportState(const ReportOptions& options, Clock::time_point start)
     : opt(options),
-      log{options.verbose, start},
+      log{options.log, start},
       base(base_setting(options.quick)),
       in(options, log),
       gto(report_ground_truth_options(options)),
       gt(in.scene, in.env, gto),
-      progress(!options.verbose),
+      progress(options.progress),
       budget(options.quick
                  ? std::min(options.ground_truth_budget_seconds, kQuickGroundTruthBudgetSeconds)
                  : options.ground_truth_budget_seconds),

@@ -11,6 +11,8 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
+#include <functional>
 #include <map>
 #include <ostream>
 #include <string>
@@ -55,12 +57,15 @@ bool same(const ReportSetting& a, const ReportSetting& b);
 std::string percent(double x);
 std::string seconds_text(double s);
 
-// Progress lines on stderr (when verbose), stamped with the seconds since the start.
+// Step lines for ReportOptions::log (when set), stamped with the seconds since the start.
 struct ReportLog {
-  bool verbose;
+  const std::function<void(const std::string&)>& sink;
   Clock::time_point t_start;
   void operator()(const std::string& line) const {
-    if (verbose) std::fprintf(stderr, "[report %6.1fs] %s\n", since(t_start), line.c_str());
+    if (!sink) return;
+    char stamp[32];
+    std::snprintf(stamp, sizeof stamp, "[report %6.1fs] ", since(t_start));
+    sink(stamp + line);
   }
 };
 
@@ -92,10 +97,10 @@ struct ReportState {
   // Adds ground-truth samples (doubling) until its standard error reaches `target`, the
   // sample cap or the time budget.
   void refine_within_budget(double target) {
-    gt.add_samples_up_to(gto.initial_samples, &progress);
+    gt.add_samples_up_to(gto.initial_samples, progress);
     while (gt.result().relative_rms_se > target && gt.samples_per_vertex() * 2 <= gto.max_samples &&
            gt.result().seconds * 2.0 <= budget)  // the next pass costs about all passes so far
-      gt.add_samples_up_to(gt.samples_per_vertex() * 2, &progress);
+      gt.add_samples_up_to(gt.samples_per_vertex() * 2, progress);
   }
   // The map projected to `order` (projected once per order).
   const prt::ShLighting& lighting_for(int order) {
@@ -126,7 +131,7 @@ struct ReportState {
   // Ground truth: a first estimate before the sweep, refined after it if the errors demand it.
   const GroundTruthOptions gto;
   GroundTruthIntegrator gt;
-  bake::ConsoleProgress progress;
+  bake::ProgressSink* const progress;  // the caller's, may be null
   const double budget;  // seconds
   GroundTruthResult truth;
 

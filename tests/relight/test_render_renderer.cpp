@@ -1,4 +1,5 @@
 // The preview renderer (relight/renderer.h): barycentric shading of hits, environment on misses.
+#include <atomic>
 #include <cmath>
 #include <stdexcept>
 #include <vector>
@@ -178,4 +179,31 @@ TEST_CASE("renderer: bad input is refused with one line") {
   CHECK_THROWS_WITH(prt::relight::render(scene, caster, radiance, nullptr,
                                          prt::relight::kIdentityRotation, camera, options),
                     Catch::Contains("coincide"));
+}
+
+TEST_CASE("renderer: the rows_done callback counts every row once and changes nothing") {
+  const prt::scene::Scene scene = make_triangle_scene();
+  const prt::scene::RayCaster caster(scene);
+  const std::vector<float> radiance = {1.f, 2.f, 3.f, 10.f, 0.f, 5.f, 0.5f, 7.f, 20.f};
+  prt::relight::Camera camera;
+  camera.eye = glm::vec3(0.f, 0.f, 4.f);
+  camera.target = glm::vec3(0.f);
+  camera.up = glm::vec3(0, 1, 0);
+  camera.yfov_radians = static_cast<float>(70 * kPi / 180);
+  prt::relight::RenderOptions options;
+  options.width = 64;
+  options.height = 301;  // odd, so TBB's row ranges are uneven
+  options.samples_per_axis = 2;
+  const prt::relight::Image plain = prt::relight::render(
+      scene, caster, radiance, nullptr, prt::relight::kIdentityRotation, camera, options);
+  std::atomic<int> rows{0}, calls{0};
+  options.rows_done = [&](int n) {  // called from the rendering threads
+    rows += n;
+    ++calls;
+  };
+  const prt::relight::Image counted = prt::relight::render(
+      scene, caster, radiance, nullptr, prt::relight::kIdentityRotation, camera, options);
+  CHECK(rows.load() == 301);
+  CHECK(calls.load() >= 1);
+  CHECK(counted.rgb == plain.rgb);  // bit for bit
 }

@@ -248,7 +248,6 @@ TEST_CASE("end-to-end quick report on a small scene writes consistent files") {
   o.quick = true;
   o.haar_cubes = std::vector<int>{8, 16};  // quick's 8 plus 16: the cube-size trend (0.1 s here)
   o.image_width = 64, o.image_height = 36;
-  o.verbose = false;
   const ReportResult r = run_report(o);
   for (const char* f :
        {"results.csv", "results.json", "pareto.svg", "error_vs_order.svg", "summary.md"})

@@ -15,6 +15,7 @@
 
 #include <array>
 #include <cstddef>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -97,6 +98,9 @@ struct RelightRequest {
   bool vertex_colors_tonemapped = false;
   std::string csv_path;      // optional
   int turntable_frames = 0;  // 0: one image at output_path
+  // Progress (optional): called after each image is written with (images written, images in
+  // all) — (i + 1, N) for turntable frame i of N, (1, 1) for a single image.
+  std::function<void(int done, int total)> image_written;
 };
 
 struct RelightSummary {

@@ -13,6 +13,7 @@
 #pragma once
 
 #include <array>
+#include <functional>
 #include <vector>
 
 #include "relight/camera.h"
@@ -31,6 +32,9 @@ struct RenderOptions {
   int width = 960;
   int height = 540;
   int samples_per_axis = 3;  // N: N×N sub-samples per pixel
+  // Progress (optional): called with the number of rows just finished, from the rendering
+  // threads, possibly concurrently (so it must be thread-safe); the counts add up to height.
+  std::function<void(int rows)> rows_done;
 };
 
 // The identity, for unrotated backgrounds.

@@ -35,10 +35,12 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "bake/progress.h"
 #include "prt/transfer_data.h"
 #include "sh/env_map.h"
 
@@ -74,7 +76,10 @@ struct ReportOptions {
   // Haar cube sizes to sweep: nullopt = the default of the mode (quick {8}, full {8, 16});
   // an empty list leaves the Haar axis out.
   std::optional<std::vector<int>> haar_cubes;
-  bool verbose = true;  // progress lines on stderr
+  // Progress (the library prints nothing): one line per step to `log` when it is set, and the
+  // ground truth's sample passes to `progress` when it is not null.
+  std::function<void(const std::string&)> log;
+  bake::ProgressSink* progress = nullptr;
   // Tolerances of the `prt bake --auto` rows (bake/adaptive/adaptive_baker.h): nullopt = the
   // default of the mode (quick {0.05}; full {0.01, 0.05, 0.1}); an empty list leaves them out.
   std::optional<std::vector<double>> auto_tolerances;

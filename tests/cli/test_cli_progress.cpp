@@ -1,0 +1,253 @@
+// tests/cli/test_cli_progress.cpp — progress on stderr (cli/progress_reporter.h): what the
+// commands print while they work, that --quiet silences it and that stdout keeps only results.
+//
+// The binary runs with PRT_PROGRESS_INTERVAL=0 (a line on every update when stderr is not a
+// terminal) so that short runs show their progress; the reporter's throttling itself is tested
+// on the class with a file as its output.
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <unistd.h>
+
+#include <catch2/catch.hpp>
+
+#include "progress_reporter.h"
+#include "relight/image_io.h"
+#include "support/test_data.h"
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct Run {
+  int exit_code = 0;
+  std::string out, err;
+  double seconds = 0;
+};
+
+std::string read_all(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// Runs `command` through the shell with stdout and stderr captured in files (named by process
+// id and a counter: ctest runs cases as parallel processes sharing the directory).
+Run run(const std::string& command) {
+  static int counter = 0;
+  const fs::path dir = prt::test::output_path("cli_progress");
+  fs::create_directories(dir);
+  const std::string stem = "run" + std::to_string(::getpid()) + "_" + std::to_string(counter++);
+  const fs::path out = dir / (stem + ".out"), err = dir / (stem + ".err");
+  const auto start = std::chrono::steady_clock::now();
+  const int status = std::system((command + " >" + out.string() + " 2>" + err.string()).c_str());
+  Run r;
+  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  r.exit_code = status == -1 ? -1 : WEXITSTATUS(status);
+  r.out = read_all(out);
+  r.err = read_all(err);
+  fs::remove(out);
+  fs::remove(err);
+  return r;
+}
+
+std::string prt_cli(const std::string& interval = "0") {
+  return "PRT_PROGRESS_INTERVAL=" + interval + " " + std::string(PRT_CLI_PATH);
+}
+
+fs::path scratch(const std::string& name) {
+  const fs::path dir = prt::test::output_path("cli_progress") / name;
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+std::vector<std::string> lines_of(const std::string& text) {
+  std::vector<std::string> lines;
+  std::stringstream in(text);
+  for (std::string line; std::getline(in, line);) lines.push_back(line);
+  return lines;
+}
+
+std::size_t count_containing(const std::string& text, const std::string& needle) {
+  std::size_t n = 0;
+  for (const std::string& line : lines_of(text)) n += line.find(needle) != std::string::npos;
+  return n;
+}
+
+void write_env(const fs::path& path, int width, int height) {
+  std::vector<float> pixels(static_cast<std::size_t>(3 * width * height));
+  for (std::size_t i = 0; i < pixels.size(); ++i)
+    pixels[i] = 0.5f + 0.25f * static_cast<float>((i * 7919) % 13);
+  prt::relight::write_image(path.string(), width, height, 3, pixels.data());
+}
+
+}  // namespace
+
+TEST_CASE("cli progress: relight reports turntable frames i/N and image rows; --quiet silences") {
+  const fs::path dir = scratch("turntable");
+  const fs::path scene = dir / "quad.obj";
+  std::ofstream(scene) << "v 0 0 0\nv 1 0 0\nv 1 0 -1\nv 0 0 -1\nf 1 2 3\nf 1 3 4\n";
+  const fs::path prt_file = dir / "quad.prt", env = dir / "sky.hdr";
+  REQUIRE(run(prt_cli() + " bake " + scene.string() + " -o " + prt_file.string() +
+              " --samples 16 --quiet")
+              .exit_code == 0);
+  write_env(env, 32, 16);
+  const std::string relight = " relight " + scene.string() + " " + prt_file.string() + " " +
+                              env.string() + " --size 24x24 --spp 1 --turntable 4 -o ";
+
+  const Run shown = run(prt_cli() + relight + (dir / "spin.png").string());
+  INFO("stderr:\n" << shown.err);
+  REQUIRE(shown.exit_code == 0);
+  for (int i = 1; i <= 4; ++i)
+    CHECK(count_containing(shown.err, "frame " + std::to_string(i) + "/4") == 1);
+  CHECK(count_containing(shown.err, "4 frames done in") == 1);
+  CHECK(shown.out.find("frame") == std::string::npos);  // stdout: the summary only
+  CHECK(shown.out.find("wrote:") != std::string::npos);
+  for (int i = 0; i < 4; ++i) CHECK(fs::exists(dir / ("spin_00" + std::to_string(i) + ".png")));
+
+  const Run quiet = run(prt_cli() + relight + (dir / "hush.png").string() + " --quiet");
+  REQUIRE(quiet.exit_code == 0);
+  CHECK(quiet.err.empty());
+  CHECK(quiet.out.empty());
+  CHECK(fs::exists(dir / "hush_003.png"));
+
+  // A single image reports its rows (24 of them here), then the usual summary on stdout.
+  const Run single = run(prt_cli() + relight.substr(0, relight.find(" --turntable")) + " -o " +
+                         (dir / "still.png").string());
+  INFO("single image stderr:\n" << single.err);
+  REQUIRE(single.exit_code == 0);
+  CHECK(count_containing(single.err, "(rows): ") >= 1);
+  CHECK(count_containing(single.err, "(rows): 24/24 done in") == 1);
+  CHECK(single.out.find("wrote:") != std::string::npos);
+
+  // With the default 5 s interval a run that takes less prints no progress at all.
+  const Run quick = run(prt_cli("5") + relight + (dir / "quick.png").string());
+  REQUIRE(quick.exit_code == 0);
+  if (quick.seconds < 4.0) CHECK(quick.err.empty());
+}
+
+TEST_CASE("cli progress: a long env projection reports its progress and --quiet silences it") {
+  const fs::path dir = scratch("env");
+  struct Case {
+    std::string name;
+    int width, height, order;
+  };
+  // Lat-long takes the separable path (progress per row block, frequency and band), the
+  // angular map the direct sum (progress per row).
+  const Case cases[] = {{"sky_latlong.hdr", 600, 300, 300}, {"probe_angular.hdr", 48, 48, 24}};
+  for (const Case& c : cases) {
+    INFO(c.name);
+    const fs::path env = dir / c.name;
+    write_env(env, c.width, c.height);
+    const std::string command = " env " + env.string() + " --order " + std::to_string(c.order);
+    const Run shown = run(prt_cli() + command);
+    INFO("stderr:\n" << shown.err);
+    REQUIRE(shown.exit_code == 0);
+    const std::string phase = "projecting " + env.string() + " to order " + std::to_string(c.order);
+    CHECK(count_containing(shown.err, phase + ":") >= 3);
+    CHECK(count_containing(shown.err, "% ") >= 2);  // percentages on the way
+    CHECK(count_containing(shown.err, phase + ": done in") == 1);
+    // stdout holds the coefficients only: 5 header lines and one line per coefficient.
+    CHECK(lines_of(shown.out).size() == 5u + static_cast<std::size_t>(c.order) * c.order);
+
+    const Run quiet = run(prt_cli() + command + " --quiet");
+    REQUIRE(quiet.exit_code == 0);
+    CHECK(quiet.err.find("projecting") == std::string::npos);
+    CHECK(quiet.out == shown.out);
+  }
+}
+
+TEST_CASE("progress reporter: plain lines are throttled to one per interval") {
+  const fs::path dir = scratch("reporter");
+  const fs::path log = dir / "log.txt";
+  std::FILE* file = std::fopen(log.string().c_str(), "w");
+  REQUIRE(file);
+  const double interval = 0.05;
+  const auto start = std::chrono::steady_clock::now();
+  {
+    prt::cli::ProgressReporter reporter(false, file, false, interval);
+    reporter.start_fraction("work");
+    for (int i = 1; i <= 400; ++i) {
+      reporter.set_done(i, 400);
+      std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    }
+    reporter.finish();
+    reporter.start_items("quick", 10, "item");  // ends before the first interval: silent
+    reporter.set_done(10, 10);
+    reporter.finish();
+  }
+  const double elapsed =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  std::fclose(file);
+  const std::vector<std::string> lines = lines_of(read_all(log));
+  INFO(read_all(log));
+  // One line per elapsed interval at most (the first after one interval), plus the final line.
+  REQUIRE(!lines.empty());
+  CHECK(lines.size() <= static_cast<std::size_t>(elapsed / interval) + 1);
+  CHECK(lines.back().find("work: done in") == 0);
+  CHECK(count_containing(read_all(log), "quick") == 0);
+  if (elapsed > 4 * interval) CHECK(lines.size() >= 2);  // progress while it worked
+
+  // Quiet: nothing, whatever the interval.
+  std::FILE* silent = std::fopen(log.string().c_str(), "w");
+  REQUIRE(silent);
+  {
+    prt::cli::ProgressReporter reporter(true, silent, false, 0.0);
+    reporter.start("bake", 5);
+    reporter.advance(5, 100);
+    reporter.message("a step");
+    reporter.finish();
+  }
+  std::fclose(silent);
+  CHECK(read_all(log).empty());
+}
+
+TEST_CASE("progress reporter: a terminal gets one status line redrawn in place") {
+  const fs::path log = scratch("terminal") / "tty.txt";
+  std::FILE* file = std::fopen(log.string().c_str(), "w");
+  REQUIRE(file);
+  {
+    prt::cli::ProgressReporter reporter(false, file, true, 5.0);
+    reporter.start_items("turntable", 3, "frame");
+    std::this_thread::sleep_for(std::chrono::milliseconds(350));  // past the 0.3 s delay
+    reporter.set_done(1, 3);
+    reporter.message("a note");  // ends the status line first
+    std::this_thread::sleep_for(std::chrono::milliseconds(120));
+    reporter.set_done(3, 3);
+    reporter.finish();
+  }
+  std::fclose(file);
+  const std::string text = read_all(log);
+  INFO(text);
+  // Each redraw returns the carriage and erases the old line (ESC[K) before writing.
+  CHECK(text.find("\r\033[Kturntable: frame 1/3") != std::string::npos);
+  CHECK(text.find("\na note\n") != std::string::npos);
+  CHECK(text.find("\r\033[Kturntable: 3 frames done in") != std::string::npos);
+  CHECK(text.back() == '\n');
+
+  // A phase cut short (an exception unwinding past the reporter) leaves an erased line, not a
+  // half-drawn one that the error message would be appended to.
+  std::FILE* cut = std::fopen(log.string().c_str(), "w");
+  REQUIRE(cut);
+  {
+    prt::cli::ProgressReporter reporter(false, cut, true, 5.0);
+    reporter.start_fraction("projecting");
+    std::this_thread::sleep_for(std::chrono::milliseconds(350));
+    reporter.set_done(1, 4);
+  }
+  std::fclose(cut);
+  const std::string cut_text = read_all(log);
+  INFO(cut_text);
+  CHECK(cut_text.find("projecting:  25%") != std::string::npos);
+  CHECK(cut_text.size() >= 4);
+  CHECK(cut_text.substr(cut_text.size() - 4) == "\r\033[K");
+}
