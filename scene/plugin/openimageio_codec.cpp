@@ -104,9 +104,9 @@ int read_memory(const void* bytes, size_t size, const char* format, unsigned lon
   };
   if (format == nullptr || format[0] == '\0') return fail("no image format given");
   OIIO::Filesystem::IOMemReader proxy(bytes, size);
-  std::unique_ptr<OIIO::ImageInput> in = OIIO::ImageInput::create(format, false, nullptr, &proxy);
+  std::unique_ptr<OIIO::ImageInput> in = OIIO::ImageInput::create(format);
   if (!in) return fail("no " + std::string(format) + " reader: " + OIIO::geterror());
-  if (!in->supports("ioproxy"))
+  if (!in->supports("ioproxy") || !in->set_ioproxy(&proxy))
     return fail("the " + std::string(format) + " reader cannot read from memory");
   OIIO::ImageSpec opened;
   if (!in->open(std::string("memory.") + format, opened, read_config(flags))) {
