@@ -418,11 +418,17 @@ glm::dvec3 linear_texel(int i, int j) {
   return {linear_of_byte(b[0]), linear_of_byte(b[1]), linear_of_byte(b[2])};
 }
 
-std::vector<unsigned char> texture_png() {
+// The texture's samples, row by row.
+std::vector<unsigned char> texture_samples() {
   std::vector<unsigned char> samples;
   for (int j = 0; j < 2; ++j)
-    for (int i = 0; i < 2; ++i) samples.insert(samples.end(), kTexel[j][i], kTexel[j][i] + 3);
-  return prt::test::encode_png(2, 2, 3, samples);
+    for (int i = 0; i < 2; ++i)
+      for (int c = 0; c < 3; ++c) samples.push_back(static_cast<unsigned char>(kTexel[j][i][c]));
+  return samples;
+}
+
+std::vector<unsigned char> texture_png() {
+  return prt::test::encode_png(2, 2, 3, texture_samples());
 }
 
 std::string base64(const std::vector<unsigned char>& bytes) {
@@ -483,12 +489,7 @@ void check_rgb(const glm::vec3& got, const glm::dvec3& want, double tolerance = 
 }  // namespace
 
 TEST_CASE("glTF baseColorTexture: PNG file beside the .gltf, texCoord 1, factor, CLAMP vs REPEAT") {
-  prt::test::write_png(prt::test::output_path("tex 2x2.png").string(), 2, 2, 3, [] {
-    std::vector<unsigned char> samples;
-    for (int j = 0; j < 2; ++j)
-      for (int i = 0; i < 2; ++i) samples.insert(samples.end(), kTexel[j][i], kTexel[j][i] + 3);
-    return samples;
-  }());
+  prt::test::write_png(prt::test::output_path("tex 2x2.png").string(), 2, 2, 3, texture_samples());
   for (const bool clamp : {true, false}) {
     MiniGltf g = textured_quad();
     g.doc["images"] = {{{"uri", "tex%202x2.png"}}};  // percent-encoded space
