@@ -148,6 +148,12 @@ void run(const BakeArguments& args) {
   if (!args.albedo.empty()) load.albedo_override = parse_albedo(args.albedo);
   const scene::Scene scene = scene::load_scene(args.scene, load);
   if (args.haar.basis == "haar") {
+    if (scene.textured())
+      std::fprintf(
+          stderr,
+          "prt bake: %s: note: a Haar bake folds in each vertex's albedo (its texture read "
+          "at the vertex); SH bakes apply textures per pixel\n",
+          args.scene.c_str());
     run_haar_bake(scene, args.output, options.kind, args.haar, args.seed, args.threads,
                   args.bounces, args.tolerance, args.quiet);
     return;
@@ -184,6 +190,7 @@ void run(const BakeArguments& args) {
       std::printf("; interreflection solved in %d+%d iterations to residual %.2g (%.2f s)",
                   st.jacobi_bounces, st.solver_iterations, st.solver_residual, st.seconds_solve);
   }
+  if (!result.data.albedo_folded) std::printf("; albedo kept apart (textures apply per pixel)");
   std::printf("; total %.2f s; wrote %s (%llu bytes, %s)", st.seconds_total, args.output.c_str(),
               static_cast<unsigned long long>(ec ? 0 : bytes), args.precision.c_str());
   std::printf("; %llu degenerate triangles skipped.\n",

@@ -84,6 +84,8 @@ RelightSummary run_haar_relight(const RelightRequest& request, const HaarLightin
   prt::Result<prt::HaarTransferFile> file = prt::read_haar_transfer_file(request.transfer_path);
   if (!file.ok()) throw std::runtime_error(file.status().message());
   check_transfer_matches_scene(file->info, request.transfer_path, scene);
+  RelightRequest frames = request;
+  frames.render.multiply_albedo = !file->info.albedo_folded;
   const sh::EnvMap env =
       read_environment(request.environment_path, request.layout, &summary.layout_note);
   const int size = file->transfer.size;
@@ -94,7 +96,7 @@ RelightSummary run_haar_relight(const RelightRequest& request, const HaarLightin
                         (options.terms > 0 ? std::to_string(options.terms) : "all") +
                         " terms, cube " + std::to_string(size);
   detail::render_relight_frames(
-      request, scene, env,
+      frames, scene, env,
       [&](const std::array<double, 9>& m) { return project_haar_lighting(env, size, m, options); },
       [&](const prt::SparseLighting& lighting) {
         std::vector<float> radiance(3 * scene.vertex_count());

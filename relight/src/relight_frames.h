@@ -29,6 +29,9 @@ namespace prt::relight::detail {
 // shade(lighting) (timed as shade_seconds, must return 3 floats per vertex), render (timed as
 // render_seconds) and write the image (OUT_iii for a turntable). The first frame also counts
 // the vertices with a negative channel and writes the vertex-coloured GLB and the CSV if asked.
+// With request.render.multiply_albedo the shaded values are per unit albedo: the renderer
+// multiplies by the albedo per sub-pixel, the GLB and the CSV's r,g,b get the vertex's own
+// albedo × the value (exit radiance at the vertex), and the CSV adds the values themselves.
 // Every file written is appended to summary->files_written.
 template <class LightFor, class Shade>
 void render_relight_frames(const RelightRequest& request, const scene::Scene& scene,
@@ -59,15 +62,20 @@ void render_relight_frames(const RelightRequest& request, const scene::Scene& sc
       for (std::size_t v = 0; v < scene.vertex_count(); ++v)
         if (radiance[3 * v] < 0.f || radiance[3 * v + 1] < 0.f || radiance[3 * v + 2] < 0.f)
           ++summary->negative_vertices;
+      const bool apart = request.render.multiply_albedo;
+      std::vector<float> exit = radiance;  // at the vertices
+      if (apart)
+        for (std::size_t v = 0; v < scene.vertex_count(); ++v)
+          for (int c = 0; c < 3; ++c) exit[3 * v + c] *= scene.albedo[v][c];
       if (!request.vertex_colors_path.empty()) {
         std::vector<glm::vec3> colors(scene.vertex_count());
         for (std::size_t v = 0; v < colors.size(); ++v)
-          colors[v] = glm::vec3(radiance[3 * v], radiance[3 * v + 1], radiance[3 * v + 2]);
+          colors[v] = glm::vec3(exit[3 * v], exit[3 * v + 1], exit[3 * v + 2]);
         scene::write_glb(request.vertex_colors_path, scene, &colors);
         summary->files_written.push_back(request.vertex_colors_path);
       }
       if (!request.csv_path.empty()) {
-        write_vertex_csv(request.csv_path, scene, radiance);
+        write_vertex_csv(request.csv_path, scene, exit, apart ? &radiance : nullptr);
         summary->files_written.push_back(request.csv_path);
       }
     }

@@ -130,9 +130,11 @@ std::string seconds_text(double s) {
 }
 
 // Relights a transfer with SH lighting: 3 floats per vertex; *seconds = best of `repeats` runs.
+// A transfer that keeps the albedo apart (a textured scene) is multiplied by each vertex's own
+// albedo afterwards (not timed): the exit radiance the ground truth computes at the vertex.
 std::vector<float> relight(const prt::TransferData& data, prt::Precision precision,
                            const prt::ShLighting& lighting, int repeats, double* seconds,
-                           std::string* failure) {
+                           std::string* failure, const scene::Scene& scene) {
   auto relighter = prt::Relighter::create(data, precision);
   if (!relighter.ok()) {
     *failure = relighter.status().message();
@@ -146,6 +148,9 @@ std::vector<float> relight(const prt::TransferData& data, prt::Precision precisi
                                     static_cast<std::size_t>(data.vertex_count));
     *seconds = std::min(*seconds, since(t0));
   }
+  if (!data.albedo_folded && b.size() == 3 * scene.albedo.size())
+    for (std::size_t v = 0; v < scene.albedo.size(); ++v)
+      for (int c = 0; c < 3; ++c) b[3 * v + c] *= scene.albedo[v][c];
   return b;
 }
 
@@ -513,7 +518,7 @@ std::vector<float> measure_sh(ReportState& st, ReportMeasurement& m) {
   } else {
     m.file_bytes = bytes->size();
     b = relight(data, m.setting.precision, st.lighting_for(m.setting.order), 5, &m.relight_seconds,
-                &m.failure);
+                &m.failure, st.in.scene);
   }
   return b;
 }
@@ -582,8 +587,9 @@ void relight_reference(ReportState& st) {
   for (int n : st.result.orders) {
     double unused;
     std::string failure;
-    st.reference_b.push_back(to_double(relight(truncate_order(ref.data, n), prt::Precision::F32,
-                                               st.lighting_for(n), 1, &unused, &failure)));
+    st.reference_b.push_back(
+        to_double(relight(truncate_order(ref.data, n), prt::Precision::F32, st.lighting_for(n), 1,
+                          &unused, &failure, st.in.scene)));
   }
 }
 
@@ -704,8 +710,9 @@ ReportAuto measure_auto_bake(ReportState& st, const bake::AutoBakeOptions& ao) {
     if (!bytes.ok()) throw std::runtime_error(bytes.status().message());
     a.file_bytes = bytes->size();
     double relight_seconds = 0;
-    const std::vector<float> b = relight(ab.bake.data, ab.bake.data.storage,
-                                         st.lighting_for(a.order), 1, &relight_seconds, &a.failure);
+    const std::vector<float> b =
+        relight(ab.bake.data, ab.bake.data.storage, st.lighting_for(a.order), 1, &relight_seconds,
+                &a.failure, st.in.scene);
     if (a.failure.empty()) {
       const VertexErrorStats e = compute_vertex_errors(b, st.truth.radiance);
       a.relative_rms = e.relative_rms, a.p99 = e.p99, a.max = e.max;
