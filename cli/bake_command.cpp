@@ -148,12 +148,6 @@ void run(const BakeArguments& args) {
   if (!args.albedo.empty()) load.albedo_override = parse_albedo(args.albedo);
   const scene::Scene scene = scene::load_scene(args.scene, load);
   if (args.haar.basis == "haar") {
-    if (scene.textured())
-      std::fprintf(
-          stderr,
-          "prt bake: %s: note: a Haar bake folds in each vertex's albedo (its texture read "
-          "at the vertex); SH bakes apply textures per pixel\n",
-          args.scene.c_str());
     run_haar_bake(scene, args.output, options.kind, args.haar, args.seed, args.threads,
                   args.bounces, args.tolerance, args.quiet);
     return;

@@ -269,23 +269,6 @@ void run_sampling_pass(BakeJob& job) {
   }
 }
 
-// The columns c·V .. (c+1)·V − 1 of H as a V × V matrix (H with the albedo kept apart holds one
-// such block per channel, transfer_pass.h).
-SparseTransferMatrix channel_block(const SparseTransferMatrix& h, std::size_t V, std::size_t c) {
-  SparseTransferMatrix out;
-  out.row_offsets.reserve(h.rows() + 1);
-  const uint64_t first = c * V, end = first + V;
-  for (std::size_t r = 0; r < h.rows(); ++r) {
-    for (uint64_t e = h.row_offsets[r]; e < h.row_offsets[r + 1]; ++e) {
-      if (h.columns[e] < first || h.columns[e] >= end) continue;
-      out.columns.push_back(static_cast<uint32_t>(h.columns[e] - first));
-      out.weights.push_back(h.weights[e]);
-    }
-    out.row_offsets.push_back(out.columns.size());
-  }
-  return out;
-}
-
 // T_c = D_c + diag(ρ_c) H T_c per colour channel, into the output's float coefficients. With the
 // albedo kept apart: G_c = S + H_c G_c, H_c the channel's block (the hit albedo inside, no
 // receiver albedo: ρ = 1 in the solver).
@@ -297,7 +280,7 @@ void solve_interreflection_channels(BakeJob& job) {
   prt::TransferData& data = job.result.data;
   for (std::size_t c = 0; c < C; ++c) {
     const SparseTransferMatrix block =
-        job.apart ? channel_block(job.h, V, c) : SparseTransferMatrix{};
+        job.apart ? column_block(job.h, c * V, V) : SparseTransferMatrix{};
     const SparseTransferMatrix& h = job.apart ? block : job.h;
     if (!job.apart)
       for (std::size_t v = 0; v < V; ++v) rho[v] = job.scene.albedo[v][static_cast<int>(c)];

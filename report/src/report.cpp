@@ -437,6 +437,7 @@ struct HaarBake {
   double seconds = 0;
   uint64_t file_bytes = 0;
   std::unique_ptr<prt::HaarRelighter> relighter;
+  bool albedo_folded = true;  // false: multiply by the vertex albedo (a textured scene)
   std::string failure;
   int uses_left = 0;
 };
@@ -465,6 +466,7 @@ HaarBake& haar_bake_for(ReportState& st, std::map<int, HaarBake>& haar_bakes,
       return hb;
     }
     hb.file_bytes = bytes->size();
+    hb.albedo_folded = r.file.info.albedo_folded;
     hb.relighter = std::make_unique<prt::HaarRelighter>(std::move(r.file.transfer));
   } catch (const std::runtime_error& e) {  // e.g. the dense wavelet block is too large
     hb.failure = e.what();
@@ -499,6 +501,9 @@ std::vector<float> measure_haar(ReportState& st, std::map<int, HaarBake>& haar_b
         break;
       }
     }
+    if (!hb.albedo_folded && !b.empty())  // as relight() does for SH
+      for (std::size_t v = 0; v < st.in.scene.albedo.size(); ++v)
+        for (int c = 0; c < 3; ++c) b[3 * v + c] *= st.in.scene.albedo[v][c];
   }
   if (--hb.uses_left == 0) hb.relighter.reset();
   return b;
