@@ -207,7 +207,8 @@ void register_bake(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--tolerance", args->tolerance, "Relative residual of the interreflection solve")
       ->capture_default_str();
-  cmd->add_option("--albedo", args->albedo, "Override every material's albedo: r,g,b in [0, 1)");
+  cmd->add_option("--albedo", args->albedo,
+                  "Override every material's albedo (textures dropped): r,g,b in [0, 1)");
   cmd->add_flag("--ao", args->ao, "Also store ambient occlusion per vertex");
   cmd->add_flag("--bent-normals", args->bent_normals, "Also store bent normals per vertex");
   cmd->add_option("--seed", args->seed, "Sampling seed")->capture_default_str();

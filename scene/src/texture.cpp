@@ -149,7 +149,12 @@ TextureImage TextureImage::from_linear_rgb(int width, int height, std::vector<fl
 }
 
 glm::vec3 TextureImage::sample(glm::vec2 uv, const TextureSampler& sampler, float footprint) const {
-  const double u = std::isfinite(uv.x) ? uv.x : 0.0, v = std::isfinite(uv.y) ? uv.y : 0.0;
+  // Non-finite coordinates read (0, 0); huge ones are held to ±2^30 (a float there has no
+  // fraction left anyway) so that texel indices fit in 64 bits.
+  const auto coordinate = [](float x) {
+    return std::isfinite(x) ? std::clamp(static_cast<double>(x), -0x1p30, 0x1p30) : 0.0;
+  };
+  const double u = coordinate(uv.x), v = coordinate(uv.y);
   const double texels = static_cast<double>(std::max(width(), height()));
   const double lambda =
       footprint > 0.f && std::isfinite(footprint) ? std::log2(footprint * texels) : -1.0;

@@ -94,8 +94,10 @@ TEST_CASE("texture: REPEAT, CLAMP_TO_EDGE and MIRRORED_REPEAT, per axis") {
   check_near(t.sample({-1.f, 1.75f}, mixed), texel(0, 1));
   // A repeat count in the millions keeps its fraction (coordinates taken in double).
   check_near(t.sample({1048576.25f, 0.25f}, repeat), texel(0, 0));
-  // Non-finite coordinates read (0, 0).
+  // Non-finite coordinates read (0, 0); absurdly large ones read a texel, without overflow.
   check_near(t.sample({std::nanf(""), 0.f}, repeat), t.sample({0.f, 0.f}, repeat));
+  const glm::vec3 far = t.sample({3e38f, -3e38f}, mirror);
+  CHECK(std::isfinite(far.x + far.y + far.z));
 }
 
 TEST_CASE("texture: NEAREST magnification returns whole texels") {

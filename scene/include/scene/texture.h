@@ -25,7 +25,7 @@
 // of the reconstructed texture, and the many rays of a vertex do the area averaging. The renderer
 // samples once per sub-pixel ray and gives the ray's footprint: trilinear mipmapping removes the
 // aliasing a far, finely textured surface would otherwise show.
-// Non-finite coordinates sample at (0, 0).
+// Non-finite coordinates sample at (0, 0); coordinates beyond ±2^30 are held there.
 #pragma once
 
 #include <memory>
