@@ -53,8 +53,8 @@ constexpr float kDefaultGltfAlbedo = 0.8f;
 
 class GltfReader {
  public:
-  GltfReader(const std::string& path, const tinygltf::Model& model)
-      : path_(path), model_(model), textures_(path, model) {}
+  GltfReader(const std::string& path, const tinygltf::Model& model, bool textures)
+      : path_(path), model_(model), read_textures_(textures), textures_(path, model) {}
 
   Scene read() {
     if (model_.scenes.empty()) fail(path_, "the file has no scene (no nodes to load)");
@@ -214,6 +214,7 @@ class GltfReader {
   std::optional<BaseColorTexture> read_texture(const tinygltf::Primitive& primitive,
                                                const std::string& name, std::size_t vertex_count,
                                                std::vector<glm::vec2>& uv) {
+    if (!read_textures_) return std::nullopt;
     std::optional<BaseColorTexture> texture = textures_.base_color(primitive.material);
     if (!texture) return std::nullopt;
     const std::string attribute = "TEXCOORD_" + std::to_string(texture->texcoord);
@@ -366,6 +367,7 @@ class GltfReader {
 
   const std::string& path_;
   const tinygltf::Model& model_;
+  bool read_textures_;
   GltfTextures textures_;
   Scene scene_;
   std::vector<bool> visited_;
@@ -407,7 +409,7 @@ std::string filter_warnings(const std::string& warnings,
 
 }  // namespace
 
-Scene read_gltf_scene(const std::string& path, bool binary) {
+Scene read_gltf_scene(const std::string& path, bool binary, bool textures) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec)) fail(path, "no such file");
   tinygltf::TinyGLTF loader;
@@ -426,7 +428,7 @@ Scene read_gltf_scene(const std::string& path, bool binary) {
   if (!other_warnings.empty()) {
     std::fprintf(stderr, "%s: warning: %s\n", path.c_str(), other_warnings.c_str());
   }
-  return GltfReader(path, model).read();
+  return GltfReader(path, model, textures).read();
 }
 
 }  // namespace prt::scene::detail

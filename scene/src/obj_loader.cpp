@@ -58,8 +58,9 @@ void check_vertex_lines(const std::string& path) {
 // Builds the scene from the parsed file, shape by shape (see scene/scene_loader.h).
 class ObjSceneBuilder {
  public:
-  ObjSceneBuilder(const std::string& path, const tinyobj::ObjReader& reader)
+  ObjSceneBuilder(const std::string& path, const tinyobj::ObjReader& reader, bool textures)
       : path_(path),
+        read_textures_(textures),
         attrib_(reader.GetAttrib()),
         materials_(reader.GetMaterials()),
         shapes_(reader.GetShapes()),
@@ -118,7 +119,8 @@ class ObjSceneBuilder {
   // and the material keeps its Kd).
   const std::optional<BaseColorTexture>& texture_of(int material) {
     static const std::optional<BaseColorTexture> kNone;
-    if (material < 0 || static_cast<std::size_t>(material) >= materials_.size()) return kNone;
+    if (!read_textures_ || material < 0 || static_cast<std::size_t>(material) >= materials_.size())
+      return kNone;
     auto& [tried, texture] = textures_[static_cast<std::size_t>(material)];
     if (tried) return texture;
     tried = true;
@@ -288,6 +290,7 @@ class ObjSceneBuilder {
   }
 
   const std::string& path_;
+  bool read_textures_;
   const tinyobj::attrib_t& attrib_;
   const std::vector<tinyobj::material_t>& materials_;
   const std::vector<tinyobj::shape_t>& shapes_;
@@ -300,7 +303,7 @@ class ObjSceneBuilder {
 
 }  // namespace
 
-Scene read_obj_scene(const std::string& path) {
+Scene read_obj_scene(const std::string& path, bool textures) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec)) fail(path, "no such file");
   tinyobj::ObjReaderConfig config;
@@ -314,7 +317,7 @@ Scene read_obj_scene(const std::string& path) {
   check_vertex_lines(path);
   // Printed only once the file has been accepted, so a refusal stays a single line.
   const std::string warnings = condense(reader.Warning());
-  Scene scene = ObjSceneBuilder(path, reader).build();
+  Scene scene = ObjSceneBuilder(path, reader, textures).build();
   if (!warnings.empty()) std::fprintf(stderr, "%s: warning: %s\n", path.c_str(), warnings.c_str());
   return scene;
 }

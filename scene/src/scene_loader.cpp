@@ -107,13 +107,14 @@ Scene load_scene(const std::string& path, const LoadOptions& options) {
   std::transform(extension.begin(), extension.end(), extension.begin(),
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   Scene scene;
+  const bool textures = !options.albedo_override;  // an override drops them: do not decode them
   try {
     if (extension == ".gltf") {
-      scene = detail::read_gltf_scene(path, /*binary=*/false);
+      scene = detail::read_gltf_scene(path, /*binary=*/false, textures);
     } else if (extension == ".glb") {
-      scene = detail::read_gltf_scene(path, /*binary=*/true);
+      scene = detail::read_gltf_scene(path, /*binary=*/true, textures);
     } else if (extension == ".obj") {
-      scene = detail::read_obj_scene(path);
+      scene = detail::read_obj_scene(path, textures);
     } else {
       throw SceneError(path + ": unsupported scene format '" + extension +
                        "' (expected .gltf, .glb or .obj)");
