@@ -65,7 +65,7 @@
 namespace prt::scene {
 
 struct LoadOptions {
-  // Replaces every material's albedo when set; textures are then dropped (a flat colour).
+  // Replaces every material's albedo when set; textures are then not even decoded (flat colour).
   std::optional<glm::vec3> albedo_override;
 };
 
