@@ -245,6 +245,7 @@ void run(const BakeArguments& args, const CLI::App& cmd) {
       std::printf("; interreflection solved in %d+%d iterations to residual %.2g (%.2f s)",
                   st.jacobi_bounces, st.solver_iterations, st.solver_residual, st.seconds_solve);
   }
+  if (!result.data.albedo_folded) std::printf("; albedo kept apart (textures apply per pixel)");
   std::printf("; total %.2f s; wrote %s (%llu bytes, %s)", st.seconds_total, args.output.c_str(),
               static_cast<unsigned long long>(ec ? 0 : bytes), args.precision.c_str());
   std::printf("; %llu degenerate triangles skipped.\n",
@@ -267,7 +268,8 @@ void register_bake(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--tolerance", args->tolerance, "Relative residual of the interreflection solve")
       ->capture_default_str();
-  cmd->add_option("--albedo", args->albedo, "Override every material's albedo: r,g,b in [0, 1)");
+  cmd->add_option("--albedo", args->albedo,
+                  "Override every material's albedo (textures dropped): r,g,b in [0, 1)");
   cmd->add_flag("--ao", args->ao, "Also store ambient occlusion per vertex");
   cmd->add_flag("--bent-normals", args->bent_normals, "Also store bent normals per vertex");
   cmd->add_option("--seed", args->seed, "Sampling seed")->capture_default_str();

@@ -66,7 +66,8 @@ struct FixedVertexSampler {
         for (int k = 0; k < K; ++k) acc[k] += static_cast<double>(packet_sum[k]);
       if (interreflect)
         for (int i = 0; i < kPacketSize; ++i)
-          if (hits[i].hit && !gather_front_hit(pass.scene, hits[i], dirs[i], 1.f, gathered))
+          if (hits[i].hit &&
+              !gather_front_hit(pass.scene, hits[i], dirs[i], 1.f, pass.gather_channels, gathered))
             ++pass.block_back_hits[block];
     }
     if (need_sh)

@@ -88,11 +88,12 @@ TexelSamples make_texel_samples(int size, int supersample, uint64_t seed) {
 using GatherRow = std::vector<std::pair<uint32_t, float>>;
 
 // Traces vertex v's texel rays; writes the grey quadrature transfer Σ V·cos·Ω into
-// `dense` (6N² floats, albedo not applied) and, when `row` is given, its gather row. Returns
-// the rays cast.
+// `dense` (6N² floats, albedo not applied) and, when `row` is given, its gather row: with
+// gather_channels = C > 0 (albedo kept apart), C blocks of V columns whose weights hold the hit
+// point's albedo (as the SH baker, transfer_pass.h). Returns the rays cast.
 uint64_t trace_vertex(const scene::Scene& scene, const scene::RayCaster& caster,
-                      const TexelSamples& ts, uint32_t v, bool shadows, GatherRow* row,
-                      float* dense) {
+                      const TexelSamples& ts, uint32_t v, bool shadows, int gather_channels,
+                      GatherRow* row, float* dense) {
   const glm::vec3 n = glm::normalize(scene.normals[v]);
   const glm::vec3 origin = caster.vertex_origin(v);
   const std::size_t samples = ts.direction.size();
@@ -116,9 +117,20 @@ uint64_t trace_vertex(const scene::Scene& scene, const scene::RayCaster& caster,
         if (!detail::ray_hits_front_side(scene, hits[i].triangle, dirs[i])) continue;
         const glm::uvec3 tri = scene.triangles[hits[i].triangle];
         const float w = static_cast<float>(weight[i] * kInvPi);
-        row->emplace_back(tri.x, w * (1.f - hits[i].u - hits[i].v));
-        row->emplace_back(tri.y, w * hits[i].u);
-        row->emplace_back(tri.z, w * hits[i].v);
+        if (gather_channels == 0) {
+          row->emplace_back(tri.x, w * (1.f - hits[i].u - hits[i].v));
+          row->emplace_back(tri.y, w * hits[i].u);
+          row->emplace_back(tri.z, w * hits[i].v);
+          continue;
+        }
+        const glm::vec3 rho = scene.albedo_at(hits[i].triangle, hits[i].u, hits[i].v);
+        const auto V = static_cast<uint32_t>(scene.positions.size());
+        for (int c = 0; c < gather_channels; ++c) {
+          const uint32_t block = static_cast<uint32_t>(c) * V;
+          row->emplace_back(block + tri.x, w * rho[c] * (1.f - hits[i].u - hits[i].v));
+          row->emplace_back(block + tri.y, w * rho[c] * hits[i].u);
+          row->emplace_back(block + tri.z, w * rho[c] * hits[i].v);
+        }
       }
     } else {
       caster.occluded_packet(origin, dirs, count, tfar, occluded);
@@ -146,7 +158,8 @@ uint64_t trace_vertex(const scene::Scene& scene, const scene::RayCaster& caster,
   return rays;
 }
 
-std::string metadata_json(const scene::Scene& scene, const HaarBakeOptions& o, int channels) {
+std::string metadata_json(const scene::Scene& scene, const HaarBakeOptions& o, int channels,
+                          bool apart) {
   nlohmann::json j;
   j["generator"] = "prt bake --basis haar";
   j["basis"] = "haar";
@@ -157,7 +170,8 @@ std::string metadata_json(const scene::Scene& scene, const HaarBakeOptions& o, i
                {"max_terms_per_vertex", o.compression.max_terms_per_vertex},
                {"quantization_bits", static_cast<int>(o.compression.quantization)}};
   j["transport"] = transfer_kind_name(o.transport);
-  j["albedo_folded"] = true;
+  j["albedo_folded"] = !apart;
+  if (apart) j["albedo_kept_apart"] = "textured scene: multiply by the surface's (texture) albedo";
   j["channels"] = channels;
   j["frame"] = "glTF, +Y up";
   j["scene"] = scene.source_path;
@@ -189,6 +203,9 @@ void validate_haar_options(const scene::Scene& scene, const HaarBakeOptions& o) 
   sh.max_solver_iterations = o.max_solver_iterations;
   sh.threads = o.threads;
   validate_bake_inputs(scene, sh);
+  if (o.transport == prt::TransferKind::Interreflected && scene.textured() &&
+      3 * uint64_t(scene.vertex_count()) > 0xffffffffull)
+    throw BakeError(name + ": too many vertices for interreflection with the albedo kept apart");
   if (o.transport == prt::TransferKind::Interreflected) {
     const uint64_t channels = 3;  // upper bound
     const uint64_t bytes =
@@ -208,20 +225,23 @@ struct HaarBakeContext {
   const std::size_t V;  // vertices
   const int N;          // cube size
   const std::size_t W;  // texels = wavelet coefficients
-  const int C;          // channels: 1 when the albedo is grey
+  const int C;          // channels: 1 when the albedo is grey (or kept apart without bounces)
   const bool shadows;
+  const bool apart;  // the albedo is kept apart (textured scene, bake/transfer_baker.h)
   const TexelSamples& ts;
   const scene::RayCaster& caster;
   ProgressSink* progress;
   std::vector<uint64_t> task_rays;  // rays cast per task of kVerticesPerTask vertices
 
-  // Dense per-vertex transfer (texel domain, albedo/π applied), C channels interleaved.
+  // Dense per-vertex transfer (texel domain, albedo/π applied, or 1/π when it is kept apart), C
+  // channels interleaved.
   uint64_t dense_transfer(uint32_t v, GatherRow* row, std::vector<float>& grey_dense,
                           std::vector<float>& dense) const {
     std::fill(grey_dense.begin(), grey_dense.end(), 0.f);
-    const uint64_t rays = trace_vertex(scene, caster, ts, v, shadows, row, grey_dense.data());
+    const uint64_t rays =
+        trace_vertex(scene, caster, ts, v, shadows, apart ? C : 0, row, grey_dense.data());
     for (int c = 0; c < C; ++c) {
-      const float k = static_cast<float>(scene.albedo[v][c] * kInvPi);
+      const float k = static_cast<float>((apart ? 1.0 : scene.albedo[v][c]) * kInvPi);
       for (std::size_t t = 0; t < W; ++t) dense[t * C + c] = grey_dense[t] * k;
     }
     return rays;
@@ -323,13 +343,18 @@ void solve_wavelet_interreflection(const HaarBakeContext& ctx, const SparseTrans
   so.max_iterations = ctx.options.max_solver_iterations;
   std::vector<double> d(V * kSolveColumns), t(V * kSolveColumns);
   for (int c = 0; c < C; ++c) {
-    std::vector<double> rho(V);
-    for (std::size_t v = 0; v < V; ++v) rho[v] = ctx.scene.albedo[v][c];
+    // Kept apart: G = D + H_c G with channel c's block of H and no receiver albedo.
+    std::vector<double> rho(V, 1.0);
+    const SparseTransferMatrix block =
+        ctx.apart ? column_block(h, static_cast<uint64_t>(c) * V, V) : SparseTransferMatrix{};
+    if (!ctx.apart)
+      for (std::size_t v = 0; v < V; ++v) rho[v] = ctx.scene.albedo[v][c];
+    const SparseTransferMatrix& hc = ctx.apart ? block : h;
     for (std::size_t first = 0; first < W; first += kSolveColumns) {
       const int cols = static_cast<int>(std::min<std::size_t>(kSolveColumns, W - first));
       for (std::size_t v = 0; v < V; ++v)
         for (int k = 0; k < cols; ++k) d[v * cols + k] = coeffs[(v * W + first + k) * C + c];
-      const SolveReport r = solve_interreflection(h, rho, d.data(), cols, t.data(), so);
+      const SolveReport r = solve_interreflection(hc, rho, d.data(), cols, t.data(), so);
       st.solver_iterations += r.krylov_iterations;
       st.solver_residual = std::max(st.solver_residual, r.relative_residual);
       st.solver_converged = st.solver_converged && r.converged;
@@ -375,10 +400,16 @@ HaarBakeResult bake_haar_transfer(const scene::Scene& scene, const HaarBakeOptio
                                                   options.threads);
   const std::size_t V = scene.vertex_count();
   const int N = options.cube_size;
+  const bool interreflect = options.transport == prt::TransferKind::Interreflected;
+  const bool apart = scene.textured();
   bool grey = true;
   for (const glm::vec3& a : scene.albedo) grey = grey && a.x == a.y && a.y == a.z;
-  const int C = grey ? 1 : 3;
-  const bool interreflect = options.transport == prt::TransferKind::Interreflected;
+  for (const scene::ScenePrimitive& p : scene.primitives)
+    if (p.base_color_texture) {
+      const glm::vec3 f = p.base_color_texture->factor;
+      grey = grey && f.x == f.y && f.y == f.z && p.base_color_texture->image->grey();
+    }
+  const int C = grey || (apart && !interreflect) ? 1 : 3;
 
   HaarBakeResult result;
   HaarBakeStatistics& st = result.stats;
@@ -394,6 +425,7 @@ HaarBakeResult bake_haar_transfer(const scene::Scene& scene, const HaarBakeOptio
                       std::size_t{6} * N * N,
                       C,
                       options.transport != prt::TransferKind::Unshadowed,
+                      apart,
                       ts,
                       caster,
                       progress,
@@ -419,9 +451,9 @@ HaarBakeResult bake_haar_transfer(const scene::Scene& scene, const HaarBakeOptio
   info.kind = prt::TransferKind::Haar;
   info.order = static_cast<uint32_t>(N);
   info.channels = static_cast<uint32_t>(C);
-  info.albedo_folded = true;
+  info.albedo_folded = !apart;
   detail::store_scene_geometry(scene, info);
-  info.metadata_json = metadata_json(scene, options, C);
+  info.metadata_json = metadata_json(scene, options, C, apart);
   st.stored_bytes = file.transfer.stored_bytes();
   st.dense_bytes = file.transfer.dense_bytes();
   st.entries = file.transfer.entry_count();

@@ -96,6 +96,20 @@ void gather_rows(const uint64_t* offsets, const uint32_t* columns, const float* 
 
 }  // namespace
 
+SparseTransferMatrix column_block(const SparseTransferMatrix& h, uint64_t first, uint64_t count) {
+  SparseTransferMatrix out;
+  out.row_offsets.reserve(h.rows() + 1);
+  for (std::size_t r = 0; r < h.rows(); ++r) {
+    for (uint64_t e = h.row_offsets[r]; e < h.row_offsets[r + 1]; ++e) {
+      if (h.columns[e] < first || h.columns[e] - first >= count) continue;
+      out.columns.push_back(static_cast<uint32_t>(h.columns[e] - first));
+      out.weights.push_back(h.weights[e]);
+    }
+    out.row_offsets.push_back(out.columns.size());
+  }
+  return out;
+}
+
 void multiply_gather(const SparseTransferMatrix& h, const std::vector<double>& rho, const double* x,
                      int columns, double* y) {
   const std::size_t rows = h.rows();

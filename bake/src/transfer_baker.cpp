@@ -76,6 +76,16 @@ bool is_grey(const glm::vec3& a) {
   return a.x == a.y && a.y == a.z;
 }
 
+// Channels of the transfer (transfer_baker.h): 1 when it cannot depend on colour, else 3.
+int channel_count(const scene::Scene& scene, const BakeOptions& options, bool apart) {
+  if (apart && options.kind != prt::TransferKind::Interreflected) return 1;  // T = S
+  bool grey = std::all_of(scene.albedo.begin(), scene.albedo.end(), is_grey);
+  for (const scene::ScenePrimitive& p : scene.primitives)
+    if (p.base_color_texture)
+      grey = grey && is_grey(p.base_color_texture->factor) && p.base_color_texture->image->grey();
+  return grey ? 1 : 3;
+}
+
 double max_abs(const std::vector<double>& x) {
   double m = 0.0;
   for (double e : x) m = std::max(m, std::fabs(e));
@@ -127,6 +137,7 @@ struct BakeJob {
   std::size_t V;
   int order, K, C, N;
   bool need_sh_rays, interreflect, need_rays, adaptive;
+  bool apart;  // the albedo is kept apart (transfer_baker.h)
   BakeResult& result;
   VertexSums sums;
   DirectTransfer direct;
@@ -135,7 +146,8 @@ struct BakeJob {
   SparseTransferMatrix h;      // interreflected: the gather matrix
   double ray_offset_max = 0.0;
 
-  BakeJob(const scene::Scene& s, const BakeOptions& o, ProgressSink* p, BakeResult& r, int channels)
+  BakeJob(const scene::Scene& s, const BakeOptions& o, ProgressSink* p, BakeResult& r, int channels,
+          bool albedo_apart)
       : scene(s),
         options(o),
         progress(p),
@@ -148,8 +160,9 @@ struct BakeJob {
         interreflect(o.kind == prt::TransferKind::Interreflected),
         need_rays(need_sh_rays || o.ao || o.bent_normals),
         adaptive(o.adaptive.enabled && need_rays),
+        apart(albedo_apart),
         result(r),
-        direct(s, o, channels, r.data, sums) {}
+        direct(s, o, channels, albedo_apart, r.data, sums) {}
 
   BakeStatistics& st() { return result.stats; }
   uint8_t mode_of(std::size_t v) const { return modes.empty() ? kSampleVertex : modes[v]; }
@@ -215,10 +228,26 @@ void run_sampling_pass(BakeJob& job) {
   st.seconds_bvh = seconds_since(t_rays);
   for (const float eps : caster.vertex_ray_starts().offset)
     job.ray_offset_max = std::max(job.ray_offset_max, static_cast<double>(eps));
-  SamplingPass pass{job.scene,  job.options, caster, job.progress,     job.V,
-                    job.order,  job.K,       job.N,  job.need_sh_rays, job.interreflect,
-                    job.direct, job.sums,    st,     job.modes,        job.caps,
-                    {},         {},          {}};
+  const int gather_channels = job.apart && job.interreflect ? job.C : 0;
+  SamplingPass pass{job.scene,
+                    job.options,
+                    caster,
+                    job.progress,
+                    job.V,
+                    job.order,
+                    job.K,
+                    job.N,
+                    job.need_sh_rays,
+                    job.interreflect,
+                    gather_channels,
+                    job.direct,
+                    job.sums,
+                    st,
+                    job.modes,
+                    job.caps,
+                    {},
+                    {},
+                    {}};
   const std::size_t blocks = pass.blocks();
   pass.rows.resize(job.interreflect ? blocks : 0);
   pass.block_rays.assign(blocks, 0);
@@ -240,20 +269,26 @@ void run_sampling_pass(BakeJob& job) {
   }
 }
 
-// T_c = D_c + diag(ρ_c) H T_c per colour channel, into the output's float coefficients.
+// T_c = D_c + diag(ρ_c) H T_c per colour channel, into the output's float coefficients. With the
+// albedo kept apart: G_c = S + H_c G_c, H_c the channel's block (the hit albedo inside, no
+// receiver albedo: ρ = 1 in the solver).
 void solve_interreflection_channels(BakeJob& job) {
   BakeStatistics& st = job.st();
   const std::size_t V = job.V, K = static_cast<std::size_t>(job.K);
   const std::size_t C = static_cast<std::size_t>(job.C);
-  std::vector<double> direct(V * K), solved(V * K), rho(V);
+  std::vector<double> direct(V * K), solved(V * K), rho(V, 1.0);
   prt::TransferData& data = job.result.data;
   for (std::size_t c = 0; c < C; ++c) {
-    for (std::size_t v = 0; v < V; ++v) rho[v] = job.scene.albedo[v][static_cast<int>(c)];
+    const SparseTransferMatrix block =
+        job.apart ? column_block(job.h, c * V, V) : SparseTransferMatrix{};
+    const SparseTransferMatrix& h = job.apart ? block : job.h;
+    if (!job.apart)
+      for (std::size_t v = 0; v < V; ++v) rho[v] = job.scene.albedo[v][static_cast<int>(c)];
     for (std::size_t v = 0; v < V; ++v)
       for (std::size_t k = 0; k < K; ++k)
         direct[v * K + k] = rho[v] * job.sums.visibility_sh[v * K + k];
     if (job.adaptive) {
-      solve_adaptively(job.h, rho, direct, job.K, job.options.adaptive.bounce_tolerance, solved, st,
+      solve_adaptively(h, rho, direct, job.K, job.options.adaptive.bounce_tolerance, solved, st,
                        job.progress);
     } else {
       SolveOptions so;
@@ -261,7 +296,7 @@ void solve_interreflection_channels(BakeJob& job) {
       so.tolerance = job.options.bounce_tolerance;
       so.max_iterations = job.options.max_solver_iterations;
       const SolveReport rep =
-          solve_interreflection(job.h, rho, direct.data(), job.K, solved.data(), so, job.progress);
+          solve_interreflection(h, rho, direct.data(), job.K, solved.data(), so, job.progress);
       st.jacobi_bounces = rep.jacobi_bounces;
       st.solver_iterations += rep.krylov_iterations;
       st.solver_residual = std::max(st.solver_residual, rep.relative_residual);
@@ -321,7 +356,11 @@ std::string bake_metadata(const BakeJob& job) {
   meta["transfer"] = transfer_kind_name(st.stored_kind);
   meta["order"] = job.order;
   meta["channels"] = job.C;
-  meta["albedo_folded"] = true;
+  meta["albedo_folded"] = !job.apart;
+  if (job.apart)
+    meta["albedo_kept_apart"] = job.scene.textured()
+                                    ? "textured scene: multiply by the surface's (texture) albedo"
+                                    : "requested: multiply by the surface's albedo";
   meta["samples_requested"] = options.samples;
   meta["samples_per_vertex"] = st.samples_per_vertex;
   meta["sampling"] = "Owen-scrambled Sobol (0,2)-sequence, cosine-weighted (concentric)";
@@ -435,8 +474,12 @@ BakeResult bake_transfer(const scene::Scene& scene, const BakeOptions& options,
     thread_limit.emplace(tbb::global_control::max_allowed_parallelism,
                          static_cast<std::size_t>(options.threads));
   BakeResult result;
-  const bool grey = std::all_of(scene.albedo.begin(), scene.albedo.end(), is_grey);
-  BakeJob job(scene, options, progress, result, grey ? 1 : 3);
+  const bool apart = options.keep_albedo_apart || scene.textured();
+  if (apart && options.kind == prt::TransferKind::Interreflected &&
+      3 * scene.positions.size() > 0xffffffffull)
+    throw BakeError(scene::scene_label(scene) +
+                    ": too many vertices for interreflection with the albedo kept apart");
+  BakeJob job(scene, options, progress, result, channel_count(scene, options, apart), apart);
   const std::size_t V = job.V;
   BakeStatistics& st = result.stats;
   st.vertices = V;
@@ -470,7 +513,7 @@ BakeResult bake_transfer(const scene::Scene& scene, const BakeOptions& options,
   data.order = static_cast<uint32_t>(job.order);
   data.channels = static_cast<uint32_t>(job.C);
   data.storage = options.precision;
-  data.albedo_folded = true;
+  data.albedo_folded = !apart;
   detail::store_scene_geometry(scene, data);
   const Clock::time_point t_solve = Clock::now();
   if (job.adaptive) {

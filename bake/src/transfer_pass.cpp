@@ -17,11 +17,12 @@ using sh::kPi;
 }  // namespace
 
 DirectTransfer::DirectTransfer(const scene::Scene& scene, const BakeOptions& options, int channels,
-                               prt::TransferData& data, VertexSums& sums)
+                               bool albedo_apart, prt::TransferData& data, VertexSums& sums)
     : scene_(scene),
       order_(options.order),
       K_(options.order * options.order),
       C_(channels),
+      albedo_apart_(albedo_apart),
       interreflect_(options.kind == prt::TransferKind::Interreflected),
       compact_(options.adaptive.enabled && options.adaptive.compact_output),
       data_(data),
@@ -58,7 +59,7 @@ void DirectTransfer::store(std::size_t v, const double* s_k) {
   const std::size_t row = compact_ ? row_of_[v] : v;
   const std::size_t C = static_cast<std::size_t>(C_);
   for (std::size_t c = 0; c < C; ++c) {
-    const double rho_c = scene_.albedo[v][static_cast<int>(c)];
+    const double rho_c = albedo_apart_ ? 1.0 : scene_.albedo[v][static_cast<int>(c)];
     float* t = &data_.coefficients[(row * C + c) * K];
     for (std::size_t k = 0; k < K; ++k) t[k] = static_cast<float>(rho_c * s_k[k]);
   }
@@ -75,14 +76,25 @@ void cast_packet(const scene::RayCaster& caster, const glm::vec3& origin, const 
 }
 
 bool gather_front_hit(const scene::Scene& scene, const scene::RayCaster::Hit& hit,
-                      const glm::vec3& dir, float weight,
+                      const glm::vec3& dir, float weight, int gather_channels,
                       std::vector<std::pair<uint32_t, float>>& gathered) {
   if (!ray_hits_front_side(scene, hit.triangle, dir)) return false;
   const glm::uvec3 tri = scene.triangles[hit.triangle];
   const float b0 = (1.f - hit.u - hit.v) * weight, b1 = hit.u * weight, b2 = hit.v * weight;
-  gathered.emplace_back(tri.x, b0);
-  gathered.emplace_back(tri.y, b1);
-  gathered.emplace_back(tri.z, b2);
+  if (gather_channels == 0) {
+    gathered.emplace_back(tri.x, b0);
+    gathered.emplace_back(tri.y, b1);
+    gathered.emplace_back(tri.z, b2);
+    return true;
+  }
+  const glm::vec3 rho = scene.albedo_at(hit.triangle, hit.u, hit.v);
+  const auto V = static_cast<uint32_t>(scene.positions.size());
+  for (int c = 0; c < gather_channels; ++c) {
+    const uint32_t block = static_cast<uint32_t>(c) * V;
+    gathered.emplace_back(block + tri.x, b0 * rho[c]);
+    gathered.emplace_back(block + tri.y, b1 * rho[c]);
+    gathered.emplace_back(block + tri.z, b2 * rho[c]);
+  }
   return true;
 }
 

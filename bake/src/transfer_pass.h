@@ -4,8 +4,11 @@
 // rays allocated to where the error is) both fill in. transfer_baker.cpp runs the phases.
 //
 // Conventions: SH of bake/transfer_baker.h (order n, K = n² coefficients, real orthonormal, polar
-// axis +z); the direct transfer S_v,k = (1/N) Σ V(ω_s) Y_k(ω_s), grey, and T = ρ_c·S once stored;
-// rows of H as derived at the top of transfer_baker.cpp.
+// axis +z); the direct transfer S_v,k = (1/N) Σ V(ω_s) Y_k(ω_s), grey, and T = ρ_c·S once stored
+// (T = S when the albedo is kept apart); rows of H as derived at the top of transfer_baker.cpp.
+// With the albedo kept apart, H carries the albedo of each hit point, per channel: a hit on
+// vertex j's triangle adds b_j·ρ_c(hit) to column c·V + j of its row (C channel blocks of V
+// columns; transfer_baker.cpp splits them into one matrix per channel before the solve).
 #pragma once
 
 #include <cstddef>
@@ -47,7 +50,7 @@ struct VertexSums {
 class DirectTransfer {
  public:
   DirectTransfer(const scene::Scene& scene, const BakeOptions& options, int channels,
-                 prt::TransferData& data, VertexSums& sums);
+                 bool albedo_apart, prt::TransferData& data, VertexSums& sums);
   // The analytic unshadowed transfer of vertex v, grey: (1/π) · rotate_zonal(clamped cosine, n).
   void unshadowed(std::size_t v, double* out) const;
   // Stores S_v (K values) as described above.
@@ -56,6 +59,7 @@ class DirectTransfer {
  private:
   const scene::Scene& scene_;
   int order_, K_, C_;
+  bool albedo_apart_;
   bool interreflect_;
   bool compact_;
   std::vector<std::size_t> row_of_;
@@ -75,6 +79,7 @@ struct SamplingPass {
   int order, K;
   int N;  // the fixed recipe's samples per vertex
   bool need_sh_rays, interreflect;
+  int gather_channels;  // 0: H of geometric weights; C: H with the hit's albedo, C blocks
   DirectTransfer& direct;
   VertexSums& sums;
   BakeStatistics& st;
@@ -105,10 +110,12 @@ void cast_packet(const scene::RayCaster& caster, const glm::vec3& origin, const 
 
 // Appends the hit triangle's vertices, weighted by barycentrics × the sample's weight (1 under
 // cosine-weighted sampling, bake/adaptive/cap_sampling.h's w in caps), to a row being gathered;
-// false (nothing added) when the ray sees the back side: the flat facet's geometric normal,
-// oriented by the triangle's vertex normals (hit_side.h). A back face occludes only.
+// with gather_channels = C > 0, one entry per channel c at column c·V + j, also weighted by the
+// albedo at the hit point (Scene::albedo_at: the texture, bilinear). False (nothing added) when
+// the ray sees the back side: the flat facet's geometric normal, oriented by the triangle's
+// vertex normals (hit_side.h). A back face occludes only.
 bool gather_front_hit(const scene::Scene& scene, const scene::RayCaster::Hit& hit,
-                      const glm::vec3& dir, float weight,
+                      const glm::vec3& dir, float weight, int gather_channels,
                       std::vector<std::pair<uint32_t, float>>& gathered);
 
 // Merges duplicate columns of the gathered entries into one row of H, scaled by row_scale.

@@ -85,6 +85,8 @@ RelightSummary run_haar_relight(const RelightRequest& request, const HaarLightin
   prt::Result<prt::HaarTransferFile> file = prt::read_haar_transfer_file(request.transfer_path);
   if (!file.ok()) throw std::runtime_error(file.status().message());
   check_transfer_matches_scene(file->info, request.transfer_path, scene);
+  RelightRequest frames = request;
+  frames.render.multiply_albedo = !file->info.albedo_folded;
   EnvironmentInput input = read_checked_environment(request.environment_path, request.layout);
   const sh::EnvMap env = std::move(input.env);
   summary.layout_note = input.layout_note;
@@ -99,7 +101,7 @@ RelightSummary run_haar_relight(const RelightRequest& request, const HaarLightin
                                                          : "all " + std::to_string(coefficients)) +
       " terms, cube " + std::to_string(size);
   detail::render_relight_frames(
-      request, scene, env,
+      frames, scene, env,
       [&](const std::array<double, 9>& m) { return project_haar_lighting(env, size, m, options); },
       [&](const prt::SparseLighting& lighting) {
         std::vector<float> radiance(3 * scene.vertex_count());

@@ -21,13 +21,14 @@
 #include "relight/pfm_image.h"
 #include "relight/radiance_hdr.h"
 
-#include "image_codec.h"
 #include "message_text.h"
+#include "scene/image_codec.h"
 
 namespace prt::relight {
 namespace {
 
 using detail::one_line;
+using scene::ImageSampleType;
 
 [[noreturn]] void fail(const std::string& path, const std::string& problem) {
   throw std::runtime_error(path + ": " + one_line(problem));
@@ -100,7 +101,7 @@ std::vector<unsigned char> read_file_bytes(const std::string& path, std::size_t 
   return bytes;
 }
 
-// OpenImageIO (through its plugin, image_codec.h), with the reader of the extension's format
+// OpenImageIO (through its plugin, scene/image_codec.h), with the reader of the extension's format
 // only when OpenImageIO knows the extension (no probing of every plugin), else with its usual
 // search. OpenEXR files (by magic) are checked by exr_header_problem before OpenEXR sees them.
 // (OpenEXR then reads the file itself: OpenImageIO 2.4's IOMemReader does not bounds-check
@@ -116,16 +117,16 @@ FloatImage read_with_openimageio(const std::string& path, const std::vector<unsi
     const std::string problem = exr_header_problem(bytes.data(), bytes.size(), max_texels);
     if (!problem.empty()) fail(path, problem);
   }
-  return detail::codec_read(path, format, max_texels);
+  return scene::decode_image_file(path, format, max_texels);
 }
 
 // Writes pixels of `buffer_type`, stored as `file_type`, to PATH atomically (prt/atomic_file.h).
 void write_atomically(const std::string& path, int width, int height, int channels,
-                      PrtImagePixelType file_type, PrtImagePixelType buffer_type, bool name_y,
+                      ImageSampleType file_type, ImageSampleType buffer_type, bool name_y,
                       const void* pixels) {
   const prt::Status written = prt::replace_file_atomically(path, [&](const std::string& temporary) {
-    return detail::codec_write(path, temporary, width, height, channels, file_type, buffer_type,
-                               name_y, pixels);
+    return scene::encode_image_file(path, temporary, width, height, channels, file_type,
+                                    buffer_type, name_y, pixels);
   });
   if (!written.ok()) throw std::runtime_error(written.message());
 }
@@ -239,24 +240,26 @@ void write_image(const std::string& path, int width, int height, int channels, c
       const float clamped = std::isnan(v) ? 0.0f : std::clamp(v, 0.0f, 1.0f);
       bytes[i] = static_cast<unsigned char>(std::lround(clamped * 255.0f));
     }
-    write_atomically(path, width, height, channels, PRT_PIXEL_UINT8, PRT_PIXEL_UINT8, false,
-                     bytes.data());
+    write_atomically(path, width, height, channels, ImageSampleType::UInt8, ImageSampleType::UInt8,
+                     false, bytes.data());
   } else if (extension == ".hdr") {
     std::vector<float> rgb(texels * 3);
     for (std::size_t i = 0; i < texels; ++i)
       for (int c = 0; c < 3; ++c) rgb[i * 3 + c] = pixels[i * channels + (channels >= 3 ? c : 0)];
-    write_atomically(path, width, height, 3, PRT_PIXEL_FLOAT, PRT_PIXEL_FLOAT, false, rgb.data());
+    write_atomically(path, width, height, 3, ImageSampleType::Float, ImageSampleType::Float, false,
+                     rgb.data());
   } else if (extension == ".exr") {
-    const PrtImagePixelType stored = options.exr_half ? PRT_PIXEL_HALF : PRT_PIXEL_FLOAT;
+    const ImageSampleType stored =
+        options.exr_half ? ImageSampleType::Half : ImageSampleType::Float;
     if (options.exr_half) {
       constexpr float kHalfMax = 65504.0f;
       std::vector<float> clamped(pixels, pixels + texels * channels);
       for (float& v : clamped)
         if (!std::isnan(v)) v = std::clamp(v, -kHalfMax, kHalfMax);
-      write_atomically(path, width, height, channels, stored, PRT_PIXEL_FLOAT, true,
+      write_atomically(path, width, height, channels, stored, ImageSampleType::Float, true,
                        clamped.data());
     } else {
-      write_atomically(path, width, height, channels, stored, PRT_PIXEL_FLOAT, true, pixels);
+      write_atomically(path, width, height, channels, stored, ImageSampleType::Float, true, pixels);
     }
   } else {
     fail(path, "unsupported output extension '" + extension + "' (use .exr, .hdr or .png)");
@@ -266,7 +269,8 @@ void write_image(const std::string& path, int width, int height, int channels, c
 void write_png_rgba8(const std::string& path, int width, int height, const unsigned char* rgba) {
   if (width <= 0 || height <= 0) fail(path, "cannot write an empty image");
   if (lower_extension(path) != ".png") fail(path, "write_png_rgba8 writes .png files only");
-  write_atomically(path, width, height, 4, PRT_PIXEL_UINT8, PRT_PIXEL_UINT8, false, rgba);
+  write_atomically(path, width, height, 4, ImageSampleType::UInt8, ImageSampleType::UInt8, false,
+                   rgba);
 }
 
 }  // namespace prt::relight

@@ -57,8 +57,11 @@ inline std::vector<glm::vec3> vertex_colors(const std::vector<float>& radiance, 
 // vertex), render (timed as render_seconds) and write the image (OUT_iii for a turntable).
 // Every frame counts its vertices with a negative channel (summary: the most in a frame and the
 // number of frames with any). The first frame fixes the exposure (given or automatic) and
-// writes the vertex-coloured GLB and the CSV if asked. Every file written is appended to
-// summary->files_written; request.image_written (if set) is called after each image.
+// writes the vertex-coloured GLB and the CSV if asked. With request.render.multiply_albedo the
+// shaded values are per unit albedo: the renderer multiplies by the albedo per sub-pixel, the
+// GLB, the CSV's r,g,b and the automatic exposure use the vertex's own albedo × the value (exit
+// radiance at the vertex), and the CSV adds the values themselves. Every file written is appended
+// to summary->files_written; request.image_written (if set) is called after each image.
 template <class LightFor, class Shade>
 void render_relight_frames(const RelightRequest& request, const scene::Scene& scene,
                            const sh::EnvMap& env, LightFor light_for, Shade shade,
@@ -89,17 +92,22 @@ void render_relight_frames(const RelightRequest& request, const scene::Scene& sc
     summary->negative_vertices = std::max(summary->negative_vertices, negative);
     summary->negative_frames += negative > 0 ? 1 : 0;
     if (frame == 0) {
+      const bool apart = request.render.multiply_albedo;
+      std::vector<float> exit = radiance;  // at the vertices
+      if (apart)
+        for (std::size_t v = 0; v < scene.vertex_count(); ++v)
+          for (int c = 0; c < 3; ++c) exit[3 * v + c] *= scene.albedo[v][c];
       summary->exposure_auto = !request.exposure_ev.has_value();
       summary->exposure_ev =
-          request.exposure_ev ? *request.exposure_ev : choose_auto_exposure(radiance);
+          request.exposure_ev ? *request.exposure_ev : choose_auto_exposure(exit);
       if (!request.vertex_colors_path.empty()) {
         const std::vector<glm::vec3> colors =
-            vertex_colors(radiance, request.vertex_colors_tonemapped, summary->exposure_ev);
+            vertex_colors(exit, request.vertex_colors_tonemapped, summary->exposure_ev);
         scene::write_glb(request.vertex_colors_path, scene, &colors);
         summary->files_written.push_back(request.vertex_colors_path);
       }
       if (!request.csv_path.empty()) {
-        write_vertex_csv(request.csv_path, scene, radiance);
+        write_vertex_csv(request.csv_path, scene, exit, apart ? &radiance : nullptr);
         summary->files_written.push_back(request.csv_path);
       }
     }

@@ -182,18 +182,28 @@ void write_rendered_image(const std::string& path, const Image& image, float exp
 }
 
 void write_vertex_csv(const std::string& path, const scene::Scene& scene,
-                      const std::vector<float>& radiance_rgb) {
-  if (radiance_rgb.size() != 3 * scene.vertex_count())
+                      const std::vector<float>& radiance_rgb,
+                      const std::vector<float>* per_unit_albedo) {
+  if (radiance_rgb.size() != 3 * scene.vertex_count() ||
+      (per_unit_albedo && per_unit_albedo->size() != radiance_rgb.size()))
     throw std::runtime_error(path + ": radiance count does not match the scene's vertices");
   const prt::Status written = prt::replace_file_atomically(path, [&](const std::string& temporary) {
     std::FILE* file = std::fopen(temporary.c_str(), "wb");
     if (!file) return prt::Status::Error(path + ": cannot open for writing");
-    bool ok = std::fputs("index,x,y,z,r,g,b\n", file) >= 0;
+    bool ok =
+        std::fputs(per_unit_albedo ? "index,x,y,z,r,g,b,r_per_albedo,g_per_albedo,b_per_albedo\n"
+                                   : "index,x,y,z,r,g,b\n",
+                   file) >= 0;
     for (std::size_t i = 0; ok && i < scene.vertex_count(); ++i) {
       const glm::vec3& p = scene.positions[i];
       const float* b = &radiance_rgb[3 * i];
-      ok = std::fprintf(file, "%zu,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g\n", i, p.x, p.y, p.z, b[0], b[1],
+      ok = std::fprintf(file, "%zu,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g", i, p.x, p.y, p.z, b[0], b[1],
                         b[2]) > 0;
+      if (ok && per_unit_albedo) {
+        const float* s = &(*per_unit_albedo)[3 * i];
+        ok = std::fprintf(file, ",%.9g,%.9g,%.9g", s[0], s[1], s[2]) > 0;
+      }
+      ok = ok && std::fputc('\n', file) != EOF;
     }
     ok = (std::fclose(file) == 0) && ok;
     return ok ? prt::Status::Ok() : prt::Status::Error(path + ": write failed");
@@ -226,10 +236,12 @@ RelightSummary run_relight(const RelightRequest& request) {
   prt::Result<prt::Relighter> relighter = prt::Relighter::create(data);
   if (!relighter.ok())
     throw std::runtime_error(request.transfer_path + ": " + relighter.status().message());
+  RelightRequest frames = request;
+  frames.render.multiply_albedo = !data.albedo_folded;  // textures applied per pixel
 
   // 2. Shade, render, write: one frame, or the turntable's frames.
   detail::render_relight_frames(
-      request, scene, env, [&](const std::array<double, 9>& m) { return rotate_lighting(base, m); },
+      frames, scene, env, [&](const std::array<double, 9>& m) { return rotate_lighting(base, m); },
       [&](const prt::ShLighting& lighting) {
         return shade_all_vertices(*relighter, lighting, scene.vertex_count());
       },

@@ -1,5 +1,6 @@
 #include "relight/renderer.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -9,6 +10,20 @@
 #include <tbb/parallel_for.h>
 
 namespace prt::relight {
+namespace {
+
+// The world-space width a sub-pixel covers at a hit (renderer.h): t·angle/√max(|cos θ|, 1/16).
+float footprint_width(const scene::Scene& scene, const scene::RayCaster::Hit& hit,
+                      const glm::vec3& dir, float sub_pixel_angle) {
+  const glm::uvec3 tri = scene.triangles[hit.triangle];
+  const glm::vec3 n = glm::cross(scene.positions[tri.y] - scene.positions[tri.x],
+                                 scene.positions[tri.z] - scene.positions[tri.x]);
+  const float length = glm::length(n);
+  const float cosine = length > 0.f ? std::fabs(glm::dot(n, dir)) / length : 1.f;
+  return hit.t * sub_pixel_angle / std::sqrt(std::max(cosine, 1.f / 16.f));
+}
+
+}  // namespace
 
 void look_up_background(const sh::EnvMap& background, const std::array<double, 9>& m,
                         const glm::vec3& dir, float rgb[3]) {
@@ -47,6 +62,9 @@ Image render(const scene::Scene& scene, const scene::RayCaster& caster,
 
   const int n = options.samples_per_axis;
   const double inv_samples = 1.0 / (static_cast<double>(n) * n);
+  // Angle of one sub-pixel at the image centre (texture footprints, see renderer.h).
+  const float sub_pixel_angle =
+      2.f * basis.tan_half_yfov / static_cast<float>(options.height) / static_cast<float>(n);
   const double inv_w = 1.0 / options.width, inv_h = 1.0 / options.height;
   const float infinity = std::numeric_limits<float>::infinity();
 
@@ -70,6 +88,12 @@ Image render(const scene::Scene& scene, const scene::RayCaster& caster,
                     const float* b =
                         &vertex_radiance_rgb[3 * static_cast<std::size_t>(tri[corner])];
                     for (int c = 0; c < 3; ++c) rgb[c] += w[corner] * b[c];
+                  }
+                  if (options.multiply_albedo) {
+                    const glm::vec3 albedo =
+                        scene.albedo_at(hit.triangle, hit.u, hit.v,
+                                        footprint_width(scene, hit, dir, sub_pixel_angle));
+                    for (int c = 0; c < 3; ++c) rgb[c] *= albedo[c];
                   }
                 } else if (!hit.hit && background) {
                   look_up_background(*background, background_rotation, dir, rgb);

@@ -278,8 +278,7 @@ uint32_t GroundTruthIntegrator::Impl::sample_vertex(uint32_t v, uint64_t sample_
     if (!(glm::dot(ng, d) < 0.f)) break;  // back face (or degenerate): occludes, reflects nothing
     const glm::uvec3 tri = scene.triangles[hit.triangle];
     const float w0 = 1.f - hit.u - hit.v;
-    const glm::vec3 albedo =
-        w0 * scene.albedo[tri.x] + hit.u * scene.albedo[tri.y] + hit.v * scene.albedo[tri.z];
+    const glm::vec3 albedo = scene.albedo_at(hit.triangle, hit.u, hit.v);
     glm::vec3 ns =
         w0 * scene.normals[tri.x] + hit.u * scene.normals[tri.y] + hit.v * scene.normals[tri.z];
     const float ns_len = glm::length(ns);

@@ -28,9 +28,11 @@ namespace prt::report::detail {
 namespace {
 
 // Relights a transfer with SH lighting: 3 floats per vertex; *seconds = best of `repeats` runs.
+// A transfer that keeps the albedo apart (a textured scene) is multiplied by each vertex's own
+// albedo afterwards (not timed): the exit radiance the ground truth computes at the vertex.
 std::vector<float> relight(const prt::TransferData& data, prt::Precision precision,
                            const prt::ShLighting& lighting, int repeats, double* seconds,
-                           std::string* failure) {
+                           std::string* failure, const scene::Scene& scene) {
   auto relighter = prt::Relighter::create(data, precision);
   if (!relighter.ok()) {
     *failure = relighter.status().message();
@@ -44,6 +46,9 @@ std::vector<float> relight(const prt::TransferData& data, prt::Precision precisi
                                     static_cast<std::size_t>(data.vertex_count));
     *seconds = std::min(*seconds, since(t0));
   }
+  if (!data.albedo_folded && b.size() == 3 * scene.albedo.size())
+    for (std::size_t v = 0; v < scene.albedo.size(); ++v)
+      for (int c = 0; c < 3; ++c) b[3 * v + c] *= scene.albedo[v][c];
   return b;
 }
 
@@ -87,6 +92,7 @@ struct HaarBake {
   double seconds = 0;
   uint64_t file_bytes = 0;
   std::unique_ptr<prt::HaarRelighter> relighter;
+  bool albedo_folded = true;  // false: multiply by the vertex albedo (a textured scene)
   std::string failure;
   int uses_left = 0;
 };
@@ -115,6 +121,7 @@ HaarBake& haar_bake_for(ReportState& st, std::map<int, HaarBake>& haar_bakes,
       return hb;
     }
     hb.file_bytes = bytes->size();
+    hb.albedo_folded = r.file.info.albedo_folded;
     hb.relighter = std::make_unique<prt::HaarRelighter>(std::move(r.file.transfer));
   } catch (const std::runtime_error& e) {  // e.g. the dense wavelet block is too large
     hb.failure = e.what();
@@ -149,6 +156,9 @@ std::vector<float> measure_haar(ReportState& st, std::map<int, HaarBake>& haar_b
         break;
       }
     }
+    if (!hb.albedo_folded && !b.empty())  // as relight() does for SH
+      for (std::size_t v = 0; v < st.in.scene.albedo.size(); ++v)
+        for (int c = 0; c < 3; ++c) b[3 * v + c] *= st.in.scene.albedo[v][c];
   }
   if (--hb.uses_left == 0) hb.relighter.reset();
   return b;
@@ -168,7 +178,7 @@ std::vector<float> measure_sh(ReportState& st, ReportMeasurement& m) {
   } else {
     m.file_bytes = bytes->size();
     b = relight(data, m.setting.precision, st.lighting_for(m.setting.order), 5, &m.relight_seconds,
-                &m.failure);
+                &m.failure, st.in.scene);
   }
   return b;
 }
@@ -208,8 +218,9 @@ void relight_reference(ReportState& st) {
   for (int n : st.result.orders) {
     double unused;
     std::string failure;
-    st.reference_b.push_back(to_double(relight(truncate_order(ref.data, n), prt::Precision::F32,
-                                               st.lighting_for(n), 1, &unused, &failure)));
+    st.reference_b.push_back(
+        to_double(relight(truncate_order(ref.data, n), prt::Precision::F32, st.lighting_for(n), 1,
+                          &unused, &failure, st.in.scene)));
   }
 }
 
@@ -254,8 +265,9 @@ ReportAuto measure_auto_bake(ReportState& st, const bake::AutoBakeOptions& ao) {
     if (!bytes.ok()) throw std::runtime_error(bytes.status().message());
     a.file_bytes = bytes->size();
     double relight_seconds = 0;
-    const std::vector<float> b = relight(ab.bake.data, ab.bake.data.storage,
-                                         st.lighting_for(a.order), 1, &relight_seconds, &a.failure);
+    const std::vector<float> b =
+        relight(ab.bake.data, ab.bake.data.storage, st.lighting_for(a.order), 1, &relight_seconds,
+                &a.failure, st.in.scene);
     if (a.failure.empty()) {
       const VertexErrorStats e = compute_vertex_errors(b, st.truth.radiance);
       a.relative_rms = e.relative_rms, a.p99 = e.p99, a.max = e.max;

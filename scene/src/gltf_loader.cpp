@@ -2,6 +2,7 @@
 #include "gltf_loader.h"
 #include "gltf_emission.h"
 #include "gltf_extensions.h"
+#include "gltf_textures.h"
 #include "scene_file_errors.h"
 
 #include <cctype>
@@ -10,6 +11,7 @@
 #include <cstring>
 #include <filesystem>
 #include <functional>
+#include <optional>
 #include <sstream>
 #include <vector>
 
@@ -17,28 +19,6 @@
 
 namespace prt::scene::detail {
 namespace {
-
-// Image callback: accepts the bytes without decoding them (we only read baseColorFactor).
-bool skip_image_decoding(tinygltf::Image*, const int, std::string*, std::string*, int, int,
-                         const unsigned char*, int, void*) {
-  return true;
-}
-
-// Decodes %XX escapes of a URI (glTF URIs are percent-encoded).
-std::string decode_uri(const std::string& uri) {
-  std::string out;
-  for (std::size_t i = 0; i < uri.size(); ++i) {
-    if (uri[i] == '%' && i + 2 < uri.size() &&
-        std::isxdigit(static_cast<unsigned char>(uri[i + 1])) &&
-        std::isxdigit(static_cast<unsigned char>(uri[i + 2]))) {
-      out += static_cast<char>(std::stoi(uri.substr(i + 1, 2), nullptr, 16));
-      i += 2;
-    } else {
-      out += uri[i];
-    }
-  }
-  return out;
-}
 
 glm::dmat4 local_transform(const tinygltf::Node& node) {
   if (node.matrix.size() == 16) {
@@ -75,7 +55,8 @@ constexpr float kDefaultGltfAlbedo = kDefaultAlbedo;
 
 class GltfReader {
  public:
-  GltfReader(const std::string& path, const tinygltf::Model& model) : path_(path), model_(model) {}
+  GltfReader(const std::string& path, const tinygltf::Model& model, bool textures)
+      : path_(path), model_(model), read_textures_(textures), textures_(path, model) {}
 
   Scene read() {
     if (model_.scenes.empty()) fail(path_, "the file has no scene (no nodes to load)");
@@ -91,6 +72,7 @@ class GltfReader {
       std::fprintf(stderr, "%s: warning: skipped %zu non-triangle primitive(s)\n", path_.c_str(),
                    skipped_primitives_);
     }
+    textures_.report();
     scene_.default_albedo_primitives = defaulted_albedo_primitives_;
     return std::move(scene_);
   }
@@ -197,6 +179,56 @@ class GltfReader {
     return out;
   }
 
+  // TEXCOORD_n: float, or normalised unsigned byte or short (glTF 2.0 §3.7.2.1).
+  std::vector<glm::vec2> read_texcoords(int accessor_index, const std::string& what) {
+    const tinygltf::Accessor& accessor =
+        model_.accessors.at(static_cast<std::size_t>(accessor_index));
+    const int type = accessor.componentType;
+    if (accessor.type != TINYGLTF_TYPE_VEC2 ||
+        (type != TINYGLTF_COMPONENT_TYPE_FLOAT && type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
+         type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT))
+      fail(path_, what + ": must be VEC2 of float, or of normalised unsigned byte or short");
+    const AccessorView view = view_accessor(accessor_index, what);
+    std::vector<glm::vec2> out(view.count, glm::vec2(0.f));
+    if (view.data == nullptr) return out;
+    for (std::size_t i = 0; i < view.count; ++i) {
+      const unsigned char* p = view.data + i * view.stride;
+      if (type == TINYGLTF_COMPONENT_TYPE_FLOAT) {
+        std::memcpy(&out[i], p, sizeof(glm::vec2));
+      } else if (type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE) {
+        out[i] = glm::vec2(p[0], p[1]) / 255.f;
+      } else {
+        uint16_t st[2];
+        std::memcpy(st, p, sizeof st);
+        out[i] = glm::vec2(st[0], st[1]) / 65535.f;
+      }
+    }
+    return out;
+  }
+
+  // The base-colour texture of `material` and the primitive's coordinates for it, or nullopt
+  // (no texture, an unusable image, or no such TEXCOORD_n attribute: warned).
+  std::optional<BaseColorTexture> read_texture(const tinygltf::Primitive& primitive,
+                                               const std::string& name, std::size_t vertex_count,
+                                               std::vector<glm::vec2>& uv) {
+    if (!read_textures_) return std::nullopt;
+    std::optional<BaseColorTexture> texture = textures_.base_color(primitive.material);
+    if (!texture) return std::nullopt;
+    const std::string attribute = "TEXCOORD_" + std::to_string(texture->texcoord);
+    const auto it = primitive.attributes.find(attribute);
+    if (it == primitive.attributes.end()) {
+      std::fprintf(stderr,
+                   "%s: warning: mesh '%s' has no %s for its base-colour texture: "
+                   "baseColorFactor used instead\n",
+                   path_.c_str(), name.c_str(), attribute.c_str());
+      return std::nullopt;
+    }
+    uv = read_texcoords(it->second, name + " " + attribute);
+    if (uv.size() != vertex_count)
+      fail(path_, "mesh '" + name + "': " + attribute + " and POSITION counts differ");
+    return texture;
+  }
+
   std::vector<uint64_t> read_indices(int accessor_index, const std::string& what) {
     const tinygltf::Accessor& accessor =
         model_.accessors.at(static_cast<std::size_t>(accessor_index));
@@ -279,9 +311,13 @@ class GltfReader {
       // glTF default of white — an albedo of 1 that conserves no energy and that the baker
       // refuses — so it gets kDefaultGltfAlbedo instead and is counted for a warning.
       out.albedo = glm::vec3(kDefaultGltfAlbedo);
-      bool known_albedo = false;
-      if (primitive.material >= 0 &&
-          primitive.material < static_cast<int>(model_.materials.size())) {
+      std::vector<glm::vec2> uv;
+      out.base_color_texture = read_texture(primitive, name, positions.size(), uv);
+      bool known_albedo = out.base_color_texture.has_value();
+      if (out.base_color_texture) {
+        out.albedo = out.base_color_texture->factor;  // load_scene sets factor × texture mean
+      } else if (primitive.material >= 0 &&
+                 primitive.material < static_cast<int>(model_.materials.size())) {
         const tinygltf::PbrMetallicRoughness& pbr =
             model_.materials[static_cast<std::size_t>(primitive.material)].pbrMetallicRoughness;
         const std::vector<double>& factor = pbr.baseColorFactor;
@@ -312,6 +348,11 @@ class GltfReader {
         scene_.normals.push_back(n);
       }
       scene_.albedo.resize(scene_.positions.size(), out.albedo);
+      if (!uv.empty() || !scene_.texcoords.empty()) {
+        scene_.texcoords.resize(out.first_vertex, glm::vec2(0.f));
+        if (uv.empty()) uv.assign(positions.size(), glm::vec2(0.f));
+        scene_.texcoords.insert(scene_.texcoords.end(), uv.begin(), uv.end());
+      }
       for (std::size_t t = 0; t < indices.size(); t += 3) {
         for (std::size_t k = 0; k < 3; ++k) {
           if (indices[t + k] >= positions.size()) {
@@ -330,13 +371,16 @@ class GltfReader {
 
   const std::string& path_;
   const tinygltf::Model& model_;
+  bool read_textures_;
+  GltfTextures textures_;
   Scene scene_;
   std::vector<bool> visited_;
   std::size_t skipped_primitives_ = 0;
   std::size_t defaulted_albedo_primitives_ = 0;
 };
 
-// Lists images whose external file is missing (image pixels are never needed).
+// Lists images whose external file is missing (for filtering tinygltf's warnings about them;
+// GltfTextures reports the base-colour ones).
 std::vector<std::string> find_missing_images(const std::string& path,
                                              const tinygltf::Model& model) {
   std::vector<std::string> missing;
@@ -369,11 +413,11 @@ std::string filter_warnings(const std::string& warnings,
 
 }  // namespace
 
-Scene read_gltf_scene(const std::string& path, bool binary) {
+Scene read_gltf_scene(const std::string& path, bool binary, bool textures) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec)) fail(path, "no such file");
   tinygltf::TinyGLTF loader;
-  loader.SetImageLoader(&skip_image_decoding, nullptr);
+  loader.SetImageLoader(&keep_image_bytes, nullptr);
   tinygltf::Model model;
   std::string error, warning;
   const bool ok = binary ? loader.LoadBinaryFromFile(&model, &error, &warning, path)
@@ -386,19 +430,11 @@ Scene read_gltf_scene(const std::string& path, bool binary) {
   }
   note_optional_extensions(path, model.extensionsUsed, model.extensionsRequired);
   const std::vector<std::string> missing_images = find_missing_images(path, model);
-  if (!missing_images.empty()) {
-    std::string list;
-    for (const std::string& uri : missing_images) list += (list.empty() ? "" : ", ") + uri;
-    std::fprintf(stderr,
-                 "%s: warning: %zu texture(s) missing, ignored (only baseColorFactor is read): "
-                 "%s\n",
-                 path.c_str(), missing_images.size(), list.c_str());
-  }
   const std::string other_warnings = filter_warnings(warning, missing_images);
   if (!other_warnings.empty()) {
     std::fprintf(stderr, "%s: warning: %s\n", path.c_str(), other_warnings.c_str());
   }
-  return GltfReader(path, model).read();
+  return GltfReader(path, model, textures).read();
 }
 
 }  // namespace prt::scene::detail

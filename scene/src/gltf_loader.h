@@ -12,6 +12,7 @@
 
 namespace prt::scene::detail {
 
-Scene read_gltf_scene(const std::string& path, bool binary);
+// With textures false, base-colour textures are not read (their materials keep their factor).
+Scene read_gltf_scene(const std::string& path, bool binary, bool textures = true);
 
 }  // namespace prt::scene::detail

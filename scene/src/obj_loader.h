@@ -12,6 +12,7 @@
 
 namespace prt::scene::detail {
 
-Scene read_obj_scene(const std::string& path);
+// With textures false, map_Kd is not read (Kd is used).
+Scene read_obj_scene(const std::string& path, bool textures = true);
 
 }  // namespace prt::scene::detail

@@ -99,8 +99,13 @@ Scene make_quad(glm::vec3 corner, glm::vec3 edge_u, glm::vec3 edge_v, int segmen
   Scene scene;
   const glm::dvec3 normal = glm::normalize(glm::cross(glm::dvec3(edge_u), glm::dvec3(edge_v)));
   begin_primitive(scene, std::move(name), albedo);
-  add_grid(scene, corner, edge_u, edge_v, std::max(segments_u, 1), std::max(segments_v, 1), normal);
+  const int nu = std::max(segments_u, 1), nv = std::max(segments_v, 1);
+  add_grid(scene, corner, edge_u, edge_v, nu, nv, normal);
   end_primitive(scene);
+  for (int j = 0; j <= nv; ++j)
+    for (int i = 0; i <= nu; ++i)
+      scene.texcoords.emplace_back(static_cast<float>(i) / static_cast<float>(nu),
+                                   static_cast<float>(j) / static_cast<float>(nv));
   return scene;
 }
 
@@ -228,6 +233,13 @@ void append_scene(Scene& into, const Scene& part) {
   into.positions.insert(into.positions.end(), part.positions.begin(), part.positions.end());
   into.normals.insert(into.normals.end(), part.normals.begin(), part.normals.end());
   into.albedo.insert(into.albedo.end(), part.albedo.begin(), part.albedo.end());
+  if (!into.texcoords.empty() || !part.texcoords.empty()) {  // zeros where a part has none
+    into.texcoords.resize(vertex_offset, glm::vec2(0.f));
+    if (part.texcoords.empty())
+      into.texcoords.resize(into.positions.size(), glm::vec2(0.f));
+    else
+      into.texcoords.insert(into.texcoords.end(), part.texcoords.begin(), part.texcoords.end());
+  }
   for (const glm::uvec3& t : part.triangles) into.triangles.push_back(t + vertex_offset);
   for (ScenePrimitive primitive : part.primitives) {
     primitive.first_vertex += vertex_offset;

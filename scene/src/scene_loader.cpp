@@ -29,7 +29,35 @@ const ScenePrimitive* find_primitive_of_vertex(const Scene& scene, std::size_t v
   return nullptr;
 }
 
-// Validation, albedo override, degenerate-triangle removal and normals, shared by all formats.
+// Textured primitives: albedo = factor × the texture's mean, each vertex's albedo the texture at
+// its coordinates; one note for the textures whose albedo had to be clamped (scene/texture.h).
+void apply_textures(Scene& scene, const std::string& path) {
+  if (!scene.textured()) {
+    scene.texcoords.clear();
+    return;
+  }
+  scene.texcoords.resize(scene.positions.size(), glm::vec2(0.f));
+  std::size_t clamped = 0;
+  for (ScenePrimitive& p : scene.primitives) {
+    if (!p.base_color_texture) continue;
+    const BaseColorTexture& t = *p.base_color_texture;
+    const glm::vec3 mean(t.image->mean());
+    p.albedo = glm::clamp(t.factor * mean, glm::vec3(0.f), glm::vec3(kMaxTexturedAlbedo));
+    const glm::vec3 peak = t.factor * t.image->maximum();
+    if (peak.x > kMaxTexturedAlbedo || peak.y > kMaxTexturedAlbedo || peak.z > kMaxTexturedAlbedo)
+      ++clamped;
+    for (uint32_t v = p.first_vertex; v < p.first_vertex + p.vertex_count; ++v)
+      scene.albedo[v] = t.albedo(scene.texcoords[v]);
+  }
+  if (clamped > 0)
+    std::fprintf(stderr,
+                 "%s: note: %zu textured primitive(s) reach albedo %.2f or more: clamped to %.2f "
+                 "(an albedo of 1 would reflect all light)\n",
+                 path.c_str(), clamped, double(kMaxTexturedAlbedo), double(kMaxTexturedAlbedo));
+}
+
+// Validation, albedo override, textures, degenerate-triangle removal and normals, shared by all
+// formats.
 void finish_scene(Scene& scene, const std::string& path, const LoadOptions& options) {
   for (std::size_t v = 0; v < scene.positions.size(); ++v) {
     if (!is_finite(scene.positions[v])) {
@@ -45,10 +73,14 @@ void finish_scene(Scene& scene, const std::string& path, const LoadOptions& opti
       throw SceneError(path + ": triangle index out of range");
     }
   }
-  if (options.albedo_override) {
-    for (ScenePrimitive& p : scene.primitives) p.albedo = *options.albedo_override;
+  if (options.albedo_override) {  // a flat colour everywhere: textures are dropped
+    for (ScenePrimitive& p : scene.primitives) {
+      p.albedo = *options.albedo_override;
+      p.base_color_texture.reset();
+    }
     std::fill(scene.albedo.begin(), scene.albedo.end(), *options.albedo_override);
   }
+  apply_textures(scene, path);
   // File normals must be unit length (an OBJ `vn 5 1 0` is not, found by fuzzing): normalise
   // them; zero or non-finite ones are treated as missing and computed below.
   for (glm::vec3& n : scene.normals) {
@@ -75,13 +107,14 @@ Scene load_scene(const std::string& path, const LoadOptions& options) {
   std::transform(extension.begin(), extension.end(), extension.begin(),
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   Scene scene;
+  const bool textures = !options.albedo_override;  // an override drops them: do not decode them
   try {
     if (extension == ".gltf") {
-      scene = detail::read_gltf_scene(path, /*binary=*/false);
+      scene = detail::read_gltf_scene(path, /*binary=*/false, textures);
     } else if (extension == ".glb") {
-      scene = detail::read_gltf_scene(path, /*binary=*/true);
+      scene = detail::read_gltf_scene(path, /*binary=*/true, textures);
     } else if (extension == ".obj") {
-      scene = detail::read_obj_scene(path);
+      scene = detail::read_obj_scene(path, textures);
     } else {
       throw SceneError(path + ": unsupported scene format '" + extension +
                        "' (expected .gltf, .glb or .obj)");

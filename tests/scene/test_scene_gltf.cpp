@@ -3,6 +3,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -11,7 +12,10 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <nlohmann/json.hpp>
 
+#include <OpenImageIO/imageio.h>
+
 #include "scene/scene_loader.h"
+#include "support/png_writer.h"
 #include "support/test_data.h"
 
 using nlohmann::json;
@@ -64,6 +68,21 @@ struct MiniGltf {
     return a;
   }
 
+  int add_vec2(const std::vector<glm::vec2>& v) {
+    return add_accessor(v.data(), v.size() * 8, kFloat, v.size(), "VEC2");
+  }
+
+  // An image stored in a buffer view (as in a GLB); returns the image index.
+  int add_image_in_buffer(const std::vector<unsigned char>& bytes, const std::string& mime) {
+    while (bin.size() % 4) bin.push_back(0);
+    const std::size_t offset = bin.size();
+    bin.insert(bin.end(), bytes.begin(), bytes.end());
+    doc["bufferViews"].push_back(
+        {{"buffer", 0}, {"byteOffset", offset}, {"byteLength", bytes.size()}});
+    doc["images"].push_back({{"bufferView", doc["bufferViews"].size() - 1}, {"mimeType", mime}});
+    return static_cast<int>(doc["images"].size() - 1);
+  }
+
   int add_indices(const std::vector<uint32_t>& indices, int component_type) {
     std::vector<unsigned char> bytes;
     for (uint32_t i : indices) {
@@ -96,6 +115,32 @@ struct MiniGltf {
         .write(reinterpret_cast<const char*>(bin.data()), static_cast<std::streamsize>(bin.size()));
     const auto path = prt::test::output_path(name + ".gltf");
     std::ofstream(path) << doc.dump(1);
+    return path.string();
+  }
+
+  // Writes NAME.glb (JSON chunk, then the buffer as the BIN chunk); returns its path.
+  std::string write_glb(const std::string& name) {
+    doc["buffers"] = json::array({{{"byteLength", bin.size()}}});
+    std::string text = doc.dump();
+    while (text.size() % 4) text += ' ';
+    std::vector<unsigned char> body = bin;
+    while (body.size() % 4) body.push_back(0);
+    std::vector<unsigned char> out;
+    const auto put32 = [&](uint32_t x) {
+      for (int k = 0; k < 4; ++k) out.push_back(static_cast<unsigned char>(x >> (8 * k)));
+    };
+    put32(0x46546C67);  // "glTF"
+    put32(2);
+    put32(static_cast<uint32_t>(12 + 8 + text.size() + 8 + body.size()));
+    put32(static_cast<uint32_t>(text.size()));
+    put32(0x4E4F534A);  // "JSON"
+    out.insert(out.end(), text.begin(), text.end());
+    put32(static_cast<uint32_t>(body.size()));
+    put32(0x004E4942);  // "BIN\0"
+    out.insert(out.end(), body.begin(), body.end());
+    const auto path = prt::test::output_path(name + ".glb");
+    std::ofstream(path, std::ios::binary)
+        .write(reinterpret_cast<const char*>(out.data()), static_cast<std::streamsize>(out.size()));
     return path.string();
   }
 };
@@ -353,4 +398,218 @@ TEST_CASE("Real glTF: dutch_ship loads geometry although its textures are missin
   CHECK(s.triangles.size() + s.skipped_degenerate_triangles == 69162);
   for (const glm::vec3& p : s.positions) REQUIRE(std::isfinite(p.x + p.y + p.z));
   for (const glm::vec3& n : s.normals) REQUIRE(glm::length(n) == Approx(1.0).margin(1e-5));
+}
+
+// ---- base-colour textures ----
+
+namespace {
+
+// sRGB decoding written out from IEC 61966-2-1, independently of scene/texture.h.
+double linear_of_byte(int byte) {
+  const double c = byte / 255.0;
+  return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);
+}
+
+// The 2×2 test texture, texel (i, j) with i the column and j the row (row 0 at the top).
+const int kTexel[2][2][3] = {{{200, 40, 20}, {30, 180, 60}}, {{90, 90, 220}, {128, 128, 128}}};
+
+glm::dvec3 linear_texel(int i, int j) {
+  const int* b = kTexel[j][i];
+  return {linear_of_byte(b[0]), linear_of_byte(b[1]), linear_of_byte(b[2])};
+}
+
+// The texture's samples, row by row.
+std::vector<unsigned char> texture_samples() {
+  std::vector<unsigned char> samples;
+  for (int j = 0; j < 2; ++j)
+    for (int i = 0; i < 2; ++i)
+      for (int c = 0; c < 3; ++c) samples.push_back(static_cast<unsigned char>(kTexel[j][i][c]));
+  return samples;
+}
+
+std::vector<unsigned char> texture_png() {
+  return prt::test::encode_png(2, 2, 3, texture_samples());
+}
+
+std::string base64(const std::vector<unsigned char>& bytes) {
+  static const char* kAlphabet = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::string out;
+  for (std::size_t i = 0; i < bytes.size(); i += 3) {
+    const uint32_t n = (uint32_t{bytes[i]} << 16) |
+                       (i + 1 < bytes.size() ? uint32_t{bytes[i + 1]} << 8 : 0u) |
+                       (i + 2 < bytes.size() ? uint32_t{bytes[i + 2]} : 0u);
+    out += kAlphabet[(n >> 18) & 63];
+    out += kAlphabet[(n >> 12) & 63];
+    out += i + 1 < bytes.size() ? kAlphabet[(n >> 6) & 63] : '=';
+    out += i + 2 < bytes.size() ? kAlphabet[n & 63] : '=';
+  }
+  return out;
+}
+
+// A unit quad in z = 0 whose TEXCOORD_1 equals (x, y) and whose TEXCOORD_0 is a decoy (0.9,
+// 0.9) everywhere; its material (0) has baseColorFactor (0.5, 1, 1) and baseColorTexture
+// {index 0, texCoord 1}. The caller adds textures, samplers and images.
+MiniGltf textured_quad() {
+  MiniGltf g;
+  g.add_mesh_node(kQuad, kQuadIndices, kU32);
+  json& primitive = g.doc["meshes"][0]["primitives"][0];
+  primitive["attributes"]["TEXCOORD_0"] = g.add_vec2(std::vector<glm::vec2>(4, glm::vec2(0.9f)));
+  primitive["attributes"]["TEXCOORD_1"] = g.add_vec2({{0, 0}, {1, 0}, {1, 1}, {0, 1}});
+  primitive["material"] = 0;
+  g.doc["materials"] = {{{"pbrMetallicRoughness",
+                          {{"baseColorFactor", {0.5, 1.0, 1.0, 1.0}},
+                           {"baseColorTexture", {{"index", 0}, {"texCoord", 1}}}}}}};
+  g.doc["images"] = json::array();
+  return g;
+}
+
+const glm::dvec3 kFactor(0.5, 1.0, 1.0);
+
+// The albedo at point (x, y) of the quad (whose UV is (x, y)), through Scene::albedo_at.
+glm::vec3 albedo_at_uv(const Scene& s, float x, float y) {
+  for (std::size_t t = 0; t < s.triangles.size(); ++t) {
+    const glm::uvec3 tri = s.triangles[t];
+    const glm::vec2 a = s.texcoords[tri.x], b = s.texcoords[tri.y], c = s.texcoords[tri.z];
+    // Solve (x, y) = a + u (b − a) + v (c − a).
+    const glm::vec2 e1 = b - a, e2 = c - a, r = glm::vec2(x, y) - a;
+    const float det = e1.x * e2.y - e1.y * e2.x;
+    const float u = (r.x * e2.y - r.y * e2.x) / det, v = (e1.x * r.y - e1.y * r.x) / det;
+    if (u >= -1e-6f && v >= -1e-6f && u + v <= 1.f + 1e-6f) return s.albedo_at(t, u, v);
+  }
+  FAIL("point outside the quad");
+  return {};
+}
+
+void check_rgb(const glm::vec3& got, const glm::dvec3& want, double tolerance = 1e-6) {
+  INFO("got (" << got.x << ", " << got.y << ", " << got.z << "), want (" << want.x << ", " << want.y
+               << ", " << want.z << ")");
+  for (int c = 0; c < 3; ++c) CHECK(std::fabs(got[c] - want[c]) <= tolerance);
+}
+
+}  // namespace
+
+TEST_CASE("glTF baseColorTexture: PNG file beside the .gltf, texCoord 1, factor, CLAMP vs REPEAT") {
+  prt::test::write_png(prt::test::output_path("tex 2x2.png").string(), 2, 2, 3, texture_samples());
+  for (const bool clamp : {true, false}) {
+    MiniGltf g = textured_quad();
+    g.doc["images"] = {{{"uri", "tex%202x2.png"}}};  // percent-encoded space
+    g.doc["textures"] = {{{"source", 0}}};
+    if (clamp) {
+      g.doc["samplers"] = {{{"wrapS", 33071}, {"wrapT", 33071}}};
+      g.doc["textures"][0]["sampler"] = 0;
+    }
+    const Scene s = prt::scene::load_scene(g.write(clamp ? "tex_file_clamp" : "tex_file_repeat"));
+    INFO((clamp ? "CLAMP_TO_EDGE" : "REPEAT (no sampler)"));
+    REQUIRE(s.primitives.size() == 1);
+    REQUIRE(s.primitives[0].base_color_texture.has_value());
+    CHECK(s.primitives[0].base_color_texture->texcoord == 1);
+    REQUIRE(s.texcoords.size() == 4);
+    CHECK(s.texcoords[2] == glm::vec2(1, 1));  // TEXCOORD_1, not the decoy TEXCOORD_0
+    // Texel centres, anywhere on the surface: factor × the linearised texel.
+    for (int j = 0; j < 2; ++j)
+      for (int i = 0; i < 2; ++i)
+        check_rgb(albedo_at_uv(s, 0.25f + 0.5f * static_cast<float>(i),
+                               0.25f + 0.5f * static_cast<float>(j)),
+                  kFactor * linear_texel(i, j));
+    // The corner vertex (0, 0): clamping reads texel (0, 0); repeating blends all four texels.
+    const glm::dvec3 mean =
+        0.25 * (linear_texel(0, 0) + linear_texel(1, 0) + linear_texel(0, 1) + linear_texel(1, 1));
+    check_rgb(s.albedo[0], kFactor * (clamp ? linear_texel(0, 0) : mean));
+    // The primitive's flat albedo is factor × the texture's mean.
+    check_rgb(s.primitives[0].albedo, kFactor * mean);
+  }
+}
+
+TEST_CASE("glTF baseColorTexture: a data: URI and a GLB buffer view read like the file") {
+  const std::vector<unsigned char> png = texture_png();
+  MiniGltf by_uri = textured_quad();
+  by_uri.doc["images"] = {{{"uri", "data:image/png;base64," + base64(png)}}};
+  by_uri.doc["textures"] = {{{"source", 0}}};
+  MiniGltf by_view = textured_quad();
+  by_view.add_image_in_buffer(png, "image/png");
+  by_view.doc["textures"] = {{{"source", 0}}};
+  const Scene a = prt::scene::load_scene(by_uri.write("tex_data_uri"));
+  const Scene b = prt::scene::load_scene(by_view.write_glb("tex_buffer_view"));
+  for (const Scene* s : {&a, &b}) {
+    REQUIRE(s->primitives[0].base_color_texture.has_value());
+    for (int j = 0; j < 2; ++j)
+      for (int i = 0; i < 2; ++i)
+        check_rgb(albedo_at_uv(*s, 0.25f + 0.5f * static_cast<float>(i),
+                               0.25f + 0.5f * static_cast<float>(j)),
+                  kFactor * linear_texel(i, j));
+  }
+  CHECK(a.albedo == b.albedo);
+}
+
+TEST_CASE("glTF baseColorTexture: JPEG decodes through OpenImageIO as sRGB") {
+  // A uniform 16×16 JPEG of value 150: baseline JPEG reproduces a flat block to ±1.
+  const std::string jpeg = prt::test::output_path("uniform150.jpg").string();
+  {
+    std::unique_ptr<OIIO::ImageOutput> out = OIIO::ImageOutput::create(jpeg);
+    REQUIRE(out);
+    OIIO::ImageSpec spec(16, 16, 3, OIIO::TypeDesc::UINT8);
+    spec.attribute("CompressionQuality", 95);
+    REQUIRE(out->open(jpeg, spec));
+    const std::vector<unsigned char> pixels(16 * 16 * 3, 150);
+    REQUIRE(out->write_image(OIIO::TypeDesc::UINT8, pixels.data()));
+    REQUIRE(out->close());
+  }
+  MiniGltf g = textured_quad();
+  g.doc["images"] = {{{"uri", "uniform150.jpg"}}};
+  g.doc["textures"] = {{{"source", 0}}};
+  const Scene s = prt::scene::load_scene(g.write("tex_jpeg"));
+  REQUIRE(s.primitives[0].base_color_texture.has_value());
+  const double want = linear_of_byte(150), step = linear_of_byte(151) - want;
+  for (const glm::vec3& a : s.albedo) check_rgb(a, kFactor * want, step);
+}
+
+TEST_CASE("glTF baseColorTexture that cannot be used: a warning, and the factor instead") {
+  SECTION("missing file") {
+    MiniGltf g = textured_quad();
+    g.doc["images"] = {{{"uri", "no_such_texture.png"}}};
+    g.doc["textures"] = {{{"source", 0}}};
+    const Scene s = prt::scene::load_scene(g.write("tex_missing"));
+    CHECK_FALSE(s.primitives[0].base_color_texture.has_value());
+    // The factor is not the default white, so it is used as it is.
+    for (const glm::vec3& a : s.albedo) check_rgb(a, kFactor);
+  }
+  SECTION("not an image, in a buffer view") {
+    MiniGltf g = textured_quad();
+    g.add_image_in_buffer({'n', 'o', 't', ' ', 'a', 'n', ' ', 'i', 'm', 'a', 'g', 'e'},
+                          "image/png");
+    g.doc["textures"] = {{{"source", 0}}};
+    const Scene s = prt::scene::load_scene(g.write_glb("tex_garbage"));
+    CHECK_FALSE(s.primitives[0].base_color_texture.has_value());
+    for (const glm::vec3& a : s.albedo) check_rgb(a, glm::dvec3(0.5, 1, 1));
+  }
+  SECTION("a truncated PNG") {
+    std::vector<unsigned char> png = texture_png();
+    png.resize(png.size() / 2);
+    MiniGltf g = textured_quad();
+    g.add_image_in_buffer(png, "image/png");
+    g.doc["textures"] = {{{"source", 0}}};
+    const Scene s = prt::scene::load_scene(g.write_glb("tex_truncated"));
+    CHECK_FALSE(s.primitives[0].base_color_texture.has_value());
+  }
+  SECTION("no TEXCOORD_n for the texture's texCoord") {
+    MiniGltf g = textured_quad();
+    g.doc["materials"][0]["pbrMetallicRoughness"]["baseColorTexture"]["texCoord"] = 3;
+    g.add_image_in_buffer(texture_png(), "image/png");
+    g.doc["textures"] = {{{"source", 0}}};
+    const Scene s = prt::scene::load_scene(g.write_glb("tex_no_texcoord"));
+    CHECK_FALSE(s.primitives[0].base_color_texture.has_value());
+    CHECK(s.texcoords.empty());
+  }
+}
+
+TEST_CASE("glTF baseColorTexture: --albedo override drops textures") {
+  MiniGltf g = textured_quad();
+  g.add_image_in_buffer(texture_png(), "image/png");
+  g.doc["textures"] = {{{"source", 0}}};
+  prt::scene::LoadOptions options;
+  options.albedo_override = glm::vec3(0.25f);
+  const Scene s = prt::scene::load_scene(g.write_glb("tex_override"), options);
+  CHECK_FALSE(s.primitives[0].base_color_texture.has_value());
+  CHECK_FALSE(s.textured());
+  for (const glm::vec3& a : s.albedo) CHECK(a == glm::vec3(0.25f));
 }

@@ -10,6 +10,7 @@
 #include <glm/glm.hpp>
 
 #include "scene/scene_loader.h"
+#include "support/png_writer.h"
 #include "support/test_data.h"
 
 using prt::scene::Scene;
@@ -30,6 +31,28 @@ std::string error_of(const std::string& path) {
     return e.what();
   }
   return "";
+}
+
+// The albedo at texture coordinate `uv` (glTF convention) of a textured scene, found by solving
+// for the triangle holding it.
+glm::vec3 albedo_at_texcoord(const Scene& s, glm::vec2 uv) {
+  for (std::size_t t = 0; t < s.triangles.size(); ++t) {
+    const glm::uvec3 tri = s.triangles[t];
+    const glm::vec2 a = s.texcoords[tri.x], e1 = s.texcoords[tri.y] - a,
+                    e2 = s.texcoords[tri.z] - a;
+    const glm::vec2 r = uv - a;
+    const float det = e1.x * e2.y - e1.y * e2.x;
+    if (det == 0.f) continue;
+    const float u = (r.x * e2.y - r.y * e2.x) / det, v = (e1.x * r.y - e1.y * r.x) / det;
+    if (u >= -1e-6f && v >= -1e-6f && u + v <= 1.f + 1e-6f) return s.albedo_at(t, u, v);
+  }
+  FAIL("texture coordinate outside the mesh");
+  return {};
+}
+
+double linear_of_byte(int byte) {  // IEC 61966-2-1, written out here
+  const double c = byte / 255.0;
+  return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);
 }
 
 void check_unit_normals(const Scene& s) {
@@ -176,4 +199,93 @@ TEST_CASE("Real OBJ: cornell_box albedo from MTL, dragon (CRLF), suzanne (vn)") 
   CHECK(suzanne.computed_normal_vertices == 0);
   CHECK(suzanne.positions.size() >= 507);
   check_unit_normals(suzanne);
+}
+
+TEST_CASE("OBJ map_Kd: sRGB PNG, vt with v up, Kd replaced, -clamp, -s and -o honoured") {
+  // 1×2 texture: top row (200, 40, 20), bottom row (30, 180, 60).
+  prt::test::write_png(prt::test::output_path("obj_tex.png").string(), 1, 2, 3,
+                       {200, 40, 20, 30, 180, 60});
+  write_text("obj_tex.mtl",
+             "newmtl plain\nKd 0.5 0.5 0.5\nmap_Kd obj_tex.png\n"
+             "newmtl clamped\nKd 0.5 0.5 0.5\nmap_Kd -clamp on -s 2 2 1 -o 0.5 0 0 obj_tex.png\n");
+  const std::string quad =
+      "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n"
+      "f 1/1 2/2 3/3 4/4\n";
+  const Scene s = prt::scene::load_scene(
+      write_text("obj_tex.obj", "mtllib obj_tex.mtl\nusemtl plain\n" + quad));
+  REQUIRE(s.primitives.size() == 1);
+  REQUIRE(s.primitives[0].base_color_texture.has_value());
+  // OBJ's vt (0, 0) is the image's bottom-left: glTF (0, 1).
+  const auto vertex_at = [](const Scene& scene, glm::vec3 p) {
+    for (std::size_t i = 0; i < scene.positions.size(); ++i)
+      if (scene.positions[i] == p) return i;
+    FAIL("no vertex at that position");
+    return std::size_t{0};
+  };
+  CHECK(s.texcoords[vertex_at(s, {0, 0, 0})] == glm::vec2(0, 1));
+  CHECK(s.texcoords[vertex_at(s, {1, 1, 0})] == glm::vec2(1, 0));
+  // OBJ v = 0.25 lies in the bottom row, v = 0.75 in the top row; the texture replaces Kd.
+  const glm::vec3 bottom = albedo_at_texcoord(s, {0.5f, 0.75f});
+  const glm::vec3 top = albedo_at_texcoord(s, {0.5f, 0.25f});
+  CHECK(bottom.x == Approx(linear_of_byte(30)).margin(1e-6));
+  CHECK(bottom.y == Approx(linear_of_byte(180)).margin(1e-6));
+  CHECK(top.x == Approx(linear_of_byte(200)).margin(1e-6));
+  CHECK(top.z == Approx(linear_of_byte(20)).margin(1e-6));
+
+  const Scene c = prt::scene::load_scene(
+      write_text("obj_tex_clamp.obj", "mtllib obj_tex.mtl\nusemtl clamped\n" + quad));
+  REQUIRE(c.primitives[0].base_color_texture.has_value());
+  CHECK(c.primitives[0].base_color_texture->sampler.wrap_s == prt::scene::TextureWrap::ClampToEdge);
+  CHECK(c.primitives[0].base_color_texture->sampler.wrap_t == prt::scene::TextureWrap::ClampToEdge);
+  // vt (1, 1) → (1·2 + 0.5, 1·2 + 0) = (2.5, 2) → glTF (2.5, 1 − 2).
+  const std::size_t corner = vertex_at(c, {1, 1, 0});
+  CHECK(c.texcoords[corner] == glm::vec2(2.5f, -1.f));
+  // Clamped far outside in v = −1 (above the image): the top row.
+  CHECK(c.albedo[corner].x == Approx(linear_of_byte(200)).margin(1e-6));
+}
+
+TEST_CASE("OBJ map_Kd without vn: texture seams split vertices but not the shading") {
+  prt::test::write_png(prt::test::output_path("seam.png").string(), 1, 1, 1, {128});
+  write_text("seam.mtl", "newmtl m\nmap_Kd seam.png\n");
+  // Two quads folded along the edge x = 1 (positions 2 and 5), the second rising at 45°; the
+  // edge has texture coordinate u = 1 on the first quad and u = 0 on the second.
+  const std::string text =
+      "mtllib seam.mtl\nusemtl m\n"
+      "v 0 0 0\nv 1 0 0\nv 2 0 1\nv 0 1 0\nv 1 1 0\nv 2 1 1\n"
+      "vt 0 0\nvt 1 0\nvt 0 1\nvt 1 1\n"
+      "f 1/1 2/2 5/4 4/3\nf 2/1 3/2 6/4 5/3\n";
+  const Scene s = prt::scene::load_scene(write_text("seam.obj", text));
+  REQUIRE(s.primitives[0].base_color_texture.has_value());
+  // 6 positions, the two on the fold used with two coordinates each: 8 vertices.
+  REQUIRE(s.positions.size() == 8);
+  check_unit_normals(s);
+  // Vertices at the same position share one normal: the fold's normal is the mean of the two
+  // faces' (area- and angle-weighted equally here), not either face's.
+  for (std::size_t a = 0; a < s.positions.size(); ++a)
+    for (std::size_t b = a + 1; b < s.positions.size(); ++b)
+      if (s.positions[a] == s.positions[b]) {
+        CHECK(glm::distance(s.normals[a], s.normals[b]) < 1e-6f);
+        CHECK(s.texcoords[a] != s.texcoords[b]);
+        CHECK(std::fabs(s.normals[a].z) > 0.1f);  // neither face's own normal
+        CHECK(std::fabs(s.normals[a].x) > 0.1f);
+      }
+  // Grey 128 everywhere: the linearised value at every vertex.
+  for (const glm::vec3& a : s.albedo) {
+    CHECK(a.x == Approx(linear_of_byte(128)).margin(1e-6));
+    CHECK(a.z == a.x);
+  }
+}
+
+TEST_CASE("OBJ map_Kd that cannot be read, or faces without vt: a warning, and Kd instead") {
+  write_text("missing_tex.mtl", "newmtl m\nKd 0.2 0.3 0.4\nmap_Kd not_there.png\n");
+  const Scene s = prt::scene::load_scene(write_text(
+      "missing_tex.obj", "mtllib missing_tex.mtl\nusemtl m\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"));
+  CHECK_FALSE(s.primitives[0].base_color_texture.has_value());
+  CHECK(s.albedo[0] == glm::vec3(0.2f, 0.3f, 0.4f));
+  prt::test::write_png(prt::test::output_path("novt.png").string(), 1, 1, 1, {255});
+  write_text("novt.mtl", "newmtl m\nKd 0.2 0.3 0.4\nmap_Kd novt.png\n");
+  const Scene n = prt::scene::load_scene(
+      write_text("novt.obj", "mtllib novt.mtl\nusemtl m\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"));
+  CHECK_FALSE(n.primitives[0].base_color_texture.has_value());
+  CHECK(n.albedo[0] == glm::vec3(0.2f, 0.3f, 0.4f));
 }

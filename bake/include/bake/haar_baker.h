@@ -26,6 +26,11 @@
 //   refuses when that exceeds kMaxHaarInterreflectionBytes; use a smaller --cube (16: 6 KB).
 //   The solve costs (6N²/64) BiCGSTAB runs of 64 columns each per channel.
 //
+// Textured scenes keep the albedo apart as the SH baker does (bake/transfer_baker.h): T holds
+// 1/π instead of ρ_v/π (albedo_folded = false), and the interreflected H holds the albedo of each
+// hit point (the texture, bilinear) in one block of V columns per channel, solved per channel
+// without the receiver's albedo.
+//
 // Then each vertex is truncated (relative threshold / top M) and quantised (8/16 bit with a
 // per-vertex step), per prt/haar/transfer.h. Vertices are computed independently in parallel
 // and added in order, so the output is identical for any thread count.

@@ -57,6 +57,10 @@ struct SolveReport {
   std::vector<double> bounce_energy;
 };
 
+// Columns [first, first + count) of H, renumbered from 0 (H with the albedo kept apart holds one
+// V-column block per colour channel, bake/transfer_baker.h).
+SparseTransferMatrix column_block(const SparseTransferMatrix& h, uint64_t first, uint64_t count);
+
 // y = diag(rho) · H · x for V × K blocks (rho has V entries).
 void multiply_gather(const SparseTransferMatrix& h, const std::vector<double>& rho, const double* x,
                      int columns, double* y);

@@ -5,6 +5,17 @@
 // output T_p satisfies B_p,c = Σ_k T_p,c,k · L_c,k for lighting L = SH coefficients of
 // distant *radiance*; T includes albedo/π (albedo_folded = true).
 //
+// Albedo kept apart (albedo_folded = false): when the scene is textured (Scene::textured(), a
+// base-colour texture on some primitive) or BakeOptions::keep_albedo_apart is set, the file holds
+// G_p with B = ρ · Σ_k G_p,k L_k, ρ the receiving surface's albedo wherever it is shaded (the
+// texture per pixel, scene/texture.h): the receiver's albedo is left out, the albedo of every
+// surface light bounces off is kept in. Unshadowed and shadowed: G = S (grey, 1 channel);
+// interreflected: G = S + H_ρ G, where a sample hitting triangle (v0, v1, v2) at barycentrics b
+// adds b_i·ρ(hit)/N to H_ρ[p, v_i], ρ(hit) the albedo at the hit point (the texture read
+// bilinearly at the hit's interpolated coordinates: an unbiased point sample of the texture, the
+// N rays of a vertex averaging it over the surface they see) — this is T = diag(ρ)·G of the
+// folded system with the hit's albedo taken from the texture instead of its vertices.
+//
 // Kinds (Sloan, Kautz & Snyder, SIGGRAPH 2002, §5–6):
 //   unshadowed      T = (ρ/π) · rotate_zonal(clamped-cosine zonal coefficients, n): analytic.
 //   shadowed        N cosine-weighted directions ω_s (pdf cos/π) per vertex;
@@ -14,7 +25,9 @@
 // Ambient occlusion k_A = (1/N) Σ_s V(ω_s): the cosine-weighted visible fraction. Bent normal:
 // the normalised mean of the visible sample directions (cosine-weighted by the sampling); when
 // no sample is visible it falls back to the vertex normal.
-// Channels: 1 when every vertex albedo is grey (r = g = b), else 3 (RGB). Albedo must lie in
+// Channels: 1 when every vertex albedo is grey (r = g = b), else 3 (RGB); with the albedo kept
+// apart, 1 for unshadowed and shadowed transfer, and for interreflected 1 when every albedo and
+// texture is grey, else 3. Albedo must lie in
 // [0, 1) in every channel; otherwise BakeError names the primitive.
 // Sampling (bake/sampling.h): Owen-scrambled Sobol' directions seeded by (seed, vertex), with
 // the sample count rounded up to a multiple of 16; vertices run in parallel, each computed
@@ -134,6 +147,8 @@ struct BakeOptions {
   bool bent_normals = false;
   prt::Precision precision = prt::Precision::F32;
   AdaptiveSampling adaptive;  // off by default
+  // Keep the albedo apart (above) although the scene is not textured (textured scenes always do).
+  bool keep_albedo_apart = false;
 };
 
 struct BakeStatistics {

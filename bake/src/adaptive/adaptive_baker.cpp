@@ -40,11 +40,12 @@ std::vector<double> uniform_sky() {
   return {kSqrtFourPi, kSqrtFourPi, kSqrtFourPi};
 }
 
-// The scene with albedo 0.5 everywhere: the pilot's transfer is then S = T / 0.5 exactly (a
-// power of two). Made once for all the pilots of a bake.
+// The scene with albedo 0.5 everywhere (textures dropped): the pilot's transfer is then S = T / 0.5
+// exactly (a power of two). Made once for all the pilots of a bake.
 scene::Scene grey_scene(const scene::Scene& scene) {
   scene::Scene grey = scene;
   std::fill(grey.albedo.begin(), grey.albedo.end(), glm::vec3(0.5f));
+  for (scene::ScenePrimitive& p : grey.primitives) p.base_color_texture.reset();
   return grey;
 }
 

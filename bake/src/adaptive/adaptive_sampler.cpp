@@ -59,10 +59,11 @@ struct VertexState {
 // Adds a hit's vertices to the row being gathered; counts back-face hits.
 struct Gather {
   const scene::Scene& scene;
+  int channels;  // SamplingPass::gather_channels
   std::vector<std::pair<uint32_t, float>>& gathered;
   uint64_t& back_hits;
   bool operator()(const scene::RayCaster::Hit& hit, const glm::vec3& dir, float weight) const {
-    const bool front = gather_front_hit(scene, hit, dir, weight, gathered);
+    const bool front = gather_front_hit(scene, hit, dir, weight, channels, gathered);
     if (!front) ++back_hits;
     return front;
   }
@@ -238,7 +239,7 @@ uint64_t AdaptiveSampler::sample_vertex(std::size_t v, const glm::vec3& n, int t
 void AdaptiveSampler::sample_first_round() {
   tbb::parallel_for(std::size_t(0), p_.blocks(), [&](std::size_t blk) {
     std::vector<std::pair<uint32_t, float>> gathered;
-    const Gather gather{scene_, gathered, p_.block_back_hits[blk]};
+    const Gather gather{scene_, p_.gather_channels, gathered, p_.block_back_hits[blk]};
     const std::size_t v_end = std::min(V_, (blk + 1) * kVertexBlock);
     uint64_t rays = 0;
     for (std::size_t v = blk * kVertexBlock; v < v_end; ++v) {
@@ -288,7 +289,7 @@ double AdaptiveSampler::spread2(std::size_t v) const {
 // the phase-1 rows of H. The later bounces only add (lighting ≥ 0), so this stays a lower bound
 // of the exit radiance: the budget stays conservative.
 double AdaptiveSampler::budget() {
-  std::vector<double> b2_of(V_, 0.0), direct_b(V_, 0.0);
+  std::vector<double> b2_of(V_, 0.0), direct_s(V_, 0.0), direct_b(V_, 0.0);
   tbb::parallel_for(std::size_t(0), V_, [&](std::size_t v) {
     const uint8_t mode = p_.mode_of(v);
     if (mode == kSkipVertex) return;
@@ -301,17 +302,26 @@ double AdaptiveSampler::budget() {
     double b = 0.0;
     for (int k = 0; k < lum_k_; ++k) b += s[k] * (*lum_)[k];
     const double rho = luminance(scene_.albedo[v]);
+    direct_s[v] = b / lum_mean_;
     direct_b[v] = rho * b / lum_mean_;
     b2_of[v] = direct_b[v] * direct_b[v];
   });
+  // Kept-apart albedo: the entries already hold the hit's albedo, channel c in columns c·V + j;
+  // their luminance weights the hit's albedo-free radiance.
+  const int channels = p_.gather_channels;
+  const double weight_of[3] = {channels == 1 ? 1.0 : 0.2126, 0.7152, 0.0722};
   if (p_.interreflect)
     tbb::parallel_for(std::size_t(0), p_.blocks(), [&](std::size_t blk) {
       const BlockRows& br = p_.rows[blk];
       std::size_t offset = 0;
       for (std::size_t v = blk * kVertexBlock, i = 0; i < br.lengths.size(); ++v, ++i) {
         double gathered = 0.0;
-        for (uint32_t e = 0; e < br.lengths[i]; ++e, ++offset)
-          gathered += static_cast<double>(br.weights[offset]) * direct_b[br.columns[offset]];
+        for (uint32_t e = 0; e < br.lengths[i]; ++e, ++offset) {
+          const double w = static_cast<double>(br.weights[offset]);
+          const uint32_t column = br.columns[offset];
+          gathered += channels == 0 ? w * direct_b[column]
+                                    : weight_of[column / V_] * w * direct_s[column % V_];
+        }
         if (p_.mode_of(v) != kSampleVertex) continue;
         const double b = direct_b[v] + luminance(scene_.albedo[v]) * gathered / state_[v].used;
         b2_of[v] = b * b;
@@ -390,7 +400,7 @@ bool AdaptiveSampler::sample_round(double budget, std::vector<std::vector<BlockR
     const std::size_t v_end = std::min(V_, v_begin + kVertexBlock);
     uint64_t rays = 0;
     std::vector<std::pair<uint32_t, float>> gathered;
-    const Gather gather{scene_, gathered, p_.block_back_hits[blk]};
+    const Gather gather{scene_, p_.gather_channels, gathered, p_.block_back_hits[blk]};
     for (std::size_t v = v_begin; v < v_end; ++v) {
       gathered.clear();
       if (p_.mode_of(v) == kSampleVertex) {

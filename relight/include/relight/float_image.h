@@ -1,22 +1,12 @@
-// relight/float_image.h — a decoded image as float samples, and the size cap every reader applies.
-//
-// Pixels are row-major, row 0 at the top, `channels` interleaved floats per texel. The readers
-// (relight/image_io.h, relight/radiance_hdr.h, relight/pfm_image.h) refuse images with more than
-// a caller-given number of texels before allocating anything; kMaxImageTexels is the default.
+// relight/float_image.h — the decoded image of scene/float_image.h under relight's names (the
+// image decoding the scene loader needs for textures lives in scene/, below relight).
 #pragma once
 
-#include <cstddef>
-#include <vector>
+#include "scene/float_image.h"
 
 namespace prt::relight {
 
-struct FloatImage {
-  int width = 0, height = 0, channels = 0;
-  std::vector<float> pixels;  // row-major, row 0 at the top
-};
-
-// 2^28 texels: 16384 × 16384, twice the largest environment maps in use (16384 × 8192). As float
-// RGB that is 3 GiB; anything larger is refused as absurd rather than attempted.
-inline constexpr std::size_t kMaxImageTexels = std::size_t{1} << 28;
+using scene::FloatImage;
+using scene::kMaxImageTexels;
 
 }  // namespace prt::relight

@@ -7,7 +7,11 @@
 // Rotations are row-major 3×3 matrices M acting on column vectors; lighting "rotated by M" is
 // g(ω) = f(Mᵀω) (sh/rotation.h), so its SH coefficients are rotated, never re-projected.
 // The turntable turns the light about +Y by 360°·i/N on top of --rotate: M_i = Ry(360°·i/N)·M.
-// Exit radiance B_p = Σ_k T_p,k L_k (prt/transfer_data.h), linear.
+// Exit radiance B_p = Σ_k T_p,k L_k (prt/transfer_data.h), linear; a file that keeps the albedo
+// apart (albedo_folded = false, e.g. baked from a textured scene) gives radiance per unit albedo,
+// and the render multiplies it by the surface's albedo per pixel (relight/renderer.h): the
+// texture is applied per pixel, not per vertex. The vertex-coloured GLB holds the exit radiance
+// at each vertex (its own albedo × that value), whatever the file.
 // Every error throws std::runtime_error (or scene::SceneError) with one line "PATH: problem";
 // run_relight() validates all inputs before it writes anything, and each file is written
 // atomically (temporary + rename) so nothing partial is left behind.
@@ -74,9 +78,13 @@ std::vector<float> shade_all_vertices(const prt::Relighter& relighter,
 // exposure). Throws for any other extension.
 void write_rendered_image(const std::string& path, const Image& image, float exposure_ev);
 
-// One row per vertex: index,x,y,z,r,g,b (header row first), written atomically.
+// One row per vertex: index,x,y,z,r,g,b (header row first; r,g,b the exit radiance at the
+// vertex), written atomically. With per_unit_albedo (a coefficient file that keeps the albedo
+// apart) three more columns, r_per_albedo,g_per_albedo,b_per_albedo: the shaded value before the
+// surface's albedo (texture) multiplies it.
 void write_vertex_csv(const std::string& path, const scene::Scene& scene,
-                      const std::vector<float>& radiance_rgb);
+                      const std::vector<float>& radiance_rgb,
+                      const std::vector<float>* per_unit_albedo = nullptr);
 
 // OUT.png → OUT_007.png for frame 7 (three digits at least).
 std::string turntable_frame_path(const std::string& path, int frame);

@@ -9,6 +9,13 @@
 // g(ω) = f(Mᵀω), the convention of sh/rotation.h), the background in direction d is the source
 // map bilinearly sampled at Mᵀd, so the visible sky turns with the light. Without a background
 // misses are black. Output is linear radiance, RGB float, row 0 at the top.
+// Albedo kept apart (RenderOptions::multiply_albedo, for coefficient files with albedo_folded =
+// false): the vertex values are radiance per unit albedo, and each sub-sample multiplies the
+// interpolated value by the surface's albedo at the hit, Scene::albedo_at — the base-colour
+// texture read per sub-pixel with trilinear mipmapping (scene/texture.h), its footprint the
+// sub-pixel's width at the hit, t·δ/(N·√max(|cos θ|, 1/16)) (δ = 2·tan(yfov/2)/height the
+// angle of a pixel at the image centre, θ the angle between the ray and the triangle's normal:
+// the geometric mean of the footprint's two axes, capped at grazing angles).
 // Rows are rendered in parallel with TBB; the result does not depend on the thread count.
 #pragma once
 
@@ -31,7 +38,8 @@ struct Image {
 struct RenderOptions {
   int width = 960;
   int height = 540;
-  int samples_per_axis = 3;  // N: N×N sub-samples per pixel
+  int samples_per_axis = 3;      // N: N×N sub-samples per pixel
+  bool multiply_albedo = false;  // the vertex radiance is per unit albedo (see above)
   // Progress (optional): called with the number of rows just finished, from the rendering
   // threads, possibly concurrently (so it must be thread-safe); the counts add up to height.
   std::function<void(int rows)> rows_done;

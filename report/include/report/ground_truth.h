@@ -5,7 +5,8 @@
 //
 // Frame: glTF's (+Y up); map layouts and texel solid angles of sh/env_map.h; radiance in the
 // map's units. The map is taken as piecewise constant over texels (nearest texel, no filtering).
-// Surfaces are Lambertian with the scene's per-vertex albedo ρ (interpolated at hit points), and,
+// Surfaces are Lambertian with albedo ρ: the receiving vertex's own (Scene::albedo), and at hit
+// points Scene::albedo_at (interpolated vertex albedo, or the texture read bilinearly), and,
 // as in the baker (bake/transfer_baker.h), back faces occlude but reflect nothing; the front side
 // is the one the vertex normals point to.
 //

@@ -28,7 +28,8 @@ namespace prt::scene {
 
 // A (segments_u+1) x (segments_v+1) grid spanning the parallelogram corner + s*edge_u + t*edge_v.
 // Front normal = normalize(cross(edge_u, edge_v)); vertex (i, j) sits at index
-// j*(segments_u+1) + i, at corner + edge_u*i/segments_u + edge_v*j/segments_v.
+// j*(segments_u+1) + i, at corner + edge_u*i/segments_u + edge_v*j/segments_v, with texture
+// coordinates (i/segments_u, j/segments_v) (untextured: set base_color_texture to texture it).
 Scene make_quad(glm::vec3 corner, glm::vec3 edge_u, glm::vec3 edge_v, int segments_u,
                 int segments_v, glm::vec3 albedo, std::string name = "quad");
 
@@ -61,8 +62,9 @@ Scene make_spherical_cavity(float radius, float opening_half_angle, int rings, i
 // The ground outside the well is not included.
 Scene make_well(float radius, float depth, int segments, int rings, glm::vec3 albedo);
 
-// Appends part's vertices, normals, albedo, triangles (indices offset), primitives (ranges
-// offset), cameras, and adds its skip/computed counters.
+// Appends part's vertices, normals, albedo, texture coordinates (zeros for the side that has
+// none, when the other has some), triangles (indices offset), primitives (ranges offset, textures
+// kept), cameras, and adds its skip/computed counters.
 void append_scene(Scene& into, const Scene& part);
 
 // The bundled demo (data/demo.glb): a light-grey ground, a red and a green wall meeting in a

@@ -5,6 +5,14 @@
 // in depth-first order, then primitives in order; OBJ: shapes in order), so a coefficient
 // file can be mapped back to the source meshes. Node transforms are applied; normals are
 // transformed by the inverse transpose and renormalised.
+//
+// Albedo (linear RGB reflectance, each channel in [0, 1)): a primitive is either flat (its
+// `albedo`, copied to its vertices) or textured (`base_color_texture`: factor × a texture read at
+// the vertices' `texcoords`, scene/texture.h). For a textured primitive, `albedo` is factor × the
+// texture's mean (what the surface looks like from afar, and what a GLB written from the scene
+// carries) and each vertex's `albedo` is the texture sampled (bilinear) at that vertex: the
+// vertex's own albedo. albedo_at() gives the albedo anywhere on a triangle: the interpolated
+// vertex albedo of a flat primitive, the filtered texture of a textured one.
 #pragma once
 
 #include <array>
@@ -15,6 +23,8 @@
 #include <vector>
 
 #include <glm/glm.hpp>
+
+#include "scene/texture.h"
 
 namespace prt::scene {
 
@@ -27,7 +37,8 @@ struct ScenePrimitive {
   uint32_t vertex_count = 0;
   uint32_t first_triangle = 0;  // into Scene::triangles
   uint32_t triangle_count = 0;
-  glm::vec3 albedo{0.8f};  // linear RGB reflectance in [0, 1)
+  glm::vec3 albedo{0.8f};  // linear RGB reflectance in [0, 1) (textured: factor × mean)
+  std::optional<BaseColorTexture> base_color_texture;  // none: a flat albedo
   // Emitters (radiosity): the material's name ("" when none) and the exit radiance its front
   // faces emit, linear RGB (glTF emissiveFactor × KHR_materials_emissive_strength; OBJ Ke).
   std::string material;
@@ -43,15 +54,16 @@ struct SceneCamera {
 struct Scene {
   std::vector<glm::vec3> positions;   // world space
   std::vector<glm::vec3> normals;     // unit length, one per vertex
-  std::vector<glm::vec3> albedo;      // per vertex (copied from its primitive's material)
+  std::vector<glm::vec3> albedo;      // per vertex (its primitive's albedo, or its texture here)
+  std::vector<glm::vec2> texcoords;   // per vertex, or empty (never when a primitive is textured)
   std::vector<glm::uvec3> triangles;  // indices into positions; degenerate ones removed
   std::vector<ScenePrimitive> primitives;
   std::vector<SceneCamera> cameras;  // glTF cameras, if any, in node order
 
   std::size_t skipped_degenerate_triangles = 0;  // zero-area or repeated-index triangles
   std::size_t computed_normal_vertices = 0;      // vertices whose normal was computed
-  // glTF primitives whose material gives no colour the loader reads (no material, or a texture
-  // that is not read): they got kDefaultAlbedo grey. The loader prints nothing
+  // glTF primitives whose material gives no colour (no material, or neither a factor nor a
+  // usable texture): they got kDefaultAlbedo grey. The loader prints nothing
   // about them; a command that uses the albedo (prt bake) says so.
   std::size_t default_albedo_primitives = 0;
 
@@ -63,6 +75,18 @@ struct Scene {
   glm::vec3 bounds_max() const;
   // Length of the bounding-box diagonal (0 for an empty scene).
   float extent() const;
+
+  // True when some primitive has a base-colour texture.
+  bool textured() const;
+  // The primitive whose triangle range holds triangle t (null when none does).
+  const ScenePrimitive* primitive_of_triangle(std::size_t t) const;
+  // The albedo at the point of triangle t with Embree barycentrics (u, v), i.e.
+  // (1−u−v)·p0 + u·p1 + v·p2, for a sample standing for `footprint` world units of surface
+  // (0: a point; textures are then read bilinearly, see scene/texture.h).
+  glm::vec3 albedo_at(std::size_t t, float u, float v, float footprint = 0.f) const;
+  // The width in UV units of `world_width` world units on triangle t (the square root of its
+  // UV-area-to-area ratio; 0 for an untextured or degenerate triangle).
+  float uv_footprint(std::size_t t, float world_width) const;
 };
 
 // Thrown by the loaders with a one-line message "PATH: problem".

@@ -10,19 +10,34 @@
 // winding, which is restored). POSITION is required; indices may be u8/u16/u32 or absent.
 // Primitives of other modes (points, lines, strips, fans) are skipped and reported in one
 // warning line on stderr. Albedo = pbrMetallicRoughness.baseColorFactor rgb, stored as it
-// is (the baker refuses albedo >= 1); a primitive with no material, or whose colour comes
-// from a base-colour texture (factor left at 1, texture not read), gets 0.8 grey instead of the
-// spec's white, counted in Scene::default_albedo_primitives. Perspective cameras attached to
-// nodes become SceneCameras: eye = the node's world position, target = eye + the node's -Z,
-// up = the node's +Y, yfov.
-// Textures: only baseColorFactor is read, so image pixels are never decoded, and textures
-// that are missing on disk are NOT an error: they are reported as one warning line on stderr
-// ("PATH: warning: ...") and loading continues (real assets are often shipped geometry-only).
+// is (the baker refuses albedo >= 1); a primitive with no material, or with neither a factor nor
+// a usable texture (factor left at 1), gets 0.8 grey instead of the spec's white, counted in
+// Scene::default_albedo_primitives (prt bake says so). Perspective cameras attached to nodes become SceneCameras: eye = the node's
+// world position, target = eye + the node's -Z, up = the node's +Y, yfov.
+// Textures: a material's baseColorTexture is read (scene/texture.h): its texCoord set
+// (TEXCOORD_n: float, or normalised unsigned byte/short), its texture's sampler (wrapS, wrapT,
+// magFilter, minFilter) and image, PNG or JPEG, from a file beside the .gltf (URI
+// percent-decoding), a data: URI or a buffer view (GLB), decoded through the OpenImageIO plugin
+// (scene/image_codec.h) and linearised as sRGB. Albedo = baseColorFactor × the texture (clamped to
+// kMaxTexturedAlbedo). Only base-colour images are decoded (normal, metallic-roughness and other
+// maps are never read). A texture that cannot be used — its file missing (real assets are often
+// shipped geometry-only), not PNG/JPEG, corrupt, over kMaxTextureTexels, or the primitive lacks
+// its TEXCOORD_n — is NOT an error: one warning line on stderr ("PATH: warning: ..." naming the
+// image file or index) and the material falls back to its baseColorFactor (0.8 grey when that is
+// the default white). Alpha is ignored; KHR_texture_transform is not applied.
 // Missing buffers (.bin) ARE an error.
 //
 // OBJ (through tinyobjloader): shapes in order; quads and polygons are triangulated; negative
 // indices and CRLF line endings are handled. Albedo = the MTL's Kd (0.8 grey when a face has
-// no material; a shape takes its first face's material). When every face corner of a shape
+// no material; a shape takes its first face's material). A material's map_Kd replaces Kd (as
+// Blender reads it): the image file (relative to the OBJ's folder; '\\' read as '/'), decoded
+// like a glTF texture and linearised as sRGB (unless `-colorspace linear`), with its options
+// -clamp on (CLAMP_TO_EDGE; else REPEAT), -s and -o (scale and offset of the coordinates);
+// `vt` coordinates have v up, so they become (u, 1 − v). A map_Kd that cannot be read, or a
+// shape with a face corner lacking `vt`, gives one warning line and Kd. A textured shape makes
+// one vertex per unique (position, normal, texture coordinate) triple in first-seen order (a
+// texture seam splits a position), its missing normals computed over the positions (no shading
+// seam along texture seams). Otherwise: when every face corner of a shape
 // has a `vn`, one vertex is made per unique (position, normal) index pair, in first-seen order.
 // Otherwise normals are computed and the vertices are the file's `v` entries in file order: a
 // file with one shape keeps all of them, including `v` lines no face uses (they get the +Y
@@ -34,10 +49,11 @@
 // KHR_materials_emissive_strength extension's emissiveStrength (1 when absent); OBJ Ke. Values
 // are stored as they are (consumers that use them check them).
 //
-// Both: missing normals are computed (scene/mesh_normals.h: area x angle weighting, +Y
-// fallback); degenerate triangles (repeated indices, or area <= 1e-12 * extent^2) are removed
-// and counted in Scene::skipped_degenerate_triangles; vertices keep the file's order per
-// primitive.
+// Both: a textured primitive's `albedo` is factor × the texture's mean and each of its vertices'
+// albedo the texture (bilinear) at the vertex (scene/scene.h); missing normals are computed
+// (scene/mesh_normals.h: area x angle weighting, +Y fallback); degenerate triangles (repeated
+// indices, or area <= 1e-12 * extent^2) are removed and counted in
+// Scene::skipped_degenerate_triangles; vertices keep the file's order per primitive.
 //
 // Errors throw SceneError with one line "PATH: problem": unreadable or unparsable file (the
 // parser's messages condensed to one line), missing buffer, index out of range, NaN/Inf
@@ -54,7 +70,8 @@
 namespace prt::scene {
 
 struct LoadOptions {
-  std::optional<glm::vec3> albedo_override;  // replaces every material's albedo when set
+  // Replaces every material's albedo when set; textures are then not even decoded (flat colour).
+  std::optional<glm::vec3> albedo_override;
 };
 
 // Loads a scene, dispatching on the file extension (case-insensitive): .gltf, .glb, .obj.

@@ -1,5 +1,5 @@
-// relight/src/image_codec.cpp — opening the OpenImageIO plugin and calling it (image_codec.h).
-#include "image_codec.h"
+// scene/src/image_codec.cpp — opening the OpenImageIO plugin and calling it (scene/image_codec.h).
+#include "scene/image_codec.h"
 
 #include <dlfcn.h>
 #include <unistd.h>
@@ -10,9 +10,10 @@
 #include <stdexcept>
 #include <vector>
 
-#include "message_text.h"
+#include "image_codec_abi.h"
+#include "scene_file_errors.h"
 
-namespace prt::relight::detail {
+namespace prt::scene {
 namespace {
 
 constexpr const char* kPluginName = "libprt_image_oiio.so";
@@ -43,7 +44,7 @@ const LoadedCodec& loaded_codec() {
     for (const std::string& path : plugin_candidates()) {
       void* handle = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
       if (handle == nullptr) {
-        tried += (tried.empty() ? "" : "; ") + one_line(dlerror());
+        tried += (tried.empty() ? "" : "; ") + detail::condense(dlerror());
         continue;
       }
       auto entry = reinterpret_cast<PrtImageCodecEntry>(dlsym(handle, PRT_IMAGE_CODEC_ENTRY));
@@ -70,34 +71,65 @@ float* allocate_pixels(void* context, int width, int height, int channels) {
   return image->pixels.data();
 }
 
+int read_flags(const ImageReadOptions& options) {
+  return options.unassociated_alpha ? PRT_READ_UNASSOCIATED_ALPHA : 0;
+}
+
+int pixel_type(ImageSampleType type) {
+  switch (type) {
+    case ImageSampleType::UInt8:
+      return PRT_PIXEL_UINT8;
+    case ImageSampleType::Half:
+      return PRT_PIXEL_HALF;
+    default:
+      return PRT_PIXEL_FLOAT;
+  }
+}
+
 }  // namespace
 
-FloatImage codec_read(const std::string& path, const std::string& format, std::size_t max_texels) {
+FloatImage decode_image_file(const std::string& path, const std::string& format,
+                             std::size_t max_texels, const ImageReadOptions& options) {
   const LoadedCodec& loaded = loaded_codec();
   if (loaded.codec == nullptr) throw std::runtime_error(path + ": " + loaded.problem);
   FloatImage image;
   char error[1024] = "";
-  if (loaded.codec->read(path.c_str(), format.c_str(), max_texels, &allocate_pixels, &image, error,
-                         sizeof error) != PRT_CODEC_OK)
-    throw std::runtime_error(path + ": " + one_line(error));
+  if (loaded.codec->read(path.c_str(), format.c_str(), max_texels, read_flags(options),
+                         &allocate_pixels, &image, error, sizeof error) != PRT_CODEC_OK)
+    throw std::runtime_error(path + ": " + detail::condense(error));
   return image;
 }
 
-prt::Status codec_write(const std::string& path, const std::string& file, int width, int height,
-                        int channels, PrtImagePixelType file_type, PrtImagePixelType buffer_type,
-                        bool name_y, const void* pixels) {
+FloatImage decode_image_memory(const void* bytes, std::size_t size, const std::string& format,
+                               const std::string& name, std::size_t max_texels,
+                               const ImageReadOptions& options) {
+  const LoadedCodec& loaded = loaded_codec();
+  if (loaded.codec == nullptr) throw std::runtime_error(name + ": " + loaded.problem);
+  FloatImage image;
+  char error[1024] = "";
+  if (loaded.codec->read_memory(bytes, size, format.c_str(), max_texels, read_flags(options),
+                                &allocate_pixels, &image, error, sizeof error) != PRT_CODEC_OK)
+    throw std::runtime_error(name + ": " + detail::condense(error));
+  return image;
+}
+
+prt::Status encode_image_file(const std::string& path, const std::string& file, int width,
+                              int height, int channels, ImageSampleType file_type,
+                              ImageSampleType buffer_type, bool name_y, const void* pixels) {
   const LoadedCodec& loaded = loaded_codec();
   if (loaded.codec == nullptr) return prt::Status::Error(path + ": " + loaded.problem);
   char error[1024] = "";
-  const int status =
-      loaded.codec->write(path.c_str(), file.c_str(), width, height, channels, file_type,
-                          buffer_type, name_y ? 1 : 0, pixels, error, sizeof error);
+  const int status = loaded.codec->write(path.c_str(), file.c_str(), width, height, channels,
+                                         pixel_type(file_type), pixel_type(buffer_type),
+                                         name_y ? 1 : 0, pixels, error, sizeof error);
   if (status == PRT_CODEC_NO_WRITER)
     return prt::Status::Error(
-        path + ": " + one_line(std::string("no image writer for this extension (") + error + ")"));
+        path + ": " +
+        detail::condense(std::string("no image writer for this extension (") + error + ")"));
   if (status != PRT_CODEC_OK)
-    return prt::Status::Error(path + ": " + one_line(std::string("cannot write: ") + error));
+    return prt::Status::Error(path + ": " +
+                              detail::condense(std::string("cannot write: ") + error));
   return prt::Status::Ok();
 }
 
-}  // namespace prt::relight::detail
+}  // namespace prt::scene
