@@ -29,8 +29,8 @@
 #include "cli_parsing.h"
 #include "command_registry.h"
 #include "output_safety.h"
-#include "relight/environment_input.h"
 #include "progress_reporter.h"
+#include "relight/environment_input.h"
 #include "sh/basis.h"
 #include "sh/constants.h"
 #include "sh/env_map.h"
@@ -133,7 +133,11 @@ FileResult process(const std::string& path, const EnvArguments& args, const Sett
   prt::sh::Window window = settings.window;
   double strength = args.window_strength;
   if (window == prt::sh::Window::Auto) {
-    const prt::sh::WindowChoice choice = prt::sh::choose_window_auto(coefficients.data(), 3, order);
+    const prt::sh::WindowChoice choice =
+        prt::sh::choose_window_auto(coefficients.data(), 3, order,
+                                    progress.projection("choosing the window for " + path +
+                                                        " at order " + std::to_string(order)));
+    progress.finish();
     window = choice.window;
     strength = choice.strength;
     window_json["requested"] = "auto";

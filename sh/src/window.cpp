@@ -108,7 +108,8 @@ std::vector<double> window_band_factors(Window w, int order, double strength) {
   return h;
 }
 
-WindowChoice choose_window_auto(const double* coefficients, int channels, int order) {
+WindowChoice choose_window_auto(const double* coefficients, int channels, int order,
+                                const WindowProgress& progress) {
   WindowChoice choice{Window::None, 0.0, 0.0, 0.0};
   if (order < 1 || order > kMaxOrder || channels < 1 || coefficients == nullptr) return choice;
   const int n2 = order * order;
@@ -138,7 +139,9 @@ WindowChoice choose_window_auto(const double* coefficients, int channels, int or
   double largest = 0.0;  // max |E| unwindowed
   const double golden = kPi * (3.0 - std::sqrt(5.0));
   bool finite = true;
+  const auto total = static_cast<std::uint64_t>(lattice + 6);
   for (int i = 0; i < lattice + 6; ++i) {
+    if (progress && i % 256 == 0) progress(static_cast<std::uint64_t>(i), total);
     double x, yy, z;
     if (i < lattice) {
       z = 1.0 - (2.0 * i + 1.0) / lattice;
@@ -169,6 +172,7 @@ WindowChoice choose_window_auto(const double* coefficients, int channels, int or
       }
     }
   }
+  if (progress) progress(total, total);
   if (!finite) {
     const double nan = std::numeric_limits<double>::quiet_NaN();
     return {Window::None, 0.0, nan, nan};

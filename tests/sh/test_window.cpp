@@ -1,6 +1,7 @@
 // tests/sh/test_window.cpp — window factors and the automatic window choice.
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -43,7 +44,7 @@ double minimum_irradiance(const std::vector<double>& l_coeffs, int order,
     for (int j = 0; j < 360; ++j) {
       const double theta = kPi * i / 180, phi = 2 * kPi * j / 360;
       prt::sh::evaluate(order, std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi),
-                   std::cos(theta), y.data());
+                        std::cos(theta), y.data());
       double e = 0.0;
       for (int l = 0; l < order; ++l) {
         for (int k = l * l; k < (l + 1) * (l + 1); ++k) {
@@ -59,8 +60,9 @@ double minimum_irradiance(const std::vector<double>& l_coeffs, int order,
 }  // namespace
 
 TEST_CASE("window factors lie in [0, 1] with h0 = 1", "[sh][window]") {
-  for (prt::sh::Window w : {prt::sh::Window::None, prt::sh::Window::Hanning, prt::sh::Window::Lanczos,
-                       prt::sh::Window::Laplacian, prt::sh::Window::Auto}) {
+  for (prt::sh::Window w :
+       {prt::sh::Window::None, prt::sh::Window::Hanning, prt::sh::Window::Lanczos,
+        prt::sh::Window::Laplacian, prt::sh::Window::Auto}) {
     for (int order : {1, 2, 3, 5, 9, 16}) {
       for (double strength : {0.0, 0.5, 1.0, 3.0, 1e-3, -1.0}) {
         const std::vector<double> h = prt::sh::window_band_factors(w, order, strength);
@@ -88,10 +90,12 @@ TEST_CASE("window factors follow their formulas and defaults", "[sh][window]") {
   REQUIRE(hann[4] == 0.0);
   REQUIRE(hann[5] == 0.0);
   // Default width = order: the last band is attenuated, not removed.
-  const std::vector<double> hann_default = prt::sh::window_band_factors(prt::sh::Window::Hanning, 5, 0.0);
+  const std::vector<double> hann_default =
+      prt::sh::window_band_factors(prt::sh::Window::Hanning, 5, 0.0);
   REQUIRE(hann_default[4] == Approx(0.5 * (1 + std::cos(kPi * 4 / 5))));
   // Lanczos: sinc(πl/order)^s.
-  const std::vector<double> lanczos = prt::sh::window_band_factors(prt::sh::Window::Lanczos, 4, 2.0);
+  const std::vector<double> lanczos =
+      prt::sh::window_band_factors(prt::sh::Window::Lanczos, 4, 2.0);
   const double x = kPi * 3 / 4;
   REQUIRE(lanczos[3] == Approx(std::pow(std::sin(x) / x, 2.0)));
   // Laplacian: 1/(1 + λ l²(l+1)²); the default halves the last band.
@@ -101,8 +105,9 @@ TEST_CASE("window factors follow their formulas and defaults", "[sh][window]") {
 }
 
 TEST_CASE("window names round-trip", "[sh][window]") {
-  for (prt::sh::Window w : {prt::sh::Window::None, prt::sh::Window::Hanning, prt::sh::Window::Lanczos,
-                       prt::sh::Window::Laplacian, prt::sh::Window::Auto}) {
+  for (prt::sh::Window w :
+       {prt::sh::Window::None, prt::sh::Window::Hanning, prt::sh::Window::Lanczos,
+        prt::sh::Window::Laplacian, prt::sh::Window::Auto}) {
     prt::sh::Window parsed = prt::sh::Window::None;
     REQUIRE(prt::sh::parse_window(prt::sh::window_name(w), &parsed));
     REQUIRE(parsed == w);
@@ -190,4 +195,32 @@ TEST_CASE("auto window reports lighting it cannot fix", "[sh][window]") {
   const prt::sh::WindowChoice nan_choice = prt::sh::choose_window_auto(bad.data(), 1, order);
   REQUIRE(nan_choice.window == prt::sh::Window::None);
   REQUIRE(std::isnan(nan_choice.min_irradiance_before));
+}
+
+TEST_CASE("auto window reports its progress and chooses the same with or without it",
+          "[sh][window]") {
+  // A sun over a dim sky at order 12: the search runs over 64·144 + 6 test directions.
+  const int order = 12, n = order * order;
+  std::vector<double> rgb(3 * n);
+  const std::vector<double> sun = sun_coefficients(order, 3.0 * kPi / 180, 2000.0, {0.0, 1.0, 0.0});
+  for (int c = 0; c < 3; ++c) {
+    for (int k = 0; k < n; ++k) rgb[c * n + k] = sun[k];
+    rgb[c * n] += 0.1 * 2 * std::sqrt(kPi);
+  }
+  std::uint64_t calls = 0, last_done = 0, last_total = 0;
+  bool increasing = true;
+  const prt::sh::WindowChoice with = prt::sh::choose_window_auto(
+      rgb.data(), 3, order, [&](std::uint64_t done, std::uint64_t total) {
+        increasing = increasing && done >= last_done && (last_total == 0 || total == last_total);
+        last_done = done, last_total = total;
+        ++calls;
+      });
+  const prt::sh::WindowChoice without = prt::sh::choose_window_auto(rgb.data(), 3, order);
+  CHECK(increasing);
+  CHECK(last_total == static_cast<std::uint64_t>(64 * n + 6));
+  CHECK(last_done == last_total);  // the last call says it finished
+  CHECK(calls >= last_total / 256);
+  CHECK(with.window == without.window);
+  CHECK(with.strength == without.strength);
+  CHECK(with.min_irradiance_after == without.min_irradiance_after);
 }

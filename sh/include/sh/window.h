@@ -21,6 +21,8 @@
 // References: [6] of docs/REFERENCES.md.
 #pragma once
 
+#include <cstdint>
+#include <functional>
 #include <string_view>
 #include <vector>
 
@@ -62,6 +64,10 @@ struct WindowChoice {
 // negative), the candidate with the largest minimum is returned, and min_irradiance_after
 // stays negative: the caller should report it. Orders < 1, channels < 1 or non-finite input
 // return None with minima 0 (or NaN for non-finite input).
-WindowChoice choose_window_auto(const double* coefficients, int channels, int order);
+// `progress` (optional) is called now and then with (test directions done, directions in all):
+// at high orders the search takes seconds (order 200: about 13 CPU-seconds).
+using WindowProgress = std::function<void(std::uint64_t done, std::uint64_t total)>;
+WindowChoice choose_window_auto(const double* coefficients, int channels, int order,
+                                const WindowProgress& progress = {});
 
 }  // namespace prt::sh
