@@ -33,6 +33,8 @@ built=$(date +%s)
 
 # Leak checking stays on; TBB's worker threads and Embree's device are joined/released at exit.
 export ASAN_OPTIONS="${ASAN_OPTIONS:-detect_leaks=1:abort_on_error=0:strict_string_checks=1}"
+# Leaks inside third-party libraries that prt cannot free (listed, with why, in the file).
+export LSAN_OPTIONS="${LSAN_OPTIONS:-suppressions=$ROOT/scripts/lsan-suppressions.txt:print_suppressions=0}"
 export UBSAN_OPTIONS="${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}"
 set +e
 ctest --test-dir "$BUILD_DIR" -R "$regex" -j"$JOBS" --output-on-failure --timeout 600

@@ -343,7 +343,7 @@ TEST_CASE("the separable lat-long projection equals the direct sum at high order
     prt::sh::EnvMap env = make_map(prt::sh::EnvLayout::LatLong, c.width, c.height, 0, 0, 0);
     for (float& value : env.rgb) value = uniform(random);
     set_texel(&env, c.width / 3, c.height / 4, 5000.0f, 4000.0f, 3000.0f);
-    set_texel(&env, 1, 0, 800.0f, 900.0f, 1000.0f);  // next to the pole
+    if (c.width > 1) set_texel(&env, 1, 0, 800.0f, 900.0f, 1000.0f);  // next to the pole
     const std::vector<double> fast = prt::sh::project(env, c.order);
     const std::vector<double> direct = prt::sh::project_direct(env, c.order);
     REQUIRE(fast.size() == direct.size());
