@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "relight/image_io.h"
+#include "scene/scene_loader.h"
 
 namespace prt::cli {
 namespace {
@@ -31,22 +32,6 @@ std::string read_all(const std::string& path, std::size_t limit) {
   in.read(bytes.data(), static_cast<std::streamsize>(limit));
   bytes.resize(static_cast<std::size_t>(in.gcount()));
   return bytes;
-}
-
-// "a%20b.bin" → "a b.bin"; malformed escapes are kept as they are.
-std::string decode_uri(const std::string& uri) {
-  std::string out;
-  for (std::size_t i = 0; i < uri.size(); ++i) {
-    if (uri[i] == '%' && i + 2 < uri.size() &&
-        std::isxdigit(static_cast<unsigned char>(uri[i + 1])) &&
-        std::isxdigit(static_cast<unsigned char>(uri[i + 2]))) {
-      out += static_cast<char>(std::stoi(uri.substr(i + 1, 2), nullptr, 16));
-      i += 2;
-    } else {
-      out += uri[i];
-    }
-  }
-  return out;
 }
 
 // The JSON of a .gltf, or the first (JSON) chunk of a .glb.
@@ -74,7 +59,7 @@ void add_gltf_references(const std::string& path, std::vector<std::string>* file
       if (!item.is_object() || !item.contains("uri") || !item["uri"].is_string()) continue;
       const std::string uri = item["uri"].get<std::string>();
       if (uri.rfind("data:", 0) == 0 || uri.find("://") != std::string::npos) continue;
-      files->push_back((folder / decode_uri(uri)).string());
+      files->push_back((folder / scene::decode_uri(uri)).string());
     }
   }
 }

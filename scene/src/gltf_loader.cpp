@@ -3,6 +3,7 @@
 #include "gltf_emission.h"
 #include "gltf_extensions.h"
 #include "gltf_textures.h"
+#include "scene/scene_loader.h"
 #include "scene_file_errors.h"
 
 #include <cctype>

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <stdexcept>
 
+#include "scene/scene_loader.h"
 #include "texture_decoding.h"
 
 namespace prt::scene::detail {
@@ -36,21 +37,6 @@ TextureSampler sampler_of(const tinygltf::Sampler& s) {
 }
 
 }  // namespace
-
-std::string decode_uri(const std::string& uri) {
-  std::string out;
-  for (std::size_t i = 0; i < uri.size(); ++i) {
-    if (uri[i] == '%' && i + 2 < uri.size() &&
-        std::isxdigit(static_cast<unsigned char>(uri[i + 1])) &&
-        std::isxdigit(static_cast<unsigned char>(uri[i + 2]))) {
-      out += static_cast<char>(std::stoi(uri.substr(i + 1, 2), nullptr, 16));
-      i += 2;
-    } else {
-      out += uri[i];
-    }
-  }
-  return out;
-}
 
 bool keep_image_bytes(tinygltf::Image* image, int, std::string*, std::string*, int, int,
                       const unsigned char* bytes, int size, void*) {
@@ -144,3 +130,22 @@ void GltfTextures::report() const {
 }
 
 }  // namespace prt::scene::detail
+
+namespace prt::scene {
+
+std::string decode_uri(const std::string& uri) {
+  std::string out;
+  for (std::size_t i = 0; i < uri.size(); ++i) {
+    if (uri[i] == '%' && i + 2 < uri.size() &&
+        std::isxdigit(static_cast<unsigned char>(uri[i + 1])) &&
+        std::isxdigit(static_cast<unsigned char>(uri[i + 2]))) {
+      out += static_cast<char>(std::stoi(uri.substr(i + 1, 2), nullptr, 16));
+      i += 2;
+    } else {
+      out += uri[i];
+    }
+  }
+  return out;
+}
+
+}  // namespace prt::scene

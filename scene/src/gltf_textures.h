@@ -23,9 +23,6 @@
 
 namespace prt::scene::detail {
 
-// Decodes the %XX escapes of a URI (glTF URIs are percent-encoded).
-std::string decode_uri(const std::string& uri);
-
 // tinygltf's image callback: keeps the encoded bytes of URI images (Image::image, as_is), decodes
 // nothing.
 bool keep_image_bytes(tinygltf::Image* image, int image_index, std::string* error,

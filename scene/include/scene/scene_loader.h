@@ -12,9 +12,9 @@
 // warning line on stderr. Albedo = pbrMetallicRoughness.baseColorFactor rgb, stored as it
 // is (the baker refuses albedo >= 1); a primitive with no material, or with neither a factor nor
 // a usable texture (factor left at 1), gets 0.8 grey instead of the spec's white, counted in
-// Scene::default_albedo_primitives (prt bake says so). Perspective cameras attached to nodes become SceneCameras: eye = the node's
-// world position, target = eye + the node's -Z, up = the node's +Y, yfov.
-// Textures: a material's baseColorTexture is read (scene/texture.h): its texCoord set
+// Scene::default_albedo_primitives (prt bake says so). Perspective cameras attached to nodes become
+// SceneCameras: eye = the node's world position, target = eye + the node's -Z, up = the node's +Y,
+// yfov. Textures: a material's baseColorTexture is read (scene/texture.h): its texCoord set
 // (TEXCOORD_n: float, or normalised unsigned byte/short), its texture's sampler (wrapS, wrapT,
 // magFilter, minFilter) and image, PNG or JPEG, from a file beside the .gltf (URI
 // percent-decoding), a data: URI or a buffer view (GLB), decoded through the OpenImageIO plugin
@@ -76,5 +76,9 @@ struct LoadOptions {
 
 // Loads a scene, dispatching on the file extension (case-insensitive): .gltf, .glb, .obj.
 Scene load_scene(const std::string& path, const LoadOptions& options = {});
+
+// A glTF URI's percent escapes decoded ("a%20b.bin" → "a b.bin"), as the loader resolves files
+// beside a .gltf; malformed escapes are kept as they are.
+std::string decode_uri(const std::string& uri);
 
 }  // namespace prt::scene
