@@ -24,6 +24,7 @@
 
 #include <glm/glm.hpp>
 
+#include "prt/brdf/material.h"
 #include "scene/texture.h"
 
 namespace prt::scene {
@@ -43,6 +44,10 @@ struct ScenePrimitive {
   // faces emit, linear RGB (glTF emissiveFactor × KHR_materials_emissive_strength; OBJ Ke).
   std::string material;
   glm::vec3 emission{0.f};
+  // The surface's BRDF when it is not plain Lambert with `albedo` (glossy materials: glTF
+  // pbrMetallicRoughness, OBJ Ks/Ns, or a command-line override); see prt/brdf/material.h.
+  // Absent: Lambert with `albedo`. The diffuse transfer ignores it.
+  std::optional<brdf::Material> brdf;
 };
 
 struct SceneCamera {
@@ -56,6 +61,10 @@ struct Scene {
   std::vector<glm::vec3> normals;     // unit length, one per vertex
   std::vector<glm::vec3> albedo;      // per vertex (its primitive's albedo, or its texture here)
   std::vector<glm::vec2> texcoords;   // per vertex, or empty (never when a primitive is textured)
+  // Per-vertex tangent frames from the file (glTF TANGENT: xyz a unit tangent ⊥ normal, w = ±1
+  // the bitangent's handedness, bitangent = w · cross(normal, tangent)), or empty when the file
+  // has none; scene/tangent_frames.h gives frames for every vertex either way.
+  std::vector<glm::vec4> tangents;
   std::vector<glm::uvec3> triangles;  // indices into positions; degenerate ones removed
   std::vector<ScenePrimitive> primitives;
   std::vector<SceneCamera> cameras;  // glTF cameras, if any, in node order
