@@ -6,6 +6,10 @@
 // the Haar cube sizes of the mode, "none" leaves Haar out.
 // `prt report --stability -o DIR [--quick]`: the stiff and extreme cases of
 // report/stability_report.h; exits with status 1 when any case fails.
+// `prt report --radiosity SCENE -o DIR [--emission M=rgb] [--albedo M=rgb] [--quick]
+// [--max-edges LIST] [--methods LIST] [--solvers LIST] [--ground-truth-patches K]
+// [--ground-truth-samples S]`: radiosity error against cost for every form-factor method × patch
+// count × solver, against a path-traced ground truth (report/radiosity_report.h).
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -22,6 +26,8 @@
 #include "command_registry.h"
 #include "output_safety.h"
 #include "progress_reporter.h"
+#include "radiosity/materials.h"
+#include "report/radiosity_report.h"
 #include "report/report.h"
 #include "report/stability_report.h"
 
@@ -30,10 +36,25 @@ namespace {
 
 struct ReportArguments {
   std::string scene, environment, output, layout = "auto", haar_cubes, auto_tolerances;
-  bool quick = false, stability = false, quiet = false;
+  bool quick = false, stability = false, quiet = false, radiosity = false;
   uint64_t seed = 1;
   double budget = 110;
+  // --radiosity
+  std::vector<std::string> emission, albedo;
+  std::string max_edges, methods, solvers;
+  int ground_truth_patches = 0, ground_truth_samples = 0;
 };
+
+// Options of one mode only, refused by name in the others.
+const char* const kRadiosityOnly[] = {"--emission",
+                                      "--albedo",
+                                      "--max-edges",
+                                      "--methods",
+                                      "--solvers",
+                                      "--ground-truth-patches",
+                                      "--ground-truth-samples"};
+const char* const kEnvironmentOnly[] = {"--layout", "--haar-cubes", "--auto-tolerances",
+                                        "--ground-truth-budget"};
 
 // A comma-separated option: "" → nullopt (the mode's default); "none" → an empty list; else
 // every item through parse(), which returns nullopt for an item it refuses. Throws CommandError
@@ -93,6 +114,20 @@ std::optional<std::vector<double>> parse_auto_tolerances(const std::string& text
 
 // Options that do not apply are refused by name; values out of range too.
 void check_options(const ReportArguments& a, const CLI::App& cmd) {
+  if (!a.radiosity)
+    for (const char* option : kRadiosityOnly)
+      if (cmd.count(option) > 0) throw UsageError(std::string(option) + " needs --radiosity");
+  if (a.radiosity) {
+    if (a.stability) throw UsageError("--radiosity and --stability exclude each other");
+    if (a.scene.empty() || !a.environment.empty())
+      throw UsageError("--radiosity takes a SCENE and no ENV (the scene's emitters light it)");
+    for (const char* option : kEnvironmentOnly)
+      if (cmd.count(option) > 0)
+        throw UsageError(std::string(option) + " does not apply to --radiosity");
+    if (a.ground_truth_patches < 0 || a.ground_truth_samples < 0)
+      throw UsageError("--ground-truth-patches and --ground-truth-samples must be positive");
+    return;
+  }
   if (a.stability) {
     if (!a.scene.empty() || !a.environment.empty())
       throw UsageError("--stability takes no SCENE or ENV (its cases make their own)");
@@ -119,17 +154,82 @@ void check_files(const ReportArguments& a) {
   if (!a.scene.empty()) files.add_scene(a.scene);
   if (!a.environment.empty()) files.add_environment(a.environment);
   files.add_output("-o", a.output);
-  const std::vector<std::string> names =
-      a.stability ? prt::report::stability_file_names() : prt::report::report_file_names();
+  const std::vector<std::string> names = a.stability   ? prt::report::stability_file_names()
+                                         : a.radiosity ? prt::report::radiosity_report_file_names()
+                                                       : prt::report::report_file_names();
   for (const std::string& name : names)
     files.add_output("-o", (std::filesystem::path(a.output) / name).string());
   files.check();
   check_output_directory("-o", a.output);
 }
 
+std::optional<std::vector<double>> parse_max_edges(const std::string& text) {
+  return parse_list<double>("--max-edges", text, "a positive length",
+                            [](const std::string& item) -> std::optional<double> {
+                              const std::optional<double> e = whole_number<double>(item);
+                              if (!e || !(*e > 0.0) || !std::isfinite(*e)) return std::nullopt;
+                              return e;
+                            });
+}
+
+// A comma-separated list of names → values (empty text: `all`).
+template <class T>
+std::vector<T> parse_names(const std::string& option, const std::string& text,
+                           const std::vector<std::pair<std::string, T>>& names) {
+  std::vector<T> out;
+  if (text.empty()) {
+    for (const auto& [name, value] : names) out.push_back(value);
+    return out;
+  }
+  std::stringstream in(text);
+  for (std::string item; std::getline(in, item, ',');) {
+    bool found = false;
+    for (const auto& [name, value] : names)
+      if (item == name) out.push_back(value), found = true;
+    if (!found) {
+      std::string known;
+      for (const auto& n : names) known += (known.empty() ? "" : "|") + n.first;
+      throw UsageError(option + ": '" + item + "' is not one of " + known);
+    }
+  }
+  return out;
+}
+
+void run_radiosity(const ReportArguments& a) {
+  namespace rad = prt::radiosity;
+  prt::report::RadiosityReportOptions o;
+  o.scene_path = a.scene;
+  o.output_dir = a.output;
+  o.quick = a.quick;
+  o.seed = a.seed;
+  for (const std::string& e : a.emission)
+    o.emission.push_back(rad::parse_material_value("--emission", e));
+  for (const std::string& e : a.albedo)
+    o.albedo.push_back(rad::parse_material_value("--albedo", e));
+  o.max_edges = parse_max_edges(a.max_edges).value_or(std::vector<double>{});
+  o.methods = parse_names<rad::FormFactorMethod>("--methods", a.methods,
+                                                 {{"analytic", rad::FormFactorMethod::Analytic},
+                                                  {"rays", rad::FormFactorMethod::Rays},
+                                                  {"hemicube", rad::FormFactorMethod::Hemicube}});
+  o.solvers = parse_names<rad::SolverKind>("--solvers", a.solvers,
+                                           {{"gauss-seidel", rad::SolverKind::GaussSeidel},
+                                            {"jacobi", rad::SolverKind::Jacobi},
+                                            {"progressive", rad::SolverKind::Progressive}});
+  o.ground_truth_patches = a.ground_truth_patches;
+  o.ground_truth_samples = a.ground_truth_samples;
+  ProgressReporter progress(a.quiet);
+  o.log = [&progress](const std::string& line) { progress.message(line); };
+  const prt::report::RadiosityReportResult r = prt::report::run_radiosity_report(o);
+  for (const std::string& f : r.files_written) std::printf("wrote %s\n", f.c_str());
+}
+
 void run(const ReportArguments& a, const CLI::App& cmd) {
   check_options(a, cmd);
   check_files(a);
+  if (a.radiosity) {
+    run_radiosity(a);
+    return;
+  }
   if (a.stability) {
     const int failed = prt::report::run_stability_report(a.output, a.quick);
     std::printf("stability: %d failed case(s); report in %s\n", failed, a.output.c_str());
@@ -165,6 +265,26 @@ void register_report(CLI::App& app) {
   cmd->add_flag("--quick", args->quick, "Small sweep (under a minute on data/)");
   cmd->add_flag("--stability", args->stability, "Run the stability cases instead of the sweep");
   cmd->add_flag("--quiet", args->quiet, "No progress lines on stderr");
+  cmd->add_flag("--radiosity", args->radiosity,
+                "Radiosity (form factors x patches x solver) against a path-traced ground truth "
+                "of the scene's own emitters; no ENV");
+  cmd->add_option("--emission", args->emission,
+                  "--radiosity: MATERIAL=r,g,b emission of a material (repeatable)");
+  cmd->add_option("--albedo", args->albedo,
+                  "--radiosity: MATERIAL=r,g,b albedo of a material (repeatable)");
+  cmd->add_option("--max-edges", args->max_edges,
+                  "--radiosity: patch sizes, e.g. 200,100,70 (default: quick 200,100; full "
+                  "200,100,70,50)");
+  cmd->add_option(
+      "--methods", args->methods,
+      "--radiosity: form factors, e.g. analytic,rays (default: analytic,rays,hemicube)");
+  cmd->add_option("--solvers", args->solvers,
+                  "--radiosity: e.g. gauss-seidel,progressive (default: all three)");
+  cmd->add_option("--ground-truth-patches", args->ground_truth_patches,
+                  "--radiosity: patches the ground truth integrates per patch count (default: "
+                  "quick 256; full 384)");
+  cmd->add_option("--ground-truth-samples", args->ground_truth_samples,
+                  "--radiosity: paths per ground-truth patch (default: quick 1024; full 4096)");
   cmd->add_option("--layout", args->layout, "auto|latlong|angular|cross|faces")
       ->capture_default_str();
   cmd->add_option("--seed", args->seed, "Seed of the bakes and the ground truth")
