@@ -42,7 +42,7 @@ struct ReportArguments {
   // --radiosity
   std::vector<std::string> emission, albedo;
   std::string max_edges, methods, solvers;
-  int ground_truth_patches = 0, ground_truth_samples = 0;
+  int ground_truth_patches = 0, ground_truth_samples = 0, rays = 1024, hemicube = 64;
 };
 
 // Options of one mode only, refused by name in the others.
@@ -52,7 +52,9 @@ const char* const kRadiosityOnly[] = {"--emission",
                                       "--methods",
                                       "--solvers",
                                       "--ground-truth-patches",
-                                      "--ground-truth-samples"};
+                                      "--ground-truth-samples",
+                                      "--rays",
+                                      "--hemicube"};
 const char* const kEnvironmentOnly[] = {"--layout", "--haar-cubes", "--auto-tolerances",
                                         "--ground-truth-budget"};
 
@@ -126,6 +128,9 @@ void check_options(const ReportArguments& a, const CLI::App& cmd) {
         throw UsageError(std::string(option) + " does not apply to --radiosity");
     if (a.ground_truth_patches < 0 || a.ground_truth_samples < 0)
       throw UsageError("--ground-truth-patches and --ground-truth-samples must be positive");
+    if (a.rays < 1 || a.rays > 1 << 24) throw UsageError("--rays: must be in 1..16777216");
+    if (a.hemicube < 2 || a.hemicube > 4096 || a.hemicube % 2 != 0)
+      throw UsageError("--hemicube: must be even, 2..4096");
     return;
   }
   if (a.stability) {
@@ -217,6 +222,8 @@ void run_radiosity(const ReportArguments& a) {
                                             {"progressive", rad::SolverKind::Progressive}});
   o.ground_truth_patches = a.ground_truth_patches;
   o.ground_truth_samples = a.ground_truth_samples;
+  o.rays_per_patch = a.rays;
+  o.hemicube_resolution = a.hemicube;
   ProgressReporter progress(a.quiet);
   o.log = [&progress](const std::string& line) { progress.message(line); };
   const prt::report::RadiosityReportResult r = prt::report::run_radiosity_report(o);
@@ -282,7 +289,11 @@ void register_report(CLI::App& app) {
                   "--radiosity: e.g. gauss-seidel,progressive (default: all three)");
   cmd->add_option("--ground-truth-patches", args->ground_truth_patches,
                   "--radiosity: patches the ground truth integrates per patch count (default: "
-                  "quick 256; full 384)");
+                  "quick 512; full 1024)");
+  cmd->add_option("--rays", args->rays, "--radiosity: rays per patch of the rays method")
+      ->capture_default_str();
+  cmd->add_option("--hemicube", args->hemicube, "--radiosity: cells across the hemicube's top face")
+      ->capture_default_str();
   cmd->add_option("--ground-truth-samples", args->ground_truth_samples,
                   "--radiosity: paths per ground-truth patch (default: quick 1024; full 4096)");
   cmd->add_option("--layout", args->layout, "auto|latlong|angular|cross|faces")

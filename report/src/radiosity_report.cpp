@@ -252,6 +252,9 @@ void Sweep::surfaces(const scene::Scene& base, const Level& lv) {
     s.escape = radiosity::escape_fraction(members[i], caster, 4096, o.seed);
   }
   result.surfaces_max_edge = lv.max_edge;
+  for (uint32_t t : lv.subset)
+    result.patches.push_back({t, lv.patches[t].centroid, lv.patches[t].normal, lv.patches[t].area,
+                              lv.truth.radiance[t], lv.truth.standard_error[t], best_finest[t]});
   log("surfaces: " + std::to_string(result.surfaces.size()) + " integrated whole, " +
       std::to_string(result.surface_samples) + " paths per triangle");
 }
@@ -302,7 +305,7 @@ std::string solver_name(radiosity::SolverKind s) {
 
 std::vector<std::string> radiosity_report_file_names() {
   return {"radiosity_results.csv", "radiosity_results.json", "radiosity_pareto.svg",
-          "radiosity_pareto.png", "radiosity_summary.md"};
+          "radiosity_pareto.png",  "radiosity_patches.csv",  "radiosity_summary.md"};
 }
 
 RadiosityReportResult run_radiosity_report(const RadiosityReportOptions& o) {
@@ -315,7 +318,7 @@ RadiosityReportResult run_radiosity_report(const RadiosityReportOptions& o) {
   edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
   RadiosityReportResult result;
   result.surface_samples = o.surface_samples > 0 ? o.surface_samples : (o.quick ? 16384 : 65536);
-  const int k = o.ground_truth_patches > 0 ? o.ground_truth_patches : (o.quick ? 256 : 384);
+  const int k = o.ground_truth_patches > 0 ? o.ground_truth_patches : (o.quick ? 512 : 1024);
   const int samples = o.ground_truth_samples > 0 ? o.ground_truth_samples : (o.quick ? 1024 : 4096);
   std::error_code ec;
   std::filesystem::create_directories(o.output_dir, ec);

@@ -56,6 +56,23 @@ void write_csv(const RadiosityReportOptions& o, RadiosityReportResult& r) {
   write(o, r, "radiosity_results.csv", csv.str());
 }
 
+void write_patches_csv(const RadiosityReportOptions& o, RadiosityReportResult& r) {
+  std::ostringstream csv;
+  csv << "patch,x,y,z,nx,ny,nz,area,truth_r,truth_g,truth_b,se_r,se_g,se_b,radiosity_r,"
+         "radiosity_g,radiosity_b\n";
+  csv.precision(7);
+  for (const RadiosityPatchRow& p : r.patches) {
+    csv << p.patch;
+    for (const glm::dvec3* v : {&p.centroid, &p.normal})
+      csv << ',' << v->x << ',' << v->y << ',' << v->z;
+    csv << ',' << p.area;
+    for (const glm::dvec3* v : {&p.truth, &p.truth_se, &p.radiosity})
+      csv << ',' << v->x << ',' << v->y << ',' << v->z;
+    csv << '\n';
+  }
+  write(o, r, "radiosity_patches.csv", csv.str());
+}
+
 void write_json(const RadiosityReportOptions& o, RadiosityReportResult& r) {
   nlohmann::json j;
   j["scene"] = o.scene_path;
@@ -185,6 +202,7 @@ void mark_radiosity_pareto_front(RadiosityReportResult& result) {
 
 void write_radiosity_outputs(const RadiosityReportOptions& o, RadiosityReportResult& r) {
   write_csv(o, r);
+  write_patches_csv(o, r);
   write_json(o, r);
   write(o, r, "radiosity_pareto.svg", pareto_svg(o, r));
   std::string why;

@@ -22,7 +22,9 @@
 // also gives each surface's escape fraction (cosine rays that leave the scene).
 // Outputs in the output directory: radiosity_results.csv, radiosity_results.json,
 // radiosity_pareto.svg/png (error against total seconds, log–log, one series per method and
-// solver, the Pareto front marked), radiosity_summary.md. Written atomically. Errors throw
+// solver, the Pareto front marked), radiosity_patches.csv (the finest patch count's evaluated
+// patches: centroid, normal, area, ground truth, its SE and the most accurate solution), and
+// radiosity_summary.md. Written atomically. Errors throw
 // std::runtime_error / std::invalid_argument with one line naming the file or option.
 #pragma once
 
@@ -63,8 +65,8 @@ struct RadiosityReportOptions {
   std::function<void(const std::string&)> log;  // one line per step, when set
 };
 
-// Defaults: quick {200, 100} scene units per edge, K = 256, S = 1024, S_surface = 16384;
-// full {200, 100, 70, 50}, K = 384, S = 4096, S_surface = 65536.
+// Defaults: quick {200, 100} scene units per edge, K = 512, S = 1024, S_surface = 16384;
+// full {200, 100, 70, 50}, K = 1024, S = 4096, S_surface = 65536.
 std::vector<double> default_max_edges(bool quick);
 
 struct RadiosityReportRow {
@@ -97,11 +99,19 @@ struct RadiositySurface {
   double escape = 0;  // fraction of cosine rays from the surface that leave the scene
 };
 
+struct RadiosityPatchRow {  // an evaluated patch of the finest patch count
+  uint32_t patch = 0;
+  glm::dvec3 centroid{0.0}, normal{0.0};
+  double area = 0;
+  glm::dvec3 truth{0.0}, truth_se{0.0}, radiosity{0.0};  // radiosity: the most accurate row's
+};
+
 struct RadiosityReportResult {
   std::vector<RadiosityReportRow> rows;
   std::vector<RadiosityGroundTruthLevel> ground_truth;
   std::vector<RadiositySurface> surfaces;
-  double surfaces_max_edge = 0;  // the patch count the surface table compares
+  std::vector<RadiosityPatchRow> patches;  // the finest patch count's evaluated patches
+  double surfaces_max_edge = 0;            // the patch count the surface table compares
   int surface_samples = 0;
   double seconds = 0;
   std::vector<std::string> files_written;
