@@ -254,7 +254,16 @@ void summary_rows(std::ostringstream& md, const RadiosityReportResult& r) {
        << solver_name(cheapest->solver) << " at " << cheapest->patches << " patches, "
        << fixed(cheapest->total_seconds, 2) << " s.\n";
   else
-    md << "No setting is within 2% of the ground truth.\n";
+    md << "No setting is within 2% of the ground truth with its noise included.\n";
+  const RadiosityReportRow* corrected = nullptr;
+  for (const RadiosityReportRow& w : r.rows)
+    if (w.relative_rms_corrected <= 0.02 &&
+        (!corrected || w.total_seconds < corrected->total_seconds))
+      corrected = &w;
+  if (corrected)
+    md << "Cheapest within 2% without the ground truth's noise: " << method_name(corrected->method)
+       << " + " << solver_name(corrected->solver) << " at " << corrected->patches << " patches, "
+       << fixed(corrected->total_seconds, 2) << " s.\n";
   md << "\nRe-solve: the emitters' emission scaled by (" << kResolveScale.x << ", "
      << kResolveScale.y << ", " << kResolveScale.z
      << ") per channel and the matrix solver run again on the same form factors; compare its "
