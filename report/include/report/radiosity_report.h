@@ -18,14 +18,14 @@
 // out (their emission is exact in both and would swamp the reflected light).
 // Surfaces: the scene's original triangles grouped by primitive and plane (normal within 1e-3),
 // each integrated as a whole by the ground truth (S_surface paths per triangle) and compared with
-// the area-weighted mean of its patches in the finest Gauss–Seidel analytic solution; the table
-// also gives each surface's escape fraction (cosine rays that leave the scene).
-// Outputs in the output directory: radiosity_results.csv, radiosity_results.json,
-// radiosity_pareto.svg/png (error against total seconds, log–log, one series per method and
-// solver, the Pareto front marked), radiosity_patches.csv (the finest patch count's evaluated
-// patches: centroid, normal, area, ground truth, its SE and the most accurate solution), and
-// radiosity_summary.md. Written atomically. Errors throw
-// std::runtime_error / std::invalid_argument with one line naming the file or option.
+// the area-weighted mean of its patches in the most accurate solution of the finest patch count;
+// the table also gives each surface's escape fraction (cosine rays that leave the scene). Outputs
+// in the output directory: radiosity_results.csv, radiosity_results.json, radiosity_pareto.svg/png
+// (error against total seconds, log–log, one series per method and solver, the Pareto front
+// marked), radiosity_patches.csv (the finest patch count's evaluated patches: centroid, normal,
+// area, ground truth, its SE and the most accurate solution), and radiosity_summary.md. Written
+// atomically. Errors throw std::runtime_error / std::invalid_argument with one line naming the file
+// or option.
 #pragma once
 
 #include <cstdint>
