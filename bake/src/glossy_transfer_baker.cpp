@@ -58,6 +58,26 @@ struct BlockHits {
 
 bool grey(const brdf::Rgb& c) { return c.r == c.g && c.g == c.b; }
 
+bool same_rgb(const brdf::Rgb& a, const brdf::Rgb& b) {
+  return a.r == b.r && a.g == b.g && a.b == b.b;
+}
+
+// Every field equal (then one material serves both primitives).
+bool same_material(const brdf::Material& a, const brdf::Material& b) {
+  return a.model == b.model && same_rgb(a.diffuse, b.diffuse) &&
+         same_rgb(a.specular, b.specular) && a.exponent == b.exponent && a.alpha_x == b.alpha_x &&
+         a.alpha_y == b.alpha_y && a.ward_form == b.ward_form && a.distribution == b.distribution &&
+         a.fresnel == b.fresnel && a.eta == b.eta && a.merl_path == b.merl_path;
+}
+
+// Index of `m` in `materials`, appended when new.
+uint32_t material_index(std::vector<brdf::Material>& materials, const brdf::Material& m) {
+  for (std::size_t i = 0; i < materials.size(); ++i)
+    if (same_material(materials[i], m)) return static_cast<uint32_t>(i);
+  materials.push_back(m);
+  return static_cast<uint32_t>(materials.size() - 1);
+}
+
 struct GlossyJob {
   const scene::Scene& scene;
   const GlossyBakeOptions& o;
@@ -426,23 +446,17 @@ void glossy_scene_materials(const scene::Scene& scene, std::vector<brdf::Materia
       m.model = brdf::MaterialModel::kLambert;
       m.diffuse = {p.albedo.x, p.albedo.y, p.albedo.z};
     }
-    const auto index = static_cast<uint32_t>(materials.size());
-    materials.push_back(m);
+    const uint32_t index = material_index(materials, m);
     const std::size_t end = std::min<std::size_t>(scene.vertex_count(),
                                                   std::size_t(p.first_vertex) + p.vertex_count);
     for (std::size_t v = p.first_vertex; v < end; ++v) material_of_vertex[v] = index;
   }
-  bool extra = false;
   for (std::size_t v = 0; v < material_of_vertex.size(); ++v) {
     if (material_of_vertex[v] != none) continue;
-    if (!extra) {
-      brdf::Material m;
-      const glm::vec3 a = scene.albedo.empty() ? glm::vec3(scene::kDefaultAlbedo) : scene.albedo[v];
-      m.diffuse = {a.x, a.y, a.z};
-      materials.push_back(m);
-      extra = true;
-    }
-    material_of_vertex[v] = static_cast<uint32_t>(materials.size() - 1);
+    brdf::Material m;
+    const glm::vec3 a = scene.albedo.empty() ? glm::vec3(scene::kDefaultAlbedo) : scene.albedo[v];
+    m.diffuse = {a.x, a.y, a.z};
+    material_of_vertex[v] = material_index(materials, m);
   }
 }
 

@@ -36,7 +36,8 @@
 // Back faces occlude but reflect nothing (bake/src/hit_side.h, as the diffuse bake).
 // Channels: 1 for shadowed transfer (M carries no albedo); interreflected: 3 when some vertex
 // albedo or some material is coloured (MERL counts as coloured), else 1.
-// Materials: one per primitive — ScenePrimitive::brdf, or Lambert with the primitive's albedo.
+// Materials: ScenePrimitive::brdf, or Lambert with the primitive's albedo; equal materials are
+// stored once.
 // Determinism: vertices in blocks, each vertex from its own samples and the previous bounce's
 // matrices in a fixed order: bit-identical for any thread count.
 #pragma once
@@ -89,9 +90,9 @@ struct GlossyBakeResult {
   GlossyBakeStatistics stats;
 };
 
-// One material per primitive (ScenePrimitive::brdf or Lambert with its albedo) and each
-// vertex's index into them (vertices outside every primitive get a Lambert material of their
-// own albedo, appended last).
+// The materials of the primitives (ScenePrimitive::brdf or Lambert with its albedo; equal ones
+// once, in order of first use) and each vertex's index into them (a vertex outside every
+// primitive gets Lambert with its own albedo).
 void glossy_scene_materials(const scene::Scene& scene, std::vector<brdf::Material>& materials,
                             std::vector<uint32_t>& material_of_vertex);
 
