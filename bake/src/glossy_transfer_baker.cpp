@@ -122,8 +122,8 @@ void sample_direction(const GlossyJob& job, std::size_t v, uint64_t vertex_seed,
 constexpr int kLane = 8;
 int padded(int K) { return (K + kLane - 1) / kLane * kLane; }
 
-// out[i·Kp + j] += Σ_s a[s·Kp + i] · c[s·Kp + j] for s < count, j < Kp (a rank-`count` update in
-// float; Kp = padded(K), c's padding zero). Each 8-wide piece of a row is summed over the samples
+// out[i·Kp + j] = Σ_s a[s·Kp + i] · c[s·Kp + j] for s < count, j < Kp (a rank-`count` product in
+// float; Kp = padded(K), c's padding zero; out is overwritten, so it needs no clearing). Each 8-wide piece of a row is summed over the samples
 // in registers and stored once (summing into memory sample by sample stalls on store
 // forwarding: 37% of the pass in a profile). Cloned for AVX2 without FMA, so both clones round
 // identically (no fused multiply-add).
@@ -141,10 +141,7 @@ __attribute__((target_clones("avx2", "default"))) void rank_update(int K, int co
         std::memcpy(&cs, c + s * Kp + jb, sizeof cs);
         t += a[s * Kp + i] * cs;
       }
-      F8 r;
-      std::memcpy(&r, row + jb, sizeof r);
-      r += t;
-      std::memcpy(row + jb, &r, sizeof r);
+      std::memcpy(row + jb, &t, sizeof t);
     }
   }
 }
@@ -202,7 +199,6 @@ struct VertexSampler {
         }
       }
       if (visible == 0) continue;
-      std::fill(packet.begin(), packet.end(), 0.f);
       rank_update(K, visible, yl.data(), yg.data(), packet.data());
       add_block(K, packet.data(), 1.0, acc.data());
     }
@@ -247,12 +243,14 @@ void run_sampling_pass(GlossyJob& job) {
 struct BounceGatherer {
   const GlossyJob& job;
   const std::vector<float>& prev;  // V · C · K²
+  const std::vector<float>& exit;  // V · C · K: Σ_l z_l/π · row (l, 0) of prev (Lambert exit)
   std::vector<float> yl, r, rc, block;
   std::vector<double> acc;
 
-  BounceGatherer(const GlossyJob& j, const std::vector<float>& p)
+  BounceGatherer(const GlossyJob& j, const std::vector<float>& p, const std::vector<float>& e)
       : job(j),
         prev(p),
+        exit(e),
         yl(kPacketSize * std::size_t(padded(j.K)), 0.f),
         r(kPacketSize * std::size_t(j.C) * j.K),
         rc(kPacketSize * std::size_t(padded(j.K)), 0.f),
@@ -283,7 +281,6 @@ struct BounceGatherer {
         sh::evaluate(job.order, local.x, local.y, local.z, &yl[s * Kp]);
         radiance_row(h, world, &r[std::size_t(s) * C * K]);
       }
-      std::fill(block.begin(), block.end(), 0.f);
       for (int c = 0; c < C; ++c) {
         // Channel c of the rows: stride C·K between hits; gather them contiguous first.
         for (int s = 0; s < count; ++s)
@@ -305,16 +302,13 @@ void BounceGatherer::radiance_row(const GlossyHit& h, const glm::vec3& d, float*
   const uint32_t material = job.material_of_vertex[tri.x];
   const BrdfProjection& proj = *job.projections[material];
   if (proj.lambertian()) {
-    // ρ(hit)/π · Σ_l z_l · row (l, 0) of the interpolated M.
+    // ρ(hit) · Σ_a β_a · (Σ_l z_l/π · row (l, 0) of M_qa): the interpolated Lambert exit.
     const glm::vec3 rho = job.scene.albedo_at(h.triangle, h.u, h.v);
     for (int a = 0; a < 3; ++a)
       for (int c = 0; c < C; ++c) {
-        const float* m = matrix(tri[a], c);
-        for (int l = 0; l < job.order; ++l) {
-          const float k = beta[a] * rho[c] * job.zonal_over_pi[l];
-          const float* mrow = m + std::size_t(sh::index(l, 0)) * K;
-          for (int j = 0; j < K; ++j) row[c * K + j] += k * mrow[j];
-        }
+        const float k = beta[a] * rho[c];
+        const float* e = &exit[(std::size_t(tri[a]) * C + c) * K];
+        for (int j = 0; j < K; ++j) row[c * K + j] += k * e[j];
       }
     return;
   }
@@ -335,6 +329,22 @@ void BounceGatherer::radiance_row(const GlossyHit& h, const glm::vec3& d, float*
   }
 }
 
+// exit[(q·C + c)·K + j] = Σ_l z_l/π · M_q,c[(l, 0), j]: the Lambert exit transfer of every vertex
+// (before its albedo), read contiguously by the gather instead of n scattered rows of M_q.
+void lambert_exit(const GlossyJob& job, const std::vector<float>& M, std::vector<float>& exit) {
+  const int K = job.K;
+  tbb::parallel_for(std::size_t(0), job.V * job.C, [&](std::size_t qc) {
+    float* e = &exit[qc * K];
+    std::fill(e, e + K, 0.f);
+    const float* m = &M[qc * job.KK()];
+    for (int l = 0; l < job.order; ++l) {
+      const float z = job.zonal_over_pi[l];
+      const float* mrow = m + std::size_t(sh::index(l, 0)) * K;
+      for (int j = 0; j < K; ++j) e[j] += z * mrow[j];
+    }
+  });
+}
+
 // Jacobi bounces: data.matrices holds M⁽ᵏ⁾; returns when done.
 void run_bounces(GlossyJob& job, std::vector<float>& M) {
   const Clock::time_point t0 = Clock::now();
@@ -345,10 +355,12 @@ void run_bounces(GlossyJob& job, std::vector<float>& M) {
   const std::size_t per_vertex = std::size_t(job.C) * job.KK();
   if (job.progress) job.progress->start("glossy bounces", job.o.bounces < 0 ? 0 : max_bounces);
   job.st.converged = job.o.bounces >= 0;
+  std::vector<float> exit(job.V * job.C * std::size_t(job.K));
   for (int k = 0; k < max_bounces; ++k) {
+    lambert_exit(job, M, exit);
     std::vector<float> block_change(job.blocks(), 0.f);
     tbb::parallel_for(std::size_t(0), job.blocks(), [&](std::size_t blk) {
-      BounceGatherer g(job, M);
+      BounceGatherer g(job, M, exit);
       const std::size_t end = std::min(job.V, (blk + 1) * kBlock);
       for (std::size_t p = blk * kBlock; p < end; ++p) {
         g.gather(p, &next[p * per_vertex]);
