@@ -43,9 +43,9 @@ void check_glossy_request(const GlossyBakeRequest& r) {
 }
 
 void check_glossy_applicable(const CLI::App& cmd) {
-  for (const char* option : {"--ao", "--bent-normals", "--auto", "--env", "--cube",
-                             "--haar-threshold", "--haar-terms", "--haar-bits",
-                             "--haar-supersample", "--basis"})
+  for (const char* option :
+       {"--ao", "--bent-normals", "--auto", "--env", "--cube", "--haar-threshold", "--haar-terms",
+        "--haar-bits", "--haar-supersample", "--basis"})
     if (cmd.count(option) > 0)
       throw UsageError(std::string(option) + " does not apply to --glossy");
 }

@@ -32,7 +32,8 @@ void project_node(const brdf::Brdf& f, const brdf::Vec3& wo, int order, int n, S
   for (int a = 0; a < n; ++a) {
     for (int b = 0; b < n; ++b) {
       const double u1 = (a + rng.next()) / n, u2 = (b + rng.next()) / n;
-      const brdf::BrdfSample s = f.sample(wo, std::min(u1, 1.0 - 0x1p-53), std::min(u2, 1.0 - 0x1p-53));
+      const brdf::BrdfSample s =
+          f.sample(wo, std::min(u1, 1.0 - 0x1p-53), std::min(u2, 1.0 - 0x1p-53));
       if (!(s.pdf > 0.0) || s.wi.z <= 0.0) continue;
       const double w = s.wi.z / s.pdf;
       sh::evaluate(order, s.wi.x, s.wi.y, s.wi.z, y.data());
@@ -46,7 +47,9 @@ void project_node(const brdf::Brdf& f, const brdf::Vec3& wo, int order, int n, S
 }
 
 // θ of node j: (π/2) · j / (T − ½), from the normal (j = 0) to just above the horizon.
-double node_theta(int j) { return 0.5 * sh::kPi * j / (BrdfProjection::kThetaNodes - 0.5); }
+double node_theta(int j) {
+  return 0.5 * sh::kPi * j / (BrdfProjection::kThetaNodes - 0.5);
+}
 
 }  // namespace
 
@@ -60,7 +63,8 @@ BrdfProjection::BrdfProjection(const brdf::Material& material, int order, int sa
     for (int l = 0; l < order; ++l) {
       const double z = sh::clamped_cosine_zonal_coefficient(l) / sh::kPi;
       for (int c = 0; c < 3; ++c)
-        lambert_[c * K + static_cast<std::size_t>(sh::index(l, 0))] = static_cast<float>(rho[c] * z);
+        lambert_[c * K + static_cast<std::size_t>(sh::index(l, 0))] =
+            static_cast<float>(rho[c] * z);
     }
     return;
   }

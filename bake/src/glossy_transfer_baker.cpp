@@ -57,7 +57,9 @@ struct BlockHits {
   std::vector<uint32_t> counts;  // per vertex of the block
 };
 
-bool grey(const brdf::Rgb& c) { return c.r == c.g && c.g == c.b; }
+bool grey(const brdf::Rgb& c) {
+  return c.r == c.g && c.g == c.b;
+}
 
 bool same_rgb(const brdf::Rgb& a, const brdf::Rgb& b) {
   return a.r == b.r && a.g == b.g && a.b == b.b;
@@ -65,10 +67,10 @@ bool same_rgb(const brdf::Rgb& a, const brdf::Rgb& b) {
 
 // Every field equal (then one material serves both primitives).
 bool same_material(const brdf::Material& a, const brdf::Material& b) {
-  return a.model == b.model && same_rgb(a.diffuse, b.diffuse) &&
-         same_rgb(a.specular, b.specular) && a.exponent == b.exponent && a.alpha_x == b.alpha_x &&
-         a.alpha_y == b.alpha_y && a.ward_form == b.ward_form && a.distribution == b.distribution &&
-         a.fresnel == b.fresnel && a.eta == b.eta && a.merl_path == b.merl_path;
+  return a.model == b.model && same_rgb(a.diffuse, b.diffuse) && same_rgb(a.specular, b.specular) &&
+         a.exponent == b.exponent && a.alpha_x == b.alpha_x && a.alpha_y == b.alpha_y &&
+         a.ward_form == b.ward_form && a.distribution == b.distribution && a.fresnel == b.fresnel &&
+         a.eta == b.eta && a.merl_path == b.merl_path;
 }
 
 // Index of `m` in `materials`, appended when new.
@@ -120,16 +122,17 @@ void sample_direction(const GlossyJob& job, std::size_t v, uint64_t vertex_seed,
 // Rows of the per-packet float blocks are padded to a multiple of 8 floats so the rank update
 // runs on whole vectors.
 constexpr int kLane = 8;
-int padded(int K) { return (K + kLane - 1) / kLane * kLane; }
+int padded(int K) {
+  return (K + kLane - 1) / kLane * kLane;
+}
 
 // out[i·Kp + j] = Σ_s a[s·Kp + i] · c[s·Kp + j] for s < count, j < Kp (a rank-`count` product in
-// float; Kp = padded(K), c's padding zero; out is overwritten, so it needs no clearing). Each 8-wide piece of a row is summed over the samples
-// in registers and stored once (summing into memory sample by sample stalls on store
-// forwarding: 37% of the pass in a profile). Cloned for AVX2 without FMA, so both clones round
-// identically (no fused multiply-add).
-__attribute__((target_clones("avx2", "default"))) void rank_update(int K, int count,
-                                                                   const float* a, const float* c,
-                                                                   float* out) {
+// float; Kp = padded(K), c's padding zero; out is overwritten, so it needs no clearing). Each
+// 8-wide piece of a row is summed over the samples in registers and stored once (summing into
+// memory sample by sample stalls on store forwarding: 37% of the pass in a profile). Cloned for
+// AVX2 without FMA, so both clones round identically (no fused multiply-add).
+__attribute__((target_clones("avx2", "default"))) void rank_update(int K, int count, const float* a,
+                                                                   const float* c, float* out) {
   typedef float F8 __attribute__((vector_size(4 * kLane)));  // GCC vector: one ymm or two xmm
   const int Kp = padded(K);
   for (int i = 0; i < K; ++i) {
@@ -147,7 +150,8 @@ __attribute__((target_clones("avx2", "default"))) void rank_update(int K, int co
 }
 
 // acc[i·K + j] += scale · block[i·Kp + j] (double accumulator, unpadded).
-__attribute__((target_clones("avx2", "default"))) void add_block(int K, const float* block, double scale, double* acc) {
+__attribute__((target_clones("avx2", "default"))) void add_block(int K, const float* block,
+                                                                 double scale, double* acc) {
   const int Kp = padded(K);
   for (int i = 0; i < K; ++i)
     for (int j = 0; j < K; ++j) acc[i * K + j] += scale * block[i * Kp + j];
@@ -190,8 +194,8 @@ struct VertexSampler {
           ++visible;
         } else if (job.interreflect && hit[i].hit) {
           if (detail::ray_hits_front_side(job.scene, hit[i].triangle, dirs[i])) {
-            out.hits.push_back({static_cast<uint32_t>(first + i), hit[i].triangle, hit[i].u,
-                                hit[i].v});
+            out.hits.push_back(
+                {static_cast<uint32_t>(first + i), hit[i].triangle, hit[i].u, hit[i].v});
             ++kept;
           } else {
             ++back_hits;
@@ -230,8 +234,10 @@ void run_sampling_pass(GlossyJob& job) {
   for (std::size_t blk = 0; blk < job.blocks(); ++blk) {
     job.st.rays += rays[blk];
     job.st.back_face_hits += back[blk];
-    for (uint32_t c : job.block_hits[blk].counts) job.hit_offset.push_back(job.hit_offset.back() + c);
-    job.hits.insert(job.hits.end(), job.block_hits[blk].hits.begin(), job.block_hits[blk].hits.end());
+    for (uint32_t c : job.block_hits[blk].counts)
+      job.hit_offset.push_back(job.hit_offset.back() + c);
+    job.hits.insert(job.hits.end(), job.block_hits[blk].hits.begin(),
+                    job.block_hits[blk].hits.end());
     job.block_hits[blk] = BlockHits{};
   }
   job.st.hits = job.hits.size();
@@ -287,8 +293,7 @@ struct BounceGatherer {
           std::copy_n(&r[(std::size_t(s) * C + c) * K], K, &rc[std::size_t(s) * Kp]);
         rank_update(K, count, yl.data(), rc.data(), &block[std::size_t(c) * K * Kp]);
       }
-      for (int c = 0; c < C; ++c)
-        add_block(K, &block[std::size_t(c) * K * Kp], w, &acc[c * KK]);
+      for (int c = 0; c < C; ++c) add_block(K, &block[std::size_t(c) * K * Kp], w, &acc[c * KK]);
     }
     for (std::size_t e = 0; e < acc.size(); ++e) out[e] = static_cast<float>(acc[e]);
   }
@@ -490,8 +495,8 @@ void glossy_scene_materials(const scene::Scene& scene, std::vector<brdf::Materia
       m.diffuse = {p.albedo.x, p.albedo.y, p.albedo.z};
     }
     const uint32_t index = material_index(materials, m);
-    const std::size_t end = std::min<std::size_t>(scene.vertex_count(),
-                                                  std::size_t(p.first_vertex) + p.vertex_count);
+    const std::size_t end =
+        std::min<std::size_t>(scene.vertex_count(), std::size_t(p.first_vertex) + p.vertex_count);
     for (std::size_t v = p.first_vertex; v < end; ++v) material_of_vertex[v] = index;
   }
   for (std::size_t v = 0; v < material_of_vertex.size(); ++v) {
@@ -513,9 +518,26 @@ GlossyBakeResult bake_glossy_transfer(const scene::Scene& scene, const GlossyBak
                          static_cast<std::size_t>(o.threads));
   GlossyBakeResult result;
   GlossyBakeStatistics& st = result.stats;
-  GlossyJob job{scene, o, progress, scene.vertex_count(), o.order, o.order * o.order,
-                round_up_to_packet(o.samples), 1, o.bounces != 0, {}, {}, {}, {}, {}, {}, {},
-                {}, {}, {}, st};
+  GlossyJob job{scene,
+                o,
+                progress,
+                scene.vertex_count(),
+                o.order,
+                o.order * o.order,
+                round_up_to_packet(o.samples),
+                1,
+                o.bounces != 0,
+                {},
+                {},
+                {},
+                {},
+                {},
+                {},
+                {},
+                {},
+                {},
+                {},
+                st};
   glossy_scene_materials(scene, job.materials, job.material_of_vertex);
   job.C = glossy_channels(scene, job.materials, job.interreflect);
   const std::vector<glm::vec4> tangents = scene::tangent_frames(scene);

@@ -48,7 +48,7 @@ enum GSection : int {
   kGSectionCount
 };
 const char* const kSectionNames[kGSectionCount] = {
-    "primitive table", "positions", "normals",  "tangents",
+    "primitive table", "positions",          "normals",  "tangents",
     "materials",       "material of vertex", "matrices", "metadata"};
 
 Status fail(const std::string& name, const std::string& problem) {
@@ -73,8 +73,12 @@ void store_u64(unsigned char* p, uint64_t v) {
   store_u32(p, static_cast<uint32_t>(v));
   store_u32(p + 4, static_cast<uint32_t>(v >> 32));
 }
-void store_f64(unsigned char* p, double d) { std::memcpy(p, &d, 8); }
-uint64_t align_up(uint64_t x) { return (x + kAlign - 1) / kAlign * kAlign; }
+void store_f64(unsigned char* p, double d) {
+  std::memcpy(p, &d, 8);
+}
+uint64_t align_up(uint64_t x) {
+  return (x + kAlign - 1) / kAlign * kAlign;
+}
 
 uint32_t file_checksum(const unsigned char* bytes, std::size_t size) {
   static const unsigned char zeros[4] = {0, 0, 0, 0};
@@ -382,8 +386,8 @@ Status check_container(const unsigned char* b, std::size_t size, const std::stri
   }
   if (std::memcmp(b, "PRTG", 4) != 0) return fail(name, "not a glossy transfer file (bad magic)");
   if (load_u32(b + kOffVersion) != kGlossyFileVersion) {
-    return fail(name, "unsupported glossy format version " +
-                          std::to_string(load_u32(b + kOffVersion)));
+    return fail(name,
+                "unsupported glossy format version " + std::to_string(load_u32(b + kOffVersion)));
   }
   if (load_u32(b + kOffHeaderSize) != kGHeaderSize) return fail(name, "bad header size");
   const uint64_t file_size = load_u64(b + kOffFileSize);
@@ -450,13 +454,14 @@ Status check_sections(const std::string& name, const Header& h) {
                             std::to_string(expected[s]));
     }
     if (size[s] == 0) {
-      if (off[s] != 0) return fail(name, std::string("empty ") + kSectionNames[s] + " has an offset");
+      if (off[s] != 0)
+        return fail(name, std::string("empty ") + kSectionNames[s] + " has an offset");
       continue;
     }
     if (off[s] % kAlign != 0 || off[s] < kGHeaderSize || off[s] > h.layout.file_size ||
         size[s] > h.layout.file_size - off[s]) {
-      return fail(name, std::string(kSectionNames[s]) +
-                            " section lies outside the file or is misaligned");
+      return fail(
+          name, std::string(kSectionNames[s]) + " section lies outside the file or is misaligned");
     }
   }
   std::array<int, kGSectionCount> by_offset{};
@@ -465,7 +470,8 @@ Status check_sections(const std::string& name, const Header& h) {
   uint64_t previous_end = kGHeaderSize;
   for (int s : by_offset) {
     if (size[s] == 0) continue;
-    if (off[s] < previous_end) return fail(name, std::string(kSectionNames[s]) + " overlaps another");
+    if (off[s] < previous_end)
+      return fail(name, std::string(kSectionNames[s]) + " overlaps another");
     previous_end = off[s] + size[s];
   }
   if (h.primitive_count > size[kPrims] / kPrimitiveRecord) {
@@ -533,7 +539,8 @@ Status read_contents(const unsigned char* b, const std::string& name, const Head
   floats(kNrm, d.normals);
   floats(kTan, d.tangents);
   d.material_of_vertex.resize(static_cast<std::size_t>(h.v));
-  if (h.v != 0) std::memcpy(d.material_of_vertex.data(), b + h.layout.offsets[kMatOfVertex], 4 * h.v);
+  if (h.v != 0)
+    std::memcpy(d.material_of_vertex.data(), b + h.layout.offsets[kMatOfVertex], 4 * h.v);
   d.materials.resize(static_cast<std::size_t>(h.material_count));
   for (std::size_t i = 0; i < d.materials.size(); ++i) {
     Status s = load_material(b + h.layout.offsets[kMats], h.layout.sizes[kMats],

@@ -87,7 +87,8 @@ std::vector<double> lambert_row(const prt::GlossyTransferData& d, std::size_t v,
   for (int l = 0; l < n; ++l) {
     const double z = rho / kPi * prt::sh::clamped_cosine_zonal_coefficient(l);
     for (int j = 0; j < K; ++j)
-      t[j] += z * d.matrices[prt::glossy_matrix_index(v, c, prt::sh::index(l, 0), j, d.channels, K)];
+      t[j] +=
+          z * d.matrices[prt::glossy_matrix_index(v, c, prt::sh::index(l, 0), j, d.channels, K)];
   }
   return t;
 }
@@ -119,7 +120,8 @@ TEST_CASE("glossy bake: an unoccluded vertex's matrix is the SH rotation on the 
   prt::scene::Scene s = prt::scene::make_quad({0.f, 0.f, 0.f}, {1.f, 0.3f, 0.2f},
                                               {-0.2f, 0.5f, 1.f}, 1, 1, glm::vec3(0.5f));
   const glm::vec3 e = glm::normalize(glm::vec3(1.f, 0.3f, 0.2f));
-  s.tangents.assign(s.positions.size(), glm::vec4(e - glm::dot(e, s.normals[0]) * s.normals[0], -1.f));
+  s.tangents.assign(s.positions.size(),
+                    glm::vec4(e - glm::dot(e, s.normals[0]) * s.normals[0], -1.f));
   for (glm::vec4& t : s.tangents) t = glm::vec4(glm::normalize(glm::vec3(t)), -1.f);
   GlossyBakeOptions o;
   o.order = 4;
@@ -170,7 +172,8 @@ TEST_CASE("glossy bake: Lambert through the glossy path equals the shadowed diff
   for (std::size_t v = 0; v < s.positions.size(); ++v) {
     const auto t = lambert_row(glossy.data, v, 0, rho);
     double err = 0.0;
-    for (int j = 0; j < K; ++j) err = std::max(err, std::fabs(t[j] - diffuse.data.coefficients[v * K + j]));
+    for (int j = 0; j < K; ++j)
+      err = std::max(err, std::fabs(t[j] - diffuse.data.coefficients[v * K + j]));
     worst = std::max(worst, err);
     if (s.positions[v].y == 0.f && std::fabs(s.positions[v].x) > 1.5f)
       worst_open = std::max(worst_open, err);  // far from the box: nearly unoccluded
@@ -220,8 +223,8 @@ TEST_CASE("glossy bake: Lambert interreflection equals the diffuse interreflecte
   // checked against the interreflected part itself (3.8e-2), so a bounce that is missing, doubled
   // or gathered from the wrong rows fails.
   const double bound = rho / kPi * cosine_truncation(order) / (1.0 - rho) + 5e-3;
-  INFO("max |Lambert·M − T| = " << worst << " (bound " << bound << "), bounce part "
-                                << bounce_part << ", max |T| " << scale);
+  INFO("max |Lambert·M − T| = " << worst << " (bound " << bound << "), bounce part " << bounce_part
+                                << ", max |T| " << scale);
   CHECK(worst < bound);
   CHECK(worst < 0.25 * bounce_part);
 }

@@ -60,13 +60,15 @@ TEST_CASE("cli: prt bake --glossy refuses what does not apply; prt info refuses 
     CHECK(r.exit_code == 2);
     CHECK(line_count(r.err) == 1);
   }
-  RunResult wrong_ext = run(prt_cli() + " bake " + scene + " --glossy -o " + (dir / "x.prt").string());
+  RunResult wrong_ext =
+      run(prt_cli() + " bake " + scene + " --glossy -o " + (dir / "x.prt").string());
   CHECK(wrong_ext.exit_code == 2);
   CHECK(wrong_ext.err.find(".prtg") != std::string::npos);
   CHECK(files_in(dir).empty());
   // A good file, then cut short: refused with one line naming it.
-  REQUIRE(run(prt_cli() + " bake " + scene + " --glossy -o " + out + " --order 2 --samples 16 --quiet")
-              .exit_code == 0);
+  REQUIRE(
+      run(prt_cli() + " bake " + scene + " --glossy -o " + out + " --order 2 --samples 16 --quiet")
+          .exit_code == 0);
   const std::string bytes = slurp(out);
   const fs::path cut = dir / "cut.prtg";
   std::ofstream(cut, std::ios::binary).write(bytes.data(), std::streamsize(bytes.size() / 2));

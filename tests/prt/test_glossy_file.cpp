@@ -178,8 +178,8 @@ TEST_CASE("glossy file: truncated, corrupted and inconsistent files are refused"
     CHECK(m.find(needle) != std::string::npos);
   };
   // Every truncation is refused.
-  for (std::size_t cut : {std::size_t{0}, std::size_t{3}, std::size_t{100}, good.size() / 2,
-                          good.size() - 1}) {
+  for (std::size_t cut :
+       {std::size_t{0}, std::size_t{3}, std::size_t{100}, good.size() / 2, good.size() - 1}) {
     refused(std::vector<unsigned char>(good.begin(), good.begin() + cut), "truncated");
   }
   // Any flipped byte past the header is caught by the checksum.

@@ -60,8 +60,8 @@ struct GlossyBakeOptions {
   int bounces = 0;    // 0: shadowed; k > 0: k Jacobi bounces; −1: until converged
   double bounce_tolerance = 1e-4;
   uint64_t seed = 1;
-  int threads = 0;                  // 0 = all hardware threads
-  int projection_samples = 32;      // per dimension, per node of a BRDF's projection table
+  int threads = 0;              // 0 = all hardware threads
+  int projection_samples = 32;  // per dimension, per node of a BRDF's projection table
   prt::Precision precision = prt::Precision::F32;
 };
 
