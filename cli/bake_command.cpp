@@ -20,6 +20,7 @@
 #include "cli_parsing.h"
 #include "command_registry.h"
 #include "progress_reporter.h"
+#include "glossy_cli.h"
 #include "haar_cli.h"
 #include "output_safety.h"
 #include "prt/haar/cube_map.h"
@@ -46,6 +47,7 @@ struct BakeArguments {
   bool quiet = false;
   HaarBakeArguments haar;  // --basis haar and its options (haar_cli.h)
   bool automatic = false;  // --auto (bake/adaptive/adaptive_baker.h)
+  bool glossy = false;     // --glossy: transfer matrices (cli/glossy_cli.h)
   std::string env;         // --env: lighting that --auto chooses the SH order for
   bool tolerance_given = false, transfer_given = false;
 };
@@ -132,16 +134,6 @@ void check_values(const BakeArguments& a, const CLI::App& cmd) {
                      std::to_string(bake::kMaxHaarSupersample) + "]");
 }
 
-// The output can be written, and is none of the files the bake reads.
-void check_files(const BakeArguments& a) {
-  CommandFiles files;
-  files.add_scene(a.scene);
-  if (!a.env.empty()) files.add_environment(a.env);
-  files.add_output("-o", a.output);
-  files.check();
-  check_output_file("-o", a.output, {".prt"}, "a coefficient file");
-}
-
 // The loader's count of primitives that got the default albedo, said once (not with --quiet).
 void note_default_albedo(const scene::Scene& scene, bool quiet) {
   if (quiet || scene.default_albedo_primitives == 0) return;
@@ -150,6 +142,51 @@ void note_default_albedo(const scene::Scene& scene, bool quiet) {
                "that is not read): albedo %.2f grey (--albedo r,g,b overrides it)\n",
                scene.source_path.c_str(), scene.default_albedo_primitives,
                double(scene::kDefaultAlbedo));
+}
+
+// The output can be written, and is none of the files the bake reads.
+void check_files(const BakeArguments& a) {
+  CommandFiles files;
+  files.add_scene(a.scene);
+  if (!a.env.empty()) files.add_environment(a.env);
+  files.add_output("-o", a.output);
+  files.check();
+  if (a.glossy)
+    check_output_file("-o", a.output, {".prtg"}, "a glossy transfer file");
+  else
+    check_output_file("-o", a.output, {".prt"}, "a coefficient file");
+}
+
+// The scene as the bake reads it: --albedo applied, the default-albedo note.
+scene::Scene load_for_bake(const BakeArguments& args) {
+  scene::LoadOptions load;
+  if (!args.albedo.empty()) load.albedo_override = parse_albedo(args.albedo);
+  scene::Scene scene = scene::load_scene(args.scene, load);
+  if (args.albedo.empty()) note_default_albedo(scene, args.quiet);
+  return scene;
+}
+
+// `--glossy`: transfer matrices into a glossy transfer file (cli/glossy_cli.h).
+void run_glossy(const BakeArguments& args, const CLI::App& cmd) {
+  check_values(args, cmd);
+  check_glossy_applicable(cmd);
+  GlossyBakeRequest r;
+  r.scene = args.scene;
+  r.output = args.output;
+  if (args.transfer_given) r.transfer = args.transfer;
+  r.order = cmd.count("--order") > 0 ? args.order : 5;
+  r.samples = args.samples;
+  r.bounces = args.bounces;
+  r.bounces_given = cmd.count("--bounces") > 0;
+  r.tolerance = args.tolerance;
+  r.tolerance_given = args.tolerance_given;
+  r.seed = args.seed;
+  r.threads = args.threads;
+  r.precision = args.precision;
+  r.quiet = args.quiet;
+  check_glossy_request(r);  // before any file is read
+  check_files(args);
+  run_glossy_bake(load_for_bake(args), r);
 }
 
 // `--auto`: --tolerance (default 0.01) becomes the accuracy target; without --transfer the
@@ -189,6 +226,7 @@ void run_auto(const BakeArguments& args, const scene::Scene& scene, const bake::
 }
 
 void run(const BakeArguments& args, const CLI::App& cmd) {
+  if (args.glossy) return run_glossy(args, cmd);
   check_values(args, cmd);
   check_applicable(args, cmd, parse_kind(args.transfer));
   check_files(args);
@@ -204,10 +242,7 @@ void run(const BakeArguments& args, const CLI::App& cmd) {
   options.bent_normals = args.bent_normals;
   options.precision = args.precision == "f16" ? prt::Precision::F16 : prt::Precision::F32;
 
-  scene::LoadOptions load;
-  if (!args.albedo.empty()) load.albedo_override = parse_albedo(args.albedo);
-  const scene::Scene scene = scene::load_scene(args.scene, load);
-  if (args.albedo.empty()) note_default_albedo(scene, args.quiet);
+  const scene::Scene scene = load_for_bake(args);
   if (args.haar.basis == "haar") {
     run_haar_bake(scene, args.output, options.kind, args.haar, args.seed, args.threads,
                   args.bounces, args.tolerance, args.quiet);
@@ -281,6 +316,8 @@ void register_bake(CLI::App& app) {
   cmd->add_flag("--auto", args->automatic,
                 "Analyse the scene and bake only what it needs for --tolerance (default 0.01)");
   cmd->add_option("--env", args->env, "--auto: lighting whose band energy picks the SH order");
+  cmd->add_flag("--glossy", args->glossy,
+                "Bake glossy transfer matrices (order 1..10, default 5) into a .prtg file");
   cmd->callback([args, cmd] {
     args->tolerance_given = cmd->count("--tolerance") > 0;
     args->transfer_given = cmd->count("--transfer") > 0;

@@ -1,5 +1,5 @@
 // `prt info FILE.prt [--json | --csv]`: describe a coefficient file of any kind
-// (prt/coefficient_file.h).
+// (prt/coefficient_file.h), or a glossy transfer file (cli/glossy_cli.h: matrices, materials).
 //   default  the header (kind, order or cube size, channels, precision, vertices, primitives,
 //            fingerprint, sections) and the metadata JSON, as text;
 //   --json   the same as one JSON object;
@@ -18,6 +18,7 @@
 #include <nlohmann/json.hpp>
 
 #include "command_registry.h"
+#include "glossy_cli.h"
 #include "output_safety.h"
 #include "prt/coefficient_file.h"
 #include "prt/haar/transform.h"
@@ -182,6 +183,7 @@ void run(const InfoArguments& args) {
   CommandFiles files;  // no files are written: only stdout must not be the input
   files.add_input("coefficient file", args.file);
   files.check();
+  if (is_glossy_file(args.file)) return describe_glossy_file(args.file, args.json, args.csv);
   prt::Result<prt::CoefficientFile> read = prt::read_coefficient_file(args.file);
   if (!read.ok()) throw CommandError(read.status().message());
   const prt::CoefficientFile& f = read.value();
