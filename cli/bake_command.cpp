@@ -79,7 +79,8 @@ AlbedoChoice parse_albedo_options(const std::vector<std::string>& texts) {
   AlbedoChoice choice;
   for (const std::string& text : texts) {
     if (text.find('=') == std::string::npos) {
-      if (choice.every) throw UsageError("--albedo " + text + ": only one value for every material");
+      if (choice.every)
+        throw UsageError("--albedo " + text + ": only one value for every material");
       choice.every = parse_albedo(text);
       continue;
     }

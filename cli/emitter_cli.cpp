@@ -40,8 +40,9 @@ void add_emitter_relight_options(CLI::App* cmd, EmitterRelightArguments* a) {
 
 void apply_emitter_options(const EmitterRelightArguments& a, relight::RelightRequest* request) {
   if (!a.emitter.empty() && a.emitters.empty())
-    throw UsageError("--emitter applies to emitter responses: give --emitters RESPONSES.prte "
-                     "(or relight a responses file alone)");
+    throw UsageError(
+        "--emitter applies to emitter responses: give --emitters RESPONSES.prte "
+        "(or relight a responses file alone)");
   if (a.max_edge && !(*a.max_edge > 0.0 && std::isfinite(*a.max_edge)))
     throw UsageError("--max-edge " + std::to_string(*a.max_edge) +
                      ": must be a finite positive length");
@@ -54,8 +55,8 @@ bool relight_if_emitter_responses(const relight::RelightRequest& request,
                                   const EmitterRelightArguments& a, bool quiet) {
   if (!prt::is_emitter_responses_file(request.transfer_path)) return false;
   if (!a.emitters.empty())
-    throw UsageError("--emitters adds responses to a coefficient file; " +
-                     request.transfer_path + " is itself a responses file");
+    throw UsageError("--emitters adds responses to a coefficient file; " + request.transfer_path +
+                     " is itself a responses file");
   if (a.max_edge)
     throw UsageError("--max-edge does not apply to a responses file (its mesh is stored)");
   const relight::RelightSummary s = relight::run_emitter_relight(request, parse_colors(a));

@@ -108,8 +108,9 @@ void run(const RadiosityArguments& args) {
       solution.relative_unshot, share(e.absorbed), share(e.escaped), e.balance_error(),
       double(s.exposure_ev));
   if (!s.emitter_reports.empty()) {
-    std::printf("per-emitter responses: %zu emitters solved in %.2f s on the same form factors:",
-                s.emitter_reports.size(), s.per_emitter_seconds);
+    std::printf("per-emitter responses: %zu emitter%s solved in %.2f s on the same form factors:",
+                s.emitter_reports.size(), s.emitter_reports.size() == 1 ? "" : "s",
+                s.per_emitter_seconds);
     for (const radiosity::EmitterSolveReport& e : s.emitter_reports)
       std::printf(" %s (%zu sweeps, unshot %.2g%s)", e.name.c_str(), e.iterations,
                   e.relative_unshot, e.converged ? "" : ", NOT converged");

@@ -1,5 +1,6 @@
 // `prt relight SCENE FILE.prt ENV -o OUT.(exr|png|hdr) [...]`: shade a baked scene under an
-// environment map and render it (relight/relight_pipeline.h does the work).
+// environment map and render it (relight/relight_pipeline.h does the work); also
+// `prt relight RESPONSES.prte -o OUT` and `--emitters RESPONSES.prte` (emitter_cli.h).
 #include <cctype>
 #include <cmath>
 #include <cstdio>
@@ -41,7 +42,7 @@ struct RelightArguments {
   bool vertex_colors_tonemap = false;
   int turntable = 0;
   bool quiet = false;
-  HaarRelightArguments haar;  // --terms, --approx for Haar files (haar_cli.h)
+  HaarRelightArguments haar;         // --terms, --approx for Haar files (haar_cli.h)
   EmitterRelightArguments emitters;  // --emitter, --emitters, --max-edge (emitter_cli.h)
 };
 
@@ -148,10 +149,11 @@ void check_responses_alone(const RelightArguments& args, const CLI::App& cmd) {
   if (!args.transfer.empty() || !args.environment.empty())
     throw UsageError(args.scene + " holds emitter responses: give it alone (prt relight " +
                      "RESPONSES.prte -o OUT), or add it to an SH relight with --emitters");
-  for (const char* option : {"--layout", "--rotate", "--window", "--window-strength",
-                             "--turntable", "--terms", "--approx"})
+  for (const char* option : {"--layout", "--rotate", "--window", "--window-strength", "--turntable",
+                             "--terms", "--approx"})
     if (cmd.count(option) > 0)
-      throw UsageError(std::string(option) + " does not apply to emitter responses (no "
+      throw UsageError(std::string(option) +
+                       " does not apply to emitter responses (no "
                        "environment lighting)");
 }
 

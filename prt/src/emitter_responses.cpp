@@ -30,7 +30,9 @@ Status fail(const std::string& name, const std::string& problem) {
   return Status::Error(name + ": " + problem);
 }
 
-uint64_t pad4(uint64_t n) { return (n + 3) & ~uint64_t{3}; }
+uint64_t pad4(uint64_t n) {
+  return (n + 3) & ~uint64_t{3};
+}
 
 // Total file size for the counts (operands bounded by the caller: no overflow).
 uint64_t layout_size(uint64_t e, uint64_t v, uint64_t t, uint64_t name_bytes) {
@@ -49,7 +51,9 @@ void store(unsigned char* p, T value) {
   std::memcpy(p, &value, sizeof value);
 }
 
-bool finite_non_negative(float x) { return std::isfinite(x) && x >= 0.f; }
+bool finite_non_negative(float x) {
+  return std::isfinite(x) && x >= 0.f;
+}
 
 Status check_values(const EmitterResponses& d, const std::string& name) {
   const std::size_t v_count = d.vertex_count();
@@ -79,8 +83,8 @@ Status validate_emitter_responses(const EmitterResponses& d, const std::string& 
   std::set<std::string> names;
   for (const EmitterInfo& e : d.emitters) {
     if (e.name.empty() || e.name.size() > kMaxEmitterNameBytes)
-      return fail(name, "emitter name of " + std::to_string(e.name.size()) +
-                            " bytes (must be 1.." + std::to_string(kMaxEmitterNameBytes) + ")");
+      return fail(name, "emitter name of " + std::to_string(e.name.size()) + " bytes (must be 1.." +
+                            std::to_string(kMaxEmitterNameBytes) + ")");
     if (!names.insert(e.name).second) return fail(name, "emitter " + e.name + " appears twice");
     for (float c : e.emission)
       if (!finite_non_negative(c))
@@ -258,7 +262,8 @@ Result<std::vector<float>> emitter_colors(const EmitterResponses& data,
     while (e < data.emitters.size() && data.emitters[e].name != color.name) ++e;
     if (e == data.emitters.size()) {
       std::string known;
-      for (const EmitterInfo& info : data.emitters) known += (known.empty() ? "" : ", ") + info.name;
+      for (const EmitterInfo& info : data.emitters)
+        known += (known.empty() ? "" : ", ") + info.name;
       return Status::Error("emitter " + color.name + ": no such emitter (emitters: " + known + ")");
     }
     for (int c = 0; c < 3; ++c) {

@@ -36,8 +36,8 @@ scene::Scene scene_from_responses(const prt::EmitterResponses& data, const std::
     }
   s.triangles.resize(data.triangle_count());
   for (std::size_t t = 0; t < s.triangles.size(); ++t)
-    s.triangles[t] = glm::uvec3(data.triangles[3 * t], data.triangles[3 * t + 1],
-                                data.triangles[3 * t + 2]);
+    s.triangles[t] =
+        glm::uvec3(data.triangles[3 * t], data.triangles[3 * t + 1], data.triangles[3 * t + 2]);
   scene::ScenePrimitive p;
   p.name = "responses";
   p.vertex_count = static_cast<uint32_t>(v_count);
@@ -53,8 +53,8 @@ void check_responses_match_scene(const prt::EmitterResponses& data, const std::s
   const std::string head = path + ": was not computed for " +
                            (scene.source_path.empty() ? "this scene" : scene.source_path) + ": ";
   if (data.vertex_count() != scene.vertex_count())
-    throw std::runtime_error(head + std::to_string(data.vertex_count()) + " vertices, the scene has " +
-                             std::to_string(scene.vertex_count()) +
+    throw std::runtime_error(head + std::to_string(data.vertex_count()) +
+                             " vertices, the scene has " + std::to_string(scene.vertex_count()) +
                              " (subdivide it alike: the same --max-edge as prt radiosity)");
   std::vector<float> xyz(3 * scene.vertex_count());
   for (std::size_t v = 0; v < scene.vertex_count(); ++v)
@@ -77,20 +77,23 @@ RelightSummary run_emitter_relight(const RelightRequest& request,
                                    const std::vector<prt::EmitterColor>& colors) {
   check_relight_outputs(request);
   if (request.turntable_frames > 0)
-    throw std::invalid_argument("--turntable does not apply to emitter responses (no lighting "
-                                "to turn)");
+    throw std::invalid_argument(
+        "--turntable does not apply to emitter responses (no lighting "
+        "to turn)");
   const prt::EmitterResponses data = load_emitter_responses(request.transfer_path);
-  const std::vector<float> radiance = emitter_radiance(data, request.transfer_path, colors);
+  emitter_radiance(data, request.transfer_path, colors);  // names and values checked first
   const scene::Scene scene = scene_from_responses(data, request.transfer_path);
   RelightSummary summary;
   summary.vertex_count = scene.vertex_count();
-  summary.window_note = std::to_string(data.emitter_count()) + " emitters";
+  summary.window_note =
+      std::to_string(data.emitter_count()) + (data.emitter_count() == 1 ? " emitter" : " emitters");
   RelightRequest frames = request;
   frames.render.multiply_albedo = false;  // the responses are exit radiance
   const sh::EnvMap no_background;         // misses stay black
   detail::render_relight_frames(
       frames, scene, no_background, [](const std::array<double, 9>&) { return 0; },
-      [&](int) { return radiance; }, &summary);
+      [&](int) { return emitter_radiance(data, request.transfer_path, colors); },  // timed
+      &summary);
   return summary;
 }
 

@@ -5,8 +5,8 @@
 #include <filesystem>
 #include <stdexcept>
 
-#include "radiosity/patches.h"
 #include "prt/emitter_responses.h"
+#include "radiosity/patches.h"
 #include "relight/camera.h"
 #include "relight/relight_pipeline.h"
 #include "scene/glb_writer.h"
@@ -99,8 +99,8 @@ void solve(const RadiosityRequest& r, const scene::Scene& scene,
   summary->solve_seconds = since(t);
   if (!r.per_emitter_path.empty()) {  // the same form factors, one solve per emitter
     t = Clock::now();
-    const prt::EmitterResponses responses = radiosity::solve_emitter_responses(
-        scene, patches, f, r.solve, &summary->emitter_reports);
+    const prt::EmitterResponses responses =
+        radiosity::solve_emitter_responses(scene, patches, f, r.solve, &summary->emitter_reports);
     summary->per_emitter_seconds = since(t);
     const prt::Status written = prt::write_emitter_responses(r.per_emitter_path, responses);
     if (!written.ok()) throw std::runtime_error(written.message());

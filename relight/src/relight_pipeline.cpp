@@ -260,7 +260,8 @@ RelightSummary run_relight(const RelightRequest& request) {
   detail::render_relight_frames(
       frames, scene, env, [&](const std::array<double, 9>& m) { return rotate_lighting(base, m); },
       [&](const prt::ShLighting& lighting) {
-        std::vector<float> radiance = shade_all_vertices(*relighter, lighting, scene.vertex_count());
+        std::vector<float> radiance =
+            shade_all_vertices(*relighter, lighting, scene.vertex_count());
         for (std::size_t i = 0; i < emitted.size(); ++i) radiance[i] += emitted[i];
         return radiance;
       },

@@ -51,7 +51,8 @@ void reseal(std::vector<unsigned char>& b) {
 }
 
 std::string refusal(const std::vector<unsigned char>& b) {
-  const prt::Result<prt::EmitterResponses> r = prt::decode_emitter_responses(b.data(), b.size(), "f.prte");
+  const prt::Result<prt::EmitterResponses> r =
+      prt::decode_emitter_responses(b.data(), b.size(), "f.prte");
   REQUIRE_FALSE(r.ok());
   const std::string m = r.status().message();
   CHECK(m.rfind("f.prte: ", 0) == 0);
@@ -128,8 +129,8 @@ TEST_CASE("emitter responses: truncated, corrupt and inconsistent files are refu
   // emission, a triangle index out of range, a wrong count.
   const std::size_t responses_at = good.size() - 12 * 8, emission_at = 64 + 16 + 4;
   const std::size_t triangles_at = responses_at - 24;
-  for (float value : {-1.f, std::numeric_limits<float>::quiet_NaN(),
-                      std::numeric_limits<float>::infinity()}) {
+  for (float value :
+       {-1.f, std::numeric_limits<float>::quiet_NaN(), std::numeric_limits<float>::infinity()}) {
     std::vector<unsigned char> bad = good;
     std::memcpy(bad.data() + responses_at + 4 * 13, &value, 4);
     reseal(bad);
@@ -186,7 +187,8 @@ TEST_CASE("recombination: L_v = sum_e c_e * R_e,v, named colours replace stored 
   const auto stored = prt::emitter_colors(d, {});
   REQUIRE(stored.ok());
   CHECK(*stored == std::vector<float>{5, 5, 5, 0, 1, 2.5f});
-  const auto recoloured = prt::emitter_colors(d, {{"window-panel", {2, 0, 1}}, {"lamp", {3, 3, 3}}});
+  const auto recoloured =
+      prt::emitter_colors(d, {{"window-panel", {2, 0, 1}}, {"lamp", {3, 3, 3}}});
   REQUIRE(recoloured.ok());
   std::vector<float> out(12, 7.f);
   REQUIRE(prt::recombine_emitters(d, *recoloured, out.data()).ok());
@@ -218,8 +220,8 @@ TEST_CASE("recombination refuses unknown names and negative, NaN or infinite col
   REQUIRE_FALSE(unknown.ok());
   CHECK(unknown.status().message().find("sun") != std::string::npos);
   CHECK(unknown.status().message().find("lamp, window-panel") != std::string::npos);
-  for (float bad : {-1.f, std::numeric_limits<float>::quiet_NaN(),
-                    std::numeric_limits<float>::infinity()}) {
+  for (float bad :
+       {-1.f, std::numeric_limits<float>::quiet_NaN(), std::numeric_limits<float>::infinity()}) {
     CHECK_FALSE(prt::emitter_colors(d, {{"lamp", {1, bad, 1}}}).ok());
     std::vector<float> colors = {1, 1, 1, 1, 1, bad}, out(12);
     CHECK_FALSE(prt::recombine_emitters(d, colors, out.data()).ok());

@@ -97,7 +97,9 @@ double relative_difference(const std::vector<double>& a, const std::vector<doubl
   return worst / scale;
 }
 
-std::size_t lines(const std::string& text) { return std::size_t(std::count(text.begin(), text.end(), '\n')); }
+std::size_t lines(const std::string& text) {
+  return std::size_t(std::count(text.begin(), text.end(), '\n'));
+}
 
 void check_refused(const fs::path& dir, const std::string& args, const std::string& expected) {
   const RunResult r = prt_run(dir, args);
@@ -118,8 +120,9 @@ TEST_CASE("prt relight of emitter responses: stored colours reproduce the solve,
   const fs::path dir = scratch("responses");
   const std::string room = write_room(dir).string();
   const std::string d = dir.string() + "/";
-  RunResult r = prt_run(dir, "radiosity " + room + " --max-edge 0.25 --tolerance 1e-9 --per-emitter " +
-                                 d + "room.prte --csv " + d + "plain.csv");
+  RunResult r =
+      prt_run(dir, "radiosity " + room + " --max-edge 0.25 --tolerance 1e-9 --per-emitter " + d +
+                       "room.prte --csv " + d + "plain.csv");
   INFO(r.err);
   REQUIRE(r.exit_code == 0);
   CHECK(r.out.find("2 emitters") != std::string::npos);
@@ -131,8 +134,9 @@ TEST_CASE("prt relight of emitter responses: stored colours reproduce the solve,
 
   REQUIRE(prt_run(dir, relight + " --emitter lamp=10 --csv " + d + "double.csv").exit_code == 0);
   REQUIRE(prt_run(dir, relight + " --emitter panel=0 --csv " + d + "lamp.csv").exit_code == 0);
-  REQUIRE(prt_run(dir, relight + " --emitter lamp=0 --emitter panel=1,2,4 --csv " + d +
-                           "panel2.csv").exit_code == 0);
+  REQUIRE(
+      prt_run(dir, relight + " --emitter lamp=0 --emitter panel=1,2,4 --csv " + d + "panel2.csv")
+          .exit_code == 0);
   REQUIRE(prt_run(dir, relight + " --emitter lamp=0 --csv " + d + "panel.csv").exit_code == 0);
   const std::vector<double> stored = csv_rgb(d + "stored.csv"), twice = csv_rgb(d + "double.csv"),
                             lamp = csv_rgb(d + "lamp.csv"), panel = csv_rgb(d + "panel.csv"),
@@ -145,7 +149,7 @@ TEST_CASE("prt relight of emitter responses: stored colours reproduce the solve,
   CHECK(relative_difference(twice, expected) < 1e-6);
   CHECK(relative_difference(panel2, doubled_panel) < 1e-6);
   CHECK(relative_difference(twice, stored) > 0.1);  // and the change is not negligible
-  for (std::size_t i = 0; i < stored.size(); ++i)  // stored = lamp alone + panel alone
+  for (std::size_t i = 0; i < stored.size(); ++i)   // stored = lamp alone + panel alone
     CHECK(stored[i] == Approx(lamp[i] + panel[i]).epsilon(1e-5).margin(1e-7));
 
   r = prt_run(dir, "info " + d + "room.prte");
@@ -186,8 +190,8 @@ TEST_CASE("environment + emitters: one relight equals the sum of the two separat
   REQUIRE(prt_run(dir, "radiosity " + room + " --max-edge 0.25 --per-emitter " + d + "room.prte")
               .exit_code == 0);
   REQUIRE(prt_run(dir, "make-sky -o " + d + "sky.hdr --width 64 --height 32").exit_code == 0);
-  RunResult r = prt_run(dir, "bake " + room + " --max-edge 0.25 --samples 64 -o " + d + "room.prt" +
-                                 " --quiet");
+  RunResult r = prt_run(
+      dir, "bake " + room + " --max-edge 0.25 --samples 64 -o " + d + "room.prt" + " --quiet");
   INFO(r.err);
   REQUIRE(r.exit_code == 0);
   const std::string sh = "relight " + room + " " + d + "room.prt " + d + "sky.hdr --max-edge 0.25";
@@ -209,7 +213,8 @@ TEST_CASE("environment + emitters: one relight equals the sum of the two separat
   CHECK(relative_difference(sum, em) > 0.05);        // and so does the sky
 
   // The coefficient file of the unsubdivided scene does not match the responses.
-  REQUIRE(prt_run(dir, "bake " + room + " --samples 16 -o " + d + "coarse.prt --quiet").exit_code == 0);
+  REQUIRE(prt_run(dir, "bake " + room + " --samples 16 -o " + d + "coarse.prt --quiet").exit_code ==
+          0);
   check_refused(dir,
                 "relight " + room + " " + d + "coarse.prt " + d + "sky.hdr --emitters " + d +
                     "room.prte -o " + d + "refused.exr --csv " + d + "refused.csv" + kSmall,

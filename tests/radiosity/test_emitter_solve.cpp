@@ -43,20 +43,22 @@ prt::scene::Scene two_emitter_room() {
       s, make_quad({0.35f, 0.9f, 0.35f}, {0.3f, 0, 0}, {0, 0, 0.3f}, 2, 2, glm::vec3(0.5f), "lamp"),
       "lamp", glm::vec3(10.f));
   prt::test::append(
-      s, make_quad({0.1f, 0.05f, 0.99f}, {0, 0.2f, 0}, {0.3f, 0, 0}, 1, 1, glm::vec3(0.3f), "panel"),
+      s,
+      make_quad({0.1f, 0.05f, 0.99f}, {0, 0.2f, 0}, {0.3f, 0, 0}, 1, 1, glm::vec3(0.3f), "panel"),
       "panel", {1.f, 2.f, 4.f});
   return s;
 }
 
 // Direct solve with every patch of material `m` emitting `emission[m]`, as vertex radiance.
 std::vector<float> direct(const prt::scene::Scene& scene, const std::vector<Patch>& patches,
-                          const FormFactorMatrix& f, const SolveOptions& so,
-                          const glm::vec3& lamp, const glm::vec3& panel) {
+                          const FormFactorMatrix& f, const SolveOptions& so, const glm::vec3& lamp,
+                          const glm::vec3& panel) {
   std::vector<Patch> lit = patches;
   for (const prt::scene::ScenePrimitive& p : scene.primitives)
     for (uint32_t k = 0; k < p.triangle_count; ++k)
-      lit[p.first_triangle + k].emission =
-          glm::dvec3(p.material == "lamp" ? lamp : p.material == "panel" ? panel : glm::vec3(0.f));
+      lit[p.first_triangle + k].emission = glm::dvec3(p.material == "lamp"    ? lamp
+                                                      : p.material == "panel" ? panel
+                                                                              : glm::vec3(0.f));
   const Solution s = solve_matrix(lit, f, so);
   REQUIRE(s.converged);
   return vertex_radiance(scene, lit, s.radiance);
@@ -101,8 +103,9 @@ TEST_CASE("per-emitter responses recombined with any colours equal a direct solv
   CHECK(relative_difference(recombined, plain_vertex) < 1e-5);
 
   // Arbitrary colours, including a dark emitter and unequal channels.
-  const std::vector<std::pair<glm::vec3, glm::vec3>> cases = {
-      {{3.f, 0.5f, 7.f}, {0.2f, 4.f, 1.f}}, {{0.f, 0.f, 0.f}, {5.f, 5.f, 0.f}}, {{1.f, 2.f, 3.f}, {0.f, 0.f, 0.f}}};
+  const std::vector<std::pair<glm::vec3, glm::vec3>> cases = {{{3.f, 0.5f, 7.f}, {0.2f, 4.f, 1.f}},
+                                                              {{0.f, 0.f, 0.f}, {5.f, 5.f, 0.f}},
+                                                              {{1.f, 2.f, 3.f}, {0.f, 0.f, 0.f}}};
   for (const auto& [lamp, panel] : cases) {
     const std::vector<prt::EmitterColor> colors = {{"lamp", {lamp.x, lamp.y, lamp.z}},
                                                    {"panel", {panel.x, panel.y, panel.z}}};
@@ -124,7 +127,8 @@ TEST_CASE("emitters are grouped by material; one material emitting unevenly is r
           "[radiosity][emitters]") {
   prt::scene::Scene s = two_emitter_room();
   prt::test::append(
-      s, make_quad({0.6f, 0.05f, 0.99f}, {0, 0.2f, 0}, {0.3f, 0, 0}, 1, 1, glm::vec3(0.3f), "panel2"),
+      s,
+      make_quad({0.6f, 0.05f, 0.99f}, {0, 0.2f, 0}, {0.3f, 0, 0}, 1, 1, glm::vec3(0.3f), "panel2"),
       "panel", {1.f, 2.f, 4.f});
   const std::vector<EmitterGroup> groups = emitter_groups(s);
   REQUIRE(groups.size() == 2);

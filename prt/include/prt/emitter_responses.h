@@ -35,7 +35,7 @@ inline constexpr uint32_t kMaxEmitterNameBytes = 1024;
 inline constexpr uint64_t kMaxResponseVertices = 0xffffffffull;  // 2^32 − 1
 
 struct EmitterInfo {
-  std::string name;                       // the material's name (UTF-8, 1..1024 bytes, unique)
+  std::string name;                        // the material's name (UTF-8, 1..1024 bytes, unique)
   std::array<float, 3> emission{0, 0, 0};  // its original emission (exit radiance, linear RGB)
 };
 

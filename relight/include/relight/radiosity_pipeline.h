@@ -46,8 +46,8 @@ struct RadiositySummary {
   radiosity::Solution solution;  // radiance vectors emptied; history and account kept
   double escape_probe = -1;      // escape fraction measured for albedo-1 scenes (else −1)
   float exposure_ev = 0;
-  double per_emitter_seconds = 0;                                 // the per-emitter solves
-  std::vector<radiosity::EmitterSolveReport> emitter_reports;     // one per emitter
+  double per_emitter_seconds = 0;                              // the per-emitter solves
+  std::vector<radiosity::EmitterSolveReport> emitter_reports;  // one per emitter
   std::vector<std::string> files_written;
 };
 
