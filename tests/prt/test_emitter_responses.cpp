@@ -181,8 +181,10 @@ TEST_CASE("emitter responses: the writer refuses what a reader would refuse",
   CHECK_FALSE(fs::exists(path));
 }
 
-TEST_CASE("recombination: L_v = sum_e c_e * R_e,v, named colours replace stored emission",
-          "[prt][emitter-responses]") {
+TEST_CASE(
+    "recombination sums colour times response per emitter and named colours replace stored "
+    "emission",
+    "[prt][emitter-responses]") {
   const prt::EmitterResponses d = small_responses();
   const auto stored = prt::emitter_colors(d, {});
   REQUIRE(stored.ok());

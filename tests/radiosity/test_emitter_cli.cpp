@@ -224,3 +224,45 @@ TEST_CASE("environment + emitters: one relight equals the sum of the two separat
                     d + "refused.exr" + kSmall,
                 "--emitters");
 }
+
+TEST_CASE("prt bake --albedo MATERIAL=value sets one material's albedo and refuses bad ones",
+          "[radiosity][emitters][cli]") {
+  const fs::path dir = scratch("bake_albedo");
+  const std::string room = write_room(dir).string();
+  const std::string d = dir.string() + "/";
+  REQUIRE(prt_run(dir, "make-sky -o " + d + "sky.hdr --width 64 --height 32").exit_code == 0);
+  const std::string bake = "bake " + room + " --transfer unshadowed --samples 16 --quiet -o ";
+  REQUIRE(prt_run(dir, bake + d + "kd.prt").exit_code == 0);
+  REQUIRE(prt_run(dir, bake + d + "white.prt --albedo white=0.2").exit_code == 0);
+  const auto relight = [&](const std::string& file) {
+    REQUIRE(prt_run(dir, "relight " + room + " " + d + file + ".prt " + d + "sky.hdr -o " + d +
+                             file + ".exr --csv " + d + file + ".csv" + kSmall)
+                .exit_code == 0);
+    return csv_rgb(d + file + ".csv");
+  };
+  const std::vector<double> kd = relight("kd"), white = relight("white");
+  REQUIRE(kd.size() == white.size());
+  // Unshadowed transfer is albedo/π × the visible lighting: the white walls' vertices scale by
+  // 0.2 / Kd per channel (Kd 0.7 0.6 0.5); the lamp's and panel's vertices keep theirs.
+  std::size_t scaled = 0, kept = 0;
+  for (std::size_t v = 0; v + 2 < kd.size(); v += 3) {
+    if (kd[v] <= 0) continue;
+    const double r = white[v] / kd[v], g = white[v + 1] / kd[v + 1], b = white[v + 2] / kd[v + 2];
+    if (std::abs(r - 0.2 / 0.7) < 1e-4 && std::abs(g - 0.2 / 0.6) < 1e-4 &&
+        std::abs(b - 0.2 / 0.5) < 1e-4)
+      ++scaled;
+    else if (std::abs(r - 1) < 1e-6 && std::abs(g - 1) < 1e-6 && std::abs(b - 1) < 1e-6)
+      ++kept;
+  }
+  CHECK(scaled >= 8);  // the walls' eight corners
+  CHECK(kept == 8);    // the lamp's and the panel's corners
+  CHECK(scaled + kept == kd.size() / 3);
+  for (const char* bad :
+       {" --albedo nosuch=0.5", " --albedo white=1", " --albedo white=0.5,x,1", " --max-edge 0"}) {
+    const RunResult r = prt_run(dir, bake + d + "refused.prt" + bad);
+    INFO(bad << ": " << r.err);
+    CHECK(r.exit_code != 0);
+    CHECK(lines(r.err) == 1);
+    CHECK_FALSE(fs::exists(d + "refused.prt"));
+  }
+}

@@ -123,7 +123,7 @@ TEST_CASE("per-emitter responses recombined with any colours equal a direct solv
   CHECK(differ > 0.01);
 }
 
-TEST_CASE("emitters are grouped by material; one material emitting unevenly is refused",
+TEST_CASE("emitters are grouped by material and a material emitting unevenly is refused",
           "[radiosity][emitters]") {
   prt::scene::Scene s = two_emitter_room();
   prt::test::append(
