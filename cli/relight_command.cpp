@@ -163,6 +163,10 @@ void run(const RelightArguments& args, const CLI::App& cmd) {
     check_responses_alone(args, cmd);
   } else if (args.transfer.empty() || args.environment.empty()) {
     throw UsageError("expected SCENE FILE.prt ENVIRONMENT (or an emitter responses file alone)");
+  } else if (prt::is_emitter_responses_file(args.transfer)) {
+    throw UsageError(args.transfer +
+                     " holds emitter responses, not SH transfer: relight it alone "
+                     "or add it to an SH relight with --emitters");
   }
   check_options(args, cmd);
   check_files(args);
