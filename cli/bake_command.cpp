@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -25,8 +26,10 @@
 #include "output_safety.h"
 #include "prt/haar/cube_map.h"
 #include "prt/transfer_file.h"
+#include "radiosity/materials.h"
 #include "relight/environment_input.h"
 #include "scene/scene_loader.h"
+#include "scene/subdivide.h"
 #include "sh/projection.h"
 
 namespace prt::cli {
@@ -39,7 +42,8 @@ struct BakeArguments {
   int samples = 256;
   int bounces = -1;
   double tolerance = 1e-4;
-  std::string albedo;
+  std::vector<std::string> albedo;  // r,g,b for every material, or MATERIAL=r,g,b (repeatable)
+  std::optional<double> max_edge;   // subdivide (scene/subdivide.h) before baking
   bool ao = false, bent_normals = false;
   uint64_t seed = 1;
   int threads = 0;
@@ -64,6 +68,55 @@ glm::vec3 parse_albedo(const std::string& text) {
       throw UsageError("--albedo " + text + ": every component must be in [0, 1)");
   }
   return albedo;
+}
+
+// --albedo values: at most one for every material (LoadOptions::albedo_override) and any
+// number of MATERIAL=r,g,b (each component in [0, 1)).
+struct AlbedoChoice {
+  std::optional<glm::vec3> every;
+  std::vector<radiosity::MaterialValue> per_material;
+};
+
+AlbedoChoice parse_albedo_options(const std::vector<std::string>& texts) {
+  AlbedoChoice choice;
+  for (const std::string& text : texts) {
+    if (text.find('=') == std::string::npos) {
+      if (choice.every)
+        throw UsageError("--albedo " + text + ": only one value for every material");
+      choice.every = parse_albedo(text);
+      continue;
+    }
+    radiosity::MaterialValue value;
+    try {
+      value = radiosity::parse_material_value("--albedo", text);
+    } catch (const std::invalid_argument& e) {
+      throw UsageError(e.what());
+    }
+    for (int c = 0; c < 3; ++c)
+      if (!(value.rgb[c] < 1.f))
+        throw UsageError("--albedo " + text + ": every component must be in [0, 1)");
+    choice.per_material.push_back(value);
+  }
+  return choice;
+}
+
+// Loads the scene with the --albedo values (a material's own value drops its texture) and
+// subdivides it when --max-edge is given.
+scene::Scene load_bake_scene(const BakeArguments& args) {
+  const AlbedoChoice albedo = parse_albedo_options(args.albedo);
+  scene::LoadOptions load;
+  load.albedo_override = albedo.every;
+  scene::Scene scene = scene::load_scene(args.scene, load);
+  try {
+    radiosity::apply_albedo(scene, albedo.per_material);
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(e.what());
+  }
+  for (const radiosity::MaterialValue& value : albedo.per_material)
+    for (scene::ScenePrimitive& p : scene.primitives)
+      if (p.material == value.material) p.base_color_texture.reset();
+  if (args.max_edge) scene = scene::subdivide_to_edge_length(scene, *args.max_edge);
+  return scene;
 }
 
 prt::TransferKind parse_kind(const std::string& text) {
@@ -116,6 +169,8 @@ void check_values(const BakeArguments& a, const CLI::App& cmd) {
     throw UsageError("--bounces " + std::to_string(a.bounces) +
                      ": must be >= 0, or -1 (until converged)");
   if (!(a.tolerance > 0 && a.tolerance < 1)) throw UsageError("--tolerance: must be in (0, 1)");
+  if (a.max_edge && !(*a.max_edge > 0.0 && std::isfinite(*a.max_edge)))
+    throw UsageError("--max-edge: must be a finite positive length");
   if (a.threads < 0) throw UsageError("--threads " + std::to_string(a.threads) + ": must be >= 0");
   if (a.precision != "f32" && a.precision != "f16")
     throw UsageError("--precision " + a.precision + ": expected f32 or f16");
@@ -157,11 +212,9 @@ void check_files(const BakeArguments& a) {
     check_output_file("-o", a.output, {".prt"}, "a coefficient file");
 }
 
-// The scene as the bake reads it: --albedo applied, the default-albedo note.
+// The scene as the bake reads it: --albedo and --max-edge applied, the default-albedo note.
 scene::Scene load_for_bake(const BakeArguments& args) {
-  scene::LoadOptions load;
-  if (!args.albedo.empty()) load.albedo_override = parse_albedo(args.albedo);
-  scene::Scene scene = scene::load_scene(args.scene, load);
+  scene::Scene scene = load_bake_scene(args);
   if (args.albedo.empty()) note_default_albedo(scene, args.quiet);
   return scene;
 }
@@ -304,7 +357,12 @@ void register_bake(CLI::App& app) {
   cmd->add_option("--tolerance", args->tolerance, "Relative residual of the interreflection solve")
       ->capture_default_str();
   cmd->add_option("--albedo", args->albedo,
-                  "Override every material's albedo (textures dropped): r,g,b in [0, 1)");
+                  "Override every material's albedo (textures dropped): r,g,b in [0, 1); or "
+                  "MATERIAL=r,g,b for one material (repeatable)")
+      ->allow_extra_args(false);
+  cmd->add_option("--max-edge", args->max_edge,
+                  "Subdivide the scene until no edge is longer than this (scene units), as "
+                  "prt radiosity --max-edge does: the same vertices");
   cmd->add_flag("--ao", args->ao, "Also store ambient occlusion per vertex");
   cmd->add_flag("--bent-normals", args->bent_normals, "Also store bent normals per vertex");
   cmd->add_option("--seed", args->seed, "Sampling seed")->capture_default_str();

@@ -18,6 +18,7 @@
 #include <nlohmann/json.hpp>
 
 #include "command_registry.h"
+#include "emitter_cli.h"
 #include "glossy_cli.h"
 #include "output_safety.h"
 #include "prt/coefficient_file.h"
@@ -184,6 +185,7 @@ void run(const InfoArguments& args) {
   files.add_input("coefficient file", args.file);
   files.check();
   if (is_glossy_file(args.file)) return describe_glossy_file(args.file, args.json, args.csv);
+  if (info_if_emitter_responses(args.file, args.json, args.csv)) return;
   prt::Result<prt::CoefficientFile> read = prt::read_coefficient_file(args.file);
   if (!read.ok()) throw CommandError(read.status().message());
   const prt::CoefficientFile& f = read.value();
@@ -201,7 +203,8 @@ void run(const InfoArguments& args) {
 void register_info(CLI::App& app) {
   auto args = std::make_shared<InfoArguments>();
   CLI::App* cmd = app.add_subcommand("info", "Describe a coefficient (.prt) file");
-  cmd->add_option("file", args->file, "Coefficient file (.prt)")->required();
+  cmd->add_option("file", args->file, "Coefficient file (.prt) or emitter responses (.prte)")
+      ->required();
   CLI::Option* json = cmd->add_flag("--json", args->json, "Print the header and metadata as JSON");
   cmd->add_flag("--csv", args->csv, "Print one CSV row per vertex")->excludes(json);
   cmd->callback([args] { run(*args); });

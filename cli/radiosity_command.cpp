@@ -15,7 +15,7 @@ namespace prt::cli {
 namespace {
 
 struct RadiosityArguments {
-  std::string scene, output, vertex_colors, csv;
+  std::string scene, output, vertex_colors, csv, per_emitter;
   std::string form_factors = "analytic";
   std::string solver = "gauss-seidel";
   std::vector<std::string> emission, albedo;
@@ -48,6 +48,7 @@ relight::RadiosityRequest make_request(const RadiosityArguments& a) {
   r.output_path = a.output;
   r.vertex_colors_path = a.vertex_colors;
   r.csv_path = a.csv;
+  r.per_emitter_path = a.per_emitter;
   for (const std::string& e : a.emission)
     r.emission.push_back(radiosity::parse_material_value("--emission", e));
   for (const std::string& e : a.albedo)
@@ -106,6 +107,15 @@ void run(const RadiosityArguments& args) {
       "exposure %+.2f EV\n",
       solution.relative_unshot, share(e.absorbed), share(e.escaped), e.balance_error(),
       double(s.exposure_ev));
+  if (!s.emitter_reports.empty()) {
+    std::printf("per-emitter responses: %zu emitter%s solved in %.2f s on the same form factors:",
+                s.emitter_reports.size(), s.emitter_reports.size() == 1 ? "" : "s",
+                s.per_emitter_seconds);
+    for (const radiosity::EmitterSolveReport& e : s.emitter_reports)
+      std::printf(" %s (%zu sweeps, unshot %.2g%s)", e.name.c_str(), e.iterations,
+                  e.relative_unshot, e.converged ? "" : ", NOT converged");
+    std::printf("\n");
+  }
   std::printf("wrote:");
   for (const std::string& file : s.files_written) std::printf(" %s", file.c_str());
   std::printf("\n");
@@ -121,6 +131,9 @@ void register_radiosity(CLI::App& app) {
   cmd->add_option("--vertex-colors", args->vertex_colors,
                   "Also write a .glb with COLOR_0 = exit radiance (linear)");
   cmd->add_option("--csv", args->csv, "Also write index,x,y,z,r,g,b per vertex");
+  cmd->add_option("--per-emitter", args->per_emitter,
+                  "Also write OUT.prte: each emitting material's response to unit white "
+                  "emission, for prt relight --emitter NAME=r,g,b");
   cmd->add_option("--emission", args->emission,
                   "MATERIAL=r,g,b: emitted radiance of a material (repeatable)");
   cmd->add_option("--albedo", args->albedo, "MATERIAL=r,g,b: albedo of a material (repeatable)");

@@ -1,5 +1,6 @@
 // `prt relight SCENE FILE.prt ENV -o OUT.(exr|png|hdr) [...]`: shade a baked scene under an
-// environment map and render it (relight/relight_pipeline.h does the work).
+// environment map and render it (relight/relight_pipeline.h does the work); also
+// `prt relight RESPONSES.prte -o OUT` and `--emitters RESPONSES.prte` (emitter_cli.h).
 #include <cctype>
 #include <cmath>
 #include <cstdio>
@@ -13,8 +14,10 @@
 
 #include "cli_parsing.h"
 #include "command_registry.h"
+#include "emitter_cli.h"
 #include "haar_cli.h"
 #include "output_safety.h"
+#include "prt/emitter_responses.h"
 #include "prt/haar/transfer_file.h"
 #include "progress_reporter.h"
 #include "relight/relight_pipeline.h"
@@ -39,7 +42,8 @@ struct RelightArguments {
   bool vertex_colors_tonemap = false;
   int turntable = 0;
   bool quiet = false;
-  HaarRelightArguments haar;  // --terms, --approx for Haar files (haar_cli.h)
+  HaarRelightArguments haar;         // --terms, --approx for Haar files (haar_cli.h)
+  EmitterRelightArguments emitters;  // --emitter, --emitters, --max-edge (emitter_cli.h)
 };
 
 std::string lower_extension(const std::string& path) {
@@ -97,6 +101,10 @@ void check_options(const RelightArguments& args, const CLI::App& cmd) {
                        " holds SH coefficients");
   if (haar && given("--window") && args.window != "none")
     throw UsageError("--window applies to SH files; " + args.transfer + " holds Haar wavelets");
+  for (const char* option : {"--emitters", "--max-edge"})
+    if (haar && given(option))
+      throw UsageError(std::string(option) + " applies to SH files; " + args.transfer +
+                       " holds Haar wavelets");
   if (haar && given("--window-strength"))
     throw UsageError("--window-strength applies to SH files; " + args.transfer +
                      " holds Haar wavelets");
@@ -105,9 +113,15 @@ void check_options(const RelightArguments& args, const CLI::App& cmd) {
 // Every output can be written and none overwrites an input or another output.
 void check_files(const RelightArguments& args) {
   CommandFiles files;
-  files.add_scene(args.scene);
-  files.add_input("coefficient file", args.transfer);
-  files.add_environment(args.environment);
+  if (args.transfer.empty()) {  // a responses file alone
+    files.add_input("emitter responses", args.scene);
+  } else {
+    files.add_scene(args.scene);
+    files.add_input("coefficient file", args.transfer);
+    files.add_environment(args.environment);
+    if (!args.emitters.emitters.empty())
+      files.add_input("emitter responses", args.emitters.emitters);
+  }
   if (args.turntable > 0) {
     for (int frame = 0; frame < args.turntable; ++frame)
       files.add_output("--turntable frame", relight::turntable_frame_path(args.output, frame));
@@ -130,12 +144,35 @@ std::string ringing_advice(const std::string& window) {
   return "SH ringing that the " + window + " window did not remove: try --window auto";
 }
 
+// `prt relight RESPONSES.prte -o OUT`: a responses file alone (no scene, no environment).
+void check_responses_alone(const RelightArguments& args, const CLI::App& cmd) {
+  if (!args.transfer.empty() || !args.environment.empty())
+    throw UsageError(args.scene + " holds emitter responses: give it alone (prt relight " +
+                     "RESPONSES.prte -o OUT), or add it to an SH relight with --emitters");
+  for (const char* option : {"--layout", "--rotate", "--window", "--window-strength", "--turntable",
+                             "--terms", "--approx"})
+    if (cmd.count(option) > 0)
+      throw UsageError(std::string(option) +
+                       " does not apply to emitter responses (no "
+                       "environment lighting)");
+}
+
 void run(const RelightArguments& args, const CLI::App& cmd) {
+  const bool responses = prt::is_emitter_responses_file(args.scene);
+  if (responses) {
+    check_responses_alone(args, cmd);
+  } else if (args.transfer.empty() || args.environment.empty()) {
+    throw UsageError("expected SCENE FILE.prt ENVIRONMENT (or an emitter responses file alone)");
+  } else if (prt::is_emitter_responses_file(args.transfer)) {
+    throw UsageError(args.transfer +
+                     " holds emitter responses, not SH transfer: relight it alone "
+                     "or add it to an SH relight with --emitters");
+  }
   check_options(args, cmd);
   check_files(args);
   relight::RelightRequest request;
   request.scene_path = args.scene;
-  request.transfer_path = args.transfer;
+  request.transfer_path = responses ? args.scene : args.transfer;
   request.environment_path = args.environment;
   request.output_path = args.output;
   request.layout = parse_layout_option(args.layout);
@@ -160,6 +197,11 @@ void run(const RelightArguments& args, const CLI::App& cmd) {
     request.render.rows_done = [&progress](int rows) { progress.advance(rows, 0); };
   }
 
+  if (relight_if_emitter_responses(request, args.emitters, args.quiet)) {
+    progress.finish();
+    return;
+  }
+  apply_emitter_options(args.emitters, &request);
   if (relight_if_haar(request, args.haar, args.quiet)) {
     progress.finish();
     return;
@@ -184,11 +226,12 @@ void register_relight(CLI::App& app) {
   auto args = std::make_shared<RelightArguments>();
   CLI::App* cmd =
       app.add_subcommand("relight", "Shade a baked scene under an environment map and render it");
-  cmd->add_option("scene", args->scene, "Scene (.glb, .gltf, .obj) the file was baked from")
+  cmd->add_option("scene", args->scene,
+                  "Scene (.glb, .gltf, .obj) the file was baked from, or emitter responses "
+                  "(.prte, prt radiosity --per-emitter) to relight alone")
       ->required();
-  cmd->add_option("transfer", args->transfer, "Coefficient file (.prt)")->required();
-  cmd->add_option("environment", args->environment, "Environment map (.hdr, .exr, .pfm)")
-      ->required();
+  cmd->add_option("transfer", args->transfer, "Coefficient file (.prt)");
+  cmd->add_option("environment", args->environment, "Environment map (.hdr, .exr, .pfm)");
   cmd->add_option("-o,--output", args->output, "Image to write: .exr/.hdr linear, .png tone mapped")
       ->required();
   cmd->add_option("--layout", args->layout, "auto|latlong|angular|cross|faces")
@@ -224,6 +267,7 @@ void register_relight(CLI::App& app) {
                   "turntable keeps the frames it finished)");
   cmd->add_flag("--quiet", args->quiet, "No summary (warnings still go to stderr)");
   add_haar_relight_options(cmd, &args->haar);
+  add_emitter_relight_options(cmd, &args->emitters);
   cmd->callback([args, cmd] {
     args->exposure_given = cmd->count("--exposure") > 0;
     run(*args, *cmd);

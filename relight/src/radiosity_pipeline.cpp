@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <stdexcept>
 
+#include "prt/emitter_responses.h"
 #include "radiosity/patches.h"
 #include "relight/camera.h"
 #include "relight/relight_pipeline.h"
@@ -43,8 +44,14 @@ void check_output(const std::string& path, const std::string& input,
 }
 
 void check_request(const RadiosityRequest& r) {
-  if (r.output_path.empty() && r.vertex_colors_path.empty() && r.csv_path.empty())
-    throw std::runtime_error("nothing to write: give -o IMAGE, --vertex-colors or --csv");
+  if (r.output_path.empty() && r.vertex_colors_path.empty() && r.csv_path.empty() &&
+      r.per_emitter_path.empty())
+    throw std::runtime_error(
+        "nothing to write: give -o IMAGE, --vertex-colors, --csv or --per-emitter");
+  check_output(r.per_emitter_path, r.scene_path, {".prte"});
+  if (!r.per_emitter_path.empty() && r.solve.solver == radiosity::SolverKind::Progressive)
+    throw std::invalid_argument(
+        "--per-emitter needs a full-matrix solver (--solver gauss-seidel or jacobi)");
   check_output(r.output_path, r.scene_path, {".exr", ".hdr", ".png"});
   check_output(r.vertex_colors_path, r.scene_path, {".glb"});
   check_output(r.csv_path, r.scene_path, {});
@@ -74,8 +81,9 @@ scene::Scene prepare_scene(const RadiosityRequest& r) {
   return scene;
 }
 
-void solve(const RadiosityRequest& r, const std::vector<radiosity::Patch>& patches,
-           const scene::RayCaster& caster, RadiositySummary* summary) {
+void solve(const RadiosityRequest& r, const scene::Scene& scene,
+           const std::vector<radiosity::Patch>& patches, const scene::RayCaster& caster,
+           RadiositySummary* summary) {
   if (r.solve.solver == radiosity::SolverKind::Progressive) {
     const Clock::time_point t = Clock::now();
     summary->solution = radiosity::solve_progressive(patches, caster, r.form_factors, r.solve);
@@ -89,6 +97,15 @@ void solve(const RadiosityRequest& r, const std::vector<radiosity::Patch>& patch
   t = Clock::now();
   summary->solution = radiosity::solve_matrix(patches, f, r.solve);
   summary->solve_seconds = since(t);
+  if (!r.per_emitter_path.empty()) {  // the same form factors, one solve per emitter
+    t = Clock::now();
+    const prt::EmitterResponses responses =
+        radiosity::solve_emitter_responses(scene, patches, f, r.solve, &summary->emitter_reports);
+    summary->per_emitter_seconds = since(t);
+    const prt::Status written = prt::write_emitter_responses(r.per_emitter_path, responses);
+    if (!written.ok()) throw std::runtime_error(written.message());
+    summary->files_written.push_back(r.per_emitter_path);
+  }
 }
 
 }  // namespace
@@ -111,6 +128,7 @@ RadiositySummary run_radiosity(const RadiosityRequest& r) {
     throw std::runtime_error(r.scene_path + ": " + std::to_string(scene.triangles.size()) +
                              " patches (at most " + std::to_string(radiosity::kMaxPatches) +
                              ": form factors are stored densely); use a longer --max-edge");
+  if (!r.per_emitter_path.empty()) radiosity::emitter_groups(scene);  // refused before solving
   RadiositySummary summary;
   const float aspect = float(r.render.width) / float(r.render.height);
   const Camera camera = parse_camera(r.camera, scene, aspect);
@@ -127,7 +145,7 @@ RadiositySummary run_radiosity(const RadiosityRequest& r) {
                                "radiosity grows without bound; lower it with --albedo "
                                "MATERIAL=r,g,b");
   }
-  solve(r, patches, caster, &summary);
+  solve(r, scene, patches, caster, &summary);
   const std::vector<float> radiance =
       radiosity::vertex_radiance(scene, patches, summary.solution.display_radiance);
   summary.solution.radiance.clear();

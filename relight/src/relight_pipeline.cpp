@@ -15,11 +15,13 @@
 #include "prt/geometry_check.h"
 #include "prt/transfer_file.h"
 #include "relight/auto_exposure.h"
+#include "relight/emitter_relight.h"
 #include "relight/environment_input.h"
 #include "relight/image_io.h"
 #include "relight/tone_map.h"
 #include "relight_frames.h"
 #include "scene/scene_loader.h"
+#include "scene/subdivide.h"
 #include "sh/rotation.h"
 
 namespace prt::relight {
@@ -42,6 +44,19 @@ void check_parent_directory(const std::string& path) {
   const std::filesystem::path parent = std::filesystem::path(path).parent_path();
   if (!parent.empty() && !std::filesystem::is_directory(parent))
     throw std::runtime_error(path + ": directory " + parent.string() + " does not exist");
+}
+
+// The emitters' radiance per vertex (empty without request.emitters_path).
+std::vector<float> emitters_for_scene(const RelightRequest& request, const scene::Scene& scene,
+                                      const prt::TransferData& data) {
+  if (request.emitters_path.empty()) return {};
+  if (!data.albedo_folded)
+    throw std::runtime_error(request.transfer_path +
+                             ": keeps the albedo apart (textures); emitter responses are exit "
+                             "radiance and cannot be added to it");
+  const prt::EmitterResponses responses = load_emitter_responses(request.emitters_path);
+  check_responses_match_scene(responses, request.emitters_path, scene);
+  return emitter_radiance(responses, request.emitters_path, request.emitter_colors);
 }
 
 std::vector<float> flatten_positions(const scene::Scene& scene) {
@@ -222,8 +237,10 @@ RelightSummary run_relight(const RelightRequest& request) {
   // 1. Validate every input before writing anything.
   check_relight_outputs(request);
   RelightSummary summary;
-  const scene::Scene scene = scene::load_scene(request.scene_path);
+  scene::Scene scene = scene::load_scene(request.scene_path);
+  if (request.max_edge) scene = scene::subdivide_to_edge_length(scene, *request.max_edge);
   const prt::TransferData data = load_transfer_for_scene(request.transfer_path, scene);
+  const std::vector<float> emitted = emitters_for_scene(request, scene, data);
   EnvironmentUse use;
   use.sh_order = static_cast<int>(data.order);
   EnvironmentInput input = read_checked_environment(request.environment_path, request.layout, use);
@@ -243,7 +260,10 @@ RelightSummary run_relight(const RelightRequest& request) {
   detail::render_relight_frames(
       frames, scene, env, [&](const std::array<double, 9>& m) { return rotate_lighting(base, m); },
       [&](const prt::ShLighting& lighting) {
-        return shade_all_vertices(*relighter, lighting, scene.vertex_count());
+        std::vector<float> radiance =
+            shade_all_vertices(*relighter, lighting, scene.vertex_count());
+        for (std::size_t i = 0; i < emitted.size(); ++i) radiance[i] += emitted[i];
+        return radiance;
       },
       &summary);
   return summary;

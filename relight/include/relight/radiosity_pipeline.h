@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "radiosity/emitter_solve.h"
 #include "radiosity/form_factors.h"
 #include "radiosity/materials.h"
 #include "radiosity/solver.h"
@@ -27,6 +28,9 @@ struct RadiosityRequest {
   std::string output_path;         // .exr, .hdr or .png; optional if another output is given
   std::string vertex_colors_path;  // .glb, optional
   std::string csv_path;            // optional
+  // Optional: per-emitter responses (prt/emitter_responses.h, radiosity/emitter_solve.h), one
+  // more solve per emitter on the same form factors; needs a full-matrix solver.
+  std::string per_emitter_path;
   std::vector<radiosity::MaterialValue> emission, albedo;  // per-material overrides
   std::optional<double> max_edge;  // subdivide to this edge length (scene units)
   radiosity::FormFactorOptions form_factors;
@@ -42,6 +46,8 @@ struct RadiositySummary {
   radiosity::Solution solution;  // radiance vectors emptied; history and account kept
   double escape_probe = -1;      // escape fraction measured for albedo-1 scenes (else −1)
   float exposure_ev = 0;
+  double per_emitter_seconds = 0;                              // the per-emitter solves
+  std::vector<radiosity::EmitterSolveReport> emitter_reports;  // one per emitter
   std::vector<std::string> files_written;
 };
 

@@ -24,6 +24,7 @@
 #include <string>
 #include <vector>
 
+#include "prt/emitter_responses.h"
 #include "prt/lighting.h"
 #include "prt/relighter.h"
 #include "prt/transfer_data.h"
@@ -106,6 +107,14 @@ struct RelightRequest {
   bool vertex_colors_tonemapped = false;
   std::string csv_path;      // optional
   int turntable_frames = 0;  // 0: one image at output_path
+  // SH files only. max_edge: subdivide the scene as `prt bake --max-edge` did before matching
+  // it (scene/subdivide.h). emitters_path: per-emitter radiosity responses computed on the same
+  // vertices (relight/emitter_relight.h), recombined with emitter_colors (unnamed emitters keep
+  // their stored emission) and added to the exit radiance of every frame; refused for a file
+  // that keeps the albedo apart.
+  std::optional<double> max_edge;
+  std::string emitters_path;
+  std::vector<prt::EmitterColor> emitter_colors;
   // Progress (optional): called after each image is written with (images written, images in
   // all) — (i + 1, N) for turntable frame i of N, (1, 1) for a single image.
   std::function<void(int done, int total)> image_written;

@@ -1,0 +1,268 @@
+// Relighting the emitters as a user runs it: `prt radiosity --per-emitter` writes the responses;
+// `prt relight RESPONSES.prte` with the stored colours reproduces the plain solve, and with a
+// doubled emitter adds exactly that emitter's contribution once more; `prt relight SCENE
+// FILE.prt ENV --max-edge L --emitters RESPONSES` equals the sum of the two separate relights;
+// unknown names, bad colours, corrupt and truncated files and mismatched geometry are refused
+// with one line and nothing written; `prt info` describes the file.
+#include <sys/wait.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <catch2/catch.hpp>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct RunResult {
+  int exit_code = 0;
+  std::string out, err;
+};
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+fs::path scratch(const std::string& name) {
+  const fs::path dir = fs::path(PRT_TEST_OUTPUT_DIR) / "emitter_cli" / name;
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+// Runs `prt ARGS` with stdout and stderr captured in files of `dir`.
+RunResult prt_run(const fs::path& dir, const std::string& args) {
+  const fs::path out = dir / "stdout.txt", err = dir / "stderr.txt";
+  const std::string command =
+      std::string(PRT_CLI_PATH) + " " + args + " >" + out.string() + " 2>" + err.string();
+  const int status = std::system(command.c_str());
+  RunResult r{status == -1 ? -1 : WEXITSTATUS(status), slurp(out), slurp(err)};
+  fs::remove(out);
+  fs::remove(err);
+  return r;
+}
+
+// A room open at the front (z = 0), 1 unit wide: white walls (Kd 0.7 0.6 0.5), a lamp under the
+// ceiling (Ke 5 5 5) and a panel low on the back wall (Ke 0.5 1 2): two emitting materials.
+fs::path write_room(const fs::path& dir) {
+  std::ofstream(dir / "room.mtl") << "newmtl white\nKd 0.7 0.6 0.5\n"
+                                     "newmtl lamp\nKd 0.5 0.5 0.5\nKe 5 5 5\n"
+                                     "newmtl panel\nKd 0.3 0.3 0.3\nKe 0.5 1 2\n";
+  std::ofstream obj(dir / "room.obj");
+  obj << "mtllib room.mtl\n"
+         "v 0 0 0\nv 1 0 0\nv 1 0 1\nv 0 0 1\nv 0 1 0\nv 1 1 0\nv 1 1 1\nv 0 1 1\n"
+         "v 0.4 0.99 0.4\nv 0.6 0.99 0.4\nv 0.6 0.99 0.6\nv 0.4 0.99 0.6\n"
+         "v 0.2 0.1 0.99\nv 0.2 0.3 0.99\nv 0.6 0.3 0.99\nv 0.6 0.1 0.99\n"
+         "o walls\nusemtl white\n"
+         "f 1 4 3 2\nf 5 6 7 8\nf 1 5 8 4\nf 2 3 7 6\nf 4 8 7 3\n"
+         "o lamp\nusemtl lamp\nf 9 10 11 12\n"      // facing -y
+         "o panel\nusemtl panel\nf 13 14 15 16\n";  // facing -z
+  return dir / "room.obj";
+}
+
+// The r,g,b columns (5–7) of a prt CSV, one value per vertex and channel.
+std::vector<double> csv_rgb(const fs::path& path) {
+  std::ifstream in(path);
+  std::string line;
+  std::getline(in, line);
+  std::vector<double> rgb;
+  while (std::getline(in, line)) {
+    std::istringstream s(line);
+    std::string cell;
+    for (int column = 0; std::getline(s, cell, ','); ++column)
+      if (column >= 4 && column <= 6) rgb.push_back(std::stod(cell));
+  }
+  return rgb;
+}
+
+// max |a − b| / max |b|.
+double relative_difference(const std::vector<double>& a, const std::vector<double>& b) {
+  REQUIRE(a.size() == b.size());
+  REQUIRE_FALSE(a.empty());
+  double worst = 0, scale = 0;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    worst = std::max(worst, std::abs(a[i] - b[i]));
+    scale = std::max(scale, std::abs(b[i]));
+  }
+  return worst / scale;
+}
+
+std::size_t lines(const std::string& text) {
+  return std::size_t(std::count(text.begin(), text.end(), '\n'));
+}
+
+void check_refused(const fs::path& dir, const std::string& args, const std::string& expected) {
+  const RunResult r = prt_run(dir, args);
+  INFO(args << "\nstderr: " << r.err);
+  CHECK(r.exit_code != 0);
+  CHECK(lines(r.err) == 1);
+  CHECK(r.err.find(expected) != std::string::npos);
+  CHECK_FALSE(fs::exists(dir / "refused.csv"));
+  CHECK_FALSE(fs::exists(dir / "refused.exr"));
+}
+
+constexpr const char* kSmall = " --size 32x24 --spp 1 --quiet";
+
+}  // namespace
+
+TEST_CASE("prt relight of emitter responses: stored colours reproduce the solve, doubling adds",
+          "[radiosity][emitters][cli]") {
+  const fs::path dir = scratch("responses");
+  const std::string room = write_room(dir).string();
+  const std::string d = dir.string() + "/";
+  RunResult r =
+      prt_run(dir, "radiosity " + room + " --max-edge 0.25 --tolerance 1e-9 --per-emitter " + d +
+                       "room.prte --csv " + d + "plain.csv");
+  INFO(r.err);
+  REQUIRE(r.exit_code == 0);
+  CHECK(r.out.find("2 emitters") != std::string::npos);
+
+  const std::string relight = "relight " + d + "room.prte -o " + d + "out.exr" + kSmall;
+  REQUIRE(prt_run(dir, relight + " --csv " + d + "stored.csv").exit_code == 0);
+  // Solver tolerance 1e-9 of the emitted power; the CSV keeps 9 digits.
+  CHECK(relative_difference(csv_rgb(d + "stored.csv"), csv_rgb(d + "plain.csv")) < 1e-5);
+
+  REQUIRE(prt_run(dir, relight + " --emitter lamp=10 --csv " + d + "double.csv").exit_code == 0);
+  REQUIRE(prt_run(dir, relight + " --emitter panel=0 --csv " + d + "lamp.csv").exit_code == 0);
+  REQUIRE(
+      prt_run(dir, relight + " --emitter lamp=0 --emitter panel=1,2,4 --csv " + d + "panel2.csv")
+          .exit_code == 0);
+  REQUIRE(prt_run(dir, relight + " --emitter lamp=0 --csv " + d + "panel.csv").exit_code == 0);
+  const std::vector<double> stored = csv_rgb(d + "stored.csv"), twice = csv_rgb(d + "double.csv"),
+                            lamp = csv_rgb(d + "lamp.csv"), panel = csv_rgb(d + "panel.csv"),
+                            panel2 = csv_rgb(d + "panel2.csv");
+  std::vector<double> expected(stored.size()), doubled_panel(panel.size());
+  for (std::size_t i = 0; i < stored.size(); ++i) {
+    expected[i] = stored[i] + lamp[i];  // lamp 5 → 10: its contribution once more
+    doubled_panel[i] = 2 * panel[i];
+  }
+  CHECK(relative_difference(twice, expected) < 1e-6);
+  CHECK(relative_difference(panel2, doubled_panel) < 1e-6);
+  CHECK(relative_difference(twice, stored) > 0.1);  // and the change is not negligible
+  for (std::size_t i = 0; i < stored.size(); ++i)   // stored = lamp alone + panel alone
+    CHECK(stored[i] == Approx(lamp[i] + panel[i]).epsilon(1e-5).margin(1e-7));
+
+  r = prt_run(dir, "info " + d + "room.prte");
+  CHECK(r.exit_code == 0);
+  CHECK(r.out.find("emitter responses") != std::string::npos);
+  CHECK(r.out.find("lamp") != std::string::npos);
+  CHECK(r.out.find("emission 0.5, 1, 2") != std::string::npos);
+}
+
+TEST_CASE("prt relight of emitter responses refuses bad colours, names and files",
+          "[radiosity][emitters][cli]") {
+  const fs::path dir = scratch("refused");
+  const std::string room = write_room(dir).string();
+  const std::string d = dir.string() + "/";
+  REQUIRE(prt_run(dir, "radiosity " + room + " --max-edge 0.5 --per-emitter " + d + "room.prte")
+              .exit_code == 0);
+  const std::string out = " -o " + d + "refused.exr --csv " + d + "refused.csv" + kSmall;
+  check_refused(dir, "relight " + d + "room.prte --emitter sun=1" + out, "sun");
+  check_refused(dir, "relight " + d + "room.prte --emitter lamp=-1" + out, "--emitter");
+  check_refused(dir, "relight " + d + "room.prte --emitter lamp=nan" + out, "--emitter");
+  check_refused(dir, "relight " + d + "room.prte --emitter lamp=1,2" + out, "--emitter");
+  check_refused(dir, "relight " + d + "room.prte --rotate 10,0,0" + out, "--rotate");
+
+  const std::string bytes = slurp(d + "room.prte");
+  std::ofstream(d + "corrupt.prte", std::ios::binary)
+      << bytes.substr(0, 200) << char(bytes[200] ^ 1) << bytes.substr(201);
+  check_refused(dir, "relight " + d + "corrupt.prte" + out, "checksum");
+  std::ofstream(d + "short.prte", std::ios::binary) << bytes.substr(0, bytes.size() - 7);
+  check_refused(dir, "relight " + d + "short.prte" + out, "truncated");
+  check_refused(dir, "info " + d + "short.prte", "truncated");
+}
+
+TEST_CASE("environment + emitters: one relight equals the sum of the two separate relights",
+          "[radiosity][emitters][cli]") {
+  const fs::path dir = scratch("sum");
+  const std::string room = write_room(dir).string();
+  const std::string d = dir.string() + "/";
+  REQUIRE(prt_run(dir, "radiosity " + room + " --max-edge 0.25 --per-emitter " + d + "room.prte")
+              .exit_code == 0);
+  REQUIRE(prt_run(dir, "make-sky -o " + d + "sky.hdr --width 64 --height 32").exit_code == 0);
+  RunResult r = prt_run(
+      dir, "bake " + room + " --max-edge 0.25 --samples 64 -o " + d + "room.prt" + " --quiet");
+  INFO(r.err);
+  REQUIRE(r.exit_code == 0);
+  const std::string sh = "relight " + room + " " + d + "room.prt " + d + "sky.hdr --max-edge 0.25";
+  REQUIRE(prt_run(dir, sh + " -o " + d + "env.exr --csv " + d + "env.csv" + kSmall).exit_code == 0);
+  r = prt_run(dir, sh + " --emitters " + d + "room.prte --emitter lamp=2,1,0.5 -o " + d +
+                       "sum.exr --csv " + d + "sum.csv" + kSmall);
+  INFO(r.err);
+  REQUIRE(r.exit_code == 0);
+  REQUIRE(prt_run(dir, "relight " + d + "room.prte --emitter lamp=2,1,0.5 -o " + d +
+                           "em.exr --csv " + d + "em.csv" + kSmall)
+              .exit_code == 0);
+  const std::vector<double> env = csv_rgb(d + "env.csv"), em = csv_rgb(d + "em.csv"),
+                            sum = csv_rgb(d + "sum.csv");
+  REQUIRE(env.size() == em.size());
+  std::vector<double> expected(env.size());
+  for (std::size_t i = 0; i < env.size(); ++i) expected[i] = env[i] + em[i];
+  CHECK(relative_difference(sum, expected) < 1e-6);  // float sums, 9 printed digits
+  CHECK(relative_difference(sum, env) > 0.05);       // the emitters add visibly
+  CHECK(relative_difference(sum, em) > 0.05);        // and so does the sky
+
+  // The coefficient file of the unsubdivided scene does not match the responses.
+  REQUIRE(prt_run(dir, "bake " + room + " --samples 16 -o " + d + "coarse.prt --quiet").exit_code ==
+          0);
+  check_refused(dir,
+                "relight " + room + " " + d + "coarse.prt " + d + "sky.hdr --emitters " + d +
+                    "room.prte -o " + d + "refused.exr --csv " + d + "refused.csv" + kSmall,
+                "--max-edge");
+  check_refused(dir,
+                "relight " + room + " " + d + "coarse.prt " + d + "sky.hdr --emitter lamp=1 -o " +
+                    d + "refused.exr" + kSmall,
+                "--emitters");
+}
+
+TEST_CASE("prt bake --albedo MATERIAL=value sets one material's albedo and refuses bad ones",
+          "[radiosity][emitters][cli]") {
+  const fs::path dir = scratch("bake_albedo");
+  const std::string room = write_room(dir).string();
+  const std::string d = dir.string() + "/";
+  REQUIRE(prt_run(dir, "make-sky -o " + d + "sky.hdr --width 64 --height 32").exit_code == 0);
+  const std::string bake = "bake " + room + " --transfer unshadowed --samples 16 --quiet -o ";
+  REQUIRE(prt_run(dir, bake + d + "kd.prt").exit_code == 0);
+  REQUIRE(prt_run(dir, bake + d + "white.prt --albedo white=0.2").exit_code == 0);
+  const auto relight = [&](const std::string& file) {
+    REQUIRE(prt_run(dir, "relight " + room + " " + d + file + ".prt " + d + "sky.hdr -o " + d +
+                             file + ".exr --csv " + d + file + ".csv" + kSmall)
+                .exit_code == 0);
+    return csv_rgb(d + file + ".csv");
+  };
+  const std::vector<double> kd = relight("kd"), white = relight("white");
+  REQUIRE(kd.size() == white.size());
+  // Unshadowed transfer is albedo/π × the visible lighting: the white walls' vertices scale by
+  // 0.2 / Kd per channel (Kd 0.7 0.6 0.5); the lamp's and panel's vertices keep theirs.
+  std::size_t scaled = 0, kept = 0;
+  for (std::size_t v = 0; v + 2 < kd.size(); v += 3) {
+    if (kd[v] <= 0) continue;
+    const double r = white[v] / kd[v], g = white[v + 1] / kd[v + 1], b = white[v + 2] / kd[v + 2];
+    if (std::abs(r - 0.2 / 0.7) < 1e-4 && std::abs(g - 0.2 / 0.6) < 1e-4 &&
+        std::abs(b - 0.2 / 0.5) < 1e-4)
+      ++scaled;
+    else if (std::abs(r - 1) < 1e-6 && std::abs(g - 1) < 1e-6 && std::abs(b - 1) < 1e-6)
+      ++kept;
+  }
+  CHECK(scaled >= 8);  // the walls' eight corners
+  CHECK(kept == 8);    // the lamp's and the panel's corners
+  CHECK(scaled + kept == kd.size() / 3);
+  for (const char* bad :
+       {" --albedo nosuch=0.5", " --albedo white=1", " --albedo white=0.5,x,1", " --max-edge 0"}) {
+    const RunResult r = prt_run(dir, bake + d + "refused.prt" + bad);
+    INFO(bad << ": " << r.err);
+    CHECK(r.exit_code != 0);
+    CHECK(lines(r.err) == 1);
+    CHECK_FALSE(fs::exists(d + "refused.prt"));
+  }
+}
