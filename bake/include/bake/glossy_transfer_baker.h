@@ -1,0 +1,103 @@
+// bake/glossy_transfer_baker.h — per-vertex transfer MATRICES for glossy PRT (Sloan, Kautz &
+// Snyder 2002, §6; [2] of docs/REFERENCES.md), stored as prt::GlossyTransferData
+// (prt/glossy_transfer.h, file: prt/glossy_transfer_file.h).
+//
+// Conventions: SH of sh/basis.h, order n, K = n². Row index i: SH of the vertex's LOCAL frame
+// (scene/tangent_frames.h: +z the normal, +x the tangent, +y = w · cross(n, t)); column j: SH of
+// the GLOBAL scene frame (+Y up). M maps lighting coefficients L (radiance, global) to the
+// coefficients L' of the radiance arriving at the vertex, in its local frame.
+//
+// Domain: the UPPER hemisphere of the vertex (local z > 0) only: L' is the projection of
+// V(ω)·L(ω)·[ω above the horizon]. No cosine: the BRDF's cos θ_i is in b at runtime
+// (b_i(ω_o) = ∫ y_i f cos⁺θ_i, prt/glossy_transfer.h), and f = 0 below the horizon, so nothing
+// below it contributes to exit radiance; leaving it at zero (rather than at whatever a ray into
+// the surface sees) keeps L' free of radiance the surface cannot reflect.
+//
+// Shadowed (bounces = 0):
+//     M_p,ij = ∫_{H+} y_i(ω_local) V_p(ω) y_j(ω) dω
+//            ≈ (2π/N) Σ_s V_p(ω_s) y_i(ω_s,local) y_j(ω_s),
+// ω_s uniform on the upper hemisphere (pdf 1/2π): local z = 1 − u₁, φ = 2π u₂ from the
+// Owen-scrambled Sobol' points of bake/sampling.h seeded by (seed, vertex) — the same points
+// as the diffuse bake, mapped uniformly instead of cosine-weighted (cosine-weighted sampling of
+// an integrand without cosine has weight 1/cos θ and infinite variance). V from the Embree
+// caster with the diffuse bake's ray start (RayCaster::vertex_origin, docs/RAY_OFFSETS.md).
+// Per vertex the 16 rays of a packet are summed in float (y_local ⊗ y_global, a rank-16
+// update), then added to a double accumulator.
+//
+// Interreflected (bounces ≠ 0): a ray that hits the front of triangle (q₀, q₁, q₂) at
+// barycentrics β brings the radiance the hit point sends back along −ω_s,
+//     L(−ω_s) = Σ_a β_a · b_{q_a}(−ω_s in q_a's frame)ᵀ · M_{q_a} · L,
+// b the SH projection of the hit primitive's BRDF (bake/brdf_projection.h); for a Lambert hit
+// b = ρ(hit)/π · (clamped-cosine zonal row), ρ(hit) = Scene::albedo_at (the texture when there
+// is one), exactly as the diffuse bake's bounce. So M = S + G(M),
+//     G(M)_p = (2π/N) Σ_{s hits} y_local,p(ω_s) ⊗ L(−ω_s)-row,
+// solved by Jacobi bounces M⁽ᵏ⁺¹⁾ = S + G(M⁽ᵏ⁾) from M⁽⁰⁾ = S: `bounces` of them, or (−1) until
+// a bounce changes no entry by more than bounce_tolerance × max|S| (at most kMaxGlossyBounces).
+// Back faces occlude but reflect nothing (bake/src/hit_side.h, as the diffuse bake).
+// Channels: 1 for shadowed transfer (M carries no albedo); interreflected: 3 when some vertex
+// albedo or some material is coloured (MERL counts as coloured), else 1.
+// Materials: one per primitive — ScenePrimitive::brdf, or Lambert with the primitive's albedo.
+// Determinism: vertices in blocks, each vertex from its own samples and the previous bounce's
+// matrices in a fixed order: bit-identical for any thread count.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "bake/transfer_baker.h"
+#include "prt/glossy_transfer.h"
+#include "scene/scene.h"
+
+namespace prt::bake {
+
+inline constexpr int kMaxGlossyBakeOrder = 10;
+inline constexpr int kMaxGlossyBounces = 200;
+
+struct GlossyBakeOptions {
+  int order = 5;      // 1 .. kMaxGlossyBakeOrder
+  int samples = 256;  // per vertex, rounded up to a multiple of 16
+  int bounces = 0;    // 0: shadowed; k > 0: k Jacobi bounces; −1: until converged
+  double bounce_tolerance = 1e-4;
+  uint64_t seed = 1;
+  int threads = 0;                  // 0 = all hardware threads
+  int projection_samples = 32;      // per dimension, per node of a BRDF's projection table
+  prt::Precision precision = prt::Precision::F32;
+};
+
+struct GlossyBakeStatistics {
+  uint64_t vertices = 0;
+  uint64_t triangles = 0;
+  uint64_t rays = 0;
+  uint64_t hits = 0;            // front-face hits kept for the bounces
+  uint64_t back_face_hits = 0;  // occlude only
+  int samples_per_vertex = 0;
+  int bounces = 0;  // bounces done
+  bool converged = true;
+  std::vector<double> bounce_change;  // per bounce: max |ΔM| / max |S|
+  double seconds_total = 0;
+  double seconds_rays = 0;  // sampling pass: rays + accumulation
+  double seconds_projection = 0;
+  double seconds_bounces = 0;
+
+  double mrays_per_second() const {
+    return seconds_rays > 0 ? static_cast<double>(rays) / seconds_rays * 1e-6 : 0.0;
+  }
+};
+
+struct GlossyBakeResult {
+  prt::GlossyTransferData data;
+  GlossyBakeStatistics stats;
+};
+
+// One material per primitive (ScenePrimitive::brdf or Lambert with its albedo) and each
+// vertex's index into them (vertices outside every primitive get a Lambert material of their
+// own albedo, appended last).
+void glossy_scene_materials(const scene::Scene& scene, std::vector<brdf::Material>& materials,
+                            std::vector<uint32_t>& material_of_vertex);
+
+// Bakes the glossy transfer of every vertex. Throws BakeError (bad scene or options, a material
+// make_brdf refuses) or std::runtime_error (Embree). `progress` may be null.
+GlossyBakeResult bake_glossy_transfer(const scene::Scene& scene, const GlossyBakeOptions& options,
+                                      ProgressSink* progress = nullptr);
+
+}  // namespace prt::bake

@@ -1,0 +1,504 @@
+// bake/src/glossy_transfer_baker.cpp — the glossy transfer-matrix bake (see
+// bake/glossy_transfer_baker.h): a sampling pass (direct matrices S and the front-face hits of
+// every vertex), then Jacobi bounces over the recorded hits.
+#include "bake/glossy_transfer_baker.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <optional>
+
+#include <tbb/global_control.h>
+#include <tbb/parallel_for.h>
+#include <nlohmann/json.hpp>
+
+#include "bake/brdf_projection.h"
+#include "bake/progress.h"
+#include "bake/sampling.h"
+#include "hit_side.h"
+#include "prt/geometry_check.h"
+#include "scene/ray_caster.h"
+#include "scene/scene_label.h"
+#include "scene/tangent_frames.h"
+#include "sh/basis.h"
+#include "sh/constants.h"
+#include "sh/zonal.h"
+#include "transfer_pass.h"
+
+namespace prt::bake {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+constexpr std::size_t kBlock = 64;  // vertices per parallel task (fixed: determinism)
+
+double seconds_since(Clock::time_point t) {
+  return std::chrono::duration<double>(Clock::now() - t).count();
+}
+
+struct Frame {
+  glm::vec3 t, b, n;
+  glm::vec3 to_local(const glm::vec3& d) const {
+    return {glm::dot(d, t), glm::dot(d, b), glm::dot(d, n)};
+  }
+};
+
+// A front-face hit of one of a vertex's samples.
+struct GlossyHit {
+  uint32_t sample;
+  uint32_t triangle;
+  float u, v;
+};
+
+struct BlockHits {
+  std::vector<GlossyHit> hits;
+  std::vector<uint32_t> counts;  // per vertex of the block
+};
+
+bool grey(const brdf::Rgb& c) { return c.r == c.g && c.g == c.b; }
+
+struct GlossyJob {
+  const scene::Scene& scene;
+  const GlossyBakeOptions& o;
+  ProgressSink* progress;
+  std::size_t V;
+  int order, K, N, C;
+  bool interreflect;
+  std::vector<Frame> frames;
+  std::vector<brdf::Material> materials;
+  std::vector<uint32_t> material_of_vertex;
+  std::vector<std::unique_ptr<BrdfProjection>> projections;  // per material (bounces only)
+  std::vector<float> S;                                      // V · K² (grey direct transfer)
+  std::vector<BlockHits> block_hits;
+  std::vector<uint64_t> hit_offset;  // V + 1
+  std::vector<GlossyHit> hits;
+  std::vector<float> zonal_over_pi;  // z_l / π
+  GlossyBakeStatistics& st;
+
+  std::size_t KK() const { return std::size_t(K) * K; }
+  std::size_t blocks() const { return (V + kBlock - 1) / kBlock; }
+};
+
+// Uniform direction on the upper hemisphere (local frame), pdf 1/2π: z = 1 − u₁, φ = 2π u₂.
+glm::vec3 uniform_hemisphere(const glm::vec2& u) {
+  const float z = 1.f - u.x;
+  const float r = std::sqrt(std::max(0.f, 1.f - z * z));
+  const float phi = 2.f * static_cast<float>(sh::kPi) * u.y;
+  return {r * std::cos(phi), r * std::sin(phi), z};
+}
+
+void sample_direction(const GlossyJob& job, std::size_t v, uint64_t vertex_seed, uint32_t i,
+                      glm::vec3& local, glm::vec3& world) {
+  local = uniform_hemisphere(sample_sobol_2d(i, vertex_seed));
+  const Frame& f = job.frames[v];
+  world = glm::normalize(local.x * f.t + local.y * f.b + local.z * f.n);
+}
+
+// out[i·K + j] += Σ_s a[s·K + i] · c[s·K + j] for s < count (a rank-`count` update in float).
+void rank_update(int K, int count, const float* a, const float* c, float* out) {
+  for (int i = 0; i < K; ++i) {
+    float* row = out + std::size_t(i) * K;
+    for (int s = 0; s < count; ++s) {
+      const float ai = a[s * K + i];
+      const float* cs = c + s * K;
+      for (int j = 0; j < K; ++j) row[j] += ai * cs[j];
+    }
+  }
+}
+
+// The sampling pass over one vertex: S_v and its hits. Returns the rays cast.
+struct VertexSampler {
+  GlossyJob& job;
+  const scene::RayCaster& caster;
+  std::vector<float> yl, yg, packet;
+  std::vector<double> acc;
+  glm::vec3 local[kPacketSize], dirs[kPacketSize];
+  bool occluded[kPacketSize];
+  scene::RayCaster::Hit hit[kPacketSize];
+
+  VertexSampler(GlossyJob& j, const scene::RayCaster& c)
+      : job(j),
+        caster(c),
+        yl(kPacketSize * std::size_t(j.K)),
+        yg(kPacketSize * std::size_t(j.K)),
+        packet(j.KK()),
+        acc(j.KK()) {}
+
+  uint64_t sample(std::size_t v, BlockHits& out, uint64_t& back_hits) {
+    const int K = job.K;
+    const uint64_t seed = hash_seed(job.o.seed, v);
+    const glm::vec3 origin = caster.vertex_origin(static_cast<uint32_t>(v));
+    std::fill(acc.begin(), acc.end(), 0.0);
+    uint32_t kept = 0;
+    for (int first = 0; first < job.N; first += kPacketSize) {
+      for (int i = 0; i < kPacketSize; ++i)
+        sample_direction(job, v, seed, static_cast<uint32_t>(first + i), local[i], dirs[i]);
+      detail::cast_packet(caster, origin, dirs, kPacketSize, std::numeric_limits<float>::infinity(),
+                          job.interreflect ? hit : nullptr, occluded);
+      int visible = 0;
+      for (int i = 0; i < kPacketSize; ++i) {
+        if (!occluded[i]) {
+          sh::evaluate(job.order, local[i].x, local[i].y, local[i].z, &yl[visible * K]);
+          sh::evaluate(job.order, dirs[i].x, dirs[i].y, dirs[i].z, &yg[visible * K]);
+          ++visible;
+        } else if (job.interreflect && hit[i].hit) {
+          if (detail::ray_hits_front_side(job.scene, hit[i].triangle, dirs[i])) {
+            out.hits.push_back({static_cast<uint32_t>(first + i), hit[i].triangle, hit[i].u,
+                                hit[i].v});
+            ++kept;
+          } else {
+            ++back_hits;
+          }
+        }
+      }
+      if (visible == 0) continue;
+      std::fill(packet.begin(), packet.end(), 0.f);
+      rank_update(K, visible, yl.data(), yg.data(), packet.data());
+      for (std::size_t e = 0; e < packet.size(); ++e) acc[e] += packet[e];
+    }
+    const double w = 2.0 * sh::kPi / job.N;
+    float* s = &job.S[v * job.KK()];
+    for (std::size_t e = 0; e < acc.size(); ++e) s[e] = static_cast<float>(acc[e] * w);
+    out.counts.push_back(kept);
+    return static_cast<uint64_t>(job.N);
+  }
+};
+
+void run_sampling_pass(GlossyJob& job) {
+  const Clock::time_point t0 = Clock::now();
+  const scene::RayCaster caster(job.scene);
+  job.S.assign(job.V * job.KK(), 0.f);
+  job.block_hits.assign(job.blocks(), BlockHits{});
+  std::vector<uint64_t> rays(job.blocks(), 0), back(job.blocks(), 0);
+  if (job.progress) job.progress->start("glossy bake", job.V);
+  tbb::parallel_for(std::size_t(0), job.blocks(), [&](std::size_t blk) {
+    VertexSampler sampler(job, caster);
+    const std::size_t end = std::min(job.V, (blk + 1) * kBlock);
+    for (std::size_t v = blk * kBlock; v < end; ++v)
+      rays[blk] += sampler.sample(v, job.block_hits[blk], back[blk]);
+    if (job.progress) job.progress->advance(end - blk * kBlock, rays[blk]);
+  });
+  if (job.progress) job.progress->finish();
+  job.hit_offset.assign(1, 0);
+  for (std::size_t blk = 0; blk < job.blocks(); ++blk) {
+    job.st.rays += rays[blk];
+    job.st.back_face_hits += back[blk];
+    for (uint32_t c : job.block_hits[blk].counts) job.hit_offset.push_back(job.hit_offset.back() + c);
+    job.hits.insert(job.hits.end(), job.block_hits[blk].hits.begin(), job.block_hits[blk].hits.end());
+    job.block_hits[blk] = BlockHits{};
+  }
+  job.st.hits = job.hits.size();
+  job.st.seconds_rays = seconds_since(t0);
+}
+
+// One bounce at vertex p: out (C · K²) = S_p + (2π/N) Σ_hits y_local ⊗ r, r the radiance row
+// the hit point sends back (M from `prev`).
+struct BounceGatherer {
+  const GlossyJob& job;
+  const std::vector<float>& prev;  // V · C · K²
+  std::vector<float> yl, r, rc, block;
+  std::vector<double> acc;
+
+  BounceGatherer(const GlossyJob& j, const std::vector<float>& p)
+      : job(j),
+        prev(p),
+        yl(kPacketSize * std::size_t(j.K)),
+        r(kPacketSize * std::size_t(j.C) * j.K),
+        rc(kPacketSize * std::size_t(j.K)),
+        block(std::size_t(j.C) * j.KK()),
+        acc(std::size_t(j.C) * j.KK()) {}
+
+  const float* matrix(std::size_t q, int c) const {
+    return &prev[(q * job.C + std::size_t(c)) * job.KK()];
+  }
+
+  // r (C × K) for one hit seen along world direction d from the receiving vertex.
+  void radiance_row(const GlossyHit& h, const glm::vec3& d, float* row) const;
+
+  void gather(std::size_t p, float* out) {
+    const int K = job.K, C = job.C;
+    const std::size_t KK = job.KK();
+    for (int c = 0; c < C; ++c)
+      for (std::size_t e = 0; e < KK; ++e) acc[c * KK + e] = job.S[p * KK + e];
+    const uint64_t seed = hash_seed(job.o.seed, p);
+    const double w = 2.0 * sh::kPi / job.N;
+    const uint64_t begin = job.hit_offset[p], end = job.hit_offset[p + 1];
+    for (uint64_t first = begin; first < end; first += kPacketSize) {
+      const int count = static_cast<int>(std::min<uint64_t>(kPacketSize, end - first));
+      for (int s = 0; s < count; ++s) {
+        const GlossyHit& h = job.hits[first + s];
+        glm::vec3 local, world;
+        sample_direction(job, p, seed, h.sample, local, world);
+        sh::evaluate(job.order, local.x, local.y, local.z, &yl[s * K]);
+        radiance_row(h, world, &r[std::size_t(s) * C * K]);
+      }
+      std::fill(block.begin(), block.end(), 0.f);
+      for (int c = 0; c < C; ++c) {
+        // Channel c of the rows: stride C·K between hits; gather them contiguous first.
+        for (int s = 0; s < count; ++s)
+          std::copy_n(&r[(std::size_t(s) * C + c) * K], K, &rc[std::size_t(s) * K]);
+        rank_update(K, count, yl.data(), rc.data(), &block[c * KK]);
+      }
+      for (std::size_t e = 0; e < block.size(); ++e) acc[e] += w * block[e];
+    }
+    for (std::size_t e = 0; e < acc.size(); ++e) out[e] = static_cast<float>(acc[e]);
+  }
+};
+
+void BounceGatherer::radiance_row(const GlossyHit& h, const glm::vec3& d, float* row) const {
+  const int K = job.K, C = job.C;
+  std::fill(row, row + std::size_t(C) * K, 0.f);
+  const glm::uvec3 tri = job.scene.triangles[h.triangle];
+  const float beta[3] = {1.f - h.u - h.v, h.u, h.v};
+  const uint32_t material = job.material_of_vertex[tri.x];
+  const BrdfProjection& proj = *job.projections[material];
+  if (proj.lambertian()) {
+    // ρ(hit)/π · Σ_l z_l · row (l, 0) of the interpolated M.
+    const glm::vec3 rho = job.scene.albedo_at(h.triangle, h.u, h.v);
+    for (int a = 0; a < 3; ++a)
+      for (int c = 0; c < C; ++c) {
+        const float* m = matrix(tri[a], c);
+        for (int l = 0; l < job.order; ++l) {
+          const float k = beta[a] * rho[c] * job.zonal_over_pi[l];
+          const float* mrow = m + std::size_t(sh::index(l, 0)) * K;
+          for (int j = 0; j < K; ++j) row[c * K + j] += k * mrow[j];
+        }
+      }
+    return;
+  }
+  float bq[3 * 100];
+  for (int a = 0; a < 3; ++a) {
+    const glm::vec3 wo = job.frames[tri[a]].to_local(-d);
+    proj.evaluate(wo, bq);
+    for (int c = 0; c < C; ++c) {
+      const float* m = matrix(tri[a], c);
+      const float* bc = bq + c * K;
+      for (int i = 0; i < K; ++i) {
+        const float k = beta[a] * bc[i];
+        if (k == 0.f) continue;
+        const float* mrow = m + std::size_t(i) * K;
+        for (int j = 0; j < K; ++j) row[c * K + j] += k * mrow[j];
+      }
+    }
+  }
+}
+
+// Jacobi bounces: data.matrices holds M⁽ᵏ⁾; returns when done.
+void run_bounces(GlossyJob& job, std::vector<float>& M) {
+  const Clock::time_point t0 = Clock::now();
+  float s_max = 0.f;
+  for (float x : job.S) s_max = std::max(s_max, std::fabs(x));
+  const int max_bounces = job.o.bounces < 0 ? kMaxGlossyBounces : job.o.bounces;
+  std::vector<float> next(M.size());
+  const std::size_t per_vertex = std::size_t(job.C) * job.KK();
+  if (job.progress) job.progress->start("glossy bounces", job.o.bounces < 0 ? 0 : max_bounces);
+  job.st.converged = job.o.bounces >= 0;
+  for (int k = 0; k < max_bounces; ++k) {
+    std::vector<float> block_change(job.blocks(), 0.f);
+    tbb::parallel_for(std::size_t(0), job.blocks(), [&](std::size_t blk) {
+      BounceGatherer g(job, M);
+      const std::size_t end = std::min(job.V, (blk + 1) * kBlock);
+      for (std::size_t p = blk * kBlock; p < end; ++p) {
+        g.gather(p, &next[p * per_vertex]);
+        for (std::size_t e = p * per_vertex; e < (p + 1) * per_vertex; ++e)
+          block_change[blk] = std::max(block_change[blk], std::fabs(next[e] - M[e]));
+      }
+    });
+    M.swap(next);
+    float change = 0.f;
+    for (float c : block_change) change = std::max(change, c);
+    const double relative = s_max > 0.f ? double(change) / s_max : 0.0;
+    job.st.bounce_change.push_back(relative);
+    job.st.bounces = k + 1;
+    if (job.progress) job.progress->advance(1, 0);
+    if (job.o.bounces < 0 && relative <= job.o.bounce_tolerance) {
+      job.st.converged = true;
+      break;
+    }
+  }
+  if (job.progress) job.progress->finish();
+  job.st.seconds_bounces = seconds_since(t0);
+}
+
+int glossy_channels(const scene::Scene& scene, const std::vector<brdf::Material>& materials,
+                    bool interreflect) {
+  if (!interreflect) return 1;
+  for (const glm::vec3& a : scene.albedo)
+    if (a.x != a.y || a.y != a.z) return 3;
+  for (const brdf::Material& m : materials)
+    if (m.model == brdf::MaterialModel::kMerl || !grey(m.diffuse) || !grey(m.specular)) return 3;
+  return 1;
+}
+
+void validate_glossy_options(const scene::Scene& scene, const GlossyBakeOptions& o) {
+  const std::string name = scene::scene_label(scene);
+  if (o.order < 1 || o.order > kMaxGlossyBakeOrder)
+    throw BakeError(name + ": glossy SH order " + std::to_string(o.order) + " is outside [1, " +
+                    std::to_string(kMaxGlossyBakeOrder) + "]");
+  if (o.projection_samples < 1 || o.projection_samples > 1024)
+    throw BakeError(name + ": BRDF projection samples must be in [1, 1024]");
+  BakeOptions b;  // the scene checks and the options the diffuse bake shares
+  b.kind = o.bounces == 0 ? prt::TransferKind::Shadowed : prt::TransferKind::Interreflected;
+  b.order = o.order;
+  b.samples = o.samples;
+  b.bounces = o.bounces;
+  b.bounce_tolerance = o.bounce_tolerance;
+  b.threads = o.threads;
+  validate_bake_inputs(scene, b);
+}
+
+std::string glossy_metadata(const GlossyJob& job, const prt::GlossyTransferData& d) {
+  const GlossyBakeStatistics& st = job.st;
+  nlohmann::json meta;
+  meta["generator"] = "prt bake --glossy";
+  meta["scene"] = job.scene.source_path;
+  meta["sh_basis"] = sh::kBasisConvention;
+  meta["transfer"] = job.interreflect ? "glossy interreflected" : "glossy shadowed";
+  meta["rows"] = "SH of the vertex's local tangent frame (+z normal, +x tangent)";
+  meta["columns"] = "SH of the global scene frame (+Y up)";
+  meta["domain"] = "upper hemisphere, no cosine (cos is in the BRDF projection b)";
+  meta["order"] = job.order;
+  meta["channels"] = job.C;
+  meta["samples_requested"] = job.o.samples;
+  meta["samples_per_vertex"] = job.N;
+  meta["sampling"] = "Owen-scrambled Sobol (0,2)-sequence, uniform on the hemisphere";
+  meta["seed"] = job.o.seed;
+  meta["threads"] = job.o.threads;
+  meta["precision"] = d.storage == prt::Precision::F16 ? "f16" : "f32";
+  nlohmann::json mats = nlohmann::json::array();
+  for (const brdf::Material& m : job.materials) mats.push_back(brdf::describe(m));
+  meta["materials"] = mats;
+  meta["vertices"] = job.V;
+  meta["triangles"] = st.triangles;
+  meta["rays"] = st.rays;
+  meta["seconds"] = st.seconds_total;
+  meta["seconds_rays"] = st.seconds_rays;
+  if (job.interreflect) {
+    nlohmann::json b;
+    b["bounces_requested"] = job.o.bounces;
+    b["bounces"] = st.bounces;
+    b["tolerance"] = job.o.bounce_tolerance;
+    b["converged"] = st.converged;
+    b["bounce_change"] = st.bounce_change;
+    b["hits"] = st.hits;
+    b["back_face_hits"] = st.back_face_hits;
+    b["projection_samples"] = job.o.projection_samples;
+    b["seconds"] = st.seconds_bounces;
+    meta["interreflection"] = b;
+  }
+  return meta.dump();
+}
+
+void store_geometry(const scene::Scene& scene, const GlossyJob& job, prt::GlossyTransferData& d) {
+  const std::size_t V = job.V;
+  d.vertex_count = V;
+  d.positions.resize(3 * V);
+  d.normals.resize(3 * V);
+  d.tangents.resize(4 * V);
+  for (std::size_t v = 0; v < V; ++v) {
+    const Frame& f = job.frames[v];
+    const float w = glm::dot(glm::cross(f.n, f.t), f.b) < 0.f ? -1.f : 1.f;
+    for (int a = 0; a < 3; ++a) {
+      d.positions[3 * v + a] = scene.positions[v][a];
+      d.normals[3 * v + a] = f.n[a];
+      d.tangents[4 * v + a] = f.t[a];
+    }
+    d.tangents[4 * v + 3] = w;
+  }
+  for (const scene::ScenePrimitive& p : scene.primitives)
+    d.primitives.push_back({p.first_vertex, p.vertex_count, p.name});
+  d.fingerprint = prt::geometry_fingerprint(d.positions.data(), V);
+}
+
+}  // namespace
+
+void glossy_scene_materials(const scene::Scene& scene, std::vector<brdf::Material>& materials,
+                            std::vector<uint32_t>& material_of_vertex) {
+  materials.clear();
+  const uint32_t none = std::numeric_limits<uint32_t>::max();
+  material_of_vertex.assign(scene.vertex_count(), none);
+  for (const scene::ScenePrimitive& p : scene.primitives) {
+    brdf::Material m;
+    if (p.brdf) {
+      m = *p.brdf;
+    } else {
+      m.model = brdf::MaterialModel::kLambert;
+      m.diffuse = {p.albedo.x, p.albedo.y, p.albedo.z};
+    }
+    const auto index = static_cast<uint32_t>(materials.size());
+    materials.push_back(m);
+    const std::size_t end = std::min<std::size_t>(scene.vertex_count(),
+                                                  std::size_t(p.first_vertex) + p.vertex_count);
+    for (std::size_t v = p.first_vertex; v < end; ++v) material_of_vertex[v] = index;
+  }
+  bool extra = false;
+  for (std::size_t v = 0; v < material_of_vertex.size(); ++v) {
+    if (material_of_vertex[v] != none) continue;
+    if (!extra) {
+      brdf::Material m;
+      const glm::vec3 a = scene.albedo.empty() ? glm::vec3(scene::kDefaultAlbedo) : scene.albedo[v];
+      m.diffuse = {a.x, a.y, a.z};
+      materials.push_back(m);
+      extra = true;
+    }
+    material_of_vertex[v] = static_cast<uint32_t>(materials.size() - 1);
+  }
+}
+
+GlossyBakeResult bake_glossy_transfer(const scene::Scene& scene, const GlossyBakeOptions& o,
+                                      ProgressSink* progress) {
+  const Clock::time_point t_start = Clock::now();
+  validate_glossy_options(scene, o);
+  std::optional<tbb::global_control> thread_limit;
+  if (o.threads > 0)
+    thread_limit.emplace(tbb::global_control::max_allowed_parallelism,
+                         static_cast<std::size_t>(o.threads));
+  GlossyBakeResult result;
+  GlossyBakeStatistics& st = result.stats;
+  GlossyJob job{scene, o, progress, scene.vertex_count(), o.order, o.order * o.order,
+                round_up_to_packet(o.samples), 1, o.bounces != 0, {}, {}, {}, {}, {}, {}, {},
+                {}, {}, st};
+  glossy_scene_materials(scene, job.materials, job.material_of_vertex);
+  job.C = glossy_channels(scene, job.materials, job.interreflect);
+  const std::vector<glm::vec4> tangents = scene::tangent_frames(scene);
+  job.frames.resize(job.V);
+  for (std::size_t v = 0; v < job.V; ++v) {
+    const glm::vec3 n = glm::normalize(scene.normals[v]), t = glm::vec3(tangents[v]);
+    job.frames[v] = {t, tangents[v].w * glm::cross(n, t), n};
+  }
+  for (int l = 0; l < job.order; ++l)
+    job.zonal_over_pi.push_back(
+        static_cast<float>(sh::clamped_cosine_zonal_coefficient(l) / sh::kPi));
+  st.vertices = job.V;
+  st.triangles = scene.triangles.size();
+  st.samples_per_vertex = job.N;
+  if (job.interreflect) {
+    const Clock::time_point t0 = Clock::now();
+    for (std::size_t m = 0; m < job.materials.size(); ++m)
+      job.projections.push_back(std::make_unique<BrdfProjection>(
+          job.materials[m], job.order, o.projection_samples, hash_seed(o.seed, m),
+          scene::scene_label(scene) + ": material " + std::to_string(m)));
+    st.seconds_projection = seconds_since(t0);
+  }
+  run_sampling_pass(job);
+
+  prt::GlossyTransferData& d = result.data;
+  d.order = static_cast<uint32_t>(job.order);
+  d.channels = static_cast<uint32_t>(job.C);
+  d.storage = o.precision;
+  d.interreflected = job.interreflect;
+  store_geometry(scene, job, d);
+  d.materials = job.materials;
+  d.material_of_vertex = job.material_of_vertex;
+  d.matrices.resize(job.V * job.C * job.KK());
+  for (std::size_t v = 0; v < job.V; ++v)
+    for (int c = 0; c < job.C; ++c)
+      std::copy_n(&job.S[v * job.KK()], job.KK(), &d.matrices[(v * job.C + c) * job.KK()]);
+  if (job.interreflect && !job.hits.empty()) run_bounces(job, d.matrices);
+  st.seconds_total = seconds_since(t_start);
+  d.metadata_json = glossy_metadata(job, d);
+  return result;
+}
+
+}  // namespace prt::bake
