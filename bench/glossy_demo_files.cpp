@@ -4,12 +4,14 @@
 //   glossy_demo_files OUT_DIR [ORDER]
 // writes OUT_DIR/sphere.glb with sphere_glossy.prtg (isotropic Ward, α 0.2, ρ_s 0.5 over a
 // reddish ρ_d) and sphere_lambert.prtg (Lambert, the same ρ_d, through the glossy path), and
-// OUT_DIR/plate.glb with plate_brushed.prtg (anisotropic Ward α_x 0.45 along the tangent,
-// α_y 0.06): shadowed glossy transfer, ORDER (default 8), 512 samples per vertex. Then prints the
+// OUT_DIR/plate.glb (8 × 8, facing +Y, tangent +X) with plate_brushed_x.prtg (anisotropic Ward
+// α_x 0.45 along the tangent, α_y 0.06) and plate_brushed_z.prtg (the two swapped): shadowed
+// glossy transfer, ORDER (default 8), 512 samples per vertex (256 for the plate). Then prints the
 // single-thread shading rate of each file's vertices at its order (isotropic table vs matrix).
 #include <chrono>
 #include <cstdio>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "bake/glossy_transfer_baker.h"
@@ -22,12 +24,12 @@
 namespace {
 
 prt::GlossyTransferData bake_file(const std::string& scene_path, const prt::brdf::Material& m,
-                                  int order, const std::string& out) {
+                                  int order, const std::string& out, int samples = 512) {
   prt::scene::Scene scene = prt::scene::load_scene(scene_path);
   for (auto& primitive : scene.primitives) primitive.brdf = m;
   prt::bake::GlossyBakeOptions options;
   options.order = order;
-  options.samples = 512;
+  options.samples = samples;
   const auto start = std::chrono::steady_clock::now();
   prt::bake::GlossyBakeResult r = prt::bake::bake_glossy_transfer(scene, options);
   const double seconds =
@@ -84,8 +86,8 @@ int main(int argc, char** argv) {
   const std::string sphere = dir + "/sphere.glb", plate = dir + "/plate.glb";
   prt::scene::write_glb(sphere, prt::scene::make_uv_sphere({0, 0, 0}, 1.f, 64, 128, false,
                                                            glm::vec3(0.5f), "sphere"));
-  prt::scene::write_glb(plate, prt::scene::make_quad({-1.5f, 0, 1.5f}, {3, 0, 0}, {0, 0, -3}, 96,
-                                                     96, glm::vec3(0.5f), "plate"));
+  prt::scene::write_glb(plate, prt::scene::make_quad({-4.f, 0, 4.f}, {8, 0, 0}, {0, 0, -8}, 128,
+                                                     128, glm::vec3(0.5f), "plate"));
   prt::brdf::Material glossy;
   glossy.model = prt::brdf::MaterialModel::kWard;
   glossy.diffuse = {0.25, 0.06, 0.04};
@@ -101,7 +103,9 @@ int main(int argc, char** argv) {
   using M = prt::BrdfProjectionMethod;
   const auto g = bake_file(sphere, glossy, order, dir + "/sphere_glossy.prtg");
   const auto l = bake_file(sphere, lambert, order, dir + "/sphere_lambert.prtg");
-  const auto b = bake_file(plate, brushed, order, dir + "/plate_brushed.prtg");
+  const auto b = bake_file(plate, brushed, order, dir + "/plate_brushed_x.prtg", 256);
+  std::swap(brushed.alpha_x, brushed.alpha_y);
+  bake_file(plate, brushed, order, dir + "/plate_brushed_z.prtg", 256);
   time_shading(l, M::kAuto, "lambert zonal");
   time_shading(g, M::kIsotropicTable, "ward table");
   time_shading(g, M::kZonal, "ward zonal");

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <utility>
 
 namespace prt {
 namespace {
@@ -85,6 +86,11 @@ const std::vector<BrdfProjection>& GlossyRelighter::projections() const {
 
 Result<GlossyRelighter> GlossyRelighter::create(const GlossyTransferData& data,
                                                 const BrdfProjectionOptions& options) {
+  return create(GlossyTransferData(data), options);
+}
+
+Result<GlossyRelighter> GlossyRelighter::create(GlossyTransferData&& data,
+                                                const BrdfProjectionOptions& options) {
   if (Status s = check_data(data); !s) return s;
   GlossyRelighter out;
   Impl& p = *out.impl_;
@@ -93,7 +99,7 @@ Result<GlossyRelighter> GlossyRelighter::create(const GlossyTransferData& data,
   p.vertex_count = data.vertex_count;
   p.positions = data.positions;
   p.material_of_vertex = data.material_of_vertex;
-  p.matrices = data.matrices;
+  p.matrices = std::move(data.matrices);
   p.frames.resize(9 * p.vertex_count);
   for (std::size_t k = 0; k < p.vertex_count; ++k) {
     double frame[9];

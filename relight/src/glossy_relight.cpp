@@ -117,7 +117,7 @@ RelightSummary run_glossy_relight(const RelightRequest& request,
   check_glossy_request(request, options);
   RelightSummary summary;
   const scene::Scene scene = scene::load_scene(request.scene_path);
-  const prt::GlossyTransferData data = load_glossy_for_scene(request.transfer_path, scene);
+  prt::GlossyTransferData data = load_glossy_for_scene(request.transfer_path, scene);
   EnvironmentUse use;
   use.sh_order = static_cast<int>(data.order);
   EnvironmentInput input = read_checked_environment(request.environment_path, request.layout, use);
@@ -128,7 +128,7 @@ RelightSummary run_glossy_relight(const RelightRequest& request,
   const prt::ShLighting base =
       project_lighting(env, summary.order, request.lighting, &summary.window_note);
   prt::Result<prt::GlossyRelighter> relighter =
-      prt::GlossyRelighter::create(data, options.projection);
+      prt::GlossyRelighter::create(std::move(data), options.projection);
   if (!relighter.ok())
     throw std::runtime_error(request.transfer_path + ": " + relighter.status().message());
 

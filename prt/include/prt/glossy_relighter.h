@@ -44,6 +44,9 @@ class GlossyRelighter {
   // BrdfProjection::create's.
   static Result<GlossyRelighter> create(const GlossyTransferData& data,
                                         const BrdfProjectionOptions& options = {});
+  // Same, taking over the matrices of `data` instead of copying them (a file's bulk).
+  static Result<GlossyRelighter> create(GlossyTransferData&& data,
+                                        const BrdfProjectionOptions& options = {});
 
   std::size_t vertex_count() const;
   int order() const;
