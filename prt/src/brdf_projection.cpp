@@ -53,6 +53,14 @@ bool usable_view(const Vec3& wo, Vec3* unit) {
   return unit->z > 0.0;
 }
 
+// Float copy for the kernel; magnitudes below 1e-30 become 0, so no subnormal float (slow on
+// x86) reaches the shading loops.
+std::vector<float> to_float(const std::vector<double>& v) {
+  std::vector<float> out(v.size());
+  for (std::size_t k = 0; k < v.size(); ++k) out[k] = std::fabs(v[k]) < 1e-30 ? 0.f : float(v[k]);
+  return out;
+}
+
 // Legendre P_0..P_{n−1}(t) · √((2l+1)/4π): the zonal basis function Y_l0 about an axis at
 // angle arccos t.
 void zonal_basis(int n, double t, double* out) {
@@ -157,7 +165,7 @@ Status fill_isotropic_table(const brdf::Brdf& f, const BrdfProjectionOptions& o,
     if (Status s = project_brdf_slice(f, p->order, wo, {o.table_nodes}, &p->iso[t * 3 * n2]); !s)
       return s;
   }
-  p->iso_f.assign(p->iso.begin(), p->iso.end());
+  p->iso_f = to_float(p->iso);
   return Status::Ok();
 }
 
@@ -268,13 +276,13 @@ Result<BrdfProjection> BrdfProjection::create(std::shared_ptr<const brdf::Brdf> 
   if (p->method == BrdfProjectionMethod::kMatrix) {
     p->view_order = options.view_order > 0 ? options.view_order : std::min(order + 6, 32);
     fill_matrix(*f, options, p);
-    p->matrix_f.assign(p->matrix.begin(), p->matrix.end());
+    p->matrix_f = to_float(p->matrix);
     return out;
   }
   set_diffuse(lambert_part, p);
   const WithoutLambert glossy(std::move(f), lambert_part);
   fill_zonal_table(glossy, p, options.zonal_table);
-  p->table_f.assign(p->table.begin(), p->table.end());
+  p->table_f = to_float(p->table);
   return out;
 }
 
