@@ -128,6 +128,12 @@ void check_options(const RelightArguments& args, const CLI::App& cmd) {
     if (!glossy && given(option))
       throw UsageError(std::string(option) + " applies to glossy files; " + args.transfer +
                        " is not one (its vertex values do not depend on the view)");
+  if (glossy && !args.eye.empty() && args.csv.empty() && args.vertex_colors.empty())
+    throw UsageError(
+        "--eye applies to --csv and --vertex-colors (images are shaded toward the "
+        "camera's eye)");
+  if (glossy && given("--turntable-orbit") && args.turntable == 0)
+    throw UsageError("--turntable-orbit needs --turntable N");
   if (glossy && args.eye.empty() && (!args.csv.empty() || !args.vertex_colors.empty()))
     throw UsageError(args.transfer +
                      ": is a glossy file, whose vertex values depend on the view: --csv and "

@@ -93,7 +93,7 @@ TEST_CASE("cli: glossy relight: highlights move with the camera's eye point") {
   CHECK(std::hypot(pa.first - pb.first, pa.second - pb.second) > 5.0);
 }
 
-TEST_CASE("cli: glossy relight: --csv and --vertex-colors need --eye; the CSV depends on it") {
+TEST_CASE("cli: glossy relight: --csv and --vertex-colors need --eye and the CSV depends on it") {
   const fs::path dir = scratch("glossy_eye");
   const GlossyFiles f = make_glossy_sphere(dir);
   const std::vector<std::string> before = files_in(dir);
@@ -104,7 +104,14 @@ TEST_CASE("cli: glossy relight: --csv and --vertex-colors need --eye; the CSV de
     CHECK(r.err.find("sphere.prtg") != std::string::npos);
   }
   CHECK(files_in(dir) == before);  // nothing written, not even the image
-  require_one_line_error(run(relight(f, dir / "x.png", "--eye 1,2")), "--eye");
+  require_one_line_error(
+      run(relight(f, dir / "x.png", "--eye 1,2 --csv " + (dir / "v.csv").string())), "--eye");
+  // --eye without a CSV or vertex colours does nothing: refused by name, as is an orbit without
+  // a turntable.
+  require_one_line_error(run(relight(f, dir / "x.png", "--eye 0,0,4")), "--eye");
+  require_one_line_error(run(relight(f, dir / "x.png", "--turntable-orbit camera")),
+                         "--turntable-orbit");
+  CHECK(files_in(dir) == before);
 
   const fs::path c1 = dir / "one.csv", c2 = dir / "two.csv";
   REQUIRE(run(relight(f, dir / "1.png", "--eye 0,0,4 --csv " + c1.string())).exit_code == 0);
@@ -114,7 +121,8 @@ TEST_CASE("cli: glossy relight: --csv and --vertex-colors need --eye; the CSV de
   CHECK(s1 != s2);
 }
 
-TEST_CASE("cli: glossy relight: the turntable orbits the camera; options for other files") {
+TEST_CASE(
+    "cli: glossy relight: the turntable orbits the camera and --eye is refused for other files") {
   const fs::path dir = scratch("glossy_turntable");
   const GlossyFiles f = make_glossy_sphere(dir);
   const fs::path out = dir / "t.exr";

@@ -102,7 +102,7 @@ TEST_CASE("Reference b converges with the quadrature resolution", "[glossy][proj
   REQUIRE(distance(coarse, fine) < 1e-6 * norm(fine));
 }
 
-TEST_CASE("Zonal projection: exact for Lambert, small error for isotropic lobes",
+TEST_CASE("Zonal projection: exact for Lambert and small error for isotropic lobes",
           "[glossy][projection]") {
   Material lambert;
   lambert.diffuse = prt::brdf::grey(0.7);

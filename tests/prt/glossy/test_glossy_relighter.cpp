@@ -166,8 +166,9 @@ TEST_CASE("Glossy shading: views from below the tangent plane and at the vertex 
   REQUIRE_FALSE(relighter->shade(light, nullptr, 0, 1, out.data()).ok());
 }
 
-TEST_CASE("Glossy shading: RGB transfer holding grey copies equals grey transfer; bad data",
-          "[glossy][relighter]") {
+TEST_CASE(
+    "Glossy shading: RGB transfer holding grey copies equals grey transfer and bad data is refused",
+    "[glossy][relighter]") {
   const prt::GlossyTransferData grey = glossy_test::unshadowed_sphere(5, 20, ward_material(0.3));
   prt::GlossyTransferData rgb = grey;
   rgb.channels = 3;
