@@ -1,10 +1,12 @@
 // `prt relight SCENE FILE.prt ENV -o OUT.(exr|png|hdr) [...]`: shade a baked scene under an
-// environment map and render it (relight/relight_pipeline.h does the work); also
-// `prt relight RESPONSES.prte -o OUT` and `--emitters RESPONSES.prte` (emitter_cli.h).
+// environment map and render it (relight/relight_pipeline.h does the work; glossy files:
+// relight/glossy_relight.h, with --eye for the CSV and vertex colours and --turntable-orbit);
+// also `prt relight RESPONSES.prte -o OUT` and `--emitters RESPONSES.prte` (emitter_cli.h).
 #include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -15,11 +17,14 @@
 #include "cli_parsing.h"
 #include "command_registry.h"
 #include "emitter_cli.h"
+#include "glossy_cli.h"
 #include "haar_cli.h"
 #include "output_safety.h"
 #include "prt/emitter_responses.h"
-#include "prt/haar/transfer_file.h"
 #include "progress_reporter.h"
+#include "prt/glossy_transfer_file.h"
+#include "prt/haar/transfer_file.h"
+#include "relight/glossy_relight.h"
 #include "relight/relight_pipeline.h"
 #include "sh/env_map.h"
 #include "sh/window.h"
@@ -42,9 +47,31 @@ struct RelightArguments {
   bool vertex_colors_tonemap = false;
   int turntable = 0;
   bool quiet = false;
-  HaarRelightArguments haar;         // --terms, --approx for Haar files (haar_cli.h)
-  EmitterRelightArguments emitters;  // --emitter, --emitters, --max-edge (emitter_cli.h)
+  HaarRelightArguments haar;             // --terms, --approx for Haar files (haar_cli.h)
+  EmitterRelightArguments emitters;      // --emitter, --emitters, --max-edge (emitter_cli.h)
+  std::string eye;                       // glossy files: x,y,z for --csv and --vertex-colors
+  std::string turntable_orbit = "both";  // glossy files: both | camera | light
 };
+
+glm::vec3 parse_eye(const std::string& text) {
+  std::vector<double> v;
+  std::size_t at = 0;
+  try {
+    while (at <= text.size()) {
+      const std::size_t comma = std::min(text.find(',', at), text.size());
+      const std::string part = text.substr(at, comma - at);
+      std::size_t used = 0;
+      v.push_back(std::stod(part, &used));
+      if (used != part.size()) throw std::invalid_argument(part);
+      at = comma + 1;
+    }
+  } catch (const std::exception&) {
+    v.clear();
+  }
+  if (v.size() != 3 || !std::isfinite(v[0]) || !std::isfinite(v[1]) || !std::isfinite(v[2]))
+    throw UsageError("--eye " + text + ": expected three finite numbers x,y,z");
+  return {float(v[0]), float(v[1]), float(v[2])};
+}
 
 std::string lower_extension(const std::string& path) {
   std::string ext = std::filesystem::path(path).extension().string();
@@ -94,6 +121,21 @@ void check_options(const RelightArguments& args, const CLI::App& cmd) {
   // The kind of the coefficient file decides which options apply (a missing file is reported
   // by check_files, an unreadable one by the pipeline).
   if (!std::filesystem::exists(args.transfer)) return;
+  const bool glossy = is_glossy_file(args.transfer);
+  for (const char* option : {"--eye", "--turntable-orbit"})
+    if (!glossy && given(option))
+      throw UsageError(std::string(option) + " applies to glossy files; " + args.transfer +
+                       " is not one (its vertex values do not depend on the view)");
+  if (glossy && !args.eye.empty() && args.csv.empty() && args.vertex_colors.empty())
+    throw UsageError(
+        "--eye applies to --csv and --vertex-colors (images are shaded toward the "
+        "camera's eye)");
+  if (glossy && given("--turntable-orbit") && args.turntable == 0)
+    throw UsageError("--turntable-orbit needs --turntable N");
+  if (glossy && args.eye.empty() && (!args.csv.empty() || !args.vertex_colors.empty()))
+    throw UsageError(args.transfer +
+                     ": is a glossy file, whose vertex values depend on the view: --csv and "
+                     "--vertex-colors need --eye x,y,z");
   const bool haar = prt::is_haar_transfer_file(args.transfer);
   for (const char* option : {"--terms", "--approx"})
     if (!haar && given(option))
@@ -101,6 +143,10 @@ void check_options(const RelightArguments& args, const CLI::App& cmd) {
                        " holds SH coefficients");
   if (haar && given("--window") && args.window != "none")
     throw UsageError("--window applies to SH files; " + args.transfer + " holds Haar wavelets");
+  for (const char* option : {"--emitters", "--max-edge"})
+    if (glossy && given(option))
+      throw UsageError(std::string(option) + " applies to diffuse SH files; " + args.transfer +
+                       " is a glossy file (emitters are not summed with glossy transfer yet)");
   for (const char* option : {"--emitters", "--max-edge"})
     if (haar && given(option))
       throw UsageError(std::string(option) + " applies to SH files; " + args.transfer +
@@ -206,7 +252,17 @@ void run(const RelightArguments& args, const CLI::App& cmd) {
     progress.finish();
     return;
   }
-  const relight::RelightSummary summary = relight::run_relight(request);
+  relight::RelightSummary summary;
+  if (is_glossy_file(args.transfer)) {
+    relight::GlossyRelightOptions glossy;
+    if (!args.eye.empty()) glossy.eye = parse_eye(args.eye);
+    glossy.turntable = args.turntable_orbit == "camera"  ? relight::GlossyTurntable::kCamera
+                       : args.turntable_orbit == "light" ? relight::GlossyTurntable::kLight
+                                                         : relight::GlossyTurntable::kBoth;
+    summary = relight::run_glossy_relight(request, glossy);
+  } else {
+    summary = relight::run_relight(request);
+  }
   progress.finish();
   if (args.quiet) return;
   std::printf("relit %zu vertices at SH order %d (%s%s%s); shading %.2f ms, rendering %.3f s",
@@ -230,7 +286,8 @@ void register_relight(CLI::App& app) {
                   "Scene (.glb, .gltf, .obj) the file was baked from, or emitter responses "
                   "(.prte, prt radiosity --per-emitter) to relight alone")
       ->required();
-  cmd->add_option("transfer", args->transfer, "Coefficient file (.prt)");
+  cmd->add_option("transfer", args->transfer,
+                  "Coefficient file (.prt: SH or Haar) or glossy transfer file (PRTG)");
   cmd->add_option("environment", args->environment, "Environment map (.hdr, .exr, .pfm)");
   cmd->add_option("-o,--output", args->output, "Image to write: .exr/.hdr linear, .png tone mapped")
       ->required();
@@ -263,8 +320,17 @@ void register_relight(CLI::App& app) {
   cmd->add_option("--csv", args->csv,
                   "Also write a .csv of index,x,y,z,r,g,b per vertex (the first frame's)");
   cmd->add_option("--turntable", args->turntable,
-                  "Write N frames OUT_000… with the light turning about +Y (an interrupted "
-                  "turntable keeps the frames it finished)");
+                  "Write N frames OUT_000… with the light turning about +Y (glossy files: and "
+                  "the camera orbiting, see --turntable-orbit; an interrupted turntable keeps "
+                  "the frames it finished)");
+  cmd->add_option("--turntable-orbit", args->turntable_orbit,
+                  "Glossy files: what the turntable turns: both (light and camera), camera "
+                  "(highlights slide under fixed light) or light")
+      ->check(CLI::IsMember({"both", "camera", "light"}))
+      ->capture_default_str();
+  cmd->add_option("--eye", args->eye,
+                  "Glossy files: the eye point x,y,z (scene units) toward which --csv and "
+                  "--vertex-colors are shaded (images use the camera's eye)");
   cmd->add_flag("--quiet", args->quiet, "No summary (warnings still go to stderr)");
   add_haar_relight_options(cmd, &args->haar);
   add_emitter_relight_options(cmd, &args->emitters);

@@ -1,0 +1,75 @@
+// prt/glossy_relighter.h — view-dependent shading of glossy transfer (prt/glossy_transfer.h):
+// exit radiance of each vertex toward an eye point under SH lighting.
+//
+// Per vertex p with tangent frame (t, b = w·n × t, n) (orthonormalised once at creation):
+//   ωo = normalize(eye − p) expressed in the frame: (t·ωo, b·ωo, n·ωo);
+//   L'_c = M_p,c' · L_c  (c' = c for 3-channel transfer, 0 for grey transfer, which gives RGB
+//                         under RGB lighting);
+//   exit_c = Σ_i b_c,i(ωo) · L'_c,i,  b from the vertex's material (prt/brdf_projection.h).
+// Orders as in prt/relighter.h: K = min(order_file, order_light)² lighting coefficients are used
+// (a higher-order lighting is truncated, a lower one zero-extended); b and L' have the file's n².
+// View directions handled deliberately: the BRDFs are one-sided, so a vertex seen from below its
+// tangent plane (n·(eye − p) ≤ 0, which happens near silhouettes where the interpolated normal
+// turns away from the eye) has exit radiance 0, and so has a vertex at the eye point itself or
+// an eye that is not finite. The renderer interpolates the vertex values (per-vertex ωo).
+// Lighting is radiance in the units of the environment; exit is radiance in the same units.
+// Arithmetic: the fast path (shade) reads float matrices and accumulates in float; the reference
+// (shade_glossy_reference) accumulates in double and takes b by direct quadrature of the BRDF.
+// Threads: shade is const and uses only its own stack and heap scratch, so call it from any number
+// of threads on disjoint ranges; the library starts none. Nothing throws; errors are
+// prt::Status. Compiles as C++17. References: [2], [55] of docs/REFERENCES.md.
+#pragma once
+
+#include <cstddef>
+#include <memory>
+#include <vector>
+
+#include "prt/brdf_projection.h"
+#include "prt/glossy_transfer.h"
+#include "prt/lighting.h"
+#include "prt/status.h"
+
+namespace prt {
+
+class GlossyRelighter {
+ public:
+  GlossyRelighter();
+  GlossyRelighter(GlossyRelighter&&) noexcept;
+  GlossyRelighter& operator=(GlossyRelighter&&) noexcept;
+  ~GlossyRelighter();
+
+  // Copies the transfer and frames and builds one BrdfProjection per material at the file's
+  // order. Errors: inconsistent `data` (order outside [1, kMaxBrdfProjectionOrder], channels not
+  // 1 or 3, array sizes, a material index out of range, a non-finite or degenerate frame), and
+  // BrdfProjection::create's.
+  static Result<GlossyRelighter> create(const GlossyTransferData& data,
+                                        const BrdfProjectionOptions& options = {});
+  // Same, taking over the matrices of `data` instead of copying them (a file's bulk).
+  static Result<GlossyRelighter> create(GlossyTransferData&& data,
+                                        const BrdfProjectionOptions& options = {});
+
+  std::size_t vertex_count() const;
+  int order() const;
+  int channels() const;
+  const std::vector<BrdfProjection>& projections() const;  // one per material
+
+  // Exit radiance toward eye_xyz (scene frame, scene units) of vertices
+  // [first_vertex, first_vertex + count): 3 floats per vertex into out_rgb[0 .. 3·count).
+  // Errors: range beyond vertex_count(), null eye or null out_rgb with count > 0.
+  Status shade(const ShLighting& light, const float eye_xyz[3], std::size_t first_vertex,
+               std::size_t count, float* out_rgb) const;
+
+  struct Impl;
+
+ private:
+  std::unique_ptr<Impl> impl_;
+};
+
+// The slow reference for vertex v: the same frame, order rule and view handling, b by
+// project_brdf_slice() (direct quadrature of the material's BRDF), everything in double.
+// Errors: v out of range, inconsistent `data`, make_brdf()'s.
+Status shade_glossy_reference(const GlossyTransferData& data, const ShLighting& light,
+                              const double eye_xyz[3], std::size_t v,
+                              const SliceQuadrature& quadrature, double out_rgb[3]);
+
+}  // namespace prt

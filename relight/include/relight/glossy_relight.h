@@ -1,0 +1,63 @@
+// relight/glossy_relight.h — `prt relight` for glossy transfer files (prt/glossy_transfer.h):
+// view-dependent images in which the camera's eye point drives the view direction.
+//
+// Per frame: SH lighting of the environment at the file's order (windowed and rotated exactly as
+// for coefficient files, relight/relight_pipeline.h), exit radiance of every vertex toward the
+// camera's EYE POINT (prt::GlossyRelighter: ωo = normalize(eye − p) in the vertex's tangent
+// frame, so highlights move when the camera moves), then the preview renderer
+// (relight/renderer.h), which interpolates the vertex values across each triangle: ωo is taken
+// PER VERTEX, not per pixel, so a highlight is as sharp as the mesh is fine.
+// Turntable (--turntable N): frame i turns the light by Ry(360°·i/N) (as for coefficient files)
+// AND orbits the camera by the same Ry about the vertical axis through its target — both by
+// default, so the object is seen from every side under a light that keeps its place relative
+// to the camera; GlossyTurntable::kCamera orbits the camera under fixed light (the highlights
+// then slide over the surface), kLight turns the light only, as coefficient files do.
+// CSV and vertex-coloured GLB: exit radiance toward the eye point GlossyRelightOptions::eye
+// (scene frame), under the first frame's lighting; asking for either without an eye point is
+// an error raised before anything is written (the values depend on the view).
+// Materials come from the file (the scene's own are not read); the albedo is inside the BRDF.
+// Errors throw std::runtime_error with one line "PATH: problem".
+#pragma once
+
+#include <array>
+#include <optional>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "prt/brdf_projection.h"
+#include "prt/glossy_relighter.h"
+#include "prt/glossy_transfer.h"
+#include "relight/camera.h"
+#include "relight/relight_pipeline.h"
+#include "scene/scene.h"
+
+namespace prt::relight {
+
+enum class GlossyTurntable { kBoth, kCamera, kLight };
+
+struct GlossyRelightOptions {
+  std::optional<glm::vec3> eye;  // for the CSV and the vertex colours
+  GlossyTurntable turntable = GlossyTurntable::kBoth;
+  prt::BrdfProjectionOptions projection;
+};
+
+// Reads a glossy transfer file and checks that it was baked for `scene` (prt::check_geometry).
+prt::GlossyTransferData load_glossy_for_scene(const std::string& path, const scene::Scene& scene);
+
+// The camera of turntable frame i of N: eye and up turned by Ry(360°·i/N) about the vertical
+// line through the target.
+Camera orbit_camera(const Camera& camera, int frame, int frame_count);
+
+// Exit radiance of every vertex toward `eye`, 3 floats per vertex, shaded in parallel (TBB).
+std::vector<float> shade_glossy_vertices(const prt::GlossyRelighter& relighter,
+                                         const prt::ShLighting& lighting, const glm::vec3& eye);
+
+// Throws "PATH: ..." when the request asks for a CSV or vertex colours without options.eye.
+void check_glossy_request(const RelightRequest& request, const GlossyRelightOptions& options);
+
+// `prt relight` for a glossy file: same request, outputs and checks as run_relight.
+RelightSummary run_glossy_relight(const RelightRequest& request,
+                                  const GlossyRelightOptions& options);
+
+}  // namespace prt::relight

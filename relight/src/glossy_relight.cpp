@@ -1,0 +1,172 @@
+// relight/src/glossy_relight.cpp — view-dependent relighting of glossy files
+// (relight/glossy_relight.h).
+#include "relight/glossy_relight.h"
+
+#include <tbb/parallel_for.h>
+
+#include <chrono>
+#include <stdexcept>
+#include <string>
+#include <utility>
+
+#include "prt/geometry_check.h"
+#include "prt/glossy_transfer_file.h"
+#include "relight/environment_input.h"
+#include "relight_frames.h"
+#include "scene/scene_loader.h"
+#include "sh/rotation.h"
+
+namespace prt::relight {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+glm::vec3 turn(const std::array<double, 9>& m, const glm::vec3& v) {
+  return {float(m[0] * v.x + m[1] * v.y + m[2] * v.z), float(m[3] * v.x + m[4] * v.y + m[5] * v.z),
+          float(m[6] * v.x + m[7] * v.y + m[8] * v.z)};
+}
+
+// The first frame's extras: the exposure (given or automatic, from the image's shading) and the
+// CSV and vertex colours toward options.eye.
+void write_first_frame_extras(const RelightRequest& request, const GlossyRelightOptions& options,
+                              const scene::Scene& scene, const prt::GlossyRelighter& relighter,
+                              const prt::ShLighting& lighting, const std::vector<float>& radiance,
+                              RelightSummary* summary) {
+  summary->exposure_auto = !request.exposure_ev.has_value();
+  summary->exposure_ev =
+      request.exposure_ev ? *request.exposure_ev : choose_auto_exposure(radiance);
+  if (request.csv_path.empty() && request.vertex_colors_path.empty()) return;
+  const std::vector<float> at_eye = shade_glossy_vertices(relighter, lighting, *options.eye);
+  if (!request.vertex_colors_path.empty()) {
+    const std::vector<glm::vec3> colors =
+        detail::vertex_colors(at_eye, request.vertex_colors_tonemapped, summary->exposure_ev);
+    scene::write_glb(request.vertex_colors_path, scene, &colors);
+    summary->files_written.push_back(request.vertex_colors_path);
+  }
+  if (!request.csv_path.empty()) {
+    write_vertex_csv(request.csv_path, scene, at_eye);
+    summary->files_written.push_back(request.csv_path);
+  }
+}
+
+}  // namespace
+
+prt::GlossyTransferData load_glossy_for_scene(const std::string& path, const scene::Scene& scene) {
+  prt::Result<prt::GlossyTransferData> data = prt::read_glossy_transfer_file(path);
+  if (!data.ok()) {
+    const std::string message = data.status().message();
+    if (message.rfind(path, 0) == 0) throw std::runtime_error(message);
+    throw std::runtime_error(path + ": " + message);
+  }
+  prt::TransferData header;  // what check_geometry reads: count, fingerprint, positions
+  header.vertex_count = data->vertex_count;
+  header.fingerprint = data->fingerprint;
+  header.positions = data->positions;
+  check_transfer_matches_scene(header, path, scene);
+  return std::move(data).value();
+}
+
+Camera orbit_camera(const Camera& camera, int frame, int frame_count) {
+  if (frame_count <= 0) return camera;
+  const std::array<double, 9> m =
+      sh::rotation_from_yaw_pitch_roll(360.0 * frame / frame_count, 0.0, 0.0);
+  Camera out = camera;
+  out.eye = camera.target + turn(m, camera.eye - camera.target);
+  out.up = turn(m, camera.up);
+  return out;
+}
+
+std::vector<float> shade_glossy_vertices(const prt::GlossyRelighter& relighter,
+                                         const prt::ShLighting& lighting, const glm::vec3& eye) {
+  const std::size_t count = relighter.vertex_count();
+  std::vector<float> radiance(3 * count, 0.f);
+  constexpr std::size_t kRange = 1024;
+  const std::size_t ranges = (count + kRange - 1) / kRange;
+  std::vector<std::string> errors(ranges);
+  const float eye_xyz[3] = {eye.x, eye.y, eye.z};
+  tbb::parallel_for(std::size_t{0}, ranges, [&](std::size_t r) {
+    const std::size_t first = r * kRange, n = std::min(kRange, count - first);
+    const prt::Status s = relighter.shade(lighting, eye_xyz, first, n, &radiance[3 * first]);
+    if (!s.ok()) errors[r] = s.message();
+  });
+  for (const std::string& error : errors)
+    if (!error.empty()) throw std::runtime_error("glossy shading: " + error);
+  return radiance;
+}
+
+void check_glossy_request(const RelightRequest& request, const GlossyRelightOptions& options) {
+  if (options.eye) {
+    const glm::vec3& e = *options.eye;
+    if (!std::isfinite(e.x) || !std::isfinite(e.y) || !std::isfinite(e.z))
+      throw std::runtime_error("--eye: not a finite point");
+    return;
+  }
+  if (!request.csv_path.empty() || !request.vertex_colors_path.empty())
+    throw std::runtime_error(request.transfer_path +
+                             ": is a glossy file, whose vertex values depend on the view: "
+                             "--csv and --vertex-colors need --eye x,y,z");
+}
+
+RelightSummary run_glossy_relight(const RelightRequest& request,
+                                  const GlossyRelightOptions& options) {
+  check_relight_outputs(request);
+  check_glossy_request(request, options);
+  RelightSummary summary;
+  const scene::Scene scene = scene::load_scene(request.scene_path);
+  prt::GlossyTransferData data = load_glossy_for_scene(request.transfer_path, scene);
+  EnvironmentUse use;
+  use.sh_order = static_cast<int>(data.order);
+  EnvironmentInput input = read_checked_environment(request.environment_path, request.layout, use);
+  const sh::EnvMap env = std::move(input.env);
+  summary.layout_note = input.layout_note;
+  summary.vertex_count = scene.vertex_count();
+  summary.order = static_cast<int>(data.order);
+  const prt::ShLighting base =
+      project_lighting(env, summary.order, request.lighting, &summary.window_note);
+  prt::Result<prt::GlossyRelighter> relighter =
+      prt::GlossyRelighter::create(std::move(data), options.projection);
+  if (!relighter.ok())
+    throw std::runtime_error(request.transfer_path + ": " + relighter.status().message());
+
+  const float aspect = static_cast<float>(request.render.width) /
+                       static_cast<float>(std::max(1, request.render.height));
+  const scene::RayCaster caster(scene);
+  const Camera camera = resolve_camera(request.camera, scene, caster, aspect, &summary.camera_note);
+  make_camera_basis(camera, aspect);
+  const std::array<double, 9> rotation = sh::rotation_from_yaw_pitch_roll(
+      request.lighting.yaw_pitch_roll_deg[0], request.lighting.yaw_pitch_roll_deg[1],
+      request.lighting.yaw_pitch_roll_deg[2]);
+  const int frames = std::max(1, request.turntable_frames);
+  const bool turn_light = options.turntable != GlossyTurntable::kCamera;
+  const bool orbit = options.turntable != GlossyTurntable::kLight;
+  for (int frame = 0; frame < frames; ++frame) {
+    const bool table = request.turntable_frames > 0;
+    const std::array<double, 9> m =
+        table && turn_light ? turntable_rotation(rotation, frame, frames) : rotation;
+    const Camera view = table && orbit ? orbit_camera(camera, frame, frames) : camera;
+    const prt::ShLighting lighting = rotate_lighting(base, m);
+    auto start = Clock::now();
+    const std::vector<float> radiance = shade_glossy_vertices(*relighter, lighting, view.eye);
+    summary.shade_seconds += seconds_since(start);
+    const std::size_t negative = detail::count_negative_vertices(radiance);
+    summary.negative_vertices = std::max(summary.negative_vertices, negative);
+    summary.negative_frames += negative > 0 ? 1 : 0;
+    if (frame == 0)
+      write_first_frame_extras(request, options, scene, *relighter, lighting, radiance, &summary);
+    start = Clock::now();
+    const Image image = render(scene, caster, radiance, &env, m, view, request.render);
+    summary.render_seconds += seconds_since(start);
+    const std::string path =
+        table ? turntable_frame_path(request.output_path, frame) : request.output_path;
+    write_rendered_image(path, image, summary.exposure_ev);
+    summary.files_written.push_back(path);
+    if (request.image_written) request.image_written(frame + 1, frames);
+  }
+  return summary;
+}
+
+}  // namespace prt::relight
