@@ -64,21 +64,26 @@ FormFactorUpdate update_form_factors(const std::vector<Patch>& before,
   if (before.size() != n || f->size != n || f->f.size() != n * n)
     throw std::invalid_argument("update_form_factors: the same patches before and after needed");
   std::vector<char> moved(n, 0);
-  Box region, scene_box;
+  Box region_before, region_after, scene_box;
   FormFactorUpdate update;
   for (std::size_t i = 0; i < n; ++i) {
     for (const glm::dvec3& c : after[i].corners) scene_box.add(c);
     if (same_corners(before[i], after[i])) continue;
     moved[i] = 1;
     ++update.moved_patches;
-    for (const glm::dvec3& c : before[i].corners) region.add(c);
-    for (const glm::dvec3& c : after[i].corners) region.add(c);
+    for (const glm::dvec3& c : before[i].corners) region_before.add(c);
+    for (const glm::dvec3& c : after[i].corners) region_after.add(c);
   }
   if (update.moved_patches == 0) return update;
   // Visibility rays start and end ε off the surfaces (scene/ray_offset.h), far below this pad.
   const glm::dvec3 pad(1e-3 * glm::length(scene_box.hi - scene_box.lo));
-  region.lo -= pad;
-  region.hi += pad;
+  for (Box* b : {&region_before, &region_after}) {
+    b->lo -= pad;
+    b->hi += pad;
+  }
+  const auto meets = [&](const glm::dvec3& a, const glm::dvec3& b) {
+    return segment_meets(a, b, region_before) || segment_meets(a, b, region_after);
+  };
 
   const bool analytic = options.method == FormFactorMethod::Analytic;
   std::vector<std::vector<glm::dvec3>> points(analytic ? n : 0);
@@ -93,7 +98,8 @@ FormFactorUpdate update_form_factors(const std::vector<Patch>& before,
       ++rows;
     };
     if (!analytic) {
-      if (moved[i] || in_front(after[i], region)) recompute_row();
+      if (moved[i] || in_front(after[i], region_before) || in_front(after[i], region_after))
+        recompute_row();
       return;
     }
     double sum = 0.0;
@@ -110,7 +116,7 @@ FormFactorUpdate update_form_factors(const std::vector<Patch>& before,
       if (!affected) {
         const std::vector<glm::dvec3>& ys = points[j];
         for (std::size_t k = 0; k < xs.size() && !affected; ++k)
-          affected = segment_meets(xs[k], ys[k], region);
+          affected = meets(xs[k], ys[k]);
       }
       if (!affected) continue;
       if (!sender)

@@ -2,8 +2,9 @@
 // moved (same patches, same order, some with new corners: an object translated, rotated or
 // deformed), recomputing only what the move can have changed.
 //
-// The moved patches are those whose corners differ; the moved region R is the axis-aligned box
-// around their corners before and after (old ∪ new), padded by 1e-3 of the scene's diagonal.
+// The moved patches are those whose corners differ; the moved region R is the union of two
+// axis-aligned boxes, around their corners before and around them after, each padded by 1e-3
+// of the scene's diagonal.
 // Per method (docs/RADIOSITY.md, "Resuming"):
 //   analytic: entry F_ij is recomputed when i or j moved, or when one of its visibility segments
 //     (quadrature point x_k of i to y_k of j) meets R; every other entry has the same
