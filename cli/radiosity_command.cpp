@@ -23,6 +23,7 @@ struct RadiosityArguments {
   std::optional<double> max_edge;
   double tolerance = 1e-4;
   int rays = 1024;
+  uint64_t seed = 1;
   int quadrature = 3;
   int hemicube = 64;
   std::size_t max_iterations = 100000;
@@ -79,6 +80,7 @@ relight::RadiosityRequest make_request(const RadiosityArguments& a) {
   if (a.hemicube < 2 || a.hemicube > 4096 || a.hemicube % 2 != 0)
     throw CommandError("--hemicube: must be even, 2..4096");
   r.form_factors.rays_per_patch = a.rays;
+  r.form_factors.seed = a.seed;
   r.form_factors.hemicube_resolution = a.hemicube;
   r.form_factors.quadrature_points = a.quadrature;
   r.solve.tolerance = a.tolerance;
@@ -158,6 +160,8 @@ void register_radiosity(CLI::App& app) {
   cmd->add_option("--max-iterations", args->max_iterations, "Sweeps (progressive: shots) at most")
       ->capture_default_str();
   cmd->add_option("--rays", args->rays, "Rays per patch for --form-factors rays")
+      ->capture_default_str();
+  cmd->add_option("--seed", args->seed, "Random seed of --form-factors rays")
       ->capture_default_str();
   cmd->add_option(
          "--quadrature", args->quadrature,
