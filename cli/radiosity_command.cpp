@@ -24,6 +24,7 @@ struct RadiosityArguments {
   double tolerance = 1e-4;
   int rays = 1024;
   uint64_t seed = 1;
+  int emitter_rays = 0;
   int quadrature = 3;
   int hemicube = 64;
   std::size_t max_iterations = 100000;
@@ -81,6 +82,9 @@ relight::RadiosityRequest make_request(const RadiosityArguments& a) {
     throw CommandError("--hemicube: must be even, 2..4096");
   r.form_factors.rays_per_patch = a.rays;
   r.form_factors.seed = a.seed;
+  if (a.emitter_rays < 0 || a.emitter_rays > 1 << 24)
+    throw CommandError("--emitter-rays: must be in 0..16777216");
+  r.form_factors.emitter_rays_per_patch = a.emitter_rays;
   r.form_factors.hemicube_resolution = a.hemicube;
   r.form_factors.quadrature_points = a.quadrature;
   r.solve.tolerance = a.tolerance;
@@ -160,6 +164,10 @@ void register_radiosity(CLI::App& app) {
   cmd->add_option("--max-iterations", args->max_iterations, "Sweeps (progressive: shots) at most")
       ->capture_default_str();
   cmd->add_option("--rays", args->rays, "Rays per patch for --form-factors rays")
+      ->capture_default_str();
+  cmd->add_option("--emitter-rays", args->emitter_rays,
+                  "Rays per emitting patch for --form-factors rays (0: as --rays); direct light "
+                  "is estimated from these")
       ->capture_default_str();
   cmd->add_option("--seed", args->seed, "Random seed of --form-factors rays")
       ->capture_default_str();

@@ -8,6 +8,7 @@
 #include <memory>
 #include <stdexcept>
 
+#include "form_factor_rows.h"
 #include "large_buffer.h"
 #include "prt/atomic_file.h"
 #include "prt/crc32c.h"
@@ -88,6 +89,12 @@ uint64_t form_factor_key(const std::vector<Patch>& patches, const FormFactorOpti
     case FormFactorMethod::Rays:
       h.word(static_cast<uint32_t>(options.rays_per_patch));
       h.u64(options.seed);
+      // Which patches shoot more rays is part of how F was estimated (not their emission).
+      if (options.emitter_rays_per_patch > 0) {
+        h.word(static_cast<uint32_t>(options.emitter_rays_per_patch));
+        for (std::size_t i = 0; i < patches.size(); ++i)
+          if (patches[i].emission != glm::dvec3(0.0)) h.u64(i);
+      }
       break;
     case FormFactorMethod::Hemicube:
       h.word(static_cast<uint32_t>(options.hemicube_resolution));

@@ -35,6 +35,13 @@ class AnalyticSender {
   std::vector<glm::dvec3> polygon_;  // scratch
 };
 
+// Rays leaving patch p for the ray method.
+inline int rays_of(const Patch& p, const FormFactorOptions& options) {
+  const bool emits = p.emission != glm::dvec3(0.0);
+  return emits && options.emitter_rays_per_patch > 0 ? options.emitter_rays_per_patch
+                                                     : options.rays_per_patch;
+}
+
 // Scales an analytic row that sums above 1 to sum to 1 (sums in double).
 void normalise_row(float* row, std::size_t n);
 

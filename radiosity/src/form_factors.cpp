@@ -98,10 +98,11 @@ void ray_row(const std::vector<Patch>& patches, const scene::RayCaster& caster, 
   const Patch& s = patches[i];
   if (s.area <= 0.0) return;
   detail::PatchRandom random(options.seed, i);
+  const int rays = detail::rays_of(s, options);
   std::vector<uint32_t> hits;
-  hits.reserve(static_cast<std::size_t>(options.rays_per_patch));
+  hits.reserve(static_cast<std::size_t>(rays));
   const float inf = std::numeric_limits<float>::infinity();
-  for (int k = 0; k < options.rays_per_patch; ++k) {
+  for (int k = 0; k < rays; ++k) {
     const glm::dvec3 p = random.point_on(s);
     const glm::dvec3 d = random.cosine_direction(s.normal);
     const glm::vec3 o = caster.surface_origin(i, glm::vec3(p), glm::vec3(s.normal));
@@ -112,7 +113,7 @@ void ray_row(const std::vector<Patch>& patches, const scene::RayCaster& caster, 
   for (std::size_t a = 0; a < hits.size();) {
     std::size_t b = a;
     while (b < hits.size() && hits[b] == hits[a]) ++b;
-    row[hits[a]] = static_cast<float>(double(b - a) / options.rays_per_patch);
+    row[hits[a]] = static_cast<float>(double(b - a) / rays);
     a = b;
   }
 }
@@ -132,7 +133,7 @@ void detail::row_into(const std::vector<Patch>& patches, const scene::RayCaster&
     hemicube_row(patches, caster, i, options.hemicube_resolution, &hemicube);
     std::copy(hemicube.begin(), hemicube.end(), row);
   } else {
-    if (options.rays_per_patch < 1)
+    if (options.rays_per_patch < 1 || options.emitter_rays_per_patch < 0)
       throw std::invalid_argument("form factors: rays_per_patch must be at least 1");
     ray_row(patches, caster, i, options, row);
   }

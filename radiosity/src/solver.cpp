@@ -8,6 +8,10 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
+#include <immintrin.h>
+#endif
+
 #include "large_buffer.h"
 
 namespace prt::radiosity {
@@ -59,14 +63,13 @@ struct Channels {
   }
 };
 
-// out[j] = Σ_i K_ji L_i for rows [begin, end): four interleaved partial sums per channel, added
-// in a fixed order at the end. Cloned for AVX2 where the CPU has it; the build is ISO C++ (no
-// floating-point contraction), so every clone adds the same products in the same order.
-#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
-__attribute__((target_clones("avx2", "default")))
-#endif
-void gather_rows(const float* k, std::size_t n, std::size_t begin, std::size_t end,
-                 const double* r, const double* g, const double* b, glm::dvec3* out) {
+// out[j] = Σ_i K_ji L_i for rows [begin, end): four interleaved partial sums per channel (lane
+// l adds the products of i ≡ l mod 4), added as (s0 + s1) + (s2 + s3) at the end. The AVX2
+// version (four doubles per instruction, chosen at run time) does exactly these operations in
+// this order, multiply then add (no fused multiply-add; the build is ISO C++, no contraction),
+// so both give bit-identical sums.
+void gather_rows_portable(const float* k, std::size_t n, std::size_t begin, std::size_t end,
+                          const double* r, const double* g, const double* b, glm::dvec3* out) {
   for (std::size_t j = begin; j != end; ++j) {
     const float* __restrict row = k + j * n;
     double s0[4] = {0, 0, 0, 0}, s1[4] = {0, 0, 0, 0}, s2[4] = {0, 0, 0, 0};
@@ -78,15 +81,55 @@ void gather_rows(const float* k, std::size_t n, std::size_t begin, std::size_t e
         s1[l] += w * g[i + l];
         s2[l] += w * b[i + l];
       }
-    for (; i < n; ++i) {
+    for (int l = 0; i < n; ++i, ++l) {
       const double w = row[i];
-      s0[0] += w * r[i];
-      s1[0] += w * g[i];
-      s2[0] += w * b[i];
+      s0[l] += w * r[i];
+      s1[l] += w * g[i];
+      s2[l] += w * b[i];
     }
     out[j - begin] = glm::dvec3((s0[0] + s0[1]) + (s0[2] + s0[3]), (s1[0] + s1[1]) + (s1[2] + s1[3]),
                                 (s2[0] + s2[1]) + (s2[2] + s2[3]));
   }
+}
+
+#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
+__attribute__((target("avx2"))) void gather_rows_avx2(const float* k, std::size_t n,
+                                                      std::size_t begin, std::size_t end,
+                                                      const double* r, const double* g,
+                                                      const double* b, glm::dvec3* out) {
+  for (std::size_t j = begin; j != end; ++j) {
+    const float* row = k + j * n;
+    __m256d s0 = _mm256_setzero_pd(), s1 = _mm256_setzero_pd(), s2 = _mm256_setzero_pd();
+    std::size_t i = 0;
+    for (; i + 4 <= n; i += 4) {
+      const __m256d w = _mm256_cvtps_pd(_mm_loadu_ps(row + i));
+      s0 = _mm256_add_pd(s0, _mm256_mul_pd(w, _mm256_loadu_pd(r + i)));
+      s1 = _mm256_add_pd(s1, _mm256_mul_pd(w, _mm256_loadu_pd(g + i)));
+      s2 = _mm256_add_pd(s2, _mm256_mul_pd(w, _mm256_loadu_pd(b + i)));
+    }
+    alignas(32) double t0[4], t1[4], t2[4];
+    _mm256_store_pd(t0, s0);
+    _mm256_store_pd(t1, s1);
+    _mm256_store_pd(t2, s2);
+    for (int l = 0; i < n; ++i, ++l) {
+      const double w = row[i];
+      t0[l] += w * r[i];
+      t1[l] += w * g[i];
+      t2[l] += w * b[i];
+    }
+    out[j - begin] = glm::dvec3((t0[0] + t0[1]) + (t0[2] + t0[3]), (t1[0] + t1[1]) + (t1[2] + t1[3]),
+                                (t2[0] + t2[1]) + (t2[2] + t2[3]));
+  }
+}
+#endif
+
+void gather_rows(const float* k, std::size_t n, std::size_t begin, std::size_t end,
+                 const double* r, const double* g, const double* b, glm::dvec3* out) {
+#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
+  static const bool avx2 = __builtin_cpu_supports("avx2");
+  if (avx2) return gather_rows_avx2(k, n, begin, end, r, g, b, out);
+#endif
+  gather_rows_portable(k, n, begin, end, r, g, b, out);
 }
 
 glm::dvec3 gather(const GatherMatrix& k, std::size_t j, const Channels& l) {

@@ -137,6 +137,27 @@ TEST_CASE("form-factor cache: another scene, other options, truncation and corru
   unused.hemicube_resolution = 32;
   unused.quadrature_points = 1;
   CHECK(form_factor_key(patches, unused) == key);
+  // More rays from emitters: part of the key, and so is which patches emit, but not how much.
+  FormFactorOptions emitter = ff;
+  emitter.emitter_rays_per_patch = 400;
+  const uint64_t emitter_key = form_factor_key(patches, emitter);
+  CHECK(emitter_key != key);
+  std::vector<Patch> brighter = patches, other_emitters = patches;
+  for (Patch& p : brighter)
+    if (p.emission.x > 0.0) p.emission *= 3.0;
+  other_emitters[0].emission = glm::dvec3(1.0);
+  CHECK(form_factor_key(brighter, emitter) == emitter_key);
+  CHECK(form_factor_key(other_emitters, emitter) != emitter_key);
+  CHECK(form_factor_key(other_emitters, ff) == key);  // without emitter rays it does not matter
+  // An emitter's row with emitter rays is the row of that many rays.
+  const FormFactorMatrix fe = compute_form_factors(patches, caster, emitter);
+  FormFactorOptions many = ff;
+  many.rays_per_patch = 400;
+  for (uint32_t i = 0; i < patches.size(); ++i) {
+    std::vector<float> row;
+    form_factor_row(patches, caster, i, patches[i].emission.x > 0.0 ? many : ff, &row);
+    CHECK(std::equal(row.begin(), row.end(), fe.f.begin() + i * fe.size));
+  }
 
   std::string bytes;
   {
