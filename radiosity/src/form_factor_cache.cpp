@@ -116,7 +116,8 @@ void save_form_factors(const std::string& path, const FormFactorMatrix& f, uint6
   encode(h, header);
   const Status status = replace_file_atomically(path, [&](const std::string& temporary) {
     std::unique_ptr<std::FILE, FileCloser> file(std::fopen(temporary.c_str(), "wb"));
-    if (!file) return Status::Error(path + ": cannot create " + temporary + ": " + std::strerror(errno));
+    if (!file)
+      return Status::Error(path + ": cannot create " + temporary + ": " + std::strerror(errno));
     const bool written =
         std::fwrite(header, 1, kHeaderSize, file.get()) == kHeaderSize &&
         std::fwrite(f.f.data(), sizeof(float), f.f.size(), file.get()) == f.f.size();
@@ -129,7 +130,8 @@ void save_form_factors(const std::string& path, const FormFactorMatrix& f, uint6
 
 FormFactorMatrix load_form_factors(const std::string& path, uint64_t key) {
   std::unique_ptr<std::FILE, FileCloser> file(std::fopen(path.c_str(), "rb"));
-  if (!file) throw std::runtime_error(path + ": cannot open form-factor cache: " + std::strerror(errno));
+  if (!file)
+    throw std::runtime_error(path + ": cannot open form-factor cache: " + std::strerror(errno));
   unsigned char header[kHeaderSize];
   const std::size_t got = std::fread(header, 1, kHeaderSize, file.get());
   if (got >= 8 && std::memcmp(header, kMagic, 8) != 0)

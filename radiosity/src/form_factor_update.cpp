@@ -115,8 +115,7 @@ FormFactorUpdate update_form_factors(const std::vector<Patch>& before,
       bool affected = moved[j] != 0;
       if (!affected) {
         const std::vector<glm::dvec3>& ys = points[j];
-        for (std::size_t k = 0; k < xs.size() && !affected; ++k)
-          affected = meets(xs[k], ys[k]);
+        for (std::size_t k = 0; k < xs.size() && !affected; ++k) affected = meets(xs[k], ys[k]);
       }
       if (!affected) continue;
       if (!sender)

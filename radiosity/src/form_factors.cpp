@@ -52,7 +52,10 @@ std::vector<glm::dvec3> detail::quadrature_points(const Patch& p, int count) {
 
 detail::AnalyticSender::AnalyticSender(const std::vector<Patch>& patches,
                                        const scene::RayCaster& caster, uint32_t i, int points)
-    : patches_(patches), caster_(caster), i_(i), points_(points),
+    : patches_(patches),
+      caster_(caster),
+      i_(i),
+      points_(points),
       xs_(quadrature_points(patches[i], points)) {
   for (const glm::dvec3& x : xs_)
     origins_.push_back(caster.surface_origin(i, glm::vec3(x), glm::vec3(patches[i].normal)));
@@ -121,7 +124,7 @@ void ray_row(const std::vector<Patch>& patches, const scene::RayCaster& caster, 
 }  // namespace
 
 void detail::row_into(const std::vector<Patch>& patches, const scene::RayCaster& caster, uint32_t i,
-              const FormFactorOptions& options, float* row) {
+                      const FormFactorOptions& options, float* row) {
   if (options.method == FormFactorMethod::Analytic) {
     if (options.quadrature_points != 1 && options.quadrature_points != 3)
       throw std::invalid_argument("form factors: quadrature_points must be 1 or 3");
@@ -201,7 +204,7 @@ FormFactorMatrix compute_form_factors(const std::vector<Patch>& patches,
                     [&](const tbb::blocked_range<std::size_t>& range) {
                       for (std::size_t i = range.begin(); i != range.end(); ++i)
                         detail::row_into(patches, caster, static_cast<uint32_t>(i), options,
-                                 m.f.data() + i * m.size);
+                                         m.f.data() + i * m.size);
                     });
   return m;
 }

@@ -87,8 +87,9 @@ void gather_rows_portable(const float* k, std::size_t n, std::size_t begin, std:
       s1[l] += w * g[i];
       s2[l] += w * b[i];
     }
-    out[j - begin] = glm::dvec3((s0[0] + s0[1]) + (s0[2] + s0[3]), (s1[0] + s1[1]) + (s1[2] + s1[3]),
-                                (s2[0] + s2[1]) + (s2[2] + s2[3]));
+    out[j - begin] =
+        glm::dvec3((s0[0] + s0[1]) + (s0[2] + s0[3]), (s1[0] + s1[1]) + (s1[2] + s1[3]),
+                   (s2[0] + s2[1]) + (s2[2] + s2[3]));
   }
 }
 
@@ -117,14 +118,15 @@ __attribute__((target("avx2"))) void gather_rows_avx2(const float* k, std::size_
       t1[l] += w * g[i];
       t2[l] += w * b[i];
     }
-    out[j - begin] = glm::dvec3((t0[0] + t0[1]) + (t0[2] + t0[3]), (t1[0] + t1[1]) + (t1[2] + t1[3]),
-                                (t2[0] + t2[1]) + (t2[2] + t2[3]));
+    out[j - begin] =
+        glm::dvec3((t0[0] + t0[1]) + (t0[2] + t0[3]), (t1[0] + t1[1]) + (t1[2] + t1[3]),
+                   (t2[0] + t2[1]) + (t2[2] + t2[3]));
   }
 }
 #endif
 
-void gather_rows(const float* k, std::size_t n, std::size_t begin, std::size_t end,
-                 const double* r, const double* g, const double* b, glm::dvec3* out) {
+void gather_rows(const float* k, std::size_t n, std::size_t begin, std::size_t end, const double* r,
+                 const double* g, const double* b, glm::dvec3* out) {
 #if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
   static const bool avx2 = __builtin_cpu_supports("avx2");
   if (avx2) return gather_rows_avx2(k, n, begin, end, r, g, b, out);

@@ -60,8 +60,8 @@ void check_request(const RadiosityRequest& r) {
                                   ": needs a full-matrix solver (gauss-seidel or jacobi)");
     for (const std::string& out : {r.output_path, r.vertex_colors_path, r.csv_path}) {
       std::error_code ec;
-      if (!out.empty() && (out == r.form_factor_cache ||
-                           std::filesystem::equivalent(out, r.form_factor_cache, ec)))
+      if (!out.empty() &&
+          (out == r.form_factor_cache || std::filesystem::equivalent(out, r.form_factor_cache, ec)))
         throw std::invalid_argument(out + ": an output may not overwrite the form-factor cache");
     }
   }
@@ -162,7 +162,6 @@ void solve(const RadiosityRequest& r, const std::vector<radiosity::Patch>& patch
   summary->solve_seconds = since(t);
 }
 
-
 void check_patch_count(const RadiosityRequest& r, const scene::Scene& scene) {
   const std::size_t n = scene.triangles.size();
   if (n <= radiosity::kMaxPatches) return;
@@ -182,8 +181,8 @@ void check_patch_count(const RadiosityRequest& r, const scene::Scene& scene) {
 }
 
 void check_unit_albedo(const RadiosityRequest& r, const scene::Scene& scene,
-                       const std::vector<radiosity::Patch>& patches,
-                       const scene::RayCaster& caster, RadiositySummary* summary) {
+                       const std::vector<radiosity::Patch>& patches, const scene::RayCaster& caster,
+                       RadiositySummary* summary) {
   if (!radiosity::has_unit_albedo(scene)) return;
   summary->escape_probe = radiosity::escape_fraction(patches, caster, 64, 7);
   if (summary->escape_probe == 0.0)

@@ -177,7 +177,8 @@ TEST_CASE("prt radiosity --form-factor-cache: saved, reused, refused for another
   CHECK(slurp(dir / "d.csv") != slurp(dir / "a.csv"));
   // Another subdivision (another scene) and other options: refused, nothing written, the cache
   // untouched.
-  for (const std::string& other : {std::string(" --max-edge 0.2"), std::string(" --max-edge 0.25 --seed 5")}) {
+  for (const std::string& other :
+       {std::string(" --max-edge 0.2"), std::string(" --max-edge 0.25 --seed 5")}) {
     r = run(dir, common + (dir / "out.csv").string() + other + " --form-factor-cache " + cache +
                      " -o " + (dir / "out.png").string());
     INFO(other << "\n" << r.err);

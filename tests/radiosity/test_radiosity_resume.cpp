@@ -125,8 +125,9 @@ TEST_CASE("form-factor cache: another scene, other options, truncation and corru
   FormFactorOptions other_seed = ff;
   other_seed.seed = 2;
   FormFactorOptions analytic;
-  for (uint64_t other : {form_factor_key(moved, ff), form_factor_key(patches, more),
-                         form_factor_key(patches, other_seed), form_factor_key(patches, analytic)}) {
+  for (uint64_t other :
+       {form_factor_key(moved, ff), form_factor_key(patches, more),
+        form_factor_key(patches, other_seed), form_factor_key(patches, analytic)}) {
     CHECK(other != key);
     const std::string error = load_error(path, other);
     CHECK(error.find(path) == 0);
@@ -168,8 +169,8 @@ TEST_CASE("form-factor cache: another scene, other options, truncation and corru
     std::ofstream(dir / name, std::ios::binary) << content;
     return (dir / name).string();
   };
-  CHECK(load_error(write("short.ffm", bytes.substr(0, bytes.size() - 5)), key)
-            .find("truncated") != std::string::npos);
+  CHECK(load_error(write("short.ffm", bytes.substr(0, bytes.size() - 5)), key).find("truncated") !=
+        std::string::npos);
   CHECK(load_error(write("header.ffm", bytes.substr(0, 30)), key).find("truncated") !=
         std::string::npos);
   std::string flipped = bytes;
@@ -202,8 +203,7 @@ TEST_CASE("re-solving after an emission or albedo change equals a fresh solve",
     if (std::abs(p.normal.y - 1.0) < 1e-9 && p.centroid.y < 1e-6) p.albedo = glm::dvec3(0.3);
   }
   const Solution resolved = solve_matrix(patches, k, so);
-  const Solution fresh =
-      solve_matrix(patches, compute_form_factors(patches, caster, ff), so);
+  const Solution fresh = solve_matrix(patches, compute_form_factors(patches, caster, ff), so);
   REQUIRE(resolved.converged);
   REQUIRE(fresh.converged);
   // Same F (per-row seeds) and the same K: the same iterates. The tolerance of the brief

@@ -58,8 +58,8 @@ enum class FormFactorMethod { Analytic, Rays, Hemicube };
 
 struct FormFactorOptions {
   FormFactorMethod method = FormFactorMethod::Analytic;
-  int quadrature_points = 3;     // analytic: 1 (centroid) or 3 (degree-2 rule)
-  int rays_per_patch = 4096;     // rays
+  int quadrature_points = 3;  // analytic: 1 (centroid) or 3 (degree-2 rule)
+  int rays_per_patch = 4096;  // rays
   // rays: rays from each emitting patch (emission ≠ 0); 0 = rays_per_patch. Direct light is
   // estimated from the emitters' rows, so their noise dominates unless they shoot more.
   int emitter_rays_per_patch = 0;

@@ -54,13 +54,13 @@ struct RadiosityRequest {
 struct RadiositySummary {
   std::size_t patches = 0, vertices = 0;
   double form_factor_seconds = 0, solve_seconds = 0, render_seconds = 0;
-  double cache_seconds = 0;    // loading or saving the form-factor cache
-  double update_seconds = 0;   // the partial update after --move
-  double gather_seconds = 0;   // K from F (part of solve_seconds)
+  double cache_seconds = 0;   // loading or saving the form-factor cache
+  double update_seconds = 0;  // the partial update after --move
+  double gather_seconds = 0;  // K from F (part of solve_seconds)
   enum class Cache { None, Loaded, Saved } cache = Cache::None;
   radiosity::FormFactorUpdate update;  // counts of the partial update
-  radiosity::Solution solution;  // radiance vectors emptied; history and account kept
-  double escape_probe = -1;      // escape fraction measured for albedo-1 scenes (else −1)
+  radiosity::Solution solution;        // radiance vectors emptied; history and account kept
+  double escape_probe = -1;            // escape fraction measured for albedo-1 scenes (else −1)
   float exposure_ev = 0;
   std::vector<std::string> files_written;
 };
