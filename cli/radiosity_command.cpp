@@ -18,10 +18,13 @@ struct RadiosityArguments {
   std::string scene, output, vertex_colors, csv, per_emitter;
   std::string form_factors = "analytic";
   std::string solver = "gauss-seidel";
-  std::vector<std::string> emission, albedo;
+  std::vector<std::string> emission, albedo, moves;
+  std::string form_factor_cache;
   std::optional<double> max_edge;
   double tolerance = 1e-4;
   int rays = 1024;
+  uint64_t seed = 1;
+  int emitter_rays = 0;
   int quadrature = 3;
   int hemicube = 64;
   std::size_t max_iterations = 100000;
@@ -54,6 +57,8 @@ relight::RadiosityRequest make_request(const RadiosityArguments& a) {
   for (const std::string& e : a.albedo)
     r.albedo.push_back(radiosity::parse_material_value("--albedo", e));
   r.max_edge = a.max_edge;
+  r.form_factor_cache = a.form_factor_cache;
+  for (const std::string& m : a.moves) r.moves.push_back(relight::parse_object_move(m));
   if (a.form_factors == "analytic") {
     r.form_factors.method = radiosity::FormFactorMethod::Analytic;
   } else if (a.form_factors == "rays") {
@@ -77,6 +82,10 @@ relight::RadiosityRequest make_request(const RadiosityArguments& a) {
   if (a.hemicube < 2 || a.hemicube > 4096 || a.hemicube % 2 != 0)
     throw CommandError("--hemicube: must be even, 2..4096");
   r.form_factors.rays_per_patch = a.rays;
+  r.form_factors.seed = a.seed;
+  if (a.emitter_rays < 0 || a.emitter_rays > 1 << 24)
+    throw CommandError("--emitter-rays: must be in 0..16777216");
+  r.form_factors.emitter_rays_per_patch = a.emitter_rays;
   r.form_factors.hemicube_resolution = a.hemicube;
   r.form_factors.quadrature_points = a.quadrature;
   r.solve.tolerance = a.tolerance;
@@ -102,6 +111,16 @@ void run(const RadiosityArguments& args) {
       s.patches, s.vertices, s.form_factor_seconds, s.solve_seconds, solution.iterations,
       args.solver == "progressive" ? "shots" : "sweeps",
       solution.converged ? "" : ", NOT converged: raise --max-iterations", s.render_seconds);
+  if (s.cache == relight::RadiositySummary::Cache::Loaded)
+    std::printf("form factors loaded from %s (%.2f s)\n", args.form_factor_cache.c_str(),
+                s.cache_seconds);
+  if (s.cache == relight::RadiositySummary::Cache::Saved)
+    std::printf("form factors saved to %s (%.2f s)\n", args.form_factor_cache.c_str(),
+                s.cache_seconds);
+  if (!args.moves.empty() && s.cache != relight::RadiositySummary::Cache::None)
+    std::printf("moved %zu patches: recomputed %zu rows and %zu entries (%.2f s)\n",
+                s.update.moved_patches, s.update.rows_recomputed, s.update.entries_recomputed,
+                s.update_seconds);
   std::printf(
       "unshot power %.3g of emitted; absorbed %.6f, escaped %.6f; balance error %.2g; "
       "exposure %+.2f EV\n",
@@ -137,6 +156,12 @@ void register_radiosity(CLI::App& app) {
   cmd->add_option("--emission", args->emission,
                   "MATERIAL=r,g,b: emitted radiance of a material (repeatable)");
   cmd->add_option("--albedo", args->albedo, "MATERIAL=r,g,b: albedo of a material (repeatable)");
+  cmd->add_option("--form-factor-cache", args->form_factor_cache,
+                  "Form factors of the scene as loaded: saved here when absent, reused when "
+                  "present (refused if made for another scene or other options)");
+  cmd->add_option("--move", args->moves,
+                  "OBJECT=dx,dy,dz: translate an object before solving; with a cache only the "
+                  "form factors the move can change are recomputed (repeatable)");
   cmd->add_option("--max-edge", args->max_edge,
                   "Subdivide into patches with edges at most this long (scene units)");
   cmd->add_option("--form-factors", args->form_factors, "analytic|rays|hemicube")
@@ -152,6 +177,12 @@ void register_radiosity(CLI::App& app) {
   cmd->add_option("--max-iterations", args->max_iterations, "Sweeps (progressive: shots) at most")
       ->capture_default_str();
   cmd->add_option("--rays", args->rays, "Rays per patch for --form-factors rays")
+      ->capture_default_str();
+  cmd->add_option("--emitter-rays", args->emitter_rays,
+                  "Rays per emitting patch for --form-factors rays (0: as --rays); direct light "
+                  "is estimated from these")
+      ->capture_default_str();
+  cmd->add_option("--seed", args->seed, "Random seed of --form-factors rays")
       ->capture_default_str();
   cmd->add_option(
          "--quadrature", args->quadrature,

@@ -9,6 +9,8 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include "form_factor_rows.h"
+#include "large_buffer.h"
 #include "random.h"
 
 namespace prt::radiosity {
@@ -37,9 +39,9 @@ glm::dvec3 newell_normal(const std::vector<glm::dvec3>& polygon) {
   return length > 0.0 ? n / length : n;
 }
 
-// The quadrature points of a triangle: its centroid (1 point), or the degree-2 rule with
-// barycentrics (2/3, 1/6, 1/6) and their permutations (3 points, equal weights).
-std::vector<glm::dvec3> quadrature_points(const Patch& p, int count) {
+}  // namespace
+
+std::vector<glm::dvec3> detail::quadrature_points(const Patch& p, int count) {
   if (count == 1) return {p.centroid};
   const auto mix = [&](double a, double b, double c) {
     return p.corners[0] * a + p.corners[1] * b + p.corners[2] * c;
@@ -48,54 +50,97 @@ std::vector<glm::dvec3> quadrature_points(const Patch& p, int count) {
           mix(1.0 / 6, 1.0 / 6, 4.0 / 6)};
 }
 
-void analytic_row(const std::vector<Patch>& patches, const scene::RayCaster& caster, uint32_t i,
-                  int points, std::vector<float>* row) {
-  const Patch& s = patches[i];
-  const std::vector<glm::dvec3> xs = quadrature_points(s, points);
-  std::vector<glm::vec3> origins;
-  for (const glm::dvec3& x : xs)
-    origins.push_back(caster.surface_origin(i, glm::vec3(x), glm::vec3(s.normal)));
-  std::vector<glm::dvec3> polygon(3);
-  for (uint32_t j = 0; j < patches.size(); ++j) {
-    const Patch& r = patches[j];
-    if (j == i || r.area <= 0.0) continue;
-    polygon.assign(r.corners.begin(), r.corners.end());
-    std::vector<glm::dvec3> ys;
-    double sum = 0.0;
-    for (int k = 0; k < points; ++k) {
-      // One-sided receivers: x must lie in front of patch j.
-      if (glm::dot(r.normal, xs[k] - r.centroid) <= 0.0) continue;
-      const double f = point_polygon_form_factor(xs[k], s.normal, polygon);
-      if (f <= 0.0) continue;
-      if (ys.empty()) ys = quadrature_points(r, points);
-      const glm::vec3 target = caster.surface_origin(j, glm::vec3(ys[k]), glm::vec3(r.normal));
-      const glm::vec3 d = target - origins[k];
-      const float length = glm::length(d);
-      if (!(length > 0.f) || !caster.occluded(origins[k], d / length, 0.f, length)) sum += f;
-    }
-    (*row)[j] = static_cast<float>(sum / points);
-  }
+detail::AnalyticSender::AnalyticSender(const std::vector<Patch>& patches,
+                                       const scene::RayCaster& caster, uint32_t i, int points)
+    : patches_(patches),
+      caster_(caster),
+      i_(i),
+      points_(points),
+      xs_(quadrature_points(patches[i], points)) {
+  for (const glm::dvec3& x : xs_)
+    origins_.push_back(caster.surface_origin(i, glm::vec3(x), glm::vec3(patches[i].normal)));
 }
 
+float detail::AnalyticSender::entry(uint32_t j) {
+  const Patch& s = patches_[i_];
+  const Patch& r = patches_[j];
+  if (j == i_ || r.area <= 0.0) return 0.f;
+  polygon_.assign(r.corners.begin(), r.corners.end());
+  std::vector<glm::dvec3> ys;
+  double sum = 0.0;
+  for (int k = 0; k < points_; ++k) {
+    // One-sided receivers: x must lie in front of patch j.
+    if (glm::dot(r.normal, xs_[k] - r.centroid) <= 0.0) continue;
+    const double f = point_polygon_form_factor(xs_[k], s.normal, polygon_);
+    if (f <= 0.0) continue;
+    if (ys.empty()) ys = quadrature_points(r, points_);
+    const glm::vec3 target = caster_.surface_origin(j, glm::vec3(ys[k]), glm::vec3(r.normal));
+    const glm::vec3 d = target - origins_[k];
+    const float length = glm::length(d);
+    if (!(length > 0.f) || !caster_.occluded(origins_[k], d / length, 0.f, length)) sum += f;
+  }
+  return static_cast<float>(sum / points_);
+}
+
+// Sampled visibility can let overlapping polygons (an occluder and the wall behind it) both
+// count in full; a row may then sum above 1. It is scaled back to 1 so that no patch sends more
+// power than it has.
+void detail::normalise_row(float* row, std::size_t n) {
+  double sum = 0.0;
+  for (std::size_t j = 0; j < n; ++j) sum += row[j];
+  if (sum > 1.0)
+    for (std::size_t j = 0; j < n; ++j) row[j] = static_cast<float>(row[j] / sum);
+}
+
+namespace {
+
+// Row i by rays into `row` (n floats, zero on entry). Only the hit patches are written: the
+// hits are collected, sorted and counted, so a row costs O(rays log rays), not O(n).
 void ray_row(const std::vector<Patch>& patches, const scene::RayCaster& caster, uint32_t i,
-             const FormFactorOptions& options, std::vector<float>* row) {
+             const FormFactorOptions& options, float* row) {
   const Patch& s = patches[i];
   if (s.area <= 0.0) return;
   detail::PatchRandom random(options.seed, i);
-  std::vector<uint32_t> hits(patches.size(), 0);
+  const int rays = detail::rays_of(s, options);
+  std::vector<uint32_t> hits;
+  hits.reserve(static_cast<std::size_t>(rays));
   const float inf = std::numeric_limits<float>::infinity();
-  for (int k = 0; k < options.rays_per_patch; ++k) {
+  for (int k = 0; k < rays; ++k) {
     const glm::dvec3 p = random.point_on(s);
     const glm::dvec3 d = random.cosine_direction(s.normal);
     const glm::vec3 o = caster.surface_origin(i, glm::vec3(p), glm::vec3(s.normal));
     const scene::RayCaster::Hit hit = caster.intersect(o, glm::vec3(d), 0.f, inf);
-    if (hit.hit && hit.front_face && hit.triangle != i) ++hits[hit.triangle];
+    if (hit.hit && hit.front_face && hit.triangle != i) hits.push_back(hit.triangle);
   }
-  for (std::size_t j = 0; j < patches.size(); ++j)
-    (*row)[j] = static_cast<float>(double(hits[j]) / options.rays_per_patch);
+  std::sort(hits.begin(), hits.end());
+  for (std::size_t a = 0; a < hits.size();) {
+    std::size_t b = a;
+    while (b < hits.size() && hits[b] == hits[a]) ++b;
+    row[hits[a]] = static_cast<float>(double(b - a) / rays);
+    a = b;
+  }
 }
 
 }  // namespace
+
+void detail::row_into(const std::vector<Patch>& patches, const scene::RayCaster& caster, uint32_t i,
+                      const FormFactorOptions& options, float* row) {
+  if (options.method == FormFactorMethod::Analytic) {
+    if (options.quadrature_points != 1 && options.quadrature_points != 3)
+      throw std::invalid_argument("form factors: quadrature_points must be 1 or 3");
+    AnalyticSender sender(patches, caster, i, options.quadrature_points);
+    for (uint32_t j = 0; j < patches.size(); ++j) row[j] = sender.entry(j);
+    normalise_row(row, patches.size());
+  } else if (options.method == FormFactorMethod::Hemicube) {
+    std::vector<float> hemicube;
+    hemicube_row(patches, caster, i, options.hemicube_resolution, &hemicube);
+    std::copy(hemicube.begin(), hemicube.end(), row);
+  } else {
+    if (options.rays_per_patch < 1 || options.emitter_rays_per_patch < 0)
+      throw std::invalid_argument("form factors: rays_per_patch must be at least 1");
+    ray_row(patches, caster, i, options, row);
+  }
+}
 
 double point_polygon_form_factor(const glm::dvec3& x, const glm::dvec3& n,
                                  const std::vector<glm::dvec3>& polygon) {
@@ -140,24 +185,7 @@ double polygon_polygon_form_factor(const std::vector<glm::dvec3>& a,
 void form_factor_row(const std::vector<Patch>& patches, const scene::RayCaster& caster, uint32_t i,
                      const FormFactorOptions& options, std::vector<float>* row) {
   row->assign(patches.size(), 0.f);
-  if (options.method == FormFactorMethod::Analytic) {
-    if (options.quadrature_points != 1 && options.quadrature_points != 3)
-      throw std::invalid_argument("form factors: quadrature_points must be 1 or 3");
-    analytic_row(patches, caster, i, options.quadrature_points, row);
-    // Sampled visibility can let overlapping polygons (an occluder and the wall behind it)
-    // both count in full; a row may then sum above 1. It is scaled back to 1 so that no patch
-    // sends more power than it has.
-    double sum = 0.0;
-    for (float v : *row) sum += v;
-    if (sum > 1.0)
-      for (float& v : *row) v = static_cast<float>(v / sum);
-  } else if (options.method == FormFactorMethod::Hemicube) {
-    hemicube_row(patches, caster, i, options.hemicube_resolution, row);
-  } else {
-    if (options.rays_per_patch < 1)
-      throw std::invalid_argument("form factors: rays_per_patch must be at least 1");
-    ray_row(patches, caster, i, options, row);
-  }
+  detail::row_into(patches, caster, i, options, row->data());
 }
 
 double FormFactorMatrix::row_sum(std::size_t i) const {
@@ -171,14 +199,12 @@ FormFactorMatrix compute_form_factors(const std::vector<Patch>& patches,
                                       const FormFactorOptions& options) {
   FormFactorMatrix m;
   m.size = patches.size();
-  m.f.assign(m.size * m.size, 0.f);
+  detail::assign_zeroed_large(&m.f, m.size * m.size);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, m.size, 8),
                     [&](const tbb::blocked_range<std::size_t>& range) {
-                      std::vector<float> row;
-                      for (std::size_t i = range.begin(); i != range.end(); ++i) {
-                        form_factor_row(patches, caster, static_cast<uint32_t>(i), options, &row);
-                        std::copy(row.begin(), row.end(), m.f.begin() + i * m.size);
-                      }
+                      for (std::size_t i = range.begin(); i != range.end(); ++i)
+                        detail::row_into(patches, caster, static_cast<uint32_t>(i), options,
+                                         m.f.data() + i * m.size);
                     });
   return m;
 }

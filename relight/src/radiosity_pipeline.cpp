@@ -2,10 +2,12 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <stdexcept>
 
 #include "prt/emitter_responses.h"
+#include "radiosity/form_factor_cache.h"
 #include "radiosity/patches.h"
 #include "relight/camera.h"
 #include "relight/relight_pipeline.h"
@@ -58,14 +60,46 @@ void check_request(const RadiosityRequest& r) {
   if (r.max_edge && !(*r.max_edge > 0.0 && std::isfinite(*r.max_edge)))
     throw std::invalid_argument("--max-edge " + std::to_string(*r.max_edge) +
                                 ": the target edge length must be a finite positive number");
+  if (!r.form_factor_cache.empty()) {
+    check_output(r.form_factor_cache, r.scene_path, {});
+    if (r.solve.solver == radiosity::SolverKind::Progressive)
+      throw std::invalid_argument("--form-factor-cache " + r.form_factor_cache +
+                                  ": needs a full-matrix solver (gauss-seidel or jacobi)");
+    for (const std::string& out : {r.output_path, r.vertex_colors_path, r.csv_path}) {
+      std::error_code ec;
+      if (!out.empty() &&
+          (out == r.form_factor_cache || std::filesystem::equivalent(out, r.form_factor_cache, ec)))
+        throw std::invalid_argument(out + ": an output may not overwrite the form-factor cache");
+    }
+  }
   if (!(r.solve.tolerance > 0.0 && r.solve.tolerance < 1.0))
     throw std::invalid_argument("--tolerance " + std::to_string(r.solve.tolerance) +
                                 ": must be in (0, 1)");
 }
 
-// Loads the scene and applies and checks its materials; throws when nothing emits.
-scene::Scene prepare_scene(const RadiosityRequest& r) {
+void apply_moves(scene::Scene& scene, const RadiosityRequest& r) {
+  for (const ObjectMove& move : r.moves) {
+    bool found = false;
+    std::string names;
+    for (const scene::ScenePrimitive& p : scene.primitives) {
+      const std::string mesh = p.name.substr(0, p.name.find('/'));
+      if (names.size() < 200) names += (names.empty() ? "" : ", ") + p.name;
+      if (p.name != move.object && mesh != move.object) continue;
+      found = true;
+      for (uint32_t v = 0; v < p.vertex_count; ++v)
+        scene.positions[p.first_vertex + v] += glm::vec3(move.offset);
+    }
+    if (!found)
+      throw std::invalid_argument("--move " + move.object + ": no object of " + r.scene_path +
+                                  " has this name (objects: " + names + ")");
+  }
+}
+
+// Loads the scene and applies and checks its materials; throws when nothing emits. With
+// `moved`, the objects of --move are translated before subdivision.
+scene::Scene prepare_scene(const RadiosityRequest& r, bool moved) {
   scene::Scene scene = scene::load_scene(r.scene_path);
+  if (moved) apply_moves(scene, r);
   radiosity::apply_emission(scene, r.emission);
   radiosity::apply_albedo(scene, r.albedo);
   radiosity::check_materials(scene);
@@ -81,21 +115,58 @@ scene::Scene prepare_scene(const RadiosityRequest& r) {
   return scene;
 }
 
-void solve(const RadiosityRequest& r, const scene::Scene& scene,
-           const std::vector<radiosity::Patch>& patches, const scene::RayCaster& caster,
-           RadiositySummary* summary) {
-  if (r.solve.solver == radiosity::SolverKind::Progressive) {
-    const Clock::time_point t = Clock::now();
-    summary->solution = radiosity::solve_progressive(patches, caster, r.form_factors, r.solve);
-    summary->solve_seconds = since(t);  // includes the rows computed on the fly
-    return;
-  }
+// The form factors of `after`. With a cache: those of the scene as loaded (`before`), loaded
+// when the cache exists, else computed and saved, then brought up to date for --move.
+radiosity::FormFactorMatrix form_factors(const RadiosityRequest& r, const scene::Scene& before,
+                                         const std::vector<radiosity::Patch>& after,
+                                         const scene::RayCaster& caster,
+                                         RadiositySummary* summary) {
   Clock::time_point t = Clock::now();
-  const radiosity::FormFactorMatrix f =
-      radiosity::compute_form_factors(patches, caster, r.form_factors);
-  summary->form_factor_seconds = since(t);
-  t = Clock::now();
-  summary->solution = radiosity::solve_matrix(patches, f, r.solve);
+  if (r.form_factor_cache.empty()) {
+    radiosity::FormFactorMatrix f = radiosity::compute_form_factors(after, caster, r.form_factors);
+    summary->form_factor_seconds = since(t);
+    return f;
+  }
+  const std::vector<radiosity::Patch> unmoved = radiosity::make_patches(before);
+  if (unmoved.size() != after.size())
+    throw std::runtime_error(r.scene_path + ": --move changed how the scene subdivides (" +
+                             std::to_string(unmoved.size()) + " patches before, " +
+                             std::to_string(after.size()) + " after); use it without a cache");
+  const uint64_t key = radiosity::form_factor_key(unmoved, r.form_factors);
+  radiosity::FormFactorMatrix f;
+  if (std::filesystem::exists(r.form_factor_cache)) {
+    f = radiosity::load_form_factors(r.form_factor_cache, key);
+    summary->cache_seconds = since(t);
+    summary->cache = RadiositySummary::Cache::Loaded;
+  } else {
+    if (r.moves.empty()) {
+      f = radiosity::compute_form_factors(after, caster, r.form_factors);
+    } else {
+      const scene::RayCaster unmoved_caster(before);
+      f = radiosity::compute_form_factors(unmoved, unmoved_caster, r.form_factors);
+    }
+    summary->form_factor_seconds = since(t);
+    t = Clock::now();
+    radiosity::save_form_factors(r.form_factor_cache, f, key);
+    summary->cache_seconds = since(t);
+    summary->cache = RadiositySummary::Cache::Saved;
+    summary->files_written.push_back(r.form_factor_cache);
+  }
+  if (!r.moves.empty()) {
+    t = Clock::now();
+    summary->update = radiosity::update_form_factors(unmoved, after, caster, r.form_factors, &f);
+    summary->update_seconds = since(t);
+  }
+  return f;
+}
+
+void solve(const RadiosityRequest& r, const scene::Scene& scene,
+           const std::vector<radiosity::Patch>& patches, const radiosity::FormFactorMatrix& f,
+           RadiositySummary* summary) {
+  Clock::time_point t = Clock::now();
+  const radiosity::GatherMatrix k = radiosity::make_gather_matrix(patches, f);
+  summary->gather_seconds = since(t);
+  summary->solution = radiosity::solve_matrix(patches, k, r.solve);
   summary->solve_seconds = since(t);
   if (!r.per_emitter_path.empty()) {  // the same form factors, one solve per emitter
     t = Clock::now();
@@ -106,6 +177,36 @@ void solve(const RadiosityRequest& r, const scene::Scene& scene,
     if (!written.ok()) throw std::runtime_error(written.message());
     summary->files_written.push_back(r.per_emitter_path);
   }
+}
+
+void check_patch_count(const RadiosityRequest& r, const scene::Scene& scene) {
+  const std::size_t n = scene.triangles.size();
+  if (n <= radiosity::kMaxPatches) return;
+  std::string advice;
+  if (r.max_edge) {
+    // Patches grow as 1/edge²: this edge gives about kMaxPatches, rounded up with a margin.
+    const double edge = *r.max_edge * std::sqrt(double(n) / radiosity::kMaxPatches) * 1.1;
+    char text[64];
+    std::snprintf(text, sizeof text, "%.3g", edge);
+    advice = "use a larger --max-edge (about " + std::string(text) + " or more)";
+  } else {
+    advice = "the scene itself has that many triangles: simplify it (--max-edge only splits)";
+  }
+  throw std::runtime_error(r.scene_path + ": " + std::to_string(n) + " patches, more than the " +
+                           std::to_string(radiosity::kMaxPatches) +
+                           " that dense form-factor storage allows (8·N² bytes); " + advice);
+}
+
+void check_unit_albedo(const RadiosityRequest& r, const scene::Scene& scene,
+                       const std::vector<radiosity::Patch>& patches, const scene::RayCaster& caster,
+                       RadiositySummary* summary) {
+  if (!radiosity::has_unit_albedo(scene)) return;
+  summary->escape_probe = radiosity::escape_fraction(patches, caster, 64, 7);
+  if (summary->escape_probe == 0.0)
+    throw std::runtime_error(r.scene_path +
+                             ": albedo 1 in a closed scene (no probe ray escapes): the "
+                             "radiosity grows without bound; lower it with --albedo "
+                             "MATERIAL=r,g,b");
 }
 
 }  // namespace
@@ -121,13 +222,24 @@ float automatic_exposure_ev(const Image& image) {
   return static_cast<float>(std::log2(0.18 / std::exp(log_sum / double(count))));
 }
 
+ObjectMove parse_object_move(const std::string& text) {
+  const std::size_t eq = text.find('=');
+  ObjectMove m;
+  char extra = 0;
+  if (eq == std::string::npos || eq == 0 ||
+      std::sscanf(text.c_str() + eq + 1, "%lf,%lf,%lf%c", &m.offset.x, &m.offset.y, &m.offset.z,
+                  &extra) != 3 ||
+      !std::isfinite(m.offset.x) || !std::isfinite(m.offset.y) || !std::isfinite(m.offset.z))
+    throw std::invalid_argument("--move " + text + ": expected OBJECT=dx,dy,dz (finite numbers)");
+  m.object = text.substr(0, eq);
+  return m;
+}
+
 RadiositySummary run_radiosity(const RadiosityRequest& r) {
   check_request(r);
-  const scene::Scene scene = prepare_scene(r);
-  if (scene.triangles.size() > radiosity::kMaxPatches)
-    throw std::runtime_error(r.scene_path + ": " + std::to_string(scene.triangles.size()) +
-                             " patches (at most " + std::to_string(radiosity::kMaxPatches) +
-                             ": form factors are stored densely); use a longer --max-edge");
+  const scene::Scene before = prepare_scene(r, false);
+  const scene::Scene scene = r.moves.empty() ? before : prepare_scene(r, true);
+  check_patch_count(r, scene);
   if (!r.per_emitter_path.empty()) radiosity::emitter_groups(scene);  // refused before solving
   RadiositySummary summary;
   const float aspect = float(r.render.width) / float(r.render.height);
@@ -135,17 +247,15 @@ RadiositySummary run_radiosity(const RadiosityRequest& r) {
   const scene::RayCaster caster(scene);
   const std::vector<radiosity::Patch> patches = radiosity::make_patches(scene);
   summary.patches = patches.size();
-
   summary.vertices = scene.vertex_count();
-  if (radiosity::has_unit_albedo(scene)) {
-    summary.escape_probe = radiosity::escape_fraction(patches, caster, 64, 7);
-    if (summary.escape_probe == 0.0)
-      throw std::runtime_error(r.scene_path +
-                               ": albedo 1 in a closed scene (no probe ray escapes): the "
-                               "radiosity grows without bound; lower it with --albedo "
-                               "MATERIAL=r,g,b");
+  check_unit_albedo(r, scene, patches, caster, &summary);
+  if (r.solve.solver == radiosity::SolverKind::Progressive) {
+    const Clock::time_point t = Clock::now();
+    summary.solution = radiosity::solve_progressive(patches, caster, r.form_factors, r.solve);
+    summary.solve_seconds = since(t);  // includes the rows computed on the fly
+  } else {
+    solve(r, scene, patches, form_factors(r, before, patches, caster, &summary), &summary);
   }
-  solve(r, scene, patches, caster, &summary);
   const std::vector<float> radiance =
       radiosity::vertex_radiance(scene, patches, summary.solution.display_radiance);
   summary.solution.radiance.clear();

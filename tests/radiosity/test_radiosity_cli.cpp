@@ -142,3 +142,64 @@ TEST_CASE("prt radiosity lights a room from its lamp: CSV radiance and energy su
   CHECK(lit == rows);
   CHECK(warm > rows * 9 / 10);  // walls of albedo (0.7, 0.5, 0.3) under a white lamp
 }
+
+TEST_CASE("prt radiosity --form-factor-cache: saved, reused, refused for another scene",
+          "[radiosity][cli][cache]") {
+  const fs::path dir = scratch("cache");
+  const std::string room = write_room(dir, "5 5 5", "0.7 0.7 0.7", false).string();
+  const std::string cache = (dir / "room.ffm").string();
+  const std::string common = room + " --form-factors rays --rays 200 --tolerance 1e-8 --csv ";
+  // First run: computed and saved.
+  RunResult r = run(dir, common + (dir / "a.csv").string() + " --max-edge 0.25" +
+                             " --form-factor-cache " + cache);
+  INFO(r.err);
+  REQUIRE(r.exit_code == 0);
+  CHECK(r.out.find("form factors saved to " + cache) != std::string::npos);
+  REQUIRE(fs::exists(cache));
+  const std::string saved = slurp(cache);
+  // Same geometry, new emission: loaded, not recomputed; the result equals a run without cache.
+  r = run(dir, common + (dir / "b.csv").string() + " --max-edge 0.25 --emission lamp=9,3,1" +
+                   " --form-factor-cache " + cache);
+  REQUIRE(r.exit_code == 0);
+  CHECK(r.out.find("form factors loaded from " + cache) != std::string::npos);
+  r = run(dir, common + (dir / "c.csv").string() + " --max-edge 0.25 --emission lamp=9,3,1");
+  REQUIRE(r.exit_code == 0);
+  CHECK(slurp(dir / "b.csv") == slurp(dir / "c.csv"));
+  CHECK(slurp(dir / "b.csv") != slurp(dir / "a.csv"));
+  // The lamp moved down: only the affected rows recomputed; equal to a run without cache.
+  r = run(dir, common + (dir / "d.csv").string() + " --max-edge 0.25 --move lamp=0,-0.2,0.1" +
+                   " --form-factor-cache " + cache);
+  REQUIRE(r.exit_code == 0);
+  CHECK(r.out.find("moved ") != std::string::npos);
+  r = run(dir, common + (dir / "e.csv").string() + " --max-edge 0.25 --move lamp=0,-0.2,0.1");
+  REQUIRE(r.exit_code == 0);
+  CHECK(slurp(dir / "d.csv") == slurp(dir / "e.csv"));
+  CHECK(slurp(dir / "d.csv") != slurp(dir / "a.csv"));
+  // Another subdivision (another scene) and other options: refused, nothing written, the cache
+  // untouched.
+  for (const std::string& other :
+       {std::string(" --max-edge 0.2"), std::string(" --max-edge 0.25 --seed 5")}) {
+    r = run(dir, common + (dir / "out.csv").string() + other + " --form-factor-cache " + cache +
+                     " -o " + (dir / "out.png").string());
+    INFO(other << "\n" << r.err);
+    CHECK(r.exit_code == 1);
+    CHECK(lines(r.err) == 1);
+    CHECK(r.err.find(cache + ": made for another scene or other form-factor options") !=
+          std::string::npos);
+    CHECK_FALSE(fs::exists(dir / "out.csv"));
+    CHECK_FALSE(fs::exists(dir / "out.png"));
+    CHECK(slurp(cache) == saved);
+  }
+  // A truncated cache: one line naming it.
+  std::ofstream(dir / "short.ffm", std::ios::binary) << saved.substr(0, saved.size() / 2);
+  r = run(dir, common + (dir / "out.csv").string() + " --max-edge 0.25 --form-factor-cache " +
+                   (dir / "short.ffm").string());
+  CHECK(r.exit_code == 1);
+  CHECK(lines(r.err) == 1);
+  CHECK(r.err.find("short.ffm: truncated") != std::string::npos);
+  CHECK_FALSE(fs::exists(dir / "out.csv"));
+  // An unknown object to move.
+  r = run(dir, common + (dir / "out.csv").string() + " --move chair=1,0,0");
+  CHECK(r.exit_code == 1);
+  CHECK(r.err.find("--move chair") != std::string::npos);
+}

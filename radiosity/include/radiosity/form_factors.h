@@ -12,8 +12,9 @@
 //     occlusion ray; origins by scene::RayCaster::surface_origin). Sampled visibility can count
 //     an occluder and the polygon behind it both in full; a row that then sums above 1 is
 //     scaled to sum to 1.
-//   rays: Monte Carlo — `rays_per_patch` cosine-distributed rays leave uniformly distributed
-//     points of patch i; F_ij is the fraction whose closest hit is the front face of patch j
+//   rays: Monte Carlo — `rays_per_patch` cosine-distributed rays (`emitter_rays_per_patch` from
+//     a patch whose emission is not zero, when given) leave uniformly distributed points of
+//     patch i; F_ij is the fraction whose closest hit is the front face of patch j
 //     (the estimator is unbiased, its standard error √(F(1 − F)/N)).
 //   hemicube: Cohen & Greenberg 1985 ([24]): a hemicube of `hemicube_resolution` cells across
 //     its top face (R × R/2 on each side face) around the centroid of patch i; each cell's
@@ -57,8 +58,11 @@ enum class FormFactorMethod { Analytic, Rays, Hemicube };
 
 struct FormFactorOptions {
   FormFactorMethod method = FormFactorMethod::Analytic;
-  int quadrature_points = 3;     // analytic: 1 (centroid) or 3 (degree-2 rule)
-  int rays_per_patch = 4096;     // rays
+  int quadrature_points = 3;  // analytic: 1 (centroid) or 3 (degree-2 rule)
+  int rays_per_patch = 4096;  // rays
+  // rays: rays from each emitting patch (emission ≠ 0); 0 = rays_per_patch. Direct light is
+  // estimated from the emitters' rows, so their noise dominates unless they shoot more.
+  int emitter_rays_per_patch = 0;
   uint64_t seed = 1;             // rays
   int hemicube_resolution = 64;  // hemicube: cells across the top face (even, 2..4096)
 };

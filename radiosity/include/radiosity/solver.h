@@ -23,6 +23,14 @@
 // Energy is checked after every step: the unshot power must not grow (relative slack 1e-9) and
 // no residual may be negative beyond rounding; a violation throws std::logic_error.
 // Results do not depend on the thread count (rows are independent; sums are sequential).
+//
+// The full-matrix solvers work on the gather matrix K (GatherMatrix), which depends on the
+// patch geometry and F only: a change of emission or albedo re-solves with the same K and no
+// form factors (docs/RADIOSITY.md, "Resuming"). Each step evaluates g = K·L once (rows in
+// parallel, each row summed in double over four interleaved partial sums per channel, in a
+// fixed order); Jacobi takes its next iterate from that same g, Gauss–Seidel sweeps the rows in
+// order. The energy account of the result is taken from the last evaluation, under K:
+// escaped_i uses the fraction Σ_j A_j K_ji / A_i that K moves out of patch i.
 #pragma once
 
 #include <cstddef>
@@ -70,7 +78,19 @@ struct Solution {
   std::size_t rows_computed = 0;  // progressive: form-factor rows computed
 };
 
-// Full-matrix solvers (GaussSeidel or Jacobi).
+// The gather matrix of F: K_ji = A_i F_ij / A_j as floats (computed in double), row j
+// contiguous; 4·N² bytes. Zero rows for patches of zero area.
+struct GatherMatrix {
+  std::size_t size = 0;
+  std::vector<float> k;     // size², K_ji at k[j·size + i]
+  std::vector<double> out;  // Σ_j A_j K_ji / A_i per patch i: the fraction K moves out of i
+};
+GatherMatrix make_gather_matrix(const std::vector<Patch>& patches, const FormFactorMatrix& f);
+
+// Full-matrix solvers (GaussSeidel or Jacobi) on a prepared K (any emission and albedo of the
+// same geometry), or on F (K is made first).
+Solution solve_matrix(const std::vector<Patch>& patches, const GatherMatrix& k,
+                      const SolveOptions& options);
 Solution solve_matrix(const std::vector<Patch>& patches, const FormFactorMatrix& f,
                       const SolveOptions& options);
 

@@ -16,12 +16,23 @@
 #include <vector>
 
 #include "radiosity/emitter_solve.h"
+#include "radiosity/form_factor_update.h"
 #include "radiosity/form_factors.h"
 #include "radiosity/materials.h"
 #include "radiosity/solver.h"
 #include "relight/renderer.h"
 
 namespace prt::relight {
+
+// Moves an object before solving: every primitive whose name is `object` (or whose glTF mesh
+// part, before the '/', is) is translated by `offset` (scene units) before subdivision.
+struct ObjectMove {
+  std::string object;
+  glm::dvec3 offset{0.0};
+};
+
+// Parses "OBJECT=dx,dy,dz"; throws std::invalid_argument "--move TEXT: problem".
+ObjectMove parse_object_move(const std::string& text);
 
 struct RadiosityRequest {
   std::string scene_path;
@@ -38,13 +49,22 @@ struct RadiosityRequest {
   std::string camera = "auto";
   RenderOptions render;
   std::optional<float> exposure_ev;  // PNG only; automatic when absent
+  // Form-factor cache (radiosity/form_factor_cache.h) of the scene as loaded (before `moves`):
+  // absent → computed and saved; present → loaded when its key matches, refused otherwise.
+  std::string form_factor_cache;
+  std::vector<ObjectMove> moves;  // form factors updated partially when a cache is loaded
 };
 
 struct RadiositySummary {
   std::size_t patches = 0, vertices = 0;
   double form_factor_seconds = 0, solve_seconds = 0, render_seconds = 0;
-  radiosity::Solution solution;  // radiance vectors emptied; history and account kept
-  double escape_probe = -1;      // escape fraction measured for albedo-1 scenes (else −1)
+  double cache_seconds = 0;   // loading or saving the form-factor cache
+  double update_seconds = 0;  // the partial update after --move
+  double gather_seconds = 0;  // K from F (part of solve_seconds)
+  enum class Cache { None, Loaded, Saved } cache = Cache::None;
+  radiosity::FormFactorUpdate update;  // counts of the partial update
+  radiosity::Solution solution;        // radiance vectors emptied; history and account kept
+  double escape_probe = -1;            // escape fraction measured for albedo-1 scenes (else −1)
   float exposure_ev = 0;
   double per_emitter_seconds = 0;                              // the per-emitter solves
   std::vector<radiosity::EmitterSolveReport> emitter_reports;  // one per emitter

@@ -1,0 +1,34 @@
+// radiosity/form_factor_cache.h — a form-factor matrix saved to disk and loaded back, so that
+// a scene whose geometry did not change is re-solved without recomputing its form factors
+// (new emission or albedo: neither enters F). Layout: docs/FORMAT.md, "Form-factor cache".
+//
+// The file is bound to what F depends on by a 64-bit key: FNV-1a-64 over 32-bit words with the
+// splitmix64 finaliser (as the geometry fingerprint of prt/geometry_check.h, [17] of
+// docs/REFERENCES.md) of the patch count, every patch's corners (float bit patterns, −0 as +0)
+// and the method's options (analytic: quadrature points; rays: rays per patch and seed;
+// with emitter_rays_per_patch > 0 also that count and the indices of the emitting patches;
+// hemicube: resolution) with the method's number. Emission values do not enter it. A loaded file
+// must carry the key of the caller's patches and options, its size must match N, and its CRC-32C
+// (prt/crc32c.h) must hold. Errors throw std::runtime_error with one line that names the file;
+// saving is atomic (prt/atomic_file.h), so a failed save leaves no file behind.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "radiosity/form_factors.h"
+#include "radiosity/patches.h"
+
+namespace prt::radiosity {
+
+uint64_t form_factor_key(const std::vector<Patch>& patches, const FormFactorOptions& options);
+
+// Writes F with `key` to PATH (replacing it atomically).
+void save_form_factors(const std::string& path, const FormFactorMatrix& f, uint64_t key);
+
+// Reads PATH, checking magic, version, size, checksum and that its key equals `key`:
+// "PATH: made for another scene or other form-factor options (key …, expected …)" otherwise.
+FormFactorMatrix load_form_factors(const std::string& path, uint64_t key);
+
+}  // namespace prt::radiosity
