@@ -1,5 +1,6 @@
 // `prt radiosity SCENE -o OUT [...]`: light a scene by its own emitters (diffuse radiosity) and
 // render it (relight/radiosity_pipeline.h does the work).
+#include <cmath>
 #include <cstdio>
 #include <memory>
 #include <optional>
@@ -20,6 +21,9 @@ struct RadiosityArguments {
   std::string solver = "gauss-seidel";
   std::vector<std::string> emission, albedo;
   std::optional<double> max_edge;
+  std::optional<double> adaptive;
+  std::size_t max_patches = 0;
+  int adaptive_passes = 8;
   double tolerance = 1e-4;
   int rays = 1024;
   int quadrature = 3;
@@ -53,6 +57,20 @@ relight::RadiosityRequest make_request(const RadiosityArguments& a) {
   for (const std::string& e : a.albedo)
     r.albedo.push_back(radiosity::parse_material_value("--albedo", e));
   r.max_edge = a.max_edge;
+  if (a.adaptive) {
+    if (!(*a.adaptive > 0.0) || !std::isfinite(*a.adaptive))
+      throw CommandError("--adaptive " + std::to_string(*a.adaptive) +
+                         ": the threshold must be a finite positive number");
+    if (a.adaptive_passes < 1 || a.adaptive_passes > 32)
+      throw CommandError("--adaptive-passes: must be in 1..32");
+    radiosity::AdaptiveOptions o;
+    o.threshold = *a.adaptive;
+    o.max_patches = a.max_patches;
+    o.max_passes = a.adaptive_passes;
+    r.adaptive = o;
+  } else if (a.max_patches != 0) {
+    throw CommandError("--max-patches: only with --adaptive");
+  }
   if (a.form_factors == "analytic") {
     r.form_factors.method = radiosity::FormFactorMethod::Analytic;
   } else if (a.form_factors == "rays") {
@@ -92,6 +110,11 @@ void run(const RadiosityArguments& args) {
   const relight::RadiositySummary s = relight::run_radiosity(make_request(args));
   if (args.quiet) return;
   const radiosity::Solution& solution = s.solution;
+  for (std::size_t k = 0; k < s.adaptive_passes.size(); ++k) {
+    const radiosity::AdaptivePass& p = s.adaptive_passes[k];
+    std::printf("adaptive pass %zu: %zu patches, %zu over the threshold, %zu split\n", k + 1,
+                p.patches, p.marked, p.refined);
+  }
   const radiosity::EnergyAccount& e = solution.energy;
   const double emitted = e.emitted.x + e.emitted.y + e.emitted.z;
   const auto share = [&](const glm::dvec3& v) { return (v.x + v.y + v.z) / emitted; };
@@ -126,6 +149,14 @@ void register_radiosity(CLI::App& app) {
   cmd->add_option("--albedo", args->albedo, "MATERIAL=r,g,b: albedo of a material (repeatable)");
   cmd->add_option("--max-edge", args->max_edge,
                   "Subdivide into patches with edges at most this long (scene units)");
+  cmd->add_option("--adaptive", args->adaptive,
+                  "THRESHOLD: refine patches whose radiance differs from a neighbour's by more "
+                  "than THRESHOLD x the brightest non-emitting radiance (start: --max-edge)");
+  cmd->add_option("--max-patches", args->max_patches,
+                  "Patch budget for --adaptive (default: 4x the starting patches)");
+  cmd->add_option("--adaptive-passes", args->adaptive_passes,
+                  "Refinement passes at most for --adaptive")
+      ->capture_default_str();
   cmd->add_option("--form-factors", args->form_factors, "analytic|rays|hemicube")
       ->capture_default_str();
   cmd->add_option("--hemicube", args->hemicube,

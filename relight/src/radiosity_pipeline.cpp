@@ -91,6 +91,21 @@ void solve(const RadiosityRequest& r, const std::vector<radiosity::Patch>& patch
   summary->solve_seconds = since(t);
 }
 
+// Adaptive refinement: replaces `scene` with the refined one and returns its patches.
+std::vector<radiosity::Patch> solve_adaptive(const RadiosityRequest& r, scene::Scene* scene,
+                                             RadiositySummary* summary) {
+  radiosity::AdaptiveResult result =
+      radiosity::solve_adaptive(std::move(*scene), r.form_factors, r.solve, *r.adaptive);
+  *scene = std::move(result.scene);
+  summary->solution = std::move(result.solution);
+  summary->adaptive_passes = result.passes;
+  for (const radiosity::AdaptivePass& pass : result.passes) {
+    summary->form_factor_seconds += pass.form_factor_seconds;
+    summary->solve_seconds += pass.solve_seconds;
+  }
+  return std::move(result.patches);
+}
+
 }  // namespace
 
 float automatic_exposure_ev(const Image& image) {
@@ -106,7 +121,7 @@ float automatic_exposure_ev(const Image& image) {
 
 RadiositySummary run_radiosity(const RadiosityRequest& r) {
   check_request(r);
-  const scene::Scene scene = prepare_scene(r);
+  scene::Scene scene = prepare_scene(r);
   if (scene.triangles.size() > radiosity::kMaxPatches)
     throw std::runtime_error(r.scene_path + ": " + std::to_string(scene.triangles.size()) +
                              " patches (at most " + std::to_string(radiosity::kMaxPatches) +
@@ -114,20 +129,21 @@ RadiositySummary run_radiosity(const RadiosityRequest& r) {
   RadiositySummary summary;
   const float aspect = float(r.render.width) / float(r.render.height);
   const Camera camera = parse_camera(r.camera, scene, aspect);
-  const scene::RayCaster caster(scene);
-  const std::vector<radiosity::Patch> patches = radiosity::make_patches(scene);
-  summary.patches = patches.size();
-
-  summary.vertices = scene.vertex_count();
+  std::vector<radiosity::Patch> patches = radiosity::make_patches(scene);
   if (radiosity::has_unit_albedo(scene)) {
-    summary.escape_probe = radiosity::escape_fraction(patches, caster, 64, 7);
+    const scene::RayCaster probe(scene);
+    summary.escape_probe = radiosity::escape_fraction(patches, probe, 64, 7);
     if (summary.escape_probe == 0.0)
       throw std::runtime_error(r.scene_path +
                                ": albedo 1 in a closed scene (no probe ray escapes): the "
                                "radiosity grows without bound; lower it with --albedo "
                                "MATERIAL=r,g,b");
   }
-  solve(r, patches, caster, &summary);
+  if (r.adaptive) patches = solve_adaptive(r, &scene, &summary);
+  const scene::RayCaster caster(scene);
+  if (!r.adaptive) solve(r, patches, caster, &summary);
+  summary.patches = patches.size();
+  summary.vertices = scene.vertex_count();
   const std::vector<float> radiance =
       radiosity::vertex_radiance(scene, patches, summary.solution.display_radiance);
   summary.solution.radiance.clear();

@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "radiosity/adaptive.h"
 #include "radiosity/form_factors.h"
 #include "radiosity/materials.h"
 #include "radiosity/solver.h"
@@ -29,6 +30,8 @@ struct RadiosityRequest {
   std::string csv_path;            // optional
   std::vector<radiosity::MaterialValue> emission, albedo;  // per-material overrides
   std::optional<double> max_edge;  // subdivide to this edge length (scene units)
+  // Refine where the radiance changes fast (radiosity/adaptive.h), starting from max_edge.
+  std::optional<radiosity::AdaptiveOptions> adaptive;
   radiosity::FormFactorOptions form_factors;
   radiosity::SolveOptions solve;
   std::string camera = "auto";
@@ -40,6 +43,7 @@ struct RadiositySummary {
   std::size_t patches = 0, vertices = 0;
   double form_factor_seconds = 0, solve_seconds = 0, render_seconds = 0;
   radiosity::Solution solution;  // radiance vectors emptied; history and account kept
+  std::vector<radiosity::AdaptivePass> adaptive_passes;  // with --adaptive: one per solve
   double escape_probe = -1;      // escape fraction measured for albedo-1 scenes (else −1)
   float exposure_ev = 0;
   std::vector<std::string> files_written;
