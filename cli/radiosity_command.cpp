@@ -24,6 +24,7 @@ struct RadiosityArguments {
   std::optional<double> adaptive;
   std::size_t max_patches = 0;
   int adaptive_passes = 8;
+  int adaptive_levels = 3;
   double tolerance = 1e-4;
   int rays = 1024;
   int quadrature = 3;
@@ -67,6 +68,9 @@ relight::RadiosityRequest make_request(const RadiosityArguments& a) {
     o.threshold = *a.adaptive;
     o.max_patches = a.max_patches;
     o.max_passes = a.adaptive_passes;
+    if (a.adaptive_levels < 1 || a.adaptive_levels > 16)
+      throw CommandError("--adaptive-levels: must be in 1..16");
+    o.max_levels = a.adaptive_levels;
     r.adaptive = o;
   } else if (a.max_patches != 0) {
     throw CommandError("--max-patches: only with --adaptive");
@@ -112,7 +116,7 @@ void run(const RadiosityArguments& args) {
   const radiosity::Solution& solution = s.solution;
   for (std::size_t k = 0; k < s.adaptive_passes.size(); ++k) {
     const radiosity::AdaptivePass& p = s.adaptive_passes[k];
-    std::printf("adaptive pass %zu: %zu patches, %zu over the threshold, %zu split\n", k + 1,
+    std::printf("adaptive pass %zu: %zu patches, %zu over the threshold (and splittable), %zu split\n", k + 1,
                 p.patches, p.marked, p.refined);
   }
   const radiosity::EnergyAccount& e = solution.energy;
@@ -156,6 +160,9 @@ void register_radiosity(CLI::App& app) {
                   "Patch budget for --adaptive (default: 4x the starting patches)");
   cmd->add_option("--adaptive-passes", args->adaptive_passes,
                   "Refinement passes at most for --adaptive")
+      ->capture_default_str();
+  cmd->add_option("--adaptive-levels", args->adaptive_levels,
+                  "For --adaptive: split a starting patch into at most 4^N (edges / 2^N)")
       ->capture_default_str();
   cmd->add_option("--form-factors", args->form_factors, "analytic|rays|hemicube")
       ->capture_default_str();

@@ -41,10 +41,11 @@ Solution solve_once(const std::vector<Patch>& patches, const scene::RayCaster& c
 // The patches to split: those over the threshold, largest difference first, as many as the
 // budget allows (4 new patches each).
 std::vector<bool> choose(const std::vector<double>& difference, double threshold,
-                         std::size_t room, AdaptivePass* pass) {
+                         const std::vector<bool>& splittable, std::size_t room,
+                         AdaptivePass* pass) {
   std::vector<uint32_t> over;
   for (uint32_t t = 0; t < difference.size(); ++t)
-    if (difference[t] > threshold) over.push_back(t);
+    if (difference[t] > threshold && splittable[t]) over.push_back(t);
   pass->marked = over.size();
   std::stable_sort(over.begin(), over.end(),
                    [&](uint32_t a, uint32_t b) { return difference[a] > difference[b]; });
@@ -99,11 +100,20 @@ AdaptiveResult solve_adaptive(scene::Scene scene, const FormFactorOptions& form_
   const std::size_t start = scene.triangles.size();
   const std::size_t budget =
       options.max_patches ? options.max_patches : std::min(4 * start, kMaxPatches);
+  if (options.max_levels < 1 || options.max_levels > 16)
+    throw std::invalid_argument("adaptive: max_levels must be in 1..16");
   if (budget > kMaxPatches || budget < start)
     throw std::invalid_argument("--max-patches " + std::to_string(budget) + ": must be in " +
                                 std::to_string(start) + ".." + std::to_string(kMaxPatches) +
                                 " (the starting patches .. the dense form-factor limit)");
   AdaptiveResult result;
+  // The smallest area each patch may be split to (from its starting patch).
+  std::vector<double> smallest(start);
+  {
+    const std::vector<Patch> initial = make_patches(scene);
+    const double shrink = std::pow(4.0, options.max_levels);
+    for (std::size_t t = 0; t < start; ++t) smallest[t] = initial[t].area / shrink;
+  }
   for (int pass_index = 0;; ++pass_index) {
     AdaptivePass pass;
     pass.patches = scene.triangles.size();
@@ -112,11 +122,16 @@ AdaptiveResult solve_adaptive(scene::Scene scene, const FormFactorOptions& form_
     Solution solution = solve_once(patches, caster, form_factors, solve, &pass);
     const std::vector<double> difference =
         neighbour_differences(scene, patches, solution.display_radiance);
-    std::vector<bool> marked = choose(difference, options.threshold,
+    std::vector<bool> splittable(patches.size());
+    // 1.5: a margin for the rounding of areas halved repeatedly.
+    for (std::size_t t = 0; t < patches.size(); ++t)
+      splittable[t] = patches[t].area > 1.5 * smallest[t];
+    std::vector<bool> marked = choose(difference, options.threshold, splittable,
                                       budget - scene.triangles.size(), &pass);
     scene::Scene refined;
+    std::vector<uint32_t> parent;
     while (pass.refined > 0 && pass_index < options.max_passes) {
-      refined = scene::refine_triangles(scene, marked, 2);
+      refined = scene::refine_triangles(scene, marked, 2, &parent);
       if (refined.triangles.size() <= budget) break;
       // Over budget (a long bisection closure): keep the first half of the chosen patches.
       std::size_t keep = pass.refined / 2, kept = 0;
@@ -138,6 +153,9 @@ AdaptiveResult solve_adaptive(scene::Scene scene, const FormFactorOptions& form_
       result.scene = std::move(scene);
       return result;
     }
+    std::vector<double> next(parent.size());
+    for (std::size_t t = 0; t < parent.size(); ++t) next[t] = smallest[parent[t]];
+    smallest = std::move(next);
     scene = std::move(refined);
   }
 }

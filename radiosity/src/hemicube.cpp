@@ -82,7 +82,7 @@ struct FaceTarget {
 
 // Scan-converts triangle `tri` (face coordinates, eye at the origin) of a patch whose plane is
 // m·q = c. The clipped polygon `p` (inside the frustum) only bounds the cells to visit; the
-// inside test is the homogeneous one (Olano & Greer): the ray r through a cell centre meets the
+// inside test is the homogeneous one (Olano & Greer, [81] of docs/REFERENCES.md): the ray r through a cell centre meets the
 // triangle at positive depth iff σ·(v_a × v_b)·r ≥ 0 for its three edges, σ = sign det(v0, v1,
 // v2). It needs no projected corners, and a shared edge gives its two triangles exactly
 // opposite edge functions; a centre exactly on an edge belongs to the triangle whose oriented

@@ -1,4 +1,5 @@
-// radiosity/adaptive.h — adaptive patches: refine where the radiosity changes fast.
+// radiosity/adaptive.h — adaptive patches: refine where the radiosity changes fast, by
+// longest-edge bisection ([80] of docs/REFERENCES.md).
 //
 // Starting from the given patches (e.g. scene::subdivide_to_edge_length), repeat: compute form
 // factors and solve (radiosity/form_factors.h, radiosity/solver.h); mark every patch whose
@@ -11,7 +12,8 @@
 // emitter are not compared. Difference: the largest over RGB of |L_i − L_j|. When the budget
 // allows fewer than all marked patches, the largest differences go first (ties: lower index);
 // each marked patch is counted as 4 new patches against the budget (its bisection closure
-// rarely adds more; a refinement that overshoots is retried with half as many).
+// rarely adds more; a refinement that overshoots is retried with half as many). A patch that
+// has reached `max_levels` (by area) is not split again.
 // Every pass recomputes all form factors from scratch (N² each; the final pass dominates).
 #pragma once
 
@@ -31,6 +33,10 @@ struct AdaptiveOptions {
   double threshold = 0.05;       // relative to L_ref; finite and > 0
   std::size_t max_patches = 0;   // budget; 0: 4 × the starting count (at most kMaxPatches)
   int max_passes = 8;            // refinement passes at most
+  // A patch is split only while its area exceeds its starting patch's / 4^max_levels (edges
+  // about 2^−max_levels as long): true discontinuities (a floor running under a block) would
+  // otherwise take the whole budget.
+  int max_levels = 3;
 };
 
 struct AdaptivePass {
@@ -52,8 +58,8 @@ std::vector<double> neighbour_differences(const scene::Scene& scene,
                                           const std::vector<Patch>& patches,
                                           const std::vector<glm::dvec3>& radiance);
 
-// Throws std::invalid_argument for a threshold that is not finite and > 0, or a budget over
-// kMaxPatches or below the starting count.
+// Throws std::invalid_argument for a threshold that is not finite and > 0, a budget over
+// kMaxPatches or below the starting count, or max_levels outside 1..16.
 AdaptiveResult solve_adaptive(scene::Scene scene, const FormFactorOptions& form_factors,
                               const SolveOptions& solve, const AdaptiveOptions& options);
 

@@ -23,9 +23,10 @@
 // Rasterisation (our own; no graphics API): each patch j ≠ i is transformed to the local frame
 // once, then per face clipped (Sutherland–Hodgman) to the face's view frustum — the near plane
 // d ≥ 1e-6·√A_i, the four planes |s| ≤ d and |h| ≤ d, and for the side faces the hemicube's base
-// plane h ≥ 0 — projected, and scan-converted over its bounding box with edge functions in
-// double and the top-left fill rule (a cell centre exactly on an edge shared by two patches
-// belongs to exactly one). Depth: 1/d from the patch's plane (exact, affine on the face), the
+// plane h ≥ 0 — whose projection bounds the cells to visit; each cell centre is tested with the
+// triangle's homogeneous edge functions in double (Olano & Greer 1997, [81] of
+// docs/REFERENCES.md) and a top-left fill rule (a cell centre exactly on an edge shared by two
+// patches belongs to exactly one). Depth: 1/d from the patch's plane (exact, affine on the face), the
 // nearest wins. Every patch occludes; a cell credits j only when it shows j's front face (c in
 // front of j's plane, the one-sided convention of radiosity/patches.h); back faces and empty
 // cells credit nothing (their share escapes). Cost per patch i: O(N) transforms plus the
