@@ -116,8 +116,9 @@ void run(const RadiosityArguments& args) {
   const radiosity::Solution& solution = s.solution;
   for (std::size_t k = 0; k < s.adaptive_passes.size(); ++k) {
     const radiosity::AdaptivePass& p = s.adaptive_passes[k];
-    std::printf("adaptive pass %zu: %zu patches, %zu over the threshold (and splittable), %zu split\n", k + 1,
-                p.patches, p.marked, p.refined);
+    std::printf(
+        "adaptive pass %zu: %zu patches, %zu over the threshold (and splittable), %zu split\n",
+        k + 1, p.patches, p.marked, p.refined);
   }
   const radiosity::EnergyAccount& e = solution.energy;
   const double emitted = e.emitted.x + e.emitted.y + e.emitted.z;

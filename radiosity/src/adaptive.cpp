@@ -126,8 +126,8 @@ AdaptiveResult solve_adaptive(scene::Scene scene, const FormFactorOptions& form_
     // 1.5: a margin for the rounding of areas halved repeatedly.
     for (std::size_t t = 0; t < patches.size(); ++t)
       splittable[t] = patches[t].area > 1.5 * smallest[t];
-    std::vector<bool> marked = choose(difference, options.threshold, splittable,
-                                      budget - scene.triangles.size(), &pass);
+    std::vector<bool> marked =
+        choose(difference, options.threshold, splittable, budget - scene.triangles.size(), &pass);
     scene::Scene refined;
     std::vector<uint32_t> parent;
     while (pass.refined > 0 && pass_index < options.max_passes) {

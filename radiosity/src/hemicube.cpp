@@ -18,29 +18,40 @@ namespace {
 // Local (t, b, n) coordinates of face coordinates (s, h, d) on face f.
 glm::dvec3 face_to_local(int f, double s, double h, double d) {
   switch (f) {
-    case 0: return {s, h, d};
-    case 1: return {d, s, h};
-    case 2: return {-d, s, h};
-    case 3: return {s, d, h};
-    default: return {s, -d, h};
+    case 0:
+      return {s, h, d};
+    case 1:
+      return {d, s, h};
+    case 2:
+      return {-d, s, h};
+    case 3:
+      return {s, d, h};
+    default:
+      return {s, -d, h};
   }
 }
 
 glm::dvec3 local_to_face(int f, const glm::dvec3& p) {
   switch (f) {
-    case 0: return p;
-    case 1: return {p.y, p.z, p.x};
-    case 2: return {p.y, p.z, -p.x};
-    case 3: return {p.x, p.z, p.y};
-    default: return {p.x, p.z, -p.y};
+    case 0:
+      return p;
+    case 1:
+      return {p.y, p.z, p.x};
+    case 2:
+      return {p.y, p.z, -p.x};
+    case 3:
+      return {p.x, p.z, p.y};
+    default:
+      return {p.x, p.z, -p.y};
   }
 }
 
 // Exact form factor from the differential area at the origin (normal +z, local frame) to the
 // cell [s0, s1] × [h0, h1] of face f at depth 1.
 double cell_form_factor(int f, double s0, double s1, double h0, double h1) {
-  const std::vector<glm::dvec3> cell = {face_to_local(f, s0, h0, 1.0), face_to_local(f, s1, h0, 1.0),
-                                        face_to_local(f, s1, h1, 1.0), face_to_local(f, s0, h1, 1.0)};
+  const std::vector<glm::dvec3> cell = {
+      face_to_local(f, s0, h0, 1.0), face_to_local(f, s1, h0, 1.0), face_to_local(f, s1, h1, 1.0),
+      face_to_local(f, s0, h1, 1.0)};
   return point_polygon_form_factor(glm::dvec3(0.0), glm::dvec3(0, 0, 1), cell);
 }
 
@@ -82,11 +93,11 @@ struct FaceTarget {
 
 // Scan-converts triangle `tri` (face coordinates, eye at the origin) of a patch whose plane is
 // m·q = c. The clipped polygon `p` (inside the frustum) only bounds the cells to visit; the
-// inside test is the homogeneous one (Olano & Greer, [81] of docs/REFERENCES.md): the ray r through a cell centre meets the
-// triangle at positive depth iff σ·(v_a × v_b)·r ≥ 0 for its three edges, σ = sign det(v0, v1,
-// v2). It needs no projected corners, and a shared edge gives its two triangles exactly
-// opposite edge functions; a centre exactly on an edge belongs to the triangle whose oriented
-// edge normal is lexicographically positive (the top-left rule, made homogeneous).
+// inside test is the homogeneous one (Olano & Greer, [81] of docs/REFERENCES.md): the ray r through
+// a cell centre meets the triangle at positive depth iff σ·(v_a × v_b)·r ≥ 0 for its three edges, σ
+// = sign det(v0, v1, v2). It needs no projected corners, and a shared edge gives its two triangles
+// exactly opposite edge functions; a centre exactly on an edge belongs to the triangle whose
+// oriented edge normal is lexicographically positive (the top-left rule, made homogeneous).
 void scan_convert(const std::array<glm::dvec3, 3>& tri, const Polygon& p, const glm::dvec3& m,
                   double c, uint32_t id, const FaceTarget& target) {
   const double det = glm::dot(glm::cross(tri[0], tri[1]), tri[2]);
@@ -239,8 +250,7 @@ void rasterize_hemicube(const std::vector<Patch>& patches, uint32_t i, int resol
       Polygon p;
       p.n = 3;
       std::array<int, 5> outside{};
-      const std::array<glm::dvec3, 3> tri = {local_to_face(f, local[0]),
-                                             local_to_face(f, local[1]),
+      const std::array<glm::dvec3, 3> tri = {local_to_face(f, local[0]), local_to_face(f, local[1]),
                                              local_to_face(f, local[2])};
       for (int k = 0; k < 3; ++k) {
         p.v[k] = tri[k];
@@ -300,8 +310,8 @@ void hemicube_form_factors(const HemicubeBuffer& buffer, std::size_t patch_count
   for (std::size_t j = 0; j < patch_count; ++j) (*row)[j] = static_cast<float>(sums[j]);
 }
 
-void hemicube_row(const std::vector<Patch>& patches, const scene::RayCaster& /*caster*/,
-                  uint32_t i, int resolution, std::vector<float>* row) {
+void hemicube_row(const std::vector<Patch>& patches, const scene::RayCaster& /*caster*/, uint32_t i,
+                  int resolution, std::vector<float>* row) {
   thread_local HemicubeBuffer buffer;
   rasterize_hemicube(patches, i, resolution, &buffer);
   hemicube_form_factors(buffer, patches.size(), row);

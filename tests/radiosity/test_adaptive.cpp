@@ -60,7 +60,9 @@ int locate(const Scene& s, const std::vector<Patch>& patches, double x, double y
   for (std::size_t t = 0; t < s.triangles.size(); ++t) {
     if (patches[t].normal.z < 0.99 || std::abs(patches[t].centroid.z) > 1e-9) continue;
     const glm::dvec2 p(x, y);
-    const auto corner = [&](int k) { return glm::dvec2(glm::dvec3(s.positions[s.triangles[t][k]])); };
+    const auto corner = [&](int k) {
+      return glm::dvec2(glm::dvec3(s.positions[s.triangles[t][k]]));
+    };
     const glm::dvec2 a = corner(0), b = corner(1), c = corner(2);
     const auto cross = [](glm::dvec2 u, glm::dvec2 v) { return u.x * v.y - u.y * v.x; };
     if (cross(b - a, p - a) >= 0 && cross(c - b, p - b) >= 0 && cross(a - c, p - c) >= 0)
@@ -103,7 +105,8 @@ TEST_CASE("refine_triangles: conforming, area- and orientation-preserving, local
   CHECK(one.triangles.size() <= 72 + 12);
   CHECK(t_junctions(one) == 0);
   // Original vertices first, unchanged.
-  for (std::size_t v = 0; v < grid.positions.size(); ++v) CHECK(one.positions[v] == grid.positions[v]);
+  for (std::size_t v = 0; v < grid.positions.size(); ++v)
+    CHECK(one.positions[v] == grid.positions[v]);
   // Repeated refinement at one point: still conforming, angles at least half the input's.
   Scene s = grid;
   for (int round = 0; round < 5; ++round) {
@@ -143,12 +146,12 @@ namespace {
 // casting a sharp shadow (a narrow penumbra).
 Scene shadow_scene(int n) {
   Scene s;
-  prt::test::append(s, prt::scene::make_quad({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, n, n, glm::vec3(0.5f)),
-                    "floor");
-  prt::test::append(s,
-                    prt::scene::make_quad({0.45f, 0.45f, 2.f}, {0, 0.1f, 0}, {0.1f, 0, 0}, 1, 1,
-                                          glm::vec3(0.5f)),
-                    "lamp", glm::vec3(200.f));
+  prt::test::append(
+      s, prt::scene::make_quad({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, n, n, glm::vec3(0.5f)), "floor");
+  prt::test::append(
+      s,
+      prt::scene::make_quad({0.45f, 0.45f, 2.f}, {0, 0.1f, 0}, {0.1f, 0, 0}, 1, 1, glm::vec3(0.5f)),
+      "lamp", glm::vec3(200.f));
   prt::test::append(s,
                     prt::scene::make_quad({0.3f, 0.25f, 0.15f}, {0, 0.3f, 0}, {0.3f, 0, 0}, 1, 1,
                                           glm::vec3(0.5f)),
@@ -169,7 +172,8 @@ double floor_error(const FloorSolution& s, const FloorSolution& reference) {
   for (int i = 0; i < 40; ++i)
     for (int j = 0; j < 40; ++j) {
       const double x = (i + 0.5) / 40, y = (j + 0.5) / 40;
-      const int a = locate(s.scene, s.patches, x, y), b = locate(reference.scene, reference.patches, x, y);
+      const int a = locate(s.scene, s.patches, x, y),
+                b = locate(reference.scene, reference.patches, x, y);
       if (a < 0 || b < 0) return 1e9;  // a point no floor patch covers: fail loudly
       diff += std::abs(s.radiance[a].x - reference.radiance[b].x);
       total += reference.radiance[b].x;
@@ -202,9 +206,10 @@ TEST_CASE("adaptive patches resolve a shadow better than uniform ones of the sam
   for (std::size_t k = 1; k < adaptive.passes.size(); ++k)
     CHECK(adaptive.passes[k].patches > adaptive.passes[k - 1].patches);
   const FloorSolution a{adaptive.scene, adaptive.patches, adaptive.solution.radiance};
-  const int n = static_cast<int>(std::lround(std::sqrt((adaptive.patches.size() - 4) / 2.0)));
+  const int n = static_cast<int>(std::lround(std::sqrt(double(adaptive.patches.size() - 4) / 2.0)));
   const FloorSolution u = uniform(n);
-  const double error_adaptive = floor_error(a, reference), error_uniform = floor_error(u, reference);
+  const double error_adaptive = floor_error(a, reference),
+               error_uniform = floor_error(u, reference);
   INFO("adaptive " << adaptive.patches.size() << " patches: error " << error_adaptive
                    << "; uniform " << u.patches.size() << ": " << error_uniform);
   // Measured 0.0235 against 0.0317 (594 and 582 patches; analytic form factors, deterministic).
@@ -220,16 +225,19 @@ TEST_CASE("adaptive patches resolve a shadow better than uniform ones of the sam
 
 TEST_CASE("adaptive against uniform patches (measurement, prints a table)", "[.][measure]") {
   const FloorSolution reference = uniform(28);
-  for (double threshold : {0.02, 0.05, 0.1, 0.2}) for (std::size_t budget : {300, 600}) {
-    AdaptiveOptions options;
-    options.threshold = threshold;
-    options.max_patches = budget;
-    const AdaptiveResult adaptive = solve_adaptive(shadow_scene(4), {}, {}, options);
-    const FloorSolution a{adaptive.scene, adaptive.patches, adaptive.solution.radiance};
-    const int n = static_cast<int>(std::lround(std::sqrt((adaptive.patches.size() - 4) / 2.0)));
-    const FloorSolution u = uniform(n);
-    std::printf("threshold %.2f budget %zu: passes", threshold, budget);
-    for (const AdaptivePass& p : adaptive.passes) std::printf(" %zu/%zu/%zu", p.patches, p.marked, p.refined);
-    std::printf("; adaptive %zu error %.4f, uniform %zu error %.4f\n", adaptive.patches.size(), floor_error(a, reference), u.patches.size(), floor_error(u, reference));
-  }
+  for (double threshold : {0.02, 0.05, 0.1, 0.2})
+    for (std::size_t budget : {300, 600}) {
+      AdaptiveOptions options;
+      options.threshold = threshold;
+      options.max_patches = budget;
+      const AdaptiveResult adaptive = solve_adaptive(shadow_scene(4), {}, {}, options);
+      const FloorSolution a{adaptive.scene, adaptive.patches, adaptive.solution.radiance};
+      const int n = static_cast<int>(std::lround(std::sqrt(double(adaptive.patches.size() - 4) / 2.0)));
+      const FloorSolution u = uniform(n);
+      std::printf("threshold %.2f budget %zu: passes", threshold, budget);
+      for (const AdaptivePass& p : adaptive.passes)
+        std::printf(" %zu/%zu/%zu", p.patches, p.marked, p.refined);
+      std::printf("; adaptive %zu error %.4f, uniform %zu error %.4f\n", adaptive.patches.size(),
+                  floor_error(a, reference), u.patches.size(), floor_error(u, reference));
+    }
 }

@@ -10,10 +10,10 @@
 
 #include "radiosity/form_factors.h"
 #include "radiosity/hemicube.h"
+#include "radiosity/materials.h"
 #include "radiosity/patches.h"
 #include "radiosity_fixtures.h"
 #include "scene/procedural_mesh.h"
-#include "radiosity/materials.h"
 #include "scene/ray_caster.h"
 #include "scene/scene_loader.h"
 #include "scene/subdivide.h"
@@ -54,8 +54,8 @@ double worst_point_error(const std::vector<Patch>& patches, std::size_t half,
     hemicube_form_factors(buffer, patches.size(), &row);
     double f = 0.0;
     for (std::size_t j = half; j < patches.size(); ++j) f += row[j];
-    worst = std::max(worst, std::abs(f - point_polygon_form_factor(patches[i].centroid,
-                                                                   patches[i].normal, b)));
+    worst = std::max(
+        worst, std::abs(f - point_polygon_form_factor(patches[i].centroid, patches[i].normal, b)));
   }
   return worst;
 }
@@ -162,8 +162,8 @@ TEST_CASE("delta form factors tile the hemisphere: sum 1, the faces' symmetries,
       const double exact = point_polygon_form_factor({0, 0, 0}, {0, 0, 1}, cell);
       CHECK(table.side(x, y) == Approx(exact).epsilon(1e-12));
       const double s = s0 + step / 2, h = h0 + step / 2, q = s * s + h * h + 1;
-      worst_midpoint = std::max(worst_midpoint,
-                                std::abs(table.side(x, y) / (h * step * step / (M_PI * q * q)) - 1));
+      worst_midpoint = std::max(
+          worst_midpoint, std::abs(table.side(x, y) / (h * step * step / (M_PI * q * q)) - 1));
     }
   // Measured 1.4% at R = 16 (the side cells at the base, where h varies most).
   INFO("worst relative difference to the differential estimate " << worst_midpoint);
@@ -178,14 +178,16 @@ namespace {
 // z = 1.3, both facing down; off-centre so that no cell centre falls on an edge.
 prt::scene::Scene occluder_scene() {
   prt::scene::Scene s;
-  prt::test::append(s, prt::scene::make_quad({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, 1, 1, glm::vec3(0.5f)),
-                    "sender");
   prt::test::append(
-      s, prt::scene::make_quad({0.37f, 0.21f, 0.4f}, {0, 0.31f, 0}, {0.27f, 0, 0}, 1, 1, glm::vec3(0.5f)),
-      "small");
-  prt::test::append(
-      s, prt::scene::make_quad({-1.9f, -2.3f, 1.3f}, {0, 4.1f, 0}, {3.7f, 0, 0}, 1, 1, glm::vec3(0.5f)),
-      "big");
+      s, prt::scene::make_quad({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, 1, 1, glm::vec3(0.5f)), "sender");
+  prt::test::append(s,
+                    prt::scene::make_quad({0.37f, 0.21f, 0.4f}, {0, 0.31f, 0}, {0.27f, 0, 0}, 1, 1,
+                                          glm::vec3(0.5f)),
+                    "small");
+  prt::test::append(s,
+                    prt::scene::make_quad({-1.9f, -2.3f, 1.3f}, {0, 4.1f, 0}, {3.7f, 0, 0}, 1, 1,
+                                          glm::vec3(0.5f)),
+                    "big");
   return s;
 }
 
@@ -251,10 +253,10 @@ TEST_CASE("the rasterised and the ray-cast item buffers agree cell for cell exce
   // A closed box with a block inside (occlusion, back faces seen from outside the block are
   // front faces; every cell hits something).
   prt::scene::Scene scene;
-  prt::test::append(scene,
-                    prt::scene::make_box({0, 0, 0}, {1, 1.5, 2}, 3, /*normals_inward=*/true,
-                                         glm::vec3(0.5f)),
-                    "room");
+  prt::test::append(
+      scene,
+      prt::scene::make_box({0, 0, 0}, {1, 1.5, 2}, 3, /*normals_inward=*/true, glm::vec3(0.5f)),
+      "room");
   prt::test::append(scene,
                     prt::scene::make_box({0.3f, 0.f, 0.6f}, {0.62f, 0.7f, 1.1f}, 1,
                                          /*normals_inward=*/false, glm::vec3(0.5f)),
@@ -305,8 +307,8 @@ TEST_CASE("hemicube form factors converge to Lambert's formula like 1/R and to t
     const double e16 = worst_point_error(patches, 2, b, 16);
     const double e512 = worst_point_error(patches, 2, b, 512);
     const double slope = std::log(e16 / e512) / std::log(32.0);
-    INFO((perpendicular ? "perpendicular" : "parallel") << ": error " << e16 << " at R = 16, "
-                                                        << e512 << " at R = 512, slope " << slope);
+    INFO((perpendicular ? "perpendicular" : "parallel")
+         << ": error " << e16 << " at R = 16, " << e512 << " at R = 512, slope " << slope);
     CHECK(slope > 0.7);
     CHECK(e512 < 1e-3);
   }
@@ -336,7 +338,8 @@ TEST_CASE("hemicube form factors do not depend on the thread count", "[radiosity
     one = compute_form_factors(patches, caster, o);
   }
   CHECK(many.f == one.f);
-  for (std::size_t i = 0; i < patches.size(); ++i) CHECK(many.row_sum(i) == Approx(1.0).margin(1e-6));
+  for (std::size_t i = 0; i < patches.size(); ++i)
+    CHECK(many.row_sum(i) == Approx(1.0).margin(1e-6));
 }
 
 TEST_CASE("Cornell box: hemicube rows approach the analytic ones (centroid rule) as R grows",
@@ -354,13 +357,14 @@ TEST_CASE("Cornell box: hemicube rows approach the analytic ones (centroid rule)
     FormFactorOptions o;
     o.method = FormFactorMethod::Hemicube;
     o.hemicube_resolution = r;
-    mean.push_back(row_difference(patches, compute_form_factors(patches, caster, o), reference).first);
+    mean.push_back(
+        row_difference(patches, compute_form_factors(patches, caster, o), reference).first);
   }
   // Measured 0.255 at R = 16 and 0.048 at R = 128 (504 patches); what remains at large R is
   // mostly the analytic side's binary visibility per patch pair (one centroid-to-centroid ray)
   // and the sub-cell receivers near each sender, not the hemicube's 1/R.
-  INFO(patches.size() << " patches: mean row L1 difference " << mean[0] << " at R = 16, "
-                      << mean[1] << " at R = 128");
+  INFO(patches.size() << " patches: mean row L1 difference " << mean[0] << " at R = 16, " << mean[1]
+                      << " at R = 128");
   CHECK(mean[1] < 0.07);
   CHECK(mean[0] > 3 * mean[1]);
 }

@@ -30,9 +30,9 @@
 namespace prt::radiosity {
 
 struct AdaptiveOptions {
-  double threshold = 0.05;       // relative to L_ref; finite and > 0
-  std::size_t max_patches = 0;   // budget; 0: 4 × the starting count (at most kMaxPatches)
-  int max_passes = 8;            // refinement passes at most
+  double threshold = 0.05;      // relative to L_ref; finite and > 0
+  std::size_t max_patches = 0;  // budget; 0: 4 × the starting count (at most kMaxPatches)
+  int max_passes = 8;           // refinement passes at most
   // A patch is split only while its area exceeds its starting patch's / 4^max_levels (edges
   // about 2^−max_levels as long): true discontinuities (a floor running under a block) would
   // otherwise take the whole budget.

@@ -44,7 +44,7 @@ struct RadiositySummary {
   double form_factor_seconds = 0, solve_seconds = 0, render_seconds = 0;
   radiosity::Solution solution;  // radiance vectors emptied; history and account kept
   std::vector<radiosity::AdaptivePass> adaptive_passes;  // with --adaptive: one per solve
-  double escape_probe = -1;      // escape fraction measured for albedo-1 scenes (else −1)
+  double escape_probe = -1;  // escape fraction measured for albedo-1 scenes (else −1)
   float exposure_ev = 0;
   std::vector<std::string> files_written;
 };
