@@ -1,5 +1,6 @@
 // `prt radiosity SCENE -o OUT [...]`: light a scene by its own emitters (diffuse radiosity) and
 // render it (relight/radiosity_pipeline.h does the work).
+#include <cmath>
 #include <cstdio>
 #include <memory>
 #include <optional>
@@ -21,6 +22,10 @@ struct RadiosityArguments {
   std::vector<std::string> emission, albedo, moves;
   std::string form_factor_cache;
   std::optional<double> max_edge;
+  std::optional<double> adaptive;
+  std::size_t max_patches = 0;
+  int adaptive_passes = 8;
+  int adaptive_levels = 3;
   double tolerance = 1e-4;
   int rays = 1024;
   uint64_t seed = 1;
@@ -59,6 +64,23 @@ relight::RadiosityRequest make_request(const RadiosityArguments& a) {
   r.max_edge = a.max_edge;
   r.form_factor_cache = a.form_factor_cache;
   for (const std::string& m : a.moves) r.moves.push_back(relight::parse_object_move(m));
+  if (a.adaptive) {
+    if (!(*a.adaptive > 0.0) || !std::isfinite(*a.adaptive))
+      throw CommandError("--adaptive " + std::to_string(*a.adaptive) +
+                         ": the threshold must be a finite positive number");
+    if (a.adaptive_passes < 1 || a.adaptive_passes > 32)
+      throw CommandError("--adaptive-passes: must be in 1..32");
+    radiosity::AdaptiveOptions o;
+    o.threshold = *a.adaptive;
+    o.max_patches = a.max_patches;
+    o.max_passes = a.adaptive_passes;
+    if (a.adaptive_levels < 1 || a.adaptive_levels > 16)
+      throw CommandError("--adaptive-levels: must be in 1..16");
+    o.max_levels = a.adaptive_levels;
+    r.adaptive = o;
+  } else if (a.max_patches != 0) {
+    throw CommandError("--max-patches: only with --adaptive");
+  }
   if (a.form_factors == "analytic") {
     r.form_factors.method = radiosity::FormFactorMethod::Analytic;
   } else if (a.form_factors == "rays") {
@@ -102,6 +124,12 @@ void run(const RadiosityArguments& args) {
   const relight::RadiositySummary s = relight::run_radiosity(make_request(args));
   if (args.quiet) return;
   const radiosity::Solution& solution = s.solution;
+  for (std::size_t k = 0; k < s.adaptive_passes.size(); ++k) {
+    const radiosity::AdaptivePass& p = s.adaptive_passes[k];
+    std::printf(
+        "adaptive pass %zu: %zu patches, %zu over the threshold (and splittable), %zu split\n",
+        k + 1, p.patches, p.marked, p.refined);
+  }
   const radiosity::EnergyAccount& e = solution.energy;
   const double emitted = e.emitted.x + e.emitted.y + e.emitted.z;
   const auto share = [&](const glm::dvec3& v) { return (v.x + v.y + v.z) / emitted; };
@@ -164,6 +192,17 @@ void register_radiosity(CLI::App& app) {
                   "form factors the move can change are recomputed (repeatable)");
   cmd->add_option("--max-edge", args->max_edge,
                   "Subdivide into patches with edges at most this long (scene units)");
+  cmd->add_option("--adaptive", args->adaptive,
+                  "THRESHOLD: refine patches whose radiance differs from a neighbour's by more "
+                  "than THRESHOLD x the brightest non-emitting radiance (start: --max-edge)");
+  cmd->add_option("--max-patches", args->max_patches,
+                  "Patch budget for --adaptive (default: 4x the starting patches)");
+  cmd->add_option("--adaptive-passes", args->adaptive_passes,
+                  "Refinement passes at most for --adaptive")
+      ->capture_default_str();
+  cmd->add_option("--adaptive-levels", args->adaptive_levels,
+                  "For --adaptive: split a starting patch into at most 4^N (edges / 2^N)")
+      ->capture_default_str();
   cmd->add_option("--form-factors", args->form_factors, "analytic|rays|hemicube")
       ->capture_default_str();
   cmd->add_option("--hemicube", args->hemicube,

@@ -72,6 +72,15 @@ void check_request(const RadiosityRequest& r) {
         throw std::invalid_argument(out + ": an output may not overwrite the form-factor cache");
     }
   }
+  if (r.adaptive) {
+    const char* other = !r.form_factor_cache.empty() ? "--form-factor-cache"
+                        : !r.moves.empty()           ? "--move"
+                        : !r.per_emitter_path.empty() ? "--per-emitter"
+                                                      : nullptr;
+    if (other)
+      throw std::invalid_argument(std::string("--adaptive: not with ") + other +
+                                  " (the patches change from pass to pass)");
+  }
   if (!(r.solve.tolerance > 0.0 && r.solve.tolerance < 1.0))
     throw std::invalid_argument("--tolerance " + std::to_string(r.solve.tolerance) +
                                 ": must be in (0, 1)");
@@ -198,15 +207,30 @@ void check_patch_count(const RadiosityRequest& r, const scene::Scene& scene) {
 }
 
 void check_unit_albedo(const RadiosityRequest& r, const scene::Scene& scene,
-                       const std::vector<radiosity::Patch>& patches, const scene::RayCaster& caster,
-                       RadiositySummary* summary) {
+                       const std::vector<radiosity::Patch>& patches, RadiositySummary* summary) {
   if (!radiosity::has_unit_albedo(scene)) return;
-  summary->escape_probe = radiosity::escape_fraction(patches, caster, 64, 7);
+  const scene::RayCaster probe(scene);
+  summary->escape_probe = radiosity::escape_fraction(patches, probe, 64, 7);
   if (summary->escape_probe == 0.0)
     throw std::runtime_error(r.scene_path +
                              ": albedo 1 in a closed scene (no probe ray escapes): the "
                              "radiosity grows without bound; lower it with --albedo "
                              "MATERIAL=r,g,b");
+}
+
+// Adaptive refinement: replaces `scene` with the refined one and returns its patches.
+std::vector<radiosity::Patch> solve_adaptive(const RadiosityRequest& r, scene::Scene* scene,
+                                             RadiositySummary* summary) {
+  radiosity::AdaptiveResult result =
+      radiosity::solve_adaptive(std::move(*scene), r.form_factors, r.solve, *r.adaptive);
+  *scene = std::move(result.scene);
+  summary->solution = std::move(result.solution);
+  summary->adaptive_passes = result.passes;
+  for (const radiosity::AdaptivePass& pass : result.passes) {
+    summary->form_factor_seconds += pass.form_factor_seconds;
+    summary->solve_seconds += pass.solve_seconds;
+  }
+  return std::move(result.patches);
 }
 
 }  // namespace
@@ -238,24 +262,27 @@ ObjectMove parse_object_move(const std::string& text) {
 RadiositySummary run_radiosity(const RadiosityRequest& r) {
   check_request(r);
   const scene::Scene before = prepare_scene(r, false);
-  const scene::Scene scene = r.moves.empty() ? before : prepare_scene(r, true);
+  scene::Scene scene = r.moves.empty() ? before : prepare_scene(r, true);
   check_patch_count(r, scene);
   if (!r.per_emitter_path.empty()) radiosity::emitter_groups(scene);  // refused before solving
   RadiositySummary summary;
   const float aspect = float(r.render.width) / float(r.render.height);
   const Camera camera = parse_camera(r.camera, scene, aspect);
+  std::vector<radiosity::Patch> patches = radiosity::make_patches(scene);
+  check_unit_albedo(r, scene, patches, &summary);
+  if (r.adaptive) patches = solve_adaptive(r, &scene, &summary);
   const scene::RayCaster caster(scene);
-  const std::vector<radiosity::Patch> patches = radiosity::make_patches(scene);
-  summary.patches = patches.size();
-  summary.vertices = scene.vertex_count();
-  check_unit_albedo(r, scene, patches, caster, &summary);
-  if (r.solve.solver == radiosity::SolverKind::Progressive) {
+  if (r.adaptive) {
+    // solved above, pass by pass
+  } else if (r.solve.solver == radiosity::SolverKind::Progressive) {
     const Clock::time_point t = Clock::now();
     summary.solution = radiosity::solve_progressive(patches, caster, r.form_factors, r.solve);
     summary.solve_seconds = since(t);  // includes the rows computed on the fly
   } else {
     solve(r, scene, patches, form_factors(r, before, patches, caster, &summary), &summary);
   }
+  summary.patches = patches.size();
+  summary.vertices = scene.vertex_count();
   const std::vector<float> radiance =
       radiosity::vertex_radiance(scene, patches, summary.solution.display_radiance);
   summary.solution.radiance.clear();

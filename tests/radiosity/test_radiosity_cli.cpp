@@ -3,6 +3,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -202,4 +203,30 @@ TEST_CASE("prt radiosity --form-factor-cache: saved, reused, refused for another
   r = run(dir, common + (dir / "out.csv").string() + " --move chair=1,0,0");
   CHECK(r.exit_code == 1);
   CHECK(r.err.find("--move chair") != std::string::npos);
+
+TEST_CASE("prt radiosity --adaptive: refines in passes to the budget; bad values refused",
+          "[radiosity][cli]") {
+  const fs::path dir = scratch("adaptive");
+  const std::string outputs = " -o " + (dir / "out.png").string() + " --vertex-colors " +
+                              (dir / "out.glb").string() + " --csv " + (dir / "out.csv").string();
+  const std::string room = write_room(dir, "5 5 5", "0.7 0.7 0.7", false).string();
+  check_refused(dir, room + outputs + " --max-edge 0.5 --adaptive 0", "--adaptive");
+  check_refused(dir, room + outputs + " --max-edge 0.5 --adaptive nan", "--adaptive");
+  check_refused(dir, room + outputs + " --max-edge 0.5 --max-patches 100", "--max-patches");
+  check_refused(dir, room + outputs + " --max-edge 0.5 --adaptive 0.1 --max-patches 3",
+                "--max-patches");
+  check_refused(dir, room + outputs + " --max-edge 0.5 --adaptive 0.1 --adaptive-levels 0",
+                "--adaptive-levels");
+  const RunResult r = run(dir, room + " --max-edge 0.5 --adaptive 0.05 --max-patches 300 --csv " +
+                                   (dir / "out.csv").string());
+  INFO(r.out << r.err);
+  REQUIRE(r.exit_code == 0);
+  std::size_t first = 0, patches = 0;
+  REQUIRE(r.out.find("adaptive pass 2:") != std::string::npos);
+  CHECK(std::sscanf(r.out.c_str(), "adaptive pass 1: %zu patches", &first) == 1);
+  CHECK(std::sscanf(r.out.substr(r.out.find('\n', r.out.rfind("adaptive pass")) + 1).c_str(),
+                    "%zu patches", &patches) == 1);
+  CHECK(first > 0);
+  CHECK(patches > first);
+  CHECK(patches <= 300);
 }

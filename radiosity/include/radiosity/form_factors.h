@@ -16,12 +16,11 @@
 //     a patch whose emission is not zero, when given) leave uniformly distributed points of
 //     patch i; F_ij is the fraction whose closest hit is the front face of patch j
 //     (the estimator is unbiased, its standard error √(F(1 − F)/N)).
-//   hemicube: Cohen & Greenberg 1985 ([24]): a hemicube of `hemicube_resolution` cells across
-//     its top face (R × R/2 on each side face) around the centroid of patch i; each cell's
-//     centre is sampled by one Embree ray (the same item buffer a z-buffer would produce) and
-//     credits the patch whose front face it hits with the cell's delta form factor,
-//     ΔA / (π (u² + v² + 1)²) on top and w·ΔA / (π (u² + w² + 1)²) on the sides, normalised so
-//     the cells sum to exactly 1.
+//   hemicube: Cohen & Greenberg 1985 ([24]): the scene's patches rasterised with a z-buffer onto
+//     a hemicube of `hemicube_resolution` cells across its top face (R × R/2 on each side face)
+//     at the centroid of patch i; each cell credits the patch whose front face it shows with its
+//     exact delta form factor (radiosity/hemicube.h), so the cells sum to 1. The ray caster is
+//     not used (radiosity/hemicube.h has the ray-cast item buffer as a second method).
 //
 // F_ij is the fraction of the power leaving patch i that arrives at the front of patch j; patch
 // i's row is computed at i (the sender), so every row sums to at most 1 (analytic: up to float

@@ -17,6 +17,7 @@
 
 #include "radiosity/emitter_solve.h"
 #include "radiosity/form_factor_update.h"
+#include "radiosity/adaptive.h"
 #include "radiosity/form_factors.h"
 #include "radiosity/materials.h"
 #include "radiosity/solver.h"
@@ -44,6 +45,8 @@ struct RadiosityRequest {
   std::string per_emitter_path;
   std::vector<radiosity::MaterialValue> emission, albedo;  // per-material overrides
   std::optional<double> max_edge;  // subdivide to this edge length (scene units)
+  // Refine where the radiance changes fast (radiosity/adaptive.h), starting from max_edge.
+  std::optional<radiosity::AdaptiveOptions> adaptive;
   radiosity::FormFactorOptions form_factors;
   radiosity::SolveOptions solve;
   std::string camera = "auto";
@@ -65,6 +68,7 @@ struct RadiositySummary {
   radiosity::FormFactorUpdate update;  // counts of the partial update
   radiosity::Solution solution;        // radiance vectors emptied; history and account kept
   double escape_probe = -1;            // escape fraction measured for albedo-1 scenes (else −1)
+  std::vector<radiosity::AdaptivePass> adaptive_passes;  // with --adaptive: one per solve
   float exposure_ev = 0;
   double per_emitter_seconds = 0;                              // the per-emitter solves
   std::vector<radiosity::EmitterSolveReport> emitter_reports;  // one per emitter

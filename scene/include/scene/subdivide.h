@@ -15,6 +15,8 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
+#include <vector>
 
 #include "scene/scene.h"
 
@@ -26,5 +28,22 @@ constexpr std::size_t kMaxSubdividedTriangles = 20'000'000;
 // Throws std::invalid_argument (one line) when max_edge is not a finite positive number or the
 // result would exceed kMaxSubdividedTriangles.
 Scene subdivide_to_edge_length(const Scene& scene, double max_edge);
+
+// Conforming local refinement (adaptive patches): every triangle t with marked[t] is bisected
+// `levels` times (levels = 2: into four), by longest-edge bisection (Rivara 1984, [80] of
+// docs/REFERENCES.md): a triangle is split at the midpoint of its longest edge (ties: the edge
+// with the smaller vertex ids), after the neighbour across that edge has been split until that
+// edge is the neighbour's longest too; then both halves of the edge split together. So no
+// T-junction is created (a mesh without T-junctions keeps none), the smallest angle is at
+// least half the smallest input angle, and refinement spreads only as far as needed.
+// Neighbours are triangles of the same primitive sharing an edge (two vertex ids). Children keep
+// the winding, so faces keep their orientation, and tile the parent exactly. Vertices: each
+// primitive keeps its own vertices first, in order, then its new ones (edge midpoints, normals
+// renormalised, albedo averaged); triangles: each input triangle's pieces in its place.
+// Texture coordinates and tangents are dropped, as in subdivide_to_edge_length. `parent`, when
+// given, receives the input triangle of each output triangle.
+// Throws std::invalid_argument when marked.size() ≠ the triangle count or levels ∉ 1..8.
+Scene refine_triangles(const Scene& scene, const std::vector<bool>& marked, int levels = 2,
+                       std::vector<uint32_t>* parent = nullptr);
 
 }  // namespace prt::scene

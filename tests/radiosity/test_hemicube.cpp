@@ -1,0 +1,370 @@
+// The hemicube (radiosity/hemicube.h): its delta form factor table, its z-buffer against exact
+// ray geometry and against the ray-cast item buffer, and its convergence with the resolution.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <vector>
+
+#include <tbb/global_control.h>
+#include <catch2/catch.hpp>
+
+#include "radiosity/form_factors.h"
+#include "radiosity/hemicube.h"
+#include "radiosity/materials.h"
+#include "radiosity/patches.h"
+#include "radiosity_fixtures.h"
+#include "scene/procedural_mesh.h"
+#include "scene/ray_caster.h"
+#include "scene/scene_loader.h"
+#include "scene/subdivide.h"
+#include "support/test_data.h"
+
+using namespace prt::radiosity;
+using prt::test::two_squares;
+
+namespace {
+
+const std::vector<glm::dvec3> kOpposite = {{0, 0, 1}, {0, 1, 1}, {1, 1, 1}, {1, 0, 1}};
+const std::vector<glm::dvec3> kPerpendicular = {{0, 0, 0}, {0, 1, 0}, {0, 1, 1}, {0, 0, 1}};
+
+// F from the first `half` patches (square A) to the rest (square B) by hemicubes, area-weighted.
+double hemicube_square_to_square(const std::vector<Patch>& patches, std::size_t half, int r) {
+  const prt::scene::Scene none;
+  double weighted = 0.0, area = 0.0;
+  std::vector<float> row;
+  HemicubeBuffer buffer;
+  for (uint32_t i = 0; i < half; ++i) {
+    rasterize_hemicube(patches, i, r, &buffer);
+    hemicube_form_factors(buffer, patches.size(), &row);
+    area += patches[i].area;
+    for (std::size_t j = half; j < patches.size(); ++j) weighted += patches[i].area * row[j];
+  }
+  return weighted / area;
+}
+
+// The largest |hemicube − Lambert at the centroid| over A's patches (point value: the
+// hemicube's own error, without the collocation error of standing at one point).
+double worst_point_error(const std::vector<Patch>& patches, std::size_t half,
+                         const std::vector<glm::dvec3>& b, int r) {
+  double worst = 0.0;
+  std::vector<float> row;
+  HemicubeBuffer buffer;
+  for (uint32_t i = 0; i < half; ++i) {
+    rasterize_hemicube(patches, i, r, &buffer);
+    hemicube_form_factors(buffer, patches.size(), &row);
+    double f = 0.0;
+    for (std::size_t j = half; j < patches.size(); ++j) f += row[j];
+    worst = std::max(
+        worst, std::abs(f - point_polygon_form_factor(patches[i].centroid, patches[i].normal, b)));
+  }
+  return worst;
+}
+
+// The Cornell box (shared data) subdivided to `max_edge`.
+prt::scene::Scene cornell_box(double max_edge) {
+  prt::scene::Scene scene =
+      prt::scene::load_scene(prt::test::shared_data("meshes/cornell_box.obj").string());
+  apply_albedo(scene, {parse_material_value("--albedo", "white=0.73")});
+  return prt::scene::subdivide_to_edge_length(scene, max_edge);
+}
+
+// Area-weighted mean over rows of Σ_j |F_ij − G_ij| (the share of row i's power sent to a
+// different patch), and the largest such row difference.
+std::pair<double, double> row_difference(const std::vector<Patch>& patches,
+                                         const FormFactorMatrix& f, const FormFactorMatrix& g) {
+  double weighted = 0.0, area = 0.0, worst = 0.0;
+  for (std::size_t i = 0; i < patches.size(); ++i) {
+    double d = 0.0;
+    for (std::size_t j = 0; j < patches.size(); ++j) d += std::abs(double(f.at(i, j)) - g.at(i, j));
+    weighted += patches[i].area * d;
+    area += patches[i].area;
+    worst = std::max(worst, d);
+  }
+  return {weighted / area, worst};
+}
+
+}  // namespace
+
+TEST_CASE("hemicube error against resolution (measurement, prints a table)",
+          "[.][measure][hemicube]") {
+  for (int segments : {1, 8}) {
+    for (bool perpendicular : {false, true}) {
+      const std::vector<Patch> patches = make_patches(two_squares(perpendicular, segments));
+      const std::size_t half = patches.size() / 2;
+      const double exact =
+          perpendicular ? prt::test::kPerpendicularUnitSquares : prt::test::kParallelUnitSquares;
+      for (int r = 16; r <= 512; r *= 2) {
+        const double f = hemicube_square_to_square(patches, half, r);
+        const double point =
+            worst_point_error(patches, half, perpendicular ? kPerpendicular : kOpposite, r);
+        std::printf("%s segments %d R %4d: F %.6f  |F - closed| %.2e  worst point error %.2e\n",
+                    perpendicular ? "perpendicular" : "parallel", segments, r, f,
+                    std::abs(f - exact), point);
+      }
+    }
+  }
+  const std::filesystem::path obj = prt::test::shared_data("meshes/cornell_box.obj");
+  PRT_REQUIRE_SHARED_DATA(obj);
+  const prt::scene::Scene scene = cornell_box(100.0);
+  const prt::scene::RayCaster caster(scene);
+  const std::vector<Patch> patches = make_patches(scene);
+  FormFactorOptions analytic;
+  analytic.quadrature_points = 1;  // the hemicube's point: its centroid
+  const FormFactorMatrix reference = compute_form_factors(patches, caster, analytic);
+  for (int r = 16; r <= 512; r *= 2) {
+    FormFactorOptions o;
+    o.method = FormFactorMethod::Hemicube;
+    o.hemicube_resolution = r;
+    const auto d = row_difference(patches, compute_form_factors(patches, caster, o), reference);
+    std::printf("Cornell box, %zu patches, R %4d: mean row L1 %.2e, worst row %.2e\n",
+                patches.size(), r, d.first, d.second);
+  }
+}
+TEST_CASE("delta form factors tile the hemisphere: sum 1, the faces' symmetries, ~ΔA/π(r²)²",
+          "[radiosity][hemicube]") {
+  for (int r : {2, 16, 64, 250}) {
+    const DeltaFormFactors& table = delta_form_factors(r);
+    double sum = 0.0;
+    for (int y = 0; y < r; ++y)
+      for (int x = 0; x < r; ++x) sum += table.top(x, y);
+    for (int face = 1; face < 5; ++face)
+      for (int y = 0; y < r / 2; ++y)
+        for (int x = 0; x < r; ++x) sum += table.cell(face, x, y);
+    // Exact cell integrals over a partition of the hemisphere: 1 up to rounding (3r² terms).
+    CHECK(sum == Approx(1.0).margin(1e-12));
+    CHECK(table.stored_values() ==
+          std::size_t(r / 2) * (r / 2 + 1) / 2 + std::size_t(r / 2) * (r / 2));
+  }
+  // Every cell of R = 16 against Lambert's formula on that very cell (not its folded
+  // representative: checks the symmetry folding), and against the differential estimate
+  // ΔA/(π(s² + h² + 1)²) (top) and h·ΔA/(π(s² + h² + 1)²) (sides), which is within O(1/R²).
+  const int r = 16;
+  const DeltaFormFactors& table = delta_form_factors(r);
+  const double step = 2.0 / r;
+  double worst_midpoint = 0.0;
+  for (int y = 0; y < r; ++y)
+    for (int x = 0; x < r; ++x) {
+      const double s0 = -1 + x * step, h0 = -1 + y * step;
+      const std::vector<glm::dvec3> cell = {
+          {s0, h0, 1}, {s0 + step, h0, 1}, {s0 + step, h0 + step, 1}, {s0, h0 + step, 1}};
+      const double exact = point_polygon_form_factor({0, 0, 0}, {0, 0, 1}, cell);
+      CHECK(table.top(x, y) == Approx(exact).epsilon(1e-12));
+      const double s = s0 + step / 2, h = h0 + step / 2, q = s * s + h * h + 1;
+      worst_midpoint =
+          std::max(worst_midpoint, std::abs(table.top(x, y) / (step * step / (M_PI * q * q)) - 1));
+    }
+  for (int y = 0; y < r / 2; ++y)
+    for (int x = 0; x < r; ++x) {
+      const double s0 = -1 + x * step, h0 = y * step;
+      // The +x side face: points (1, s, h).
+      const std::vector<glm::dvec3> cell = {
+          {1, s0, h0}, {1, s0 + step, h0}, {1, s0 + step, h0 + step}, {1, s0, h0 + step}};
+      const double exact = point_polygon_form_factor({0, 0, 0}, {0, 0, 1}, cell);
+      CHECK(table.side(x, y) == Approx(exact).epsilon(1e-12));
+      const double s = s0 + step / 2, h = h0 + step / 2, q = s * s + h * h + 1;
+      worst_midpoint = std::max(
+          worst_midpoint, std::abs(table.side(x, y) / (h * step * step / (M_PI * q * q)) - 1));
+    }
+  // Measured 1.4% at R = 16 (the side cells at the base, where h varies most).
+  INFO("worst relative difference to the differential estimate " << worst_midpoint);
+  CHECK(worst_midpoint < 0.05);
+  CHECK_THROWS_AS(delta_form_factors(15), std::invalid_argument);
+  CHECK_THROWS_AS(delta_form_factors(0), std::invalid_argument);
+}
+
+namespace {
+
+// A sender square in z = 0 (facing +z), a small occluding square in z = 0.4 and a big square in
+// z = 1.3, both facing down; off-centre so that no cell centre falls on an edge.
+prt::scene::Scene occluder_scene() {
+  prt::scene::Scene s;
+  prt::test::append(
+      s, prt::scene::make_quad({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, 1, 1, glm::vec3(0.5f)), "sender");
+  prt::test::append(s,
+                    prt::scene::make_quad({0.37f, 0.21f, 0.4f}, {0, 0.31f, 0}, {0.27f, 0, 0}, 1, 1,
+                                          glm::vec3(0.5f)),
+                    "small");
+  prt::test::append(s,
+                    prt::scene::make_quad({-1.9f, -2.3f, 1.3f}, {0, 4.1f, 0}, {3.7f, 0, 0}, 1, 1,
+                                          glm::vec3(0.5f)),
+                    "big");
+  return s;
+}
+
+}  // namespace
+
+TEST_CASE("z-buffer: a small square between the patch and a big one hides exactly its cells",
+          "[radiosity][hemicube]") {
+  const prt::scene::Scene scene = occluder_scene();
+  const std::vector<Patch> patches = make_patches(scene);
+  REQUIRE(patches.size() == 6);
+  REQUIRE(patches[2].normal.z < -0.99);  // both squares face the sender
+  REQUIRE(patches[4].normal.z < -0.99);
+  const int r = 64;
+  const uint32_t sender = 0;
+  HemicubeBuffer buffer;
+  rasterize_hemicube(patches, sender, r, &buffer);
+  // Expected, by exact geometry: the ray from the centroid through each cell centre, hitting
+  // the plane z = 0.4 inside the small square, else z = 1.3 inside the big one.
+  glm::dvec3 t, b;
+  hemicube_frame(patches[sender], &t, &b);
+  const glm::dvec3 c = patches[sender].centroid, n = patches[sender].normal;
+  const auto square_of = [&](const glm::dvec3& d) {
+    if (d.z <= 0) return -1;
+    const glm::dvec3 p = c + d * ((0.4 - c.z) / d.z), q = c + d * ((1.3 - c.z) / d.z);
+    if (p.x > 0.37 && p.x < 0.64 && p.y > 0.21 && p.y < 0.52) return 1;
+    if (q.x > -1.9 && q.x < 1.8 && q.y > -2.3 && q.y < 1.8) return 2;
+    return -1;
+  };
+  int small_cells = 0, big_cells = 0, mismatches = 0;
+  const double step = 2.0 / r;
+  const std::array<glm::dvec3, 5> axis = {n, t, -t, b, -b};
+  for (int f = 0; f < 5; ++f) {
+    const glm::dvec3 across = f == 0 ? t : (f <= 2 ? b : t), up = f == 0 ? b : n;
+    for (int y = 0; y < (f == 0 ? r : r / 2); ++y)
+      for (int x = 0; x < r; ++x) {
+        const double s = -1 + (x + 0.5) * step, h = (f == 0 ? -1 : 0) + (y + 0.5) * step;
+        const int expected = square_of(axis[f] + across * s + up * h);
+        const uint32_t id = buffer.faces[f][static_cast<std::size_t>(y) * r + x];
+        const int got = id == 2 || id == 3 ? 1 : id == 4 || id == 5 ? 2 : -1;
+        mismatches += got != expected;
+        small_cells += expected == 1;
+        big_cells += expected == 2;
+      }
+  }
+  INFO(small_cells << " cells see the small square, " << big_cells << " the big one");
+  REQUIRE(small_cells > 100);
+  CHECK(mismatches == 0);
+  // With the occluder removed (moved behind the sender), its cells show the big square.
+  std::vector<Patch> open = patches;
+  for (int k : {2, 3})
+    for (glm::dvec3& corner : open[k].corners) corner.z -= 5.0;
+  for (int k : {2, 3}) open[k].centroid.z -= 5.0;
+  HemicubeBuffer unoccluded;
+  rasterize_hemicube(open, sender, r, &unoccluded);
+  int big_now = 0;
+  for (int f = 0; f < 5; ++f)
+    for (uint32_t id : unoccluded.faces[f]) big_now += id == 4 || id == 5;
+  CHECK(big_now == big_cells + small_cells);
+}
+
+TEST_CASE("the rasterised and the ray-cast item buffers agree cell for cell except on edges",
+          "[radiosity][hemicube]") {
+  // A closed box with a block inside (occlusion, back faces seen from outside the block are
+  // front faces; every cell hits something).
+  prt::scene::Scene scene;
+  prt::test::append(
+      scene,
+      prt::scene::make_box({0, 0, 0}, {1, 1.5, 2}, 3, /*normals_inward=*/true, glm::vec3(0.5f)),
+      "room");
+  prt::test::append(scene,
+                    prt::scene::make_box({0.3f, 0.f, 0.6f}, {0.62f, 0.7f, 1.1f}, 1,
+                                         /*normals_inward=*/false, glm::vec3(0.5f)),
+                    "block");
+  const prt::scene::RayCaster caster(scene);
+  const std::vector<Patch> patches = make_patches(scene);
+  const int r = 32;
+  std::size_t cells = 0, differ = 0, differ_inside = 0;
+  HemicubeBuffer raster, rays;
+  for (uint32_t i = 0; i < patches.size(); i += 3) {
+    rasterize_hemicube(patches, i, r, &raster);
+    ray_cast_hemicube(patches, caster, i, r, &rays);
+    for (int f = 0; f < 5; ++f) {
+      const int height = f == 0 ? r : r / 2;
+      for (int y = 0; y < height; ++y)
+        for (int x = 0; x < r; ++x) {
+          const std::vector<uint32_t>& a = raster.faces[f];
+          const uint32_t here = a[static_cast<std::size_t>(y) * r + x];
+          ++cells;
+          if (here == rays.faces[f][static_cast<std::size_t>(y) * r + x]) continue;
+          ++differ;
+          // On an edge: some neighbouring cell of the same face shows another patch.
+          bool edge = false;
+          for (int dy = -1; dy <= 1; ++dy)
+            for (int dx = -1; dx <= 1; ++dx) {
+              const int xx = x + dx, yy = y + dy;
+              if (xx < 0 || yy < 0 || xx >= r || yy >= height) continue;
+              edge = edge || a[static_cast<std::size_t>(yy) * r + xx] != here;
+            }
+          differ_inside += !edge;
+        }
+    }
+  }
+  INFO(differ << " of " << cells << " cells differ");
+  CHECK(differ_inside == 0);
+  CHECK(double(differ) < 0.01 * double(cells));
+}
+
+TEST_CASE("hemicube form factors converge to Lambert's formula like 1/R and to the closed forms",
+          "[radiosity][hemicube]") {
+  // Point error (the hemicube at A's centroids against the exact point-to-polygon value there):
+  // aliasing along the receiver's projected edges, O(1/R). Measured log-log slopes over
+  // R = 16..512: 0.97 (parallel), 0.83 (perpendicular). Asserted: at least 0.7 and the error
+  // at R = 512 under 1e-3.
+  for (bool perpendicular : {false, true}) {
+    const std::vector<Patch> patches = make_patches(two_squares(perpendicular));
+    const std::vector<glm::dvec3>& b = perpendicular ? kPerpendicular : kOpposite;
+    const double e16 = worst_point_error(patches, 2, b, 16);
+    const double e512 = worst_point_error(patches, 2, b, 512);
+    const double slope = std::log(e16 / e512) / std::log(32.0);
+    INFO((perpendicular ? "perpendicular" : "parallel")
+         << ": error " << e16 << " at R = 16, " << e512 << " at R = 512, slope " << slope);
+    CHECK(slope > 0.7);
+    CHECK(e512 < 1e-3);
+  }
+  // Patch to patch, the sender split into 8 × 8 squares so that standing at centroids costs
+  // little: within 5e-4 of Howell's values at R = 256 (measured 2.7e-4 parallel, 6.6e-5
+  // perpendicular), and clearly off at R = 16 for the parallel pair (9.4e-4).
+  const std::vector<Patch> parallel = make_patches(two_squares(false, 8));
+  const std::vector<Patch> perpendicular = make_patches(two_squares(true, 8));
+  CHECK(std::abs(hemicube_square_to_square(parallel, 128, 256) - prt::test::kParallelUnitSquares) <
+        5e-4);
+  CHECK(std::abs(hemicube_square_to_square(perpendicular, 128, 256) -
+                 prt::test::kPerpendicularUnitSquares) < 5e-4);
+}
+
+TEST_CASE("hemicube form factors do not depend on the thread count", "[radiosity][hemicube]") {
+  const prt::scene::Scene box =
+      prt::scene::make_box({0, 0, 0}, {1, 1, 1}, 3, /*normals_inward=*/true, glm::vec3(0.5f));
+  const prt::scene::RayCaster caster(box);
+  const std::vector<Patch> patches = make_patches(box);
+  FormFactorOptions o;
+  o.method = FormFactorMethod::Hemicube;
+  o.hemicube_resolution = 24;
+  const FormFactorMatrix many = compute_form_factors(patches, caster, o);
+  FormFactorMatrix one;
+  {
+    tbb::global_control single(tbb::global_control::max_allowed_parallelism, 1);
+    one = compute_form_factors(patches, caster, o);
+  }
+  CHECK(many.f == one.f);
+  for (std::size_t i = 0; i < patches.size(); ++i)
+    CHECK(many.row_sum(i) == Approx(1.0).margin(1e-6));
+}
+
+TEST_CASE("Cornell box: hemicube rows approach the analytic ones (centroid rule) as R grows",
+          "[radiosity][hemicube]") {
+  const std::filesystem::path obj = prt::test::shared_data("meshes/cornell_box.obj");
+  PRT_REQUIRE_SHARED_DATA(obj);
+  const prt::scene::Scene scene = cornell_box(150.0);
+  const prt::scene::RayCaster caster(scene);
+  const std::vector<Patch> patches = make_patches(scene);
+  FormFactorOptions analytic;
+  analytic.quadrature_points = 1;
+  const FormFactorMatrix reference = compute_form_factors(patches, caster, analytic);
+  std::vector<double> mean;
+  for (int r : {16, 128}) {
+    FormFactorOptions o;
+    o.method = FormFactorMethod::Hemicube;
+    o.hemicube_resolution = r;
+    mean.push_back(
+        row_difference(patches, compute_form_factors(patches, caster, o), reference).first);
+  }
+  // Measured 0.255 at R = 16 and 0.048 at R = 128 (504 patches); what remains at large R is
+  // mostly the analytic side's binary visibility per patch pair (one centroid-to-centroid ray)
+  // and the sub-cell receivers near each sender, not the hemicube's 1/R.
+  INFO(patches.size() << " patches: mean row L1 difference " << mean[0] << " at R = 16, " << mean[1]
+                      << " at R = 128");
+  CHECK(mean[1] < 0.07);
+  CHECK(mean[0] > 3 * mean[1]);
+}
