@@ -90,7 +90,9 @@ PRT_AVX2 inline float horizontal_avx2(__m256 r) {
   return _mm_cvtss_f32(_mm_add_ss(t, _mm_shuffle_ps(t, t, 1)));
 }
 
-// NC vectors per channel (0: the stride decides at run time).
+// NC vectors per channel (0: the stride decides at run time). The three channels advance
+// together over k (3·NC independent sums keep the adders busy); each lane's operations and
+// their order are those of vertex_portable.
 template <int NC>
 PRT_AVX2 void vertex_avx2(const Args& a, std::size_t v) {
   const CpcaRelighter::Impl& im = *a.im;
@@ -100,27 +102,31 @@ PRT_AVX2 void vertex_avx2(const Args& a, std::size_t v) {
   const std::size_t rel = v - a.first;
   const float* p = a.projected + std::size_t(im.t.cluster_of_vertex[v]) * (k_count + 1) * 3 * s;
   const float* w = im.t.weights.data() + v * k_count;
-  alignas(32) float bp[kMaxStride], tmp[kMaxStride];
+  __m256 acc[3][kMaxNc];
   for (std::size_t c = 0; c < 3; ++c) {
-    __m256 acc[kMaxNc];
-    for (std::size_t u = 0; u < nc; ++u) acc[u] = _mm256_loadu_ps(p + c * s + u * kWidth);
-    for (std::size_t k = 1; k <= k_count; ++k) {
-      const __m256 wk = _mm256_broadcast_ss(w + k - 1);
+    for (std::size_t u = 0; u < nc; ++u) acc[c][u] = _mm256_loadu_ps(p + c * s + u * kWidth);
+  }
+  for (std::size_t k = 1; k <= k_count; ++k) {
+    const __m256 wk = _mm256_broadcast_ss(w + k - 1);
+    for (std::size_t c = 0; c < 3; ++c) {
       const float* pk = p + (k * 3 + c) * s;
       for (std::size_t u = 0; u < nc; ++u) {
-        acc[u] = _mm256_add_ps(acc[u], _mm256_mul_ps(_mm256_loadu_ps(pk + u * kWidth), wk));
+        acc[c][u] = _mm256_add_ps(acc[c][u], _mm256_mul_ps(_mm256_loadu_ps(pk + u * kWidth), wk));
       }
     }
+  }
+  alignas(32) float bp[kMaxStride], tmp[kMaxStride];
+  for (std::size_t c = 0; c < 3; ++c) {
     if (a.b == nullptr) {
-      for (std::size_t u = 0; u < nc; ++u) _mm256_store_ps(tmp + u * kWidth, acc[u]);
+      for (std::size_t u = 0; u < nc; ++u) _mm256_store_ps(tmp + u * kWidth, acc[c][u]);
       std::memcpy(a.out + (rel * 3 + c) * n2, tmp, n2 * sizeof(float));
       continue;
     }
     const std::size_t bc = static_cast<std::size_t>(a.b_channels);
-    pad_b(a.b + (rel * bc + (bc == 1 ? 0 : c)) * n2, n2, s, bp);
-    __m256 r = _mm256_mul_ps(_mm256_load_ps(bp), acc[0]);
+    if (c == 0 || bc == 3) pad_b(a.b + (rel * bc + (bc == 1 ? 0 : c)) * n2, n2, s, bp);
+    __m256 r = _mm256_mul_ps(_mm256_load_ps(bp), acc[c][0]);
     for (std::size_t u = 1; u < nc; ++u) {
-      r = _mm256_add_ps(r, _mm256_mul_ps(_mm256_load_ps(bp + u * kWidth), acc[u]));
+      r = _mm256_add_ps(r, _mm256_mul_ps(_mm256_load_ps(bp + u * kWidth), acc[c][u]));
     }
     a.out[rel * 3 + c] = horizontal_avx2(r);
   }
