@@ -296,8 +296,8 @@ Status check_input(uint32_t order, uint32_t channels, uint64_t n, const float* x
 uint64_t CpcaTransfer::payload_bytes() const {
   const uint64_t d = dimension();
   const uint64_t ids = (2 * vertex_count + 3) / 4 * 4;  // uint16 ids padded to 4 bytes
-  return 48 + 4 * uint64_t(cluster_count) * (vector_count + 1) * d + ids +
-         4 * vertex_count * vector_count + 4;
+  return 64 + 4 * uint64_t(cluster_count) * (vector_count + 1) * d + ids +
+         4 * vertex_count * vector_count;
 }
 
 Result<CpcaTransfer> cpca_compress(uint32_t order, uint32_t channels, uint64_t vertex_count,
@@ -338,7 +338,10 @@ Result<CpcaTransfer> cpca_compress(const GlossyTransferData& data, const CpcaOpt
     return Status::Error("cpca: the matrix array has " + std::to_string(data.matrices.size()) +
                          " floats, expected vertex_count · channels · order⁴");
   }
-  return cpca_compress(data.order, data.channels, data.vertex_count, data.matrices.data(), options);
+  auto r =
+      cpca_compress(data.order, data.channels, data.vertex_count, data.matrices.data(), options);
+  if (r.ok()) r->fingerprint = data.fingerprint;
+  return r;
 }
 
 Status cpca_validate(const CpcaTransfer& t) {

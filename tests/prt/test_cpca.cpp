@@ -8,7 +8,9 @@
 #include <catch2/catch.hpp>
 
 #include "prt/cpca.h"
+#include "prt/cpca_file.h"
 #include "support/synthetic_glossy.h"
+#include "support/test_data.h"
 
 using prt::CpcaOptions;
 using prt::CpcaTransfer;
@@ -178,4 +180,39 @@ TEST_CASE("CPCA refuses bad input with a one-line message", "[cpca]") {
   bad.cluster_of_vertex[3] = 20;
   CHECK(prt::cpca_validate(bad).message() ==
         "cpca: vertex 3 has cluster id 20 beyond the 20 clusters");
+}
+
+TEST_CASE("CPCA file: round trip, size, and refused damage", "[cpca]") {
+  GlossyTransferData d = prt::test::synthetic_glossy(50, 3, 3, 64);
+  d.fingerprint = 0x1234567890abcdefull;
+  CpcaOptions o;
+  o.clusters = 4;
+  o.vectors = 3;
+  const CpcaTransfer t = compress(d, o);
+  CHECK(t.fingerprint == d.fingerprint);
+  auto bytes = prt::encode_cpca_file(t);
+  REQUIRE(bytes.ok());
+  // 64 header + 4·4·(3+1)·243 + ids 2·50 = 100 + weights 4·50·3.
+  CHECK(bytes->size() == 64 + 4 * 4 * 4 * 243 + 100 + 600);
+  CHECK(bytes->size() == t.payload_bytes());
+  const std::string path = prt::test::output_path("cpca_round_trip.prtq").string();
+  REQUIRE(prt::write_cpca_file(path, t).ok());
+  auto back = prt::read_cpca_file(path);
+  REQUIRE(back.ok());
+  CHECK(back->means == t.means);
+  CHECK(back->basis == t.basis);
+  CHECK(back->weights == t.weights);
+  CHECK(back->cluster_of_vertex == t.cluster_of_vertex);
+  CHECK(back->fingerprint == t.fingerprint);
+  CHECK((back->order == 3 && back->channels == 3 && back->vector_count == 3));
+  std::vector<unsigned char> bad = *bytes;
+  bad[700] ^= 1;
+  CHECK(prt::decode_cpca_file(bad.data(), bad.size(), "x.prtq").status().message() ==
+        "x.prtq: checksum mismatch (the file is corrupt)");
+  CHECK(prt::decode_cpca_file(bytes->data(), bytes->size() - 4, "x.prtq").status().message() ==
+        "x.prtq: file size " + std::to_string(bytes->size() - 4) + " differs from the " +
+            std::to_string(bytes->size()) + " bytes the header records (truncated?)");
+  CHECK(prt::decode_cpca_file("PRTC", 4, "y").status().message() ==
+        "y: not a CPCA transfer file (no PRCP header)");
+  CHECK_FALSE(prt::read_cpca_file(prt::test::output_path("missing.prtq").string()).ok());
 }

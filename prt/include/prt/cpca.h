@@ -38,6 +38,7 @@ struct CpcaTransfer {
   uint32_t cluster_count = 0;
   uint32_t vector_count = 0;  // K, the same for every cluster
   uint64_t vertex_count = 0;
+  uint64_t fingerprint = 0;  // geometry fingerprint of the source GlossyTransferData (0: none)
   // cluster_count · D: means[q·D + d], d = (c·n² + i)·n² + j as in GlossyTransferData.
   std::vector<float> means;
   // cluster_count · K · D: basis[(q·K + k)·D + d]; per cluster orthonormal (a vector may be
@@ -47,8 +48,8 @@ struct CpcaTransfer {
   std::vector<float> weights;               // vertex_count · K: weights[v·K + k]
 
   std::size_t dimension() const { return std::size_t(channels) * order * order * order * order; }
-  // Bytes of the compressed form as stored (docs/FORMAT.md, "CPCA glossy transfer"): header
-  // and sections, without the geometry and materials shared with the uncompressed file.
+  // Bytes of the compressed form as stored (prt/cpca_file.h; docs/GLOSSY_CPCA.md): header
+  // and arrays, without the geometry and materials of the uncompressed file.
   uint64_t payload_bytes() const;
 };
 
