@@ -278,6 +278,9 @@ Status check_input(uint32_t order, uint32_t channels, uint64_t n, const float* x
     return Status::Error("cpca: cluster count " + std::to_string(o.clusters) +
                          " is outside [1, 65535]");
   }
+  if (o.vectors > 4096 || o.max_vectors > 4096) {
+    return Status::Error("cpca: more than 4096 vectors per cluster");
+  }
   if (!(o.target_relative_rms >= 0.0) || !std::isfinite(o.target_relative_rms)) {
     return Status::Error("cpca: target error is not a finite non-negative number");
   }

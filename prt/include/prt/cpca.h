@@ -55,7 +55,7 @@ struct CpcaTransfer {
 
 struct CpcaOptions {
   uint32_t clusters = 64;  // clamped to the vertex count
-  uint32_t vectors = 8;    // K (ignored when target_relative_rms > 0)
+  uint32_t vectors = 8;    // K ≤ 4096 (ignored when target_relative_rms > 0)
   // > 0: choose the smallest K ≤ max_vectors whose relative RMS matrix error
   // sqrt(Σ_v |x_v − x̃_v|² / Σ_v |x_v|²) is at most this (an error when none is).
   double target_relative_rms = 0;
