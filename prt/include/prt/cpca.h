@@ -1,0 +1,93 @@
+// prt/cpca.h — clustered principal component analysis (CPCA) of glossy transfer matrices
+// (Sloan, Hall, Hart & Snyder 2003; [3] of docs/REFERENCES.md).
+//
+// Each vertex's transfer (prt/glossy_transfer.h: `channels` matrices of n²×n², row-major) is a
+// vector x_v of D = channels·n⁴ floats. CPCA partitions the vertices into clusters q and keeps,
+// per cluster, a mean μ_q and K orthonormal principal vectors U_q,1..K; a vertex keeps its
+// cluster id and K weights w_v,k = U_q,k · (x_v − μ_q), and is reconstructed as
+//     x̃_v = μ_q + Σ_k w_v,k U_q,k .
+// Under lighting L the transferred radiance is then L'_v = μ_q·L + Σ_k w_v,k (U_q,k·L): the
+// matrix–vector products are done once per cluster and frame (prt/glossy_kernel.h).
+//
+// Algorithm (docs/GLOSSY_CPCA.md): k-means++ seeding with a fixed-seed generator; then
+// `iterations` rounds of [per-cluster PCA; reassignment of every vertex to the cluster that
+// reconstructs it with the least squared error, among its `candidates` nearest cluster means].
+// PCA: randomized subspace iteration on the centred members (never forming the D×D
+// covariance), warm-started from the previous round's vectors, then Rayleigh–Ritz with a
+// Jacobi eigensolver, all in double. When K ≥ min(members, D) the vectors span the members
+// exactly. The weights are computed against the float-rounded mean and vectors, so
+// reconstruction is exact to float rounding at full rank.
+//
+// Determinism: the result depends only on the data and the options, not on `threads`
+// (threads work on disjoint vertices or clusters; every sum runs in a fixed order).
+// Nothing here throws; failures return prt::Status. Compiles as C++17.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "prt/glossy_transfer.h"
+#include "prt/status.h"
+
+namespace prt {
+
+struct CpcaTransfer {
+  uint32_t order = 5;     // SH order n of the matrices
+  uint32_t channels = 1;  // 1 (grey) or 3 (RGB) matrices per vertex
+  uint32_t cluster_count = 0;
+  uint32_t vector_count = 0;  // K, the same for every cluster
+  uint64_t vertex_count = 0;
+  uint64_t fingerprint = 0;  // geometry fingerprint of the source GlossyTransferData (0: none)
+  // cluster_count · D: means[q·D + d], d = (c·n² + i)·n² + j as in GlossyTransferData.
+  std::vector<float> means;
+  // cluster_count · K · D: basis[(q·K + k)·D + d]; per cluster orthonormal (a vector may be
+  // zero when the cluster has fewer independent members than K).
+  std::vector<float> basis;
+  std::vector<uint32_t> cluster_of_vertex;  // vertex_count, each < cluster_count
+  std::vector<float> weights;               // vertex_count · K: weights[v·K + k]
+
+  std::size_t dimension() const { return std::size_t(channels) * order * order * order * order; }
+  // Bytes of the compressed form as stored (prt/cpca_file.h; docs/GLOSSY_CPCA.md): header
+  // and arrays, without the geometry and materials of the uncompressed file.
+  uint64_t payload_bytes() const;
+};
+
+struct CpcaOptions {
+  uint32_t clusters = 64;  // clamped to the vertex count
+  uint32_t vectors = 8;    // K ≤ 4096 (ignored when target_relative_rms > 0)
+  // > 0: choose the smallest K ≤ max_vectors whose relative RMS matrix error
+  // sqrt(Σ_v |x_v − x̃_v|² / Σ_v |x_v|²) is at most this (an error when none is).
+  double target_relative_rms = 0;
+  uint32_t max_vectors = 32;
+  uint32_t iterations = 6;        // rounds of PCA + reassignment (stops early when stable)
+  uint32_t candidates = 8;        // clusters tried per vertex at reassignment (nearest means)
+  uint32_t power_iterations = 2;  // subspace iterations per round (4 more in the first)
+  uint64_t seed = 1;
+  unsigned threads = 1;  // worker threads (std::thread); 0 or 1 = the calling thread only
+};
+
+// Compresses `vertex_count` vectors of `channels`·order⁴ floats, vertex-major (the layout of
+// GlossyTransferData::matrices). Errors: order 0 or > 16, channels not 1 or 3, a size
+// mismatch, a non-finite value, K or clusters 0 (K = 0 is allowed: means only), no vertices.
+Result<CpcaTransfer> cpca_compress(uint32_t order, uint32_t channels, uint64_t vertex_count,
+                                   const float* matrices, const CpcaOptions& options);
+Result<CpcaTransfer> cpca_compress(const GlossyTransferData& data, const CpcaOptions& options);
+
+// Checks sizes, ids and finiteness (a one-line error naming the problem).
+Status cpca_validate(const CpcaTransfer& cpca);
+
+// x̃_v in double (D values). Precondition: cpca_validate(cpca).ok(), v < vertex_count.
+void cpca_reconstruct(const CpcaTransfer& cpca, std::size_t v, double* out);
+
+// sqrt(Σ_v |x_v − x̃_v|² / Σ_v |x_v|²) in double (0 when every x_v is 0).
+double cpca_relative_rms_error(const CpcaTransfer& cpca, const float* matrices);
+
+// The same error when only the first k ≤ K vectors are used (a nested truncation).
+double cpca_relative_rms_error_truncated(const CpcaTransfer& cpca, const float* matrices,
+                                         uint32_t k);
+
+// Keeps only the first k ≤ K vectors of every cluster (the weights of the rest are dropped).
+CpcaTransfer cpca_truncate(const CpcaTransfer& cpca, uint32_t k);
+
+}  // namespace prt
