@@ -1,7 +1,7 @@
 // bench_glossy — one frame of glossy shading (prt/glossy_kernel.h) for 50,000 vertices at
 // order 5: RGB lighting, grey transfer matrices, per-vertex b = B·y(ω_o) computed in the loop
 // (frame change + SH evaluation + a 25×25 matrix–vector product, bench/glossy_bench_support.h),
-// then the fused dot. Uncompressed and CPCA (64 clusters, 16 vectors; CpcaRelighter::prepare
+// then the fused dot. Uncompressed and CPCA (64 clusters, 16 vectors; CpcaKernel::prepare
 // included in every frame), AVX2 and portable paths.
 // Run on one core: taskset -c 1 build/bench/bench_glossy  (figures in docs/BENCHMARKS.md).
 #include <cstdio>
@@ -23,8 +23,8 @@ constexpr int kOrder = 5;
 
 struct Fixture {
   prt::GlossyTransferData data;
-  prt::GlossyRelighter glossy;
-  prt::CpcaRelighter cpca;
+  prt::GlossyKernel glossy;
+  prt::CpcaKernel cpca;
   std::vector<float> bmat;
   prt::ShLighting light;
   float eye[3] = {0.5f, 3.0f, 7.0f};
@@ -34,7 +34,7 @@ const Fixture& fixture() {
   static const std::unique_ptr<Fixture> f = [] {
     auto x = std::make_unique<Fixture>();
     x->data = prt::test::synthetic_glossy(kVertices, kOrder, 1, 256);
-    x->glossy = std::move(prt::GlossyRelighter::create(x->data).value());
+    x->glossy = std::move(prt::GlossyKernel::create(x->data).value());
     prt::CpcaOptions o;
     o.clusters = 64;
     o.vectors = 16;
@@ -43,7 +43,7 @@ const Fixture& fixture() {
     std::fprintf(stderr, "CPCA: %u clusters, %u vectors, %.1f bytes/vertex, rel. RMS %.4f\n",
                  c.cluster_count, c.vector_count, double(c.payload_bytes()) / kVertices,
                  prt::cpca_relative_rms_error(c, x->data.matrices.data()));
-    x->cpca = std::move(prt::CpcaRelighter::create(c).value());
+    x->cpca = std::move(prt::CpcaKernel::create(c).value());
     prt::brdf::Material m;
     m.model = prt::brdf::MaterialModel::kMicrofacet;
     m.diffuse = prt::brdf::grey(0.3);

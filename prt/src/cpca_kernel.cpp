@@ -1,4 +1,4 @@
-// cpca_kernel.cpp — the CPCA glossy kernel (CpcaRelighter); see prt/glossy_kernel.h.
+// cpca_kernel.cpp — the CPCA glossy kernel (CpcaKernel); see prt/glossy_kernel.h.
 //
 // Compiled with -ffp-contract=off (prt/CMakeLists.txt): no path fuses a multiply and an add,
 // so the AVX2 and the portable paths round identically.
@@ -18,7 +18,7 @@
 
 namespace prt {
 
-struct CpcaRelighter::Impl {
+struct CpcaKernel::Impl {
   CpcaTransfer t;
   std::size_t n2 = 1, stride = 8;
 };
@@ -29,7 +29,7 @@ constexpr std::size_t kWidth = 8;        // lanes of one vector
 constexpr std::size_t kMaxStride = 256;  // n² ≤ 256 (order ≤ 16)
 
 struct Args {
-  const CpcaRelighter::Impl* im;
+  const CpcaKernel::Impl* im;
   const float* projected;
   std::size_t first, count;
   const float* b;  // null: transfer only
@@ -52,7 +52,7 @@ inline void pad_b(const float* src, std::size_t n2, std::size_t stride, float* d
 // ---- portable path ----
 
 void vertex_portable(const Args& a, std::size_t v) {
-  const CpcaRelighter::Impl& im = *a.im;
+  const CpcaKernel::Impl& im = *a.im;
   const std::size_t k_count = im.t.vector_count, s = im.stride, n2 = im.n2;
   const std::size_t rel = v - a.first;
   const float* p = a.projected + std::size_t(im.t.cluster_of_vertex[v]) * (k_count + 1) * 3 * s;
@@ -95,7 +95,7 @@ PRT_AVX2 inline float horizontal_avx2(__m256 r) {
 // their order are those of vertex_portable.
 template <int NC>
 PRT_AVX2 void vertex_avx2(const Args& a, std::size_t v) {
-  const CpcaRelighter::Impl& im = *a.im;
+  const CpcaKernel::Impl& im = *a.im;
   const std::size_t k_count = im.t.vector_count, s = im.stride, n2 = im.n2;
   const std::size_t nc = NC != 0 ? static_cast<std::size_t>(NC) : s / kWidth;
   constexpr std::size_t kMaxNc = NC != 0 ? static_cast<std::size_t>(NC) : kMaxStride / kWidth;
@@ -159,7 +159,7 @@ bool avx2_available() {
   return available;
 }
 
-Status run_cpca(const CpcaRelighter::Impl& im, KernelPath path, const CpcaFrame& frame,
+Status run_cpca(const CpcaKernel::Impl& im, KernelPath path, const CpcaFrame& frame,
                 const float* b, int b_channels, std::size_t first, std::size_t count, float* out,
                 const char* what) {
   const std::size_t n = static_cast<std::size_t>(im.t.vertex_count);
@@ -192,16 +192,16 @@ Status run_cpca(const CpcaRelighter::Impl& im, KernelPath path, const CpcaFrame&
 
 }  // namespace
 
-CpcaRelighter::CpcaRelighter() : impl_(std::make_unique<Impl>()) {}
-CpcaRelighter::CpcaRelighter(CpcaRelighter&&) noexcept = default;
-CpcaRelighter& CpcaRelighter::operator=(CpcaRelighter&&) noexcept = default;
-CpcaRelighter::~CpcaRelighter() = default;
+CpcaKernel::CpcaKernel() : impl_(std::make_unique<Impl>()) {}
+CpcaKernel::CpcaKernel(CpcaKernel&&) noexcept = default;
+CpcaKernel& CpcaKernel::operator=(CpcaKernel&&) noexcept = default;
+CpcaKernel::~CpcaKernel() = default;
 
-Result<CpcaRelighter> CpcaRelighter::create(const CpcaTransfer& cpca) {
+Result<CpcaKernel> CpcaKernel::create(const CpcaTransfer& cpca) {
   Status s = cpca_validate(cpca);
   if (!s.ok()) return s;
   try {
-    CpcaRelighter r;
+    CpcaKernel r;
     r.impl_->t = cpca;
     r.impl_->n2 = std::size_t(cpca.order) * cpca.order;
     r.impl_->stride = (r.impl_->n2 + kWidth - 1) / kWidth * kWidth;
@@ -211,20 +211,20 @@ Result<CpcaRelighter> CpcaRelighter::create(const CpcaTransfer& cpca) {
   }
 }
 
-std::size_t CpcaRelighter::vertex_count() const {
+std::size_t CpcaKernel::vertex_count() const {
   return static_cast<std::size_t>(impl_->t.vertex_count);
 }
-int CpcaRelighter::order() const {
+int CpcaKernel::order() const {
   return static_cast<int>(impl_->t.order);
 }
-int CpcaRelighter::channels() const {
+int CpcaKernel::channels() const {
   return static_cast<int>(impl_->t.channels);
 }
-int CpcaRelighter::vectors() const {
+int CpcaKernel::vectors() const {
   return static_cast<int>(impl_->t.vector_count);
 }
 
-Status CpcaRelighter::prepare(const ShLighting& light, CpcaFrame* frame) const {
+Status CpcaKernel::prepare(const ShLighting& light, CpcaFrame* frame) const {
   if (frame == nullptr) return Status::Error("cpca prepare: null frame");
   const Impl& im = *impl_;
   const std::size_t n2 = im.n2, s = im.stride, k1 = im.t.vector_count + 1;
@@ -259,19 +259,19 @@ Status CpcaRelighter::prepare(const ShLighting& light, CpcaFrame* frame) const {
   return Status::Ok();
 }
 
-Status CpcaRelighter::transfer(const CpcaFrame& frame, std::size_t first, std::size_t count,
+Status CpcaKernel::transfer(const CpcaFrame& frame, std::size_t first, std::size_t count,
                                float* out) const {
   return transfer_using(KernelPath::Auto, frame, first, count, out);
 }
-Status CpcaRelighter::shade(const CpcaFrame& frame, const float* b, int b_channels,
+Status CpcaKernel::shade(const CpcaFrame& frame, const float* b, int b_channels,
                             std::size_t first, std::size_t count, float* out_rgb) const {
   return shade_using(KernelPath::Auto, frame, b, b_channels, first, count, out_rgb);
 }
-Status CpcaRelighter::transfer_using(KernelPath path, const CpcaFrame& frame, std::size_t first,
+Status CpcaKernel::transfer_using(KernelPath path, const CpcaFrame& frame, std::size_t first,
                                      std::size_t count, float* out) const {
   return run_cpca(*impl_, path, frame, nullptr, 0, first, count, out, "cpca transfer");
 }
-Status CpcaRelighter::shade_using(KernelPath path, const CpcaFrame& frame, const float* b,
+Status CpcaKernel::shade_using(KernelPath path, const CpcaFrame& frame, const float* b,
                                   int b_channels, std::size_t first, std::size_t count,
                                   float* out_rgb) const {
   if (b_channels != 1 && b_channels != 3) {

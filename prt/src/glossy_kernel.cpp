@@ -1,4 +1,4 @@
-// glossy_kernel.cpp — the uncompressed glossy kernel (GlossyRelighter); see
+// glossy_kernel.cpp — the uncompressed glossy kernel (GlossyKernel); see
 // prt/glossy_kernel.h.
 //
 // Compiled with -ffp-contract=off (prt/CMakeLists.txt): no path fuses a multiply and an add,
@@ -36,7 +36,7 @@ AlignedFloats allocate_floats(std::size_t n) {
 
 }  // namespace
 
-struct GlossyRelighter::Impl {
+struct GlossyKernel::Impl {
   std::size_t vertex_count = 0;
   int order = 1;
   int channels = 1;
@@ -234,12 +234,12 @@ Status check_range(const char* what, std::size_t first, std::size_t count, std::
 
 }  // namespace
 
-GlossyRelighter::GlossyRelighter() : impl_(std::make_unique<Impl>()) {}
-GlossyRelighter::GlossyRelighter(GlossyRelighter&&) noexcept = default;
-GlossyRelighter& GlossyRelighter::operator=(GlossyRelighter&&) noexcept = default;
-GlossyRelighter::~GlossyRelighter() = default;
+GlossyKernel::GlossyKernel() : impl_(std::make_unique<Impl>()) {}
+GlossyKernel::GlossyKernel(GlossyKernel&&) noexcept = default;
+GlossyKernel& GlossyKernel::operator=(GlossyKernel&&) noexcept = default;
+GlossyKernel::~GlossyKernel() = default;
 
-Result<GlossyRelighter> GlossyRelighter::create(const GlossyTransferData& d) {
+Result<GlossyKernel> GlossyKernel::create(const GlossyTransferData& d) {
   if (d.order < 1 || d.order > kMaxGlossyOrder || (d.channels != 1 && d.channels != 3)) {
     return Status::Error("glossy transfer: order outside [1, 16] or channels not 1 or 3");
   }
@@ -256,7 +256,7 @@ Result<GlossyRelighter> GlossyRelighter::create(const GlossyTransferData& d) {
     }
   }
   try {
-    GlossyRelighter r;
+    GlossyKernel r;
     Impl& im = *r.impl_;
     im.vertex_count = n;
     im.order = static_cast<int>(d.order);
@@ -277,22 +277,22 @@ Result<GlossyRelighter> GlossyRelighter::create(const GlossyTransferData& d) {
   }
 }
 
-std::size_t GlossyRelighter::vertex_count() const {
+std::size_t GlossyKernel::vertex_count() const {
   return impl_->vertex_count;
 }
-int GlossyRelighter::order() const {
+int GlossyKernel::order() const {
   return impl_->order;
 }
-int GlossyRelighter::channels() const {
+int GlossyKernel::channels() const {
   return impl_->channels;
 }
 
-Status GlossyRelighter::transfer(const ShLighting& light, std::size_t first, std::size_t count,
+Status GlossyKernel::transfer(const ShLighting& light, std::size_t first, std::size_t count,
                                  float* out) const {
   return transfer_using(KernelPath::Auto, light, first, count, out);
 }
 
-Status GlossyRelighter::shade(const ShLighting& light, const float* b, int b_channels,
+Status GlossyKernel::shade(const ShLighting& light, const float* b, int b_channels,
                               std::size_t first, std::size_t count, float* out_rgb) const {
   return shade_using(KernelPath::Auto, light, b, b_channels, first, count, out_rgb);
 }
@@ -300,7 +300,7 @@ Status GlossyRelighter::shade(const ShLighting& light, const float* b, int b_cha
 namespace {
 
 // The kernel for both calls: b == nullptr writes L', else the exit radiance.
-Status run_glossy(const GlossyRelighter::Impl& im, KernelPath path, const ShLighting& light,
+Status run_glossy(const GlossyKernel::Impl& im, KernelPath path, const ShLighting& light,
                   const float* b, int b_channels, std::size_t first, std::size_t count, float* out,
                   const char* what) {
   Status s = check_range(what, first, count, im.vertex_count, out);
@@ -333,12 +333,12 @@ Status run_glossy(const GlossyRelighter::Impl& im, KernelPath path, const ShLigh
 
 }  // namespace
 
-Status GlossyRelighter::transfer_using(KernelPath path, const ShLighting& light, std::size_t first,
+Status GlossyKernel::transfer_using(KernelPath path, const ShLighting& light, std::size_t first,
                                        std::size_t count, float* out) const {
   return run_glossy(*impl_, path, light, nullptr, 0, first, count, out, "glossy transfer");
 }
 
-Status GlossyRelighter::shade_using(KernelPath path, const ShLighting& light, const float* b,
+Status GlossyKernel::shade_using(KernelPath path, const ShLighting& light, const float* b,
                                     int b_channels, std::size_t first, std::size_t count,
                                     float* out) const {
   if (b_channels != 1 && b_channels != 3) {

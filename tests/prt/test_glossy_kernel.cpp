@@ -12,9 +12,9 @@
 #include "support/synthetic_glossy.h"
 
 using prt::CpcaFrame;
-using prt::CpcaRelighter;
+using prt::CpcaKernel;
 using prt::CpcaTransfer;
-using prt::GlossyRelighter;
+using prt::GlossyKernel;
 using prt::GlossyTransferData;
 using prt::KernelPath;
 using prt::ShLighting;
@@ -108,7 +108,7 @@ TEST_CASE("Glossy references: identity transfer passes the lighting through", "[
     for (int i = 0; i < 4; ++i) want += double(b[c * 9 + i]) * light.coefficients_double(c)[i];
     CHECK(e[c] == Approx(want).epsilon(1e-15));
   }
-  auto r = GlossyRelighter::create(d);
+  auto r = GlossyKernel::create(d);
   REQUIRE(r.ok());
   std::vector<float> out(2 * 27);
   REQUIRE(r->transfer(light, 0, 2, out.data()).ok());
@@ -124,8 +124,8 @@ TEST_CASE("Glossy kernels match the double references to float rounding", "[glos
     const GlossyTransferData d = prt::test::synthetic_glossy(150, 5, channels, 256);
     const CpcaTransfer t = compress(d, 6, 5);
     const GlossyTransferData rec = reconstructed(d, t);
-    auto glossy = GlossyRelighter::create(d);
-    auto cpca = CpcaRelighter::create(t);
+    auto glossy = GlossyKernel::create(d);
+    auto cpca = CpcaKernel::create(t);
     REQUIRE(glossy.ok());
     REQUIRE(cpca.ok());
     for (int light_order : {3, 5, 7}) {
@@ -185,8 +185,8 @@ TEST_CASE("Glossy kernels: AVX2 and portable paths agree bit for bit", "[glossy]
       const GlossyTransferData d = prt::test::synthetic_glossy(45, order, channels, 128);
       const int n2 = order * order;
       const CpcaTransfer t = compress(d, 3, std::min(4, n2 * n2 * channels));
-      auto glossy = GlossyRelighter::create(d);
-      auto cpca = CpcaRelighter::create(t);
+      auto glossy = GlossyKernel::create(d);
+      auto cpca = CpcaKernel::create(t);
       REQUIRE(glossy.ok());
       REQUIRE(cpca.ok());
       const ShLighting light = random_lighting(std::max(1, order - 1 + channels % 2), 3);
@@ -221,8 +221,8 @@ TEST_CASE("Glossy kernels: AVX2 and portable paths agree bit for bit", "[glossy]
 
 TEST_CASE("Glossy kernels: a chunked range gives the same bits as one call", "[glossy]") {
   const GlossyTransferData d = prt::test::synthetic_glossy(70, 4, 1, 128);
-  auto glossy = GlossyRelighter::create(d);
-  auto cpca = CpcaRelighter::create(compress(d, 4, 3));
+  auto glossy = GlossyKernel::create(d);
+  auto cpca = CpcaKernel::create(compress(d, 4, 3));
   REQUIRE(glossy.ok());
   REQUIRE(cpca.ok());
   const ShLighting light = random_lighting(4, 1);
@@ -247,9 +247,9 @@ TEST_CASE("Glossy kernels: a chunked range gives the same bits as one call", "[g
 
 TEST_CASE("Glossy kernels refuse bad calls", "[glossy]") {
   const GlossyTransferData d = prt::test::synthetic_glossy(20, 2, 1, 64);
-  auto glossy = GlossyRelighter::create(d);
-  auto cpca = CpcaRelighter::create(compress(d, 2, 2));
-  auto other = CpcaRelighter::create(compress(d, 2, 2));
+  auto glossy = GlossyKernel::create(d);
+  auto cpca = CpcaKernel::create(compress(d, 2, 2));
+  auto other = CpcaKernel::create(compress(d, 2, 2));
   REQUIRE(glossy.ok());
   REQUIRE(cpca.ok());
   REQUIRE(other.ok());
@@ -266,6 +266,6 @@ TEST_CASE("Glossy kernels refuse bad calls", "[glossy]") {
         "cpca shade: the frame was not prepared by this relighter");
   GlossyTransferData bad = d;
   bad.matrices[17] = INFINITY;
-  CHECK(GlossyRelighter::create(bad).status().message() ==
+  CHECK(GlossyKernel::create(bad).status().message() ==
         "glossy transfer: matrix entry 1 of vertex 1 is not finite");
 }

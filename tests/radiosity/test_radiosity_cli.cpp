@@ -203,6 +203,7 @@ TEST_CASE("prt radiosity --form-factor-cache: saved, reused, refused for another
   r = run(dir, common + (dir / "out.csv").string() + " --move chair=1,0,0");
   CHECK(r.exit_code == 1);
   CHECK(r.err.find("--move chair") != std::string::npos);
+}
 
 TEST_CASE("prt radiosity --adaptive: refines in passes to the budget; bad values refused",
           "[radiosity][cli]") {

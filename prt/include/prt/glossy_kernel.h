@@ -28,7 +28,7 @@
 // Error: |e − e_exact| ≲ (n² + K + 3)·2⁻²⁴ · Σ |terms| (docs/GLOSSY_CPCA.md).
 //
 // Threads: the shading calls are const and use the stack only; call them from any number of
-// threads on disjoint output ranges. CpcaRelighter::prepare writes only its CpcaFrame. The
+// threads on disjoint output ranges. CpcaKernel::prepare writes only its CpcaFrame. The
 // library starts no threads. Nothing here throws; failures return prt::Status. C++17.
 #pragma once
 
@@ -46,15 +46,15 @@
 namespace prt {
 
 // Uncompressed matrices, copied into blocks of 16 vertices ([c][i][j][lane]).
-class GlossyRelighter {
+class GlossyKernel {
  public:
-  GlossyRelighter();
-  GlossyRelighter(GlossyRelighter&&) noexcept;
-  GlossyRelighter& operator=(GlossyRelighter&&) noexcept;
-  ~GlossyRelighter();
+  GlossyKernel();
+  GlossyKernel(GlossyKernel&&) noexcept;
+  GlossyKernel& operator=(GlossyKernel&&) noexcept;
+  ~GlossyKernel();
 
   // Errors: order outside [1, 16], channels not 1 or 3, a size mismatch, a non-finite entry.
-  static Result<GlossyRelighter> create(const GlossyTransferData& data);
+  static Result<GlossyKernel> create(const GlossyTransferData& data);
 
   std::size_t vertex_count() const;
   int order() const;
@@ -78,25 +78,25 @@ class GlossyRelighter {
   std::unique_ptr<Impl> impl_;
 };
 
-// The per-frame products of a CpcaRelighter with one lighting (reuse it across frames: its
+// The per-frame products of a CpcaKernel with one lighting (reuse it across frames: its
 // storage is kept).
 struct CpcaFrame {
   std::vector<float> projected;  // [cluster][k ≤ K][c][i padded to stride], k = 0 the mean
   std::size_t stride = 0;        // n² rounded up to 8
   std::size_t cluster_count = 0;
   std::size_t vectors = 0;      // K
-  const void* owner = nullptr;  // the CpcaRelighter that prepared it
+  const void* owner = nullptr;  // the CpcaKernel that prepared it
 };
 
-class CpcaRelighter {
+class CpcaKernel {
  public:
-  CpcaRelighter();
-  CpcaRelighter(CpcaRelighter&&) noexcept;
-  CpcaRelighter& operator=(CpcaRelighter&&) noexcept;
-  ~CpcaRelighter();
+  CpcaKernel();
+  CpcaKernel(CpcaKernel&&) noexcept;
+  CpcaKernel& operator=(CpcaKernel&&) noexcept;
+  ~CpcaKernel();
 
   // Errors: those of cpca_validate().
-  static Result<CpcaRelighter> create(const CpcaTransfer& cpca);
+  static Result<CpcaKernel> create(const CpcaTransfer& cpca);
 
   std::size_t vertex_count() const;
   int order() const;
@@ -107,7 +107,7 @@ class CpcaRelighter {
   // Errors: out of memory.
   Status prepare(const ShLighting& light, CpcaFrame* frame) const;
 
-  // As GlossyRelighter's, from a frame this object prepared (else an error).
+  // As GlossyKernel's, from a frame this object prepared (else an error).
   Status transfer(const CpcaFrame& frame, std::size_t first, std::size_t count, float* out) const;
   Status shade(const CpcaFrame& frame, const float* b, int b_channels, std::size_t first,
                std::size_t count, float* out_rgb) const;
