@@ -19,9 +19,10 @@
 #include "bake/transfer_baker.h"
 #include "cli_parsing.h"
 #include "command_registry.h"
-#include "progress_reporter.h"
 #include "haar_cli.h"
+#include "material_option.h"
 #include "output_safety.h"
+#include "progress_reporter.h"
 #include "prt/haar/cube_map.h"
 #include "prt/transfer_file.h"
 #include "relight/environment_input.h"
@@ -39,6 +40,7 @@ struct BakeArguments {
   int bounces = -1;
   double tolerance = 1e-4;
   std::string albedo;
+  std::vector<std::string> materials;  // --material overrides (cli/material_option.h)
   bool ao = false, bent_normals = false;
   uint64_t seed = 1;
   int threads = 0;
@@ -206,6 +208,7 @@ void run(const BakeArguments& args, const CLI::App& cmd) {
 
   scene::LoadOptions load;
   if (!args.albedo.empty()) load.albedo_override = parse_albedo(args.albedo);
+  load.material_overrides = parse_material_options(args.materials);
   const scene::Scene scene = scene::load_scene(args.scene, load);
   if (args.albedo.empty()) note_default_albedo(scene, args.quiet);
   if (args.haar.basis == "haar") {
@@ -268,6 +271,7 @@ void register_bake(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--tolerance", args->tolerance, "Relative residual of the interreflection solve")
       ->capture_default_str();
+  add_material_option(*cmd, args->materials);
   cmd->add_option("--albedo", args->albedo,
                   "Override every material's albedo (textures dropped): r,g,b in [0, 1)");
   cmd->add_flag("--ao", args->ao, "Also store ambient occlusion per vertex");

@@ -48,6 +48,10 @@ struct ScenePrimitive {
   // pbrMetallicRoughness, OBJ Ks/Ns, or a command-line override); see prt/brdf/material.h.
   // Absent: Lambert with `albedo`. The diffuse transfer ignores it.
   std::optional<brdf::Material> brdf;
+  // Rotation (radians, counter-clockwise from the tangent toward the bitangent) of the
+  // direction along which `brdf`'s α_x applies, in the vertex tangent frames
+  // (glTF KHR_materials_anisotropy's anisotropyRotation); scene/tangent_frames.h applies it.
+  float anisotropy_rotation = 0.f;
 };
 
 struct SceneCamera {
