@@ -124,7 +124,8 @@ TEST_CASE("make_brdf refuses bad parameters with the model's one-line message",
     std::string expect;
   };
   std::vector<Case> cases;
-  cases.push_back({microfacet_material(grey(0.2), grey(0.04), 0.0, 0.0), "roughness"});
+  cases.push_back({microfacet_material(grey(0.2), grey(0.04), 0.0, 0.0),
+                   "alpha_x is 0, must be in [0.001, 1]"});
   cases.push_back({microfacet_material(grey(0.2), grey(0.04), std::nan(""), 0.1), "NaN"});
   cases.push_back({microfacet_material(grey(1.5), grey(0.04), 0.2, 0.2), "must be in [0, 1]"});
   Material phong;
