@@ -110,7 +110,7 @@ void write_microfacet(tinygltf::Model& model, tinygltf::Material& material, cons
 tinygltf::Material make_material(tinygltf::Model& model, const ScenePrimitive& primitive,
                                  bool baked_colors) {
   tinygltf::Material material;
-  material.name = primitive.name;
+  material.name = primitive.material.empty() ? primitive.name : primitive.material;
   material.pbrMetallicRoughness.metallicFactor = 0.0;
   material.pbrMetallicRoughness.roughnessFactor = 1.0;
   if (baked_colors) {

@@ -497,6 +497,7 @@ TEST_CASE("the glossy scene round-trips through glTF with its materials and tang
     const auto& b = loaded.primitives[i];
     INFO(a.name);
     CHECK(a.albedo == b.albedo);
+    CHECK(a.material == b.material);
     REQUIRE(a.brdf.has_value() == b.brdf.has_value());
     if (!a.brdf) continue;
     ++glossy;
