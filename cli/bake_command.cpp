@@ -22,8 +22,11 @@
 #include "command_registry.h"
 #include "progress_reporter.h"
 #include "glossy_cli.h"
+#include "material_option.h"
 #include "haar_cli.h"
+#include "material_option.h"
 #include "output_safety.h"
+#include "progress_reporter.h"
 #include "prt/haar/cube_map.h"
 #include "prt/transfer_file.h"
 #include "radiosity/materials.h"
@@ -44,6 +47,7 @@ struct BakeArguments {
   double tolerance = 1e-4;
   std::vector<std::string> albedo;  // r,g,b for every material, or MATERIAL=r,g,b (repeatable)
   std::optional<double> max_edge;   // subdivide (scene/subdivide.h) before baking
+  std::vector<std::string> materials;  // --material overrides (cli/material_option.h)
   bool ao = false, bent_normals = false;
   uint64_t seed = 1;
   int threads = 0;
@@ -106,6 +110,7 @@ scene::Scene load_bake_scene(const BakeArguments& args) {
   const AlbedoChoice albedo = parse_albedo_options(args.albedo);
   scene::LoadOptions load;
   load.albedo_override = albedo.every;
+  load.material_overrides = parse_material_options(args.materials);
   scene::Scene scene = scene::load_scene(args.scene, load);
   try {
     radiosity::apply_albedo(scene, albedo.per_material);
@@ -356,6 +361,7 @@ void register_bake(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--tolerance", args->tolerance, "Relative residual of the interreflection solve")
       ->capture_default_str();
+  add_material_option(*cmd, args->materials);
   cmd->add_option("--albedo", args->albedo,
                   "Override every material's albedo (textures dropped): r,g,b in [0, 1); or "
                   "MATERIAL=r,g,b for one material (repeatable)")

@@ -1,5 +1,8 @@
 // `prt info FILE.prt [--json | --csv]`: describe a coefficient file of any kind
 // (prt/coefficient_file.h), or a glossy transfer file (cli/glossy_cli.h: matrices, materials).
+// `prt info SCENE (.glb, .gltf, .obj) [--material NAME=MODEL:...]`: the scene's size and one
+// line per primitive with its material (prt::brdf::describe; scene/material_override.h for the
+// overrides, applied as prt bake applies them).
 //   default  the header (kind, order or cube size, channels, precision, vertices, primitives,
 //            fingerprint, sections) and the metadata JSON, as text;
 //   --json   the same as one JSON object;
@@ -8,6 +11,7 @@
 //            Haar the dense wavelet coefficients w<channel>_<i> (i = face·N² + q, zero where
 //            the file stores none).
 #include <algorithm>
+#include <cctype>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -20,10 +24,12 @@
 #include "command_registry.h"
 #include "emitter_cli.h"
 #include "glossy_cli.h"
+#include "material_option.h"
 #include "output_safety.h"
 #include "prt/coefficient_file.h"
 #include "prt/haar/transform.h"
 #include "prt/transfer_data.h"
+#include "scene/scene_loader.h"
 #include "sh/basis.h"
 
 namespace prt::cli {
@@ -32,7 +38,29 @@ namespace {
 struct InfoArguments {
   std::string file;
   bool json = false, csv = false;
+  std::vector<std::string> materials;  // --material overrides (scenes only)
 };
+
+bool is_scene_path(const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return ext == ".glb" || ext == ".gltf" || ext == ".obj";
+}
+
+void print_scene(const InfoArguments& args) {
+  if (args.json || args.csv) throw UsageError("--json and --csv apply to coefficient files only");
+  scene::LoadOptions load;
+  load.material_overrides = parse_material_options(args.materials);
+  const scene::Scene scene = scene::load_scene(args.file, load);
+  std::printf("%s: %zu vertices, %zu triangles, %zu primitives, %zu camera(s), tangents %s\n",
+              args.file.c_str(), scene.vertex_count(), scene.triangles.size(),
+              scene.primitives.size(), scene.cameras.size(),
+              scene.tangents.empty() ? "generated" : "from the file");
+  std::printf("materials:\n");
+  for (const std::string& line : scene::describe_materials(scene))
+    std::printf("  %s\n", line.c_str());
+}
 
 const char* precision_name(const prt::CoefficientFile& f) {
   if (!f.haar) return f.data.storage == prt::Precision::F16 ? "f16" : "f32";
@@ -181,6 +209,8 @@ void print_csv(const prt::CoefficientFile& f) {
 }
 
 void run(const InfoArguments& args) {
+  if (is_scene_path(args.file)) return print_scene(args);
+  if (!args.materials.empty()) throw UsageError("--material applies to scenes only");
   CommandFiles files;  // no files are written: only stdout must not be the input
   files.add_input("coefficient file", args.file);
   files.check();
@@ -202,9 +232,13 @@ void run(const InfoArguments& args) {
 
 void register_info(CLI::App& app) {
   auto args = std::make_shared<InfoArguments>();
-  CLI::App* cmd = app.add_subcommand("info", "Describe a coefficient (.prt) file");
-  cmd->add_option("file", args->file, "Coefficient file (.prt) or emitter responses (.prte)")
+  CLI::App* cmd =
+      app.add_subcommand("info", "Describe a coefficient (.prt) file, or a scene's materials");
+  cmd->add_option("file", args->file,
+                  "Coefficient file (.prt), glossy transfer file (.prtg), emitter responses "
+                  "(.prte), or a scene (.glb, .gltf, .obj)")
       ->required();
+  add_material_option(*cmd, args->materials);
   CLI::Option* json = cmd->add_flag("--json", args->json, "Print the header and metadata as JSON");
   cmd->add_flag("--csv", args->csv, "Print one CSV row per vertex")->excludes(json);
   cmd->callback([args] { run(*args); });

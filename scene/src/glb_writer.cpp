@@ -55,12 +55,62 @@ int add_vec3_accessor(tinygltf::Model& model, const glm::vec3* values, std::size
 }
 
 constexpr const char* kUnlitExtension = "KHR_materials_unlit";
+constexpr const char* kSpecularExtension = "KHR_materials_specular";
+constexpr const char* kAnisotropyExtension = "KHR_materials_anisotropy";
+
+void use_extension(tinygltf::Model& model, const char* name) {
+  if (std::find(model.extensionsUsed.begin(), model.extensionsUsed.end(), name) ==
+      model.extensionsUsed.end())
+    model.extensionsUsed.push_back(name);
+}
+
+tinygltf::Value number(double v) {
+  return tinygltf::Value(v);
+}
+
+// A GGX + Schlick BRDF as the metallic-roughness material the loader maps back to it
+// (scene/src/gltf_materials.h, inverted): a pure lobe (no Lambert layer) is a metal with
+// baseColor = F0; otherwise a dielectric with baseColor = the Lambert layer and
+// KHR_materials_specular's specularColorFactor = F0 / 0.04 (always written, so that a
+// roughness of 1 is not read back as Lambert). α_x ≠ α_y: KHR_materials_anisotropy with
+// α = the smaller and strength s from α_large = mix(α, 1, s²); when α_y is the larger the
+// rotation gains π/2.
+void write_microfacet(tinygltf::Model& model, tinygltf::Material& material, const brdf::Material& m,
+                      float rotation) {
+  auto& pbr = material.pbrMetallicRoughness;
+  const bool metal = m.diffuse.r == 0.0 && m.diffuse.g == 0.0 && m.diffuse.b == 0.0;
+  if (metal) {
+    pbr.metallicFactor = 1.0;
+    pbr.baseColorFactor = {m.specular.r, m.specular.g, m.specular.b, 1.0};
+  } else {
+    pbr.metallicFactor = 0.0;
+    pbr.baseColorFactor = {m.diffuse.r, m.diffuse.g, m.diffuse.b, 1.0};
+    tinygltf::Value::Object specular;
+    specular["specularFactor"] = number(1.0);
+    specular["specularColorFactor"] = tinygltf::Value(tinygltf::Value::Array{
+        number(m.specular.r / 0.04), number(m.specular.g / 0.04), number(m.specular.b / 0.04)});
+    material.extensions[kSpecularExtension] = tinygltf::Value(specular);
+    use_extension(model, kSpecularExtension);
+  }
+  const double small = std::min(m.alpha_x, m.alpha_y), large = std::max(m.alpha_x, m.alpha_y);
+  pbr.roughnessFactor = std::sqrt(small);
+  if (large > small && small < 1.0) {
+    const double strength = std::sqrt(std::clamp((large - small) / (1.0 - small), 0.0, 1.0));
+    const double turn = m.alpha_x >= m.alpha_y ? 0.0 : std::acos(0.0);
+    tinygltf::Value::Object anisotropy;
+    anisotropy["anisotropyStrength"] = number(strength);
+    anisotropy["anisotropyRotation"] = number(double(rotation) + turn);
+    material.extensions[kAnisotropyExtension] = tinygltf::Value(anisotropy);
+    use_extension(model, kAnisotropyExtension);
+  }
+}
 
 // A diffuse material of the primitive's albedo; with baked colours, an unlit white one, so that
 // a viewer shows COLOR_0 as it is instead of lighting it (and multiplying by the albedo) again.
-tinygltf::Material make_material(const ScenePrimitive& primitive, bool baked_colors) {
+tinygltf::Material make_material(tinygltf::Model& model, const ScenePrimitive& primitive,
+                                 bool baked_colors) {
   tinygltf::Material material;
-  material.name = primitive.name;
+  material.name = primitive.material.empty() ? primitive.name : primitive.material;
   material.pbrMetallicRoughness.metallicFactor = 0.0;
   material.pbrMetallicRoughness.roughnessFactor = 1.0;
   if (baked_colors) {
@@ -69,6 +119,11 @@ tinygltf::Material make_material(const ScenePrimitive& primitive, bool baked_col
   } else {
     material.pbrMetallicRoughness.baseColorFactor = {primitive.albedo.x, primitive.albedo.y,
                                                      primitive.albedo.z, 1.0};
+    const std::optional<brdf::Material>& b = primitive.brdf;
+    if (b && b->model == brdf::MaterialModel::kMicrofacet &&
+        b->distribution == brdf::NormalDistribution::kGgx &&
+        b->fresnel == brdf::FresnelMode::kSchlick)
+      write_microfacet(model, material, *b, primitive.anisotropy_rotation);
   }
   return material;
 }
@@ -83,6 +138,18 @@ glm::dquat look_at_rotation(const SceneCamera& camera) {
   x = glm::normalize(x);
   const glm::dvec3 y = glm::cross(z, x);
   return glm::normalize(glm::quat_cast(glm::dmat3(x, y, z)));
+}
+
+// Whether every tangent of the primitive is a valid glTF TANGENT (finite unit xyz, w = ±1).
+bool has_tangents(const Scene& scene, const ScenePrimitive& primitive) {
+  if (scene.tangents.size() != scene.positions.size() || primitive.vertex_count == 0) return false;
+  for (uint32_t v = primitive.first_vertex; v < primitive.first_vertex + primitive.vertex_count;
+       ++v) {
+    const glm::vec4 t = scene.tangents[v];
+    const float length = glm::length(glm::vec3(t));
+    if (!(std::fabs(length - 1.f) < 1e-3f) || std::fabs(t.w) != 1.f) return false;
+  }
+  return true;
 }
 
 tinygltf::Model build_model(const std::string& path, const Scene& scene,
@@ -119,6 +186,17 @@ tinygltf::Model build_model(const std::string& path, const Scene& scene,
         model, scene.positions.data() + primitive.first_vertex, primitive.vertex_count, true);
     gltf_primitive.attributes["NORMAL"] = add_vec3_accessor(
         model, scene.normals.data() + primitive.first_vertex, primitive.vertex_count, false);
+    if (has_tangents(scene, primitive)) {
+      tinygltf::Accessor tangents;
+      tangents.bufferView =
+          add_buffer_view(model, scene.tangents.data() + primitive.first_vertex,
+                          primitive.vertex_count * sizeof(glm::vec4), TINYGLTF_TARGET_ARRAY_BUFFER);
+      tangents.componentType = TINYGLTF_COMPONENT_TYPE_FLOAT;
+      tangents.type = TINYGLTF_TYPE_VEC4;
+      tangents.count = primitive.vertex_count;
+      model.accessors.push_back(tangents);
+      gltf_primitive.attributes["TANGENT"] = static_cast<int>(model.accessors.size() - 1);
+    }
     if (vertex_colors) {
       gltf_primitive.attributes["COLOR_0"] = add_vec3_accessor(
           model, vertex_colors->data() + primitive.first_vertex, primitive.vertex_count, false);
@@ -132,7 +210,7 @@ tinygltf::Model build_model(const std::string& path, const Scene& scene,
     model.accessors.push_back(index_accessor);
     gltf_primitive.indices = static_cast<int>(model.accessors.size() - 1);
 
-    model.materials.push_back(make_material(primitive, vertex_colors != nullptr));
+    model.materials.push_back(make_material(model, primitive, vertex_colors != nullptr));
     gltf_primitive.material = static_cast<int>(model.materials.size() - 1);
 
     tinygltf::Mesh mesh;
@@ -166,7 +244,7 @@ tinygltf::Model build_model(const std::string& path, const Scene& scene,
   }
   model.scenes.push_back(gltf_scene);
   model.defaultScene = 0;
-  if (vertex_colors) model.extensionsUsed.push_back(kUnlitExtension);
+  if (vertex_colors) use_extension(model, kUnlitExtension);
   return model;
 }
 

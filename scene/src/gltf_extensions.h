@@ -6,8 +6,10 @@
 // formats and so on. prt reads float geometry, node transforms, perspective cameras and the base
 // colour; a required extension outside kIgnorableExtensions would be misread (or fail later with
 // a message about accessors that names no cause), so the file is refused up front, naming it.
-// kIgnorableExtensions change only what prt does not model (shading beyond the diffuse base
-// colour, lights, metadata), so prt reads such a file correctly for what it computes.
+// kIgnorableExtensions are those prt reads (KHR_materials_anisotropy, _ior, _specular,
+// _emissive_strength: scene/src/gltf_materials.h, gltf_emission.h) or that change only what prt
+// does not model (other shading layers, lights, metadata), so prt reads such a file correctly
+// for what it computes.
 // Extensions only in extensionsUsed have a fallback in the file (the spec requires it) and are
 // fine; those outside kIgnorableExtensions get a one-line note on stderr.
 #pragma once
@@ -17,7 +19,7 @@
 
 namespace prt::scene::detail {
 
-// Extensions that change nothing prt reads.
+// Extensions prt reads, or that change nothing prt reads.
 extern const std::vector<std::string> kIgnorableExtensions;
 
 // Throws SceneError("PATH: requires glTF extension NAME, which prt cannot read") for the first

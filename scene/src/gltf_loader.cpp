@@ -2,6 +2,7 @@
 #include "gltf_loader.h"
 #include "gltf_emission.h"
 #include "gltf_extensions.h"
+#include "gltf_materials.h"
 #include "gltf_textures.h"
 #include "scene/scene_loader.h"
 #include "scene_file_errors.h"
@@ -74,6 +75,12 @@ class GltfReader {
                    skipped_primitives_);
     }
     textures_.report();
+    if (invalid_tangents_ > 0)
+      std::fprintf(stderr,
+                   "%s: warning: %zu TANGENT value(s) are not finite unit vectors with w = +1 or "
+                   "-1: their frames are generated instead\n",
+                   path_.c_str(), invalid_tangents_);
+    if (!scene_.tangents.empty()) scene_.tangents.resize(scene_.positions.size(), glm::vec4(0.f));
     scene_.default_albedo_primitives = defaulted_albedo_primitives_;
     return std::move(scene_);
   }
@@ -176,6 +183,32 @@ class GltfReader {
       float xyz[3];
       std::memcpy(xyz, view.data + i * view.stride, sizeof xyz);
       out[i] = glm::dvec3(xyz[0], xyz[1], xyz[2]);
+    }
+    return out;
+  }
+
+  // TANGENT: float VEC4 (glTF 2.0 §3.7.2.1), one per vertex. Values that are not a unit-ish
+  // finite xyz with w = ±1 are replaced by zero ("missing": scene/tangent_frames.h generates a
+  // frame there) and counted for one warning.
+  std::vector<glm::dvec4> read_tangents(int accessor_index, const std::string& what,
+                                        std::size_t vertex_count) {
+    const tinygltf::Accessor& accessor =
+        model_.accessors.at(static_cast<std::size_t>(accessor_index));
+    if (accessor.type != TINYGLTF_TYPE_VEC4 ||
+        accessor.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT)
+      fail(path_, what + ": must be float VEC4");
+    const AccessorView view = view_accessor(accessor_index, what);
+    if (view.count != vertex_count) fail(path_, what + " and POSITION counts differ");
+    std::vector<glm::dvec4> out(view.count, glm::dvec4(0.0));
+    for (std::size_t i = 0; i < view.count && view.data != nullptr; ++i) {
+      float xyzw[4];
+      std::memcpy(xyzw, view.data + i * view.stride, sizeof xyzw);
+      const glm::dvec4 t(xyzw[0], xyzw[1], xyzw[2], xyzw[3]);
+      const double length = glm::length(glm::dvec3(t));
+      if (std::isfinite(length) && length > 1e-6 && std::fabs(std::fabs(t.w) - 1.0) <= 1e-3)
+        out[i] = glm::dvec4(glm::dvec3(t) / length, t.w < 0.0 ? -1.0 : 1.0);
+      else
+        ++invalid_tangents_;
     }
     return out;
   }
@@ -330,12 +363,13 @@ class GltfReader {
         }
       }
       if (!known_albedo) ++defaulted_albedo_primitives_;
-      if (primitive.material >= 0 &&
-          primitive.material < static_cast<int>(model_.materials.size())) {
-        const tinygltf::Material& m =
-            model_.materials[static_cast<std::size_t>(primitive.material)];
-        out.material = m.name;
-        out.emission = gltf_emission(m);
+      read_material(primitive, out);
+      const std::vector<glm::dvec4> tangents = read_primitive_tangents(primitive, name, positions);
+      if (uv.empty() && tangents.empty() && out.brdf && !out.brdf->isotropic()) {
+        // Anisotropic without TANGENT: keep TEXCOORD_0 for tangents from the UVs.
+        const auto it = primitive.attributes.find("TEXCOORD_0");
+        if (it != primitive.attributes.end()) uv = read_texcoords(it->second, name + " TEXCOORD_0");
+        if (uv.size() != positions.size()) uv.clear();
       }
 
       for (std::size_t v = 0; v < positions.size(); ++v) {
@@ -349,6 +383,7 @@ class GltfReader {
         scene_.normals.push_back(n);
       }
       scene_.albedo.resize(scene_.positions.size(), out.albedo);
+      append_tangents(tangents, linear, mirrored, out.first_vertex);
       if (!uv.empty() || !scene_.texcoords.empty()) {
         scene_.texcoords.resize(out.first_vertex, glm::vec2(0.f));
         if (uv.empty()) uv.assign(positions.size(), glm::vec2(0.f));
@@ -370,6 +405,53 @@ class GltfReader {
     }
   }
 
+  // The material's name, emission and BRDF (gltf_materials.h); the BRDF's base colour is the
+  // primitive's albedo as load_scene will set it (factor × the texture's mean when textured).
+  void read_material(const tinygltf::Primitive& primitive, ScenePrimitive& out) {
+    if (primitive.material < 0 || primitive.material >= static_cast<int>(model_.materials.size()))
+      return;
+    const tinygltf::Material& m = model_.materials[static_cast<std::size_t>(primitive.material)];
+    out.material = m.name;
+    out.emission = gltf_emission(m);
+    glm::vec3 base = out.albedo;
+    if (out.base_color_texture)
+      base = glm::clamp(
+          out.base_color_texture->factor * glm::vec3(out.base_color_texture->image->mean()),
+          glm::vec3(0.f), glm::vec3(kMaxTexturedAlbedo));
+    const GltfBrdf read = gltf_brdf(path_, m, base);
+    out.brdf = read.brdf;
+    out.anisotropy_rotation = read.anisotropy_rotation;
+  }
+
+  // The primitive's TANGENT attribute (object space, validated), or empty when it has none.
+  std::vector<glm::dvec4> read_primitive_tangents(const tinygltf::Primitive& primitive,
+                                                  const std::string& name,
+                                                  const std::vector<glm::dvec3>& positions) {
+    const auto it = primitive.attributes.find("TANGENT");
+    if (it == primitive.attributes.end()) return {};
+    return read_tangents(it->second, name + " TANGENT", positions.size());
+  }
+
+  // Appends the primitive's tangents in world space (Scene::tangents; zeros for primitives
+  // without). The tangent is a surface direction, so it takes the linear part of the node
+  // transform; a mirroring transform flips the handedness w, so that w · cross(n, t) is still
+  // the transformed bitangent.
+  void append_tangents(const std::vector<glm::dvec4>& tangents, const glm::dmat3& linear,
+                       bool mirrored, uint32_t first_vertex) {
+    if (tangents.empty() && scene_.tangents.empty()) return;
+    scene_.tangents.resize(first_vertex, glm::vec4(0.f));
+    for (const glm::dvec4& t : tangents) {
+      const glm::dvec3 world = linear * glm::dvec3(t);
+      const double length = glm::length(world);
+      if (t.w == 0.0 || !(length > 0.0) || !std::isfinite(length)) {
+        scene_.tangents.emplace_back(0.f);
+        continue;
+      }
+      scene_.tangents.emplace_back(glm::vec3(world / length), mirrored ? -t.w : t.w);
+    }
+    scene_.tangents.resize(scene_.positions.size(), glm::vec4(0.f));
+  }
+
   const std::string& path_;
   const tinygltf::Model& model_;
   bool read_textures_;
@@ -378,6 +460,7 @@ class GltfReader {
   std::vector<bool> visited_;
   std::size_t skipped_primitives_ = 0;
   std::size_t defaulted_albedo_primitives_ = 0;
+  std::size_t invalid_tangents_ = 0;
 };
 
 // Lists images whose external file is missing (for filtering tinygltf's warnings about them;

@@ -10,6 +10,7 @@
 #include <fstream>
 #include <map>
 #include <optional>
+#include <set>
 #include <sstream>
 #include <stdexcept>
 #include <tuple>
@@ -252,6 +253,7 @@ class ObjSceneBuilder {
       const tinyobj::material_t& m = materials_[static_cast<std::size_t>(material)];
       primitive.material = m.name;
       primitive.emission = glm::vec3(m.emission[0], m.emission[1], m.emission[2]);  // Ke
+      primitive.brdf = blinn_phong_of(m);
     }
     if (std::any_of(mesh.material_ids.begin(), mesh.material_ids.end(),
                     [&](int id) { return id != material; })) {
@@ -292,6 +294,33 @@ class ObjSceneBuilder {
     scene_.primitives.push_back(std::move(primitive));
   }
 
+  // The material's Blinn-Phong BRDF (k_L = Kd, k_G = Ks, s = Ns) when Ks is not zero and
+  // illum is not 1 (see scene/scene_loader.h); nullopt otherwise.
+  std::optional<brdf::Material> blinn_phong_of(const tinyobj::material_t& m) {
+    const brdf::Rgb ks{m.specular[0], m.specular[1], m.specular[2]};
+    if ((ks.r == 0.0 && ks.g == 0.0 && ks.b == 0.0) || m.illum == 1) return std::nullopt;
+    brdf::Material material;
+    material.model = brdf::MaterialModel::kBlinnPhong;
+    material.diffuse = brdf::Rgb{m.diffuse[0], m.diffuse[1], m.diffuse[2]};
+    material.specular = ks;
+    material.exponent = m.shininess;
+    double* glossy[3] = {&material.specular.r, &material.specular.g, &material.specular.b};
+    const double diffuse[3] = {material.diffuse.r, material.diffuse.g, material.diffuse.b};
+    bool lowered = false;
+    for (int c = 0; c < 3; ++c) {
+      if (diffuse[c] + *glossy[c] > 1.0 && diffuse[c] <= 1.0) {
+        *glossy[c] = 1.0 - diffuse[c];
+        lowered = true;
+      }
+    }
+    if (lowered && reported_lowered_.insert(m.name).second)
+      std::fprintf(stderr, "%s: note: material '%s': Kd + Ks exceeds 1, Ks lowered to 1 - Kd\n",
+                   path_.c_str(), m.name.c_str());
+    const Result<std::shared_ptr<const brdf::Brdf>> made = brdf::make_brdf(material);
+    if (!made) fail(path_, "material '" + m.name + "': " + made.status().message());
+    return material;
+  }
+
   const std::string& path_;
   bool read_textures_;
   const tinyobj::attrib_t& attrib_;
@@ -301,6 +330,7 @@ class ObjSceneBuilder {
   std::vector<std::pair<bool, std::optional<BaseColorTexture>>> textures_;  // per material
   bool single_shape_ = false;
   std::size_t mixed_material_shapes_ = 0;
+  std::set<std::string> reported_lowered_;
   Scene scene_;
 };
 

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <utility>
 
+#include "scene/tangent_frames.h"
 #include "sh/constants.h"
 
 namespace prt::scene {
@@ -240,6 +241,13 @@ void append_scene(Scene& into, const Scene& part) {
     else
       into.texcoords.insert(into.texcoords.end(), part.texcoords.begin(), part.texcoords.end());
   }
+  if (!into.tangents.empty() || !part.tangents.empty()) {  // zeros ("missing") where none
+    into.tangents.resize(vertex_offset, glm::vec4(0.f));
+    if (part.tangents.empty())
+      into.tangents.resize(into.positions.size(), glm::vec4(0.f));
+    else
+      into.tangents.insert(into.tangents.end(), part.tangents.begin(), part.tangents.end());
+  }
   for (const glm::uvec3& t : part.triangles) into.triangles.push_back(t + vertex_offset);
   for (ScenePrimitive primitive : part.primitives) {
     primitive.first_vertex += vertex_offset;
@@ -276,6 +284,98 @@ Scene make_demo_scene() {
   camera.yfov_radians = 0.75f;
   scene.cameras.push_back(camera);
   scene.source_path = "procedural:demo";
+  return scene;
+}
+
+Scene make_disc(glm::vec3 center, glm::vec3 axis_u, glm::vec3 axis_v, float radius, int rings,
+                int segments, glm::vec3 albedo, std::string name) {
+  Scene scene;
+  const int ns = std::max(segments, 3), nr = std::max(rings, 1);
+  const glm::dvec3 c(center), e1 = glm::normalize(glm::dvec3(axis_u));
+  const glm::dvec3 normal = glm::normalize(glm::cross(e1, glm::dvec3(axis_v)));
+  const glm::dvec3 e2 = glm::cross(normal, e1);
+  begin_primitive(scene, std::move(name), albedo);
+  const uint32_t centre = add_vertex(scene, c, normal);
+  scene.tangents.emplace_back(glm::vec3(e2), 1.f);  // the φ = 0 circle's direction
+  for (int k = 1; k <= nr; ++k) {
+    for (int s = 0; s < ns; ++s) {
+      const double phi = 2.0 * kPi * s / ns, rk = double(radius) * k / nr;
+      add_vertex(scene, c + rk * (std::cos(phi) * e1 + std::sin(phi) * e2), normal);
+      scene.tangents.emplace_back(glm::vec3(-std::sin(phi) * e1 + std::cos(phi) * e2), 1.f);
+    }
+  }
+  add_fan(scene, centre, centre + 1, ns);
+  for (int k = 1; k < nr; ++k) {
+    const uint32_t first = centre + 1 + static_cast<uint32_t>((k - 1) * ns);
+    add_band(scene, first, first + static_cast<uint32_t>(ns), ns);
+  }
+  end_primitive(scene);
+  return scene;
+}
+
+namespace {
+
+// GGX with Schlick's Fresnel as the glTF loader makes it from metallic-roughness: F0, a
+// Lambert layer, α = roughness².
+brdf::Material ggx(brdf::Rgb f0, brdf::Rgb diffuse, double alpha_x, double alpha_y) {
+  brdf::Material m;
+  m.model = brdf::MaterialModel::kMicrofacet;
+  m.distribution = brdf::NormalDistribution::kGgx;
+  m.fresnel = brdf::FresnelMode::kSchlick;
+  m.specular = f0;
+  m.diffuse = diffuse;
+  m.alpha_x = alpha_x;
+  m.alpha_y = alpha_y;
+  return m;
+}
+
+void name_material(Scene& part, const std::string& material, std::optional<brdf::Material> b) {
+  for (ScenePrimitive& p : part.primitives) {
+    p.material = material;
+    p.brdf = b;
+  }
+}
+
+}  // namespace
+
+Scene make_glossy_scene() {
+  Scene scene;
+  // Floor: 6 x 6 units, 60 x 60 cells, Lambert grey, normal +Y.
+  Scene floor =
+      make_quad({-3.f, 0.f, -3.f}, {0, 0, 6.f}, {6.f, 0, 0}, 60, 60, glm::vec3(0.6f), "floor");
+  name_material(floor, "floor", std::nullopt);
+  append_scene(scene, floor);
+  // A glossy red dielectric sphere: roughness 0.3 (α 0.09), F0 0.04, red Lambert layer.
+  const glm::vec3 red(0.7f, 0.08f, 0.06f);
+  Scene sphere = make_uv_sphere({-1.3f, 0.6f, 0.2f}, 0.6f, 32, 64, false, red, "glossy_sphere");
+  name_material(sphere, "glossy_red",
+                ggx(brdf::grey(0.04), brdf::Rgb{red.x, red.y, red.z}, 0.09, 0.09));
+  append_scene(scene, sphere);
+  // A brushed-metal disc standing on its rim, facing +Z: tangents along concentric circles,
+  // roughness 0.35 (α 0.1225) and anisotropy strength 0.8: α_x = 0.1225 + 0.8775 × 0.64 along
+  // the circles.
+  const glm::vec3 steel(0.9f, 0.9f, 0.88f);
+  Scene disc =
+      make_disc({0.2f, 0.75f, -1.0f}, {1, 0, 0}, {0, 1, 0}, 0.7f, 16, 96, steel, "brushed_disc");
+  name_material(
+      disc, "brushed_steel",
+      ggx(brdf::Rgb{steel.x, steel.y, steel.z}, brdf::grey(0.0), 0.1225 + 0.8775 * 0.64, 0.1225));
+  append_scene(scene, disc);
+  // A rough gold box: metallic, roughness 0.5 (α 0.25).
+  const glm::vec3 gold(0.95f, 0.74f, 0.33f);
+  Scene box = make_box({1.0f, 0.f, -0.3f}, {1.8f, 0.8f, 0.5f}, 8, false, gold, "gold_box");
+  name_material(box, "rough_gold",
+                ggx(brdf::Rgb{gold.x, gold.y, gold.z}, brdf::grey(0.0), 0.25, 0.25));
+  append_scene(scene, box);
+  scene.tangents = tangent_frames(scene);  // the disc's own, the others from UVs or normals
+
+  SceneCamera camera;
+  camera.name = "camera";
+  camera.eye = {0.4f, 1.9f, 4.2f};
+  camera.target = {0.1f, 0.5f, -0.3f};
+  camera.yfov_radians = 0.75f;
+  scene.cameras.push_back(camera);
+  scene.source_path = "procedural:glossy";
   return scene;
 }
 

@@ -33,7 +33,14 @@ const ScenePrimitive* find_primitive_of_vertex(const Scene& scene, std::size_t v
 // its coordinates; one note for the textures whose albedo had to be clamped (scene/texture.h).
 void apply_textures(Scene& scene, const std::string& path) {
   if (!scene.textured()) {
-    scene.texcoords.clear();
+    // Kept only for tangents of anisotropic materials (scene/tangent_frames.h).
+    const bool anisotropic =
+        std::any_of(scene.primitives.begin(), scene.primitives.end(),
+                    [](const ScenePrimitive& p) { return p.brdf && !p.brdf->isotropic(); });
+    if (anisotropic && !scene.texcoords.empty())
+      scene.texcoords.resize(scene.positions.size(), glm::vec2(0.f));
+    else
+      scene.texcoords.clear();
     return;
   }
   scene.texcoords.resize(scene.positions.size(), glm::vec2(0.f));
@@ -80,6 +87,8 @@ void finish_scene(Scene& scene, const std::string& path, const LoadOptions& opti
     }
     std::fill(scene.albedo.begin(), scene.albedo.end(), *options.albedo_override);
   }
+  scene.source_path = path;
+  apply_material_overrides(scene, options.material_overrides);
   apply_textures(scene, path);
   // File normals must be unit length (an OBJ `vn 5 1 0` is not, found by fuzzing): normalise
   // them; zero or non-finite ones are treated as missing and computed below.

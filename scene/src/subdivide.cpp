@@ -76,7 +76,27 @@ class PrimitiveSplitter {
     const double length = glm::length(n);
     out_.normals.emplace_back(length > 0.0 ? glm::vec3(n / length) : in_.normals[a]);
     out_.albedo.emplace_back(glm::vec3(mix(in_.albedo)));
+    if (!in_.texcoords.empty()) {
+      const auto mix2 = [&](const std::vector<glm::vec2>& x) {
+        return glm::dvec2(x[a]) * wa + glm::dvec2(x[b]) * wb + glm::dvec2(x[c]) * wc;
+      };
+      out_.texcoords.emplace_back(glm::vec2(mix2(in_.texcoords)));
+    }
+    if (!in_.tangents.empty()) out_.tangents.push_back(tangent(a, b, c, wa, wb, wc));
     return static_cast<uint32_t>(out_.positions.size() - 1);
+  }
+
+  // The interpolated file tangent (renormalised), w of the corner with the largest weight;
+  // zero ("missing", scene/tangent_frames.h) when a corner has none or they cancel.
+  glm::vec4 tangent(uint32_t a, uint32_t b, uint32_t c, double wa, double wb, double wc) const {
+    const glm::vec4 ta = in_.tangents[a], tb = in_.tangents[b], tc = in_.tangents[c];
+    if (ta.w == 0.f || (wb > 0.0 && tb.w == 0.f) || (wc > 0.0 && tc.w == 0.f))
+      return glm::vec4(0.f);
+    const glm::dvec3 t = glm::dvec3(ta) * wa + glm::dvec3(tb) * wb + glm::dvec3(tc) * wc;
+    const double length = glm::length(t);
+    if (!(length > 1e-9)) return glm::vec4(0.f);
+    const float w = wa >= wb && wa >= wc ? ta.w : (wb >= wc ? tb.w : tc.w);
+    return glm::vec4(glm::vec3(t / length), w);
   }
 
   const Scene& in_;
@@ -116,6 +136,8 @@ Scene subdivide_to_edge_length(const Scene& scene, double max_edge) {
       out.positions.push_back(scene.positions[src]);
       out.normals.push_back(scene.normals[src]);
       out.albedo.push_back(scene.albedo[src]);
+      if (!scene.texcoords.empty()) out.texcoords.push_back(scene.texcoords[src]);
+      if (!scene.tangents.empty()) out.tangents.push_back(scene.tangents[src]);
     }
     PrimitiveSplitter splitter(scene, out);
     for (uint32_t k = 0; k < primitive.triangle_count; ++k) {

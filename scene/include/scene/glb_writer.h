@@ -3,8 +3,13 @@
 // Frame: glTF's (right-handed, +Y up, cameras look down -Z); positions are written as they are
 // (world space, identity node transforms), so load_scene(write_glb(s)) gives s back.
 // Layout: one mesh (with one node) per scene primitive, named after it, with POSITION (with
-// min/max), NORMAL, u32 indices, and a material whose baseColorFactor is the primitive's albedo
-// (alpha 1, metallic 0, roughness 1: a diffuse surface). With vertex_colors (one linear RGB
+// min/max), NORMAL, u32 indices, and a material (named after the primitive's material, else
+// the primitive) whose baseColorFactor is the primitive's albedo
+// (alpha 1, metallic 0, roughness 1: a diffuse surface) — or, for a primitive whose BRDF is
+// GGX with Schlick's Fresnel, the metallic-roughness material (+ KHR_materials_specular,
+// KHR_materials_anisotropy) that the loader reads back as that BRDF (other models are written
+// as their albedo only). Primitives whose Scene::tangents are all valid (unit xyz, w = ±1) get
+// TANGENT (float VEC4). With vertex_colors (one linear RGB
 // float triple per scene vertex, e.g. baked exit radiance) each primitive also gets COLOR_0
 // (float VEC3, linear as glTF requires) and the material becomes unlit (KHR_materials_unlit,
 // listed in extensionsUsed) with a white baseColorFactor: a viewer then shows COLOR_0 as it is,

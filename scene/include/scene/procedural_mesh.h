@@ -62,14 +62,32 @@ Scene make_spherical_cavity(float radius, float opening_half_angle, int rings, i
 // The ground outside the well is not included.
 Scene make_well(float radius, float depth, int segments, int rings, glm::vec3 albedo);
 
-// Appends part's vertices, normals, albedo, texture coordinates (zeros for the side that has
-// none, when the other has some), triangles (indices offset), primitives (ranges offset, textures
-// kept), cameras, and adds its skip/computed counters.
+// A flat disc of the given radius centred at `center` in the plane of axis_u and axis_v (normal
+// cross(axis_u, axis_v), normalised; axis_v is made orthogonal to it): vertex 0 is the centre,
+// then `rings` circles of `segments` vertices, circle k of radius R·k/rings, vertex s at angle
+// φ = 2π s/segments from axis_u toward axis_v. Scene::tangents run along the circles
+// (−sin φ·u + cos φ·v, w = +1; the centre takes φ = 0's), the frame of a brushed (lathe-turned)
+// surface. Primitive name `name`.
+Scene make_disc(glm::vec3 center, glm::vec3 axis_u, glm::vec3 axis_v, float radius, int rings,
+                int segments, glm::vec3 albedo, std::string name = "disc");
+
+// Appends part's vertices, normals, albedo, texture coordinates and tangents (zeros for the side
+// that has none, when the other has some), triangles (indices offset), primitives (ranges offset,
+// textures kept), cameras, and adds its skip/computed counters.
 void append_scene(Scene& into, const Scene& part);
 
 // The bundled demo (data/demo.glb): a light-grey ground, a red and a green wall meeting in a
 // corner, a white sphere and a white box near the walls, and one perspective camera looking
 // slightly down into the corner from the open side. About 12k vertices.
 Scene make_demo_scene();
+
+// The glossy demo (prt make-scene --scene glossy): a Lambert grey floor (material "floor"), a
+// glossy red dielectric sphere ("glossy_red": GGX α 0.09, F0 0.04, red Lambert layer), a
+// brushed-steel disc standing on its rim ("brushed_steel": metal, α_x 0.684 along concentric
+// circles, α_y 0.1225), a rough gold box ("rough_gold": metal, α 0.25), and one camera. Every
+// vertex has a tangent (Scene::tangents: the disc's circles, elsewhere tangent_frames()).
+// Each BRDF is one that glTF metallic-roughness (+ KHR_materials_specular,
+// KHR_materials_anisotropy) expresses, so write_glb + load_scene gives it back.
+Scene make_glossy_scene();
 
 }  // namespace prt::scene

@@ -48,6 +48,10 @@ struct ScenePrimitive {
   // pbrMetallicRoughness, OBJ Ks/Ns, or a command-line override); see prt/brdf/material.h.
   // Absent: Lambert with `albedo`. The diffuse transfer ignores it.
   std::optional<brdf::Material> brdf;
+  // Rotation (radians, counter-clockwise from the tangent toward the bitangent) of the
+  // direction along which `brdf`'s α_x applies, in the vertex tangent frames
+  // (glTF KHR_materials_anisotropy's anisotropyRotation); scene/tangent_frames.h applies it.
+  float anisotropy_rotation = 0.f;
 };
 
 struct SceneCamera {
@@ -63,7 +67,8 @@ struct Scene {
   std::vector<glm::vec2> texcoords;   // per vertex, or empty (never when a primitive is textured)
   // Per-vertex tangent frames from the file (glTF TANGENT: xyz a unit tangent ⊥ normal, w = ±1
   // the bitangent's handedness, bitangent = w · cross(normal, tangent)), or empty when the file
-  // has none; scene/tangent_frames.h gives frames for every vertex either way.
+  // has none; zero (0, 0, 0, 0) marks a vertex without one (a primitive without TANGENT, or an
+  // invalid value). scene/tangent_frames.h gives frames for every vertex either way.
   std::vector<glm::vec4> tangents;
   std::vector<glm::uvec3> triangles;  // indices into positions; degenerate ones removed
   std::vector<ScenePrimitive> primitives;

@@ -44,6 +44,20 @@
 // fallback normal), so vertex i is the file's i-th `v` (stanford-bunny.obj: 35,947 v lines,
 // 34,834 of them used, 35,947 vertices); with several shapes each keeps the entries it uses.
 //
+// Materials (BRDFs, ScenePrimitive::brdf; docs/BRDF.md "Materials from scenes"): glTF
+// pbrMetallicRoughness with KHR_materials_specular, KHR_materials_ior and
+// KHR_materials_anisotropy becomes GGX over a Lambert layer (the mapping, its defaults and its
+// departures from the spec: scene/src/gltf_materials.h); glTF TANGENT (float VEC4) is read into
+// Scene::tangents, transformed like a surface direction (w flipped by a mirroring transform);
+// values that are not finite, of zero length or with w other than ±1 become zero (a frame is
+// generated there, scene/tangent_frames.h) with one warning line. An anisotropic glTF material
+// without TANGENT keeps its TEXCOORD_0 for tangents from the UVs. OBJ: a material whose Ks is
+// not zero is normalised Blinn-Phong (k_L = Kd, k_G = Ks, s = Ns) unless `illum 1` (the MTL
+// spec's "no specular"); illum 0 (also what a file without illum reads as), 2 and the higher
+// models get the highlight (their reflection, refraction and transparency are not modelled).
+// Where Kd + Ks > 1 in a channel, k_G is lowered to 1 − Kd (one note on stderr). A negative Ns
+// is an error. The diffuse path (albedo) is the same with or without a BRDF.
+//
 // Emitters (both formats): ScenePrimitive::material is the material's name and
 // ScenePrimitive::emission its emitted radiance: glTF emissiveFactor × the
 // KHR_materials_emissive_strength extension's emissiveStrength (1 when absent); OBJ Ke. Values
@@ -62,9 +76,11 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
 #include <glm/glm.hpp>
 
+#include "scene/material_override.h"
 #include "scene/scene.h"
 
 namespace prt::scene {
@@ -72,6 +88,9 @@ namespace prt::scene {
 struct LoadOptions {
   // Replaces every material's albedo when set; textures are then not even decoded (flat colour).
   std::optional<glm::vec3> albedo_override;
+  // Per-material BRDF overrides (scene/material_override.h), applied in order after the
+  // albedo override; one that matches no material or primitive is an error.
+  std::vector<MaterialOverride> material_overrides;
 };
 
 // Loads a scene, dispatching on the file extension (case-insensitive): .gltf, .glb, .obj.

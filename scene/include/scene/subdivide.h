@@ -10,8 +10,10 @@
 // the new ones of that primitive. A point on an edge shared by two triangles of the same
 // primitive that pick the same n is one vertex; neighbours with different n meet in T-junctions
 // (the surface has no cracks: every new point lies on the original edge). New vertices
-// interpolate their corners' normals (renormalised) and albedo barycentrically. Primitives keep
-// their names, materials, albedo and emission; cameras and source_path are copied.
+// interpolate their corners' normals (renormalised), albedo and texture coordinates
+// barycentrically, and their file tangents (renormalised; w of the nearest corner; zero, i.e.
+// "missing", when a corner has none). Primitives keep their names, materials, BRDFs and
+// anisotropy rotations, albedo and emission; cameras and source_path are copied.
 #pragma once
 
 #include <cstddef>

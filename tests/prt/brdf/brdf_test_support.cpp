@@ -7,6 +7,7 @@
 
 #include "prt/brdf/blinn_phong.h"
 #include "prt/brdf/lambert.h"
+#include "prt/brdf/material.h"
 #include "prt/brdf/microfacet.h"
 #include "prt/brdf/ward.h"
 #include "sh/constants.h"
@@ -23,6 +24,21 @@ template <class T>
 std::shared_ptr<const Brdf> must(prt::Result<T> r) {
   if (!r) throw std::runtime_error("test model refused: " + r.status().message());
   return std::make_shared<T>(std::move(r).value());
+}
+
+// GGX + Schlick over a Lambert layer, through make_brdf.
+std::shared_ptr<const Brdf> layered(Rgb diffuse, Rgb f0, double ax, double ay) {
+  prt::brdf::Material m;
+  m.model = prt::brdf::MaterialModel::kMicrofacet;
+  m.distribution = NormalDistribution::kGgx;
+  m.fresnel = FresnelMode::kSchlick;
+  m.diffuse = diffuse;
+  m.specular = f0;
+  m.alpha_x = ax;
+  m.alpha_y = ay;
+  prt::Result<std::shared_ptr<const Brdf>> made = prt::brdf::make_brdf(m);
+  if (!made) throw std::runtime_error("test model refused: " + made.status().message());
+  return std::move(made).value();
 }
 
 std::shared_ptr<const Brdf> microfacet(NormalDistribution d, double ax, double ay,
@@ -88,6 +104,12 @@ std::vector<NamedBrdf> analytic_models() {
   m.push_back({"beckmann a=1", microfacet(beck, 1.0, 1.0), true});
   m.push_back(
       {"beckmann a=(0.5,0.15) schlick", microfacet(beck, 0.5, 0.15, FresnelMode::kSchlick), true});
+  // Microfacet lobes over a Lambert layer, built as scenes build them (prt/brdf/material.h):
+  // a glTF dielectric (F0 0.04) and an anisotropic coloured one.
+  m.push_back(
+      {"layered ggx kd=0.4 F0=0.04 a=0.09", layered(grey(0.4), grey(0.04), 0.09, 0.09), true});
+  m.push_back({"layered ggx kd=0.3 F0=.5/.4/.3 a=(0.6,0.15)",
+               layered(grey(0.3), Rgb{0.5, 0.4, 0.3}, 0.6, 0.15), true});
   return m;
 }
 

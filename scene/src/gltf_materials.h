@@ -1,0 +1,53 @@
+// scene/src/gltf_materials.h (private) — the BRDF a glTF material describes.
+//
+// glTF 2.0's metallic-roughness material (§3.9.2, Appendix B) with the KHR_materials_specular,
+// KHR_materials_ior and KHR_materials_anisotropy extensions, as a prt::brdf::Material
+// (prt/brdf/material.h): a GGX microfacet lobe with Schlick's Fresnel over a Lambert layer.
+//   α        = roughnessFactor² (the spec's "alphaRoughness"), raised to 0.001 (the smallest
+//              roughness the microfacet model takes; glTF's 0 is a mirror);
+//   anisotropy (strength s, rotation r): α_x = mix(α, 1, s²) along the tangent rotated by r
+//              (counter-clockwise toward the bitangent), α_y = α across it — the extension's
+//              "at" and "ab"; r goes to ScenePrimitive::anisotropy_rotation;
+//   F0       = mix(F0_dielectric, baseColor, metallic), with
+//              F0_dielectric = min(((ior − 1)/(ior + 1))² · specularColorFactor, 1) ·
+//              specularFactor (ior 1.5 → 0.04 by default);
+//   diffuse  = baseColor · (1 − metallic) (the Lambert layer);
+//   baseColor = the primitive's albedo (baseColorFactor, × the texture's mean when textured).
+// Defaults are the spec's: metallicFactor 1, roughnessFactor 1, baseColorFactor 1 — so a
+// material object with no pbrMetallicRoughness is a rough (α = 1) white metal. (A primitive with
+// NO material keeps prt's Lambert 0.8 grey, see scene/scene_loader.h.)
+// Departures from the spec, stated: the Lambert layer is added to the lobe (the spec weights it
+// by 1 − F); specularFactor scales F0 but f90 stays 1; textures (metallicRoughnessTexture,
+// specular and anisotropy textures) are not read: their factors are used alone.
+// Plain Lambert (no BRDF set) when metallic = 0 and either F0 = 0 (specularFactor 0: the spec's
+// pure diffuse) or roughness = 1 with no KHR_materials_specular (prt's convention for a matte
+// surface: what prt's own writer and most exporters write for a diffuse material).
+// Errors: SceneError "PATH: material 'NAME': FIELD V outside [lo, hi]" for factors outside
+// their ranges.
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include <glm/glm.hpp>
+
+#include "prt/brdf/material.h"
+
+namespace tinygltf {
+struct Material;
+}
+
+namespace prt::scene::detail {
+
+struct GltfBrdf {
+  std::optional<brdf::Material> brdf;  // none: plain Lambert with the albedo
+  float anisotropy_rotation = 0.f;     // radians
+};
+
+// The smallest α the loader writes (prt::brdf's roughness floor).
+inline constexpr double kGltfMinAlpha = 1e-3;
+
+GltfBrdf gltf_brdf(const std::string& path, const tinygltf::Material& material,
+                   const glm::vec3& base_color);
+
+}  // namespace prt::scene::detail
