@@ -796,7 +796,7 @@ TEST_CASE("cap-sampled bake: unbiased, and more accurate than hemisphere samplin
   }
 }
 
-TEST_CASE("cap-sampled bake: samples below the horizon cast no ray; fewer rays than hemisphere") {
+TEST_CASE("cap-sampled bake: samples below the horizon cast no ray, fewer rays than hemisphere") {
   // Measured on this scene at N = 64: hemisphere 148032 rays (= 2313 × 64); caps 131630 rays
   // for 145472 samples (18.6% of the capped vertices' samples fall below their horizon; the
   // 40 open vertices are analytic), i.e. 0.889× the rays. With min_cap_samples = 16 (the

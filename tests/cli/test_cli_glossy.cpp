@@ -48,7 +48,7 @@ TEST_CASE("cli: prt bake --glossy writes a glossy file that prt info describes")
   CHECK(text.out.find("channels      1") != std::string::npos);
 }
 
-TEST_CASE("cli: prt bake --glossy refuses what does not apply; prt info refuses damaged files") {
+TEST_CASE("cli: prt bake --glossy refuses what does not apply, prt info refuses damaged files") {
   const fs::path dir = scratch("glossy_refusals");
   const std::string scene = (fs::path(PRT_SOURCE_DIR) / "data" / "demo.glb").string();
   const std::string out = (dir / "x.prtg").string();

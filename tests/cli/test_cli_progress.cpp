@@ -92,7 +92,7 @@ void write_env(const fs::path& path, int width, int height) {
 
 }  // namespace
 
-TEST_CASE("cli progress: relight reports turntable frames i/N and image rows; --quiet silences") {
+TEST_CASE("cli progress: relight reports turntable frames i/N and image rows, --quiet silences") {
   const fs::path dir = scratch("turntable");
   const fs::path scene = dir / "quad.obj";
   std::ofstream(scene) << "v 0 0 0\nv 1 0 0\nv 1 0 -1\nv 0 0 -1\nf 1 2 3\nf 1 3 4\n";

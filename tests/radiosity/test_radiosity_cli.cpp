@@ -86,7 +86,7 @@ void check_refused(const fs::path& dir, const std::string& args, const std::stri
 
 }  // namespace
 
-TEST_CASE("prt radiosity refuses bad emission, albedo and --max-edge; nothing is written",
+TEST_CASE("prt radiosity refuses bad emission, albedo and --max-edge, nothing is written",
           "[radiosity][cli]") {
   const fs::path dir = scratch("refused");
   const std::string outputs = " -o " + (dir / "out.png").string() + " --vertex-colors " +
@@ -205,7 +205,7 @@ TEST_CASE("prt radiosity --form-factor-cache: saved, reused, refused for another
   CHECK(r.err.find("--move chair") != std::string::npos);
 }
 
-TEST_CASE("prt radiosity --adaptive: refines in passes to the budget; bad values refused",
+TEST_CASE("prt radiosity --adaptive: refines in passes to the budget, bad values refused",
           "[radiosity][cli]") {
   const fs::path dir = scratch("adaptive");
   const std::string outputs = " -o " + (dir / "out.png").string() + " --vertex-colors " +

@@ -33,7 +33,7 @@ std::string write_text(const std::string& name, const std::string& text) {
 
 }  // namespace
 
-TEST_CASE("subdivision keeps area, orientation and the original vertices; edges ≤ L",
+TEST_CASE("subdivision keeps area, orientation and the original vertices, edges ≤ L",
           "[radiosity][scene]") {
   const prt::scene::Scene box =
       prt::scene::make_box({0, 0, 0}, {1, 2, 3}, 1, false, glm::vec3(0.5f));
@@ -65,7 +65,7 @@ TEST_CASE("subdivision keeps area, orientation and the original vertices; edges 
   CHECK_THROWS_AS(prt::scene::subdivide_to_edge_length(box, 1e-6), std::invalid_argument);
 }
 
-TEST_CASE("OBJ Ke is read as emission; MATERIAL=r,g,b overrides it", "[radiosity][scene]") {
+TEST_CASE("OBJ Ke is read as emission, MATERIAL=r,g,b overrides it", "[radiosity][scene]") {
   write_text("lamp.mtl", "newmtl lamp\nKd 0.5 0.5 0.5\nKe 3 2 1\nnewmtl wall\nKd 0.2 0.3 0.4\n");
   const std::string obj = write_text(
       "lamp.obj",

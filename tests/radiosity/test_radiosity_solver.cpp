@@ -101,7 +101,7 @@ TEST_CASE("closed sphere with an emitting cap: B tends to rho E / (1 - rho) on e
   CHECK(coarse / fine > 1.8);  // halving h at least nearly halves the error
 }
 
-TEST_CASE("progressive refinement converges to the Gauss-Seidel solution; Jacobi agrees",
+TEST_CASE("progressive refinement converges to the Gauss-Seidel solution, Jacobi agrees",
           "[radiosity][solver]") {
   const prt::scene::Scene room = open_room();
   const prt::scene::RayCaster caster(room);

@@ -131,7 +131,7 @@ TEST_CASE("renderer: hits get the barycentric mix of vertex radiance, misses the
   CHECK(dark.rgb[0] == 0.f);
 }
 
-TEST_CASE("renderer: stratified sub-samples average a pixel; the output is deterministic") {
+TEST_CASE("renderer: stratified sub-samples average a pixel, the output is deterministic") {
   const prt::scene::Scene scene = make_triangle_scene();
   const prt::scene::RayCaster caster(scene);
   const std::vector<float> radiance = {1.f, 1.f, 1.f, 1.f, 1.f, 1.f, 1.f, 1.f, 1.f};

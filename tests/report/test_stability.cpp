@@ -124,7 +124,7 @@ TEST_CASE("Degenerate, duplicated, non-manifold and flipped geometry bakes witho
   CHECK(r.number("skipped_degenerate_triangles") == 3);
 }
 
-TEST_CASE("Scenes at 1e-3 and 1e4 scale bake the same transfer; a plane has AO 1", "[stability]") {
+TEST_CASE("Scenes at 1e-3 and 1e4 scale bake the same transfer, a plane has AO 1", "[stability]") {
   for (float scale : {1e-3f, 1e4f}) {
     const CaseResult r = check_scene_scale(kQuick, scale);
     require_passed(r);

@@ -455,7 +455,7 @@ TEST_CASE("material override errors are one line naming the option and the probl
                     Catch::Contains("truncated MERL file"));
 }
 
-TEST_CASE("material overrides apply by material or primitive name; unknown names are refused",
+TEST_CASE("material overrides apply by material or primitive name, unknown names are refused",
           "[scene][override]") {
   Scene s = prt::scene::make_glossy_scene();
   using prt::scene::parse_material_override;

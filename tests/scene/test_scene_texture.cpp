@@ -108,7 +108,7 @@ TEST_CASE("texture: NEAREST magnification returns whole texels") {
   check_near(t.sample({0.51f, 0.99f}, nearest), texel(1, 1));
 }
 
-TEST_CASE("texture: mip levels keep the mean (odd sizes too); a huge footprint reads the mean") {
+TEST_CASE("texture: mip levels keep the mean (odd sizes too), a huge footprint reads the mean") {
   for (const auto& [w, h] : {std::pair{8, 8}, std::pair{5, 3}, std::pair{7, 1}, std::pair{1, 6}}) {
     std::vector<float> rgb;
     double sum[3] = {0, 0, 0};
