@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Lists functions longer than a limit (default 150 lines) in the C++ sources.
 
-Usage: scripts/long-functions.py [--limit N] [FOLDER ...]   (default: sh prt scene bake relight
+Usage: scripts/long-functions.py [--limit N] [FOLDER ...]   (default: sh prt scene bake radiosity relight
 report cli). A function is a top-level or namespace-level brace block whose opening line looks
 like a definition; lambdas count as part of the function that holds them.
 """
