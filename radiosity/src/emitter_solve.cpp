@@ -61,11 +61,13 @@ prt::EmitterResponses solve_emitter_responses(const scene::Scene& scene,
   for (const glm::uvec3& t : scene.triangles)
     for (int c = 0; c < 3; ++c) out.triangles.push_back(t[c]);
   out.responses.reserve(3 * v_count * groups.size());
+  // K depends on the geometry only (not on emission or albedo): one for every emitter's solve.
+  const GatherMatrix k = make_gather_matrix(patches, f);
   std::vector<Patch> lit = patches;
   for (const EmitterGroup& group : groups) {
     for (Patch& p : lit) p.emission = glm::dvec3(0.0);
     for (uint32_t t : group.triangles) lit[t].emission = glm::dvec3(1.0);
-    const Solution solution = solve_matrix(lit, f, options);
+    const Solution solution = solve_matrix(lit, k, options);
     const std::vector<float> vertex = vertex_radiance(scene, lit, solution.radiance);
     out.responses.insert(out.responses.end(), vertex.begin(), vertex.end());
     out.emitters.push_back({group.name, {group.emission.x, group.emission.y, group.emission.z}});
