@@ -17,39 +17,22 @@
 
 #include <catch2/catch.hpp>
 
+#include "cli/cli_test_support.h"
+
 namespace fs = std::filesystem;
 
 namespace {
 
-struct RunResult {
-  int exit_code = 0;
-  std::string out, err;
-};
-
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using prt::test::cli::RunResult;
+using prt::test::cli::slurp;
 
 fs::path scratch(const std::string& name) {
-  const fs::path dir = fs::path(PRT_TEST_OUTPUT_DIR) / "emitter_cli" / name;
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
+  return prt::test::cli::scratch("emitter_cli/" + name);
 }
 
-// Runs `prt ARGS` with stdout and stderr captured in files of `dir`.
-RunResult prt_run(const fs::path& dir, const std::string& args) {
-  const fs::path out = dir / "stdout.txt", err = dir / "stderr.txt";
-  const std::string command =
-      std::string(PRT_CLI_PATH) + " " + args + " >" + out.string() + " 2>" + err.string();
-  const int status = std::system(command.c_str());
-  RunResult r{status == -1 ? -1 : WEXITSTATUS(status), slurp(out), slurp(err)};
-  fs::remove(out);
-  fs::remove(err);
-  return r;
+// Runs `prt ARGS` as a user does (tests/cli/cli_test_support.h).
+RunResult prt_run(const std::string& args) {
+  return prt::test::cli::run(prt::test::cli::prt_cli() + " " + args);
 }
 
 // A room open at the front (z = 0), 1 unit wide: white walls (Kd 0.7 0.6 0.5), a lamp under the
@@ -102,7 +85,7 @@ std::size_t lines(const std::string& text) {
 }
 
 void check_refused(const fs::path& dir, const std::string& args, const std::string& expected) {
-  const RunResult r = prt_run(dir, args);
+  const RunResult r = prt_run(args);
   INFO(args << "\nstderr: " << r.err);
   CHECK(r.exit_code != 0);
   CHECK(lines(r.err) == 1);
@@ -120,24 +103,22 @@ TEST_CASE("prt relight of emitter responses: stored colours reproduce the solve,
   const fs::path dir = scratch("responses");
   const std::string room = write_room(dir).string();
   const std::string d = dir.string() + "/";
-  RunResult r =
-      prt_run(dir, "radiosity " + room + " --max-edge 0.25 --tolerance 1e-9 --per-emitter " + d +
-                       "room.prte --csv " + d + "plain.csv");
+  RunResult r = prt_run("radiosity " + room + " --max-edge 0.25 --tolerance 1e-9 --per-emitter " +
+                        d + "room.prte --csv " + d + "plain.csv");
   INFO(r.err);
   REQUIRE(r.exit_code == 0);
   CHECK(r.out.find("2 emitters") != std::string::npos);
 
   const std::string relight = "relight " + d + "room.prte -o " + d + "out.exr" + kSmall;
-  REQUIRE(prt_run(dir, relight + " --csv " + d + "stored.csv").exit_code == 0);
+  REQUIRE(prt_run(relight + " --csv " + d + "stored.csv").exit_code == 0);
   // Solver tolerance 1e-9 of the emitted power; the CSV keeps 9 digits.
   CHECK(relative_difference(csv_rgb(d + "stored.csv"), csv_rgb(d + "plain.csv")) < 1e-5);
 
-  REQUIRE(prt_run(dir, relight + " --emitter lamp=10 --csv " + d + "double.csv").exit_code == 0);
-  REQUIRE(prt_run(dir, relight + " --emitter panel=0 --csv " + d + "lamp.csv").exit_code == 0);
-  REQUIRE(
-      prt_run(dir, relight + " --emitter lamp=0 --emitter panel=1,2,4 --csv " + d + "panel2.csv")
-          .exit_code == 0);
-  REQUIRE(prt_run(dir, relight + " --emitter lamp=0 --csv " + d + "panel.csv").exit_code == 0);
+  REQUIRE(prt_run(relight + " --emitter lamp=10 --csv " + d + "double.csv").exit_code == 0);
+  REQUIRE(prt_run(relight + " --emitter panel=0 --csv " + d + "lamp.csv").exit_code == 0);
+  REQUIRE(prt_run(relight + " --emitter lamp=0 --emitter panel=1,2,4 --csv " + d + "panel2.csv")
+              .exit_code == 0);
+  REQUIRE(prt_run(relight + " --emitter lamp=0 --csv " + d + "panel.csv").exit_code == 0);
   const std::vector<double> stored = csv_rgb(d + "stored.csv"), twice = csv_rgb(d + "double.csv"),
                             lamp = csv_rgb(d + "lamp.csv"), panel = csv_rgb(d + "panel.csv"),
                             panel2 = csv_rgb(d + "panel2.csv");
@@ -152,7 +133,7 @@ TEST_CASE("prt relight of emitter responses: stored colours reproduce the solve,
   for (std::size_t i = 0; i < stored.size(); ++i)   // stored = lamp alone + panel alone
     CHECK(stored[i] == Approx(lamp[i] + panel[i]).epsilon(1e-5).margin(1e-7));
 
-  r = prt_run(dir, "info " + d + "room.prte");
+  r = prt_run("info " + d + "room.prte");
   CHECK(r.exit_code == 0);
   CHECK(r.out.find("emitter responses") != std::string::npos);
   CHECK(r.out.find("lamp") != std::string::npos);
@@ -164,8 +145,9 @@ TEST_CASE("prt relight of emitter responses refuses bad colours, names and files
   const fs::path dir = scratch("refused");
   const std::string room = write_room(dir).string();
   const std::string d = dir.string() + "/";
-  REQUIRE(prt_run(dir, "radiosity " + room + " --max-edge 0.5 --per-emitter " + d + "room.prte")
-              .exit_code == 0);
+  REQUIRE(
+      prt_run("radiosity " + room + " --max-edge 0.5 --per-emitter " + d + "room.prte").exit_code ==
+      0);
   const std::string out = " -o " + d + "refused.exr --csv " + d + "refused.csv" + kSmall;
   check_refused(dir, "relight " + d + "room.prte --emitter sun=1" + out, "sun");
   check_refused(dir, "relight " + d + "room.prte --emitter lamp=-1" + out, "--emitter");
@@ -187,21 +169,21 @@ TEST_CASE("environment + emitters: one relight equals the sum of the two separat
   const fs::path dir = scratch("sum");
   const std::string room = write_room(dir).string();
   const std::string d = dir.string() + "/";
-  REQUIRE(prt_run(dir, "radiosity " + room + " --max-edge 0.25 --per-emitter " + d + "room.prte")
+  REQUIRE(prt_run("radiosity " + room + " --max-edge 0.25 --per-emitter " + d + "room.prte")
               .exit_code == 0);
-  REQUIRE(prt_run(dir, "make-sky -o " + d + "sky.hdr --width 64 --height 32").exit_code == 0);
-  RunResult r = prt_run(
-      dir, "bake " + room + " --max-edge 0.25 --samples 64 -o " + d + "room.prt" + " --quiet");
+  REQUIRE(prt_run("make-sky -o " + d + "sky.hdr --width 64 --height 32").exit_code == 0);
+  RunResult r =
+      prt_run("bake " + room + " --max-edge 0.25 --samples 64 -o " + d + "room.prt" + " --quiet");
   INFO(r.err);
   REQUIRE(r.exit_code == 0);
   const std::string sh = "relight " + room + " " + d + "room.prt " + d + "sky.hdr --max-edge 0.25";
-  REQUIRE(prt_run(dir, sh + " -o " + d + "env.exr --csv " + d + "env.csv" + kSmall).exit_code == 0);
-  r = prt_run(dir, sh + " --emitters " + d + "room.prte --emitter lamp=2,1,0.5 -o " + d +
-                       "sum.exr --csv " + d + "sum.csv" + kSmall);
+  REQUIRE(prt_run(sh + " -o " + d + "env.exr --csv " + d + "env.csv" + kSmall).exit_code == 0);
+  r = prt_run(sh + " --emitters " + d + "room.prte --emitter lamp=2,1,0.5 -o " + d +
+              "sum.exr --csv " + d + "sum.csv" + kSmall);
   INFO(r.err);
   REQUIRE(r.exit_code == 0);
-  REQUIRE(prt_run(dir, "relight " + d + "room.prte --emitter lamp=2,1,0.5 -o " + d +
-                           "em.exr --csv " + d + "em.csv" + kSmall)
+  REQUIRE(prt_run("relight " + d + "room.prte --emitter lamp=2,1,0.5 -o " + d + "em.exr --csv " +
+                  d + "em.csv" + kSmall)
               .exit_code == 0);
   const std::vector<double> env = csv_rgb(d + "env.csv"), em = csv_rgb(d + "em.csv"),
                             sum = csv_rgb(d + "sum.csv");
@@ -213,8 +195,7 @@ TEST_CASE("environment + emitters: one relight equals the sum of the two separat
   CHECK(relative_difference(sum, em) > 0.05);        // and so does the sky
 
   // The coefficient file of the unsubdivided scene does not match the responses.
-  REQUIRE(prt_run(dir, "bake " + room + " --samples 16 -o " + d + "coarse.prt --quiet").exit_code ==
-          0);
+  REQUIRE(prt_run("bake " + room + " --samples 16 -o " + d + "coarse.prt --quiet").exit_code == 0);
   check_refused(dir,
                 "relight " + room + " " + d + "coarse.prt " + d + "sky.hdr --emitters " + d +
                     "room.prte -o " + d + "refused.exr --csv " + d + "refused.csv" + kSmall,
@@ -230,13 +211,13 @@ TEST_CASE("prt bake --albedo MATERIAL=value sets one material's albedo and refus
   const fs::path dir = scratch("bake_albedo");
   const std::string room = write_room(dir).string();
   const std::string d = dir.string() + "/";
-  REQUIRE(prt_run(dir, "make-sky -o " + d + "sky.hdr --width 64 --height 32").exit_code == 0);
+  REQUIRE(prt_run("make-sky -o " + d + "sky.hdr --width 64 --height 32").exit_code == 0);
   const std::string bake = "bake " + room + " --transfer unshadowed --samples 16 --quiet -o ";
-  REQUIRE(prt_run(dir, bake + d + "kd.prt").exit_code == 0);
-  REQUIRE(prt_run(dir, bake + d + "white.prt --albedo white=0.2").exit_code == 0);
+  REQUIRE(prt_run(bake + d + "kd.prt").exit_code == 0);
+  REQUIRE(prt_run(bake + d + "white.prt --albedo white=0.2").exit_code == 0);
   const auto relight = [&](const std::string& file) {
-    REQUIRE(prt_run(dir, "relight " + room + " " + d + file + ".prt " + d + "sky.hdr -o " + d +
-                             file + ".exr --csv " + d + file + ".csv" + kSmall)
+    REQUIRE(prt_run("relight " + room + " " + d + file + ".prt " + d + "sky.hdr -o " + d + file +
+                    ".exr --csv " + d + file + ".csv" + kSmall)
                 .exit_code == 0);
     return csv_rgb(d + file + ".csv");
   };
@@ -259,7 +240,7 @@ TEST_CASE("prt bake --albedo MATERIAL=value sets one material's albedo and refus
   CHECK(scaled + kept == kd.size() / 3);
   for (const char* bad :
        {" --albedo nosuch=0.5", " --albedo white=1", " --albedo white=0.5,x,1", " --max-edge 0"}) {
-    const RunResult r = prt_run(dir, bake + d + "refused.prt" + bad);
+    const RunResult r = prt_run(bake + d + "refused.prt" + bad);
     INFO(bad << ": " << r.err);
     CHECK(r.exit_code != 0);
     CHECK(lines(r.err) == 1);

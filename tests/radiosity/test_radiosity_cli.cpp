@@ -12,39 +12,22 @@
 
 #include <catch2/catch.hpp>
 
+#include "cli/cli_test_support.h"
+
 namespace fs = std::filesystem;
 
 namespace {
 
-struct RunResult {
-  int exit_code = 0;
-  std::string out, err;
-};
-
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using prt::test::cli::RunResult;
+using prt::test::cli::slurp;
 
 fs::path scratch(const std::string& name) {
-  const fs::path dir = fs::path(PRT_TEST_OUTPUT_DIR) / "radiosity_cli" / name;
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
+  return prt::test::cli::scratch("radiosity_cli/" + name);
 }
 
-// Runs `prt radiosity ARGS` with stdout and stderr captured in files of `dir`.
-RunResult run(const fs::path& dir, const std::string& args) {
-  const fs::path out = dir / "stdout.txt", err = dir / "stderr.txt";
-  const std::string command =
-      std::string(PRT_CLI_PATH) + " radiosity " + args + " >" + out.string() + " 2>" + err.string();
-  const int status = std::system(command.c_str());
-  RunResult r{status == -1 ? -1 : WEXITSTATUS(status), slurp(out), slurp(err)};
-  fs::remove(out);
-  fs::remove(err);
-  return r;
+// Runs `prt radiosity ARGS` as a user does (tests/cli/cli_test_support.h).
+RunResult run(const std::string& args) {
+  return prt::test::cli::run(prt::test::cli::prt_cli() + " radiosity " + args);
 }
 
 // A room without a front wall, 1 unit wide, a lamp under the ceiling (material `lamp`, Ke from
@@ -76,7 +59,7 @@ std::size_t lines(const std::string& text) {
 }
 
 void check_refused(const fs::path& dir, const std::string& args, const std::string& expected) {
-  const RunResult r = run(dir, args);
+  const RunResult r = run(args);
   INFO(args << "\nstderr: " << r.err);
   CHECK(r.exit_code == 1);
   CHECK(lines(r.err) == 1);
@@ -109,7 +92,7 @@ TEST_CASE("prt radiosity refuses bad emission, albedo and --max-edge, nothing is
   room = write_room(dir, "5 5 5", "1 1 1", true).string();
   check_refused(dir, room + outputs, "closed scene");
   // The same closed room with albedo below 1 is accepted.
-  const RunResult ok = run(dir, room + outputs + " --albedo white=0.9 --size 64x48 --spp 1");
+  const RunResult ok = run(room + outputs + " --albedo white=0.9 --size 64x48 --spp 1");
   INFO(ok.err);
   CHECK(ok.exit_code == 0);
   CHECK(fs::exists(dir / "out.png"));
@@ -120,8 +103,8 @@ TEST_CASE("prt radiosity lights a room from its lamp: CSV radiance and energy su
   const fs::path dir = scratch("room");
   const std::string room = write_room(dir, "5 5 5", "0.7 0.5 0.3", false).string();
   const RunResult r =
-      run(dir, room + " --max-edge 0.2 --tolerance 1e-8 --csv " + (dir / "out.csv").string() +
-                   " -o " + (dir / "out.exr").string() + " --size 64x48 --spp 1");
+      run(room + " --max-edge 0.2 --tolerance 1e-8 --csv " + (dir / "out.csv").string() + " -o " +
+          (dir / "out.exr").string() + " --size 64x48 --spp 1");
   INFO(r.err);
   REQUIRE(r.exit_code == 0);
   CHECK(r.out.find("balance error") != std::string::npos);
@@ -151,28 +134,28 @@ TEST_CASE("prt radiosity --form-factor-cache: saved, reused, refused for another
   const std::string cache = (dir / "room.ffm").string();
   const std::string common = room + " --form-factors rays --rays 200 --tolerance 1e-8 --csv ";
   // First run: computed and saved.
-  RunResult r = run(dir, common + (dir / "a.csv").string() + " --max-edge 0.25" +
-                             " --form-factor-cache " + cache);
+  RunResult r =
+      run(common + (dir / "a.csv").string() + " --max-edge 0.25" + " --form-factor-cache " + cache);
   INFO(r.err);
   REQUIRE(r.exit_code == 0);
   CHECK(r.out.find("form factors saved to " + cache) != std::string::npos);
   REQUIRE(fs::exists(cache));
   const std::string saved = slurp(cache);
   // Same geometry, new emission: loaded, not recomputed; the result equals a run without cache.
-  r = run(dir, common + (dir / "b.csv").string() + " --max-edge 0.25 --emission lamp=9,3,1" +
-                   " --form-factor-cache " + cache);
+  r = run(common + (dir / "b.csv").string() + " --max-edge 0.25 --emission lamp=9,3,1" +
+          " --form-factor-cache " + cache);
   REQUIRE(r.exit_code == 0);
   CHECK(r.out.find("form factors loaded from " + cache) != std::string::npos);
-  r = run(dir, common + (dir / "c.csv").string() + " --max-edge 0.25 --emission lamp=9,3,1");
+  r = run(common + (dir / "c.csv").string() + " --max-edge 0.25 --emission lamp=9,3,1");
   REQUIRE(r.exit_code == 0);
   CHECK(slurp(dir / "b.csv") == slurp(dir / "c.csv"));
   CHECK(slurp(dir / "b.csv") != slurp(dir / "a.csv"));
   // The lamp moved down: only the affected rows recomputed; equal to a run without cache.
-  r = run(dir, common + (dir / "d.csv").string() + " --max-edge 0.25 --move lamp=0,-0.2,0.1" +
-                   " --form-factor-cache " + cache);
+  r = run(common + (dir / "d.csv").string() + " --max-edge 0.25 --move lamp=0,-0.2,0.1" +
+          " --form-factor-cache " + cache);
   REQUIRE(r.exit_code == 0);
   CHECK(r.out.find("moved ") != std::string::npos);
-  r = run(dir, common + (dir / "e.csv").string() + " --max-edge 0.25 --move lamp=0,-0.2,0.1");
+  r = run(common + (dir / "e.csv").string() + " --max-edge 0.25 --move lamp=0,-0.2,0.1");
   REQUIRE(r.exit_code == 0);
   CHECK(slurp(dir / "d.csv") == slurp(dir / "e.csv"));
   CHECK(slurp(dir / "d.csv") != slurp(dir / "a.csv"));
@@ -180,8 +163,8 @@ TEST_CASE("prt radiosity --form-factor-cache: saved, reused, refused for another
   // untouched.
   for (const std::string& other :
        {std::string(" --max-edge 0.2"), std::string(" --max-edge 0.25 --seed 5")}) {
-    r = run(dir, common + (dir / "out.csv").string() + other + " --form-factor-cache " + cache +
-                     " -o " + (dir / "out.png").string());
+    r = run(common + (dir / "out.csv").string() + other + " --form-factor-cache " + cache + " -o " +
+            (dir / "out.png").string());
     INFO(other << "\n" << r.err);
     CHECK(r.exit_code == 1);
     CHECK(lines(r.err) == 1);
@@ -193,14 +176,14 @@ TEST_CASE("prt radiosity --form-factor-cache: saved, reused, refused for another
   }
   // A truncated cache: one line naming it.
   std::ofstream(dir / "short.ffm", std::ios::binary) << saved.substr(0, saved.size() / 2);
-  r = run(dir, common + (dir / "out.csv").string() + " --max-edge 0.25 --form-factor-cache " +
-                   (dir / "short.ffm").string());
+  r = run(common + (dir / "out.csv").string() + " --max-edge 0.25 --form-factor-cache " +
+          (dir / "short.ffm").string());
   CHECK(r.exit_code == 1);
   CHECK(lines(r.err) == 1);
   CHECK(r.err.find("short.ffm: truncated") != std::string::npos);
   CHECK_FALSE(fs::exists(dir / "out.csv"));
   // An unknown object to move.
-  r = run(dir, common + (dir / "out.csv").string() + " --move chair=1,0,0");
+  r = run(common + (dir / "out.csv").string() + " --move chair=1,0,0");
   CHECK(r.exit_code == 1);
   CHECK(r.err.find("--move chair") != std::string::npos);
 }
@@ -218,8 +201,8 @@ TEST_CASE("prt radiosity --adaptive: refines in passes to the budget, bad values
                 "--max-patches");
   check_refused(dir, room + outputs + " --max-edge 0.5 --adaptive 0.1 --adaptive-levels 0",
                 "--adaptive-levels");
-  const RunResult r = run(dir, room + " --max-edge 0.5 --adaptive 0.05 --max-patches 300 --csv " +
-                                   (dir / "out.csv").string());
+  const RunResult r = run(room + " --max-edge 0.5 --adaptive 0.05 --max-patches 300 --csv " +
+                          (dir / "out.csv").string());
   INFO(r.out << r.err);
   REQUIRE(r.exit_code == 0);
   std::size_t first = 0, patches = 0;
