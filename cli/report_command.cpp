@@ -10,6 +10,8 @@
 // [--max-edges LIST] [--methods LIST] [--solvers LIST] [--ground-truth-patches K]
 // [--ground-truth-samples S]`: radiosity error against cost for every form-factor method × patch
 // count × solver, against a path-traced ground truth (report/radiosity_report.h).
+// `prt report --sun-study -o DIR [--quick] [--roughness LIST] ...`: where SH fails, a sun on
+// glossy surfaces (report_sun_study.h, report/sun_study.h).
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -27,6 +29,7 @@
 #include "output_safety.h"
 #include "progress_reporter.h"
 #include "radiosity/materials.h"
+#include "report_sun_study.h"
 #include "report/radiosity_report.h"
 #include "report/report.h"
 #include "report/stability_report.h"
@@ -43,6 +46,7 @@ struct ReportArguments {
   std::vector<std::string> emission, albedo;
   std::string max_edges, methods, solvers;
   int ground_truth_patches = 0, ground_truth_samples = 0, rays = 1024, hemicube = 64;
+  SunStudyArguments sun;
 };
 
 // Options of one mode only, refused by name in the others.
@@ -230,7 +234,27 @@ void run_radiosity(const ReportArguments& a) {
   for (const std::string& f : r.files_written) std::printf("wrote %s\n", f.c_str());
 }
 
+// The first positional argument, mode flag or other mode's option given, for --sun-study to
+// refuse ("" when none).
+std::string other_mode_argument(const ReportArguments& a, const CLI::App& cmd) {
+  if (!a.scene.empty()) return "SCENE '" + a.scene + "'";
+  if (!a.environment.empty()) return "ENV '" + a.environment + "'";
+  if (a.stability) return "--stability";
+  if (a.radiosity) return "--radiosity";
+  for (const char* option : kRadiosityOnly)
+    if (cmd.count(option) > 0) return option;
+  for (const char* option : kEnvironmentOnly)
+    if (cmd.count(option) > 0) return option;
+  if (cmd.count("--seed") > 0) return "--seed";
+  return "";
+}
+
 void run(const ReportArguments& a, const CLI::App& cmd) {
+  if (a.sun.enabled) {
+    run_sun_study_mode(a.sun, a.output, a.quick, a.quiet, other_mode_argument(a, cmd));
+    return;
+  }
+  refuse_sun_study_options(cmd);
   check_options(a, cmd);
   check_files(a);
   if (a.radiosity) {
@@ -308,6 +332,7 @@ void register_report(CLI::App& app) {
   cmd->add_option("--ground-truth-budget", args->budget,
                   "Seconds the ground-truth refinement may take (--quick: at most 15)")
       ->capture_default_str();
+  add_sun_study_options(cmd, &args->sun);
   cmd->callback([args, cmd] { run(*args, *cmd); });
 }
 
