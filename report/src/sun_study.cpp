@@ -8,11 +8,8 @@
 #include <limits>
 #include <stdexcept>
 
-#include <glm/glm.hpp>
-
 #include "prt/brdf_projection.h"
 #include "scene/procedural_mesh.h"
-#include "scene/tangent_frames.h"
 #include "sh/basis.h"
 #include "sh/zonal.h"
 
@@ -172,71 +169,76 @@ std::vector<SunStudyMaterial> sun_study_materials(const std::vector<double>& ggx
   return out;
 }
 
-SunSphereSetup default_sun_setup(double sky_fraction, int normal_count) {
+SunSphereSetup default_sun_setup(double sky_fraction, int sun_count) {
   SunSphereSetup s;
-  const double el = 45.0 * kPi / 180.0;
-  s.sun = {0.0, std::sin(el), -std::cos(el)};
   s.half_angle = 0.5 * kSunAngularDiameterDegrees * kPi / 180.0;
   s.sun_radiance = 1.0 / disc_normal_irradiance(s.half_angle, 1.0);  // E = 1 facing the sun
-  // Horizontal irradiance of k(1 + ω·up)/2 over the upper hemisphere: k·5π/6; the sun's: sin el.
-  s.sky_zenith = sky_fraction * std::sin(el) * 6.0 / (5.0 * kPi);
-  auto view = [](double elevation_deg, double azimuth_deg) {
-    const double e = elevation_deg * kPi / 180.0, a = azimuth_deg * kPi / 180.0;
-    // azimuth 0 = towards −z (where the sun is), measured towards +x
-    return Vec3{std::cos(e) * std::sin(a), std::sin(e), -std::cos(e) * std::cos(a)};
-  };
-  s.views = {view(10, 0), view(30, 90), view(45, 180)};
+  s.sky = sky_fraction / kPi;
+  for (int theta : {0, 30, 60, 80})
+    for (int phi : {0, 90}) {
+      if (theta == 0 && phi > 0) continue;
+      const double t = theta * kPi / 180.0, p = phi * kPi / 180.0;
+      s.views.push_back({std::sin(t) * std::cos(p), std::sin(t) * std::sin(p), std::cos(t)});
+      s.view_names.push_back("theta_o_" + std::to_string(theta) + "_phi_o_" +
+                             std::to_string(phi));
+    }
   const double golden = kPi * (3.0 - std::sqrt(5.0));
-  for (int k = 0; k < normal_count; ++k) {
-    const double y = 1.0 - (2.0 * k + 1.0) / normal_count, r = std::sqrt(1.0 - y * y);
-    s.normals.push_back({r * std::cos(golden * k), y, r * std::sin(golden * k)});
+  for (int k = 0; k < sun_count; ++k) {
+    const double z = 1.0 - (2.0 * k + 1.0) / sun_count, r = std::sqrt(1.0 - z * z);
+    s.suns.push_back({r * std::cos(golden * k), r * std::sin(golden * k), z});
   }
   return s;
 }
 
+BrdfProjectionOptions sun_study_projection_options() {
+  BrdfProjectionOptions o;
+  o.table_size = 19;
+  o.table_nodes = 16;
+  return o;
+}
+
 std::vector<OrderError> sphere_errors(const brdf::Material& material, const SunSphereSetup& setup,
-                                      int max_order) {
-  Result<BrdfProjection> projection = BrdfProjection::create(material, max_order);
+                                      int max_order, const BrdfProjectionOptions& options,
+                                      std::vector<std::vector<OrderError>>* per_view) {
+  Result<BrdfProjection> projection = BrdfProjection::create(material, max_order, options);
   if (!projection) throw std::runtime_error("sun study: " + projection.status().message());
   Result<std::shared_ptr<const brdf::Brdf>> made = brdf::make_brdf(material);
   if (!made) throw std::runtime_error("sun study: " + made.status().message());
   const brdf::Brdf& f = **made;
-  const int n2 = max_order * max_order;
+  const std::size_t n2 = std::size_t(max_order) * std::size_t(max_order);
   const std::vector<double> sun_zonal =
       disc_zonal_coefficients(max_order, setup.half_angle, setup.sun_radiance);
-  const double sky_zonal[2] = {0.5 * setup.sky_zenith * std::sqrt(4.0 * kPi),
-                               0.5 * setup.sky_zenith * std::sqrt(4.0 * kPi / 3.0)};
-  std::vector<double> sun_sh(static_cast<std::size_t>(n2)), b(static_cast<std::size_t>(3 * n2));
-  double sky_sh[4];
+  const double sky_sh0 = setup.sky * std::sqrt(4.0 * kPi);
+  std::vector<std::vector<double>> b(setup.views.size(), std::vector<double>(3 * n2));
+  for (std::size_t k = 0; k < setup.views.size(); ++k)
+    projection->evaluate(setup.views[k], b[k].data());
+  std::vector<double> sun_sh(n2);
   ErrorSums sums(max_order);
-  for (const Vec3& n : setup.normals) {
-    const glm::vec4 t4 = scene::normal_only_tangent(glm::vec3(float(n.x), float(n.y), float(n.z)));
-    Vec3 t{t4.x, t4.y, t4.z};
-    t = normalized(Vec3{t.x - dot3(t, n) * n.x, t.y - dot3(t, n) * n.y, t.z - dot3(t, n) * n.z});
-    const Vec3 bt = double(t4.w) * cross3(n, t);
-    auto local = [&](const Vec3& w) { return Vec3{dot3(t, w), dot3(bt, w), dot3(n, w)}; };
-    const Vec3 sun = local(setup.sun), up = local(Vec3{0, 1, 0});
+  std::vector<ErrorSums> view_sums(setup.views.size(), ErrorSums(max_order));
+  for (const Vec3& sun : setup.suns) {
     sh::rotate_zonal(max_order, sun_zonal.data(), sun.x, sun.y, sun.z, sun_sh.data());
-    sh::rotate_zonal(2, sky_zonal, up.x, up.y, up.z, sky_sh);
-    for (const Vec3& v : setup.views) {
-      const Vec3 wo = local(v);
-      if (wo.z <= 0.0) continue;
-      projection->evaluate(wo, b.data());
+    sun_sh[0] += sky_sh0;
+    for (std::size_t k = 0; k < setup.views.size(); ++k) {
       const Rgb sun_exact =
-          sun_exit_radiance(f, wo, sun, setup.half_angle, setup.sun_radiance);
+          sun_exit_radiance(f, setup.views[k], sun, setup.half_angle, setup.sun_radiance);
       for (int c = 0; c < 3; ++c) {
-        const double* bc = b.data() + std::size_t(c) * std::size_t(n2);
-        double sky = 0.0, approx = 0.0;
-        for (int i = 0; i < 4 && i < n2; ++i) sky += bc[i] * sky_sh[i];
-        const double exact = channel(sun_exact, c) + sky;
+        const double* bc = b[k].data() + std::size_t(c) * n2;
+        // The sky's share, the same on both sides: b_0 · its only coefficient.
+        const double exact = channel(sun_exact, c) + bc[0] * sky_sh0;
+        double approx = 0.0;
         sums.add_exact(exact, 1.0);
+        view_sums[k].add_exact(exact, 1.0);
         for (int l = 0; l < max_order; ++l) {
-          for (int i = l * l; i < (l + 1) * (l + 1); ++i)
-            approx += bc[i] * (sun_sh[std::size_t(i)] + (i < 4 ? sky_sh[i] : 0.0));
+          for (int i = l * l; i < (l + 1) * (l + 1); ++i) approx += bc[i] * sun_sh[std::size_t(i)];
           sums.add(l, approx - exact, 1.0);
+          view_sums[k].add(l, approx - exact, 1.0);
         }
       }
     }
+  }
+  if (per_view) {
+    per_view->clear();
+    for (const ErrorSums& v : view_sums) per_view->push_back(v.result());
   }
   return sums.result();
 }

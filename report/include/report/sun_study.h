@@ -25,6 +25,7 @@
 
 #include "prt/brdf/brdf.h"
 #include "prt/brdf/material.h"
+#include "prt/brdf_projection.h"
 
 namespace prt::report {
 
@@ -60,27 +61,39 @@ struct OrderError {
   double rms = 0, peak = 0;  // relative, see above
 };
 
-// The scene of the sphere study: sun direction (global, unit), sun radiance, sky zenith radiance,
-// view directions (global, unit, towards the eye), normals (global, unit).
+// The configurations of the sphere study, in the LOCAL frame of the surface: the views (unit ωo,
+// z > 0) and the sun's directions (unit, over the whole sphere: a sun below the horizon gives
+// no light but its SH rings), i.e. every orientation of a surface relative to the sun, seen at
+// each view's elevation. Sun: half angle and radiance; sky: a uniform radiance (order 1, exact
+// in SH at every order).
 struct SunSphereSetup {
-  brdf::Vec3 sun;
-  double half_angle = 0, sun_radiance = 0, sky_zenith = 0;
-  std::vector<brdf::Vec3> views, normals;
+  double half_angle = 0, sun_radiance = 0, sky = 0;
+  std::vector<brdf::Vec3> views, suns;
+  std::vector<std::string> view_names;  // one per view, for the outputs
 };
 
-// The default setup: sun at 45° elevation with normal irradiance 1, a sky giving `sky_fraction`
-// of the sun's irradiance on a horizontal plane, three views (towards the sun at 10° elevation,
-// across it at 30°, from the sun's side at 45°) and `normal_count` Fibonacci normals over the
-// sphere (a sphere seen from far away).
-SunSphereSetup default_sun_setup(double sky_fraction, int normal_count);
+// The default setup: the real sun with normal irradiance 1, a uniform sky of irradiance
+// `sky_fraction` on a plane (π·L_sky), views at elevations 90°, 60°, 30° and 10° above the
+// tangent plane (θo 0°, 30°, 60°, 80°; at azimuth 0° and, for θo > 0, 90° from the tangent), and
+// `sun_count` Fibonacci directions of the sun over the sphere. Every θo is a multiple of 5°, a
+// node of sun_study_projection_options()'s isotropic table.
+SunSphereSetup default_sun_setup(double sky_fraction, int sun_count);
 
-// Errors of the runtime path at orders 1..max_order over every (view, normal) with n·v > 0: b
-// from one BrdfProjection of `material` at max_order (b at a lower order n is its first n²
-// entries: b_i does not depend on n) and the lighting's SH in each local frame (tangent of
-// scene/tangent_frames.h's normal_only_tangent). Throws std::runtime_error on a material or order
-// BrdfProjection refuses.
+// BrdfProjection options of the study: the runtime's kAuto with the isotropic table at 5° steps
+// (19 elevations, so the views sit on nodes: no interpolation in θo) and 16 nodes per panel (the
+// default 8 adds error at order 32; docs/GLOSSY.md measures both).
+BrdfProjectionOptions sun_study_projection_options();
+
+// Errors of the runtime path at orders 1..max_order over every (view, sun direction): b(ωo) from
+// one BrdfProjection of `material` at max_order (b at a lower order n is its first n² entries:
+// b_i does not depend on n) times the lighting's SH in the local frame (sh::rotate_zonal of the
+// disc, plus the sky's constant). Throws std::runtime_error on a material or order
+// BrdfProjection refuses. `per_view` (optional) receives the errors of each view alone.
 std::vector<OrderError> sphere_errors(const brdf::Material& material, const SunSphereSetup& setup,
-                                      int max_order);
+                                      int max_order,
+                                      const BrdfProjectionOptions& options =
+                                          sun_study_projection_options(),
+                                      std::vector<std::vector<OrderError>>* per_view = nullptr);
 
 // Errors at normal incidence (ωo = the normal), sun only, for an ISOTROPIC material: there
 // f(ωi, n)·cos θi is exactly zonal about the normal, so the SH series of the exit radiance is
