@@ -29,10 +29,10 @@
 #include "output_safety.h"
 #include "progress_reporter.h"
 #include "radiosity/materials.h"
-#include "report_sun_study.h"
 #include "report/radiosity_report.h"
 #include "report/report.h"
 #include "report/stability_report.h"
+#include "report_sun_study.h"
 
 namespace prt::cli {
 namespace {

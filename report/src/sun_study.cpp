@@ -179,8 +179,7 @@ SunSphereSetup default_sun_setup(double sky_fraction, int sun_count) {
       if (theta == 0 && phi > 0) continue;
       const double t = theta * kPi / 180.0, p = phi * kPi / 180.0;
       s.views.push_back({std::sin(t) * std::cos(p), std::sin(t) * std::sin(p), std::cos(t)});
-      s.view_names.push_back("theta_o_" + std::to_string(theta) + "_phi_o_" +
-                             std::to_string(phi));
+      s.view_names.push_back("theta_o_" + std::to_string(theta) + "_phi_o_" + std::to_string(phi));
     }
   const double golden = kPi * (3.0 - std::sqrt(5.0));
   for (int k = 0; k < sun_count; ++k) {
@@ -193,7 +192,7 @@ SunSphereSetup default_sun_setup(double sky_fraction, int sun_count) {
 BrdfProjectionOptions sun_study_projection_options() {
   BrdfProjectionOptions o;
   o.table_size = 19;
-  o.table_nodes = 16;
+  o.table_nodes = 32;
   return o;
 }
 

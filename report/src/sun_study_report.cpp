@@ -24,9 +24,9 @@ const char* const kPalette[] = {"#7f7f7f", "#1f77b4", "#ff7f0e", "#2ca02c", "#d6
 struct MaterialOutcome {
   SunStudyMaterial material;
   int runtime_order = 0;
-  std::vector<OrderError> sphere, normal;  // normal: isotropic only
+  std::vector<OrderError> sphere, normal;      // normal: isotropic only
   std::vector<std::vector<OrderError>> views;  // the sphere's errors per view
-  DecayFit sphere_fit, normal_fit_low;     // normal_fit_low: fitted on orders ≤ runtime_order
+  DecayFit sphere_fit, normal_fit_low;         // normal_fit_low: fitted on orders ≤ runtime_order
   double seconds = 0;
 };
 
@@ -66,7 +66,8 @@ MaterialOutcome study_material(const SunStudyMaterial& m, const SunStudyOptions&
   r.material = m;
   const bool iso = m.material.isotropic();
   r.runtime_order = iso ? (o.quick ? 12 : kMaxBrdfProjectionOrder) : (o.quick ? 6 : 12);
-  r.sphere = sphere_errors(m.material, setup, r.runtime_order, {}, &r.views);
+  r.sphere =
+      sphere_errors(m.material, setup, r.runtime_order, sun_study_projection_options(), &r.views);
   r.sphere_fit = fit_decay(r.sphere);
   if (iso) {
     Result<std::shared_ptr<const brdf::Brdf>> f = brdf::make_brdf(m.material);
@@ -189,7 +190,7 @@ void write_summary(const std::filesystem::path& dir, const std::vector<MaterialO
     << setup.suns.size() << " Fibonacci directions over the sphere of the surface's local frame "
     << "(every orientation of the surface), seen from " << setup.views.size()
     << " views (θo 0°, 30°, 60°, 80°; φo 0° and 90°). Runtime path: BrdfProjection (kAuto; "
-    << "isotropic table at 5° steps with the views on its nodes, 16 nodes per panel) × the "
+    << "isotropic table at 5° steps with the views on its nodes, 32 nodes per panel) × the "
     << "lighting's SH in the local frame. Normal incidence: view along the normal, sun only, the "
     << "exact zonal series (isotropic materials). Relative RMS over the configurations and RGB. "
     << "Mode: " << (o.quick ? "quick" : "full") << ".\n\n";
@@ -202,7 +203,8 @@ void write_summary(const std::filesystem::path& dir, const std::vector<MaterialO
        "the second half of the computed orders.\n\n";
   s << "| material | sphere: orders computed |";
   for (double t : o.targets) s << " sphere: n for " << 100 * t << "% |";
-  for (double t : o.targets) s << " normal incidence: n for " << 100 * t << "% (fit from n ≤ runtime) |";
+  for (double t : o.targets)
+    s << " normal incidence: n for " << 100 * t << "% (fit from n ≤ runtime) |";
   for (const Budget& b : budgets) s << " sphere error at n = " << b.order << " |";
   s << " time (s) |\n|---|---|";
   for (std::size_t i = 0; i < 2 * o.targets.size() + budgets.size() + 1; ++i) s << "---|";
@@ -216,8 +218,8 @@ void write_summary(const std::filesystem::path& dir, const std::vector<MaterialO
         continue;
       }
       const int d = direct_needed_order(r.normal, t), f = r.normal_fit_low.order_for(t);
-      s << " " << (d > 0 ? std::to_string(d) : ">" + std::to_string(r.normal.back().order))
-        << " (" << (f > 0 ? std::to_string(f) : "–") << ") |";
+      s << " " << (d > 0 ? std::to_string(d) : ">" + std::to_string(r.normal.back().order)) << " ("
+        << (f > 0 ? std::to_string(f) : "–") << ") |";
     }
     for (const Budget& b : budgets) {
       const double e = rms_at(r.sphere, b.order);
@@ -251,22 +253,19 @@ void write_summary(const std::filesystem::path& dir, const std::vector<MaterialO
 }  // namespace
 
 std::vector<std::string> sun_study_file_names() {
-  return {"sun_errors.csv",        "sun_memory.csv",         "summary.md",
-          "sun_error_vs_order.svg", "sun_error_vs_order.png", "sun_normal_incidence.svg",
+  return {"sun_errors.csv",          "sun_memory.csv",         "summary.md",
+          "sun_error_vs_order.svg",  "sun_error_vs_order.png", "sun_normal_incidence.svg",
           "sun_normal_incidence.png"};
 }
 
 SunStudyResult run_sun_study(const SunStudyOptions& o) {
   const std::vector<SunStudyMaterial> materials = sun_study_materials(o.ggx_alphas);
   const SunSphereSetup setup = default_sun_setup(o.sky_fraction, o.quick ? 4000 : 20000);
-  std::vector<Budget> budgets = {{fmt("%g GiB/object f32", o.object_budget_gib), 4,
-                                  o.object_budget_gib * kGiB},
-                                 {fmt("%g GiB/object f16", o.object_budget_gib), 2,
-                                  o.object_budget_gib * kGiB},
-                                 {fmt("%g GiB f32", o.machine_budget_gib), 4,
-                                  o.machine_budget_gib * kGiB},
-                                 {fmt("%g GiB f16", o.machine_budget_gib), 2,
-                                  o.machine_budget_gib * kGiB}};
+  std::vector<Budget> budgets = {
+      {fmt("%g GiB/object f32", o.object_budget_gib), 4, o.object_budget_gib * kGiB},
+      {fmt("%g GiB/object f16", o.object_budget_gib), 2, o.object_budget_gib * kGiB},
+      {fmt("%g GiB f32", o.machine_budget_gib), 4, o.machine_budget_gib * kGiB},
+      {fmt("%g GiB f16", o.machine_budget_gib), 2, o.machine_budget_gib * kGiB}};
   for (Budget& b : budgets) b.order = largest_fitting_order(o.vertices, b.bytes_per_value, b.bytes);
   std::vector<MaterialOutcome> all;
   for (const SunStudyMaterial& m : materials) {

@@ -1,6 +1,5 @@
 // report/sun_study.h: the exact sun reference against closed forms, the runtime path against the
 // normal-incidence series, the error's fall with order, and the needed order reaching its target.
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <memory>
@@ -27,8 +26,7 @@ std::shared_ptr<const prt::brdf::Brdf> make(const prt::brdf::Material& m) {
 
 prt::brdf::Material ggx(double alpha) {
   for (const rep::SunStudyMaterial& m : rep::sun_study_materials({alpha}))
-    if (m.material.model == prt::brdf::MaterialModel::kMicrofacet &&
-        m.material.alpha_x == alpha)
+    if (m.material.model == prt::brdf::MaterialModel::kMicrofacet && m.material.alpha_x == alpha)
       return m.material;
   FAIL("no GGX material");
   return {};
@@ -46,8 +44,8 @@ TEST_CASE("Sun disc: solid angle, irradiance and SH against closed forms", "[sun
   const double wide = 10.0 * kPi / 180.0;
   const std::vector<double> h = rep::disc_zonal_coefficients(4, wide, 2.0);
   CHECK(h[0] == Approx(2.0 * rep::disc_solid_angle(wide) / std::sqrt(4 * kPi)).epsilon(1e-12));
-  CHECK(h[1] == Approx(std::sqrt(3.0 / (4 * kPi)) * rep::disc_normal_irradiance(wide, 2.0))
-                    .epsilon(1e-10));
+  CHECK(h[1] ==
+        Approx(std::sqrt(3.0 / (4 * kPi)) * rep::disc_normal_irradiance(wide, 2.0)).epsilon(1e-10));
 }
 
 TEST_CASE("Sun exit radiance of Lambert equals rho/pi E cos theta", "[sun_study]") {
@@ -60,8 +58,8 @@ TEST_CASE("Sun exit radiance of Lambert equals rho/pi E cos theta", "[sun_study]
   for (double theta_deg : {0.0, 30.0, 60.0, 85.0}) {
     const double t = theta_deg * kPi / 180.0;
     const Vec3 sun{std::sin(t), 0.0, std::cos(t)};
-    const prt::brdf::Rgb exit = rep::sun_exit_radiance(*lambert, Vec3{0.3, 0.2, 0.933}, sun,
-                                                       kSunHalfAngle, radiance);
+    const prt::brdf::Rgb exit =
+        rep::sun_exit_radiance(*lambert, Vec3{0.3, 0.2, 0.933}, sun, kSunHalfAngle, radiance);
     CHECK(exit.g == Approx(0.7 / kPi * std::cos(t)).epsilon(1e-10));
   }
 }
@@ -158,9 +156,8 @@ TEST_CASE("Transfer matrix memory and the largest order that fits", "[sun_study]
   // n⁴ values per vertex: 50k vertices at order 8, f32 = 50000 · 4096 · 4 B = 0.82 GB.
   CHECK(rep::transfer_matrix_bytes(8, 4) == 4096 * 4);
   const double gib = 1024.0 * 1024.0 * 1024.0;
-  CHECK(rep::largest_fitting_order(50000, 4, gib) == 8);  // 9⁴·4·5e4 = 1.31e9 > 1 GiB
+  CHECK(rep::largest_fitting_order(50000, 4, gib) == 8);   // 9⁴·4·5e4 = 1.31e9 > 1 GiB
   CHECK(rep::largest_fitting_order(50000, 2, gib) == 10);  // 10⁴·2·5e4 = 1e9 ≤ 1.07e9
   CHECK(rep::largest_fitting_order(50000, 2, 24 * gib) == 22);
   CHECK(rep::largest_fitting_order(1e12, 4, 1.0) == 0);
 }
-

@@ -80,8 +80,8 @@ struct SunSphereSetup {
 SunSphereSetup default_sun_setup(double sky_fraction, int sun_count);
 
 // BrdfProjection options of the study: the runtime's kAuto with the isotropic table at 5° steps
-// (19 elevations, so the views sit on nodes: no interpolation in θo) and 16 nodes per panel (the
-// default 8 adds error at order 32; docs/GLOSSY.md measures both).
+// (19 elevations, so the views sit on nodes: no interpolation in θo) and 32 nodes per panel (the
+// default 8, and 16, add error above order 24 for broad lobes; docs/GLOSSY.md measures both).
 BrdfProjectionOptions sun_study_projection_options();
 
 // Errors of the runtime path at orders 1..max_order over every (view, sun direction): b(ωo) from
@@ -89,11 +89,10 @@ BrdfProjectionOptions sun_study_projection_options();
 // b_i does not depend on n) times the lighting's SH in the local frame (sh::rotate_zonal of the
 // disc, plus the sky's constant). Throws std::runtime_error on a material or order
 // BrdfProjection refuses. `per_view` (optional) receives the errors of each view alone.
-std::vector<OrderError> sphere_errors(const brdf::Material& material, const SunSphereSetup& setup,
-                                      int max_order,
-                                      const BrdfProjectionOptions& options =
-                                          sun_study_projection_options(),
-                                      std::vector<std::vector<OrderError>>* per_view = nullptr);
+std::vector<OrderError> sphere_errors(
+    const brdf::Material& material, const SunSphereSetup& setup, int max_order,
+    const BrdfProjectionOptions& options = sun_study_projection_options(),
+    std::vector<std::vector<OrderError>>* per_view = nullptr);
 
 // Errors at normal incidence (ωo = the normal), sun only, for an ISOTROPIC material: there
 // f(ωi, n)·cos θi is exactly zonal about the normal, so the SH series of the exit radiance is
