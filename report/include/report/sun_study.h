@@ -1,17 +1,17 @@
 // report/sun_study.h — where SH fails: the exit radiance of glossy surfaces under a sun (a disc of
-// the sun's real angular diameter, 0.53°) plus a smooth sky, shaded through prt's glossy runtime
+// the sun's real angular diameter, 0.53°) plus a uniform sky, shaded through prt's glossy runtime
 // path (prt/brdf_projection.h: b(ωo) · L', with L' the lighting's SH in the local frame, as
 // prt/glossy_relighter.h does for an unshadowed convex surface, whose transfer matrix is the SH
 // rotation into the local frame), against the exact exit radiance, a quadrature of f·cos over
 // the sun disc that uses no SH. `prt report --sun-study` runs it; docs/GLOSSY.md, "Where SH
 // fails", has the figures.
 //
-// Conventions: the SH basis of sh/basis.h; the BRDF frame of prt/brdf/brdf.h (+z normal); the
-// global frame is glTF's (+Y up). The sun's radiance is uniform over the disc; its irradiance on
-// a plane facing it is E = L·π·sin²δ (δ the half angle), its solid angle 2π(1 − cos δ).
-// The sky is L_sky(ω) = k·(1 + ω·up)/2 (zenith k, nadir 0): band-limited to order 2, so SH holds it
-// exactly at every order ≥ 2. Its share of the exit radiance is taken as Σ_{i<4} b_i L'_i on both
-// sides of the comparison (the same b), so every difference measured is the sun's.
+// Conventions: the SH basis of sh/basis.h; the BRDF frame of prt/brdf/brdf.h (+z normal); every
+// direction is in that local frame. The sun's radiance is uniform over the disc; its irradiance
+// on a plane facing it is E = L·π·sin²δ (δ the half angle), its solid angle 2π(1 − cos δ).
+// The sky is a uniform radiance: order 1, so SH holds it exactly at every order. Its share of the
+// exit radiance is taken as b_0·L_0 on both sides of the comparison (the same b), so every
+// difference measured is the sun's.
 // Errors: relative RMS = sqrt(Σ |approx − exact|² / Σ |exact|²) over configurations and RGB;
 // relative peak = max |approx − exact| / max |exact|.
 // Memory: a per-vertex n² × n² transfer matrix (one channel, as the shadowed glossy bake writes)
@@ -81,7 +81,7 @@ SunSphereSetup default_sun_setup(double sky_fraction, int sun_count);
 
 // BrdfProjection options of the study: the runtime's kAuto with the isotropic table at 5° steps
 // (19 elevations, so the views sit on nodes: no interpolation in θo) and 32 nodes per panel (the
-// default 8, and 16, add error above order 24 for broad lobes; docs/GLOSSY.md measures both).
+// default 8 adds error above order 24 for broad lobes; docs/GLOSSY.md measures both).
 BrdfProjectionOptions sun_study_projection_options();
 
 // Errors of the runtime path at orders 1..max_order over every (view, sun direction): b(ωo) from
