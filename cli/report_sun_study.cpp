@@ -56,7 +56,8 @@ void add_sun_study_options(CLI::App* cmd, SunStudyArguments* a) {
   cmd->add_option("--roughness", a->roughness,
                   "--sun-study: GGX alphas of the metal lobes, e.g. 0.05,0.1 (default: "
                   "0.05,0.1,0.2,0.4)");
-  cmd->add_option("--sky", a->sky, "--sun-study: sky share of the horizontal irradiance")
+  cmd->add_option("--sky", a->sky,
+                  "--sun-study: irradiance of the uniform sky on a plane (the sun's is 1)")
       ->capture_default_str();
   cmd->add_option("--vertices", a->vertices, "--sun-study: vertices of the object for the memory")
       ->capture_default_str();

@@ -55,7 +55,7 @@ std::string needed_text(const std::vector<OrderError>& e, const DecayFit& fit, d
   const int direct = direct_needed_order(e, target);
   if (direct > 0) return std::to_string(direct);
   const int predicted = fit.order_for(target);
-  if (predicted > 0) return "≈" + std::to_string(predicted) + " (fit)";
+  if (predicted > 0) return fmt("≈%.0f (fit)", predicted);
   return "not predictable";
 }
 
@@ -86,7 +86,9 @@ void write_csvs(const std::filesystem::path& dir, const std::vector<MaterialOutc
   std::ostringstream e;
   e << "material,description,path,order,rel_rms,rel_peak\n";
   for (const MaterialOutcome& r : all) {
-    const std::string d = "\"" + brdf::describe(r.material.material) + "\"";
+    std::ostringstream quoted;
+    quoted << '"' << brdf::describe(r.material.material) << '"';
+    const std::string d = quoted.str();
     for (const OrderError& x : r.sphere)
       e << r.material.name << "," << d << ",sphere," << x.order << "," << x.rms << "," << x.peak
         << "\n";
@@ -218,7 +220,7 @@ void write_summary(const std::filesystem::path& dir, const std::vector<MaterialO
         continue;
       }
       const int d = direct_needed_order(r.normal, t), f = r.normal_fit_low.order_for(t);
-      s << " " << (d > 0 ? std::to_string(d) : ">" + std::to_string(r.normal.back().order)) << " ("
+      s << " " << (d > 0 ? std::to_string(d) : fmt(">%.0f", r.normal.back().order)) << " ("
         << (f > 0 ? std::to_string(f) : "–") << ") |";
     }
     for (const Budget& b : budgets) {
