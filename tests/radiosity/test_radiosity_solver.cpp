@@ -135,17 +135,19 @@ std::vector<Patch> spherical_cells(int rings, int segments, int cap_rings, glm::
 
 }  // namespace
 
-TEST_CASE("closed sphere, exact form factors F_ij = A_j / A: B = rho E / (1 - rho) to 1e-3",
+TEST_CASE("closed sphere with exact form factors F_ij = A_j / A: B = rho E / (1 - rho) to 1e-3",
           "[radiosity][solver]") {
   // Inside a sphere every point sees every area element with the same weight, so F_ij = A_j / A
   // exactly, and with the cells' exact areas the discrete system's solution is exactly
-  // L = E + ρĒ/(1 − ρ) (Ē the area-weighted mean emission). What is left is the solver's: from
-  // below, after stopping at relative unshot power τ the error e = (I − ρK)⁻¹r has area mean
-  // r̄/(1 − ρ) with A·r̄ ≤ τ·A·Ē, i.e. at most τ relative to ρĒ/(1 − ρ) on average, and per
-  // patch a few τ (the last step's residual is a mean over the patches, the same for all of
-  // them under Jacobi). So τ = 1e-4 (the CLI's default) must give 1e-3 everywhere; τ = 1e-9
-  // must give 1e-6 (what float storage of F and K leaves). Unequal channels, a cap of two rings.
-  const glm::dvec3 rho(0.5, 0.3, 0.8), cap_emission(2.0, 1.0, 0.5);
+  // L = E + ρĒ/(1 − ρ) (Ē the area-weighted mean emission): the only error left is the
+  // solver's. Both solvers approach from below; stopped at unshot power Σ_c A·r̄_c ≤ τ·Σ_c A·Ē_c,
+  // the error e = (I − ρK)⁻¹r has area mean r̄_c/(1 − ρ_c) per channel, i.e. r̄_c/(ρ_c Ē_c)
+  // relative to ρ_c Ē_c/(1 − ρ_c). The slowest channel (ρ = 0.8) keeps nearly all the unshot
+  // power, so its error is about τ·Σ_c Ē_c/(ρ_b Ē_b) = 2.2 τ, and per patch about that (the last
+  // step's residual is spread over all patches, the same for each under Jacobi). Hence at
+  // τ = 1e-4 (the CLI's default) every patch within 1e-3, at τ = 1e-9 within 1e-6 (float
+  // storage of F and K). Measured: Gauss–Seidel 2.4e-4 / 5.1e-8, Jacobi 2.1e-4 / 5.1e-8.
+  const glm::dvec3 rho(0.5, 0.3, 0.8), cap_emission(1.0, 0.5, 2.0);
   const std::vector<Patch> cells = spherical_cells(24, 48, 2, rho, cap_emission);
   const std::size_t n = cells.size();
   double total_area = 0.0;
@@ -174,7 +176,7 @@ TEST_CASE("closed sphere, exact form factors F_ij = A_j / A: B = rho E / (1 - rh
           worst = std::max(worst, std::abs(s.radiance[i][c] - expected[c]) / expected[c]);
         ++checked;
       }
-      WARN((solver == SolverKind::Jacobi ? "Jacobi" : "Gauss-Seidel")
+      INFO((solver == SolverKind::Jacobi ? "Jacobi" : "Gauss-Seidel")
            << ", tolerance " << tolerance << ": " << s.iterations << " sweeps, worst " << worst);
       CHECK(checked == n - 2 * 48);
       CHECK(worst < allowed);
