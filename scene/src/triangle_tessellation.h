@@ -14,14 +14,14 @@
 // other edges. Construction: the lattice triangles of the inner triangle (1,1), (n−2,1),
 // (1,n−2) (n ≥ 4), the three trapezoids between it and the edges zipped (shorter diagonal
 // first; any zip between two parallel rows is valid), for n = 2 ear clipping; then Lawson's
-// edge flips to the Delaunay triangulation of these points (interior edges only; a flip when
-// the opposite angles sum to more than π), which maximises the smallest angle. With all
-// k_e = n it gives the n² lattice triangles (for a non-obtuse triangle; an obtuse one gets the
-// lattice's shorter diagonals). Finally, while an interior edge is longer than max_edge (a
-// Delaunay edge between a coarse edge's points and the lattice can be, by up to ~10% near the
-// corners), the longest is split at its midpoint and the Delaunay property restored — points
-// inside the triangle only, so the boundary stays as it is. Triangles keep the winding of
-// (a, b, c).
+// edge flips ([92] of docs/REFERENCES.md) to the Delaunay triangulation of these points (interior
+// edges only; a flip when the opposite angles sum to more than π), which maximises the smallest
+// angle. With all k_e = n it gives the n² lattice triangles (for a non-obtuse triangle; an obtuse
+// one gets the lattice's shorter diagonals). Finally, while an interior edge is longer than
+// max_edge (a Delaunay edge between a coarse edge's points and the lattice can be, near the
+// corners: 7% longer in a 1 × 2 × 3 box at max_edge 0.4), the longest is split at its midpoint
+// and the Delaunay property restored — points inside the triangle only, so the boundary stays
+// as it is. Triangles keep the winding of (a, b, c).
 #pragma once
 
 #include <array>
@@ -33,12 +33,12 @@
 namespace prt::scene::detail {
 
 struct Tessellation {
-  int n = 1;                           // the lattice level, max k_e
-  std::array<int, 3> k{1, 1, 1};       // segments per edge
-  std::vector<glm::ivec3> triangles;   // local point indices, (a, b, c)'s winding
+  int n = 1;                          // the lattice level, max k_e
+  std::array<int, 3> k{1, 1, 1};      // segments per edge
+  std::vector<glm::ivec3> triangles;  // local point indices, (a, b, c)'s winding
   // Points added after the lattice points: each the midpoint of these two earlier points.
   std::vector<std::array<int, 2>> midpoints;
-  std::size_t point_count() const;  // 3 + Σ(k_e − 1) + lattice points + midpoints
+  std::size_t point_count() const;     // 3 + Σ(k_e − 1) + lattice points + midpoints
   int edge_point(int e, int m) const;  // local index of point m (1 … k_e − 1) of edge e
   int lattice_point(int i, int j) const;
 };

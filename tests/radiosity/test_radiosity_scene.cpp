@@ -252,7 +252,7 @@ TEST_CASE("subdivision: measure", "[.][measure][subdivide]") {
   for (const auto& [name, scene] : scenes) {
     const bool cornell = name == "cornell";
     for (const double max_edge :
-         cornell ? std::vector<double>{100, 50, 35} : std::vector<double>{0.37, 0.2}) {
+         cornell ? std::vector<double>{100, 70, 50, 35, 29} : std::vector<double>{0.37, 0.2}) {
       const prt::scene::Scene out = prt::scene::subdivide_to_edge_length(scene, max_edge);
       double worst = 0.0, mean = 0.0;
       for (const glm::uvec3& t : out.triangles) {
