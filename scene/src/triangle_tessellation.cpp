@@ -57,25 +57,28 @@ class Flipper {
     legalize(stack);
   }
 
-  // Splits interior edges longer than max_length at their midpoints (the longest first, the
-  // Delaunay property restored after each), recording each new point's two parents.
+  // Splits interior edges longer than max_length at their midpoints (in rounds: every long
+  // edge of the round, longest first, the Delaunay property restored after each split),
+  // recording each new point's two parents.
   void split_long_edges(double max_length, std::vector<std::array<int, 2>>& parents) {
-    std::size_t guard = 4 * tris_.size() + 1000;
-    while (guard-- > 0) {
-      uint64_t longest = 0;
-      double longest_length = max_length;
+    for (int round = 0; round < 64; ++round) {
+      std::vector<std::pair<double, uint64_t>> long_edges;
       for (const auto& [key, on] : edges_) {
         if (on[1] < 0) continue;
         const double l = glm::length(p_[int(key >> 32)] - p_[int(key & 0xFFFFFFFFu)]);
-        if (l > longest_length || (l == longest_length && l > max_length && key < longest))
-          longest = key, longest_length = l;
+        if (l > max_length) long_edges.emplace_back(-l, key);
       }
-      if (!(longest_length > max_length)) return;
-      const int u = int(longest >> 32), v = int(longest & 0xFFFFFFFFu);
-      parents.push_back({u, v});
-      std::vector<uint64_t> stack;
-      split(u, v, stack);
-      legalize(stack);
+      if (long_edges.empty()) return;
+      std::sort(long_edges.begin(), long_edges.end());  // longest first, then by key
+      for (const auto& [minus_length, key] : long_edges) {
+        const auto found = edges_.find(key);  // flips may have removed it meanwhile
+        if (found == edges_.end() || found->second[1] < 0) continue;
+        const int u = int(key >> 32), v = int(key & 0xFFFFFFFFu);
+        parents.push_back({u, v});
+        std::vector<uint64_t> stack;
+        split(u, v, stack);
+        legalize(stack);
+      }
     }
   }
 

@@ -140,8 +140,13 @@ TEST_CASE("subdivision is conforming: no T-junctions, a closed mesh stays closed
   // share every new point of their common edge, bit for bit, also across primitives (which
   // share no vertex ids). Splitting per triangle (n² congruent pieces, n from the longest
   // edge) failed every check below but the area and the edge length.
-  for (const bool two : {false, true}) {
-    const prt::scene::Scene in = octahedron(two);
+  // Also a UV sphere stretched to 3 × 1 × 0.5 (slivers at the poles, every size between).
+  prt::scene::Scene ellipsoid =
+      prt::scene::make_uv_sphere({0, 0, 0}, 1.f, 7, 9, false, glm::vec3(0.5f));
+  for (glm::vec3& p : ellipsoid.positions) p *= glm::vec3(3.f, 1.f, 0.5f);
+  for (int mesh = 0; mesh < 3; ++mesh) {
+    const bool two = mesh == 1;
+    const prt::scene::Scene in = mesh == 2 ? ellipsoid : octahedron(two);
     for (const double max_edge : {0.9, 0.37, 0.2}) {
       const prt::scene::Scene out = prt::scene::subdivide_to_edge_length(in, max_edge);
       INFO((two ? "two primitives" : "one primitive")
