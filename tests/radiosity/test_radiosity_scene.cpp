@@ -140,6 +140,22 @@ TEST_CASE("subdivision is conforming: no T-junctions, a closed mesh stays closed
   // share every new point of their common edge, bit for bit, also across primitives (which
   // share no vertex ids). Splitting per triangle (n² congruent pieces, n from the longest
   // edge) failed every check below but the area and the edge length.
+  // Equal counts on an acute triangle give its lattice: an equilateral triangle of side 1 at
+  // L = 0.25 becomes 16 equilateral triangles of side 1/4.
+  prt::scene::Scene one;
+  one.positions = {{0, 0, 0}, {1, 0, 0}, {0.5f, float(std::sqrt(0.75)), 0}};
+  one.normals.assign(3, glm::vec3(0, 0, 1));
+  one.albedo.assign(3, glm::vec3(0.5f));
+  one.triangles = {{0, 1, 2}};
+  one.primitives.resize(1);
+  one.primitives[0].vertex_count = 3;
+  one.primitives[0].triangle_count = 1;
+  const prt::scene::Scene tri = prt::scene::subdivide_to_edge_length(one, 0.25);
+  REQUIRE(tri.triangles.size() == 16);
+  for (const glm::uvec3& t : tri.triangles)
+    for (int k = 0; k < 3; ++k)
+      CHECK(glm::length(tri.positions[t[k]] - tri.positions[t[(k + 1) % 3]]) ==
+            Approx(0.25).epsilon(1e-5));
   // Also a UV sphere stretched to 3 × 1 × 0.5 (slivers at the poles, every size between).
   prt::scene::Scene ellipsoid =
       prt::scene::make_uv_sphere({0, 0, 0}, 1.f, 7, 9, false, glm::vec3(0.5f));

@@ -9,7 +9,8 @@
 // (scene/src/triangle_tessellation.h): its lattice points of level n = max k inside, zipped to
 // the edge points, turned into the Delaunay triangulation of these points by edge flips
 // (largest smallest angle), and interior edges still longer than max_edge split at their
-// midpoints. With equal counts on a non-obtuse triangle that is the n² congruent triangles.
+// midpoints. With equal counts on an acute triangle that is the n² congruent triangles (a right
+// one may get the other diagonal in some lattice cells, of the same length).
 // Every output edge is ≤ max_edge; the pieces tile the original exactly (same total area) and
 // keep its winding, so faces keep their orientation.
 // Vertices: each primitive keeps its own vertices first, in order (vertex v of the input is
