@@ -1,5 +1,7 @@
 #include "scene/subdivide.h"
 
+#include "triangle_tessellation.h"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -12,10 +14,16 @@
 namespace prt::scene {
 namespace {
 
-int split_count(const Scene& scene, const glm::uvec3& t, double max_edge) {
-  const glm::dvec3 a(scene.positions[t.x]), b(scene.positions[t.y]), c(scene.positions[t.z]);
-  const double longest = std::max({glm::length(b - a), glm::length(c - b), glm::length(a - c)});
-  return std::max(1, static_cast<int>(std::ceil(longest / max_edge - 1e-9)));
+// Segments of edge (u, w): ⌈length / max_edge⌉, at least 1 (the same from either side).
+int edge_segments(const Scene& scene, uint32_t u, uint32_t w, double max_edge) {
+  const double length =
+      glm::length(glm::dvec3(scene.positions[w]) - glm::dvec3(scene.positions[u]));
+  return std::max(1, static_cast<int>(std::ceil(length / max_edge - 1e-9)));
+}
+
+std::array<int, 3> edge_segments(const Scene& scene, const glm::uvec3& t, double max_edge) {
+  return {edge_segments(scene, t.x, t.y, max_edge), edge_segments(scene, t.y, t.z, max_edge),
+          edge_segments(scene, t.z, t.x, max_edge)};
 }
 
 // Builds the vertices and triangles of one primitive into `out`.
@@ -23,45 +31,58 @@ class PrimitiveSplitter {
  public:
   PrimitiveSplitter(const Scene& in, Scene& out) : in_(in), out_(out) {}
 
-  void split(const glm::uvec3& t, int n, uint32_t vertex_shift) {
+  void split(const glm::uvec3& t, const std::array<int, 3>& k, double max_edge,
+             uint32_t vertex_shift) {
     const uint32_t corner[3] = {t.x, t.y, t.z};
-    // Each lattice point once: ids[j * (n + 1) + i].
-    std::vector<uint32_t> ids(static_cast<std::size_t>(n + 1) * (n + 1), 0);
-    for (int j = 0; j <= n; ++j)
-      for (int i = 0; i + j <= n; ++i) ids[j * (n + 1) + i] = vertex(corner, n, i, j, vertex_shift);
-    const auto id = [&](int i, int j) { return ids[j * (n + 1) + i]; };
-    for (int j = 0; j < n; ++j) {
-      for (int i = 0; i + j < n; ++i) {
-        out_.triangles.emplace_back(id(i, j), id(i + 1, j), id(i, j + 1));
-        if (i + j < n - 1)
-          out_.triangles.emplace_back(id(i + 1, j), id(i + 1, j + 1), id(i, j + 1));
+    const auto at = [&](uint32_t v) { return glm::dvec3(in_.positions[v]); };
+    const detail::Tessellation tess =
+        detail::tessellate_triangle(at(corner[0]), at(corner[1]), at(corner[2]), k, max_edge);
+    // Every local point's barycentric weights on (a, b, c), and its output vertex.
+    std::vector<glm::dvec3> weight(tess.point_count(), glm::dvec3(0.0));
+    std::vector<uint32_t> ids(tess.point_count(), 0);
+    for (int e = 0; e < 3; ++e) {
+      ids[e] = corner[e] + vertex_shift;
+      for (int m = 1; m < k[e]; ++m)
+        ids[tess.edge_point(e, m)] = edge_vertex(corner[e], corner[(e + 1) % 3], k[e], m);
+    }
+    const int n = tess.n;
+    for (int j = 1; j <= n - 2; ++j) {
+      for (int i = 1; i + j <= n - 1; ++i) {
+        const double w1 = double(i) / n, w2 = double(j) / n;
+        weight[tess.lattice_point(i, j)] = glm::dvec3(1.0 - w1 - w2, w1, w2);
       }
     }
+    const std::size_t first_midpoint = tess.point_count() - tess.midpoints.size();
+    for (int e = 0; e < 3; ++e) {  // edge points' weights, for the midpoints' parents
+      weight[e][e] = 1.0;
+      for (int m = 1; m < k[e]; ++m) {
+        weight[tess.edge_point(e, m)][e] = 1.0 - double(m) / k[e];
+        weight[tess.edge_point(e, m)][(e + 1) % 3] = double(m) / k[e];
+      }
+    }
+    for (std::size_t q = 0; q < tess.midpoints.size(); ++q)
+      weight[first_midpoint + q] =
+          0.5 * (weight[tess.midpoints[q][0]] + weight[tess.midpoints[q][1]]);
+    for (std::size_t q = 3 + (k[0] - 1) + (k[1] - 1) + (k[2] - 1); q < ids.size(); ++q)
+      ids[q] = add(corner[0], corner[1], corner[2], weight[q].x, weight[q].y, weight[q].z);
+    for (const glm::ivec3& tri : tess.triangles)
+      out_.triangles.emplace_back(ids[tri.x], ids[tri.y], ids[tri.z]);
   }
 
  private:
-  // Output index of lattice point (i, j) of the triangle with input corners `corner`.
-  uint32_t vertex(const uint32_t corner[3], int n, int i, int j, uint32_t shift) {
-    if (i == 0 && j == 0) return corner[0] + shift;
-    if (i == n) return corner[1] + shift;
-    if (j == n) return corner[2] + shift;
-    if (j == 0) return edge_vertex(corner[0], corner[1], n, i);
-    if (i == 0) return edge_vertex(corner[0], corner[2], n, j);
-    if (i + j == n) return edge_vertex(corner[1], corner[2], n, j);
-    const double w1 = double(i) / n, w2 = double(j) / n;
-    return add(corner[0], corner[1], corner[2], 1.0 - w1 - w2, w1, w2);
-  }
-
-  // The point k/n of the way from u to w, shared with the neighbour across edge (u, w).
-  uint32_t edge_vertex(uint32_t u, uint32_t w, int n, int k) {
-    if (u > w) {
+  // Point m of k from u toward w: one vertex per edge of the primitive, and its position
+  // computed from the endpoints in a canonical order (by position), so that any two triangles
+  // with these endpoints, in this primitive or another, get bit-identical points.
+  uint32_t edge_vertex(uint32_t u, uint32_t w, int k, int m) {
+    const glm::vec3 pu = in_.positions[u], pw = in_.positions[w];
+    if (std::tie(pw.x, pw.y, pw.z, w) < std::tie(pu.x, pu.y, pu.z, u)) {
       std::swap(u, w);
-      k = n - k;
+      m = k - m;
     }
-    const auto key = std::make_tuple(u, w, n, k);
+    const auto key = std::make_tuple(u, w, k, m);
     const auto found = edges_.find(key);
     if (found != edges_.end()) return found->second;
-    const double s = double(k) / n;
+    const double s = double(m) / k;
     const uint32_t v = add(u, w, w, 1.0 - s, s, 0.0);
     edges_.emplace(key, v);
     return v;
@@ -110,11 +131,11 @@ Scene subdivide_to_edge_length(const Scene& scene, double max_edge) {
   if (!(max_edge > 0.0) || !std::isfinite(max_edge))
     throw std::invalid_argument("--max-edge " + std::to_string(max_edge) +
                                 ": the target edge length must be a finite positive number");
-  std::vector<int> splits(scene.triangles.size());
+  std::vector<std::array<int, 3>> splits(scene.triangles.size());
   double total = 0.0;
   for (std::size_t t = 0; t < scene.triangles.size(); ++t) {
-    splits[t] = split_count(scene, scene.triangles[t], max_edge);
-    total += double(splits[t]) * splits[t];
+    splits[t] = edge_segments(scene, scene.triangles[t], max_edge);
+    total += detail::tessellation_triangle_count(splits[t]);
   }
   if (total > double(kMaxSubdividedTriangles))
     throw std::invalid_argument("--max-edge " + std::to_string(max_edge) + " would make " +
@@ -142,7 +163,7 @@ Scene subdivide_to_edge_length(const Scene& scene, double max_edge) {
     PrimitiveSplitter splitter(scene, out);
     for (uint32_t k = 0; k < primitive.triangle_count; ++k) {
       const uint32_t t = primitive.first_triangle + k;
-      splitter.split(scene.triangles[t], splits[t], shift);
+      splitter.split(scene.triangles[t], splits[t], max_edge, shift);
     }
     p.vertex_count = static_cast<uint32_t>(out.positions.size()) - p.first_vertex;
     p.triangle_count = static_cast<uint32_t>(out.triangles.size()) - p.first_triangle;

@@ -1,10 +1,16 @@
 // Scenes for radiosity: subdivision to a target edge length, emission from OBJ Ke and the
 // command line's MATERIAL=r,g,b, the material checks, and patch → vertex interpolation.
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstdio>
+#include <filesystem>
 #include <fstream>
+#include <map>
 #include <stdexcept>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include <catch2/catch.hpp>
 
@@ -14,6 +20,7 @@
 #include "scene/procedural_mesh.h"
 #include "scene/scene_loader.h"
 #include "scene/subdivide.h"
+#include "support/test_data.h"
 
 using namespace prt::radiosity;
 
@@ -23,6 +30,62 @@ double total_area(const prt::scene::Scene& s) {
   double a = 0.0;
   for (const Patch& p : make_patches(s)) a += p.area;
   return a;
+}
+
+// An irregular octahedron (vertices at +x 1, −x 0.5, +y 2.3, −y 1.1, +z 0.6, −z 1.4 from the
+// origin: its eight faces all differ, so neighbours ask for different splits), outward, closed.
+// One primitive sharing its 6 vertices, or two (the faces above and below y = 0, each primitive
+// with its own copies of the 4 equator vertices).
+prt::scene::Scene octahedron(bool two_primitives) {
+  const glm::vec3 x(1.f, 0, 0), y(0, 2.3f, 0), z(0, 0, 0.6f);
+  const glm::vec3 nx(-0.5f, 0, 0), ny(0, -1.1f, 0), nz(0, 0, -1.4f);
+  const std::vector<std::array<glm::vec3, 3>> faces = {
+      {x, y, z},  {z, y, nx},  {nx, y, nz},  {nz, y, x},  // above y = 0
+      {x, z, ny}, {z, nx, ny}, {nx, nz, ny}, {nz, x, ny}};
+  prt::scene::Scene s;
+  for (int half = 0; half < (two_primitives ? 2 : 1); ++half) {
+    prt::scene::ScenePrimitive p;
+    p.first_vertex = uint32_t(s.positions.size());
+    p.first_triangle = uint32_t(s.triangles.size());
+    p.material = half == 0 ? "upper" : "lower";
+    std::vector<glm::vec3> corners = {x, nx, y, ny, z, nz};
+    for (const glm::vec3& c : corners) {
+      s.positions.push_back(c);
+      s.normals.push_back(glm::normalize(c));
+      s.albedo.push_back(glm::vec3(0.5f));
+    }
+    for (std::size_t f = 0; f < faces.size(); ++f) {
+      if (two_primitives && (f < 4) != (half == 0)) continue;
+      glm::uvec3 t;
+      for (int k = 0; k < 3; ++k)
+        t[k] = p.first_vertex +
+               uint32_t(std::find(corners.begin(), corners.end(), faces[f][k]) - corners.begin());
+      s.triangles.push_back(t);
+    }
+    p.vertex_count = uint32_t(s.positions.size()) - p.first_vertex;
+    p.triangle_count = uint32_t(s.triangles.size()) - p.first_triangle;
+    s.primitives.push_back(p);
+  }
+  return s;
+}
+
+double triangle_area(const prt::scene::Scene& s, const glm::uvec3& t) {
+  const glm::dvec3 a(s.positions[t.x]), b(s.positions[t.y]), c(s.positions[t.z]);
+  return 0.5 * glm::length(glm::cross(b - a, c - a));
+}
+
+// The smallest angle of any triangle, in degrees.
+double smallest_angle(const prt::scene::Scene& s) {
+  double smallest = 180.0;
+  for (const glm::uvec3& t : s.triangles)
+    for (int k = 0; k < 3; ++k) {
+      const glm::dvec3 p(s.positions[t[k]]), u = glm::dvec3(s.positions[t[(k + 1) % 3]]) - p,
+                                             v = glm::dvec3(s.positions[t[(k + 2) % 3]]) - p;
+      smallest =
+          std::min(smallest, glm::degrees(std::acos(std::clamp(
+                                 glm::dot(u, v) / (glm::length(u) * glm::length(v)), -1.0, 1.0))));
+    }
+  return smallest;
 }
 
 std::string write_text(const std::string& name, const std::string& text) {
@@ -52,17 +115,185 @@ TEST_CASE("subdivision keeps area, orientation and the original vertices, edges 
   const std::vector<Patch> patches = make_patches(fine);
   for (std::size_t t = 0; t < patches.size(); ++t)
     CHECK(glm::dot(patches[t].normal, glm::dvec3(fine.normals[fine.triangles[t].x])) > 0.99);
-  // Shared edges share their new vertices: a 1×1 face split in n² has (n+1)(n+2)/2… per
-  // triangle, and the two triangles of a face share the diagonal's points.
+  // Shared edges share their new vertices: in a 1×1 face at L = √2/4 the sides (length 1)
+  // have 3 segments, the diagonal 4 (shared: 3 points once); each triangle adds the lattice
+  // points of level n = 4 inside it, (n − 1)(n − 2)/2 = 3: 4 + 4·2 + 3 + 2·3 = 21 vertices, and
+  // per triangle Σk + (n − 1)(n − 2) − 2 = 10 + 6 − 2 = 14 triangles.
   const prt::scene::Scene quad =
       prt::scene::make_quad({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, 1, 1, glm::vec3(0.5f));
   const prt::scene::Scene quad4 = prt::scene::subdivide_to_edge_length(quad, 0.25 * std::sqrt(2.0));
-  CHECK(quad4.triangles.size() == 2 * 16);
-  CHECK(quad4.positions.size() == 25);  // the 5 × 5 grid
+  CHECK(quad4.triangles.size() == 2 * 14);
+  CHECK(quad4.positions.size() == 21);
+  // L = 1/4: sides 4 segments, the diagonal 6 (n = 6): 4 + 12 + 5 + 2·10 = 41 vertices.
+  const prt::scene::Scene quad6 = prt::scene::subdivide_to_edge_length(quad, 0.25);
+  CHECK(quad6.positions.size() >= 41);  // more only where an edge > L had to be split
   CHECK_THROWS_AS(prt::scene::subdivide_to_edge_length(box, 0.0), std::invalid_argument);
   CHECK_THROWS_AS(prt::scene::subdivide_to_edge_length(box, -1.0), std::invalid_argument);
   CHECK_THROWS_AS(prt::scene::subdivide_to_edge_length(box, std::nan("")), std::invalid_argument);
   CHECK_THROWS_AS(prt::scene::subdivide_to_edge_length(box, 1e-6), std::invalid_argument);
+}
+
+TEST_CASE("subdivision is conforming: no T-junctions, a closed mesh stays closed",
+          "[radiosity][scene]") {
+  // Edges are split into ⌈length / L⌉ equal segments whatever triangle they belong to, the
+  // points computed from the endpoints in a canonical order: neighbours of different sizes
+  // share every new point of their common edge, bit for bit, also across primitives (which
+  // share no vertex ids). Splitting per triangle (n² congruent pieces, n from the longest
+  // edge) failed every check below but the area and the edge length.
+  // Equal counts on an acute triangle give its lattice: an equilateral triangle of side 1 at
+  // L = 0.25 becomes 16 equilateral triangles of side 1/4.
+  prt::scene::Scene one;
+  one.positions = {{0, 0, 0}, {1, 0, 0}, {0.5f, float(std::sqrt(0.75)), 0}};
+  one.normals.assign(3, glm::vec3(0, 0, 1));
+  one.albedo.assign(3, glm::vec3(0.5f));
+  one.triangles = {{0, 1, 2}};
+  one.primitives.resize(1);
+  one.primitives[0].vertex_count = 3;
+  one.primitives[0].triangle_count = 1;
+  const prt::scene::Scene tri = prt::scene::subdivide_to_edge_length(one, 0.25);
+  REQUIRE(tri.triangles.size() == 16);
+  for (const glm::uvec3& t : tri.triangles)
+    for (int k = 0; k < 3; ++k)
+      CHECK(glm::length(tri.positions[t[k]] - tri.positions[t[(k + 1) % 3]]) ==
+            Approx(0.25).epsilon(1e-5));
+  // Also a UV sphere stretched to 3 × 1 × 0.5 (slivers at the poles, every size between).
+  prt::scene::Scene ellipsoid =
+      prt::scene::make_uv_sphere({0, 0, 0}, 1.f, 7, 9, false, glm::vec3(0.5f));
+  for (glm::vec3& p : ellipsoid.positions) p *= glm::vec3(3.f, 1.f, 0.5f);
+  for (int mesh = 0; mesh < 3; ++mesh) {
+    const bool two = mesh == 1;
+    const prt::scene::Scene in = mesh == 2 ? ellipsoid : octahedron(two);
+    for (const double max_edge : {0.9, 0.37, 0.2}) {
+      const prt::scene::Scene out = prt::scene::subdivide_to_edge_length(in, max_edge);
+      INFO((two ? "two primitives" : "one primitive")
+           << ", L = " << max_edge << ": " << out.triangles.size() << " triangles");
+      // Closed: every edge, as a pair of positions, is on exactly two triangles, once in each
+      // direction (so also: no position lies inside another triangle's edge and nothing
+      // overlaps along an edge).
+      using Key = std::array<float, 6>;
+      const auto key = [&](uint32_t u, uint32_t v) {
+        const glm::vec3 a = out.positions[u], b = out.positions[v];
+        return Key{a.x, a.y, a.z, b.x, b.y, b.z};
+      };
+      std::map<Key, int> directed;
+      for (const glm::uvec3& t : out.triangles)
+        for (int k = 0; k < 3; ++k) ++directed[key(t[k], t[(k + 1) % 3])];
+      std::size_t unmatched = 0;
+      for (const auto& [edge, count] : directed) {
+        const Key reverse{edge[3], edge[4], edge[5], edge[0], edge[1], edge[2]};
+        const auto found = directed.find(reverse);
+        if (count != 1 || found == directed.end() || found->second != 1) ++unmatched;
+      }
+      CHECK(unmatched == 0);
+      // One primitive: the same by vertex ids (vertices of a shared edge are shared).
+      if (!two) {
+        std::map<std::pair<uint32_t, uint32_t>, int> by_id;
+        for (const glm::uvec3& t : out.triangles)
+          for (int k = 0; k < 3; ++k) ++by_id[{t[k], t[(k + 1) % 3]}];
+        std::size_t open = 0;
+        for (const auto& [edge, count] : by_id)
+          if (count != 1 || by_id.count({edge.second, edge.first}) != 1) ++open;
+        CHECK(open == 0);
+      }
+      // The T-junction check itself, geometrically: no vertex strictly inside any edge.
+      std::size_t t_junctions = 0;
+      for (const glm::uvec3& t : out.triangles) {
+        for (int k = 0; k < 3; ++k) {
+          const glm::dvec3 a(out.positions[t[k]]), b(out.positions[t[(k + 1) % 3]]);
+          const double length2 = glm::dot(b - a, b - a);
+          for (const glm::vec3& p : out.positions) {
+            const double s = glm::dot(glm::dvec3(p) - a, b - a) / length2;
+            if (s <= 1e-6 || s >= 1.0 - 1e-6) continue;
+            const glm::dvec3 off = glm::dvec3(p) - (a + s * (b - a));
+            if (glm::dot(off, off) < 1e-12 * length2) ++t_junctions;
+          }
+        }
+      }
+      CHECK(t_junctions == 0);
+      double area_in = 0.0, area_out = 0.0, longest = 0.0;
+      for (const glm::uvec3& t : in.triangles) area_in += triangle_area(in, t);
+      for (const glm::uvec3& t : out.triangles) {
+        area_out += triangle_area(out, t);
+        for (int k = 0; k < 3; ++k)
+          longest = std::max(
+              longest, double(glm::length(out.positions[t[k]] - out.positions[t[(k + 1) % 3]])));
+      }
+      CHECK(area_out == Approx(area_in).epsilon(1e-6));  // float positions
+      CHECK(longest <= max_edge * (1 + 1e-6));
+      // Well shaped: the Delaunay triangulation of the points keeps the smallest angle near
+      // the input's (32.4° here; the n² lattice of the input's faces would keep it exactly).
+      const double angle = smallest_angle(out);
+      INFO("smallest angle " << angle << "°, input " << smallest_angle(in) << "°");
+      CHECK(angle > 0.6 * smallest_angle(in));
+    }
+  }
+}
+
+namespace {
+
+// Edges (as position pairs) on other than one triangle in each direction, and vertices strictly
+// inside another triangle's edge (brute force: small meshes only).
+std::pair<std::size_t, std::size_t> seams(const prt::scene::Scene& s, bool t_junctions) {
+  using Key = std::array<float, 6>;
+  std::map<Key, int> directed;
+  for (const glm::uvec3& t : s.triangles)
+    for (int k = 0; k < 3; ++k) {
+      const glm::vec3 a = s.positions[t[k]], b = s.positions[t[(k + 1) % 3]];
+      ++directed[Key{a.x, a.y, a.z, b.x, b.y, b.z}];
+    }
+  std::size_t unmatched = 0, inside = 0;
+  for (const auto& [e, count] : directed) {
+    const auto found = directed.find(Key{e[3], e[4], e[5], e[0], e[1], e[2]});
+    if (count != 1 || found == directed.end() || found->second != 1) ++unmatched;
+    if (!t_junctions) continue;
+    const glm::dvec3 a(e[0], e[1], e[2]), b(e[3], e[4], e[5]);
+    const double length2 = glm::dot(b - a, b - a);
+    for (const glm::vec3& p : s.positions) {
+      const double t = glm::dot(glm::dvec3(p) - a, b - a) / length2;
+      const glm::dvec3 off = glm::dvec3(p) - (a + t * (b - a));
+      if (t > 1e-6 && t < 1 - 1e-6 && glm::dot(off, off) < 1e-12 * length2) ++inside;
+    }
+  }
+  return {unmatched, inside};
+}
+
+}  // namespace
+
+// Prints, for the Cornell box (shared data) and the octahedron above, what subdivision makes:
+// triangles, vertices, smallest angle, worst and mean aspect ratio (longest edge × perimeter /
+// (4√3 · area): 1 for an equilateral triangle), edges not matched by a reverse edge (the box
+// is open at the front and its parts do not share edges: its count is a baseline) and vertices
+// inside another triangle's edge (T-junctions).
+TEST_CASE("subdivision: measure", "[.][measure][subdivide]") {
+  std::vector<std::pair<std::string, prt::scene::Scene>> scenes;
+  scenes.emplace_back("octahedron", octahedron(false));
+  const auto box = prt::test::shared_data("meshes/cornell_box.obj");
+  if (std::filesystem::exists(box))
+    scenes.emplace_back("cornell", prt::scene::load_scene(box.string()));
+  for (const auto& [name, scene] : scenes) {
+    const bool cornell = name == "cornell";
+    for (const double max_edge :
+         cornell ? std::vector<double>{100, 70, 50, 35, 29} : std::vector<double>{0.37, 0.2}) {
+      const prt::scene::Scene out = prt::scene::subdivide_to_edge_length(scene, max_edge);
+      double worst = 0.0, mean = 0.0;
+      for (const glm::uvec3& t : out.triangles) {
+        double longest = 0.0, perimeter = 0.0;
+        for (int k = 0; k < 3; ++k) {
+          const double l = glm::length(glm::dvec3(out.positions[t[k]]) -
+                                       glm::dvec3(out.positions[t[(k + 1) % 3]]));
+          longest = std::max(longest, l), perimeter += l;
+        }
+        const double aspect = longest * perimeter / (4 * std::sqrt(3.0) * triangle_area(out, t));
+        worst = std::max(worst, aspect), mean += aspect / double(out.triangles.size());
+      }
+      const auto [unmatched, inside] = seams(out, out.triangles.size() < 20000);
+      std::printf(
+          "%-10s L=%-5g triangles %6zu vertices %6zu smallest angle %6.2f° aspect worst %6.2f mean "
+          "%5.3f unmatched edges %5zu T-junction vertices %5zu\n",
+          name.c_str(), max_edge, out.triangles.size(), out.positions.size(), smallest_angle(out),
+          worst, mean, unmatched, inside);
+    }
+  }
 }
 
 TEST_CASE("OBJ Ke is read as emission, MATERIAL=r,g,b overrides it", "[radiosity][scene]") {
@@ -94,9 +325,9 @@ TEST_CASE("glTF emission is emissiveFactor times KHR_materials_emissive_strength
     std::ofstream bin(std::string(PRT_TEST_OUTPUT_DIR) + "/emissive.bin", std::ios::binary);
     bin.write(reinterpret_cast<const char*>(xyz), sizeof xyz);
   }
-  const std::string gltf = write_text(
-      "emissive.gltf",
-      R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0,1]}],
+  const std::string gltf =
+      write_text("emissive.gltf",
+                 R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0,1]}],
  "nodes":[{"mesh":0},{"mesh":1}],
  "meshes":[{"primitives":[{"attributes":{"POSITION":0},"material":0}]},
            {"primitives":[{"attributes":{"POSITION":0},"material":1}]}],

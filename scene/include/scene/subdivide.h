@@ -1,19 +1,27 @@
 // scene/subdivide.h — splitting a scene's triangles until no edge is longer than a target length
 // (the patches of a radiosity solution; any consumer that wants finer triangles can use it).
 //
-// Frame and units: the Scene's. A triangle (a, b, c) whose longest edge is ℓ is split into n²
-// congruent triangles, n = ⌈ℓ / max_edge⌉ (n = 1 keeps it): the lattice points
-// a + (b − a)·i/n + (c − a)·j/n, i + j ≤ n, joined in the winding of (a, b, c), so faces keep
-// their orientation and the sub-triangles tile the original exactly (same total area).
+// Frame and units: the Scene's. Conforming: every edge of length ℓ is split into
+// k = ⌈ℓ / max_edge⌉ equal segments whatever triangle it belongs to, its points computed from
+// the endpoints taken in a canonical order (by position), so two triangles sharing an edge —
+// of one primitive or of two — get bit-identical points on it and no T-junction appears; a
+// closed mesh stays closed. Each triangle is then triangulated from its three counts
+// (scene/src/triangle_tessellation.h): its lattice points of level n = max k inside, zipped to
+// the edge points, turned into the Delaunay triangulation of these points by edge flips
+// (largest smallest angle), and interior edges still longer than max_edge split at their
+// midpoints. With equal counts on an acute triangle that is the n² congruent triangles (a right
+// one may get the other diagonal in some lattice cells, of the same length).
+// Every output edge is ≤ max_edge; the pieces tile the original exactly (same total area) and
+// keep its winding, so faces keep their orientation.
 // Vertices: each primitive keeps its own vertices first, in order (vertex v of the input is
 // vertex v of the output when every primitive is contiguous, as the loaders make them), then
-// the new ones of that primitive. A point on an edge shared by two triangles of the same
-// primitive that pick the same n is one vertex; neighbours with different n meet in T-junctions
-// (the surface has no cracks: every new point lies on the original edge). New vertices
-// interpolate their corners' normals (renormalised), albedo and texture coordinates
-// barycentrically, and their file tangents (renormalised; w of the nearest corner; zero, i.e.
-// "missing", when a corner has none). Primitives keep their names, materials, BRDFs and
-// anisotropy rotations, albedo and emission; cameras and source_path are copied.
+// the new ones of that primitive; a point of an edge shared by two triangles of the primitive
+// is one vertex. New vertices interpolate their corners' normals (renormalised), albedo and
+// texture coordinates barycentrically, and their file tangents (renormalised; w of the nearest
+// corner; zero, i.e. "missing", when a corner has none). Primitives keep their names,
+// materials, BRDFs and anisotropy rotations, albedo and emission; cameras and source_path are
+// copied. `prt bake --max-edge`, `prt radiosity --max-edge` and `prt relight --max-edge` all
+// call this, so they agree vertex for vertex.
 #pragma once
 
 #include <cstddef>
@@ -28,7 +36,8 @@ namespace prt::scene {
 constexpr std::size_t kMaxSubdividedTriangles = 20'000'000;
 
 // Throws std::invalid_argument (one line) when max_edge is not a finite positive number or the
-// result would exceed kMaxSubdividedTriangles.
+// result would exceed kMaxSubdividedTriangles (counted before the midpoint splits, which add a
+// few).
 Scene subdivide_to_edge_length(const Scene& scene, double max_edge);
 
 // Conforming local refinement (adaptive patches): every triangle t with marked[t] is bisected
