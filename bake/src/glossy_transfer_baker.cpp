@@ -15,10 +15,10 @@
 #include <tbb/parallel_for.h>
 #include <nlohmann/json.hpp>
 
-#include "bake/brdf_projection.h"
 #include "bake/progress.h"
 #include "bake/sampling.h"
 #include "hit_side.h"
+#include "prt/brdf_projection.h"
 #include "prt/geometry_check.h"
 #include "scene/ray_caster.h"
 #include "scene/scene_label.h"
@@ -81,6 +81,34 @@ uint32_t material_index(std::vector<brdf::Material>& materials, const brdf::Mate
   return static_cast<uint32_t>(materials.size() - 1);
 }
 
+// The bounces' b(ω_o) of a material: the runtime's projection (prt/brdf_projection.h), so the
+// bake and the shading use one implementation. Its float evaluate() takes a scratch buffer;
+// kProjectionScratch floats cover every order and view order it accepts (n² + m² + E ≤ 1652).
+constexpr std::size_t kProjectionScratch = 2048;
+
+prt::BrdfProjection make_projection(const brdf::Material& material, int order,
+                                    const prt::BrdfProjectionOptions& options,
+                                    const std::string& name) {
+  Result<prt::BrdfProjection> made = prt::BrdfProjection::create(material, order, options);
+  if (!made.ok()) throw BakeError(name + ": " + made.status().message());
+  if (made.value().scratch_floats() > kProjectionScratch)
+    throw BakeError(name + ": BRDF projection view order too large for the bake");
+  return std::move(made).value();
+}
+
+const char* method_name(prt::BrdfProjectionMethod m) {
+  switch (m) {
+    case prt::BrdfProjectionMethod::kZonal:
+      return "zonal";
+    case prt::BrdfProjectionMethod::kIsotropicTable:
+      return "isotropic table";
+    case prt::BrdfProjectionMethod::kMatrix:
+      return "matrix";
+    default:
+      return "auto";
+  }
+}
+
 struct GlossyJob {
   const scene::Scene& scene;
   const GlossyBakeOptions& o;
@@ -91,9 +119,9 @@ struct GlossyJob {
   std::vector<Frame> frames;
   std::vector<brdf::Material> materials;
   std::vector<uint32_t> material_of_vertex;
-  std::vector<std::unique_ptr<BrdfProjection>> projections;  // per material (bounces only)
-  std::vector<float>* matrices = nullptr;  // the output, V · C · K², filled by the pass
-  std::vector<float> S;                    // V · K², grey direct transfer (bounces only)
+  std::vector<prt::BrdfProjection> projections;  // per material (bounces only)
+  std::vector<float>* matrices = nullptr;        // the output, V · C · K², filled by the pass
+  std::vector<float> S;                          // V · K², grey direct transfer (bounces only)
   std::vector<BlockHits> block_hits;
   std::vector<uint64_t> hit_offset;  // V + 1
   std::vector<GlossyHit> hits;
@@ -305,8 +333,7 @@ void BounceGatherer::radiance_row(const GlossyHit& h, const glm::vec3& d, float*
   const glm::uvec3 tri = job.scene.triangles[h.triangle];
   const float beta[3] = {1.f - h.u - h.v, h.u, h.v};
   const uint32_t material = job.material_of_vertex[tri.x];
-  const BrdfProjection& proj = *job.projections[material];
-  if (proj.lambertian()) {
+  if (job.materials[material].lambertian()) {
     // ρ(hit) · Σ_a β_a · (Σ_l z_l/π · row (l, 0) of M_qa): the interpolated Lambert exit.
     const glm::vec3 rho = job.scene.albedo_at(h.triangle, h.u, h.v);
     for (int a = 0; a < 3; ++a)
@@ -317,10 +344,12 @@ void BounceGatherer::radiance_row(const GlossyHit& h, const glm::vec3& d, float*
       }
     return;
   }
-  float bq[3 * 100];
+  const prt::BrdfProjection& proj = job.projections[material];
+  float bq[3 * kMaxGlossyBakeOrder * kMaxGlossyBakeOrder], scratch[kProjectionScratch];
   for (int a = 0; a < 3; ++a) {
     const glm::vec3 wo = job.frames[tri[a]].to_local(-d);
-    proj.evaluate(wo, bq);
+    const float wo_local[3] = {wo.x, wo.y, wo.z};
+    proj.evaluate(wo_local, bq, scratch);
     for (int c = 0; c < C; ++c) {
       const float* m = matrix(tri[a], c);
       const float* bc = bq + c * K;
@@ -404,8 +433,6 @@ void validate_glossy_options(const scene::Scene& scene, const GlossyBakeOptions&
   if (o.order < 1 || o.order > kMaxGlossyBakeOrder)
     throw BakeError(name + ": glossy SH order " + std::to_string(o.order) + " is outside [1, " +
                     std::to_string(kMaxGlossyBakeOrder) + "]");
-  if (o.projection_samples < 1 || o.projection_samples > 1024)
-    throw BakeError(name + ": BRDF projection samples must be in [1, 1024]");
   BakeOptions b;  // the scene checks and the options the diffuse bake shares
   b.kind = o.bounces == 0 ? prt::TransferKind::Shadowed : prt::TransferKind::Interreflected;
   b.order = o.order;
@@ -451,7 +478,9 @@ std::string glossy_metadata(const GlossyJob& job, const prt::GlossyTransferData&
     b["bounce_change"] = st.bounce_change;
     b["hits"] = st.hits;
     b["back_face_hits"] = st.back_face_hits;
-    b["projection_samples"] = job.o.projection_samples;
+    nlohmann::json methods = nlohmann::json::array();
+    for (const prt::BrdfProjection& p : job.projections) methods.push_back(method_name(p.method()));
+    b["brdf_projection"] = methods;
     b["seconds"] = st.seconds_bounces;
     meta["interreflection"] = b;
   }
@@ -555,9 +584,9 @@ GlossyBakeResult bake_glossy_transfer(const scene::Scene& scene, const GlossyBak
   if (job.interreflect) {
     const Clock::time_point t0 = Clock::now();
     for (std::size_t m = 0; m < job.materials.size(); ++m)
-      job.projections.push_back(std::make_unique<BrdfProjection>(
-          job.materials[m], job.order, o.projection_samples, hash_seed(o.seed, m),
-          scene::scene_label(scene) + ": material " + std::to_string(m)));
+      job.projections.push_back(
+          make_projection(job.materials[m], job.order, o.projection,
+                          scene::scene_label(scene) + ": material " + std::to_string(m)));
     st.seconds_projection = seconds_since(t0);
   }
   prt::GlossyTransferData& d = result.data;

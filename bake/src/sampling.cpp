@@ -94,14 +94,6 @@ glm::vec3 sample_cosine_hemisphere(const glm::vec2& u) {
   return {d.x, d.y, z};
 }
 
-void build_orthonormal_basis(const glm::vec3& n, glm::vec3& t, glm::vec3& b) {
-  const float sign = std::copysign(1.f, n.z);
-  const float a = -1.f / (sign + n.z);
-  const float c = n.x * n.y * a;
-  t = glm::vec3(1.f + sign * n.x * n.x * a, sign * c, -sign * n.x);
-  b = glm::vec3(c, sign + n.y * n.y * a, -n.y);
-}
-
 void generate_cosine_directions(const glm::vec3& n, uint64_t seed, uint64_t vertex, uint32_t first,
                                 int count, glm::vec3* dirs) {
   glm::vec3 t, b;

@@ -6,7 +6,6 @@
 #include <new>
 
 #include "prt/atomic_file.h"
-#include "prt/crc32c.h"
 #include "transfer_format.h"
 
 namespace prt {
@@ -17,43 +16,28 @@ constexpr uint32_t kVersion = 1;
 constexpr std::size_t kHeaderSize = 64;
 constexpr std::size_t kChecksumOffset = 56;
 
-void put32(unsigned char* p, uint32_t v) {
-  for (int i = 0; i < 4; ++i) p[i] = static_cast<unsigned char>(v >> (8 * i));
-}
-void put64(unsigned char* p, uint64_t v) {
-  for (int i = 0; i < 8; ++i) p[i] = static_cast<unsigned char>(v >> (8 * i));
-}
-uint32_t get32(const unsigned char* p) {
-  uint32_t v = 0;
-  for (int i = 0; i < 4; ++i) v |= uint32_t(p[i]) << (8 * i);
-  return v;
-}
-uint64_t get64(const unsigned char* p) {
-  uint64_t v = 0;
-  for (int i = 0; i < 8; ++i) v |= uint64_t(p[i]) << (8 * i);
-  return v;
-}
+using detail::load_u32;
+using detail::load_u64;
+using detail::store_u32;
+using detail::store_u64;
 void put_floats(unsigned char* p, const std::vector<float>& v) {
   for (std::size_t i = 0; i < v.size(); ++i) {
     uint32_t bits;
     std::memcpy(&bits, &v[i], 4);
-    put32(p + 4 * i, bits);
+    store_u32(p + 4 * i, bits);
   }
 }
 void get_floats(const unsigned char* p, std::size_t n, std::vector<float>* v) {
   v->resize(n);
   for (std::size_t i = 0; i < n; ++i) {
-    const uint32_t bits = get32(p + 4 * i);
+    const uint32_t bits = load_u32(p + 4 * i);
     std::memcpy(&(*v)[i], &bits, 4);
   }
 }
 
 // Crc of the whole file with the checksum field taken as zero.
 uint32_t file_checksum(const unsigned char* bytes, std::size_t size) {
-  const unsigned char zero[4] = {0, 0, 0, 0};
-  uint32_t crc = crc32c(bytes, kChecksumOffset);
-  crc = crc32c(zero, 4, crc);
-  return crc32c(bytes + kChecksumOffset + 4, size - kChecksumOffset - 4, crc);
+  return detail::file_checksum(bytes, size, kChecksumOffset);
 }
 
 }  // namespace
@@ -65,16 +49,16 @@ Result<std::vector<unsigned char>> encode_cpca_file(const CpcaTransfer& t) {
     std::vector<unsigned char> out(static_cast<std::size_t>(t.payload_bytes()), 0);
     unsigned char* p = out.data();
     std::memcpy(p, kMagic, 4);
-    put32(p + 4, kVersion);
-    put32(p + 8, kHeaderSize);
-    put32(p + 12, t.order);
-    put32(p + 16, t.channels);
-    put32(p + 20, t.cluster_count);
-    put32(p + 24, t.vector_count);
-    put32(p + 28, 0);
-    put64(p + 32, t.vertex_count);
-    put64(p + 40, t.fingerprint);
-    put64(p + 48, out.size());
+    store_u32(p + 4, kVersion);
+    store_u32(p + 8, kHeaderSize);
+    store_u32(p + 12, t.order);
+    store_u32(p + 16, t.channels);
+    store_u32(p + 20, t.cluster_count);
+    store_u32(p + 24, t.vector_count);
+    store_u32(p + 28, 0);
+    store_u64(p + 32, t.vertex_count);
+    store_u64(p + 40, t.fingerprint);
+    store_u64(p + 48, out.size());
     std::size_t at = kHeaderSize;
     put_floats(p + at, t.means);
     at += 4 * t.means.size();
@@ -87,7 +71,7 @@ Result<std::vector<unsigned char>> encode_cpca_file(const CpcaTransfer& t) {
     }
     at = (at + 3) / 4 * 4;
     put_floats(p + at, t.weights);
-    put32(p + kChecksumOffset, file_checksum(p, out.size()));
+    store_u32(p + kChecksumOffset, file_checksum(p, out.size()));
     return out;
   } catch (const std::bad_alloc&) {
     return Status::Error("cpca file: out of memory");
@@ -99,27 +83,30 @@ Result<CpcaTransfer> decode_cpca_file(const void* data, std::size_t size, const 
   if (size < kHeaderSize || std::memcmp(p, kMagic, 4) != 0) {
     return Status::Error(name + ": not a CPCA transfer file (no PRCP header)");
   }
-  if (get32(p + 4) != kVersion || get32(p + 8) != kHeaderSize) {
-    return Status::Error(name + ": unsupported CPCA file version " + std::to_string(get32(p + 4)));
+  if (load_u32(p + 4) != kVersion || load_u32(p + 8) != kHeaderSize) {
+    return Status::Error(name + ": unsupported CPCA file version " +
+                         std::to_string(load_u32(p + 4)));
   }
-  if (get64(p + 48) != size) {
+  if (load_u64(p + 48) != size) {
     return Status::Error(name + ": file size " + std::to_string(size) + " differs from the " +
-                         std::to_string(get64(p + 48)) + " bytes the header records (truncated?)");
+                         std::to_string(load_u64(p + 48)) +
+                         " bytes the header records (truncated?)");
   }
-  if (get32(p + kChecksumOffset) != file_checksum(p, size)) {
+  if (load_u32(p + kChecksumOffset) != file_checksum(p, size)) {
     return Status::Error(name + ": checksum mismatch (the file is corrupt)");
   }
   try {
     CpcaTransfer t;
-    t.order = get32(p + 12);
-    t.channels = get32(p + 16);
-    t.cluster_count = get32(p + 20);
-    t.vector_count = get32(p + 24);
-    t.vertex_count = get64(p + 32);
-    t.fingerprint = get64(p + 40);
+    t.order = load_u32(p + 12);
+    t.channels = load_u32(p + 16);
+    t.cluster_count = load_u32(p + 20);
+    t.vector_count = load_u32(p + 24);
+    t.vertex_count = load_u64(p + 32);
+    t.fingerprint = load_u64(p + 40);
     if (t.order < 1 || t.order > 16 || (t.channels != 1 && t.channels != 3) ||
         t.cluster_count < 1 || t.cluster_count > 65535 || t.vector_count > 4096 ||
-        t.vertex_count > (uint64_t(1) << 32) || get32(p + 28) != 0 || t.payload_bytes() != size) {
+        t.vertex_count > (uint64_t(1) << 32) || load_u32(p + 28) != 0 ||
+        t.payload_bytes() != size) {
       return Status::Error(name + ": inconsistent CPCA header");
     }
     const std::size_t d = t.dimension(), q = t.cluster_count, k = t.vector_count;

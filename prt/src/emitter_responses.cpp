@@ -8,7 +8,6 @@
 #include <set>
 
 #include "prt/atomic_file.h"
-#include "prt/crc32c.h"
 #include "prt/geometry_check.h"
 #include "transfer_format.h"
 
@@ -26,9 +25,11 @@ constexpr std::size_t kOffVersion = 4, kOffHeaderSize = 8, kOffEmitters = 12, kO
                       kOffTriangles = 24, kOffFingerprint = 32, kOffFileSize = 40,
                       kOffChecksum = 48, kOffNameBytes = 52, kOffReserved = 56;
 
-Status fail(const std::string& name, const std::string& problem) {
-  return Status::Error(name + ": " + problem);
-}
+using detail::fail;
+using detail::load_u32;
+using detail::load_u64;
+using detail::store_u32;
+using detail::store_u64;
 
 uint64_t pad4(uint64_t n) {
   return (n + 3) & ~uint64_t{3};
@@ -37,18 +38,6 @@ uint64_t pad4(uint64_t n) {
 // Total file size for the counts (operands bounded by the caller: no overflow).
 uint64_t layout_size(uint64_t e, uint64_t v, uint64_t t, uint64_t name_bytes) {
   return kHeaderSize + kRecordSize * e + pad4(name_bytes) + 24 * v + 12 * t + 12 * v * e;
-}
-
-template <class T>
-T load(const unsigned char* p) {
-  T value;
-  std::memcpy(&value, p, sizeof value);
-  return value;
-}
-
-template <class T>
-void store(unsigned char* p, T value) {
-  std::memcpy(p, &value, sizeof value);
 }
 
 bool finite_non_negative(float x) {
@@ -123,17 +112,17 @@ Result<std::vector<unsigned char>> encode_emitter_responses(const EmitterRespons
   }
   unsigned char* h = out.data();
   std::memcpy(h, "PRTE", 4);
-  store<uint32_t>(h + kOffVersion, kEmitterResponsesVersion);
-  store<uint32_t>(h + kOffHeaderSize, static_cast<uint32_t>(kHeaderSize));
-  store<uint32_t>(h + kOffEmitters, static_cast<uint32_t>(e_count));
-  store<uint64_t>(h + kOffVertices, v);
-  store<uint64_t>(h + kOffTriangles, t);
-  store<uint64_t>(h + kOffFingerprint, geometry_fingerprint(d.positions.data(), v));
-  store<uint64_t>(h + kOffFileSize, size);
-  store<uint32_t>(h + kOffNameBytes, static_cast<uint32_t>(name_bytes));
+  store_u32(h + kOffVersion, kEmitterResponsesVersion);
+  store_u32(h + kOffHeaderSize, static_cast<uint32_t>(kHeaderSize));
+  store_u32(h + kOffEmitters, static_cast<uint32_t>(e_count));
+  store_u64(h + kOffVertices, v);
+  store_u64(h + kOffTriangles, t);
+  store_u64(h + kOffFingerprint, geometry_fingerprint(d.positions.data(), v));
+  store_u64(h + kOffFileSize, size);
+  store_u32(h + kOffNameBytes, static_cast<uint32_t>(name_bytes));
   unsigned char* at = h + kHeaderSize;
   for (const EmitterInfo& e : d.emitters) {
-    store<uint32_t>(at, static_cast<uint32_t>(e.name.size()));
+    store_u32(at, static_cast<uint32_t>(e.name.size()));
     std::memcpy(at + 4, e.emission.data(), 12);
     at += kRecordSize;
   }
@@ -150,7 +139,7 @@ Result<std::vector<unsigned char>> encode_emitter_responses(const EmitterRespons
   copy(d.normals.data(), 4 * d.normals.size());
   copy(d.triangles.data(), 4 * d.triangles.size());
   copy(d.responses.data(), 4 * d.responses.size());
-  store<uint32_t>(h + kOffChecksum, crc32c(out.data(), out.size()));
+  store_u32(h + kOffChecksum, detail::file_checksum(out.data(), out.size(), kOffChecksum));
   return out;
 }
 
@@ -167,23 +156,20 @@ Status check_header(const unsigned char* b, std::size_t size, const std::string&
   if (size < kHeaderSize)
     return fail(name, "truncated (" + std::to_string(size) + " bytes, header needs 64)");
   if (std::memcmp(b, "PRTE", 4) != 0) return fail(name, "bad magic (not an emitter-response file)");
-  if (load<uint32_t>(b + kOffVersion) != kEmitterResponsesVersion)
-    return fail(name, "unsupported version " + std::to_string(load<uint32_t>(b + kOffVersion)));
-  if (load<uint32_t>(b + kOffHeaderSize) != kHeaderSize) return fail(name, "bad header size");
-  const uint64_t file_size = load<uint64_t>(b + kOffFileSize);
+  if (load_u32(b + kOffVersion) != kEmitterResponsesVersion)
+    return fail(name, "unsupported version " + std::to_string(load_u32(b + kOffVersion)));
+  if (load_u32(b + kOffHeaderSize) != kHeaderSize) return fail(name, "bad header size");
+  const uint64_t file_size = load_u64(b + kOffFileSize);
   if (file_size > size)
     return fail(name, "truncated (" + std::to_string(size) + " of " + std::to_string(file_size) +
                           " bytes)");
   if (file_size < size)
     return fail(name, std::to_string(size - file_size) + " unexpected bytes after the end");
-  uint32_t crc = crc32c(b, kOffChecksum);
-  const unsigned char zero[4] = {0, 0, 0, 0};
-  crc = crc32c(zero, 4, crc);
-  crc = crc32c(b + kOffChecksum + 4, size - kOffChecksum - 4, crc);
-  if (crc != load<uint32_t>(b + kOffChecksum)) return fail(name, "checksum mismatch (corrupt)");
-  const uint64_t e = load<uint32_t>(b + kOffEmitters), v = load<uint64_t>(b + kOffVertices),
-                 t = load<uint64_t>(b + kOffTriangles), n = load<uint32_t>(b + kOffNameBytes);
-  if (load<uint64_t>(b + kOffReserved) != 0) return fail(name, "reserved field is not zero");
+  if (detail::file_checksum(b, size, kOffChecksum) != load_u32(b + kOffChecksum))
+    return fail(name, "checksum mismatch (corrupt)");
+  const uint64_t e = load_u32(b + kOffEmitters), v = load_u64(b + kOffVertices),
+                 t = load_u64(b + kOffTriangles), n = load_u32(b + kOffNameBytes);
+  if (load_u64(b + kOffReserved) != 0) return fail(name, "reserved field is not zero");
   if (e < 1 || e > kMaxEmitters) return fail(name, "bad emitter count " + std::to_string(e));
   if (v > kMaxResponseVertices || t > kMaxResponseVertices)
     return fail(name, "vertex or triangle count too large");
@@ -199,8 +185,8 @@ Result<EmitterResponses> decode_emitter_responses(const void* bytes, std::size_t
                                                   const std::string& name) {
   const unsigned char* b = static_cast<const unsigned char*>(bytes);
   if (Status s = check_header(b, size, name); !s.ok()) return s;
-  const uint64_t e = load<uint32_t>(b + kOffEmitters), v = load<uint64_t>(b + kOffVertices),
-                 t = load<uint64_t>(b + kOffTriangles), n = load<uint32_t>(b + kOffNameBytes);
+  const uint64_t e = load_u32(b + kOffEmitters), v = load_u64(b + kOffVertices),
+                 t = load_u64(b + kOffTriangles), n = load_u32(b + kOffNameBytes);
   EmitterResponses d;
   try {
     d.emitters.resize(e);
@@ -208,7 +194,7 @@ Result<EmitterResponses> decode_emitter_responses(const void* bytes, std::size_t
     uint64_t name_at = 0;
     for (uint64_t i = 0; i < e; ++i) {
       const unsigned char* record = b + kHeaderSize + kRecordSize * i;
-      const uint64_t length = load<uint32_t>(record);
+      const uint64_t length = load_u32(record);
       if (length > n - name_at) return fail(name, "emitter names overrun their section");
       d.emitters[i].name.assign(reinterpret_cast<const char*>(names + name_at), length);
       std::memcpy(d.emitters[i].emission.data(), record + 4, 12);
@@ -230,7 +216,7 @@ Result<EmitterResponses> decode_emitter_responses(const void* bytes, std::size_t
   } catch (const std::bad_alloc&) {
     return fail(name, "out of memory");
   }
-  d.fingerprint = load<uint64_t>(b + kOffFingerprint);
+  d.fingerprint = load_u64(b + kOffFingerprint);
   if (d.fingerprint != geometry_fingerprint(d.positions.data(), v))
     return fail(name, "fingerprint does not match the positions");
   if (Status s = validate_emitter_responses(d, name); !s.ok()) return s;

@@ -12,7 +12,6 @@
 #include <sstream>
 
 #include "prt/atomic_file.h"
-#include "prt/crc32c.h"
 #include "prt/geometry_check.h"
 #include "prt/half.h"
 #include "transfer_format.h"
@@ -24,9 +23,17 @@
 namespace prt {
 namespace {
 
+using detail::align_up;
+using detail::fail;
+using detail::file_checksum;
+using detail::kAnySize;
+using detail::load_u32;
+using detail::load_u64;
+using detail::store_u32;
+using detail::store_u64;
+
 constexpr std::size_t kGHeaderSize = 208;
-constexpr std::size_t kAlign = 16;
-constexpr std::size_t kPrimitiveRecord = 32;
+constexpr std::size_t kPrimitiveRecord = detail::kPrimitiveRecordSize;
 constexpr std::size_t kMaterialRecord = 128;
 // Header field offsets.
 constexpr std::size_t kOffMagic = 0, kOffVersion = 4, kOffHeaderSize = 8, kOffOrder = 12,
@@ -51,40 +58,13 @@ const char* const kSectionNames[kGSectionCount] = {
     "primitive table", "positions",          "normals",  "tangents",
     "materials",       "material of vertex", "matrices", "metadata"};
 
-Status fail(const std::string& name, const std::string& problem) {
-  return Status::Error(name + ": " + problem);
-}
-
-uint32_t load_u32(const unsigned char* p) {
-  return uint32_t{p[0]} | uint32_t{p[1]} << 8 | uint32_t{p[2]} << 16 | uint32_t{p[3]} << 24;
-}
-uint64_t load_u64(const unsigned char* p) {
-  return uint64_t{load_u32(p)} | uint64_t{load_u32(p + 4)} << 32;
-}
 double load_f64(const unsigned char* p) {
   double d;
   std::memcpy(&d, p, 8);
   return d;
 }
-void store_u32(unsigned char* p, uint32_t v) {
-  for (int i = 0; i < 4; ++i) p[i] = static_cast<unsigned char>(v >> (8 * i));
-}
-void store_u64(unsigned char* p, uint64_t v) {
-  store_u32(p, static_cast<uint32_t>(v));
-  store_u32(p + 4, static_cast<uint32_t>(v >> 32));
-}
 void store_f64(unsigned char* p, double d) {
   std::memcpy(p, &d, 8);
-}
-uint64_t align_up(uint64_t x) {
-  return (x + kAlign - 1) / kAlign * kAlign;
-}
-
-uint32_t file_checksum(const unsigned char* bytes, std::size_t size) {
-  static const unsigned char zeros[4] = {0, 0, 0, 0};
-  uint32_t crc = crc32c(bytes, kOffChecksum);
-  crc = crc32c(zeros, 4, crc);
-  return crc32c(bytes + kOffChecksum + 4, size - kOffChecksum - 4, crc);
 }
 
 // --- materials ---
@@ -286,9 +266,7 @@ uint64_t material_table_size(const GlossyTransferData& d) {
 Layout plan_layout(const GlossyTransferData& d) {
   Layout l;
   const uint64_t v = d.vertex_count;
-  uint64_t names = 0;
-  for (const PrimitiveRange& p : d.primitives) names += p.name.size();
-  l.sizes = {d.primitives.size() * kPrimitiveRecord + names,
+  l.sizes = {detail::primitive_table_bytes(d.primitives),
              12 * v,
              12 * v,
              16 * v,
@@ -327,20 +305,9 @@ void write_header(unsigned char* h, const GlossyTransferData& d, const Layout& l
 }
 
 void write_tables(unsigned char* h, const GlossyTransferData& d, const Layout& l) {
-  unsigned char* prim = h + l.offsets[kPrims];
-  uint64_t at = d.primitives.size() * kPrimitiveRecord;
-  for (std::size_t i = 0; i < d.primitives.size(); ++i) {
-    const PrimitiveRange& p = d.primitives[i];
-    unsigned char* r = prim + i * kPrimitiveRecord;
-    store_u64(r, p.first_vertex);
-    store_u64(r + 8, p.vertex_count);
-    store_u64(r + 16, at);
-    store_u64(r + 24, p.name.size());
-    if (!p.name.empty()) std::memcpy(prim + at, p.name.data(), p.name.size());
-    at += p.name.size();
-  }
+  detail::write_primitive_table(h + l.offsets[kPrims], d.primitives);
   unsigned char* mats = h + l.offsets[kMats];
-  at = d.materials.size() * kMaterialRecord;
+  uint64_t at = d.materials.size() * kMaterialRecord;
   for (std::size_t i = 0; i < d.materials.size(); ++i) {
     const brdf::Material& m = d.materials[i];
     store_material(mats + i * kMaterialRecord, m, at);
@@ -390,23 +357,9 @@ Status check_container(const unsigned char* b, std::size_t size, const std::stri
                 "unsupported glossy format version " + std::to_string(load_u32(b + kOffVersion)));
   }
   if (load_u32(b + kOffHeaderSize) != kGHeaderSize) return fail(name, "bad header size");
-  const uint64_t file_size = load_u64(b + kOffFileSize);
-  if (file_size > size) {
-    return fail(name, "truncated: header says " + std::to_string(file_size) + " bytes, only " +
-                          std::to_string(size) + " present");
-  }
-  if (file_size < size) {
-    return fail(name, std::to_string(size - file_size) + " unexpected bytes after the " +
-                          std::to_string(file_size) + " the header announces");
-  }
-  const uint32_t stored = load_u32(b + kOffChecksum), actual = file_checksum(b, size);
-  if (stored != actual) {
-    char text[96];
-    std::snprintf(text, sizeof text, "checksum mismatch (stored 0x%08x, computed 0x%08x)", stored,
-                  actual);
-    return fail(name, text);
-  }
-  return Status::Ok();
+  if (Status s = detail::check_recorded_size(name, load_u64(b + kOffFileSize), size); !s.ok())
+    return s;
+  return detail::check_checksum(name, b, size, kOffChecksum);
 }
 
 Status read_header(const unsigned char* b, std::size_t size, const std::string& name, Header* h) {
@@ -446,58 +399,24 @@ Status check_sections(const std::string& name, const Header& h) {
   const auto& size = h.layout.sizes;
   // Bounded products: v < 2^32, channels · k2 · 4 < 2^17.
   const std::array<uint64_t, kGSectionCount> expected = {
-      0, 12 * v, 12 * v, 16 * v, 0, 4 * v, v * h.channels * k2 * (h.storage == 1 ? 2 : 4), 0};
-  for (int s = 0; s < kGSectionCount; ++s) {
-    if (s != kPrims && s != kMats && s != kMeta && size[s] != expected[s]) {
-      return fail(name, std::string(kSectionNames[s]) + " section holds " +
-                            std::to_string(size[s]) + " bytes, expected " +
-                            std::to_string(expected[s]));
-    }
-    if (size[s] == 0) {
-      if (off[s] != 0)
-        return fail(name, std::string("empty ") + kSectionNames[s] + " has an offset");
-      continue;
-    }
-    if (off[s] % kAlign != 0 || off[s] < kGHeaderSize || off[s] > h.layout.file_size ||
-        size[s] > h.layout.file_size - off[s]) {
-      return fail(
-          name, std::string(kSectionNames[s]) + " section lies outside the file or is misaligned");
-    }
-  }
-  std::array<int, kGSectionCount> by_offset{};
-  for (int s = 0; s < kGSectionCount; ++s) by_offset[s] = s;
-  std::sort(by_offset.begin(), by_offset.end(), [&](int a, int c) { return off[a] < off[c]; });
-  uint64_t previous_end = kGHeaderSize;
-  for (int s : by_offset) {
-    if (size[s] == 0) continue;
-    if (off[s] < previous_end)
-      return fail(name, std::string(kSectionNames[s]) + " overlaps another");
-    previous_end = off[s] + size[s];
-  }
+      kAnySize,
+      12 * v,
+      12 * v,
+      16 * v,
+      kAnySize,
+      4 * v,
+      v * h.channels * k2 * (h.storage == 1 ? 2 : 4),
+      kAnySize};
+  if (Status s =
+          detail::check_section_table(name, kGSectionCount, off.data(), size.data(), kSectionNames,
+                                      expected.data(), kGHeaderSize, h.layout.file_size, v);
+      !s.ok())
+    return s;
   if (h.primitive_count > size[kPrims] / kPrimitiveRecord) {
     return fail(name, "the primitive count does not fit the primitive table");
   }
   if (h.material_count > size[kMats] / kMaterialRecord) {
     return fail(name, "the material count does not fit the material table");
-  }
-  return Status::Ok();
-}
-
-Status read_primitives(const unsigned char* b, const std::string& name, const Header& h,
-                       GlossyTransferData& d) {
-  const unsigned char* prim = b + h.layout.offsets[kPrims];
-  const uint64_t table = h.primitive_count * kPrimitiveRecord, section = h.layout.sizes[kPrims];
-  d.primitives.resize(static_cast<std::size_t>(h.primitive_count));
-  for (std::size_t i = 0; i < d.primitives.size(); ++i) {
-    const unsigned char* r = prim + i * kPrimitiveRecord;
-    PrimitiveRange& p = d.primitives[i];
-    p.first_vertex = load_u64(r);
-    p.vertex_count = load_u64(r + 8);
-    const uint64_t at = load_u64(r + 16), size = load_u64(r + 24);
-    if (at < table || at > section || size > section - at) {
-      return fail(name, "name of primitive " + std::to_string(i) + " lies outside the table");
-    }
-    p.name.assign(reinterpret_cast<const char*>(prim + at), static_cast<std::size_t>(size));
   }
   return Status::Ok();
 }
@@ -530,7 +449,10 @@ Status read_contents(const unsigned char* b, const std::string& name, const Head
   d.interreflected = (h.flags & kFlagInterreflected) != 0;
   d.vertex_count = h.v;
   d.fingerprint = h.fingerprint;
-  if (Status s = read_primitives(b, name, h, d); !s.ok()) return s;
+  if (Status s = detail::read_primitive_table(b + h.layout.offsets[kPrims], h.layout.sizes[kPrims],
+                                              h.primitive_count, h.v, false, name, &d.primitives);
+      !s.ok())
+    return s;
   const auto floats = [&](int s, std::vector<float>& dst) {
     dst.resize(static_cast<std::size_t>(h.layout.sizes[s] / 4));
     if (!dst.empty()) std::memcpy(dst.data(), b + h.layout.offsets[s], 4 * dst.size());
@@ -584,7 +506,7 @@ Result<std::vector<unsigned char>> encode_glossy_transfer_file(const GlossyTrans
     write_header(out.data(), d, l);
     write_tables(out.data(), d, l);
     write_arrays(out.data(), d, l);
-    store_u32(out.data() + kOffChecksum, file_checksum(out.data(), out.size()));
+    store_u32(out.data() + kOffChecksum, file_checksum(out.data(), out.size(), kOffChecksum));
     return out;
   } catch (const std::bad_alloc&) {
     return fail(name, "out of memory while encoding");

@@ -15,13 +15,9 @@
 namespace prt {
 namespace {
 
-using detail::kSectionAlignment;
+using detail::align_up;
 
 constexpr uint64_t kPayloadHeaderBytes = 16;  // u64 entry count, u64 reserved
-
-uint64_t round_up_16(uint64_t x) {
-  return (x + kSectionAlignment - 1) & ~(kSectionAlignment - 1);
-}
 
 uint64_t bytes_per_value(HaarQuantization q) {
   return q == HaarQuantization::Float32 ? 4 : q == HaarQuantization::Bits16 ? 2 : 1;
@@ -39,22 +35,15 @@ PayloadLayout layout_payload(uint64_t size, uint64_t vertices, uint64_t entries,
                              uint64_t value_bytes) {
   PayloadLayout l;
   const uint64_t wavelets = 6 * size * size;
-  l.vertices_at = round_up_16(l.offsets_at + 8 * (wavelets + 1));
-  l.steps_at = round_up_16(l.vertices_at + 4 * entries);
-  l.values_at = round_up_16(l.steps_at + 4 * vertices);
+  l.vertices_at = align_up(l.offsets_at + 8 * (wavelets + 1));
+  l.steps_at = align_up(l.vertices_at + 4 * entries);
+  l.values_at = align_up(l.steps_at + 4 * vertices);
   l.total = l.values_at + entries * channels * value_bytes;
   return l;
 }
 
-Status fail(const std::string& name, const std::string& problem) {
-  return Status::Error(name + ": " + problem);
-}
-
-uint64_t load_u64(const unsigned char* p) {
-  uint64_t v;
-  std::memcpy(&v, p, 8);
-  return v;
-}
+using detail::fail;
+using detail::load_u64;
 
 HaarQuantization quantization_from_code(uint32_t code) {
   return code == detail::kHaarStorageI8    ? HaarQuantization::Bits8

@@ -14,7 +14,6 @@
 #include <sstream>
 
 #include "prt/atomic_file.h"
-#include "prt/crc32c.h"
 #include "prt/geometry_check.h"
 #include "prt/half.h"
 #include "transfer_format.h"
@@ -41,37 +40,8 @@ namespace {
 
 using namespace detail;
 
-std::string fail_text(const std::string& name, const std::string& problem) {
-  return name + ": " + problem;
-}
-
-Status fail(const std::string& name, const std::string& problem) {
-  return Status::Error(fail_text(name, problem));
-}
-
-uint32_t load_u32(const unsigned char* p) {
-  return uint32_t{p[0]} | uint32_t{p[1]} << 8 | uint32_t{p[2]} << 16 | uint32_t{p[3]} << 24;
-}
-uint64_t load_u64(const unsigned char* p) {
-  return uint64_t{load_u32(p)} | uint64_t{load_u32(p + 4)} << 32;
-}
-void store_u32(unsigned char* p, uint32_t v) {
-  for (int i = 0; i < 4; ++i) p[i] = static_cast<unsigned char>(v >> (8 * i));
-}
-void store_u64(unsigned char* p, uint64_t v) {
-  store_u32(p, static_cast<uint32_t>(v));
-  store_u32(p + 4, static_cast<uint32_t>(v >> 32));
-}
-
-uint64_t align_up(uint64_t x) {
-  return (x + kSectionAlignment - 1) / kSectionAlignment * kSectionAlignment;
-}
-
-const char* section_name(int s) {
-  static const char* const names[kSectionCount] = {
-      "primitive table", "positions", "normals", "coefficients", "ao", "bent normals", "metadata"};
-  return names[s];
-}
+const char* const kSectionNames[kSectionCount] = {
+    "primitive table", "positions", "normals", "coefficients", "ao", "bent normals", "metadata"};
 
 // Index of the first non-finite value, or n.
 std::size_t find_non_finite(const float* v, std::size_t n) {
@@ -99,14 +69,6 @@ Status check_finite_vertex_arrays(const std::string& name, const TransferData& d
     s = check_finite_array(name, "bent normal", d.bent_normals.data(), d.bent_normals.size(), 3);
   }
   return s;
-}
-
-// CRC-32C of the file with the checksum field taken as zero.
-uint32_t file_checksum(const unsigned char* bytes, std::size_t size) {
-  static const unsigned char zeros[4] = {0, 0, 0, 0};
-  uint32_t crc = crc32c(bytes, kOffChecksum);
-  crc = crc32c(zeros, 4, crc);
-  return crc32c(bytes + kOffChecksum + 4, size - kOffChecksum - 4, crc);
 }
 
 }  // namespace
@@ -204,11 +166,8 @@ Result<std::vector<unsigned char>> encode_transfer_container(
     const std::function<void(unsigned char*)>& write_coefficients, const std::string& name) {
   try {
     const uint64_t v = d.vertex_count;
-    // Primitive table: records, then the names.
-    uint64_t names_size = 0;
-    for (const PrimitiveRange& p : d.primitives) names_size += p.name.size();
     std::array<uint64_t, kSectionCount> sizes{};
-    sizes[kPrimitives] = d.primitives.size() * kPrimitiveRecordSize + names_size;
+    sizes[kPrimitives] = primitive_table_bytes(d.primitives);
     sizes[kPositions] = 12 * v;
     sizes[kNormals] = 12 * v;
     sizes[kCoefficients] = coefficient_bytes;
@@ -245,19 +204,7 @@ Result<std::vector<unsigned char>> encode_transfer_container(
       store_u64(h + kOffSections + 16 * s, offsets[s]);
       store_u64(h + kOffSections + 16 * s + 8, sizes[s]);
     }
-    // Primitive table.
-    unsigned char* prim = h + offsets[kPrimitives];
-    uint64_t name_at = d.primitives.size() * kPrimitiveRecordSize;
-    for (std::size_t i = 0; i < d.primitives.size(); ++i) {
-      const PrimitiveRange& p = d.primitives[i];
-      unsigned char* r = prim + i * kPrimitiveRecordSize;
-      store_u64(r, p.first_vertex);
-      store_u64(r + 8, p.vertex_count);
-      store_u64(r + 16, name_at);
-      store_u64(r + 24, p.name.size());
-      if (!p.name.empty()) std::memcpy(prim + name_at, p.name.data(), p.name.size());
-      name_at += p.name.size();
-    }
+    write_primitive_table(h + offsets[kPrimitives], d.primitives);
     auto copy_floats = [&](int s, const std::vector<float>& src) {
       if (!src.empty()) std::memcpy(h + offsets[s], src.data(), src.size() * sizeof(float));
     };
@@ -269,7 +216,7 @@ Result<std::vector<unsigned char>> encode_transfer_container(
       std::memcpy(h + offsets[kMetadata], d.metadata_json.data(), d.metadata_json.size());
     }
     if (coefficient_bytes != 0) write_coefficients(h + offsets[kCoefficients]);
-    store_u32(h + kOffChecksum, file_checksum(h, out.size()));
+    store_u32(h + kOffChecksum, file_checksum(h, out.size(), kOffChecksum));
     return out;
   } catch (const std::bad_alloc&) {
     return fail(name, "out of memory while encoding");
@@ -352,22 +299,8 @@ Status check_container(const unsigned char* b, std::size_t size, const std::stri
                           std::to_string(kHeaderSize));
   }
   const uint64_t file_size = load_u64(b + kOffFileSize);
-  if (file_size > size) {
-    return fail(name, "truncated: header says " + std::to_string(file_size) + " bytes, only " +
-                          std::to_string(size) + " present");
-  }
-  if (file_size < size) {
-    return fail(name, std::to_string(size - file_size) + " unexpected bytes after the " +
-                          std::to_string(file_size) + " the header announces");
-  }
-  const uint32_t stored_crc = load_u32(b + kOffChecksum);
-  const uint32_t actual_crc = file_checksum(b, size);
-  if (stored_crc != actual_crc) {
-    char text[96];
-    std::snprintf(text, sizeof text, "checksum mismatch (stored 0x%08x, computed 0x%08x)",
-                  stored_crc, actual_crc);
-    return fail(name, text);
-  }
+  if (Status s = check_recorded_size(name, file_size, size); !s.ok()) return s;
+  if (Status s = check_checksum(name, b, size, kOffChecksum); !s.ok()) return s;
   h->file_size = file_size;
   return Status::Ok();
 }
@@ -437,75 +370,21 @@ Status check_sections(const std::string& name, const HeaderFields& h) {
     blocked_coefficient_bytes(v, h.channels, k, h.storage == 1 ? 2 : 4, &coefficient_bytes);
   }
   const bool has_ao = h.flags & kFlagHasAo, has_bent = h.flags & kFlagHasBentNormals;
-  const std::array<uint64_t, kSectionCount> expected = {
-      0, 12 * v, 12 * v, coefficient_bytes, has_ao ? 4 * v : 0, has_bent ? 12 * v : 0, 0};
-  for (int s = 0; s < kSectionCount; ++s) {
-    if (s != kPrimitives && s != kMetadata && !(h.haar && s == kCoefficients) &&
-        sizes[s] != expected[s]) {
-      return fail(name, std::string(section_name(s)) + " section holds " +
-                            std::to_string(sizes[s]) + " bytes, expected " +
-                            std::to_string(expected[s]) + " for " + std::to_string(v) +
-                            " vertices");
-    }
-    if (sizes[s] == 0) {
-      if (offsets[s] != 0) {
-        return fail(name, std::string("empty ") + section_name(s) + " section has an offset");
-      }
-      continue;
-    }
-    if (offsets[s] % kSectionAlignment != 0 || offsets[s] < kHeaderSize || offsets[s] > file_size ||
-        sizes[s] > file_size - offsets[s]) {
-      return fail(name, std::string(section_name(s)) + " section [" + std::to_string(offsets[s]) +
-                            ", +" + std::to_string(sizes[s]) + ") lies outside the " +
-                            std::to_string(file_size) + "-byte file or is misaligned");
-    }
-  }
-  // Sections must not overlap.
-  std::array<int, kSectionCount> order_by_offset{};
-  for (int s = 0; s < kSectionCount; ++s) order_by_offset[s] = s;
-  std::sort(order_by_offset.begin(), order_by_offset.end(),
-            [&](int a, int c) { return offsets[a] < offsets[c]; });
-  uint64_t previous_end = kHeaderSize;
-  for (int s : order_by_offset) {
-    if (sizes[s] == 0) continue;
-    if (offsets[s] < previous_end) {
-      return fail(name, std::string(section_name(s)) + " section overlaps another");
-    }
-    previous_end = offsets[s] + sizes[s];
-  }
+  const std::array<uint64_t, kSectionCount> expected = {kAnySize,
+                                                        12 * v,
+                                                        12 * v,
+                                                        h.haar ? kAnySize : coefficient_bytes,
+                                                        has_ao ? 4 * v : 0,
+                                                        has_bent ? 12 * v : 0,
+                                                        kAnySize};
+  if (Status s = check_section_table(name, kSectionCount, offsets.data(), sizes.data(),
+                                     kSectionNames, expected.data(), kHeaderSize, file_size, v);
+      !s.ok())
+    return s;
   if (h.primitive_count > sizes[kPrimitives] / kPrimitiveRecordSize) {
     return fail(name, "primitive count " + std::to_string(h.primitive_count) +
                           " does not fit in the " + std::to_string(sizes[kPrimitives]) +
                           "-byte primitive table");
-  }
-  return Status::Ok();
-}
-
-// The primitive table: ranges within the vertices, names within the table. May throw
-// std::bad_alloc.
-Status read_primitives(const unsigned char* b, const std::string& name, const HeaderFields& h,
-                       TransferData& d) {
-  const unsigned char* prim = b + h.offsets[kPrimitives];
-  const uint64_t table_size = h.primitive_count * kPrimitiveRecordSize;
-  const uint64_t section_size = h.sizes[kPrimitives], v = h.v;
-  d.primitives.resize(static_cast<std::size_t>(h.primitive_count));
-  for (std::size_t i = 0; i < d.primitives.size(); ++i) {
-    const unsigned char* r = prim + i * kPrimitiveRecordSize;
-    PrimitiveRange& p = d.primitives[i];
-    p.first_vertex = load_u64(r);
-    p.vertex_count = load_u64(r + 8);
-    const uint64_t name_offset = load_u64(r + 16), name_size = load_u64(r + 24);
-    if (name_offset < table_size || name_offset > section_size ||
-        name_size > section_size - name_offset) {
-      return fail(name,
-                  "name of primitive " + std::to_string(i) + " lies outside the primitive table");
-    }
-    if (p.first_vertex > v || p.vertex_count > v - p.first_vertex) {
-      return fail(name, "primitive " + std::to_string(i) + " covers vertices beyond the " +
-                            std::to_string(v) + " vertices");
-    }
-    p.name.assign(reinterpret_cast<const char*>(prim + name_offset),
-                  static_cast<std::size_t>(name_size));
   }
   return Status::Ok();
 }
@@ -546,7 +425,11 @@ Status read_contents(const unsigned char* b, const std::string& name, const Head
   d.albedo_folded = h.flags & kFlagAlbedoFolded;
   d.vertex_count = h.v;
   d.fingerprint = load_u64(b + kOffFingerprint);
-  if (Status s = read_primitives(b, name, h, d); !s.ok()) return s;
+  // The primitive table: ranges within the vertices, names within the table.
+  if (Status s = read_primitive_table(b + h.offsets[kPrimitives], h.sizes[kPrimitives],
+                                      h.primitive_count, h.v, true, name, &d.primitives);
+      !s.ok())
+    return s;
   auto read_floats = [&](int s, std::vector<float>& dst) {
     dst.resize(static_cast<std::size_t>(h.sizes[s] / 4));
     if (!dst.empty()) std::memcpy(dst.data(), b + h.offsets[s], dst.size() * sizeof(float));

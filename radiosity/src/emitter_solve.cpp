@@ -1,19 +1,11 @@
 // emitter_solve.cpp — see radiosity/emitter_solve.h.
 #include "radiosity/emitter_solve.h"
 
-#include <cstdio>
 #include <stdexcept>
 
+#include "radiosity/materials.h"
+
 namespace prt::radiosity {
-namespace {
-
-std::string describe(const glm::vec3& v) {
-  char buf[96];
-  std::snprintf(buf, sizeof buf, "(%g, %g, %g)", double(v.x), double(v.y), double(v.z));
-  return buf;
-}
-
-}  // namespace
 
 std::vector<EmitterGroup> emitter_groups(const scene::Scene& scene) {
   std::vector<EmitterGroup> groups;
@@ -29,7 +21,8 @@ std::vector<EmitterGroup> emitter_groups(const scene::Scene& scene) {
     } else if (groups[g].emission != p.emission) {
       throw std::invalid_argument(scene.source_path + ": emitter " + name + ": primitives " +
                                   first_primitive[g] + " and " + p.name + " emit differently " +
-                                  describe(groups[g].emission) + " vs " + describe(p.emission));
+                                  describe_colour(groups[g].emission) + " vs " +
+                                  describe_colour(p.emission));
     }
     for (uint32_t k = 0; k < p.triangle_count; ++k)
       if (p.first_triangle + k < scene.triangles.size())

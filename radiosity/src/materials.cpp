@@ -6,13 +6,14 @@
 #include <stdexcept>
 
 namespace prt::radiosity {
-namespace {
 
-std::string describe(const glm::vec3& v) {
+std::string describe_colour(const glm::vec3& v) {
   char buf[96];
   std::snprintf(buf, sizeof buf, "(%g, %g, %g)", double(v.x), double(v.y), double(v.z));
   return buf;
 }
+
+namespace {
 
 std::string material_list(const scene::Scene& scene) {
   std::set<std::string> names;
@@ -85,16 +86,17 @@ void check_materials(const scene::Scene& scene) {
                               (p.material.empty() ? "<none>" : p.material) + " of " + p.name + ": ";
     for (int c = 0; c < 3; ++c) {
       if (!std::isfinite(p.emission[c]) || p.emission[c] < 0.f)
-        throw std::invalid_argument(where + "emission " + describe(p.emission) +
+        throw std::invalid_argument(where + "emission " + describe_colour(p.emission) +
                                     " must be finite and non-negative");
       if (!std::isfinite(p.albedo[c]) || p.albedo[c] < 0.f || p.albedo[c] > 1.f)
-        throw std::invalid_argument(where + "albedo " + describe(p.albedo) + " must be in [0, 1]");
+        throw std::invalid_argument(where + "albedo " + describe_colour(p.albedo) +
+                                    " must be in [0, 1]");
     }
     for (uint32_t v = 0; v < p.vertex_count && p.first_vertex + v < scene.albedo.size(); ++v) {
       const glm::vec3 a = scene.albedo[p.first_vertex + v];
       for (int c = 0; c < 3; ++c)
         if (!std::isfinite(a[c]) || a[c] < 0.f || a[c] > 1.f)
-          throw std::invalid_argument(where + "vertex albedo " + describe(a) +
+          throw std::invalid_argument(where + "vertex albedo " + describe_colour(a) +
                                       " must be in [0, 1]");
     }
   }

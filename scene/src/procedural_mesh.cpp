@@ -93,6 +93,17 @@ void add_fan(Scene& scene, uint32_t apex, uint32_t circle, int count) {
   }
 }
 
+// Triangulates a disc whose vertices are `centre` then nr circles of ns vertices (innermost
+// first): a fan to the first circle, bands between the others; ends the primitive.
+void close_disc(Scene& scene, uint32_t centre, int nr, int ns) {
+  add_fan(scene, centre, centre + 1, ns);
+  for (int k = 1; k < nr; ++k) {
+    const uint32_t first = centre + 1 + static_cast<uint32_t>((k - 1) * ns);
+    add_band(scene, first, first + static_cast<uint32_t>(ns), ns);
+  }
+  end_primitive(scene);
+}
+
 }  // namespace
 
 Scene make_quad(glm::vec3 corner, glm::vec3 edge_u, glm::vec3 edge_v, int segments_u,
@@ -219,12 +230,7 @@ Scene make_well(float radius, float depth, int segments, int rings, glm::vec3 al
       add_vertex(scene, glm::dvec3(rk * dir.x, -h, rk * dir.z), up);
     }
   }
-  add_fan(scene, centre, centre + 1, ns);
-  for (int k = 1; k < nr; ++k) {
-    const uint32_t first = centre + 1 + static_cast<uint32_t>((k - 1) * ns);
-    add_band(scene, first, first + static_cast<uint32_t>(ns), ns);
-  }
-  end_primitive(scene);
+  close_disc(scene, centre, nr, ns);
   return scene;
 }
 
@@ -304,12 +310,7 @@ Scene make_disc(glm::vec3 center, glm::vec3 axis_u, glm::vec3 axis_v, float radi
       scene.tangents.emplace_back(glm::vec3(-std::sin(phi) * e1 + std::cos(phi) * e2), 1.f);
     }
   }
-  add_fan(scene, centre, centre + 1, ns);
-  for (int k = 1; k < nr; ++k) {
-    const uint32_t first = centre + 1 + static_cast<uint32_t>((k - 1) * ns);
-    add_band(scene, first, first + static_cast<uint32_t>(ns), ns);
-  }
-  end_primitive(scene);
+  close_disc(scene, centre, nr, ns);
   return scene;
 }
 

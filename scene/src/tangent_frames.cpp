@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "scene/orthonormal_basis.h"
+
 namespace prt::scene {
 namespace {
 
@@ -28,10 +30,8 @@ glm::vec4 rotated(const glm::vec3& n, const glm::vec4& frame, float r) {
 }  // namespace
 
 glm::vec4 normal_only_tangent(const glm::vec3& n) {
-  const float sign = std::copysign(1.0f, n.z);
-  const float a = -1.0f / (sign + n.z);
-  const float b = n.x * n.y * a;
-  const glm::vec3 t(1.0f + sign * n.x * n.x * a, sign * b, -sign * n.x);
+  glm::vec3 t, b;
+  build_orthonormal_basis(n, t, b);
   return glm::vec4(glm::normalize(t), 1.0f);
 }
 

@@ -18,6 +18,7 @@
 
 #include <catch2/catch.hpp>
 
+#include "cli_run.h"
 #include "progress_reporter.h"
 #include "relight/image_io.h"
 #include "support/test_data.h"
@@ -26,37 +27,21 @@ namespace fs = std::filesystem;
 
 namespace {
 
-struct Run {
-  int exit_code = 0;
-  std::string out, err;
+// A run of the CLI (cli_run.h) and how long it took.
+struct Run : prt::test::cli::RunResult {
   double seconds = 0;
 };
 
-std::string read_all(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
+Run run(const std::string& command) {
+  const auto start = std::chrono::steady_clock::now();
+  Run r;
+  static_cast<prt::test::cli::RunResult&>(r) = prt::test::cli::run(command);
+  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return r;
 }
 
-// Runs `command` through the shell with stdout and stderr captured in files (named by process
-// id and a counter: ctest runs cases as parallel processes sharing the directory).
-Run run(const std::string& command) {
-  static int counter = 0;
-  const fs::path dir = prt::test::output_path("cli_progress");
-  fs::create_directories(dir);
-  const std::string stem = "run" + std::to_string(::getpid()) + "_" + std::to_string(counter++);
-  const fs::path out = dir / (stem + ".out"), err = dir / (stem + ".err");
-  const auto start = std::chrono::steady_clock::now();
-  const int status = std::system((command + " >" + out.string() + " 2>" + err.string()).c_str());
-  Run r;
-  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  r.exit_code = status == -1 ? -1 : WEXITSTATUS(status);
-  r.out = read_all(out);
-  r.err = read_all(err);
-  fs::remove(out);
-  fs::remove(err);
-  return r;
+std::string read_all(const fs::path& p) {
+  return prt::test::cli::slurp(p);
 }
 
 std::string prt_cli(const std::string& interval = "0") {

@@ -26,22 +26,7 @@ namespace {
 // bluish panel low on the back wall (material "panel"): two emitters of different materials
 // that light different parts of the room.
 prt::scene::Scene two_emitter_room() {
-  prt::scene::Scene s;
-  prt::test::append(s, make_quad({0, 0, 0}, {0, 0, 1}, {1, 0, 0}, 4, 4, glm::vec3(0.7f), "floor"),
-                    "white");
-  prt::test::append(s, make_quad({0, 0, 0}, {0, 1, 0}, {0, 0, 1}, 4, 4, {0.7f, 0.1f, 0.1f}, "left"),
-                    "red");
-  prt::test::append(
-      s, make_quad({1, 0, 0}, {0, 0, 1}, {0, 1, 0}, 4, 4, {0.1f, 0.7f, 0.1f}, "right"), "green");
-  prt::test::append(s, make_quad({0, 0, 1}, {0, 1, 0}, {1, 0, 0}, 4, 4, glm::vec3(0.7f), "back"),
-                    "white");
-  prt::test::append(
-      s,
-      prt::scene::make_box({0.3f, 0, 0.4f}, {0.6f, 0.4f, 0.7f}, 1, false, glm::vec3(0.6f), "block"),
-      "white");
-  prt::test::append(
-      s, make_quad({0.35f, 0.9f, 0.35f}, {0.3f, 0, 0}, {0, 0, 0.3f}, 2, 2, glm::vec3(0.5f), "lamp"),
-      "lamp", glm::vec3(10.f));
+  prt::scene::Scene s = prt::test::open_room(true, "lamp");
   prt::test::append(
       s,
       make_quad({0.1f, 0.05f, 0.99f}, {0, 0.2f, 0}, {0.3f, 0, 0}, 1, 1, glm::vec3(0.3f), "panel"),

@@ -21,6 +21,7 @@
 #include "scene/ray_caster.h"
 
 using namespace prt::radiosity;
+using prt::test::max_relative_difference;
 namespace fs = std::filesystem;
 
 namespace {
@@ -30,14 +31,7 @@ namespace {
 prt::scene::Scene room_with_blocks(glm::vec2 a_offset) {
   using prt::scene::make_quad;
   prt::scene::Scene s;
-  prt::test::append(s, make_quad({0, 0, 0}, {0, 0, 1}, {1, 0, 0}, 4, 4, glm::vec3(0.7f), "floor"),
-                    "white");
-  prt::test::append(s, make_quad({0, 0, 0}, {0, 1, 0}, {0, 0, 1}, 3, 3, {0.7f, 0.1f, 0.1f}, "left"),
-                    "red");
-  prt::test::append(
-      s, make_quad({1, 0, 0}, {0, 0, 1}, {0, 1, 0}, 3, 3, {0.1f, 0.7f, 0.1f}, "right"), "green");
-  prt::test::append(s, make_quad({0, 0, 1}, {1, 0, 0}, {0, 1, 0}, 3, 3, glm::vec3(0.7f), "back"),
-                    "white");
+  prt::test::append_open_room_walls(s, 3, false);
   const glm::vec3 a(a_offset.x, 0.f, a_offset.y);
   prt::test::append(s,
                     prt::scene::make_box(a, a + glm::vec3(0.2f, 0.3f, 0.2f), 1, false,
@@ -51,14 +45,6 @@ prt::scene::Scene room_with_blocks(glm::vec2 a_offset) {
       s, make_quad({0.4f, 0.9f, 0.4f}, {0.2f, 0, 0}, {0, 0, 0.2f}, 1, 1, glm::vec3(0.5f), "lamp"),
       "light", glm::vec3(10.f));
   return s;
-}
-
-double max_relative_difference(const std::vector<glm::dvec3>& a, const std::vector<glm::dvec3>& b) {
-  double worst = 0.0, scale = 0.0;
-  for (const glm::dvec3& v : b) scale = std::max({scale, v.x, v.y, v.z});
-  for (std::size_t i = 0; i < a.size(); ++i)
-    for (int c = 0; c < 3; ++c) worst = std::max(worst, std::abs(a[i][c] - b[i][c]) / scale);
-  return worst;
 }
 
 fs::path scratch(const std::string& name) {

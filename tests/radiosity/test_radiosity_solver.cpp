@@ -18,41 +18,7 @@
 #include "scene/ray_caster.h"
 
 using namespace prt::radiosity;
-
-namespace {
-
-double max_relative_difference(const std::vector<glm::dvec3>& a, const std::vector<glm::dvec3>& b) {
-  double worst = 0.0, scale = 0.0;
-  for (const glm::dvec3& v : b) scale = std::max({scale, v.x, v.y, v.z});
-  for (std::size_t i = 0; i < a.size(); ++i)
-    for (int c = 0; c < 3; ++c) worst = std::max(worst, std::abs(a[i][c] - b[i][c]) / scale);
-  return worst;
-}
-
-// A room with an open top, a block on the floor and an emitting patch under the ceiling
-// height facing down: open (light escapes), occluded (the block shadows), coloured walls.
-prt::scene::Scene open_room() {
-  using prt::scene::make_quad;
-  prt::scene::Scene s;
-  prt::test::append(s, make_quad({0, 0, 0}, {0, 0, 1}, {1, 0, 0}, 4, 4, glm::vec3(0.7f), "floor"),
-                    "white");
-  prt::test::append(s, make_quad({0, 0, 0}, {0, 1, 0}, {0, 0, 1}, 4, 4, {0.7f, 0.1f, 0.1f}, "left"),
-                    "red");
-  prt::test::append(
-      s, make_quad({1, 0, 0}, {0, 0, 1}, {0, 1, 0}, 4, 4, {0.1f, 0.7f, 0.1f}, "right"), "green");
-  prt::test::append(s, make_quad({0, 0, 1}, {1, 0, 0}, {0, 1, 0}, 4, 4, glm::vec3(0.7f), "back"),
-                    "white");
-  prt::test::append(
-      s,
-      prt::scene::make_box({0.3f, 0, 0.4f}, {0.6f, 0.4f, 0.7f}, 1, false, glm::vec3(0.6f), "block"),
-      "white");
-  prt::test::append(
-      s, make_quad({0.35f, 0.9f, 0.35f}, {0.3f, 0, 0}, {0, 0, 0.3f}, 2, 2, glm::vec3(0.5f), "lamp"),
-      "light", glm::vec3(10.f));
-  return s;
-}
-
-}  // namespace
+using prt::test::max_relative_difference;
 
 namespace {
 
@@ -196,7 +162,7 @@ TEST_CASE("closed sphere with exact form factors F_ij = A_j / A: B = rho E / (1 
 
 TEST_CASE("progressive refinement converges to the Gauss-Seidel solution, Jacobi agrees",
           "[radiosity][solver]") {
-  const prt::scene::Scene room = open_room();
+  const prt::scene::Scene room = prt::test::open_room(false, "light");
   const prt::scene::RayCaster caster(room);
   const std::vector<Patch> patches = make_patches(room);
   for (FormFactorMethod method : {FormFactorMethod::Analytic, FormFactorMethod::Rays}) {
@@ -229,7 +195,7 @@ TEST_CASE("progressive refinement converges to the Gauss-Seidel solution, Jacobi
 
 TEST_CASE("energy balance in an open room: emitted = absorbed + escaped to 1e-6",
           "[radiosity][solver]") {
-  const prt::scene::Scene room = open_room();
+  const prt::scene::Scene room = prt::test::open_room(false, "light");
   const prt::scene::RayCaster caster(room);
   const std::vector<Patch> patches = make_patches(room);
   FormFactorOptions ff;
@@ -257,7 +223,7 @@ TEST_CASE("energy balance in an open room: emitted = absorbed + escaped to 1e-6"
 }
 
 TEST_CASE("solutions do not depend on the thread count", "[radiosity][solver]") {
-  const prt::scene::Scene room = open_room();
+  const prt::scene::Scene room = prt::test::open_room(false, "light");
   const prt::scene::RayCaster caster(room);
   const std::vector<Patch> patches = make_patches(room);
   FormFactorOptions ff;

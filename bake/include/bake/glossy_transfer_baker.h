@@ -27,7 +27,8 @@
 // Interreflected (bounces ≠ 0): a ray that hits the front of triangle (q₀, q₁, q₂) at
 // barycentrics β brings the radiance the hit point sends back along −ω_s,
 //     L(−ω_s) = Σ_a β_a · b_{q_a}(−ω_s in q_a's frame)ᵀ · M_{q_a} · L,
-// b the SH projection of the hit primitive's BRDF (bake/brdf_projection.h); for a Lambert hit
+// b the SH projection of the hit primitive's BRDF (prt::BrdfProjection with
+// GlossyBakeOptions::projection, the runtime's own, prt/brdf_projection.h); for a Lambert hit
 // b = ρ(hit)/π · (clamped-cosine zonal row), ρ(hit) = Scene::albedo_at (the texture when there
 // is one), exactly as the diffuse bake's bounce. So M = S + G(M),
 //     G(M)_p = (2π/N) Σ_{s hits} y_local,p(ω_s) ⊗ L(−ω_s)-row,
@@ -46,6 +47,7 @@
 #include <vector>
 
 #include "bake/transfer_baker.h"
+#include "prt/brdf_projection.h"
 #include "prt/glossy_transfer.h"
 #include "scene/scene.h"
 
@@ -60,8 +62,8 @@ struct GlossyBakeOptions {
   int bounces = 0;    // 0: shadowed; k > 0: k Jacobi bounces; −1: until converged
   double bounce_tolerance = 1e-4;
   uint64_t seed = 1;
-  int threads = 0;              // 0 = all hardware threads
-  int projection_samples = 32;  // per dimension, per node of a BRDF's projection table
+  int threads = 0;                        // 0 = all hardware threads
+  prt::BrdfProjectionOptions projection;  // b(ω_o) for the bounces (prt/brdf_projection.h)
   prt::Precision precision = prt::Precision::F32;
 };
 

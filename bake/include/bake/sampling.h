@@ -18,6 +18,8 @@
 
 #include <glm/glm.hpp>
 
+#include "scene/orthonormal_basis.h"
+
 namespace prt::bake {
 
 // Rays per packet; sample counts are rounded up to a multiple of it.
@@ -45,8 +47,9 @@ glm::vec2 map_square_to_concentric_disk(const glm::vec2& u);
 // Cosine-weighted direction in the local frame (+z = normal), z ≥ 0; pdf = z / π.
 glm::vec3 sample_cosine_hemisphere(const glm::vec2& u);
 
-// Duff et al. 2017: t, b such that (t, b, n) is right-handed orthonormal, for unit n.
-void build_orthonormal_basis(const glm::vec3& n, glm::vec3& t, glm::vec3& b);
+// Duff et al. 2017: t, b such that (t, b, n) is right-handed orthonormal, for unit n — the one
+// construction scene/orthonormal_basis.h defines (also behind scene::normal_only_tangent).
+using scene::build_orthonormal_basis;
 
 // Fills dirs[0 .. count) with the cosine-weighted directions of `vertex` around the unit
 // normal n (world frame), for point indices first .. first + count of its sequence.

@@ -95,17 +95,11 @@ Rgb MerlBrdf::eval(const Vec3& wi, const Vec3& wo) const {
 }
 
 BrdfSample MerlBrdf::sample(const Vec3& wo, double u1, double u2) const {
-  if (wo.z <= 0.0) return {};
-  BrdfSample s;
-  s.wi = sample_cosine_hemisphere(u1, u2);
-  s.pdf = s.wi.z / kPi;
-  s.f = eval(s.wi, wo);
-  return s;
+  return sample_by_cosine(*this, wo, u1, u2);
 }
 
 double MerlBrdf::pdf(const Vec3& wo, const Vec3& wi) const {
-  if (wo.z <= 0.0 || wi.z <= 0.0) return 0.0;
-  return wi.z / kPi;
+  return cosine_sampling_pdf(wo, wi);
 }
 
 }  // namespace prt::brdf

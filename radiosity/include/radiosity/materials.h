@@ -33,6 +33,9 @@ void apply_albedo(scene::Scene& scene, const std::vector<MaterialValue>& values)
 // emission, or an albedo outside [0, 1] (per-vertex albedo included).
 void check_materials(const scene::Scene& scene);
 
+// "(r, g, b)" with %g components: how the radiosity errors name a colour.
+std::string describe_colour(const glm::vec3& v);
+
 // True when some patch has an albedo component ≥ 1 (a closed scene then cannot be solved).
 bool has_unit_albedo(const scene::Scene& scene);
 

@@ -32,4 +32,11 @@ class Lambert final : public Brdf {
 // projected up); its pdf is cos θ / π.
 Vec3 sample_cosine_hemisphere(double u1, double u2);
 
+// Sampling of `f` by the cosine alone (Lambert, and MERL, whose measured lobe is not sampled):
+// wi = sample_cosine_hemisphere(u1, u2), pdf = cos θi / π, f = f.eval(wi, wo); an empty
+// sample (pdf 0) for wo at or below the horizon.
+BrdfSample sample_by_cosine(const Brdf& f, const Vec3& wo, double u1, double u2);
+// The pdf of sample_by_cosine: cos θi / π, 0 when wo or wi is at or below the horizon.
+double cosine_sampling_pdf(const Vec3& wo, const Vec3& wi);
+
 }  // namespace prt::brdf
