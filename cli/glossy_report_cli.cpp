@@ -10,8 +10,7 @@
 namespace prt::cli {
 
 void check_glossy_report_options(const GlossyReportRequest& r, const CLI::App& cmd) {
-  if (r.stability || r.radiosity)
-    throw UsageError("--glossy excludes --stability and --radiosity");
+  if (r.stability || r.radiosity) throw UsageError("--glossy excludes --stability and --radiosity");
   if (r.scene.empty() || r.environment.empty())
     throw UsageError("--glossy needs a SCENE and an ENV");
   for (const char* option :

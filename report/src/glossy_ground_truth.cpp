@@ -86,8 +86,8 @@ struct Surface {
     if (brdf) return brdf->sample(wo, u1, u2);
     brdf::BrdfSample s;
     if (wo.z <= 0) return s;
-    const glm::vec3 l = bake::sample_cosine_hemisphere(
-        glm::vec2(static_cast<float>(u1), static_cast<float>(u2)));
+    const glm::vec3 l =
+        bake::sample_cosine_hemisphere(glm::vec2(static_cast<float>(u1), static_cast<float>(u2)));
     s.wi = brdf::normalize({l.x, l.y, l.z});
     if (!(s.wi.z > 0)) return s;
     s.pdf = s.wi.z / kPi;
@@ -96,9 +96,13 @@ struct Surface {
   }
 };
 
-double channel(const Rgb& c, int i) { return i == 0 ? c.r : i == 1 ? c.g : c.b; }
+double channel(const Rgb& c, int i) {
+  return i == 0 ? c.r : i == 1 ? c.g : c.b;
+}
 
-bool positive(const Rgb& c) { return c.r > 0 || c.g > 0 || c.b > 0; }
+bool positive(const Rgb& c) {
+  return c.r > 0 || c.g > 0 || c.b > 0;
+}
 
 // A triangle's geometric normal, oriented to the side its vertex normals point to.
 glm::dvec3 oriented_face_normal(const scene::Scene& s, uint32_t tri) {
@@ -119,8 +123,8 @@ struct GlossyGroundTruthIntegrator::Impl {
   GlossyGroundTruthOptions options;
   EnvironmentSampler light;
   scene::RayCaster caster;
-  std::vector<glm::vec4> tangents;                         // scene::tangent_frames
-  std::vector<std::shared_ptr<const brdf::Brdf>> brdfs;    // per primitive (null: Lambert)
+  std::vector<glm::vec4> tangents;                       // scene::tangent_frames
+  std::vector<std::shared_ptr<const brdf::Brdf>> brdfs;  // per primitive (null: Lambert)
   std::vector<uint32_t> primitive_of_vertex, primitive_of_triangle;
   std::vector<double> sum, sum_squares;  // per vertex and channel: Σ x, Σ x²
   uint64_t rays = 0;
@@ -274,8 +278,8 @@ uint32_t GlossyGroundTruthIntegrator::Impl::sample_vertex(uint32_t v, uint64_t s
     const glm::vec3 hp = w0 * scene.positions[tri.x] + hit.u * scene.positions[tri.y] +
                          hit.v * scene.positions[tri.z];
     origin = caster.surface_origin(hit.triangle, hp, glm::vec3(ng));
-    surf = surface(primitive_of_triangle[hit.triangle],
-                   scene.albedo_at(hit.triangle, hit.u, hit.v));
+    surf =
+        surface(primitive_of_triangle[hit.triangle], scene.albedo_at(hit.triangle, hit.u, hit.v));
     frame = next;
     wo = wo_next;
   }

@@ -48,8 +48,8 @@ Setting base_glossy_setting(bool quick) {
 // One axis at a time around the base; a setting on several axes is one row (axes joined).
 std::vector<Setting> glossy_sweep(bool quick) {
   const Setting base = base_glossy_setting(quick);
-  const std::vector<int> orders = quick ? std::vector<int>{3, 4, 6, 8}
-                                        : std::vector<int>{2, 3, 4, 5, 6, 8, 10};
+  const std::vector<int> orders =
+      quick ? std::vector<int>{3, 4, 6, 8} : std::vector<int>{2, 3, 4, 5, 6, 8, 10};
   const std::vector<int> samples =
       quick ? std::vector<int>{64, 256, 1024} : std::vector<int>{64, 256, 1024, 4096};
   const std::vector<int> bounces = quick ? std::vector<int>{0, 1, 3} : std::vector<int>{0, 1, 2, 4};
@@ -76,11 +76,10 @@ std::vector<CpcaSize> glossy_cpca_sizes(bool quick) {
 // The camera's eye, and in full mode that eye turned by ±90° about the vertical through the
 // camera's target.
 std::vector<std::array<double, 3>> report_eyes(const scene::Scene& scene, bool quick) {
-  const relight::Camera cam = scene.cameras.empty()
-                                  ? relight::parse_camera("auto", scene, 16.f / 9.f)
-                                  : relight::Camera{scene.cameras[0].eye, scene.cameras[0].target,
-                                                    scene.cameras[0].up,
-                                                    scene.cameras[0].yfov_radians};
+  const relight::Camera cam =
+      scene.cameras.empty() ? relight::parse_camera("auto", scene, 16.f / 9.f)
+                            : relight::Camera{scene.cameras[0].eye, scene.cameras[0].target,
+                                              scene.cameras[0].up, scene.cameras[0].yfov_radians};
   std::vector<std::array<double, 3>> eyes{{cam.eye.x, cam.eye.y, cam.eye.z}};
   if (quick) return eyes;
   const glm::dvec3 d = glm::dvec3(cam.eye) - glm::dvec3(cam.target);
@@ -104,8 +103,8 @@ std::vector<uint32_t> pick_vertices(const scene::Scene& scene, const std::array<
   };
   if (scene.primitives.empty()) add_range(0, scene.vertex_count());
   for (const scene::ScenePrimitive& p : scene.primitives)
-    add_range(p.first_vertex,
-              std::min<std::size_t>(scene.vertex_count(), std::size_t(p.first_vertex) + p.vertex_count));
+    add_range(p.first_vertex, std::min<std::size_t>(scene.vertex_count(),
+                                                    std::size_t(p.first_vertex) + p.vertex_count));
   std::vector<uint32_t> out;
   if (facing.empty()) return out;
   const std::size_t share = std::max<std::size_t>(1, count / facing.size());
@@ -134,7 +133,8 @@ std::vector<char> grazing_flags(const scene::Scene& scene, const std::array<doub
   std::vector<char> out;
   for (uint32_t v : vertices) {
     const glm::dvec3 n = glm::normalize(glm::dvec3(scene.normals[v]));
-    const glm::dvec3 d = glm::normalize(glm::dvec3(e[0], e[1], e[2]) - glm::dvec3(scene.positions[v]));
+    const glm::dvec3 d =
+        glm::normalize(glm::dvec3(e[0], e[1], e[2]) - glm::dvec3(scene.positions[v]));
     out.push_back(glm::dot(n, d) < kGrazingCosine ? 1 : 0);
   }
   return out;
@@ -211,15 +211,16 @@ class Measurer {
 std::string describe_row(const GlossyReportRow& r) {
   char buf[256];
   if (r.clusters > 0)
-    std::snprintf(buf, sizeof buf, "CPCA %u clusters x %u vectors: %.3g MB, compress %.1f s, error %.2f%%",
-                  r.clusters, r.vectors, double(r.bytes) / 1e6, r.compress_seconds, 100 * r.relative_rms);
+    std::snprintf(
+        buf, sizeof buf, "CPCA %u clusters x %u vectors: %.3g MB, compress %.1f s, error %.2f%%",
+        r.clusters, r.vectors, double(r.bytes) / 1e6, r.compress_seconds, 100 * r.relative_rms);
   else
-    std::snprintf(buf, sizeof buf,
-                  "order %d, %d samples, %d bounce(s): bake %.1f s, %.3g MB, error %.2f%%",
-                  r.order, r.samples, r.bounces, r.bake_seconds, double(r.bytes) / 1e6,
-                  100 * r.relative_rms);
+    std::snprintf(
+        buf, sizeof buf, "order %d, %d samples, %d bounce(s): bake %.1f s, %.3g MB, error %.2f%%",
+        r.order, r.samples, r.bounces, r.bake_seconds, double(r.bytes) / 1e6, 100 * r.relative_rms);
   std::string line = buf;
-  std::snprintf(buf, sizeof buf, " (non-grazing %.2f%%); per primitive", 100 * r.relative_rms_non_grazing);
+  std::snprintf(buf, sizeof buf, " (non-grazing %.2f%%); per primitive",
+                100 * r.relative_rms_non_grazing);
   line += buf;
   for (double e : r.primitive_rms) {
     std::snprintf(buf, sizeof buf, " %.1f%%", 100 * e);
@@ -315,8 +316,9 @@ void sweep_cpca(const GlossyReportOptions& o, const GlossyTransferData& base,
 }  // namespace
 
 std::vector<std::string> glossy_report_file_names() {
-  return {"results.csv", "pareto.svg", "pareto.png", "error_vs_bake_time.svg",
-          "error_vs_bake_time.png", "summary.md"};
+  return {
+      "results.csv", "pareto.svg", "pareto.png", "error_vs_bake_time.svg", "error_vs_bake_time.png",
+      "summary.md"};
 }
 
 GlossyReportResult run_glossy_report(const GlossyReportOptions& o) {

@@ -115,8 +115,8 @@ std::string summary_md(const GlossyReportOptions& o, const GlossyReportResult& r
         "importance sampling and BRDF sampling combined by the balance heuristic, interreflection "
         "up to 64 bounces with Russian roulette) toward ";
   for (std::size_t i = 0; i < result.eyes.size(); ++i)
-    md << (i ? ", " : "") << "(" << fixed(result.eyes[i][0], 2) << ", " << fixed(result.eyes[i][1], 2)
-       << ", " << fixed(result.eyes[i][2], 2) << ")";
+    md << (i ? ", " : "") << "(" << fixed(result.eyes[i][0], 2) << ", "
+       << fixed(result.eyes[i][1], 2) << ", " << fixed(result.eyes[i][2], 2) << ")";
   md << ": " << result.vertices_per_eye << " vertices per eye (an equal share of each "
      << "primitive's vertices facing the eye), up to " << result.ground_truth_samples
      << " samples per vertex, relative RMS standard error **"
@@ -129,7 +129,8 @@ std::string summary_md(const GlossyReportOptions& o, const GlossyReportResult& r
         "P: on the Pareto front of error against storage (s) or against bake time (t). The error "
         "over each primitive's vertices alone is in results.csv.\n\n"
      << "| axis | setting | channels | storage | bake | compress | relighter | shade | error | "
-        "non-grazing | CPCA matrix error | P |\n|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+        "non-grazing | CPCA matrix error | P "
+        "|\n|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const GlossyReportRow& r : result.rows)
     md << "| " << r.axis << " | "
        << (r.clusters ? "CPCA " + std::to_string(r.clusters) + " clusters x " +
@@ -137,12 +138,12 @@ std::string summary_md(const GlossyReportOptions& o, const GlossyReportResult& r
                       : "order " + std::to_string(r.order) + ", " + std::to_string(r.samples) +
                             " samples, " + std::to_string(r.bounces) + " bounce(s)")
        << " | " << r.channels << " | " << fixed(double(r.bytes) / 1e6, 2) << " MB | "
-       << fixed(r.bake_seconds, 1) << " s | " << (r.clusters ? fixed(r.compress_seconds, 1) + " s" : "")
-       << " | " << fixed(r.relighter_seconds, 2) << " s | " << fixed(r.shade_seconds * 1e3, 1)
-       << " ms | **" << percent(r.relative_rms) << "** | " << percent(r.relative_rms_non_grazing)
-       << " | "
-       << (r.clusters ? percent(r.cpca_matrix_error) : "") << " | "
-       << (r.front_storage ? "s" : "") << (r.front_bake_time ? "t" : "") << " |\n";
+       << fixed(r.bake_seconds, 1) << " s | "
+       << (r.clusters ? fixed(r.compress_seconds, 1) + " s" : "") << " | "
+       << fixed(r.relighter_seconds, 2) << " s | " << fixed(r.shade_seconds * 1e3, 1) << " ms | **"
+       << percent(r.relative_rms) << "** | " << percent(r.relative_rms_non_grazing) << " | "
+       << (r.clusters ? percent(r.cpca_matrix_error) : "") << " | " << (r.front_storage ? "s" : "")
+       << (r.front_bake_time ? "t" : "") << " |\n";
   md << "\n![error against storage](pareto.svg)\n\n![error against bake time]"
         "(error_vs_bake_time.svg)\n";
   return md.str();

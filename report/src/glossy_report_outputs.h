@@ -19,8 +19,9 @@ struct GlossyLog {
   void operator()(const std::string& line) const {
     if (!sink) return;
     char stamp[48];
-    std::snprintf(stamp, sizeof stamp, "[glossy report %6.1fs] ",
-                  std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count());
+    std::snprintf(
+        stamp, sizeof stamp, "[glossy report %6.1fs] ",
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count());
     sink(stamp + line);
   }
 };

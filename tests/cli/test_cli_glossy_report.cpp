@@ -27,8 +27,8 @@ struct ReportInputs {
 // enough light that the SH order matters more than anything else.
 ReportInputs make_inputs(const fs::path& dir) {
   ReportInputs in{dir / "scene.glb", dir / "sky.hdr"};
-  prt::scene::Scene scene = prt::scene::make_quad({-2, 0, 2}, {4, 0, 0}, {0, 0, -4}, 6, 6,
-                                                  glm::vec3(0.6f), "floor");
+  prt::scene::Scene scene =
+      prt::scene::make_quad({-2, 0, 2}, {4, 0, 0}, {0, 0, -4}, 6, 6, glm::vec3(0.6f), "floor");
   prt::scene::Scene ball =
       prt::scene::make_uv_sphere({0, 0.6f, 0}, 0.6f, 8, 16, false, glm::vec3(0.8f), "ball");
   prt::brdf::Material gold;
@@ -96,8 +96,7 @@ TEST_CASE("cli: prt report --glossy --quick measures every setting against the g
     const double e = std::stod(row.at("relative_rms"));
     CHECK(std::isfinite(e));
     CHECK(e > 0);
-    if (row.at("axis").find("order") != std::string::npos)
-      by_order[std::stoi(row.at("order"))] = e;
+    if (row.at("axis").find("order") != std::string::npos) by_order[std::stoi(row.at("order"))] = e;
     if (row.at("axis").find("order") != std::string::npos && row.at("order") == "6")
       base_bytes = std::stod(row.at("bytes"));
   }
@@ -135,9 +134,9 @@ TEST_CASE("cli: prt report --glossy refuses bad input with one line and writes n
   require_one_line_error(run(base + inputs + " -o " + out + " --layout latlong"), "--layout");
   require_one_line_error(run(base + inputs + " -o " + out + " --haar-cubes 8"), "--haar-cubes");
   require_one_line_error(run(base + inputs + " -o " + out + " --emission a=1,1,1"), "--emission");
-  require_one_line_error(run(base + (dir / "missing.glb").string() + " " + in.env.string() +
-                             " -o " + out),
-                         "missing.glb");
+  require_one_line_error(
+      run(base + (dir / "missing.glb").string() + " " + in.env.string() + " -o " + out),
+      "missing.glb");
   const fs::path bad_env = dir / "bad.hdr";
   {
     std::ofstream f(bad_env);

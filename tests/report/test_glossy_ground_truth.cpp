@@ -143,8 +143,8 @@ TEST_CASE("glossy ground truth in a white furnace equals the directional albedo 
   // (cos θ_i, φ_i) grid, checked converged against 600 × 1200 (relative 2e-3). Tolerance:
   // 4 SE + 2e-3 of a (quadrature).
   const prt::brdf::Material materials[] = {
-      microfacet(prt::brdf::Rgb{0.95, 0.74, 0.33}, prt::brdf::grey(0), 0.25, 0.25),  // gold
-      microfacet(prt::brdf::Rgb{0.9, 0.9, 0.88}, prt::brdf::grey(0), 0.684, 0.1225),  // brushed
+      microfacet(prt::brdf::Rgb{0.95, 0.74, 0.33}, prt::brdf::grey(0), 0.25, 0.25),    // gold
+      microfacet(prt::brdf::Rgb{0.9, 0.9, 0.88}, prt::brdf::grey(0), 0.684, 0.1225),   // brushed
       microfacet(prt::brdf::grey(0.04), prt::brdf::Rgb{0.7, 0.08, 0.06}, 0.09, 0.09),  // plastic
   };
   prt::sh::EnvMap env;
@@ -172,9 +172,9 @@ TEST_CASE("glossy ground truth in a white furnace equals the directional albedo 
         const prt::brdf::Rgb coarse = albedo_by_quadrature(*made.value(), wo, 600);
         for (int c = 0; c < 3; ++c) {
           const double a = channel(fine, c);
-          INFO(prt::brdf::describe(material) << " vertex " << v << " channel " << c << " a " << a
-                                             << " ground truth " << r.radiance[3 * v + c]
-                                             << " SE " << r.standard_error[3 * v + c]);
+          INFO(prt::brdf::describe(material)
+               << " vertex " << v << " channel " << c << " a " << a << " ground truth "
+               << r.radiance[3 * v + c] << " SE " << r.standard_error[3 * v + c]);
           REQUIRE(std::abs(channel(coarse, c) - a) <= 2e-3 * a + 1e-9);
           CHECK(std::abs(r.radiance[3 * v + c] - a) <= 4 * r.standard_error[3 * v + c] + 2e-3 * a);
         }
@@ -191,8 +191,8 @@ TEST_CASE("unshadowed glossy sphere under band-limited light agrees with the glo
   // vertex and channel |relit − truth| ≤ 4.5 SE + 3e-3 · truth (~80 vertices whose three
   // channels share their paths; measured worst 0.82 of the bound).
   constexpr int kLightOrder = 5, kOrder = 8;
-  Scene scene = prt::scene::make_uv_sphere(glm::vec3(0), 1.f, 12, 24, false, glm::vec3(0.5f),
-                                           "sphere");
+  Scene scene =
+      prt::scene::make_uv_sphere(glm::vec3(0), 1.f, 12, 24, false, glm::vec3(0.5f), "sphere");
   scene.primitives[0].brdf = microfacet(prt::brdf::grey(0.9), prt::brdf::grey(0.1), 0.3, 0.3);
   // Positive lighting: a constant, a lobe and fixed small coefficients.
   std::vector<double> coeffs(3 * kLightOrder * kLightOrder, 0.0);

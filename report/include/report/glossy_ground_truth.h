@@ -57,9 +57,9 @@ namespace prt::report {
 
 struct GlossyGroundTruthOptions {
   std::array<double, 3> eye{0.0, 0.0, 0.0};  // scene frame, scene units
-  int max_bounces = 64;                       // reflections after the vertex
-  int initial_samples = 64;                   // samples per vertex of the first pass
-  int max_samples = 1 << 16;                  // refine() stops doubling here
+  int max_bounces = 64;                      // reflections after the vertex
+  int initial_samples = 64;                  // samples per vertex of the first pass
+  int max_samples = 1 << 16;                 // refine() stops doubling here
   double target_relative_se = 0.01;
   uint64_t seed = 1;
   int threads = 0;  // 0 = all hardware threads

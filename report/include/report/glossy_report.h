@@ -61,8 +61,8 @@ struct GlossyReportRow {
   double bake_seconds = 0, compress_seconds = 0, relighter_seconds = 0, shade_seconds = 0;
   double relative_rms = 0;
   double relative_rms_non_grazing = 0;  // the same without views within ~6° of the tangent plane
-  double cpca_matrix_error = 0;  // CPCA: relative RMS of the reconstructed matrices
-  std::vector<double> primitive_rms;  // the error over each primitive's vertices alone
+  double cpca_matrix_error = 0;         // CPCA: relative RMS of the reconstructed matrices
+  std::vector<double> primitive_rms;    // the error over each primitive's vertices alone
   bool front_storage = false, front_bake_time = false;  // Pareto-optimal (error vs that cost)
 };
 
