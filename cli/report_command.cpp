@@ -12,6 +12,8 @@
 // count × solver, against a path-traced ground truth (report/radiosity_report.h).
 // `prt report --sun-study -o DIR [--quick] [--roughness LIST] ...`: where SH fails, a sun on
 // glossy surfaces (report_sun_study.h, report/sun_study.h).
+// `prt report --glossy SCENE ENV -o DIR [--quick] [--seed S]`: glossy PRT error against cost
+// (order, samples, bounces, CPCA size) against the glossy ground truth (cli/glossy_report_cli.h).
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -26,9 +28,11 @@
 
 #include "cli_parsing.h"
 #include "command_registry.h"
+#include "glossy_report_cli.h"
 #include "output_safety.h"
 #include "progress_reporter.h"
 #include "radiosity/materials.h"
+#include "report/glossy_report.h"
 #include "report/radiosity_report.h"
 #include "report/report.h"
 #include "report/stability_report.h"
@@ -39,7 +43,7 @@ namespace {
 
 struct ReportArguments {
   std::string scene, environment, output, layout = "auto", haar_cubes, auto_tolerances;
-  bool quick = false, stability = false, quiet = false, radiosity = false;
+  bool quick = false, stability = false, quiet = false, radiosity = false, glossy = false;
   uint64_t seed = 1;
   double budget = 110;
   // --radiosity
@@ -118,11 +122,19 @@ std::optional<std::vector<double>> parse_auto_tolerances(const std::string& text
                             });
 }
 
+GlossyReportRequest glossy_request(const ReportArguments& a) {
+  return {a.scene, a.environment, a.output, a.quick, a.quiet, a.stability, a.radiosity, a.seed};
+}
+
 // Options that do not apply are refused by name; values out of range too.
 void check_options(const ReportArguments& a, const CLI::App& cmd) {
   if (!a.radiosity)
     for (const char* option : kRadiosityOnly)
       if (cmd.count(option) > 0) throw UsageError(std::string(option) + " needs --radiosity");
+  if (a.glossy) {
+    check_glossy_report_options(glossy_request(a), cmd);
+    return;
+  }
   if (a.radiosity) {
     if (a.stability) throw UsageError("--radiosity and --stability exclude each other");
     if (a.scene.empty() || !a.environment.empty())
@@ -163,7 +175,8 @@ void check_files(const ReportArguments& a) {
   if (!a.scene.empty()) files.add_scene(a.scene);
   if (!a.environment.empty()) files.add_environment(a.environment);
   files.add_output("-o", a.output);
-  const std::vector<std::string> names = a.stability   ? prt::report::stability_file_names()
+  const std::vector<std::string> names = a.glossy      ? prt::report::glossy_report_file_names()
+                                         : a.stability ? prt::report::stability_file_names()
                                          : a.radiosity ? prt::report::radiosity_report_file_names()
                                                        : prt::report::report_file_names();
   for (const std::string& name : names)
@@ -241,6 +254,7 @@ std::string other_mode_argument(const ReportArguments& a, const CLI::App& cmd) {
   if (!a.environment.empty()) return "ENV '" + a.environment + "'";
   if (a.stability) return "--stability";
   if (a.radiosity) return "--radiosity";
+  if (a.glossy) return "--glossy";
   for (const char* option : kRadiosityOnly)
     if (cmd.count(option) > 0) return option;
   for (const char* option : kEnvironmentOnly)
@@ -257,6 +271,10 @@ void run(const ReportArguments& a, const CLI::App& cmd) {
   refuse_sun_study_options(cmd);
   check_options(a, cmd);
   check_files(a);
+  if (a.glossy) {
+    run_glossy_report_command(glossy_request(a));
+    return;
+  }
   if (a.radiosity) {
     run_radiosity(a);
     return;
@@ -299,6 +317,9 @@ void register_report(CLI::App& app) {
   cmd->add_flag("--radiosity", args->radiosity,
                 "Radiosity (form factors x patches x solver) against a path-traced ground truth "
                 "of the scene's own emitters; no ENV");
+  cmd->add_flag("--glossy", args->glossy,
+                "Glossy PRT (order, samples, bounces, CPCA size) against a path-traced glossy "
+                "ground truth of the scene's materials");
   cmd->add_option("--emission", args->emission,
                   "--radiosity: MATERIAL=r,g,b emission of a material (repeatable)");
   cmd->add_option("--albedo", args->albedo,
