@@ -193,7 +193,7 @@ TEST_CASE("cli: glossy relight --material: bad overrides are one-line errors, no
 }
 
 TEST_CASE(
-    "cli: textured roughness reaches the glossy file; a missing texture stops the glossy "
+    "cli: textured roughness reaches the glossy file, and a missing texture stops the glossy "
     "bake only",
     "[cli][materials]") {
   const fs::path dir = scratch("glossy_mr_texture");
