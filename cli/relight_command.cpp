@@ -1,6 +1,7 @@
 // `prt relight SCENE FILE.prt ENV -o OUT.(exr|png|hdr) [...]`: shade a baked scene under an
 // environment map and render it (relight/relight_pipeline.h does the work; glossy files:
-// relight/glossy_relight.h, with --eye for the CSV and vertex colours and --turntable-orbit);
+// relight/glossy_relight.h, with --eye for the CSV and vertex colours, --turntable-orbit and
+// --material, relight/glossy_material_override.h);
 // also `prt relight RESPONSES.prte -o OUT` and `--emitters RESPONSES.prte` (emitter_cli.h).
 #include <cctype>
 #include <cmath>
@@ -19,6 +20,7 @@
 #include "emitter_cli.h"
 #include "glossy_cli.h"
 #include "haar_cli.h"
+#include "material_option.h"
 #include "output_safety.h"
 #include "prt/emitter_responses.h"
 #include "progress_reporter.h"
@@ -51,6 +53,7 @@ struct RelightArguments {
   EmitterRelightArguments emitters;      // --emitter, --emitters, --max-edge (emitter_cli.h)
   std::string eye;                       // glossy files: x,y,z for --csv and --vertex-colors
   std::string turntable_orbit = "both";  // glossy files: both | camera | light
+  std::vector<std::string> materials;    // glossy files: --material (cli/material_option.h)
 };
 
 glm::vec3 parse_eye(const std::string& text) {
@@ -122,6 +125,9 @@ void check_options(const RelightArguments& args, const CLI::App& cmd) {
   // by check_files, an unreadable one by the pipeline).
   if (!std::filesystem::exists(args.transfer)) return;
   const bool glossy = is_glossy_file(args.transfer);
+  if (!glossy && given("--material"))
+    throw UsageError("--material applies to glossy files (and to prt bake); " + args.transfer +
+                     " is not one (its materials are baked into its coefficients)");
   for (const char* option : {"--eye", "--turntable-orbit"})
     if (!glossy && given(option))
       throw UsageError(std::string(option) + " applies to glossy files; " + args.transfer +
@@ -196,7 +202,7 @@ void check_responses_alone(const RelightArguments& args, const CLI::App& cmd) {
     throw UsageError(args.scene + " holds emitter responses: give it alone (prt relight " +
                      "RESPONSES.prte -o OUT), or add it to an SH relight with --emitters");
   for (const char* option : {"--layout", "--rotate", "--window", "--window-strength", "--turntable",
-                             "--terms", "--approx"})
+                             "--terms", "--approx", "--material"})
     if (cmd.count(option) > 0)
       throw UsageError(std::string(option) +
                        " does not apply to emitter responses (no "
@@ -216,6 +222,7 @@ void run(const RelightArguments& args, const CLI::App& cmd) {
   }
   check_options(args, cmd);
   check_files(args);
+  const std::vector<scene::MaterialOverride> overrides = parse_material_options(args.materials);
   relight::RelightRequest request;
   request.scene_path = args.scene;
   request.transfer_path = responses ? args.scene : args.transfer;
@@ -259,6 +266,7 @@ void run(const RelightArguments& args, const CLI::App& cmd) {
     glossy.turntable = args.turntable_orbit == "camera"  ? relight::GlossyTurntable::kCamera
                        : args.turntable_orbit == "light" ? relight::GlossyTurntable::kLight
                                                          : relight::GlossyTurntable::kBoth;
+    glossy.material_overrides = overrides;
     summary = relight::run_glossy_relight(request, glossy);
   } else {
     summary = relight::run_relight(request);
@@ -331,6 +339,13 @@ void register_relight(CLI::App& app) {
   cmd->add_option("--eye", args->eye,
                   "Glossy files: the eye point x,y,z (scene units) toward which --csv and "
                   "--vertex-colors are shaded (images use the camera's eye)");
+  cmd->add_option("--material", args->materials,
+                  "Glossy files: replace a material's BRDF for shading, without baking again: "
+                  "NAME=MODEL[:KEY=VALUE,...] as for prt bake --material. Only the vertex's own "
+                  "BRDF changes; light interreflected in the bake stays as baked (with the "
+                  "baked materials) and so do the tangent frames. Repeatable")
+      ->take_all()
+      ->allow_extra_args(false);
   cmd->add_flag("--quiet", args->quiet, "No summary (warnings still go to stderr)");
   add_haar_relight_options(cmd, &args->haar);
   add_emitter_relight_options(cmd, &args->emitters);

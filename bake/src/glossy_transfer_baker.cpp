@@ -23,6 +23,7 @@
 #include "scene/ray_caster.h"
 #include "scene/scene_label.h"
 #include "scene/tangent_frames.h"
+#include "scene/vertex_materials.h"
 #include "sh/basis.h"
 #include "sh/constants.h"
 #include "sh/zonal.h"
@@ -59,26 +60,6 @@ struct BlockHits {
 
 bool grey(const brdf::Rgb& c) {
   return c.r == c.g && c.g == c.b;
-}
-
-bool same_rgb(const brdf::Rgb& a, const brdf::Rgb& b) {
-  return a.r == b.r && a.g == b.g && a.b == b.b;
-}
-
-// Every field equal (then one material serves both primitives).
-bool same_material(const brdf::Material& a, const brdf::Material& b) {
-  return a.model == b.model && same_rgb(a.diffuse, b.diffuse) && same_rgb(a.specular, b.specular) &&
-         a.exponent == b.exponent && a.alpha_x == b.alpha_x && a.alpha_y == b.alpha_y &&
-         a.ward_form == b.ward_form && a.distribution == b.distribution && a.fresnel == b.fresnel &&
-         a.eta == b.eta && a.merl_path == b.merl_path;
-}
-
-// Index of `m` in `materials`, appended when new.
-uint32_t material_index(std::vector<brdf::Material>& materials, const brdf::Material& m) {
-  for (std::size_t i = 0; i < materials.size(); ++i)
-    if (same_material(materials[i], m)) return static_cast<uint32_t>(i);
-  materials.push_back(m);
-  return static_cast<uint32_t>(materials.size() - 1);
 }
 
 // The bounces' b(ω_o) of a material: the runtime's projection (prt/brdf_projection.h), so the
@@ -430,6 +411,8 @@ int glossy_channels(const scene::Scene& scene, const std::vector<brdf::Material>
 
 void validate_glossy_options(const scene::Scene& scene, const GlossyBakeOptions& o) {
   const std::string name = scene::scene_label(scene);
+  for (const scene::ScenePrimitive& p : scene.primitives)
+    if (!p.brdf_texture_problem.empty()) throw BakeError(name + ": " + p.brdf_texture_problem);
   if (o.order < 1 || o.order > kMaxGlossyBakeOrder)
     throw BakeError(name + ": glossy SH order " + std::to_string(o.order) + " is outside [1, " +
                     std::to_string(kMaxGlossyBakeOrder) + "]");
@@ -512,29 +495,7 @@ void store_geometry(const scene::Scene& scene, const GlossyJob& job, prt::Glossy
 
 void glossy_scene_materials(const scene::Scene& scene, std::vector<brdf::Material>& materials,
                             std::vector<uint32_t>& material_of_vertex) {
-  materials.clear();
-  const uint32_t none = std::numeric_limits<uint32_t>::max();
-  material_of_vertex.assign(scene.vertex_count(), none);
-  for (const scene::ScenePrimitive& p : scene.primitives) {
-    brdf::Material m;
-    if (p.brdf) {
-      m = *p.brdf;
-    } else {
-      m.model = brdf::MaterialModel::kLambert;
-      m.diffuse = {p.albedo.x, p.albedo.y, p.albedo.z};
-    }
-    const uint32_t index = material_index(materials, m);
-    const std::size_t end =
-        std::min<std::size_t>(scene.vertex_count(), std::size_t(p.first_vertex) + p.vertex_count);
-    for (std::size_t v = p.first_vertex; v < end; ++v) material_of_vertex[v] = index;
-  }
-  for (std::size_t v = 0; v < material_of_vertex.size(); ++v) {
-    if (material_of_vertex[v] != none) continue;
-    brdf::Material m;
-    const glm::vec3 a = scene.albedo.empty() ? glm::vec3(scene::kDefaultAlbedo) : scene.albedo[v];
-    m.diffuse = {a.x, a.y, a.z};
-    material_of_vertex[v] = material_index(materials, m);
-  }
+  scene::vertex_materials(scene, materials, material_of_vertex);
 }
 
 GlossyBakeResult bake_glossy_transfer(const scene::Scene& scene, const GlossyBakeOptions& o,

@@ -12,6 +12,7 @@
 #include "prt/geometry_check.h"
 #include "prt/glossy_transfer_file.h"
 #include "relight/environment_input.h"
+#include "relight/glossy_material_override.h"
 #include "relight_frames.h"
 #include "scene/scene_loader.h"
 #include "sh/rotation.h"
@@ -118,6 +119,7 @@ RelightSummary run_glossy_relight(const RelightRequest& request,
   RelightSummary summary;
   const scene::Scene scene = scene::load_scene(request.scene_path);
   prt::GlossyTransferData data = load_glossy_for_scene(request.transfer_path, scene);
+  override_glossy_materials(data, scene, options.material_overrides);
   EnvironmentUse use;
   use.sh_order = static_cast<int>(data.order);
   EnvironmentInput input = read_checked_environment(request.environment_path, request.layout, use);

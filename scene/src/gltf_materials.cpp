@@ -38,10 +38,14 @@ brdf::Rgb rgb(const glm::dvec3& c) {
 }  // namespace
 
 GltfBrdf gltf_brdf(const std::string& path, const tinygltf::Material& m,
-                   const glm::vec3& base_color) {
+                   const glm::vec3& base_color, const glm::dvec2* roughness_metalness) {
   const tinygltf::PbrMetallicRoughness& pbr = m.pbrMetallicRoughness;
-  const double metallic = checked(path, m, "metallicFactor", pbr.metallicFactor, 0.0, 1.0);
-  const double roughness = checked(path, m, "roughnessFactor", pbr.roughnessFactor, 0.0, 1.0);
+  double metallic = checked(path, m, "metallicFactor", pbr.metallicFactor, 0.0, 1.0);
+  double roughness = checked(path, m, "roughnessFactor", pbr.roughnessFactor, 0.0, 1.0);
+  if (roughness_metalness) {
+    roughness = std::clamp(roughness_metalness->x, 0.0, 1.0);
+    metallic = std::clamp(roughness_metalness->y, 0.0, 1.0);
+  }
 
   double f0_ior = 0.04;
   if (const tinygltf::Value* ior = find_extension(m, "KHR_materials_ior")) {

@@ -17,8 +17,11 @@
 // material object with no pbrMetallicRoughness is a rough (α = 1) white metal. (A primitive with
 // NO material keeps prt's Lambert 0.8 grey, see scene/scene_loader.h.)
 // Departures from the spec, stated: the Lambert layer is added to the lobe (the spec weights it
-// by 1 − F); specularFactor scales F0 but f90 stays 1; textures (metallicRoughnessTexture,
-// specular and anisotropy textures) are not read: their factors are used alone.
+// by 1 − F); specularFactor scales F0 but f90 stays 1; the specular and anisotropy textures are
+// not read (their factors are used alone). metallicRoughnessTexture is read by the loader
+// (per-vertex variants, scene/brdf_variants.h), which passes each variant's roughness and
+// metalness (factor × texture) here in place of the factors; baseColor stays the primitive's
+// (the texture's mean), so a textured metal's F0 does not follow its base-colour texture.
 // Plain Lambert (no BRDF set) when metallic = 0 and either F0 = 0 (specularFactor 0: the spec's
 // pure diffuse) or roughness = 1 with no KHR_materials_specular (prt's convention for a matte
 // surface: what prt's own writer and most exporters write for a diffuse material).
@@ -47,7 +50,9 @@ struct GltfBrdf {
 // The smallest α the loader writes (prt::brdf's roughness floor).
 inline constexpr double kGltfMinAlpha = 1e-3;
 
+// `roughness_metalness`, when given, replaces roughnessFactor and metallicFactor (clamped to
+// [0, 1]); the factors are still checked.
 GltfBrdf gltf_brdf(const std::string& path, const tinygltf::Material& material,
-                   const glm::vec3& base_color);
+                   const glm::vec3& base_color, const glm::dvec2* roughness_metalness = nullptr);
 
 }  // namespace prt::scene::detail

@@ -1,4 +1,5 @@
-// scene/src/gltf_textures.cpp — base-colour textures of glTF files (gltf_textures.h).
+// scene/src/gltf_textures.cpp — base-colour and metallic-roughness textures of glTF files
+// (gltf_textures.h).
 #include "gltf_textures.h"
 
 #include <cctype>
@@ -51,9 +52,9 @@ bool keep_image_bytes(tinygltf::Image* image, int, std::string*, std::string*, i
 GltfTextures::GltfTextures(const std::string& path, const tinygltf::Model& model)
     : path_(path), model_(model) {}
 
-std::shared_ptr<const TextureImage> GltfTextures::image(int index) {
-  if (const auto it = images_.find(index); it != images_.end()) return it->second;
-  std::shared_ptr<const TextureImage>& slot = images_[index];
+const GltfTextures::CachedImage& GltfTextures::image(int index, bool srgb) {
+  if (const auto it = images_.find({index, srgb}); it != images_.end()) return it->second;
+  CachedImage& slot = images_[{index, srgb}];
   const tinygltf::Image& image = model_.images[static_cast<std::size_t>(index)];
   const std::string label =
       "image " + std::to_string(index) + (image.name.empty() ? "" : " '" + image.name + "'");
@@ -69,24 +70,38 @@ std::shared_ptr<const TextureImage> GltfTextures::image(int index) {
           model_.buffers[static_cast<std::size_t>(view.buffer)].data;
       if (view.byteOffset > data.size() || view.byteLength > data.size() - view.byteOffset)
         throw std::runtime_error(label + ": its buffer view lies outside its buffer");
-      slot = load_texture_bytes(data.data() + view.byteOffset, view.byteLength, label);
+      slot.image = load_texture_bytes(data.data() + view.byteOffset, view.byteLength, label, srgb);
     } else if (image.uri.rfind("data:", 0) == 0) {
-      slot = load_texture_bytes(image.image.data(), image.image.size(), label + " (data URI)");
+      slot.image =
+          load_texture_bytes(image.image.data(), image.image.size(), label + " (data URI)", srgb);
     } else {
       const std::string file =
           (std::filesystem::path(path_).parent_path() / decode_uri(image.uri)).string();
       std::error_code ec;
       if (!image.image.empty())
-        slot = load_texture_bytes(image.image.data(), image.image.size(), file);
+        slot.image = load_texture_bytes(image.image.data(), image.image.size(), file, srgb);
       else if (std::filesystem::is_regular_file(file, ec))
-        slot = load_texture_file(file);
+        slot.image = load_texture_file(file, srgb);
       else
-        missing_.insert(file);
+        slot.missing_file = file;
     }
   } catch (const std::runtime_error& e) {
-    problems_.insert(e.what());
+    slot.problem = e.what();
   }
   return slot;
+}
+
+const tinygltf::Texture* GltfTextures::texture(int index, std::string* problem) const {
+  if (index >= static_cast<int>(model_.textures.size())) {
+    *problem = "texture " + std::to_string(index) + " does not exist";
+    return nullptr;
+  }
+  const tinygltf::Texture& texture = model_.textures[static_cast<std::size_t>(index)];
+  if (texture.source < 0 || texture.source >= static_cast<int>(model_.images.size())) {
+    *problem = "texture " + std::to_string(index) + " has no image";
+    return nullptr;
+  }
+  return &texture;
 }
 
 std::optional<BaseColorTexture> GltfTextures::base_color(int material) {
@@ -95,22 +110,47 @@ std::optional<BaseColorTexture> GltfTextures::base_color(int material) {
       model_.materials[static_cast<std::size_t>(material)].pbrMetallicRoughness;
   const tinygltf::TextureInfo& info = pbr.baseColorTexture;
   if (info.index < 0) return std::nullopt;
-  if (info.index >= static_cast<int>(model_.textures.size())) {
-    problems_.insert("texture " + std::to_string(info.index) + " does not exist");
+  std::string problem;
+  const tinygltf::Texture* texture = this->texture(info.index, &problem);
+  if (!texture) {
+    problems_.insert(problem);
     return std::nullopt;
   }
-  const tinygltf::Texture& texture = model_.textures[static_cast<std::size_t>(info.index)];
-  if (texture.source < 0 || texture.source >= static_cast<int>(model_.images.size())) {
-    problems_.insert("texture " + std::to_string(info.index) + " has no image");
+  const CachedImage& cached = image(texture->source, /*srgb=*/true);
+  if (!cached.image) {
+    if (!cached.missing_file.empty()) missing_.insert(cached.missing_file);
+    if (!cached.problem.empty()) problems_.insert(cached.problem);
     return std::nullopt;
   }
   BaseColorTexture out;
-  out.image = image(texture.source);
-  if (!out.image) return std::nullopt;
-  if (texture.sampler >= 0 && texture.sampler < static_cast<int>(model_.samplers.size()))
-    out.sampler = sampler_of(model_.samplers[static_cast<std::size_t>(texture.sampler)]);
+  out.image = cached.image;
+  if (texture->sampler >= 0 && texture->sampler < static_cast<int>(model_.samplers.size()))
+    out.sampler = sampler_of(model_.samplers[static_cast<std::size_t>(texture->sampler)]);
   const std::vector<double>& f = pbr.baseColorFactor;
   if (f.size() >= 3) out.factor = glm::vec3(glm::dvec3(f[0], f[1], f[2]));
+  out.texcoord = info.texCoord;
+  return out;
+}
+
+std::optional<GltfTextures::ParameterTexture> GltfTextures::metallic_roughness(
+    int material, std::string* problem) {
+  problem->clear();
+  if (material < 0 || material >= static_cast<int>(model_.materials.size())) return std::nullopt;
+  const tinygltf::TextureInfo& info = model_.materials[static_cast<std::size_t>(material)]
+                                          .pbrMetallicRoughness.metallicRoughnessTexture;
+  if (info.index < 0) return std::nullopt;
+  const tinygltf::Texture* texture = this->texture(info.index, problem);
+  if (!texture) return std::nullopt;
+  const CachedImage& cached = image(texture->source, /*srgb=*/false);
+  if (!cached.image) {
+    *problem =
+        cached.missing_file.empty() ? cached.problem : cached.missing_file + ": no such file";
+    return std::nullopt;
+  }
+  ParameterTexture out;
+  out.image = cached.image;
+  if (texture->sampler >= 0 && texture->sampler < static_cast<int>(model_.samplers.size()))
+    out.sampler = sampler_of(model_.samplers[static_cast<std::size_t>(texture->sampler)]);
   out.texcoord = info.texCoord;
   return out;
 }

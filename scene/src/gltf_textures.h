@@ -10,6 +10,8 @@
 // An image that cannot be used (missing file, not PNG/JPEG, corrupt, too large) is not an error:
 // real assets are often shipped without their textures. Its materials fall back to their
 // baseColorFactor, and report() prints one warning line per problem, naming the image.
+// The metallicRoughnessTexture (linear data, not sRGB: G = roughness, B = metalness) is read
+// the same way; its problems come back to the caller, which records them on the primitive.
 #pragma once
 
 #include <tiny_gltf.h>
@@ -37,15 +39,33 @@ class GltfTextures {
   // none or its image cannot be used.
   std::optional<BaseColorTexture> base_color(int material);
 
+  // A material parameter texture: image (linear), sampler and texCoord set.
+  struct ParameterTexture {
+    std::shared_ptr<const TextureImage> image;
+    TextureSampler sampler;
+    int texcoord = 0;
+  };
+
+  // The metallicRoughnessTexture of material `material`: nullopt when it has none, or when it
+  // cannot be used, then with *problem set to one line naming the image file (or index).
+  std::optional<ParameterTexture> metallic_roughness(int material, std::string* problem);
+
   // One warning line on stderr per image that could not be used (missing files in one line).
   void report() const;
 
  private:
-  std::shared_ptr<const TextureImage> image(int index);
+  struct CachedImage {
+    std::shared_ptr<const TextureImage> image;  // null: unusable
+    std::string missing_file, problem;          // why, when unusable
+  };
+  // Image `index` decoded as sRGB-encoded colour or as linear data, once.
+  const CachedImage& image(int index, bool srgb);
+  // The texture `index` refers to, checked; null with *problem set when it is unusable.
+  const tinygltf::Texture* texture(int index, std::string* problem) const;
 
   const std::string& path_;
   const tinygltf::Model& model_;
-  std::map<int, std::shared_ptr<const TextureImage>> images_;  // null: unusable
+  std::map<std::pair<int, bool>, CachedImage> images_;
   std::set<std::string> missing_, problems_;  // sorted: the report is deterministic
 };
 

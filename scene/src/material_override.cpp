@@ -196,25 +196,34 @@ MaterialOverride parse_material_override(const std::string& text, const std::str
   return OverrideParser(text, option).parse();
 }
 
+std::vector<std::size_t> matched_primitives(const Scene& scene, const MaterialOverride& o) {
+  std::vector<std::size_t> matched;
+  for (std::size_t i = 0; i < scene.primitives.size(); ++i)
+    if (o.name == "*" || scene.primitives[i].material == o.name) matched.push_back(i);
+  if (matched.empty())
+    for (std::size_t i = 0; i < scene.primitives.size(); ++i)
+      if (scene.primitives[i].name == o.name) matched.push_back(i);
+  if (matched.empty()) {
+    std::string names;
+    for (const ScenePrimitive& p : scene.primitives)
+      if (!p.material.empty() && names.find("'" + p.material + "'") == std::string::npos)
+        names += (names.empty() ? "'" : ", '") + p.material + "'";
+    throw std::invalid_argument(o.option + " " + o.text + ": no material or primitive named '" +
+                                o.name + "' in " + scene.source_path +
+                                " (materials: " + (names.empty() ? "none" : names) + ")");
+  }
+  return matched;
+}
+
 void apply_material_overrides(Scene& scene, const std::vector<MaterialOverride>& overrides) {
   for (const MaterialOverride& o : overrides) {
     std::vector<ScenePrimitive*> matched;
-    for (ScenePrimitive& p : scene.primitives)
-      if (o.name == "*" || p.material == o.name) matched.push_back(&p);
-    if (matched.empty())
-      for (ScenePrimitive& p : scene.primitives)
-        if (p.name == o.name) matched.push_back(&p);
-    if (matched.empty()) {
-      std::string names;
-      for (const ScenePrimitive& p : scene.primitives)
-        if (!p.material.empty() && names.find("'" + p.material + "'") == std::string::npos)
-          names += (names.empty() ? "'" : ", '") + p.material + "'";
-      throw std::invalid_argument(o.option + " " + o.text + ": no material or primitive named '" +
-                                  o.name + "' in " + scene.source_path +
-                                  " (materials: " + (names.empty() ? "none" : names) + ")");
-    }
+    for (std::size_t i : matched_primitives(scene, o)) matched.push_back(&scene.primitives[i]);
     for (ScenePrimitive* p : matched) {
       p->anisotropy_rotation = 0.f;
+      p->brdf_variants.clear();  // the override replaces the textured parameters too
+      p->brdf_variant_of_vertex.clear();
+      p->brdf_texture_problem.clear();
       if (!o.material.lambertian()) {
         p->brdf = o.material;
         continue;
@@ -238,6 +247,10 @@ std::vector<std::string> describe_materials(const Scene& scene) {
     if (!p.material.empty()) line += " (material " + p.material + ")";
     line += ": " + (p.brdf ? brdf::describe(*p.brdf) : "lambert(" + rgb_text(p.albedo) + ")");
     if (p.base_color_texture) line += ", textured";
+    if (!p.brdf_variants.empty())
+      line +=
+          ", roughness/metalness textured: " + std::to_string(p.brdf_variants.size()) + " variants";
+    if (!p.brdf_texture_problem.empty()) line += "; not used: " + p.brdf_texture_problem;
     if (p.anisotropy_rotation != 0.f) {
       char text[48];
       std::snprintf(text, sizeof text, ", tangent rotated %.3g rad", double(p.anisotropy_rotation));

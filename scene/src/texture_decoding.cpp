@@ -38,12 +38,12 @@ std::shared_ptr<const TextureImage> load_texture_file(const std::string& path, b
 }
 
 std::shared_ptr<const TextureImage> load_texture_bytes(const unsigned char* bytes, std::size_t size,
-                                                       const std::string& name) {
+                                                       const std::string& name, bool srgb_encoded) {
   const std::string format = image_format_of(bytes, size);
   if (format.empty()) throw std::runtime_error(name + ": not a PNG or JPEG image");
   const FloatImage image =
       decode_image_memory(bytes, size, format, name, kMaxTextureTexels, texture_read_options());
-  return std::make_shared<const TextureImage>(TextureImage::from_image(image, name));
+  return std::make_shared<const TextureImage>(TextureImage::from_image(image, name, srgb_encoded));
 }
 
 }  // namespace prt::scene::detail

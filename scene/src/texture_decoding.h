@@ -23,6 +23,7 @@ std::shared_ptr<const TextureImage> load_texture_file(const std::string& path,
 
 // A texture from PNG or JPEG bytes; `name` names it in messages.
 std::shared_ptr<const TextureImage> load_texture_bytes(const unsigned char* bytes, std::size_t size,
-                                                       const std::string& name);
+                                                       const std::string& name,
+                                                       bool srgb_encoded = true);
 
 }  // namespace prt::scene::detail

@@ -92,14 +92,14 @@ struct GlossyBakeResult {
   GlossyBakeStatistics stats;
 };
 
-// The materials of the primitives (ScenePrimitive::brdf or Lambert with its albedo; equal ones
-// once, in order of first use) and each vertex's index into them (a vertex outside every
-// primitive gets Lambert with its own albedo).
+// The materials of the primitives and each vertex's index into them: scene::vertex_materials
+// (scene/vertex_materials.h).
 void glossy_scene_materials(const scene::Scene& scene, std::vector<brdf::Material>& materials,
                             std::vector<uint32_t>& material_of_vertex);
 
 // Bakes the glossy transfer of every vertex. Throws BakeError (bad scene or options, a material
-// make_brdf refuses) or std::runtime_error (Embree). `progress` may be null.
+// make_brdf refuses, a texture a material needs that could not be read:
+// ScenePrimitive::brdf_texture_problem) or std::runtime_error (Embree). `progress` may be null.
 GlossyBakeResult bake_glossy_transfer(const scene::Scene& scene, const GlossyBakeOptions& options,
                                       ProgressSink* progress = nullptr);
 

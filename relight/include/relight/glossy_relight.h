@@ -16,6 +16,8 @@
 // (scene frame), under the first frame's lighting; asking for either without an eye point is
 // an error raised before anything is written (the values depend on the view).
 // Materials come from the file (the scene's own are not read); the albedo is inside the BRDF.
+// GlossyRelightOptions::material_overrides replace some of them before shading (only the
+// vertex's own BRDF changes; interreflections stay as baked: relight/glossy_material_override.h).
 // Errors throw std::runtime_error with one line "PATH: problem".
 #pragma once
 
@@ -30,6 +32,7 @@
 #include "prt/glossy_transfer.h"
 #include "relight/camera.h"
 #include "relight/relight_pipeline.h"
+#include "scene/material_override.h"
 #include "scene/scene.h"
 
 namespace prt::relight {
@@ -40,6 +43,8 @@ struct GlossyRelightOptions {
   std::optional<glm::vec3> eye;  // for the CSV and the vertex colours
   GlossyTurntable turntable = GlossyTurntable::kBoth;
   prt::BrdfProjectionOptions projection;
+  // `--material` overrides of the file's BRDFs (relight/glossy_material_override.h).
+  std::vector<scene::MaterialOverride> material_overrides;
 };
 
 // Reads a glossy transfer file and checks that it was baked for `scene` (prt::check_geometry).

@@ -19,8 +19,9 @@
 // roughness of 0 or NaN, a negative exponent, reflectances outside [0, 1] or a truncated MERL
 // file are refused there. Errors throw std::invalid_argument with one line
 // "OPTION TEXT: problem" (OPTION as given, e.g. "--material").
-// Applying: a non-Lambert override sets ScenePrimitive::brdf (and anisotropy_rotation 0) and
-// leaves the albedo of the diffuse path unchanged. Anisotropic overrides use the scene's
+// Applying: a non-Lambert override sets ScenePrimitive::brdf (and anisotropy_rotation 0, and
+// drops the per-vertex variants of a textured roughness) and leaves the albedo of the diffuse
+// path unchanged. Anisotropic overrides use the scene's
 // tangent frames (scene/tangent_frames.h): the file's TANGENT, else the texture coordinates
 // the loader kept (those of textured primitives and of glTF anisotropic materials), else the
 // frame from the normal.
@@ -44,6 +45,11 @@ struct MaterialOverride {
 
 MaterialOverride parse_material_override(const std::string& text,
                                          const std::string& option = "--material");
+
+// Indices of the primitives `o` applies to: those whose material is o.name (every one for
+// "*"), else those whose primitive name is o.name. Throws std::invalid_argument
+// "OPTION TEXT: no material or primitive named 'NAME' in PATH (materials: ...)" when none is.
+std::vector<std::size_t> matched_primitives(const Scene& scene, const MaterialOverride& o);
 
 // Applies the overrides in order (a later one wins). Throws std::invalid_argument
 // "OPTION TEXT: no material or primitive named 'NAME' in PATH (materials: ...)" when an

@@ -52,6 +52,17 @@ struct ScenePrimitive {
   // direction along which `brdf`'s α_x applies, in the vertex tangent frames
   // (glTF KHR_materials_anisotropy's anisotropyRotation); scene/tangent_frames.h applies it.
   float anisotropy_rotation = 0.f;
+  // Per-vertex variants of `brdf` when a texture varies its parameters (glTF
+  // metallicRoughnessTexture: scene/brdf_variants.h): at most kMaxBrdfVariants materials and,
+  // for each of the primitive's vertices (in order), the index of its own. Empty otherwise;
+  // used only when brdf_variant_of_vertex has vertex_count entries. `brdf` is then the material
+  // of the texture's mean (what the surface looks like from afar; absent when that is Lambert).
+  std::vector<brdf::Material> brdf_variants;
+  std::vector<uint32_t> brdf_variant_of_vertex;
+  // A texture the BRDF needs that could not be used, as one line ("material 'M':
+  // metallicRoughnessTexture FILE: problem"); "" when none. The loader uses the factors and
+  // prints nothing (describe_materials lists it); a glossy bake refuses the scene with it.
+  std::string brdf_texture_problem;
 };
 
 struct SceneCamera {

@@ -19,8 +19,10 @@
 // magFilter, minFilter) and image, PNG or JPEG, from a file beside the .gltf (URI
 // percent-decoding), a data: URI or a buffer view (GLB), decoded through the OpenImageIO plugin
 // (scene/image_codec.h) and linearised as sRGB. Albedo = baseColorFactor × the texture (clamped to
-// kMaxTexturedAlbedo). Only base-colour images are decoded (normal, metallic-roughness and other
-// maps are never read). A texture that cannot be used — its file missing (real assets are often
+// kMaxTexturedAlbedo). Besides base-colour images only metallicRoughnessTexture is decoded (as
+// linear data, for per-vertex BRDF variants: scene/brdf_variants.h; one that cannot be used is
+// recorded in ScenePrimitive::brdf_texture_problem, not warned about); normal and other maps are
+// never read. A texture that cannot be used — its file missing (real assets are often
 // shipped geometry-only), not PNG/JPEG, corrupt, over kMaxTextureTexels, or the primitive lacks
 // its TEXCOORD_n — is NOT an error: one warning line on stderr ("PATH: warning: ..." naming the
 // image file or index) and the material falls back to its baseColorFactor (0.8 grey when that is
@@ -86,7 +88,8 @@
 namespace prt::scene {
 
 struct LoadOptions {
-  // Replaces every material's albedo when set; textures are then not even decoded (flat colour).
+  // Replaces every material's albedo when set; base-colour textures are then not even decoded
+  // (flat colour).
   std::optional<glm::vec3> albedo_override;
   // Per-material BRDF overrides (scene/material_override.h), applied in order after the
   // albedo override; one that matches no material or primitive is an error.
