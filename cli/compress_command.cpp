@@ -37,14 +37,16 @@ void register_compress(CLI::App& app) {
   CLI::Option* max_vectors = cmd->add_option(
       "--max-vectors", r->max_vectors, "With --target-error: the largest K tried (default 32)");
   vectors->excludes(target);
-  max_vectors->needs(target);
   (void)clusters;
   cmd->add_option("--iterations", r->iterations,
                   "Rounds of PCA and reassignment (default 6; stops early when stable)");
   cmd->add_option("--seed", r->seed, "Seed of the cluster seeding (default 1)");
   cmd->add_option("--threads", r->threads, "Worker threads (default 0: every core)");
   cmd->add_flag("--quiet", r->quiet, "Print nothing on success");
-  cmd->callback([r] { run_glossy_compress(*r); });
+  cmd->callback([r, max_vectors] {
+    r->max_vectors_given = max_vectors->count() > 0;
+    run_glossy_compress(*r);
+  });
 }
 
 }  // namespace

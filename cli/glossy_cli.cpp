@@ -113,6 +113,8 @@ void check_compress_request(const GlossyCompressRequest& r) {
   if (!(r.target_error >= 0) || !(r.target_error < 1))
     throw UsageError("--target-error " + std::to_string(r.target_error) +
                      ": must be a relative error in (0, 1)");
+  if (r.max_vectors_given && !(r.target_error > 0))
+    throw UsageError("--max-vectors applies with --target-error only");
   if (r.iterations < 1 || r.iterations > 100)
     throw UsageError("--iterations " + std::to_string(r.iterations) + ": must be in [1, 100]");
   if (r.threads < 0) throw UsageError("--threads " + std::to_string(r.threads) + ": must be >= 0");

@@ -40,6 +40,7 @@ struct GlossyCompressRequest {
   int vectors = 16;
   double target_error = 0;  // > 0: choose K (prt::CpcaOptions::target_relative_rms)
   int max_vectors = 32;
+  bool max_vectors_given = false;  // refused without target_error
   int iterations = 6;
   uint64_t seed = 1;
   int threads = 0;  // 0: std::thread::hardware_concurrency()
