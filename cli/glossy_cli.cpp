@@ -1,16 +1,21 @@
 // cli/glossy_cli.cpp — see glossy_cli.h.
 #include "glossy_cli.h"
 
+#include <chrono>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <thread>
 
 #include <nlohmann/json.hpp>
 
 #include "bake/glossy_transfer_baker.h"
 #include "command_registry.h"
+#include "output_safety.h"
 #include "progress_reporter.h"
+#include "prt/cpca.h"
+#include "prt/cpca_file.h"
 #include "prt/glossy_transfer_file.h"
 #include "sh/basis.h"
 
@@ -92,7 +97,77 @@ void run_glossy_bake(const scene::Scene& scene, const GlossyBakeRequest& r) {
 bool is_glossy_file(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   char magic[4] = {};
-  return in.read(magic, 4) && prt::is_glossy_transfer_file(magic, 4);
+  return in.read(magic, 4) &&
+         (prt::is_glossy_transfer_file(magic, 4) || prt::is_cpca_transfer_file(magic, 4));
+}
+
+namespace {
+
+void check_compress_request(const GlossyCompressRequest& r) {
+  if (r.clusters < 1 || r.clusters > 65535)
+    throw UsageError("--clusters " + std::to_string(r.clusters) + ": must be in [1, 65535]");
+  if (r.vectors < 0 || r.vectors > 4096)
+    throw UsageError("--vectors " + std::to_string(r.vectors) + ": must be in [0, 4096]");
+  if (r.max_vectors < 1 || r.max_vectors > 4096)
+    throw UsageError("--max-vectors " + std::to_string(r.max_vectors) + ": must be in [1, 4096]");
+  if (!(r.target_error >= 0) || !(r.target_error < 1))
+    throw UsageError("--target-error " + std::to_string(r.target_error) +
+                     ": must be a relative error in (0, 1)");
+  if (r.max_vectors_given && !(r.target_error > 0))
+    throw UsageError("--max-vectors applies with --target-error only");
+  if (r.iterations < 1 || r.iterations > 100)
+    throw UsageError("--iterations " + std::to_string(r.iterations) + ": must be in [1, 100]");
+  if (r.threads < 0) throw UsageError("--threads " + std::to_string(r.threads) + ": must be >= 0");
+  check_output_file("-o", r.output, {".prtq"}, "a CPCA file");
+  CommandFiles files;
+  files.add_input("glossy transfer file", r.input);
+  files.add_output("-o", r.output);
+  files.check();
+}
+
+unsigned long long file_bytes(const std::string& path) {
+  std::error_code ec;
+  const auto bytes = std::filesystem::file_size(path, ec);
+  return ec ? 0ull : static_cast<unsigned long long>(bytes);
+}
+
+}  // namespace
+
+void run_glossy_compress(const GlossyCompressRequest& r) {
+  check_compress_request(r);
+  const auto start = std::chrono::steady_clock::now();
+  prt::Result<prt::GlossyTransferData> read = prt::read_glossy_transfer_file(r.input);
+  if (!read.ok()) throw CommandError(read.status().message());
+  prt::GlossyTransferData data = std::move(read).value();
+  prt::CpcaOptions o;
+  o.clusters = static_cast<uint32_t>(r.clusters);
+  o.vectors = static_cast<uint32_t>(r.vectors);
+  o.target_relative_rms = r.target_error;
+  o.max_vectors = static_cast<uint32_t>(r.max_vectors);
+  o.iterations = static_cast<uint32_t>(r.iterations);
+  o.seed = r.seed;
+  o.threads =
+      r.threads > 0 ? unsigned(r.threads) : std::max(1u, std::thread::hardware_concurrency());
+  prt::Result<prt::CpcaTransfer> cpca = prt::cpca_compress(data, o);
+  if (!cpca.ok()) throw CommandError(r.input + ": " + cpca.status().message());
+  const double error = prt::cpca_relative_rms_error(*cpca, data.matrices.data());
+  const prt::Status written = prt::write_cpca_file(r.output, *cpca, data);
+  if (!written.ok()) throw CommandError(written.message());
+  if (r.quiet) return;
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const unsigned long long in_bytes = file_bytes(r.input), out_bytes = file_bytes(r.output);
+  const double v = double(std::max<uint64_t>(1, data.vertex_count));
+  std::printf(
+      "compressed %s: %llu vertices, order %u, %u channel%s; %u clusters x %u vectors; relative "
+      "RMS matrix error %.4g; matrices %.1f bytes/vertex (%.2f%% of %.0f); wrote %s (%llu "
+      "bytes, %.1f%% of %llu) in %.2f s\n",
+      r.input.c_str(), static_cast<unsigned long long>(data.vertex_count), data.order,
+      data.channels, data.channels == 1 ? "" : "s", cpca->cluster_count, cpca->vector_count, error,
+      double(cpca->payload_bytes()) / v,
+      100.0 * double(cpca->payload_bytes()) / (4.0 * double(data.matrices.size())),
+      4.0 * double(data.matrices.size()) / v, r.output.c_str(), out_bytes,
+      in_bytes ? 100.0 * double(out_bytes) / double(in_bytes) : 0.0, in_bytes, seconds);
 }
 
 namespace {
@@ -177,7 +252,62 @@ void print_csv(const prt::GlossyTransferData& d) {
 
 }  // namespace
 
+namespace {
+
+void describe_cpca_file(const std::string& path, bool json, bool csv) {
+  if (csv) throw UsageError("--csv: " + path + " is a CPCA file; prt info --csv reads .prtg files");
+  prt::Result<prt::CpcaFile> read = prt::read_cpca_file_with_source(path);
+  if (!read.ok()) throw CommandError(read.status().message());
+  const prt::CpcaTransfer& t = read->cpca;
+  nlohmann::json j;
+  j["file"] = path;
+  j["bytes"] = file_bytes(path);
+  j["kind"] = "glossy CPCA";
+  j["order"] = t.order;
+  j["channels"] = t.channels;
+  j["vertices"] = t.vertex_count;
+  j["clusters"] = t.cluster_count;
+  j["vectors"] = t.vector_count;
+  j["matrix_bytes"] = t.payload_bytes();
+  j["matrix_bytes_uncompressed"] = 4 * t.vertex_count * t.dimension();
+  char fp[32];
+  std::snprintf(fp, sizeof fp, "%016llx", static_cast<unsigned long long>(t.fingerprint));
+  j["fingerprint"] = fp;
+  j["source_section"] = read->has_source;
+  if (read->has_source) {
+    nlohmann::json mats = nlohmann::json::array();
+    for (const brdf::Material& m : read->source.materials) mats.push_back(brdf::describe(m));
+    j["materials"] = mats;
+  }
+  if (json) {
+    std::printf("%s\n", j.dump(2).c_str());
+    return;
+  }
+  std::printf("file          %s (%llu bytes)\n", path.c_str(), file_bytes(path));
+  std::printf("kind          glossy CPCA (clustered PCA of %ux%u transfer matrices)\n",
+              t.order * t.order, t.order * t.order);
+  std::printf("order         %u\nchannels      %u\nvertices      %llu\n", t.order, t.channels,
+              static_cast<unsigned long long>(t.vertex_count));
+  std::printf("clusters      %u\nvectors       %u\n", t.cluster_count, t.vector_count);
+  std::printf("matrices      %llu bytes (uncompressed %llu)\n",
+              static_cast<unsigned long long>(t.payload_bytes()),
+              static_cast<unsigned long long>(4 * t.vertex_count * t.dimension()));
+  std::printf("fingerprint   %s\n", fp);
+  std::printf("source        %s\n", read->has_source ? "geometry, frames and materials included"
+                                                     : "none (prt relight cannot read it)");
+  if (read->has_source)
+    for (const auto& m : j["materials"]) std::printf("  %s\n", m.get<std::string>().c_str());
+}
+
+}  // namespace
+
 void describe_glossy_file(const std::string& path, bool json, bool csv) {
+  {
+    std::ifstream in(path, std::ios::binary);
+    char magic[4] = {};
+    if (in.read(magic, 4) && prt::is_cpca_transfer_file(magic, 4))
+      return describe_cpca_file(path, json, csv);
+  }
   prt::Result<prt::GlossyTransferData> read = prt::read_glossy_transfer_file(path);
   if (!read.ok()) throw CommandError(read.status().message());
   const prt::GlossyTransferData& d = read.value();

@@ -3,7 +3,9 @@
 //   prt bake SCENE --glossy -o OUT.prtg [--transfer shadowed|interreflected] [--order n]
 //            [--samples N] [--bounces k] [--tolerance x] [--seed s] [--threads t]
 //            [--precision f32|f16] [--albedo r,g,b] [--quiet]
-//   prt info FILE.prtg [--json | --csv]
+//   prt info FILE.prtg|FILE.prtq [--json | --csv]
+//   prt compress IN.prtg -o OUT.prtq [--clusters Q] [--vectors K | --target-error E
+//                [--max-vectors K]] [--iterations n] [--seed s] [--threads t] [--quiet]
 // Defaults for --glossy: order 5, shadowed; --bounces k > 0 (or --transfer interreflected,
 // then until converged) adds interreflection. Materials come from the scene (ScenePrimitive::brdf,
 // Lambert with the albedo where absent).
@@ -32,6 +34,24 @@ struct GlossyBakeRequest {
   bool quiet = false;
 };
 
+struct GlossyCompressRequest {
+  std::string input, output;
+  int clusters = 64;
+  int vectors = 16;
+  double target_error = 0;  // > 0: choose K (prt::CpcaOptions::target_relative_rms)
+  int max_vectors = 32;
+  bool max_vectors_given = false;  // refused without target_error
+  int iterations = 6;
+  uint64_t seed = 1;
+  int threads = 0;  // 0: std::thread::hardware_concurrency()
+  bool quiet = false;
+};
+
+// `prt compress`: checks the values and files (UsageError before anything is read), reads the
+// glossy file, compresses it, writes the .prtq atomically with a source section (geometry,
+// frames, materials) and reports sizes and the matrix error. Throws UsageError / CommandError.
+void run_glossy_compress(const GlossyCompressRequest& request);
+
 // Options of `prt bake` that do not apply with --glossy, refused by name (`cmd` counts them).
 void check_glossy_applicable(const CLI::App& cmd);
 
@@ -41,10 +61,11 @@ void check_glossy_request(const GlossyBakeRequest& request);
 // Checks the values, bakes, writes and reports. Throws UsageError / CommandError / BakeError.
 void run_glossy_bake(const scene::Scene& scene, const GlossyBakeRequest& request);
 
-// True when `path` starts with the glossy magic (then `prt info` describes it here).
+// True when `path` starts with the glossy magic "PRTG" or the CPCA magic "PRCP" (then
+// `prt info` describes it here and `prt relight` relights it as a glossy file).
 bool is_glossy_file(const std::string& path);
 
-// `prt info` of a glossy file. Throws CommandError.
+// `prt info` of a glossy or CPCA file (--csv: glossy files only). Throws CommandError.
 void describe_glossy_file(const std::string& path, bool json, bool csv);
 
 }  // namespace prt::cli

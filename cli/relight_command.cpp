@@ -295,7 +295,8 @@ void register_relight(CLI::App& app) {
                   "(.prte, prt radiosity --per-emitter) to relight alone")
       ->required();
   cmd->add_option("transfer", args->transfer,
-                  "Coefficient file (.prt: SH or Haar) or glossy transfer file (PRTG)");
+                  "Coefficient file (.prt: SH or Haar), glossy transfer file (.prtg) or its CPCA "
+                  "compression (.prtq, prt compress)");
   cmd->add_option("environment", args->environment, "Environment map (.hdr, .exr, .pfm)");
   cmd->add_option("-o,--output", args->output, "Image to write: .exr/.hdr linear, .png tone mapped")
       ->required();

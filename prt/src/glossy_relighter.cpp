@@ -16,7 +16,7 @@ std::string vertex_text(std::size_t v) {
   return "vertex " + std::to_string(v);
 }
 
-Status check_data(const GlossyTransferData& d) {
+Status check_data(const GlossyTransferData& d, bool with_matrices = true) {
   const std::size_t v = d.vertex_count;
   if (d.order < 1 || d.order > uint32_t(kMaxBrdfProjectionOrder))
     return Status::Error("glossy transfer: order " + std::to_string(d.order) + " is outside [1, " +
@@ -25,7 +25,8 @@ Status check_data(const GlossyTransferData& d) {
     return Status::Error("glossy transfer: channels must be 1 or 3, not " +
                          std::to_string(d.channels));
   if (d.positions.size() != 3 * v || d.normals.size() != 3 * v || d.tangents.size() != 4 * v ||
-      d.material_of_vertex.size() != v || d.matrices.size() != v * d.channels * d.matrix_floats())
+      d.material_of_vertex.size() != v ||
+      (with_matrices && d.matrices.size() != v * d.channels * d.matrix_floats()))
     return Status::Error("glossy transfer: array sizes do not match " + std::to_string(v) +
                          " vertices of order " + std::to_string(d.order));
   for (std::size_t k = 0; k < v; ++k)
@@ -62,8 +63,17 @@ struct GlossyRelighter::Impl {
   std::size_t vertex_count = 0;
   std::vector<float> positions, frames;  // 3 and 9 floats per vertex
   std::vector<uint32_t> material_of_vertex;
-  std::vector<float> matrices;
+  GlossyShadingPath path = GlossyShadingPath::kKernel;
+  bool compressed = false;
+  std::vector<float> matrices;  // kPortable
+  GlossyKernel kernel;          // kKernel
+  CpcaKernel cpca;              // compressed
   std::vector<BrdfProjection> projections;
+
+  Status shade_portable(const ShLighting& light, const float eye[3], std::size_t first,
+                        std::size_t count, float* out_rgb) const;
+  void view_vectors(const float eye[3], std::size_t first, std::size_t count, float* b,
+                    float* scratch) const;
 };
 
 GlossyRelighter::GlossyRelighter() : impl_(std::make_unique<Impl>()) {}
@@ -89,17 +99,16 @@ Result<GlossyRelighter> GlossyRelighter::create(const GlossyTransferData& data,
   return create(GlossyTransferData(data), options);
 }
 
-Result<GlossyRelighter> GlossyRelighter::create(GlossyTransferData&& data,
-                                                const BrdfProjectionOptions& options) {
-  if (Status s = check_data(data); !s) return s;
-  GlossyRelighter out;
-  Impl& p = *out.impl_;
+namespace {
+
+// Frames, positions, materials and projections of `data` into p (the matrices are left alone).
+Status set_geometry(const GlossyTransferData& data, const BrdfProjectionOptions& options,
+                    GlossyRelighter::Impl& p) {
   p.order = int(data.order);
   p.channels = int(data.channels);
   p.vertex_count = data.vertex_count;
   p.positions = data.positions;
   p.material_of_vertex = data.material_of_vertex;
-  p.matrices = std::move(data.matrices);
   p.frames.resize(9 * p.vertex_count);
   for (std::size_t k = 0; k < p.vertex_count; ++k) {
     double frame[9];
@@ -111,12 +120,135 @@ Result<GlossyRelighter> GlossyRelighter::create(GlossyTransferData&& data,
     if (!projection) return projection.status();
     p.projections.push_back(std::move(projection).value());
   }
+  return Status::Ok();
+}
+
+}  // namespace
+
+Result<GlossyRelighter> GlossyRelighter::create(GlossyTransferData&& data,
+                                                const BrdfProjectionOptions& options) {
+  return create(std::move(data), options, GlossyShadingPath::kKernel);
+}
+
+Result<GlossyRelighter> GlossyRelighter::create(GlossyTransferData&& data,
+                                                const BrdfProjectionOptions& options,
+                                                GlossyShadingPath path) {
+  if (Status s = check_data(data); !s) return s;
+  GlossyRelighter out;
+  Impl& p = *out.impl_;
+  if (Status s = set_geometry(data, options, p); !s) return s;
+  p.path = path;
+  if (path == GlossyShadingPath::kKernel) {
+    Result<GlossyKernel> kernel = GlossyKernel::create(data);
+    if (!kernel) return kernel.status();
+    p.kernel = std::move(kernel).value();
+  } else {
+    p.matrices = std::move(data.matrices);
+  }
   return out;
+}
+
+Result<GlossyRelighter> GlossyRelighter::create_cpca(GlossyTransferData&& geometry,
+                                                     const CpcaTransfer& cpca,
+                                                     const BrdfProjectionOptions& options) {
+  if (Status s = check_data(geometry, false); !s) return s;
+  if (Status s = cpca_validate(cpca); !s) return s;
+  if (cpca.vertex_count != geometry.vertex_count || cpca.order != geometry.order ||
+      cpca.channels != geometry.channels)
+    return Status::Error("glossy transfer: the CPCA has " + std::to_string(cpca.vertex_count) +
+                         " vertices of order " + std::to_string(cpca.order) + " and " +
+                         std::to_string(cpca.channels) + " channel(s), the geometry " +
+                         std::to_string(geometry.vertex_count) + ", " +
+                         std::to_string(geometry.order) + ", " + std::to_string(geometry.channels));
+  GlossyRelighter out;
+  Impl& p = *out.impl_;
+  if (Status s = set_geometry(geometry, options, p); !s) return s;
+  Result<CpcaKernel> kernel = CpcaKernel::create(cpca);
+  if (!kernel) return kernel.status();
+  p.cpca = std::move(kernel).value();
+  p.compressed = true;
+  return out;
+}
+
+bool GlossyRelighter::compressed() const {
+  return impl_->compressed;
+}
+GlossyShadingPath GlossyRelighter::path() const {
+  return impl_->path;
+}
+
+Status GlossyRelighter::prepare(const ShLighting& light, GlossyFrame* frame) const {
+  if (frame == nullptr) return Status::Error("glossy shading: null frame");
+  frame->light = light;
+  frame->owner = impl_.get();
+  if (impl_->compressed) return impl_->cpca.prepare(light, &frame->cpca);
+  return Status::Ok();
+}
+
+// b of vertices [first, first + count) toward `eye`: 3·n² floats per vertex, zero where the
+// eye is below the tangent plane (or at the vertex, or not finite).
+void GlossyRelighter::Impl::view_vectors(const float eye[3], std::size_t first, std::size_t count,
+                                         float* b, float* scratch) const {
+  const std::size_t n2 = std::size_t(order) * order;
+  for (std::size_t k = first; k < first + count; ++k) {
+    const float* f = &frames[9 * k];
+    const float d[3] = {eye[0] - positions[3 * k], eye[1] - positions[3 * k + 1],
+                        eye[2] - positions[3 * k + 2]};
+    const float local[3] = {f[0] * d[0] + f[1] * d[1] + f[2] * d[2],
+                            f[3] * d[0] + f[4] * d[1] + f[5] * d[2],
+                            f[6] * d[0] + f[7] * d[1] + f[8] * d[2]};
+    float* bk = b + (k - first) * 3 * n2;
+    if (!(local[2] > 0.f)) {
+      std::fill(bk, bk + 3 * n2, 0.f);
+      continue;
+    }
+    projections[material_of_vertex[k]].evaluate(local, bk, scratch);
+  }
 }
 
 Status GlossyRelighter::shade(const ShLighting& light, const float eye[3], std::size_t first,
                               std::size_t count, float* out_rgb) const {
+  if (!impl_->compressed && impl_->path == GlossyShadingPath::kPortable)
+    return impl_->shade_portable(light, eye, first, count, out_rgb);
+  GlossyFrame frame;
+  if (Status s = prepare(light, &frame); !s) return s;
+  return shade(frame, eye, first, count, out_rgb);
+}
+
+Status GlossyRelighter::shade(const GlossyFrame& frame, const float eye[3], std::size_t first,
+                              std::size_t count, float* out_rgb) const {
   const Impl& p = *impl_;
+  if (frame.owner != impl_.get())
+    return Status::Error("glossy shading: the frame was prepared by another relighter");
+  if (!p.compressed && p.path == GlossyShadingPath::kPortable)
+    return p.shade_portable(frame.light, eye, first, count, out_rgb);
+  if (first > p.vertex_count || count > p.vertex_count - first)
+    return Status::Error("glossy shading: vertices [" + std::to_string(first) + ", " +
+                         std::to_string(first + count) + ") beyond " +
+                         std::to_string(p.vertex_count));
+  if (count == 0) return Status::Ok();
+  if (eye == nullptr || out_rgb == nullptr) return Status::Error("glossy shading: null pointer");
+  constexpr std::size_t kBlock = 256;  // b of a block stays in cache between the two steps
+  const std::size_t n2 = std::size_t(p.order) * p.order;
+  std::size_t scratch_size = 0;
+  for (const BrdfProjection& b : p.projections)
+    scratch_size = std::max(scratch_size, b.scratch_floats());
+  std::vector<float> scratch(scratch_size), b(kBlock * 3 * n2);
+  for (std::size_t at = first; at < first + count; at += kBlock) {
+    const std::size_t n = std::min(kBlock, first + count - at);
+    p.view_vectors(eye, at, n, b.data(), scratch.data());
+    float* out = out_rgb + 3 * (at - first);
+    const Status s = p.compressed ? p.cpca.shade(frame.cpca, b.data(), 3, at, n, out)
+                                  : p.kernel.shade(frame.light, b.data(), 3, at, n, out);
+    if (!s) return s;
+  }
+  return Status::Ok();
+}
+
+Status GlossyRelighter::Impl::shade_portable(const ShLighting& light, const float eye[3],
+                                             std::size_t first, std::size_t count,
+                                             float* out_rgb) const {
+  const Impl& p = *this;
   if (first > p.vertex_count || count > p.vertex_count - first)
     return Status::Error("glossy shading: vertices [" + std::to_string(first) + ", " +
                          std::to_string(first + count) + ") beyond " +

@@ -5,10 +5,12 @@
 #include <tbb/parallel_for.h>
 
 #include <chrono>
+#include <fstream>
 #include <stdexcept>
 #include <string>
 #include <utility>
 
+#include "prt/cpca_file.h"
 #include "prt/geometry_check.h"
 #include "prt/glossy_transfer_file.h"
 #include "relight/environment_input.h"
@@ -71,6 +73,40 @@ prt::GlossyTransferData load_glossy_for_scene(const std::string& path, const sce
   return std::move(data).value();
 }
 
+LoadedGlossy load_glossy_any_for_scene(const std::string& path, const scene::Scene& scene) {
+  std::ifstream in(path, std::ios::binary);
+  char magic[4] = {};
+  if (!(in.read(magic, 4) && prt::is_cpca_transfer_file(magic, 4)))
+    return LoadedGlossy{load_glossy_for_scene(path, scene), std::nullopt};
+  in.close();
+  prt::Result<prt::CpcaFile> file = prt::read_cpca_file_with_source(path);
+  if (!file.ok()) {
+    const std::string message = file.status().message();
+    if (message.rfind(path, 0) == 0) throw std::runtime_error(message);
+    throw std::runtime_error(path + ": " + message);
+  }
+  if (!file->has_source)
+    throw std::runtime_error(path +
+                             ": a CPCA file without its source section (geometry, frames, "
+                             "materials): make it with prt compress");
+  prt::TransferData header;
+  header.vertex_count = file->source.vertex_count;
+  header.fingerprint = file->source.fingerprint;
+  header.positions = file->source.positions;
+  check_transfer_matches_scene(header, path, scene);
+  return LoadedGlossy{std::move(file->source), std::move(file->cpca)};
+}
+
+prt::GlossyRelighter make_glossy_relighter(LoadedGlossy&& loaded, const std::string& path,
+                                           const prt::BrdfProjectionOptions& projection) {
+  prt::Result<prt::GlossyRelighter> relighter =
+      loaded.cpca
+          ? prt::GlossyRelighter::create_cpca(std::move(loaded.data), *loaded.cpca, projection)
+          : prt::GlossyRelighter::create(std::move(loaded.data), projection);
+  if (!relighter.ok()) throw std::runtime_error(path + ": " + relighter.status().message());
+  return std::move(relighter).value();
+}
+
 Camera orbit_camera(const Camera& camera, int frame, int frame_count) {
   if (frame_count <= 0) return camera;
   const std::array<double, 9> m =
@@ -89,9 +125,12 @@ std::vector<float> shade_glossy_vertices(const prt::GlossyRelighter& relighter,
   const std::size_t ranges = (count + kRange - 1) / kRange;
   std::vector<std::string> errors(ranges);
   const float eye_xyz[3] = {eye.x, eye.y, eye.z};
+  prt::GlossyFrame frame;
+  if (const prt::Status s = relighter.prepare(lighting, &frame); !s.ok())
+    throw std::runtime_error("glossy shading: " + s.message());
   tbb::parallel_for(std::size_t{0}, ranges, [&](std::size_t r) {
     const std::size_t first = r * kRange, n = std::min(kRange, count - first);
-    const prt::Status s = relighter.shade(lighting, eye_xyz, first, n, &radiance[3 * first]);
+    const prt::Status s = relighter.shade(frame, eye_xyz, first, n, &radiance[3 * first]);
     if (!s.ok()) errors[r] = s.message();
   });
   for (const std::string& error : errors)
@@ -118,8 +157,9 @@ RelightSummary run_glossy_relight(const RelightRequest& request,
   check_glossy_request(request, options);
   RelightSummary summary;
   const scene::Scene scene = scene::load_scene(request.scene_path);
-  prt::GlossyTransferData data = load_glossy_for_scene(request.transfer_path, scene);
-  override_glossy_materials(data, scene, options.material_overrides);
+  LoadedGlossy loaded = load_glossy_any_for_scene(request.transfer_path, scene);
+  override_glossy_materials(loaded.data, scene, options.material_overrides);
+  const prt::GlossyTransferData& data = loaded.data;
   EnvironmentUse use;
   use.sh_order = static_cast<int>(data.order);
   EnvironmentInput input = read_checked_environment(request.environment_path, request.layout, use);
@@ -129,10 +169,8 @@ RelightSummary run_glossy_relight(const RelightRequest& request,
   summary.order = static_cast<int>(data.order);
   const prt::ShLighting base =
       project_lighting(env, summary.order, request.lighting, &summary.window_note);
-  prt::Result<prt::GlossyRelighter> relighter =
-      prt::GlossyRelighter::create(std::move(data), options.projection);
-  if (!relighter.ok())
-    throw std::runtime_error(request.transfer_path + ": " + relighter.status().message());
+  const prt::GlossyRelighter relighter =
+      make_glossy_relighter(std::move(loaded), request.transfer_path, options.projection);
 
   const float aspect = static_cast<float>(request.render.width) /
                        static_cast<float>(std::max(1, request.render.height));
@@ -152,13 +190,13 @@ RelightSummary run_glossy_relight(const RelightRequest& request,
     const Camera view = table && orbit ? orbit_camera(camera, frame, frames) : camera;
     const prt::ShLighting lighting = rotate_lighting(base, m);
     auto start = Clock::now();
-    const std::vector<float> radiance = shade_glossy_vertices(*relighter, lighting, view.eye);
+    const std::vector<float> radiance = shade_glossy_vertices(relighter, lighting, view.eye);
     summary.shade_seconds += seconds_since(start);
     const std::size_t negative = detail::count_negative_vertices(radiance);
     summary.negative_vertices = std::max(summary.negative_vertices, negative);
     summary.negative_frames += negative > 0 ? 1 : 0;
     if (frame == 0)
-      write_first_frame_extras(request, options, scene, *relighter, lighting, radiance, &summary);
+      write_first_frame_extras(request, options, scene, relighter, lighting, radiance, &summary);
     start = Clock::now();
     const Image image = render(scene, caster, radiance, &env, m, view, request.render);
     summary.render_seconds += seconds_since(start);

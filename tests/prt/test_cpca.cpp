@@ -9,6 +9,7 @@
 
 #include "prt/cpca.h"
 #include "prt/cpca_file.h"
+#include "prt/geometry_check.h"
 #include "support/synthetic_glossy.h"
 #include "support/test_data.h"
 
@@ -215,4 +216,74 @@ TEST_CASE("CPCA file: round trip, size, and refused damage", "[cpca]") {
   CHECK(prt::decode_cpca_file("PRTC", 4, "y").status().message() ==
         "y: not a CPCA transfer file (no PRCP header)");
   CHECK_FALSE(prt::read_cpca_file(prt::test::output_path("missing.prtq").string()).ok());
+}
+
+TEST_CASE("CPCA file with a source section: geometry and materials round trip", "[cpca]") {
+  // The source section carries what the glossy file had besides its matrices, so that the
+  // .prtq relights on its own; everything must come back as written, and the section must
+  // agree with the CPCA header.
+  GlossyTransferData d = prt::test::synthetic_glossy(90, 3, 1, 128);
+  d.materials.resize(2);
+  d.materials[1].model = prt::brdf::MaterialModel::kWard;
+  d.materials[1].specular = prt::brdf::grey(0.4);
+  d.materials[1].alpha_x = 0.2;
+  d.materials[1].alpha_y = 0.1;
+  for (std::size_t v = 0; v < d.vertex_count; v += 2) d.material_of_vertex[v] = 1;
+  d.primitives = {{0, 40, "a"}, {40, 50, "b"}};
+  d.fingerprint = prt::geometry_fingerprint(d.positions.data(), d.vertex_count);
+  d.metadata_json = "{\"bake\":\"test\"}";
+  CpcaOptions o;
+  o.clusters = 3;
+  o.vectors = 4;
+  const CpcaTransfer t = compress(d, o);
+  auto plain = prt::encode_cpca_file(t);
+  auto with = prt::encode_cpca_file(t, d);
+  REQUIRE(plain.ok());
+  REQUIRE(with.ok());
+  CHECK(with->size() > plain->size() + 8);
+  auto file = prt::decode_cpca_file_with_source(with->data(), with->size(), "s.prtq");
+  INFO((file.ok() ? std::string() : file.status().message()));
+  REQUIRE(file.ok());
+  REQUIRE(file->has_source);
+  const GlossyTransferData& s = file->source;
+  CHECK(s.order == 3);
+  CHECK(s.channels == 1);
+  CHECK(s.matrices.empty());
+  CHECK(s.positions == d.positions);
+  CHECK(s.normals == d.normals);
+  CHECK(s.tangents == d.tangents);
+  CHECK(s.material_of_vertex == d.material_of_vertex);
+  REQUIRE(s.materials.size() == 2);
+  CHECK(s.materials[1].model == prt::brdf::MaterialModel::kWard);
+  CHECK(s.materials[1].alpha_y == 0.1);
+  REQUIRE(s.primitives.size() == 2);
+  CHECK(s.primitives[1].name == "b");
+  CHECK(s.metadata_json.find("test") != std::string::npos);
+  CHECK(file->cpca.weights == t.weights);
+  // The plain reader reads the CPCA of both; without a section there is no source.
+  auto cpca_only = prt::decode_cpca_file(with->data(), with->size(), "s.prtq");
+  REQUIRE(cpca_only.ok());
+  CHECK(cpca_only->basis == t.basis);
+  auto unsourced = prt::decode_cpca_file_with_source(plain->data(), plain->size(), "p.prtq");
+  REQUIRE(unsourced.ok());
+  CHECK_FALSE(unsourced->has_source);
+  // A source of other geometry or another vertex count is refused when writing.
+  GlossyTransferData moved = d;
+  moved.positions[0] += 0.5f;
+  moved.fingerprint = 0;
+  CHECK_FALSE(prt::encode_cpca_file(t, moved).ok());
+  GlossyTransferData fewer = prt::test::synthetic_glossy(80, 3, 1, 128);
+  CHECK_FALSE(prt::encode_cpca_file(t, fewer).ok());
+  // A damaged section fails the file's checksum; a truncated one its size.
+  std::vector<unsigned char> bad = *with;
+  bad[bad.size() - 100] ^= 0x20;
+  CHECK_FALSE(prt::decode_cpca_file_with_source(bad.data(), bad.size(), "s.prtq").ok());
+  CHECK_FALSE(prt::decode_cpca_file_with_source(with->data(), with->size() - 8, "s.prtq").ok());
+  // Through a file on disk.
+  const std::string path = prt::test::output_path("cpca_source.prtq").string();
+  REQUIRE(prt::write_cpca_file(path, t, d).ok());
+  auto read = prt::read_cpca_file_with_source(path);
+  REQUIRE(read.ok());
+  CHECK(read->has_source);
+  CHECK(read->source.positions == d.positions);
 }

@@ -13,8 +13,12 @@
 // turns away from the eye) has exit radiance 0, and so has a vertex at the eye point itself or
 // an eye that is not finite. The renderer interpolates the vertex values (per-vertex ωo).
 // Lighting is radiance in the units of the environment; exit is radiance in the same units.
-// Arithmetic: the fast path (shade) reads float matrices and accumulates in float; the reference
-// (shade_glossy_reference) accumulates in double and takes b by direct quadrature of the BRDF.
+// Arithmetic: shade() reads float matrices and accumulates in float — through the kernels of
+// prt/glossy_kernel.h (GlossyShadingPath::kKernel, the default: AVX2 where the CPU has it,
+// rounding like the portable kernel), through CpcaKernel for compressed transfer (create_cpca),
+// or through the plain per-vertex loop (kPortable, kept as the simple path tests compare with);
+// the reference (shade_glossy_reference) accumulates in double and takes b by direct quadrature
+// of the BRDF. b always comes from BrdfProjection::evaluate (float), the same in every path.
 // Threads: shade is const and uses only its own stack and heap scratch, so call it from any number
 // of threads on disjoint ranges; the library starts none. Nothing throws; errors are
 // prt::Status. Compiles as C++17. References: [2], [55] of docs/REFERENCES.md.
@@ -25,11 +29,27 @@
 #include <vector>
 
 #include "prt/brdf_projection.h"
+#include "prt/cpca.h"
+#include "prt/glossy_kernel.h"
 #include "prt/glossy_transfer.h"
 #include "prt/lighting.h"
 #include "prt/status.h"
 
 namespace prt {
+
+// How GlossyRelighter::shade computes M·L and b·L' for uncompressed transfer.
+enum class GlossyShadingPath {
+  kKernel,    // GlossyKernel (blocks of 16 vertices; AVX2 or portable, identical bits)
+  kPortable,  // one vertex at a time, skipping the rows of M whose b entry is 0
+};
+
+// The per-frame state of one lighting (GlossyRelighter::prepare): the lighting and, for
+// compressed transfer, the per-cluster products of CpcaKernel::prepare.
+struct GlossyFrame {
+  ShLighting light;
+  CpcaFrame cpca;
+  const void* owner = nullptr;  // the relighter that prepared it
+};
 
 class GlossyRelighter {
  public:
@@ -47,15 +67,37 @@ class GlossyRelighter {
   // Same, taking over the matrices of `data` instead of copying them (a file's bulk).
   static Result<GlossyRelighter> create(GlossyTransferData&& data,
                                         const BrdfProjectionOptions& options = {});
+  static Result<GlossyRelighter> create(GlossyTransferData&& data,
+                                        const BrdfProjectionOptions& options,
+                                        GlossyShadingPath path);
+  // Compressed transfer: positions, frames and materials from `geometry` (its matrices are not
+  // read and may be empty), the matrices from `cpca` (prt/cpca.h), shaded through CpcaKernel.
+  // Errors: those above, and a CPCA whose vertex count, order or channels differ from
+  // geometry's, or that cpca_validate refuses.
+  static Result<GlossyRelighter> create_cpca(GlossyTransferData&& geometry,
+                                             const CpcaTransfer& cpca,
+                                             const BrdfProjectionOptions& options = {});
 
   std::size_t vertex_count() const;
   int order() const;
   int channels() const;
   const std::vector<BrdfProjection>& projections() const;  // one per material
+  bool compressed() const;                                 // made by create_cpca
+  GlossyShadingPath path() const;
+
+  // Once per lighting: what shade(frame, ...) needs (for compressed transfer the per-cluster
+  // products, (K + 1)·3 matrix–vector products per cluster). Errors: out of memory.
+  Status prepare(const ShLighting& light, GlossyFrame* frame) const;
 
   // Exit radiance toward eye_xyz (scene frame, scene units) of vertices
-  // [first_vertex, first_vertex + count): 3 floats per vertex into out_rgb[0 .. 3·count).
-  // Errors: range beyond vertex_count(), null eye or null out_rgb with count > 0.
+  // [first_vertex, first_vertex + count) under the frame's lighting: 3 floats per vertex into
+  // out_rgb[0 .. 3·count). Errors: range beyond vertex_count(), null eye or null out_rgb with
+  // count > 0, a frame this relighter did not prepare.
+  Status shade(const GlossyFrame& frame, const float eye_xyz[3], std::size_t first_vertex,
+               std::size_t count, float* out_rgb) const;
+
+  // The same preparing the frame on each call (for compressed transfer that repeats the
+  // per-cluster products: prefer prepare() once and shade(frame, ...) per range).
   Status shade(const ShLighting& light, const float eye_xyz[3], std::size_t first_vertex,
                std::size_t count, float* out_rgb) const;
 

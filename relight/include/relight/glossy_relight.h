@@ -16,6 +16,9 @@
 // (scene frame), under the first frame's lighting; asking for either without an eye point is
 // an error raised before anything is written (the values depend on the view).
 // Materials come from the file (the scene's own are not read); the albedo is inside the BRDF.
+// Files: a glossy transfer file (.prtg, shaded through prt::GlossyKernel) or a CPCA file (.prtq)
+// with a source section (prt/cpca_file.h, made by `prt compress`), shaded through
+// prt::CpcaKernel; both are checked against the scene's geometry the same way.
 // GlossyRelightOptions::material_overrides replace some of them before shading (only the
 // vertex's own BRDF changes; interreflections stay as baked: relight/glossy_material_override.h).
 // Errors throw std::runtime_error with one line "PATH: problem".
@@ -28,6 +31,7 @@
 #include <glm/glm.hpp>
 
 #include "prt/brdf_projection.h"
+#include "prt/cpca.h"
 #include "prt/glossy_relighter.h"
 #include "prt/glossy_transfer.h"
 #include "relight/camera.h"
@@ -49,6 +53,21 @@ struct GlossyRelightOptions {
 
 // Reads a glossy transfer file and checks that it was baked for `scene` (prt::check_geometry).
 prt::GlossyTransferData load_glossy_for_scene(const std::string& path, const scene::Scene& scene);
+
+// A glossy file of either kind: `data` holds geometry, frames, materials and (for a .prtg) the
+// matrices; `cpca` the compressed matrices of a .prtq (then data.matrices is empty).
+struct LoadedGlossy {
+  prt::GlossyTransferData data;
+  std::optional<prt::CpcaTransfer> cpca;
+};
+
+// Reads a .prtg or a .prtq (by its magic) and checks it against `scene` as above. A .prtq
+// without a source section is refused (it holds no frames or materials).
+LoadedGlossy load_glossy_any_for_scene(const std::string& path, const scene::Scene& scene);
+
+// The relighter of a loaded file (kernel paths). Throws "PATH: problem".
+prt::GlossyRelighter make_glossy_relighter(LoadedGlossy&& loaded, const std::string& path,
+                                           const prt::BrdfProjectionOptions& projection);
 
 // The camera of turntable frame i of N: eye and up turned by Ry(360°·i/N) about the vertical
 // line through the target.

@@ -1,0 +1,228 @@
+// glossy_cpca_real — CPCA (prt/cpca.h) on a REAL glossy bake (a .prtg from prt bake --glossy):
+// for each clusters × vectors setting,
+//   * bytes per vertex of the compressed matrices (CpcaTransfer::payload_bytes) and of the
+//     whole .prtq (with its source section), against the .prtg;
+//   * the relative RMS matrix error;
+//   * the relit error: relative RMS over every vertex and RGB of the exit radiance computed by
+//     prt::GlossyRelighter — the path `prt relight` takes — from the .prtq (CpcaKernel) against
+//     the .prtg (GlossyKernel), with the file's own materials, under light probes of
+//     ../shared/data/probes projected to the file's order, toward three eye points around the
+//     mesh (2.5 bounding radii from its centre); the worst of the 3 × 3 cases is printed;
+//   * the thread CPU time of one frame on the calling thread (prepare + shade of every vertex,
+//     b included): uncompressed GlossyKernel, the portable per-vertex loop, and CPCA; the
+//     median of `repeats` frames.
+//   * with OTHER.prtg (the same mesh baked with another --seed): the same errors between the two
+//     uncompressed bakes — the Monte Carlo noise of the bake, a floor below which CPCA error is
+//     not worth buying.
+// Usage: [PRT_SHARED_DATA_DIR=DIR] glossy_cpca_real FILE.prtg [threads=2] [clusters=16,64,256]
+//        [vectors=4,8,16,32] [repeats=5] [OTHER.prtg]
+// Run under `taskset -c 1` for the timings (figures in docs/GLOSSY_CPCA.md).
+#include <time.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+#include <vector>
+
+#include "prt/cpca.h"
+#include "prt/cpca_file.h"
+#include "prt/glossy_relighter.h"
+#include "prt/glossy_transfer_file.h"
+#include "relight/image_io.h"
+
+namespace {
+
+std::string shared_data_dir() {
+  const char* env = std::getenv("PRT_SHARED_DATA_DIR");
+  return env != nullptr ? env : PRT_SHARED_DATA_DIR;
+}
+
+double thread_seconds() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return double(t.tv_sec) + 1e-9 * double(t.tv_nsec);
+}
+
+std::vector<uint32_t> list_arg(const char* text) {
+  std::vector<uint32_t> out;
+  for (const char* p = text; *p != 0;) {
+    char* end = nullptr;
+    out.push_back(static_cast<uint32_t>(std::strtoul(p, &end, 10)));
+    if (end == p) break;
+    p = *end == ',' ? end + 1 : end;
+  }
+  return out;
+}
+
+template <typename T>
+T require(prt::Result<T> r) {
+  if (!r.ok()) {
+    std::fprintf(stderr, "%s\n", r.status().message().c_str());
+    std::exit(1);
+  }
+  return std::move(r).value();
+}
+
+std::vector<prt::ShLighting> load_probes(int order) {
+  std::vector<prt::ShLighting> out;
+  for (const char* name : {"grace_probe.hdr", "stpeters_cross.hdr", "rnl_probe.hdr"}) {
+    const prt::sh::EnvMap map =
+        prt::relight::read_environment(shared_data_dir() + "/probes/" + name, std::nullopt);
+    out.push_back(require(prt::ShLighting::from_env_map(map, order)));
+  }
+  return out;
+}
+
+// Three eye points 2.5 bounding radii from the centre of the mesh's bounding box.
+std::vector<std::array<float, 3>> eye_points(const prt::GlossyTransferData& d) {
+  float lo[3] = {1e30f, 1e30f, 1e30f}, hi[3] = {-1e30f, -1e30f, -1e30f};
+  for (std::size_t v = 0; v < d.vertex_count; ++v)
+    for (int a = 0; a < 3; ++a) {
+      lo[a] = std::min(lo[a], d.positions[3 * v + a]);
+      hi[a] = std::max(hi[a], d.positions[3 * v + a]);
+    }
+  const double r = 0.5 * std::sqrt(double(hi[0] - lo[0]) * (hi[0] - lo[0]) +
+                                   double(hi[1] - lo[1]) * (hi[1] - lo[1]) +
+                                   double(hi[2] - lo[2]) * (hi[2] - lo[2]));
+  std::vector<std::array<float, 3>> eyes;
+  for (const auto& dir :
+       {std::array<double, 3>{0.3, 0.5, 1.0}, {-1.0, 0.4, 0.2}, {0.2, 0.9, -0.8}}) {
+    const double len = std::sqrt(dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2]);
+    std::array<float, 3> e{};
+    for (int a = 0; a < 3; ++a) e[a] = float(0.5 * (lo[a] + hi[a]) + 2.5 * r * dir[a] / len);
+    eyes.push_back(e);
+  }
+  return eyes;
+}
+
+std::vector<float> shade(const prt::GlossyRelighter& r, const prt::ShLighting& light,
+                         const float eye[3]) {
+  std::vector<float> out(3 * r.vertex_count());
+  prt::GlossyFrame frame;
+  if (!r.prepare(light, &frame).ok() || !r.shade(frame, eye, 0, r.vertex_count(), out.data()).ok())
+    std::exit(1);
+  return out;
+}
+
+// Median thread CPU milliseconds of one frame (prepare + shade of every vertex).
+double frame_ms(const prt::GlossyRelighter& r, const prt::ShLighting& light, const float eye[3],
+                int repeats) {
+  std::vector<double> t;
+  std::vector<float> out(3 * r.vertex_count());
+  prt::GlossyFrame frame;
+  for (int i = 0; i < repeats; ++i) {
+    const double t0 = thread_seconds();
+    if (!r.prepare(light, &frame).ok() ||
+        !r.shade(frame, eye, 0, r.vertex_count(), out.data()).ok())
+      std::exit(1);
+    t.push_back(1e3 * (thread_seconds() - t0));
+  }
+  std::sort(t.begin(), t.end());
+  return t[t.size() / 2];
+}
+
+double relative_rms(const std::vector<float>& a, const std::vector<float>& ref) {
+  double err = 0, norm = 0;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    err += (double(a[i]) - ref[i]) * (double(a[i]) - ref[i]);
+    norm += double(ref[i]) * ref[i];
+  }
+  return std::sqrt(err / norm);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc < 2) {
+    std::fprintf(stderr,
+                 "usage: glossy_cpca_real FILE.prtg [threads] [clusters] [vectors] [repeats]\n");
+    return 2;
+  }
+  const std::string path = argv[1];
+  const unsigned threads = argc > 2 ? unsigned(std::atoi(argv[2])) : 2;
+  const int repeats = argc > 5 ? std::max(1, std::atoi(argv[5])) : 5;
+  const prt::GlossyTransferData d = require(prt::read_glossy_transfer_file(path));
+  const std::size_t n = d.vertex_count;
+  const double raw = 4.0 * double(d.matrices.size()) / double(n);
+  const double prtg_bytes = double(require(prt::encode_glossy_transfer_file(d, path)).size());
+  const std::vector<prt::ShLighting> probes = load_probes(int(d.order));
+  const std::vector<std::array<float, 3>> eyes = eye_points(d);
+  const prt::GlossyRelighter full = require(prt::GlossyRelighter::create(d));
+  const prt::GlossyRelighter portable = require(prt::GlossyRelighter::create(
+      prt::GlossyTransferData(d), {}, prt::GlossyShadingPath::kPortable));
+  std::vector<std::vector<float>> reference;
+  for (const auto& light : probes)
+    for (const auto& eye : eyes) reference.push_back(shade(full, light, eye.data()));
+  const double t_full = frame_ms(full, probes[0], eyes[0].data(), repeats);
+  const double t_portable = frame_ms(portable, probes[0], eyes[0].data(), repeats);
+  std::printf(
+      "%s: %zu vertices, order %u, %u channel(s), %zu material(s); matrices %.0f "
+      "bytes/vertex, file %.1f bytes/vertex\n",
+      path.c_str(), n, d.order, d.channels, d.materials.size(), raw, prtg_bytes / double(n));
+  std::printf("frame CPU ms (median of %d): uncompressed kernel %.2f, portable loop %.2f\n\n",
+              repeats, t_full, t_portable);
+  if (argc > 6) {
+    const prt::GlossyTransferData other = require(prt::read_glossy_transfer_file(argv[6]));
+    if (other.vertex_count != n || other.matrices.size() != d.matrices.size()) {
+      std::fprintf(stderr, "%s: not the same mesh and order as %s\n", argv[6], path.c_str());
+      return 1;
+    }
+    double diff = 0, norm = 0;
+    for (std::size_t e = 0; e < d.matrices.size(); ++e) {
+      diff +=
+          (double(other.matrices[e]) - d.matrices[e]) * (double(other.matrices[e]) - d.matrices[e]);
+      norm += double(d.matrices[e]) * d.matrices[e];
+    }
+    const prt::GlossyRelighter r = require(prt::GlossyRelighter::create(other));
+    double worst = 0, sum = 0;
+    std::size_t i = 0;
+    for (const auto& light : probes)
+      for (const auto& eye : eyes) {
+        const double e = relative_rms(shade(r, light, eye.data()), reference[i++]);
+        worst = std::max(worst, e);
+        sum += e;
+      }
+    std::printf(
+        "bake noise (%s against it): matrix rel. RMS %.4f, relit rel. RMS worst %.4f "
+        "(mean %.4f)\n\n",
+        argv[6], std::sqrt(diff / norm), worst, sum / double(i));
+  }
+  std::printf(
+      "| Q | K | matrix B/vertex | %% of matrices | .prtq %% of .prtg | matrix rel. RMS | "
+      "relit rel. RMS worst (mean) | frame CPU ms | compress CPU s |\n"
+      "|---:|---:|---:|---:|---:|---:|---|---:|---:|\n");
+  for (uint32_t q : list_arg(argc > 3 ? argv[3] : "16,64,256")) {
+    for (uint32_t k : list_arg(argc > 4 ? argv[4] : "4,8,16,32")) {
+      prt::CpcaOptions o;
+      o.clusters = q;
+      o.vectors = k;
+      o.threads = threads;
+      const std::clock_t c0 = std::clock();
+      const prt::CpcaTransfer c = require(prt::cpca_compress(d, o));
+      const double compress_s = double(std::clock() - c0) / CLOCKS_PER_SEC;
+      const double file_bytes = double(require(prt::encode_cpca_file(c, d)).size());
+      prt::GlossyTransferData geometry = d;
+      geometry.matrices.clear();
+      const prt::GlossyRelighter r =
+          require(prt::GlossyRelighter::create_cpca(std::move(geometry), c));
+      double worst = 0, sum = 0;
+      std::size_t i = 0;
+      for (const auto& light : probes)
+        for (const auto& eye : eyes) {
+          const double e = relative_rms(shade(r, light, eye.data()), reference[i++]);
+          worst = std::max(worst, e);
+          sum += e;
+        }
+      const double bytes = double(c.payload_bytes()) / double(n);
+      std::printf("| %u | %u | %.1f | %.2f | %.2f | %.4f | %.4f (%.4f) | %.2f | %.1f |\n", q, k,
+                  bytes, 100.0 * bytes / raw, 100.0 * file_bytes / prtg_bytes,
+                  prt::cpca_relative_rms_error(c, d.matrices.data()), worst, sum / double(i),
+                  frame_ms(r, probes[0], eyes[0].data(), repeats), compress_s);
+      std::fflush(stdout);
+    }
+  }
+  return 0;
+}
