@@ -318,7 +318,8 @@ TEST_CASE("scrambled Sobol' points are stratified in every coordinate",
   for (int a = 0; a <= m; ++a) {
     std::vector<int> count(n, 0);
     for (const auto& p : points)
-      ++count[(static_cast<int>(p[0] * (1 << a)) << (m - a)) + static_cast<int>(p[1] * (1 << (m - a)))];
+      ++count[(static_cast<int>(p[0] * (1 << a)) << (m - a)) +
+              static_cast<int>(p[1] * (1 << (m - a)))];
     CHECK(std::count(count.begin(), count.end(), 1) == n);
   }
 }
@@ -348,8 +349,8 @@ TEST_CASE("reciprocal emitter rows match the closed forms and the rays' estimate
     const FormFactorMatrix rays = compute_form_factors(patches, caster, o);
     const double f_reciprocal = square_to_square(patches, reciprocal, half);
     const double f_rays = square_to_square(patches, rays, half);
-    INFO("perpendicular " << perpendicular << ": reciprocal " << f_reciprocal << ", rays "
-                          << f_rays << ", exact " << exact);
+    INFO("perpendicular " << perpendicular << ": reciprocal " << f_reciprocal << ", rays " << f_rays
+                          << ", exact " << exact);
     CHECK(std::abs(f_reciprocal - exact) < (perpendicular ? 3e-2 : 1e-2) * exact);
     CHECK(std::abs(f_rays - exact) < 1e-2 * exact);
     // Entry by entry against the rays (2^16 rays each, relative error ≲ 2% on the smallest

@@ -86,8 +86,11 @@ TEST_CASE("prt radiosity refuses bad emission, albedo and --max-edge, nothing is
   check_refused(dir, room + outputs + " --form-factors rays --ray-sampling halton",
                 "--ray-sampling");
   check_refused(dir, room + outputs + " --form-factors rays --emitter-rows both", "--emitter-rows");
-  check_refused(dir, room + outputs + " --form-factors rays --emitter-rows reciprocal "
-                "--emitter-rays 4096", "--emitter-rays");
+  check_refused(dir,
+                room + outputs +
+                    " --form-factors rays --emitter-rows reciprocal "
+                    "--emitter-rays 4096",
+                "--emitter-rays");
   check_refused(dir, room + outputs + " --max-edge 0.0001", "--max-edge");  // > 2e7 triangles
   check_refused(dir, room + outputs + " --max-edge 0.005", "patches");      // > 16384 patches
   room = write_room(dir, "-5 5 5", "0.7 0.7 0.7", false).string();

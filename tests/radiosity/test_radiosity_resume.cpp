@@ -128,8 +128,8 @@ TEST_CASE("form-factor cache: another scene, other options, truncation and corru
   // Another sampler or other emitter rows estimate F differently: a cache of one is refused
   // for the other.
   FormFactorOptions other_sampling = ff;
-  other_sampling.sampling = ff.sampling == RaySampling::Sobol ? RaySampling::Independent
-                                                               : RaySampling::Sobol;
+  other_sampling.sampling =
+      ff.sampling == RaySampling::Sobol ? RaySampling::Independent : RaySampling::Sobol;
   FormFactorOptions reciprocal = ff, reciprocal_one = ff;
   reciprocal.emitter_rows = EmitterRows::Reciprocal;
   reciprocal_one.emitter_rows = EmitterRows::Reciprocal;

@@ -80,9 +80,9 @@ struct FormFactorOptions {
   // rays: rays from each emitting patch (emission ≠ 0); 0 = rays_per_patch. Direct light is
   // estimated from the emitters' rows, so their noise dominates unless they shoot more.
   int emitter_rays_per_patch = 0;
-  uint64_t seed = 1;             // rays
-  RaySampling sampling = RaySampling::Sobol;         // rays
-  EmitterRows emitter_rows = EmitterRows::Rays;      // rays
+  uint64_t seed = 1;                             // rays
+  RaySampling sampling = RaySampling::Sobol;     // rays
+  EmitterRows emitter_rows = EmitterRows::Rays;  // rays
   int hemicube_resolution = 64;  // hemicube: cells across the top face (even, 2..4096)
 };
 
