@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <vector>
 
 #include <tbb/global_control.h>
@@ -14,6 +15,7 @@
 #include "scene/procedural_mesh.h"
 #include "scene/ray_caster.h"
 // The sampler is internal to the module (header-only, no dependencies).
+#include "../../radiosity/src/random.h"
 #include "../../radiosity/src/sobol.h"
 
 using namespace prt::radiosity;
@@ -362,4 +364,40 @@ TEST_CASE("reciprocal emitter rows match the closed forms and the rays' estimate
       for (std::size_t j = half; j < patches.size(); ++j)
         CHECK(reciprocal.at(e, j) == Approx(rays.at(e, j)).epsilon(tolerance));
   }
+}
+
+TEST_CASE("ray streams find the same closest hits as single rays", "[radiosity][form-factors]") {
+  // The ray rows cast streams (RayCaster::intersect_stream); they must see exactly what single
+  // rays see, hit by hit, whatever the stream length (1, 7 and 64 here, with and without the
+  // coherent hint).
+  const prt::scene::Scene box =
+      prt::scene::make_box({0, 0, 0}, {1, 1.5, 2}, 4, /*normals_inward=*/true, glm::vec3(0.5f));
+  const prt::scene::RayCaster caster(box);
+  std::vector<glm::vec3> origins, dirs;
+  prt::radiosity::detail::PatchRandom random(3, 0);
+  for (int k = 0; k < 448; ++k) {
+    origins.emplace_back(0.1 + 0.8 * random.uniform(), 0.1 + 1.3 * random.uniform(),
+                         0.1 + 1.8 * random.uniform());
+    dirs.push_back(glm::vec3(prt::radiosity::detail::cosine_direction(
+        glm::normalize(glm::dvec3(random.uniform() - 0.5, random.uniform() - 0.5,
+                                  random.uniform() - 0.5)),
+        random.uniform(), random.uniform())));
+  }
+  const float inf = std::numeric_limits<float>::infinity();
+  for (int length : {1, 7, 64})
+    for (bool coherent : {false, true}) {
+      std::vector<prt::scene::RayCaster::Hit> hits(origins.size());
+      for (std::size_t i = 0; i < origins.size(); i += std::size_t(length)) {
+        const int count = static_cast<int>(std::min<std::size_t>(length, origins.size() - i));
+        caster.intersect_stream(&origins[i], &dirs[i], count, inf, coherent, &hits[i]);
+      }
+      for (std::size_t i = 0; i < origins.size(); ++i) {
+        const prt::scene::RayCaster::Hit one = caster.intersect(origins[i], dirs[i], 0.f, inf);
+        REQUIRE(one.hit);  // inside a closed box every ray hits
+        CHECK(hits[i].hit == one.hit);
+        CHECK(hits[i].triangle == one.triangle);
+        CHECK(hits[i].t == one.t);
+        CHECK(hits[i].front_face == one.front_face);
+      }
+    }
 }
