@@ -30,6 +30,8 @@ struct RadiosityArguments {
   int rays = 1024;
   uint64_t seed = 1;
   int emitter_rays = 0;
+  std::string ray_sampling = "sobol";
+  std::string emitter_rows = "auto";
   int quadrature = 3;
   int hemicube = 64;
   std::size_t max_iterations = 100000;
@@ -108,6 +110,22 @@ relight::RadiosityRequest make_request(const RadiosityArguments& a) {
   if (a.emitter_rays < 0 || a.emitter_rays > 1 << 24)
     throw CommandError("--emitter-rays: must be in 0..16777216");
   r.form_factors.emitter_rays_per_patch = a.emitter_rays;
+  if (a.ray_sampling == "sobol") {
+    r.form_factors.sampling = radiosity::RaySampling::Sobol;
+  } else if (a.ray_sampling == "independent") {
+    r.form_factors.sampling = radiosity::RaySampling::Independent;
+  } else {
+    throw CommandError("--ray-sampling " + a.ray_sampling + ": expected sobol|independent");
+  }
+  if (a.emitter_rows == "rays" || (a.emitter_rows == "auto" && a.emitter_rays > 0)) {
+    r.form_factors.emitter_rows = radiosity::EmitterRows::Rays;
+  } else if (a.emitter_rows == "reciprocal" || a.emitter_rows == "auto") {
+    if (a.emitter_rays > 0)
+      throw CommandError("--emitter-rays: not with --emitter-rows reciprocal (no emitter rays)");
+    r.form_factors.emitter_rows = radiosity::EmitterRows::Reciprocal;
+  } else {
+    throw CommandError("--emitter-rows " + a.emitter_rows + ": expected auto|rays|reciprocal");
+  }
   r.form_factors.hemicube_resolution = a.hemicube;
   r.form_factors.quadrature_points = a.quadrature;
   r.solve.tolerance = a.tolerance;
@@ -158,9 +176,9 @@ void run(const RadiosityArguments& args) {
     std::printf("per-emitter responses: %zu emitter%s solved in %.2f s on the same form factors:",
                 s.emitter_reports.size(), s.emitter_reports.size() == 1 ? "" : "s",
                 s.per_emitter_seconds);
-    for (const radiosity::EmitterSolveReport& e : s.emitter_reports)
-      std::printf(" %s (%zu sweeps, unshot %.2g%s)", e.name.c_str(), e.iterations,
-                  e.relative_unshot, e.converged ? "" : ", NOT converged");
+    for (const radiosity::EmitterSolveReport& r : s.emitter_reports)
+      std::printf(" %s (%zu sweeps, unshot %.2g%s)", r.name.c_str(), r.iterations,
+                  r.relative_unshot, r.converged ? "" : ", NOT converged");
     std::printf("\n");
   }
   std::printf("wrote:");
@@ -220,6 +238,17 @@ void register_radiosity(CLI::App& app) {
   cmd->add_option("--emitter-rays", args->emitter_rays,
                   "Rays per emitting patch for --form-factors rays (0: as --rays); direct light "
                   "is estimated from these")
+      ->capture_default_str();
+  cmd->add_option("--ray-sampling", args->ray_sampling,
+                  "sobol|independent: the rays' samples (point on the patch, direction) of "
+                  "--form-factors rays: a digitally shifted Sobol' set per patch (stratified) or "
+                  "independent random samples")
+      ->capture_default_str();
+  cmd->add_option("--emitter-rows", args->emitter_rows,
+                  "auto|rays|reciprocal: emitting patches' rows for --form-factors rays, by "
+                  "their own rays or by reciprocity from every receiver's analytic form factor "
+                  "(--quadrature points, one shadow ray each); auto: rays when --emitter-rays is "
+                  "given, else reciprocal")
       ->capture_default_str();
   cmd->add_option("--seed", args->seed, "Random seed of --form-factors rays")
       ->capture_default_str();

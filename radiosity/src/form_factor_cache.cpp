@@ -90,10 +90,19 @@ uint64_t form_factor_key(const std::vector<Patch>& patches, const FormFactorOpti
       h.word(static_cast<uint32_t>(options.rays_per_patch));
       h.u64(options.seed);
       // Which patches shoot more rays is part of how F was estimated (not their emission).
-      if (options.emitter_rays_per_patch > 0) {
+      if (options.emitter_rays_per_patch > 0 || options.emitter_rows == EmitterRows::Reciprocal) {
         h.word(static_cast<uint32_t>(options.emitter_rays_per_patch));
         for (std::size_t i = 0; i < patches.size(); ++i)
           if (patches[i].emission != glm::dvec3(0.0)) h.u64(i);
+      }
+      // Independent samples and ray-cast emitter rows add nothing, so that a cache made before
+      // these choices existed (the same F, bit for bit) keeps its key; any other choice changes
+      // the key, so a cache of another estimator is refused.
+      if (options.sampling != RaySampling::Independent)
+        h.word(0x50000000u + static_cast<uint32_t>(options.sampling));
+      if (options.emitter_rows != EmitterRows::Rays) {
+        h.word(0x45000000u + static_cast<uint32_t>(options.emitter_rows));
+        h.word(static_cast<uint32_t>(options.quadrature_points));
       }
       break;
     case FormFactorMethod::Hemicube:

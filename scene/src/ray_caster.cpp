@@ -263,4 +263,47 @@ void RayCaster::intersect_packet(const glm::vec3& origin, const glm::vec3* dirs,
   }
 }
 
+void RayCaster::intersect_stream(const glm::vec3* origins, const glm::vec3* dirs, int count,
+                                 float tfar, bool coherent, Hit* out) const {
+  if (count <= 0) return;
+  RTCIntersectContext ctx;
+  rtcInitIntersectContext(&ctx);
+  ctx.flags =
+      coherent ? RTC_INTERSECT_CONTEXT_FLAG_COHERENT : RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
+  thread_local std::vector<RTCRayHit> rays;
+  rays.resize(static_cast<std::size_t>(count));
+  for (int i = 0; i < count; ++i) {
+    RTCRayHit& rh = rays[static_cast<std::size_t>(i)];
+    rh.ray.org_x = origins[i].x;
+    rh.ray.org_y = origins[i].y;
+    rh.ray.org_z = origins[i].z;
+    rh.ray.dir_x = dirs[i].x;
+    rh.ray.dir_y = dirs[i].y;
+    rh.ray.dir_z = dirs[i].z;
+    rh.ray.tnear = 0.f;
+    rh.ray.tfar = tfar;
+    rh.ray.time = 0.f;
+    rh.ray.mask = kMaskAll;
+    rh.ray.id = static_cast<unsigned>(i);
+    rh.ray.flags = 0;
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  }
+  rtcIntersect1M(static_cast<RTCScene>(rtc_scene_), &ctx, rays.data(), static_cast<unsigned>(count),
+                 sizeof(RTCRayHit));
+  for (int i = 0; i < count; ++i) {
+    const RTCRayHit& rh = rays[static_cast<std::size_t>(i)];
+    Hit h;
+    if (rh.hit.geomID != RTC_INVALID_GEOMETRY_ID) {
+      h.hit = true;
+      h.t = rh.ray.tfar;
+      h.triangle = rh.hit.primID;
+      h.u = rh.hit.u;
+      h.v = rh.hit.v;
+      h.front_face = front_facing(h.triangle, dirs[i]);
+    }
+    out[i] = h;
+  }
+}
+
 }  // namespace prt::scene

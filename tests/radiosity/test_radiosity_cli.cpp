@@ -83,6 +83,14 @@ TEST_CASE("prt radiosity refuses bad emission, albedo and --max-edge, nothing is
   check_refused(dir, room + outputs + " --albedo white=1.2", "albedo");
   check_refused(dir, room + outputs + " --form-factors hemicube --hemicube 3", "--hemicube");
   check_refused(dir, room + outputs + " --form-factors radiance", "--form-factors");
+  check_refused(dir, room + outputs + " --form-factors rays --ray-sampling halton",
+                "--ray-sampling");
+  check_refused(dir, room + outputs + " --form-factors rays --emitter-rows both", "--emitter-rows");
+  check_refused(dir,
+                room + outputs +
+                    " --form-factors rays --emitter-rows reciprocal "
+                    "--emitter-rays 4096",
+                "--emitter-rays");
   check_refused(dir, room + outputs + " --max-edge 0.0001", "--max-edge");  // > 2e7 triangles
   check_refused(dir, room + outputs + " --max-edge 0.005", "patches");      // > 16384 patches
   room = write_room(dir, "-5 5 5", "0.7 0.7 0.7", false).string();
@@ -162,7 +170,9 @@ TEST_CASE("prt radiosity --form-factor-cache: saved, reused, refused for another
   // Another subdivision (another scene) and other options: refused, nothing written, the cache
   // untouched.
   for (const std::string& other :
-       {std::string(" --max-edge 0.2"), std::string(" --max-edge 0.25 --seed 5")}) {
+       {std::string(" --max-edge 0.2"), std::string(" --max-edge 0.25 --seed 5"),
+        std::string(" --max-edge 0.25 --ray-sampling independent"),
+        std::string(" --max-edge 0.25 --emitter-rows rays")}) {
     r = run(common + (dir / "out.csv").string() + other + " --form-factor-cache " + cache + " -o " +
             (dir / "out.png").string());
     INFO(other << "\n" << r.err);

@@ -111,9 +111,20 @@ TEST_CASE("form-factor cache: another scene, other options, truncation and corru
   FormFactorOptions other_seed = ff;
   other_seed.seed = 2;
   FormFactorOptions analytic;
+  // Another sampler or other emitter rows estimate F differently: a cache of one is refused
+  // for the other.
+  FormFactorOptions other_sampling = ff;
+  other_sampling.sampling =
+      ff.sampling == RaySampling::Sobol ? RaySampling::Independent : RaySampling::Sobol;
+  FormFactorOptions reciprocal = ff, reciprocal_one = ff;
+  reciprocal.emitter_rows = EmitterRows::Reciprocal;
+  reciprocal_one.emitter_rows = EmitterRows::Reciprocal;
+  reciprocal_one.quadrature_points = 1;
+  CHECK(form_factor_key(patches, reciprocal) != form_factor_key(patches, reciprocal_one));
   for (uint64_t other :
        {form_factor_key(moved, ff), form_factor_key(patches, more),
-        form_factor_key(patches, other_seed), form_factor_key(patches, analytic)}) {
+        form_factor_key(patches, other_seed), form_factor_key(patches, analytic),
+        form_factor_key(patches, other_sampling), form_factor_key(patches, reciprocal)}) {
     CHECK(other != key);
     const std::string error = load_error(path, other);
     CHECK(error.find(path) == 0);

@@ -15,7 +15,9 @@
 //   rays: Monte Carlo — `rays_per_patch` cosine-distributed rays (`emitter_rays_per_patch` from
 //     a patch whose emission is not zero, when given) leave uniformly distributed points of
 //     patch i; F_ij is the fraction whose closest hit is the front face of patch j
-//     (the estimator is unbiased, its standard error √(F(1 − F)/N)).
+//     (the estimator is unbiased; with independent samples its standard error is
+//     √(F(1 − F)/N), with the stratified Sobol' samples it is lower; see RaySampling).
+//     Emitters' rows may instead come from the receivers by reciprocity (EmitterRows).
 //   hemicube: Cohen & Greenberg 1985 ([24]): the scene's patches rasterised with a z-buffer onto
 //     a hemicube of `hemicube_resolution` cells across its top face (R × R/2 on each side face)
 //     at the centroid of patch i; each cell credits the patch whose front face it shows with its
@@ -55,6 +57,22 @@ double polygon_polygon_form_factor(const std::vector<glm::dvec3>& a,
 
 enum class FormFactorMethod { Analytic, Rays, Hemicube };
 
+// rays: how a row's 4-D samples (two uniforms for the point on the patch, two for the
+// direction) are drawn. Both are unbiased and depend only on (seed, row).
+enum class RaySampling {
+  Independent,  // every sample from the row's pseudo-random stream
+  Sobol,        // the first N points of the 4-D Sobol' sequence, scrambled (nested) per row
+                // (sobol.h; [90], [91] of docs/REFERENCES.md): stratified in every projection
+};
+
+// rays: how the rows of emitting patches (emission ≠ 0) are made.
+enum class EmitterRows {
+  Rays,        // like every other row, with emitter_rays_per_patch rays when that is > 0
+  Reciprocal,  // F_ej = A_j · F_je / A_e, F_je the analytic value (quadrature_points points of
+               // receiver j, one visibility ray each; as the analytic method): no ray noise in
+               // the direct light. The row is then scaled to sum to at most 1.
+};
+
 struct FormFactorOptions {
   FormFactorMethod method = FormFactorMethod::Analytic;
   int quadrature_points = 3;  // analytic: 1 (centroid) or 3 (degree-2 rule)
@@ -62,7 +80,9 @@ struct FormFactorOptions {
   // rays: rays from each emitting patch (emission ≠ 0); 0 = rays_per_patch. Direct light is
   // estimated from the emitters' rows, so their noise dominates unless they shoot more.
   int emitter_rays_per_patch = 0;
-  uint64_t seed = 1;             // rays
+  uint64_t seed = 1;                             // rays
+  RaySampling sampling = RaySampling::Sobol;     // rays
+  EmitterRows emitter_rows = EmitterRows::Rays;  // rays
   int hemicube_resolution = 64;  // hemicube: cells across the top face (even, 2..4096)
 };
 

@@ -1,5 +1,5 @@
 // scene/ray_caster.h — an RAII Embree 3 wrapper over a Scene: occlusion and closest-hit queries,
-// single rays and 16-wide packets that share an origin (the baker's access pattern).
+// single rays, 16-wide packets that share an origin (the baker's access pattern) and streams.
 //
 // Frame and units: the Scene's (glTF frame, +Y up; the file's units). Directions need not be
 // normalised for occlusion, but Hit::t is in units of |d|, so pass unit directions when t matters.
@@ -60,6 +60,12 @@ class RayCaster {
   // rtcIntersect16 for `count` ≤ 16 rays sharing `origin` (tnear = 0); out[i] = closest hit.
   void intersect_packet(const glm::vec3& origin, const glm::vec3* dirs, int count, float tfar,
                         Hit* out) const;
+
+  // rtcIntersect1M: `count` rays with their own origins (tnear = 0) as one stream;
+  // out[i] = closest hit of ray i, as intersect(). `coherent` passes Embree's coherent-stream
+  // hint (it may then trace them as packets); otherwise the incoherent flag.
+  void intersect_stream(const glm::vec3* origins, const glm::vec3* dirs, int count, float tfar,
+                        bool coherent, Hit* out) const;
 
   // ε_v and τ_v of every vertex (scene/ray_offset.h).
   const VertexRayStarts& vertex_ray_starts() const { return starts_; }
