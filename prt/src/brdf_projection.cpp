@@ -130,6 +130,23 @@ struct BrdfProjection::Impl {
 
 namespace {
 
+// The table node at the horizon (cos θo = 0) is the limit of b as the view approaches the
+// horizon, not b at the horizon (zero: the BRDFs are one-sided). b has a finite, nonzero limit
+// for a Lambert layer and for microfacet lobes with Smith masking, so a zero node would pull
+// every view within one table step of the horizon towards 0 (measured: 60% low 0.4° above it).
+// The limit is extrapolated linearly from the two nearest nodes rather than evaluated near
+// cos θo = 0, where the original Ward form diverges as 1/√cos θo. `table` holds `size` nodes of
+// `stride` values; the horizon node is the first (`horizon_first`) or the last.
+void extrapolate_horizon_node(std::vector<double>* table, std::size_t stride, int size,
+                              bool horizon_first) {
+  if (size < 3) return;
+  const std::size_t h = horizon_first ? 0 : std::size_t(size - 1);
+  const std::size_t a = horizon_first ? 1 : std::size_t(size - 2);
+  const std::size_t b = horizon_first ? 2 : std::size_t(size - 3);
+  for (std::size_t k = 0; k < stride; ++k)
+    (*table)[h * stride + k] = 2.0 * (*table)[a * stride + k] - (*table)[b * stride + k];
+}
+
 // g_c,l(cos θo) of the glossy part, by the graded rule about the mirror direction.
 void fill_zonal_table(const brdf::Brdf& glossy, BrdfProjection::Impl* p, int table_size) {
   const int n = p->order;
@@ -150,6 +167,7 @@ void fill_zonal_table(const brdf::Brdf& glossy, BrdfProjection::Impl* p, int tab
     for (int k = 0; k < 3; ++k)
       for (int l = 0; l < n; ++l) g[k * n + l] *= std::sqrt(4.0 * kPi / (2.0 * l + 1.0));
   }
+  extrapolate_horizon_node(&p->table, 3 * std::size_t(n), table_size, /*horizon_first=*/true);
 }
 
 // b(θo, 0) by the reference quadrature at each tabulated elevation.
@@ -161,10 +179,11 @@ Status fill_isotropic_table(const brdf::Brdf& f, const BrdfProjectionOptions& o,
   for (int t = 0; t < o.table_size; ++t) {
     const double theta = 0.5 * kPi * t / (o.table_size - 1);
     const Vec3 wo{std::sin(theta), 0.0, std::cos(theta)};
-    if (!(wo.z > 1e-12)) continue;  // the horizon itself: b = 0
+    if (!(wo.z > 1e-12)) continue;  // the horizon node: extrapolated below
     if (Status s = project_brdf_slice(f, p->order, wo, {o.table_nodes}, &p->iso[t * 3 * n2]); !s)
       return s;
   }
+  extrapolate_horizon_node(&p->iso, 3 * n2, o.table_size, /*horizon_first=*/false);
   p->iso_f = to_float(p->iso);
   return Status::Ok();
 }

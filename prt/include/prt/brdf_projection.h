@@ -32,6 +32,8 @@
 //   interpolated linearly in θo and rotated by φo (per band, the pairs (m, −m) mix by cos mφo,
 //   sin mφo). Its only errors are the table's interpolation and quadrature (Kautz, Sloan &
 //   Snyder 2002 [55] reduce isotropic BRDFs to the elevation of ωo the same way).
+//   In both tables the node at the horizon (cos θo = 0) holds the limit of b as the view
+//   approaches the horizon (extrapolated linearly from the two nearest nodes), not b there.
 // - BrdfProjectionMethod::kMatrix, for any material (anisotropic and measured ones): the
 //   n² × m² matrix B_c,ij = 2 ∫_{H+} b_c,i(ωo) y_j(ωo) dωo over j with l_j + m_j even, so that
 //   b_c,i(ωo) ≈ Σ_j B_c,ij y_j(ωo) with view-side order m. The factor 2 and the parity are the
