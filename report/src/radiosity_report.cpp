@@ -110,10 +110,13 @@ struct Sweep {
     const double s = lv.truth.relative_rms_se;
     row.relative_rms_corrected =
         std::sqrt(std::max(0.0, row.relative_rms * row.relative_rms - s * s));
+    char resolve[48] = "";  // progressive rows have no re-solve (resolve_seconds < 0)
+    if (row.resolve_seconds >= 0)
+      std::snprintf(resolve, sizeof resolve, " (re-solve %.2f s)", row.resolve_seconds);
     char line[256];
-    std::snprintf(line, sizeof line, "%s + %s, %zu patches: %.2f s (re-solve %.2f s), error %.2f%%",
+    std::snprintf(line, sizeof line, "%s + %s, %zu patches: %.2f s%s, error %.2f%%",
                   method_name(row.method).c_str(), solver_name(row.solver).c_str(), row.patches,
-                  row.total_seconds, row.resolve_seconds, 100 * row.relative_rms);
+                  row.total_seconds, resolve, 100 * row.relative_rms);
     log(line);
     if (finest && row.relative_rms < best_finest_error)
       best_finest_error = row.relative_rms, best_finest = sol.display_radiance;
@@ -182,6 +185,8 @@ struct Sweep {
       radiosity::FormFactorOptions fo;
       fo.method = m, fo.rays_per_patch = o.rays_per_patch, fo.seed = o.seed;
       fo.hemicube_resolution = o.hemicube_resolution;
+      // As `prt radiosity` by default: Sobol' rows, emitters' rows by reciprocity.
+      fo.emitter_rows = radiosity::EmitterRows::Reciprocal;
       const bool matrix = std::any_of(o.solvers.begin(), o.solvers.end(), [](auto k) {
         return k != radiosity::SolverKind::Progressive;
       });
