@@ -170,11 +170,13 @@ Result<CpcaFile> decode_impl(const void* data, std::size_t size, const std::stri
     return Status::Error(name + ": not a CPCA transfer file (no PRCP header)");
   }
   if (load_u32(p + 4) != kVersion || load_u32(p + 8) != kHeaderSize) {
-    return Status::Error(name + ": unsupported CPCA file version " + std::to_string(load_u32(p + 4)));
+    return Status::Error(name + ": unsupported CPCA file version " +
+                         std::to_string(load_u32(p + 4)));
   }
   if (load_u64(p + 48) != size) {
     return Status::Error(name + ": file size " + std::to_string(size) + " differs from the " +
-                         std::to_string(load_u64(p + 48)) + " bytes the header records (truncated?)");
+                         std::to_string(load_u64(p + 48)) +
+                         " bytes the header records (truncated?)");
   }
   if (load_u32(p + kChecksumOffset) != file_checksum(p, size)) {
     return Status::Error(name + ": checksum mismatch (the file is corrupt)");
@@ -191,9 +193,9 @@ Result<CpcaFile> decode_impl(const void* data, std::size_t size, const std::stri
     const uint32_t flags = load_u32(p + 28);
     const bool sourced = (flags & kCpcaFlagSource) != 0;
     const uint64_t payload = t.order >= 1 && t.order <= 16 ? t.payload_bytes() : 0;
-    const bool sizes_agree =
-        sourced ? payload <= size && size - payload >= 8 && load_u64(p + payload) == size - payload - 8
-                : payload == size;
+    const bool sizes_agree = sourced ? payload <= size && size - payload >= 8 &&
+                                           load_u64(p + payload) == size - payload - 8
+                                     : payload == size;
     if (t.order < 1 || t.order > 16 || (t.channels != 1 && t.channels != 3) ||
         t.cluster_count < 1 || t.cluster_count > 65535 || t.vector_count > 4096 ||
         t.vertex_count > (uint64_t(1) << 32) || (flags & ~kCpcaFlagSource) != 0 || !sizes_agree) {

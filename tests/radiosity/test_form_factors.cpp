@@ -379,8 +379,8 @@ TEST_CASE("ray streams find the same closest hits as single rays", "[radiosity][
     origins.emplace_back(0.1 + 0.8 * random.uniform(), 0.1 + 1.3 * random.uniform(),
                          0.1 + 1.8 * random.uniform());
     dirs.push_back(glm::vec3(prt::radiosity::detail::cosine_direction(
-        glm::normalize(glm::dvec3(random.uniform() - 0.5, random.uniform() - 0.5,
-                                  random.uniform() - 0.5)),
+        glm::normalize(
+            glm::dvec3(random.uniform() - 0.5, random.uniform() - 0.5, random.uniform() - 0.5)),
         random.uniform(), random.uniform())));
   }
   const float inf = std::numeric_limits<float>::infinity();

@@ -278,7 +278,7 @@ TEST_CASE("unshadowed glossy sphere under band-limited light agrees with the glo
       ++count;
     }
   INFO("worst |relit - truth| / bound " << worst << " over " << count << ", " << grazing
-                                          << " of them with cos θo < 0.1");
+                                        << " of them with cos θo < 0.1");
   REQUIRE(count > 150);
   REQUIRE(grazing > 0);
   CHECK(worst <= 1.0);

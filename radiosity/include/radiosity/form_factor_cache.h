@@ -8,10 +8,10 @@
 // and the method's options (analytic: quadrature points; rays: rays per patch and seed;
 // with emitter_rays_per_patch > 0 or reciprocal emitter rows also that count and the indices
 // of the emitting patches; the sampling unless Independent; the emitter rows and quadrature
-// points unless Rays; hemicube: resolution) with the method's number. Emission values do not enter it. A loaded file
-// must carry the key of the caller's patches and options, its size must match N, and its CRC-32C
-// (prt/crc32c.h) must hold. Errors throw std::runtime_error with one line that names the file;
-// saving is atomic (prt/atomic_file.h), so a failed save leaves no file behind.
+// points unless Rays; hemicube: resolution) with the method's number. Emission values do not enter
+// it. A loaded file must carry the key of the caller's patches and options, its size must match N,
+// and its CRC-32C (prt/crc32c.h) must hold. Errors throw std::runtime_error with one line that
+// names the file; saving is atomic (prt/atomic_file.h), so a failed save leaves no file behind.
 #pragma once
 
 #include <cstdint>

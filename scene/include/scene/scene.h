@@ -72,10 +72,10 @@ struct SceneCamera {
 };
 
 struct Scene {
-  std::vector<glm::vec3> positions;   // world space
-  std::vector<glm::vec3> normals;     // unit length, one per vertex
-  std::vector<glm::vec3> albedo;      // per vertex (its primitive's albedo, or its texture here)
-  std::vector<glm::vec2> texcoords;   // per vertex, or empty (never when a primitive is textured)
+  std::vector<glm::vec3> positions;  // world space
+  std::vector<glm::vec3> normals;    // unit length, one per vertex
+  std::vector<glm::vec3> albedo;     // per vertex (its primitive's albedo, or its texture here)
+  std::vector<glm::vec2> texcoords;  // per vertex, or empty (never when a primitive is textured)
   // Per-vertex tangent frames from the file (glTF TANGENT: xyz a unit tangent ⊥ normal, w = ±1
   // the bitangent's handedness, bitangent = w · cross(normal, tangent)), or empty when the file
   // has none; zero (0, 0, 0, 0) marks a vertex without one (a primitive without TANGENT, or an
