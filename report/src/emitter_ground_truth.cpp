@@ -13,6 +13,7 @@
 #include <tbb/parallel_for.h>
 
 #include "bake/sampling.h"
+#include "sample_rng.h"
 #include "scene/ray_caster.h"
 #include "scene/scene_label.h"
 #include "sh/constants.h"
@@ -25,18 +26,7 @@ constexpr int kRouletteFromDepth = 2;  // path vertices 0 and 1 never roulette
 constexpr float kFar = 1e30f;
 constexpr double kShadowShorten = 1.0 - 1e-4;  // shadow rays stop short of the emitter's point
 
-// SplitMix64 stream seeded per (patch, sample): uniform doubles in [0, 1).
-struct Rng {
-  uint64_t state;
-  double next() {
-    state += 0x9e3779b97f4a7c15ull;
-    uint64_t z = state;
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-    z ^= z >> 31;
-    return static_cast<double>(z >> 11) * 0x1.0p-53;
-  }
-};
+using Rng = detail::SampleRng;
 
 double luminance(const glm::dvec3& c) {
   return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z;

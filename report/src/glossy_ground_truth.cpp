@@ -16,6 +16,7 @@
 #include "bake/sampling.h"
 #include "bake/transfer_baker.h"
 #include "prt/brdf/material.h"
+#include "sample_rng.h"
 #include "scene/ray_caster.h"
 #include "scene/scene_label.h"
 #include "scene/tangent_frames.h"
@@ -34,18 +35,7 @@ constexpr std::size_t kVertexBlock = 16;
 constexpr uint32_t kNoPrimitive = ~0u;
 using Clock = std::chrono::steady_clock;
 
-// SplitMix64 stream seeded per (vertex, sample): uniform doubles in [0, 1).
-struct SampleRng {
-  uint64_t state;
-  double next() {
-    state += 0x9e3779b97f4a7c15ull;
-    uint64_t z = state;
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-    z ^= z >> 31;
-    return static_cast<double>(z >> 11) * 0x1.0p-53;
-  }
-};
+using detail::SampleRng;
 
 // An orthonormal shading frame (t, b, n) in world space.
 struct Frame {

@@ -16,6 +16,7 @@
 #include "bake/transfer_baker.h"
 #include "scene/ray_caster.h"
 
+#include "sample_rng.h"
 #include "scene/scene_label.h"
 #include "sh/constants.h"
 
@@ -37,18 +38,7 @@ double luminance(const double rgb[3]) {
   return 0.2126 * rgb[0] + 0.7152 * rgb[1] + 0.0722 * rgb[2];
 }
 
-// SplitMix64 stream seeded per (vertex, sample): uniform doubles in [0, 1).
-struct SampleRng {
-  uint64_t state;
-  double next() {
-    state += 0x9e3779b97f4a7c15ull;
-    uint64_t z = state;
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-    z ^= z >> 31;
-    return static_cast<double>(z >> 11) * 0x1.0p-53;
-  }
-};
+using detail::SampleRng;
 
 // Face direction of the cube layouts (sh/env_map.h): face index in +X, −X, +Y, −Y, +Z, −Z order.
 void cube_face_direction(int face, double a, double b, bool faces_layout, double d[3]) {
