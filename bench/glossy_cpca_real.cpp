@@ -14,8 +14,12 @@
 //   * with OTHER.prtg (the same mesh baked with another --seed): the same errors between the two
 //     uncompressed bakes — the Monte Carlo noise of the bake, a floor below which CPCA error is
 //     not worth buying.
-// Usage: [PRT_SHARED_DATA_DIR=DIR] glossy_cpca_real FILE.prtg [threads=2] [clusters=16,64,256]
-//        [vectors=4,8,16,32] [repeats=5] [OTHER.prtg]
+// Usage: [PRT_SHARED_DATA_DIR=DIR] glossy_cpca_real [--metric=matrix|relit[:FLOOR]] FILE.prtg
+//        [threads=2]
+//        [clusters=16,64,256] [vectors=4,8,16,32] [repeats=5] [OTHER.prtg]
+// --metric=relit compresses under prt/cpca_metric.h's metric (FLOOR: its floor; default: the
+// plain matrix error);
+// the table's matrix error stays the plain one.
 // Run under `taskset -c 1` for the timings (figures in docs/GLOSSY_CPCA.md).
 #include <time.h>
 
@@ -29,6 +33,7 @@
 
 #include "prt/cpca.h"
 #include "prt/cpca_file.h"
+#include "prt/cpca_metric.h"
 #include "prt/glossy_relighter.h"
 #include "prt/glossy_transfer_file.h"
 #include "relight/image_io.h"
@@ -136,6 +141,19 @@ double relative_rms(const std::vector<float>& a, const std::vector<float>& ref) 
 }  // namespace
 
 int main(int argc, char** argv) {
+  bool relit_metric = false;
+  prt::RelitMetricOptions metric_options;
+  if (argc > 1 && std::string(argv[1]).rfind("--metric=", 0) == 0) {
+    const std::string m = argv[1] + 9;
+    if (m != "matrix" && m.rfind("relit", 0) != 0) {
+      std::fprintf(stderr, "--metric: matrix, relit or relit:FLOOR, not %s\n", m.c_str());
+      return 2;
+    }
+    relit_metric = m != "matrix";
+    if (m.rfind("relit:", 0) == 0) metric_options.floor = std::atof(m.c_str() + 6);
+    --argc;
+    ++argv;
+  }
   if (argc < 2) {
     std::fprintf(stderr,
                  "usage: glossy_cpca_real FILE.prtg [threads] [clusters] [vectors] [repeats]\n");
@@ -200,6 +218,7 @@ int main(int argc, char** argv) {
       o.clusters = q;
       o.vectors = k;
       o.threads = threads;
+      if (relit_metric) o.row_metric = require(prt::cpca_relit_metric(d, metric_options));
       const std::clock_t c0 = std::clock();
       const prt::CpcaTransfer c = require(prt::cpca_compress(d, o));
       const double compress_s = double(std::clock() - c0) / CLOCKS_PER_SEC;

@@ -2,8 +2,8 @@
 // prt/cpca_file.h) that `prt relight` and `prt info` read like the .prtg it came from.
 //
 //   prt compress IN.prtg -o OUT.prtq [--clusters Q] [--vectors K]
-//                [--target-error E [--max-vectors K]] [--iterations n] [--seed s]
-//                [--threads t] [--quiet]
+//                [--target-error E [--max-vectors K]] [--metric relit|matrix]
+//                [--iterations n] [--seed s] [--threads t] [--quiet]
 //
 // Argument mapping only; the work is run_glossy_compress (cli/glossy_cli.h).
 #include <memory>
@@ -32,12 +32,16 @@ void register_compress(CLI::App& app) {
       cmd->add_option("--vectors", r->vectors, "Principal vectors K per cluster (default 16)");
   CLI::Option* target = cmd->add_option(
       "--target-error", r->target_error,
-      "Instead of --vectors: the smallest K whose relative RMS matrix error is at most E "
-      "(e.g. 0.02)");
+      "Instead of --vectors: the smallest K whose relative RMS error (in --metric) is at most "
+      "E (e.g. 0.02)");
   CLI::Option* max_vectors = cmd->add_option(
       "--max-vectors", r->max_vectors, "With --target-error: the largest K tried (default 32)");
   vectors->excludes(target);
   (void)clusters;
+  cmd->add_option("--metric", r->metric,
+                  "What the compression minimises: relit (default: the expected error of the "
+                  "relit image under the file's own BRDFs) or matrix (the plain matrix error)")
+      ->check(CLI::IsMember({"relit", "matrix"}));
   cmd->add_option("--iterations", r->iterations,
                   "Rounds of PCA and reassignment (default 6; stops early when stable)");
   cmd->add_option("--seed", r->seed, "Seed of the cluster seeding (default 1)");

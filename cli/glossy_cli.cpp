@@ -16,6 +16,7 @@
 #include "progress_reporter.h"
 #include "prt/cpca.h"
 #include "prt/cpca_file.h"
+#include "prt/cpca_metric.h"
 #include "prt/glossy_transfer_file.h"
 #include "sh/basis.h"
 
@@ -148,9 +149,16 @@ void run_glossy_compress(const GlossyCompressRequest& r) {
   o.seed = r.seed;
   o.threads =
       r.threads > 0 ? unsigned(r.threads) : std::max(1u, std::thread::hardware_concurrency());
+  if (r.metric == "relit") {
+    prt::Result<std::vector<double>> metric = prt::cpca_relit_metric(data);
+    if (!metric.ok()) throw CommandError(r.input + ": " + metric.status().message());
+    o.row_metric = std::move(metric).value();
+  }
   prt::Result<prt::CpcaTransfer> cpca = prt::cpca_compress(data, o);
   if (!cpca.ok()) throw CommandError(r.input + ": " + cpca.status().message());
   const double error = prt::cpca_relative_rms_error(*cpca, data.matrices.data());
+  const double metric_error =
+      prt::cpca_metric_relative_rms_error(*cpca, data.matrices.data(), o.row_metric);
   const prt::Status written = prt::write_cpca_file(r.output, *cpca, data);
   if (!written.ok()) throw CommandError(written.message());
   if (r.quiet) return;
@@ -160,10 +168,11 @@ void run_glossy_compress(const GlossyCompressRequest& r) {
   const double v = double(std::max<uint64_t>(1, data.vertex_count));
   std::printf(
       "compressed %s: %llu vertices, order %u, %u channel%s; %u clusters x %u vectors; relative "
-      "RMS matrix error %.4g; matrices %.1f bytes/vertex (%.2f%% of %.0f); wrote %s (%llu "
-      "bytes, %.1f%% of %llu) in %.2f s\n",
+      "RMS matrix error %.4g, %s error %.4g; matrices %.1f bytes/vertex (%.2f%% of %.0f); wrote "
+      "%s (%llu bytes, %.1f%% of %llu) in %.2f s\n",
       r.input.c_str(), static_cast<unsigned long long>(data.vertex_count), data.order,
       data.channels, data.channels == 1 ? "" : "s", cpca->cluster_count, cpca->vector_count, error,
+      r.metric == "relit" ? "relit-metric" : "matrix", metric_error,
       double(cpca->payload_bytes()) / v,
       100.0 * double(cpca->payload_bytes()) / (4.0 * double(data.matrices.size())),
       4.0 * double(data.matrices.size()) / v, r.output.c_str(), out_bytes,

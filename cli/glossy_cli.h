@@ -40,6 +40,7 @@ struct GlossyCompressRequest {
   int vectors = 16;
   double target_error = 0;  // > 0: choose K (prt::CpcaOptions::target_relative_rms)
   int max_vectors = 32;
+  std::string metric = "relit";    // "relit" (prt/cpca_metric.h) or "matrix" (plain)
   bool max_vectors_given = false;  // refused without target_error
   int iterations = 6;
   uint64_t seed = 1;
@@ -49,7 +50,8 @@ struct GlossyCompressRequest {
 
 // `prt compress`: checks the values and files (UsageError before anything is read), reads the
 // glossy file, compresses it, writes the .prtq atomically with a source section (geometry,
-// frames, materials) and reports sizes and the matrix error. Throws UsageError / CommandError.
+// frames, materials) and reports sizes and the errors (plain matrix, and relit metric when
+// that was used). Throws UsageError / CommandError.
 void run_glossy_compress(const GlossyCompressRequest& request);
 
 // Options of `prt bake` that do not apply with --glossy, refused by name (`cmd` counts them).

@@ -11,6 +11,7 @@
 #include <thread>
 
 #include "cpca_pca.h"
+#include "cpca_row_metric.h"
 
 namespace prt {
 namespace {
@@ -74,9 +75,11 @@ struct Model {
 };
 
 struct Problem {
-  const float* x;
+  const float* x;  // the vectors the clusters are fitted to: W x under a row metric
   std::size_t n, d;
   const CpcaOptions* options;
+  const float* original = nullptr;            // x itself (== x without a metric)
+  const detail::RowMetric* metric = nullptr;  // null: the plain metric
 };
 
 // Squared error of reconstructing x from cluster q: |x − μ|² − Σ_k (U_k·(x − μ))².
@@ -218,7 +221,8 @@ std::size_t reassign(const Problem& pb, Model* m) {
   return moved;
 }
 
-// Rounds the model to floats and computes the weights against the rounded mean and vectors.
+// Rounds the model to floats — mapped back by W⁻¹ under a row metric — and computes the weights
+// against the rounded mean and vectors, in the metric's inner product (a, G b).
 CpcaTransfer to_transfer(const Problem& pb, const Model& m, uint32_t order, uint32_t channels) {
   CpcaTransfer t;
   t.order = order;
@@ -229,22 +233,38 @@ CpcaTransfer to_transfer(const Problem& pb, const Model& m, uint32_t order, uint
   const std::size_t d = pb.d, k = m.k;
   t.means.resize(m.clusters * d);
   t.basis.resize(m.clusters * k * d);
+  const detail::RowMetric* g = pb.metric;
+  std::vector<double> back(d);
+  auto round_back = [&](const double* src, float* dst) {
+    if (g != nullptr) g->apply(g->w_inv, src, back.data());
+    const double* from = g != nullptr ? back.data() : src;
+    for (std::size_t e = 0; e < d; ++e) dst[e] = static_cast<float>(from[e]);
+  };
   for (std::size_t q = 0; q < m.clusters; ++q) {
-    for (std::size_t e = 0; e < d; ++e) t.means[q * d + e] = static_cast<float>(m.mean[q][e]);
-    for (std::size_t e = 0; e < k * d; ++e) {
-      t.basis[q * k * d + e] = static_cast<float>(m.basis[q][e]);
-    }
+    round_back(m.mean[q].data(), &t.means[q * d]);
+    for (std::size_t j = 0; j < k; ++j) round_back(&m.basis[q][j * d], &t.basis[(q * k + j) * d]);
+  }
+  // Under a metric the weights are (x − μ)·(G U_k): G U_k per cluster, from the rounded U_k.
+  std::vector<double> gu(g != nullptr ? m.clusters * k * d : 0);
+  if (g != nullptr) {
+    parallel_for(m.clusters * k, pb.options->threads,
+                 [&](std::size_t qk) { g->apply(g->g, &t.basis[qk * d], &gu[qk * d]); });
   }
   t.cluster_of_vertex = m.assignment;
   t.weights.resize(pb.n * k);
   parallel_for(pb.n, pb.options->threads, [&](std::size_t v) {
     const uint32_t q = m.assignment[v];
-    const float* x = pb.x + v * d;
+    const float* x = pb.original + v * d;
     const float* mu = &t.means[q * d];
     for (std::size_t j = 0; j < k; ++j) {
       const float* u = &t.basis[(q * k + j) * d];
       double s = 0.0;
-      for (std::size_t e = 0; e < d; ++e) s += (static_cast<double>(x[e]) - mu[e]) * u[e];
+      if (g == nullptr) {
+        for (std::size_t e = 0; e < d; ++e) s += (static_cast<double>(x[e]) - mu[e]) * u[e];
+      } else {
+        const double* gu_j = &gu[(q * k + j) * d];
+        for (std::size_t e = 0; e < d; ++e) s += (static_cast<double>(x[e]) - mu[e]) * gu_j[e];
+      }
       t.weights[v * k + j] = static_cast<float>(s);
     }
   });
@@ -294,6 +314,32 @@ Status check_input(uint32_t order, uint32_t channels, uint64_t n, const float* x
   return Status::Ok();
 }
 
+// sqrt(Σ_v (δ, G δ) / Σ_v (x, G x)), δ = x − x̃ (G = I when `g` is null).
+double weighted_error(const CpcaTransfer& t, const float* x, const detail::RowMetric* g) {
+  const std::size_t d = t.dimension(), n = static_cast<std::size_t>(t.vertex_count);
+  std::vector<double> r(d), gr(d), gx(d);
+  double err = 0.0, norm = 0.0;
+  for (std::size_t v = 0; v < n; ++v) {
+    cpca_reconstruct(t, v, r.data());
+    const float* xv = x + v * d;
+    for (std::size_t e = 0; e < d; ++e) r[e] = xv[e] - r[e];  // δ
+    if (g == nullptr) {
+      for (std::size_t e = 0; e < d; ++e) {
+        err += r[e] * r[e];
+        norm += double(xv[e]) * xv[e];
+      }
+      continue;
+    }
+    g->apply(g->g, r.data(), gr.data());
+    g->apply(g->g, xv, gx.data());
+    for (std::size_t e = 0; e < d; ++e) {
+      err += r[e] * gr[e];
+      norm += double(xv[e]) * gx[e];
+    }
+  }
+  return norm > 0.0 ? std::sqrt(err / norm) : std::sqrt(err);
+}
+
 }  // namespace
 
 uint64_t CpcaTransfer::payload_bytes() const {
@@ -308,28 +354,44 @@ Result<CpcaTransfer> cpca_compress(uint32_t order, uint32_t channels, uint64_t v
   Status s = check_input(order, channels, vertex_count, matrices, options);
   if (!s.ok()) return s;
   try {
-    const Problem pb{matrices, static_cast<std::size_t>(vertex_count),
-                     std::size_t(channels) * order * order * order * order, &options};
+    const std::size_t n = static_cast<std::size_t>(vertex_count);
+    const std::size_t d = std::size_t(channels) * order * order * order * order;
+    detail::RowMetric metric;
+    const detail::RowMetric* w = nullptr;
+    std::vector<float> scaled;  // W x under a metric
+    if (!options.row_metric.empty()) {
+      const std::string problem = metric.build(options.row_metric, channels, order * order);
+      if (!problem.empty()) return Status::Error("cpca: " + problem);
+      w = &metric;
+      scaled.resize(n * d);
+      parallel_for(n, options.threads, [&](std::size_t v) {
+        std::vector<double> y(d);
+        metric.apply(metric.w, matrices + v * d, y.data());
+        for (std::size_t e = 0; e < d; ++e) scaled[v * d + e] = static_cast<float>(y[e]);
+      });
+    }
+    const Problem pb{w == nullptr ? matrices : scaled.data(), n, d, &options, matrices, w};
     if (options.target_relative_rms <= 0.0) {
       return run_cpca(pb, options.vectors, order, channels);
     }
     // The largest K once; its nested truncations give the smallest K that meets the target
     // under that clustering; a run at that K (clustered for it) is kept when it also meets it.
     const CpcaTransfer full = run_cpca(pb, options.max_vectors, order, channels);
+    auto error_at = [&](uint32_t k) {
+      return k >= full.vector_count ? weighted_error(full, matrices, w)
+                                    : weighted_error(cpca_truncate(full, k), matrices, w);
+    };
     uint32_t k = 0;
-    while (k <= options.max_vectors &&
-           cpca_relative_rms_error_truncated(full, matrices, k) > options.target_relative_rms) {
-      ++k;
-    }
+    while (k <= options.max_vectors && error_at(k) > options.target_relative_rms) ++k;
     if (k > options.max_vectors) {
       std::ostringstream os;
       os << "cpca: relative RMS error " << options.target_relative_rms << " not reached with "
          << options.max_vectors << " vectors and " << full.cluster_count << " clusters (got "
-         << cpca_relative_rms_error(full, matrices) << ")";
+         << weighted_error(full, matrices, w) << ")";
       return Status::Error(os.str());
     }
     CpcaTransfer own = run_cpca(pb, k, order, channels);
-    if (cpca_relative_rms_error(own, matrices) <= options.target_relative_rms) return own;
+    if (weighted_error(own, matrices, w) <= options.target_relative_rms) return own;
     return cpca_truncate(full, k);
   } catch (const std::bad_alloc&) {
     return Status::Error("cpca: out of memory");
@@ -386,20 +448,16 @@ void cpca_reconstruct(const CpcaTransfer& t, std::size_t v, double* out) {
 }
 
 double cpca_relative_rms_error_truncated(const CpcaTransfer& t, const float* x, uint32_t k) {
-  const CpcaTransfer cut = k >= t.vector_count ? CpcaTransfer() : cpca_truncate(t, k);
-  const CpcaTransfer& use = k >= t.vector_count ? t : cut;
-  const std::size_t d = use.dimension(), n = static_cast<std::size_t>(use.vertex_count);
-  std::vector<double> r(d);
-  double err = 0.0, norm = 0.0;
-  for (std::size_t v = 0; v < n; ++v) {
-    cpca_reconstruct(use, v, r.data());
-    for (std::size_t e = 0; e < d; ++e) {
-      const double a = x[v * d + e];
-      err += (a - r[e]) * (a - r[e]);
-      norm += a * a;
-    }
-  }
-  return norm > 0.0 ? std::sqrt(err / norm) : std::sqrt(err);
+  if (k >= t.vector_count) return weighted_error(t, x, nullptr);
+  return weighted_error(cpca_truncate(t, k), x, nullptr);
+}
+
+double cpca_metric_relative_rms_error(const CpcaTransfer& t, const float* x,
+                                      const std::vector<double>& row_metric) {
+  if (row_metric.empty()) return weighted_error(t, x, nullptr);
+  detail::RowMetric metric;
+  if (!metric.build(row_metric, t.channels, std::size_t(t.order) * t.order).empty()) return -1.0;
+  return weighted_error(t, x, &metric);
 }
 
 double cpca_relative_rms_error(const CpcaTransfer& t, const float* x) {

@@ -65,11 +65,21 @@ struct CpcaOptions {
   uint32_t power_iterations = 2;  // subspace iterations per round (4 more in the first)
   uint64_t seed = 1;
   unsigned threads = 1;  // worker threads (std::thread); 0 or 1 = the calling thread only
+  // The metric, optional (empty: the plain squared error): per channel c a symmetric positive
+  // definite n²×n² matrix G_c on the ROWS of the transfer matrices, channels · n⁴ values,
+  // row_metric[(c·n² + i)·n² + k] = G_c,ik. The compressor then minimises the squared error
+  //     Σ_v Σ_c tr(δ_v,cᵀ G_c δ_v,c),   δ_v,c = M_v,c − M̃_v,c,
+  // by running on W_c M (W_c = G_c^{1/2}) and mapping the means and vectors back by W_c⁻¹. The
+  // stored vectors are then orthonormal under that inner product (not the plain one); the file
+  // format and the kernels are unchanged. target_relative_rms is then measured in the metric.
+  // prt/cpca_metric.h builds the metric under which this error is the expected relit error.
+  std::vector<double> row_metric;
 };
 
 // Compresses `vertex_count` vectors of `channels`·order⁴ floats, vertex-major (the layout of
 // GlossyTransferData::matrices). Errors: order 0 or > 16, channels not 1 or 3, a size
-// mismatch, a non-finite value, K or clusters 0 (K = 0 is allowed: means only), no vertices.
+// mismatch, a non-finite value, K or clusters 0 (K = 0 is allowed: means only), no vertices,
+// a row metric of the wrong size, not finite, not symmetric or not positive definite.
 Result<CpcaTransfer> cpca_compress(uint32_t order, uint32_t channels, uint64_t vertex_count,
                                    const float* matrices, const CpcaOptions& options);
 Result<CpcaTransfer> cpca_compress(const GlossyTransferData& data, const CpcaOptions& options);
@@ -82,6 +92,12 @@ void cpca_reconstruct(const CpcaTransfer& cpca, std::size_t v, double* out);
 
 // sqrt(Σ_v |x_v − x̃_v|² / Σ_v |x_v|²) in double (0 when every x_v is 0).
 double cpca_relative_rms_error(const CpcaTransfer& cpca, const float* matrices);
+
+// The same in a row metric (CpcaOptions::row_metric; empty: the plain error):
+// sqrt(Σ_v Σ_c tr(δ_v,cᵀ G_c δ_v,c) / Σ_v Σ_c tr(M_v,cᵀ G_c M_v,c)); -1 when the metric is
+// malformed.
+double cpca_metric_relative_rms_error(const CpcaTransfer& cpca, const float* matrices,
+                                      const std::vector<double>& row_metric);
 
 // The same error when only the first k ≤ K vectors are used (a nested truncation).
 double cpca_relative_rms_error_truncated(const CpcaTransfer& cpca, const float* matrices,
