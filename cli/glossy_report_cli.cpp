@@ -4,6 +4,7 @@
 #include <cstdio>
 
 #include "command_registry.h"
+#include "material_option.h"
 #include "progress_reporter.h"
 #include "report/glossy_report.h"
 
@@ -17,6 +18,7 @@ void check_glossy_report_options(const GlossyReportRequest& r, const CLI::App& c
        {"--layout", "--haar-cubes", "--auto-tolerances", "--ground-truth-budget"})
     if (cmd.count(option) > 0)
       throw UsageError(std::string(option) + " does not apply to --glossy");
+  parse_material_options(r.materials);
 }
 
 void run_glossy_report_command(const GlossyReportRequest& r) {
@@ -26,6 +28,7 @@ void run_glossy_report_command(const GlossyReportRequest& r) {
   o.output_dir = r.output;
   o.quick = r.quick;
   o.seed = r.seed;
+  o.material_overrides = parse_material_options(r.materials);
   ProgressReporter progress(r.quiet);
   o.log = [&progress](const std::string& line) { progress.message(line); };
   o.progress = &progress;

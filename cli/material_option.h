@@ -1,7 +1,7 @@
 // cli/material_option.h — the repeatable `--material NAME=MODEL[:KEY=VALUE,...]` option shared by
-// the commands that load a scene (prt bake, prt info SCENE): its registration and its parsing
-// (scene/material_override.h for the syntax). Parse errors throw UsageError with one line
-// "--material TEXT: problem"; the overrides are applied by load_scene (LoadOptions).
+// the commands that load a scene (prt bake, prt info SCENE, prt report --glossy): its registration
+// and its parsing (scene/material_override.h for the syntax). Parse errors throw UsageError with
+// one line "--material TEXT: problem"; the overrides are applied by load_scene (LoadOptions).
 #pragma once
 
 #include <string>

@@ -12,8 +12,9 @@
 // count × solver, against a path-traced ground truth (report/radiosity_report.h).
 // `prt report --sun-study -o DIR [--quick] [--roughness LIST] ...`: where SH fails, a sun on
 // glossy surfaces (report_sun_study.h, report/sun_study.h).
-// `prt report --glossy SCENE ENV -o DIR [--quick] [--seed S]`: glossy PRT error against cost
-// (order, samples, bounces, CPCA size) against the glossy ground truth (cli/glossy_report_cli.h).
+// `prt report --glossy SCENE ENV -o DIR [--quick] [--seed S] [--material M ...]`: glossy PRT
+// error against cost (order, samples, bounces, CPCA size) against the glossy ground truth, with
+// `prt bake`'s material overrides (cli/glossy_report_cli.h). --material needs --glossy.
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -29,6 +30,7 @@
 #include "cli_parsing.h"
 #include "command_registry.h"
 #include "glossy_report_cli.h"
+#include "material_option.h"
 #include "output_safety.h"
 #include "progress_reporter.h"
 #include "radiosity/materials.h"
@@ -46,6 +48,7 @@ struct ReportArguments {
   bool quick = false, stability = false, quiet = false, radiosity = false, glossy = false;
   uint64_t seed = 1;
   double budget = 110;
+  std::vector<std::string> materials;  // --glossy: --material overrides
   // --radiosity
   std::vector<std::string> emission, albedo;
   std::string max_edges, methods, solvers;
@@ -123,7 +126,8 @@ std::optional<std::vector<double>> parse_auto_tolerances(const std::string& text
 }
 
 GlossyReportRequest glossy_request(const ReportArguments& a) {
-  return {a.scene, a.environment, a.output, a.quick, a.quiet, a.stability, a.radiosity, a.seed};
+  return {a.scene,     a.environment, a.output, a.quick,    a.quiet,
+          a.stability, a.radiosity,   a.seed,   a.materials};
 }
 
 // Options that do not apply are refused by name; values out of range too.
@@ -131,6 +135,9 @@ void check_options(const ReportArguments& a, const CLI::App& cmd) {
   if (!a.radiosity)
     for (const char* option : kRadiosityOnly)
       if (cmd.count(option) > 0) throw UsageError(std::string(option) + " needs --radiosity");
+  if (!a.glossy && cmd.count("--material") > 0)
+    throw UsageError(
+        "--material needs --glossy (the other report modes use the scene's materials)");
   if (a.glossy) {
     check_glossy_report_options(glossy_request(a), cmd);
     return;
@@ -260,6 +267,7 @@ std::string other_mode_argument(const ReportArguments& a, const CLI::App& cmd) {
   for (const char* option : kEnvironmentOnly)
     if (cmd.count(option) > 0) return option;
   if (cmd.count("--seed") > 0) return "--seed";
+  if (cmd.count("--material") > 0) return "--material";
   return "";
 }
 
@@ -353,6 +361,9 @@ void register_report(CLI::App& app) {
   cmd->add_option("--ground-truth-budget", args->budget,
                   "Seconds the ground-truth refinement may take (--quick: at most 15)")
       ->capture_default_str();
+  add_material_option(*cmd, args->materials);
+  CLI::Option* material = cmd->get_option("--material");
+  material->description("--glossy: " + material->get_description());
   add_sun_study_options(cmd, &args->sun);
   cmd->callback([args, cmd] { run(*args, *cmd); });
 }

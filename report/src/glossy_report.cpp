@@ -324,7 +324,9 @@ std::vector<std::string> glossy_report_file_names() {
 GlossyReportResult run_glossy_report(const GlossyReportOptions& o) {
   const Clock::time_point start = Clock::now();
   const detail::GlossyLog log{o.log, start};
-  const scene::Scene scene = scene::load_scene(o.scene_path);
+  scene::LoadOptions load;
+  load.material_overrides = o.material_overrides;
+  const scene::Scene scene = scene::load_scene(o.scene_path, load);
   relight::EnvironmentUse use;
   use.sh_order = o.quick ? 8 : 10;
   relight::EnvironmentInput in = relight::read_checked_environment(o.environment_path, {}, use);
@@ -336,6 +338,9 @@ GlossyReportResult run_glossy_report(const GlossyReportOptions& o) {
   if (ec) throw std::runtime_error(o.output_dir + ": cannot create directory: " + ec.message());
 
   GlossyReportResult result;
+  result.materials = scene::describe_materials(scene);
+  if (!o.material_overrides.empty())
+    for (const std::string& m : result.materials) log("material " + m);
   const std::vector<EyeTruth> eyes = ground_truths(o, scene, env, log);
   for (const EyeTruth& e : eyes) {
     result.eyes.push_back(e.eye);

@@ -27,10 +27,16 @@
 // (n·(eye − p) > 0), evenly spaced in index order: quick 192, full 768 per eye.
 // Ground truth: seed + 1000 (independent of the bakes), 64 samples per vertex doubled until
 // s ≤ 0.02 (quick) / 0.01 (full) or 8192 / 65536 samples.
+// Materials: the scene's own, after material_overrides (scene/material_override.h, the syntax
+// and matching of `prt bake --material`) applied at load time, so the bakes and the ground
+// truth see the same BRDFs; the overrides as given and the resulting material of every
+// primitive (describe_materials) are written to summary.md.
 // Outputs in the output directory (atomically): results.csv, pareto.svg (error against
 // storage), error_vs_bake_time.svg, their PNGs when rsvg-convert is installed, summary.md.
 // Errors: std::runtime_error / BakeError with "PATH: problem" (unreadable scene or map, a
-// material make_brdf refuses, an output that cannot be written).
+// material make_brdf refuses, an output that cannot be written); std::invalid_argument
+// "--material TEXT: no material or primitive named 'NAME' in PATH (...)" for an override that
+// matches nothing. Nothing is written before the scene and the map have been read.
 #pragma once
 
 #include <array>
@@ -40,6 +46,7 @@
 #include <vector>
 
 #include "bake/progress.h"
+#include "scene/material_override.h"
 
 namespace prt::report {
 
@@ -47,6 +54,8 @@ struct GlossyReportOptions {
   std::string scene_path, environment_path, output_dir;
   bool quick = false;
   uint64_t seed = 1;
+  // Applied in order (a later one wins) when the scene is loaded; empty: the scene's own.
+  std::vector<scene::MaterialOverride> material_overrides;
   // One line per step to `log` when set; the ground truth's passes to `progress` when not null.
   std::function<void(const std::string&)> log;
   bake::ProgressSink* progress = nullptr;
@@ -70,6 +79,7 @@ struct GlossyReportResult {
   std::vector<GlossyReportRow> rows;
   std::vector<std::array<double, 3>> eyes;
   std::vector<std::string> primitive_names;  // material name (or primitive name) per primitive
+  std::vector<std::string> materials;        // scene::describe_materials after the overrides
   std::size_t vertices_per_eye = 0;
   int ground_truth_samples = 0;  // the largest over the eyes
   double ground_truth_relative_se = 0, ground_truth_seconds = 0;
