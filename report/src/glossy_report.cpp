@@ -16,6 +16,7 @@
 #include "bake/glossy_transfer_baker.h"
 #include "glossy_report_outputs.h"
 #include "prt/cpca.h"
+#include "prt/cpca_metric.h"
 #include "prt/glossy_relighter.h"
 #include "prt/lighting.h"
 #include "relight/camera.h"
@@ -292,6 +293,11 @@ void sweep_cpca(const GlossyReportOptions& o, const GlossyTransferData& base,
     co.clusters = size.clusters, co.vectors = size.vectors, co.seed = o.seed;
     co.threads = std::max(1u, std::thread::hardware_concurrency());
     const Clock::time_point t0 = Clock::now();
+    // As prt compress does by default: minimise the expected relit error (prt/cpca_metric.h).
+    Result<std::vector<double>> metric = cpca_relit_metric(base);
+    if (!metric.ok())
+      throw std::runtime_error(o.scene_path + ": CPCA: " + metric.status().message());
+    co.row_metric = std::move(metric).value();
     Result<CpcaTransfer> c = cpca_compress(base, co);
     if (!c.ok()) throw std::runtime_error(o.scene_path + ": CPCA: " + c.status().message());
     GlossyReportRow row = base_row;
