@@ -14,6 +14,7 @@
 #endif
 
 #include "prt/brdf/brdf.h"
+#include "prt/gauss_legendre.h"
 #include "prt/glossy_transfer.h"
 #include "sh/basis.h"
 #include "support/synthetic_glossy.h"
@@ -26,7 +27,7 @@ namespace prt::bench {
 inline std::vector<float> brdf_sh_matrix(const prt::brdf::Brdf& f, int order, int n_theta) {
   const int n2 = order * order, n_phi = 2 * n_theta;
   std::vector<double> gx, gw;
-  prt::test::gauss_legendre(n_theta, &gx, &gw);
+  prt::append_gauss_legendre(n_theta, -1.0, 1.0, &gx, &gw);
   struct Node {
     prt::brdf::Vec3 w;
     double weight;

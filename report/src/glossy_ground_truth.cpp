@@ -3,16 +3,10 @@
 #include "report/glossy_ground_truth.h"
 
 #include <algorithm>
-#include <atomic>
-#include <chrono>
 #include <cmath>
-#include <optional>
+#include <memory>
 #include <string>
 
-#include <tbb/global_control.h>
-#include <tbb/parallel_for.h>
-
-#include "bake/progress.h"
 #include "bake/sampling.h"
 #include "bake/transfer_baker.h"
 #include "prt/brdf/material.h"
@@ -33,7 +27,6 @@ using sh::kPi;
 constexpr int kRouletteFromDepth = 2;  // path vertices 0 and 1 never roulette
 constexpr std::size_t kVertexBlock = 16;
 constexpr uint32_t kNoPrimitive = ~0u;
-using Clock = std::chrono::steady_clock;
 
 using detail::SampleRng;
 
@@ -106,9 +99,8 @@ glm::dvec3 oriented_face_normal(const scene::Scene& s, uint32_t tri) {
   return ng;
 }
 
-}  // namespace
-
-struct GlossyGroundTruthIntegrator::Impl {
+// The paths of the header's estimator: what one sample of L_o needs.
+struct GlossyPaths {
   const scene::Scene& scene;
   GlossyGroundTruthOptions options;
   EnvironmentSampler light;
@@ -116,18 +108,9 @@ struct GlossyGroundTruthIntegrator::Impl {
   std::vector<glm::vec4> tangents;                       // scene::tangent_frames
   std::vector<std::shared_ptr<const brdf::Brdf>> brdfs;  // per primitive (null: Lambert)
   std::vector<uint32_t> primitive_of_vertex, primitive_of_triangle;
-  std::vector<double> sum, sum_squares;  // per vertex and channel: Σ x, Σ x²
-  uint64_t rays = 0;
-  double seconds = 0;
 
-  Impl(const scene::Scene& s, const sh::EnvMap& env, const GlossyGroundTruthOptions& o)
-      : scene(s),
-        options(o),
-        light(env),
-        caster(s),
-        tangents(scene::tangent_frames(s)),
-        sum(3 * s.vertex_count(), 0.0),
-        sum_squares(3 * s.vertex_count(), 0.0) {
+  GlossyPaths(const scene::Scene& s, const sh::EnvMap& env, const GlossyGroundTruthOptions& o)
+      : scene(s), options(o), light(env), caster(s), tangents(scene::tangent_frames(s)) {
     primitive_of_vertex.assign(s.vertex_count(), kNoPrimitive);
     primitive_of_triangle.assign(s.triangles.size(), kNoPrimitive);
     for (std::size_t p = 0; p < s.primitives.size(); ++p) {
@@ -194,8 +177,7 @@ struct GlossyGroundTruthIntegrator::Impl {
   uint32_t sample_vertex(uint32_t v, uint64_t sample_index, double out[3]) const;
 };
 
-uint32_t GlossyGroundTruthIntegrator::Impl::sample_vertex(uint32_t v, uint64_t sample_index,
-                                                          double out[3]) const {
+uint32_t GlossyPaths::sample_vertex(uint32_t v, uint64_t sample_index, double out[3]) const {
   out[0] = out[1] = out[2] = 0;
   Frame frame;
   if (!vertex_frame(v, &frame)) return 0;
@@ -276,102 +258,25 @@ uint32_t GlossyGroundTruthIntegrator::Impl::sample_vertex(uint32_t v, uint64_t s
   return cast;
 }
 
+// Checks the inputs (before the ray caster is built), then the sampler over GlossyPaths.
+VertexSampler glossy_sampler(const scene::Scene& scene, const sh::EnvMap& env,
+                             const GlossyGroundTruthOptions& o) {
+  check_ground_truth_inputs(scene, o, o.max_bounces, "glossy ground truth");
+  for (double e : o.eye)
+    if (!std::isfinite(e))
+      throw BakeError(scene::scene_label(scene) + ": the eye point is not finite");
+  auto paths = std::make_shared<const GlossyPaths>(scene, env, o);
+  return make_vertex_sampler(paths, "glossy ground truth", kVertexBlock,
+                             paths->light.skipped_texels());
+}
+
+}  // namespace
+
 GlossyGroundTruthIntegrator::GlossyGroundTruthIntegrator(const scene::Scene& scene,
                                                          const sh::EnvMap& env,
-                                                         const GlossyGroundTruthOptions& o) {
-  const std::string name = scene::scene_label(scene);
-  if (scene.vertex_count() == 0 || scene.triangles.empty())
-    throw BakeError(name + ": the scene has no vertices or no triangles");
-  if (scene.normals.size() != scene.vertex_count() || scene.albedo.size() != scene.vertex_count())
-    throw BakeError(name + ": normals or albedo do not match the vertex count");
-  for (const glm::vec3& a : scene.albedo)
-    for (int c = 0; c < 3; ++c)
-      if (!(a[c] >= 0.f && a[c] < 1.f))
-        throw BakeError(name + ": albedo " + std::to_string(a[c]) + " is outside [0, 1)");
-  if (o.max_bounces < 0 || o.initial_samples < 1 || o.max_samples < o.initial_samples ||
-      !(o.target_relative_se > 0))
-    throw BakeError(name +
-                    ": glossy ground truth needs max_bounces >= 0, 1 <= initial_samples <= "
-                    "max_samples and a positive target");
-  for (double e : o.eye)
-    if (!std::isfinite(e)) throw BakeError(name + ": the eye point is not finite");
-  for (uint32_t v : o.vertices)
-    if (v >= scene.vertex_count())
-      throw BakeError(name + ": vertex " + std::to_string(v) + " is out of range");
-  impl_ = std::make_unique<Impl>(scene, env, o);
-}
-
-GlossyGroundTruthIntegrator::~GlossyGroundTruthIntegrator() = default;
-
-void GlossyGroundTruthIntegrator::add_samples_up_to(int total, ProgressSink* progress) {
-  if (total <= samples_) return;
-  const auto t0 = Clock::now();
-  std::optional<tbb::global_control> limit;
-  if (impl_->options.threads > 0)
-    limit.emplace(tbb::global_control::max_allowed_parallelism, impl_->options.threads);
-  const std::vector<uint32_t>& subset = impl_->options.vertices;
-  const std::size_t V = subset.empty() ? impl_->scene.vertex_count() : subset.size();
-  const int first = samples_;
-  if (progress)
-    progress->start("glossy ground truth " + std::to_string(total) + " samples/vertex", V);
-  std::atomic<uint64_t> pass_rays{0};
-  tbb::parallel_for(std::size_t(0), (V + kVertexBlock - 1) / kVertexBlock, [&](std::size_t blk) {
-    const std::size_t begin = blk * kVertexBlock, end = std::min(V, begin + kVertexBlock);
-    uint64_t block_rays = 0;
-    for (std::size_t i_v = begin; i_v < end; ++i_v) {
-      const std::size_t v = subset.empty() ? i_v : subset[i_v];
-      double s[3] = {0, 0, 0}, s2[3] = {0, 0, 0};
-      for (int i = first; i < total; ++i) {
-        double x[3];
-        block_rays += impl_->sample_vertex(static_cast<uint32_t>(v), static_cast<uint64_t>(i), x);
-        for (int c = 0; c < 3; ++c) s[c] += x[c], s2[c] += x[c] * x[c];
-      }
-      for (int c = 0; c < 3; ++c)
-        impl_->sum[3 * v + c] += s[c], impl_->sum_squares[3 * v + c] += s2[c];
-    }
-    pass_rays += block_rays;
-    if (progress) progress->advance(end - begin, block_rays);
-  });
-  if (progress) progress->finish();
-  samples_ = total;
-  impl_->rays += pass_rays.load();
-  impl_->seconds += std::chrono::duration<double>(Clock::now() - t0).count();
-}
-
-void GlossyGroundTruthIntegrator::refine(double target, ProgressSink* progress) {
-  impl_->options.target_relative_se = target;
-  if (samples_ == 0) add_samples_up_to(impl_->options.initial_samples, progress);
-  while (result().relative_rms_se > target &&
-         static_cast<int64_t>(samples_) * 2 <= impl_->options.max_samples)
-    add_samples_up_to(samples_ * 2, progress);
-}
-
-GroundTruthResult GlossyGroundTruthIntegrator::result() const {
-  GroundTruthResult r;
-  const std::size_t n = impl_->sum.size();
-  r.radiance.assign(n, 0.0);
-  r.standard_error.assign(n, 0.0);
-  r.samples_per_vertex = samples_;
-  r.rays = impl_->rays;
-  r.seconds = impl_->seconds;
-  r.skipped_texels = impl_->light.skipped_texels();
-  r.target_relative_se = impl_->options.target_relative_se;
-  if (samples_ == 0) return r;
-  const double N = samples_;
-  double se2 = 0, b2 = 0;
-  for (std::size_t i = 0; i < n; ++i) {
-    const double mean = impl_->sum[i] / N;
-    const double var =
-        samples_ > 1 ? std::max(0.0, (impl_->sum_squares[i] - N * mean * mean) / (N - 1)) : 0.0;
-    r.radiance[i] = mean;
-    r.standard_error[i] = std::sqrt(var / N);
-    se2 += var / N;
-    b2 += mean * mean;
-  }
-  r.relative_rms_se = b2 > 0 ? std::sqrt(se2 / b2) : (se2 > 0 ? INFINITY : 0.0);
-  r.reached_target = r.relative_rms_se <= r.target_relative_se;
-  return r;
-}
+                                                         const GlossyGroundTruthOptions& o)
+    : VertexEstimator(scene.vertex_count(), o, glossy_sampler(scene, env, o),
+                      scene::scene_label(scene) + ": glossy ground truth") {}
 
 GroundTruthResult compute_glossy_ground_truth(const scene::Scene& scene, const sh::EnvMap& env,
                                               const GlossyGroundTruthOptions& options,

@@ -61,11 +61,21 @@ std::string describe(const ReportSetting& s) {
 }
 
 std::string short_label(const ReportSetting& s) {
-  if (is_haar(s))
-    return "H" + std::to_string(s.cube) + " K" +
-           (s.terms > 0 ? std::to_string(s.terms) : std::string("all"));
-  std::string t = "n" + std::to_string(s.order) + " " + std::to_string(s.samples);
-  if (s.bounces >= 0) t += " b" + std::to_string(s.bounces);
+  // Appended piece by piece: GCC 12 warns falsely (-Wrestrict) on "literal" + std::to_string().
+  std::string t(is_haar(s) ? "H" : "n");
+  if (is_haar(s)) {
+    t += std::to_string(s.cube);
+    t += " K";
+    t += s.terms > 0 ? std::to_string(s.terms) : std::string("all");
+    return t;
+  }
+  t += std::to_string(s.order);
+  t += ' ';
+  t += std::to_string(s.samples);
+  if (s.bounces >= 0) {
+    t += " b";
+    t += std::to_string(s.bounces);
+  }
   if (s.precision == prt::Precision::F16) t += " f16";
   return t;
 }

@@ -96,12 +96,7 @@ struct ReportState {
 
   // Adds ground-truth samples (doubling) until its standard error reaches `target`, the
   // sample cap or the time budget.
-  void refine_within_budget(double target) {
-    gt.add_samples_up_to(gto.initial_samples, progress);
-    while (gt.result().relative_rms_se > target && gt.samples_per_vertex() * 2 <= gto.max_samples &&
-           gt.result().seconds * 2.0 <= budget)  // the next pass costs about all passes so far
-      gt.add_samples_up_to(gt.samples_per_vertex() * 2, progress);
-  }
+  void refine_within_budget(double target) { gt.refine(target, progress, budget); }
   // The map projected to `order` (projected once per order).
   const prt::ShLighting& lighting_for(int order) {
     auto it = lighting.find(order);
@@ -132,7 +127,7 @@ struct ReportState {
   const GroundTruthOptions gto;
   GroundTruthIntegrator gt;
   bake::ProgressSink* const progress;  // the caller's, may be null
-  const double budget;  // seconds
+  const double budget;                 // seconds
   GroundTruthResult truth;
 
   // The sweep.

@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "prt/brdf_projection.h"
+#include "prt/gauss_legendre.h"
 #include "scene/procedural_mesh.h"
 #include "sh/basis.h"
 #include "sh/zonal.h"
@@ -34,27 +35,6 @@ double channel(const Rgb& c, int k) {
   return k == 0 ? c.r : (k == 1 ? c.g : c.b);
 }
 
-// n-point Gauss–Legendre rule on [a, b], appended (Newton on P_n from the Chebyshev guess).
-void gauss_legendre(int n, double a, double b, std::vector<double>* x, std::vector<double>* w) {
-  for (int i = 0; i < n; ++i) {
-    double t = std::cos(kPi * (i + 0.75) / (n + 0.5)), dp = 1.0;
-    for (int it = 0; it < 100; ++it) {
-      double p0 = 1.0, p1 = t;
-      for (int k = 2; k <= n; ++k) {
-        const double p2 = ((2.0 * k - 1.0) * t * p1 - (k - 1.0) * p0) / k;
-        p0 = p1;
-        p1 = p2;
-      }
-      dp = n * (t * p1 - p0) / (t * t - 1.0);
-      const double step = p1 / dp;
-      t -= step;
-      if (std::fabs(step) < 1e-15) break;
-    }
-    x->push_back(0.5 * (a + b) + 0.5 * (b - a) * t);
-    w->push_back((b - a) / ((1.0 - t * t) * dp * dp));
-  }
-}
-
 // Panels on [0, π/2]: geometric near 0 (1e-4 · 2^k up to `uniform`), then uniform of width
 // `uniform`; 8 nodes each. Resolves lobes centred at 0 and P_l up to l ≈ 1/uniform.
 void graded_polar_rule(double uniform, std::vector<double>* x, std::vector<double>* w) {
@@ -63,7 +43,7 @@ void graded_polar_rule(double uniform, std::vector<double>* x, std::vector<doubl
   for (double e = uniform; e < kPi / 2 - 1e-12; e += uniform) edges.push_back(e);
   edges.push_back(kPi / 2);
   for (std::size_t k = 0; k + 1 < edges.size(); ++k)
-    if (edges[k + 1] > edges[k]) gauss_legendre(8, edges[k], edges[k + 1], x, w);
+    if (edges[k + 1] > edges[k]) append_gauss_legendre(8, edges[k], edges[k + 1], x, w);
 }
 
 // Legendre P_0..P_{n−1}(t) into p.
@@ -124,7 +104,7 @@ Rgb sun_exit_radiance(const brdf::Brdf& brdf, const Vec3& wo, const Vec3& sun, d
   const Vec3 helper = std::fabs(s.z) < 0.9 ? Vec3{0, 0, 1} : Vec3{1, 0, 0};
   const Vec3 e1 = normalized(cross3(helper, s)), e2 = cross3(s, e1);
   std::vector<double> u, wu;
-  gauss_legendre(rings, std::cos(half_angle), 1.0, &u, &wu);
+  append_gauss_legendre(rings, std::cos(half_angle), 1.0, &u, &wu);
   double sum[3] = {0, 0, 0};
   for (std::size_t i = 0; i < u.size(); ++i) {
     const double r = std::sqrt(std::max(0.0, 1.0 - u[i] * u[i]));

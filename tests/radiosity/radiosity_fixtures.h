@@ -33,27 +33,23 @@ inline void append(scene::Scene& scene, scene::Scene part, const std::string& ma
 
 // The walls of an open room in the unit cube (top y = 1 and front z = 0 open): a white floor
 // (y = 0, 4 × 4 cells), a red left wall (x = 0), a green right wall (x = 1) and a white back wall
-// (z = 1), the walls `wall_cells` × `wall_cells`; all but the back wall face into the room. The
-// back wall faces in when `back_faces_in`, else out of the room (+z: its edges in the order
-// x, y), as some tests have always built it.
-inline void append_open_room_walls(scene::Scene& s, int wall_cells, bool back_faces_in) {
+// (z = 1), the walls `wall_cells` × `wall_cells`. Every wall faces into the room (the back wall
+// −z): patches are one-sided, so a wall facing out would receive and reflect nothing.
+inline void append_open_room_walls(scene::Scene& s, int wall_cells) {
   using scene::make_quad;
   const int w = wall_cells;
   append(s, make_quad({0, 0, 0}, {0, 0, 1}, {1, 0, 0}, 4, 4, glm::vec3(0.7f), "floor"), "white");
   append(s, make_quad({0, 0, 0}, {0, 1, 0}, {0, 0, 1}, w, w, {0.7f, 0.1f, 0.1f}, "left"), "red");
   append(s, make_quad({1, 0, 0}, {0, 0, 1}, {0, 1, 0}, w, w, {0.1f, 0.7f, 0.1f}, "right"), "green");
-  if (back_faces_in)
-    append(s, make_quad({0, 0, 1}, {0, 1, 0}, {1, 0, 0}, w, w, glm::vec3(0.7f), "back"), "white");
-  else
-    append(s, make_quad({0, 0, 1}, {1, 0, 0}, {0, 1, 0}, w, w, glm::vec3(0.7f), "back"), "white");
+  append(s, make_quad({0, 0, 1}, {0, 1, 0}, {1, 0, 0}, w, w, glm::vec3(0.7f), "back"), "white");
 }
 
 // The open room of the solver tests: 4 × 4 walls, a white block (0.3, 0, 0.4)–(0.6, 0.4, 0.7)
 // on the floor and a 0.3 × 0.3 lamp (2 × 2 cells, emission 10, material `lamp_material`) at
 // y = 0.9 facing down: open (light escapes), occluded (the block shadows), coloured walls.
-inline scene::Scene open_room(bool back_faces_in, const std::string& lamp_material) {
+inline scene::Scene open_room(const std::string& lamp_material) {
   scene::Scene s;
-  append_open_room_walls(s, 4, back_faces_in);
+  append_open_room_walls(s, 4);
   append(s,
          scene::make_box({0.3f, 0, 0.4f}, {0.6f, 0.4f, 0.7f}, 1, false, glm::vec3(0.6f), "block"),
          "white");

@@ -26,7 +26,7 @@ namespace {
 // bluish panel low on the back wall (material "panel"): two emitters of different materials
 // that light different parts of the room.
 prt::scene::Scene two_emitter_room() {
-  prt::scene::Scene s = prt::test::open_room(true, "lamp");
+  prt::scene::Scene s = prt::test::open_room("lamp");
   prt::test::append(
       s,
       make_quad({0.1f, 0.05f, 0.99f}, {0, 0.2f, 0}, {0.3f, 0, 0}, 1, 1, glm::vec3(0.3f), "panel"),

@@ -31,7 +31,7 @@ namespace {
 prt::scene::Scene room_with_blocks(glm::vec2 a_offset) {
   using prt::scene::make_quad;
   prt::scene::Scene s;
-  prt::test::append_open_room_walls(s, 3, false);
+  prt::test::append_open_room_walls(s, 3);
   const glm::vec3 a(a_offset.x, 0.f, a_offset.y);
   prt::test::append(s,
                     prt::scene::make_box(a, a + glm::vec3(0.2f, 0.3f, 0.2f), 1, false,

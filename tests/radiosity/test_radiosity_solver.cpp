@@ -162,7 +162,7 @@ TEST_CASE("closed sphere with exact form factors F_ij = A_j / A: B = rho E / (1 
 
 TEST_CASE("progressive refinement converges to the Gauss-Seidel solution, Jacobi agrees",
           "[radiosity][solver]") {
-  const prt::scene::Scene room = prt::test::open_room(false, "light");
+  const prt::scene::Scene room = prt::test::open_room("light");
   const prt::scene::RayCaster caster(room);
   const std::vector<Patch> patches = make_patches(room);
   for (FormFactorMethod method : {FormFactorMethod::Analytic, FormFactorMethod::Rays}) {
@@ -195,7 +195,7 @@ TEST_CASE("progressive refinement converges to the Gauss-Seidel solution, Jacobi
 
 TEST_CASE("energy balance in an open room: emitted = absorbed + escaped to 1e-6",
           "[radiosity][solver]") {
-  const prt::scene::Scene room = prt::test::open_room(false, "light");
+  const prt::scene::Scene room = prt::test::open_room("light");
   const prt::scene::RayCaster caster(room);
   const std::vector<Patch> patches = make_patches(room);
   FormFactorOptions ff;
@@ -213,6 +213,16 @@ TEST_CASE("energy balance in an open room: emitted = absorbed + escaped to 1e-6"
       CHECK(std::abs(e.emitted[c] - e.absorbed[c] - e.escaped[c]) < 1e-6 * e.emitted[c]);
     }
   }
+  // The back wall (z = 1, 4 × 4 cells of 2 triangles) faces into the room and sees the lamp:
+  // every one of its patches receives light (a wall facing out would receive none).
+  int back = 0;
+  for (std::size_t i = 0; i < patches.size(); ++i)
+    if (patches[i].centroid.z > 1.0 - 1e-6) {
+      ++back;
+      CHECK(patches[i].normal.z < -0.999);
+      CHECK(gs.radiance[i].x > 0.0);
+    }
+  CHECK(back == 32);
   // The account of the Gauss–Seidel radiance recomputed from F matches the progressive
   // solver's running account (a second bookkeeping of the same energy).
   const EnergyAccount recomputed = energy_account(patches, f, progressive.radiance);
@@ -223,7 +233,7 @@ TEST_CASE("energy balance in an open room: emitted = absorbed + escaped to 1e-6"
 }
 
 TEST_CASE("solutions do not depend on the thread count", "[radiosity][solver]") {
-  const prt::scene::Scene room = prt::test::open_room(false, "light");
+  const prt::scene::Scene room = prt::test::open_room("light");
   const prt::scene::RayCaster caster(room);
   const std::vector<Patch> patches = make_patches(room);
   FormFactorOptions ff;

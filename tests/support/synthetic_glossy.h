@@ -20,41 +20,19 @@
 #include <cstddef>
 #include <vector>
 
+#include "prt/gauss_legendre.h"
 #include "prt/glossy_transfer.h"
 #include "sh/basis.h"
 #include "sh/rotation.h"
 
 namespace prt::test {
 
-// Gauss–Legendre nodes and weights on [−1, 1] (Newton on P_n).
-inline void gauss_legendre(int n, std::vector<double>* x, std::vector<double>* w) {
-  x->resize(n);
-  w->resize(n);
-  for (int i = 0; i < n; ++i) {
-    double z = std::cos(M_PI * (i + 0.75) / (n + 0.5)), dp = 1.0;
-    for (int it = 0; it < 100; ++it) {
-      double p0 = 1.0, p1 = z;
-      for (int k = 2; k <= n; ++k) {
-        const double p2 = ((2.0 * k - 1.0) * z * p1 - (k - 1.0) * p0) / k;
-        p0 = p1;
-        p1 = p2;
-      }
-      dp = n * (z * p1 - p0) / (z * z - 1.0);
-      const double dz = p1 / dp;
-      z -= dz;
-      if (std::fabs(dz) < 1e-15) break;
-    }
-    (*x)[i] = z;
-    (*w)[i] = 2.0 / ((1.0 - z * z) * dp * dp);
-  }
-}
-
 // G[(i·n² + j)·K + k] = ∫ y_i y_j y_k dω, i, j < n², k < K = (2n − 1)².
 inline std::vector<double> triple_products(int order) {
   const int n2 = order * order, big = 2 * order - 1, kk = big * big;
   const int nz = 2 * order + 2, nphi = 8 * order;
   std::vector<double> zx, zw, y(kk), g(std::size_t(n2) * n2 * kk, 0.0);
-  gauss_legendre(nz, &zx, &zw);
+  append_gauss_legendre(nz, -1.0, 1.0, &zx, &zw);
   for (int a = 0; a < nz; ++a) {
     for (int b = 0; b < nphi; ++b) {
       const double phi = 2.0 * M_PI * (b + 0.5) / nphi, s = std::sqrt(1.0 - zx[a] * zx[a]);

@@ -1,5 +1,5 @@
 // prt/src/glossy/hemisphere_rules.h — private: quadrature rules on the local hemisphere used by
-// the BRDF projections (prt/brdf_projection.h).
+// the BRDF projections (prt/brdf_projection.h), built from prt/gauss_legendre.h's rule.
 #pragma once
 
 #include <vector>
@@ -7,11 +7,6 @@
 #include "prt/brdf/vec3.h"
 
 namespace prt::glossy {
-
-// n-point Gauss–Legendre rule on [a, b], APPENDED to nodes/weights. Newton's method on P_n from
-// the asymptotic guess; exact for polynomials of degree ≤ 2n − 1.
-void append_gauss_legendre(int n, double a, double b, std::vector<double>* nodes,
-                           std::vector<double>* weights);
 
 // Gauss–Legendre panels on [a, b] with breakpoints at centre ± w for each w in `widths` (those
 // inside (a, b)), `per_panel` nodes each.

@@ -36,17 +36,14 @@
 // the largest channel of f cos θ_i / p_brdf at the last bounce, clamped to [0.05, 0.99]), hard
 // cap max_bounces reflections after the vertex (0: direct lighting only).
 //
-// Standard error, refine() and determinism: exactly as report/ground_truth.h (every sample an
-// independent estimate; s = √(Σ SE²)/√(Σ L_o²) over the integrated vertices and channels;
-// doubling until s ≤ target or the sample cap; sample s of vertex v from hash(seed, v, s) only,
-// bit-identical for any thread count; another grouping of the same samples into passes changes
-// the sums by rounding only).
+// Standard error, refine() and determinism: report/vertex_estimator.h, as for
+// report/ground_truth.h (s over the integrated vertices and channels; sample s of vertex v from
+// hash(seed, v, s) only, bit-identical for any thread count).
 // Errors: bad inputs throw BakeError ("LABEL: problem"), Embree errors std::runtime_error.
 #pragma once
 
 #include <array>
 #include <cstdint>
-#include <memory>
 #include <vector>
 
 #include "report/ground_truth.h"
@@ -55,42 +52,20 @@
 
 namespace prt::report {
 
-struct GlossyGroundTruthOptions {
+// The sampling schedule (report/vertex_estimator.h), the path length and the eye.
+struct GlossyGroundTruthOptions : VertexEstimatorOptions {
   std::array<double, 3> eye{0.0, 0.0, 0.0};  // scene frame, scene units
   int max_bounces = 64;                      // reflections after the vertex
-  int initial_samples = 64;                  // samples per vertex of the first pass
-  int max_samples = 1 << 16;                 // refine() stops doubling here
-  double target_relative_se = 0.01;
-  uint64_t seed = 1;
-  int threads = 0;  // 0 = all hardware threads
-  // Only these vertices are integrated (empty: all); the others keep 0.
-  std::vector<uint32_t> vertices;
 };
 
-class GlossyGroundTruthIntegrator {
+// L_o toward the eye by the estimator above, refined by report/vertex_estimator.h's passes;
+// result().radiance holds L_o per vertex (RGB).
+class GlossyGroundTruthIntegrator : public VertexEstimator {
  public:
   // The scene and map must outlive the integrator. Throws BakeError for an empty scene, normals
   // or albedo that do not match the vertices, a material make_brdf refuses, a bad map or options.
   GlossyGroundTruthIntegrator(const scene::Scene& scene, const sh::EnvMap& env,
                               const GlossyGroundTruthOptions& options);
-  ~GlossyGroundTruthIntegrator();
-  GlossyGroundTruthIntegrator(const GlossyGroundTruthIntegrator&) = delete;
-  GlossyGroundTruthIntegrator& operator=(const GlossyGroundTruthIntegrator&) = delete;
-
-  // Adds samples until every integrated vertex has `total_samples`.
-  void add_samples_up_to(int total_samples, ProgressSink* progress = nullptr);
-  // Doubles the samples (from initial_samples) until s ≤ target or the next pass would exceed
-  // max_samples.
-  void refine(double target_relative_se, ProgressSink* progress = nullptr);
-
-  // radiance: L_o per vertex (RGB); the other fields as in GroundTruthResult.
-  GroundTruthResult result() const;
-  int samples_per_vertex() const { return samples_; }
-
- private:
-  struct Impl;
-  std::unique_ptr<Impl> impl_;
-  int samples_ = 0;
 };
 
 // One call: GlossyGroundTruthIntegrator + refine(options.target_relative_se).

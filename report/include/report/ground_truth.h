@@ -26,63 +26,37 @@
 // after the vertex (0 = direct lighting only). The cap's truncation is the only bias: at most
 // ρ_max^(cap+1)/(1 − ρ_max) of B relative (ρ_max^65 ≈ 5e-7 for ρ_max = 0.8 and the default 64).
 //
-// Standard error: every sample is an independent estimate of B_p (RGB); SE_p,c = the sample
-// standard deviation / √N. The summary statistic is the relative RMS standard error
-//     s = √(Σ_p Σ_c SE_p,c²) / √(Σ_p Σ_c B_p,c²),
-// the same RGB-norm RMS that report/report.h uses for errors. refine() doubles the samples per
-// vertex until s ≤ target (or a sample cap), and says what it reached.
-// Determinism: the random numbers of sample s of vertex v come from hash(seed, v, s) only, so the
-// result is bit-identical for any thread count and any doubling schedule.
+// Standard error, refine() and determinism: report/vertex_estimator.h (every sample an independent
+// estimate of B_p; s = the relative RMS standard error over the integrated vertices and channels,
+// the same RGB-norm RMS that report/report.h uses for errors; doubling until s ≤ target, a sample
+// cap or a time budget). The random numbers of sample s of vertex v come from hash(seed, v, s)
+// only, so the result is bit-identical for any thread count and any doubling schedule.
 // Errors: bad inputs throw BakeError ("PATH: problem"), Embree errors std::runtime_error.
 // References: [13] of docs/REFERENCES.md.
 #pragma once
 
 #include <cstdint>
 #include <memory>
+#include <string>
 #include <vector>
 
+#include "report/vertex_estimator.h"
 #include "scene/scene.h"
 #include "sh/env_map.h"
 
-namespace prt::scene {
-class RayCaster;
-}  // namespace prt::scene
-
-namespace prt::bake {
-class ProgressSink;
-}  // namespace prt::bake
-
 namespace prt::report {
 
-using bake::ProgressSink;
-
-struct GroundTruthOptions {
-  int max_bounces = 64;              // reflections after the vertex (0: direct lighting only)
-  int initial_samples = 64;          // samples per vertex of the first pass
-  int max_samples = 1 << 16;         // refine() stops doubling here
-  double target_relative_se = 0.01;  // refine() target for s (see header)
-  uint64_t seed = 1;
-  int threads = 0;  // 0 = all hardware threads
-  // Only these vertices are integrated (empty: all). The others keep radiance and standard
-  // error 0, so s covers the subset; a spot check of a large scene costs what the subset costs.
-  std::vector<uint32_t> vertices;
+// The sampling schedule (report/vertex_estimator.h) and the path length.
+struct GroundTruthOptions : VertexEstimatorOptions {
+  int max_bounces = 64;  // reflections after the vertex (0: direct lighting only)
 };
 
-struct GroundTruthResult {
-  std::vector<double> radiance;        // 3 per vertex: B_p (RGB)
-  std::vector<double> standard_error;  // 3 per vertex: SE of B_p per channel
-  int samples_per_vertex = 0;
-  double relative_rms_se = 0;  // s of the header
-  double target_relative_se = 0;
-  bool reached_target = false;
-  uint64_t rays = 0;            // total rays cast so far (shadow + closest-hit)
-  double seconds = 0;           // wall time of all passes so far
-  uint64_t skipped_texels = 0;  // NaN, Inf or negative texels (treated as black)
-
-  double mrays_per_second() const {
-    return seconds > 0 ? static_cast<double>(rays) / seconds * 1e-6 : 0.0;
-  }
-};
+// The inputs every per-vertex ground truth needs: throws BakeError ("LABEL: problem", LABEL the
+// scene's; `kind` names the estimate, e.g. "ground truth") unless the scene has vertices and
+// triangles, a normal and an albedo per vertex, every albedo channel in [0, 1),
+// max_bounces >= 0 and the options pass VertexEstimator::check_options.
+void check_ground_truth_inputs(const scene::Scene& scene, const VertexEstimatorOptions& options,
+                               int max_bounces, const std::string& kind);
 
 // A direction inside an environment map's image: image point (x, y) (continuous coordinates,
 // texel (c, r) covering [c, c+1) × [r, r+1)) → unit direction and J = dω/d(image area).
@@ -112,29 +86,13 @@ class EnvironmentSampler {
   uint64_t skipped_ = 0;
 };
 
-class GroundTruthIntegrator {
+// B_p by the estimator above, refined by report/vertex_estimator.h's passes.
+class GroundTruthIntegrator : public VertexEstimator {
  public:
   // The scene and map must outlive the integrator. Throws BakeError for an empty scene, albedo
   // outside [0, 1), a bad map or options.
   GroundTruthIntegrator(const scene::Scene& scene, const sh::EnvMap& env,
                         const GroundTruthOptions& options);
-  ~GroundTruthIntegrator();
-  GroundTruthIntegrator(const GroundTruthIntegrator&) = delete;
-  GroundTruthIntegrator& operator=(const GroundTruthIntegrator&) = delete;
-
-  // Adds samples until every vertex has `total_samples` (no-op when it has that many already).
-  void add_samples_up_to(int total_samples, ProgressSink* progress = nullptr);
-  // Doubles the samples per vertex (from initial_samples) until s ≤ target_relative_se or the
-  // next pass would exceed max_samples.
-  void refine(double target_relative_se, ProgressSink* progress = nullptr);
-
-  GroundTruthResult result() const;
-  int samples_per_vertex() const { return samples_; }
-
- private:
-  struct Impl;
-  std::unique_ptr<Impl> impl_;
-  int samples_ = 0;
 };
 
 // One call: GroundTruthIntegrator + refine(options.target_relative_se).
