@@ -228,7 +228,7 @@ Status GlossyRelighter::shade(const GlossyFrame& frame, const float eye[3], std:
                          std::to_string(p.vertex_count));
   if (count == 0) return Status::Ok();
   if (eye == nullptr || out_rgb == nullptr) return Status::Error("glossy shading: null pointer");
-  constexpr std::size_t kBlock = 256;  // b of a block stays in cache between the two steps
+  constexpr std::size_t kBlock = 1024;  // b of a block stays in cache between the two steps
   const std::size_t n2 = std::size_t(p.order) * p.order;
   std::size_t scratch_size = 0;
   for (const BrdfProjection& b : p.projections)
