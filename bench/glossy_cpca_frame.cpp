@@ -3,11 +3,11 @@
 // .prtq from `prt compress` of it. For the uncompressed GlossyRelighter and for CpcaKernel with
 // the first K vectors of every cluster (cpca_truncate, for each K of the list), prints the
 // thread CPU milliseconds of one frame on the calling thread (prepare + shade of every vertex,
-// b(ω_o) included; the median of `repeats`), of CpcaKernel::prepare alone, and the relative RMS
-// of the CPCA exit radiance against the uncompressed one (grace_probe at order 5, one eye point
-// 2.5 bounding radii from the mesh's centre), so a change of the kernel can be checked for
-// speed and accuracy at once.
-// Usage: [PRT_SHARED_DATA_DIR=DIR] glossy_cpca_frame FILE.prtg FILE.prtq [vectors=16,32,64]
+// b(ω_o) included; the median and the least of `repeats`), of CpcaKernel::prepare alone, and the
+// relative RMS of the CPCA exit radiance against the uncompressed one (grace_probe at order 5, one
+// eye point 2.5 bounding radii from the mesh's centre), so a change of the kernel can be checked
+// for speed and accuracy at once. Usage: [PRT_SHARED_DATA_DIR=DIR] glossy_cpca_frame FILE.prtg
+// FILE.prtq [vectors=16,32,64]
 //        [repeats=7]
 // Run under `taskset -c 1` (figures in docs/GLOSSY_CPCA.md).
 #include <time.h>
@@ -44,14 +44,19 @@ T require(prt::Result<T> r) {
   return std::move(r).value();
 }
 
-double median(std::vector<double> t) {
+struct Times {
+  double median, min;
+};
+
+Times summary(std::vector<double> t) {
   std::sort(t.begin(), t.end());
-  return t[t.size() / 2];
+  return {t[t.size() / 2], t[0]};
 }
 
-// Median thread CPU ms of one frame; the last frame's exit radiance into out.
-double frame_ms(const prt::GlossyRelighter& r, const prt::ShLighting& light, const float eye[3],
-                int repeats, std::vector<float>* out) {
+// Thread CPU ms of one frame (median and least of `repeats`); the last frame's exit radiance
+// into out.
+Times frame_ms(const prt::GlossyRelighter& r, const prt::ShLighting& light, const float eye[3],
+               int repeats, std::vector<float>* out) {
   std::vector<double> t;
   out->assign(3 * r.vertex_count(), 0.f);
   prt::GlossyFrame frame;
@@ -62,10 +67,10 @@ double frame_ms(const prt::GlossyRelighter& r, const prt::ShLighting& light, con
       std::exit(1);
     t.push_back(1e3 * (thread_seconds() - t0));
   }
-  return median(t);
+  return summary(t);
 }
 
-double prepare_ms(const prt::CpcaTransfer& c, const prt::ShLighting& light, int repeats) {
+Times prepare_ms(const prt::CpcaTransfer& c, const prt::ShLighting& light, int repeats) {
   const prt::CpcaKernel k = require(prt::CpcaKernel::create(c));
   prt::CpcaFrame frame;
   std::vector<double> t;
@@ -74,7 +79,7 @@ double prepare_ms(const prt::CpcaTransfer& c, const prt::ShLighting& light, int 
     if (!k.prepare(light, &frame).ok()) std::exit(1);
     t.push_back(1e3 * (thread_seconds() - t0));
   }
-  return median(t);
+  return summary(t);
 }
 
 double relative_rms(const std::vector<float>& a, const std::vector<float>& ref) {
@@ -127,13 +132,14 @@ int main(int argc, char** argv) {
                         0.5f * (lo[2] + hi[2]) + 2.5f * r * 1.0f / dir_len};
   const prt::GlossyRelighter full = require(prt::GlossyRelighter::create(d));
   std::vector<float> reference, out;
-  const double t_full = frame_ms(full, light, eye, repeats, &reference);
+  const Times t_full = frame_ms(full, light, eye, repeats, &reference);
   std::printf("%s: %zu vertices, order %u; %s: %u clusters, %u vectors\n", argv[1],
               std::size_t(d.vertex_count), d.order, argv[2], cpca.cluster_count, cpca.vector_count);
-  std::printf("uncompressed frame CPU ms (median of %d): %.2f\n", repeats, t_full);
+  std::printf("uncompressed frame CPU ms, median (least) of %d: %.2f (%.2f)\n", repeats,
+              t_full.median, t_full.min);
   std::printf(
-      "| K | frame CPU ms | prepare CPU ms | relit rel. RMS vs uncompressed |\n"
-      "|---:|---:|---:|---:|\n");
+      "| K | frame CPU ms, median (least) | prepare CPU ms, median (least) | relit rel. RMS vs "
+      "uncompressed |\n|---:|---:|---:|---:|\n");
   for (uint32_t k : ks) {
     if (k > cpca.vector_count) continue;
     const prt::CpcaTransfer c = prt::cpca_truncate(cpca, k);
@@ -141,9 +147,10 @@ int main(int argc, char** argv) {
     geometry.matrices.clear();
     const prt::GlossyRelighter rel =
         require(prt::GlossyRelighter::create_cpca(std::move(geometry), c));
-    const double t = frame_ms(rel, light, eye, repeats, &out);
-    std::printf("| %u | %.2f | %.2f | %.5f |\n", k, t, prepare_ms(c, light, repeats),
-                relative_rms(out, reference));
+    const Times t = frame_ms(rel, light, eye, repeats, &out);
+    const Times tp = prepare_ms(c, light, repeats);
+    std::printf("| %u | %.2f (%.2f) | %.2f (%.2f) | %.5f |\n", k, t.median, t.min, tp.median,
+                tp.min, relative_rms(out, reference));
     std::fflush(stdout);
   }
   return 0;

@@ -470,27 +470,44 @@ void BrdfProjection::evaluate(const Vec3& wo, double* out) const {
     evaluate_zonal(p, p.table.data(), p.diffuse, v.x, v.y, v.z, y.data(), out);
 }
 
-void BrdfProjection::evaluate(const float wo[3], float* out, float* scratch) const {
-  const Impl& p = *impl_;
+namespace {
+
+// The float b of `channels` (1: channel 0 only; 3: all, the grey shortcut included).
+void evaluate_float(const BrdfProjection::Impl& p, const float wo[3], float* out, float* scratch,
+                    int channels) {
   const float len2 = wo[0] * wo[0] + wo[1] * wo[1] + wo[2] * wo[2];
   if (!(len2 > 0.f) || !std::isfinite(len2) || !(wo[2] > 0.f)) {
-    std::fill(out, out + 3 * p.order * p.order, 0.f);
+    std::fill(out, out + channels * p.order * p.order, 0.f);
     return;
   }
   const float s = 1.f / std::sqrt(len2);
   const float x = wo[0] * s, y = wo[1] * s, z = std::min(wo[2] * s, 1.f);
-  const int channels = p.grey_f ? 1 : 3;
+  const int computed = p.grey_f ? 1 : channels;
   if (p.method == BrdfProjectionMethod::kIsotropicTable)
-    evaluate_table(p, p.iso_f.data(), x, y, z, out, channels);
+    evaluate_table(p, p.iso_f.data(), x, y, z, out, computed);
   else if (p.method == BrdfProjectionMethod::kMatrix)
-    evaluate_matrix(p, p.matrix_f.data(), x, y, z, scratch, out, channels);
+    evaluate_matrix(p, p.matrix_f.data(), x, y, z, scratch, out, computed);
   else
-    evaluate_zonal(p, p.table_f.data(), p.diffuse_f, x, y, z, scratch, out, channels);
-  if (p.grey_f) {
+    evaluate_zonal(p, p.table_f.data(), p.diffuse_f, x, y, z, scratch, out, computed);
+  if (computed < channels) {
     const std::size_t n2 = std::size_t(p.order) * p.order;
     std::copy(out, out + n2, out + n2);
     std::copy(out, out + n2, out + 2 * n2);
   }
+}
+
+}  // namespace
+
+void BrdfProjection::evaluate(const float wo[3], float* out, float* scratch) const {
+  evaluate_float(*impl_, wo, out, scratch, 3);
+}
+
+void BrdfProjection::evaluate_channel0(const float wo[3], float* out, float* scratch) const {
+  evaluate_float(*impl_, wo, out, scratch, 1);
+}
+
+bool BrdfProjection::grey() const {
+  return impl_->grey_f;
 }
 
 }  // namespace prt

@@ -45,6 +45,13 @@ struct CpcaKernel::Impl {
   std::size_t u_lo[3] = {0, 0, 0}, u_hi[3] = {0, 0, 0};
   std::vector<uint32_t> mask;  // [c][g < stride]
   std::vector<uint32_t> tail;  // [l < 8]: lane l of the last vector lies below 3·n²
+  // Grey b in the AVX2 path, gathered in registers: lane g = 8u + l of the packed b is b[i],
+  // i = g mod n²; from b + grey_offset[u] + l where grey_far (i ≥ 8; such lanes are contiguous
+  // in b), else lane grey_index of b's first 8 values.
+  std::vector<uint32_t> grey_offset;  // [u]
+  std::vector<uint32_t> grey_far;     // [u][l]: all bits set or 0
+  std::vector<uint32_t> grey_index;   // [u][l]
+  std::vector<uint32_t> grey_first;   // [l]: l < n²
 };
 
 namespace {
@@ -204,10 +211,20 @@ PRT_AVX2 void vertex_avx2(const Args& a, std::size_t v) {
     for (std::size_t u = 0; u + 1 < nc; ++u) bv[u] = _mm256_loadu_ps(src + u * kWidth);
     bv[nc - 1] = _mm256_maskload_ps(src + (nc - 1) * kWidth, tail);
   } else {
-    alignas(32) float bp[kMaxStride];
-    packed_b(a, rel, bp);
+    // The same values as packed_b(), without a store and reload (data movement only).
+    const float* src = a.b + rel * n2;
+    const __m256 first8 = _mm256_maskload_ps(
+        src, _mm256_loadu_si256(reinterpret_cast<const __m256i*>(im.grey_first.data())));
 #pragma GCC unroll 16
-    for (std::size_t u = 0; u < nc; ++u) bv[u] = _mm256_load_ps(bp + u * kWidth);
+    for (std::size_t u = 0; u < nc; ++u) {
+      const __m256i far =
+          _mm256_loadu_si256(reinterpret_cast<const __m256i*>(im.grey_far.data() + u * kWidth));
+      const __m256i index =
+          _mm256_loadu_si256(reinterpret_cast<const __m256i*>(im.grey_index.data() + u * kWidth));
+      bv[u] = _mm256_blendv_ps(_mm256_permutevar8x32_ps(first8, index),
+                               _mm256_maskload_ps(src + im.grey_offset[u], far),
+                               _mm256_castsi256_ps(far));
+    }
   }
 #pragma GCC unroll 3
   for (std::size_t c = 0; c < 3; ++c) {
@@ -375,6 +392,23 @@ void build_layouts(const CpcaTransfer& t, CpcaKernel::Impl& im) {
     for (std::size_t g = c * n2; g < (c + 1) * n2; ++g) im.mask[c * im.stride + g] = ~0u;
     im.u_lo[c] = c * n2 / kWidth;
     im.u_hi[c] = ((c + 1) * n2 - 1) / kWidth;
+  }
+  const std::size_t nc = im.stride / kWidth;
+  im.grey_offset.assign(nc, 0u);
+  im.grey_far.assign(nc * kWidth, 0u);
+  im.grey_index.assign(nc * kWidth, 0u);
+  im.grey_first.assign(kWidth, 0u);
+  for (std::size_t l = 0; l < kWidth && l < n2; ++l) im.grey_first[l] = ~0u;
+  for (std::size_t u = 0; u < nc; ++u) {
+    im.grey_offset[u] = static_cast<uint32_t>(u * kWidth % n2);
+    for (std::size_t l = 0; l < kWidth; ++l) {
+      const std::size_t g = u * kWidth + l, i = g % n2;
+      if (g >= 3 * n2) continue;
+      // Lanes with i ≥ 8 come before the vector's wrap to i = 0 (i cannot reach 8 again within
+      // 8 lanes), so i = offset + l for them.
+      if (i >= kWidth) im.grey_far[u * kWidth + l] = ~0u;
+      im.grey_index[u * kWidth + l] = static_cast<uint32_t>(i % kWidth);
+    }
   }
   im.tail.assign(kWidth, 0u);
   for (std::size_t l = 0; l < kWidth; ++l) {
