@@ -1,11 +1,11 @@
 // cpca_kernel.cpp — the CPCA glossy kernel (CpcaKernel); see prt/glossy_kernel.h and
 // docs/GLOSSY_CPCA.md ("Kernels").
 //
-// Compiled with -ffp-contract=off (prt/CMakeLists.txt): the compiler never fuses a multiply and
-// an add on its own. The per-vertex sums use fused multiply-adds written out explicitly
-// (_mm256_fmadd_ps in the AVX2 path, std::fma in the portable one) at the same places in both
-// paths, so the two round identically; `prepare` uses separate double multiplies and adds in
-// both paths.
+// Compiled with -ffp-contract=off (prt/CMakeLists.txt): no path fuses a multiply and an add,
+// so the AVX2 and the portable paths round identically. (Fused multiply-adds in both paths were
+// measured, docs/GLOSSY_CPCA.md: no faster on the AMD EPYC of the benchmarks, which runs the
+// separate multiplies and adds on parallel units, and nine times slower in the portable path,
+// where std::fma is a library call.)
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -129,7 +129,7 @@ void vertex_portable(const Args& a, std::size_t v) {
   for (std::size_t k = 1; k <= k_count; ++k) {
     const float wk = w[k - 1];
     const float* pk = p + k * s;
-    for (std::size_t g = 0; g < s; ++g) acc[g] = std::fma(pk[g], wk, acc[g]);
+    for (std::size_t g = 0; g < s; ++g) acc[g] = acc[g] + pk[g] * wk;
   }
   if (a.b == nullptr) {
     std::memcpy(a.out + rel * 3 * n2, acc, 3 * n2 * sizeof(float));
@@ -144,7 +144,7 @@ void vertex_portable(const Args& a, std::size_t v) {
       r[l] = lane_b(g) * acc[g];
     for (std::size_t u = im.u_lo[c] + 1; u <= im.u_hi[c]; ++u) {
       for (std::size_t l = 0, g = u * kWidth; l < kWidth; ++l, ++g) {
-        r[l] = std::fma(lane_b(g), acc[g], r[l]);
+        r[l] = r[l] + lane_b(g) * acc[g];
       }
     }
     a.out[rel * 3 + c] = horizontal(r);
@@ -193,7 +193,7 @@ PRT_AVX2 void vertex_avx2(const Args& a, std::size_t v) {
     const float* pk = p + k * s;
 #pragma GCC unroll 16
     for (std::size_t u = 0; u < nc; ++u) {
-      acc[u] = _mm256_fmadd_ps(_mm256_loadu_ps(pk + u * kWidth), wk, acc[u]);
+      acc[u] = _mm256_add_ps(acc[u], _mm256_mul_ps(_mm256_loadu_ps(pk + u * kWidth), wk));
     }
   }
   const __m256i tail = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(im.tail.data()));
@@ -234,7 +234,8 @@ PRT_AVX2 void vertex_avx2(const Args& a, std::size_t v) {
     __m256 r = _mm256_mul_ps(_mm256_and_ps(bv[lo], _mm256_loadu_ps(m + lo * kWidth)), acc[lo]);
 #pragma GCC unroll 16
     for (std::size_t u = lo + 1; u <= hi; ++u) {
-      r = _mm256_fmadd_ps(_mm256_and_ps(bv[u], _mm256_loadu_ps(m + u * kWidth)), acc[u], r);
+      r = _mm256_add_ps(
+          r, _mm256_mul_ps(_mm256_and_ps(bv[u], _mm256_loadu_ps(m + u * kWidth)), acc[u]));
     }
     a.out[rel * 3 + c] = horizontal_avx2(r);
   }
