@@ -239,8 +239,7 @@ TEST_CASE("Float b of a grey material: three equal channels, as the double path"
       for (double x : b) scale = std::max(scale, std::abs(x));
       for (int k = 0; k < 3 * n2; ++k) REQUIRE(bf[k] == Approx(b[k]).margin(1e-5 * scale));
       bool equal = true;
-      for (int k = 0; k < n2; ++k)
-        equal = equal && bf[k] == bf[n2 + k] && bf[k] == bf[2 * n2 + k];
+      for (int k = 0; k < n2; ++k) equal = equal && bf[k] == bf[n2 + k] && bf[k] == bf[2 * n2 + k];
       CHECK(equal == c.grey);
     }
   }
