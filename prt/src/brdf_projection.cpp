@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <string>
 #include <utility>
 
@@ -126,6 +127,9 @@ struct BrdfProjection::Impl {
   std::vector<int> even_j;
   std::vector<double> matrix;
   std::vector<float> matrix_f;
+  // The float tables hold the same values in the three channels (a grey material): the float
+  // evaluate() computes channel 0 and copies it.
+  bool grey_f = false;
 };
 
 namespace {
@@ -236,6 +240,30 @@ void set_diffuse(const Rgb& rho, BrdfProjection::Impl* p) {
     }
 }
 
+// True when the float tables give the same b in the three channels (bitwise), so the float
+// evaluate() may compute one channel and copy it. Layouts as in Impl: [outer][c][inner].
+bool same_channels(const std::vector<float>& v, std::size_t inner) {
+  for (std::size_t o = 0; o + 3 * inner <= v.size(); o += 3 * inner)
+    if (std::memcmp(&v[o], &v[o + inner], inner * sizeof(float)) != 0 ||
+        std::memcmp(&v[o], &v[o + 2 * inner], inner * sizeof(float)) != 0)
+      return false;
+  return true;
+}
+
+bool grey_tables(const BrdfProjection::Impl& p) {
+  const std::size_t n = std::size_t(p.order), n2 = n * n;
+  switch (p.method) {
+    case BrdfProjectionMethod::kIsotropicTable:
+      return same_channels(p.iso_f, n2);
+    case BrdfProjectionMethod::kMatrix:
+      return same_channels(p.matrix_f, n2 * p.even_j.size());
+    default:
+      return same_channels(p.table_f, n) &&
+             std::memcmp(p.diffuse_f[0], p.diffuse_f[1], sizeof p.diffuse_f[0]) == 0 &&
+             std::memcmp(p.diffuse_f[0], p.diffuse_f[2], sizeof p.diffuse_f[0]) == 0;
+  }
+}
+
 Status check_options(int order, const BrdfProjectionOptions& o) {
   const auto out_of = [](int v, int lo, int hi) { return v < lo || v > hi; };
   if (out_of(order, 1, kMaxBrdfProjectionOrder))
@@ -290,18 +318,17 @@ Result<BrdfProjection> BrdfProjection::create(std::shared_ptr<const brdf::Brdf> 
                                                             : options.method;
   if (p->method == BrdfProjectionMethod::kIsotropicTable) {
     if (Status s = fill_isotropic_table(*f, options, p); !s) return s;
-    return out;
-  }
-  if (p->method == BrdfProjectionMethod::kMatrix) {
+  } else if (p->method == BrdfProjectionMethod::kMatrix) {
     p->view_order = options.view_order > 0 ? options.view_order : std::min(order + 6, 32);
     fill_matrix(*f, options, p);
     p->matrix_f = to_float(p->matrix);
-    return out;
+  } else {
+    set_diffuse(lambert_part, p);
+    const WithoutLambert glossy(std::move(f), lambert_part);
+    fill_zonal_table(glossy, p, options.zonal_table);
+    p->table_f = to_float(p->table);
   }
-  set_diffuse(lambert_part, p);
-  const WithoutLambert glossy(std::move(f), lambert_part);
-  fill_zonal_table(glossy, p, options.zonal_table);
-  p->table_f = to_float(p->table);
+  p->grey_f = grey_tables(*p);
   return out;
 }
 
@@ -330,6 +357,7 @@ Result<BrdfProjection> BrdfProjection::create(const brdf::Material& material, in
     BrdfProjection out;
     out.impl_->order = order;
     set_diffuse(material.diffuse, out.impl_.get());
+    out.impl_->grey_f = grey_tables(*out.impl_);
     return out;
   }
   return create(std::move(f).value(), order, material.diffuse, o);
@@ -343,9 +371,10 @@ namespace {
 // Zonal path: b_c,lm = g_c,l(cos θo) · Y_lm(R) + δ_m0 · diffuse_c,l. `y` holds order² values.
 template <class T>
 void evaluate_zonal(const BrdfProjection::Impl& p, const T* table,
-                    const T (*diffuse)[kMaxBrdfProjectionOrder], T x, T y_, T z, T* y, T* out) {
+                    const T (*diffuse)[kMaxBrdfProjectionOrder], T x, T y_, T z, T* y, T* out,
+                    int channels = 3) {
   const int n = p.order, n2 = n * n;
-  std::fill(out, out + 3 * n2, T(0));
+  std::fill(out, out + channels * n2, T(0));
   if (p.table_size >= 2) {
     sh::evaluate(n, -x, -y_, z, y);
     const T position = z * T(p.table_size - 1);
@@ -353,25 +382,26 @@ void evaluate_zonal(const BrdfProjection::Impl& p, const T* table,
     const T a = position - T(t0);
     const T* g0 = table + std::size_t(t0) * 3 * n;
     const T* g1 = g0 + 3 * n;
-    for (int c = 0; c < 3; ++c)
+    for (int c = 0; c < channels; ++c)
       for (int l = 0; l < n; ++l) {
         const T g = g0[c * n + l] + a * (g1[c * n + l] - g0[c * n + l]);
         for (int k = l * l; k < (l + 1) * (l + 1); ++k) out[c * n2 + k] = g * y[k];
       }
   }
-  for (int c = 0; c < 3; ++c)
+  for (int c = 0; c < channels; ++c)
     for (int l = 0; l < n; ++l) out[c * n2 + l * (l + 1)] += diffuse[c][l];
 }
 
 // Matrix path: b_c,i = Σ_e B_c,i,e · y_{j_e}(ωo). `y` holds view_order² + E values.
 template <class T>
-void evaluate_matrix(const BrdfProjection::Impl& p, const T* matrix, T x, T y_, T z, T* y, T* out) {
+void evaluate_matrix(const BrdfProjection::Impl& p, const T* matrix, T x, T y_, T z, T* y, T* out,
+                     int channels = 3) {
   const int n2 = p.order * p.order, m2 = p.view_order * p.view_order;
   const std::size_t e_count = p.even_j.size();
   sh::evaluate(p.view_order, x, y_, z, y);
   T* even = y + m2;
   for (std::size_t e = 0; e < e_count; ++e) even[e] = y[p.even_j[e]];
-  for (int r = 0; r < 3 * n2; ++r) {
+  for (int r = 0; r < channels * n2; ++r) {
     const T* row = matrix + std::size_t(r) * e_count;
     T sum = 0;
     for (std::size_t e = 0; e < e_count; ++e) sum += row[e] * even[e];
@@ -382,7 +412,7 @@ void evaluate_matrix(const BrdfProjection::Impl& p, const T* matrix, T x, T y_, 
 // Rotates order-n coefficients (3 channels) about +z by the azimuth of (x, y) in place: for m > 0
 // (c, s) = (coefficient of Y_l,m, of Y_l,−m) → (c cos mα − s sin mα, c sin mα + s cos mα).
 template <class T>
-void rotate_about_z(int n, T x, T y, T* out) {
+void rotate_about_z(int n, T x, T y, T* out, int channels = 3) {
   const T r = std::sqrt(x * x + y * y);
   if (!(r > T(0))) return;
   const T c1 = x / r, s1 = y / r;
@@ -393,7 +423,7 @@ void rotate_about_z(int n, T x, T y, T* out) {
     cm = next_c;
     sm = next_s;
     for (int l = m; l < n; ++l)
-      for (int ch = 0; ch < 3; ++ch) {
+      for (int ch = 0; ch < channels; ++ch) {
         T* b = out + ch * n2;
         const T a = b[sh::index(l, m)], s = b[sh::index(l, -m)];
         b[sh::index(l, m)] = a * cm - s * sm;
@@ -404,7 +434,8 @@ void rotate_about_z(int n, T x, T y, T* out) {
 
 // Table path: b(θo, 0) interpolated in θo, then rotated about +z by φo.
 template <class T>
-void evaluate_table(const BrdfProjection::Impl& p, const T* table, T x, T y, T z, T* out) {
+void evaluate_table(const BrdfProjection::Impl& p, const T* table, T x, T y, T z, T* out,
+                    int channels = 3) {
   const int n2 = p.order * p.order;
   const T theta = std::acos(std::min(z, T(1)));
   const T position = theta / T(0.5 * kPi) * T(p.iso_size - 1);
@@ -412,8 +443,8 @@ void evaluate_table(const BrdfProjection::Impl& p, const T* table, T x, T y, T z
   const T a = position - T(t0);
   const T* b0 = table + std::size_t(t0) * 3 * n2;
   const T* b1 = b0 + 3 * n2;
-  for (int k = 0; k < 3 * n2; ++k) out[k] = b0[k] + a * (b1[k] - b0[k]);
-  rotate_about_z(p.order, x, y, out);
+  for (int k = 0; k < channels * n2; ++k) out[k] = b0[k] + a * (b1[k] - b0[k]);
+  rotate_about_z(p.order, x, y, out, channels);
 }
 
 }  // namespace
@@ -439,21 +470,44 @@ void BrdfProjection::evaluate(const Vec3& wo, double* out) const {
     evaluate_zonal(p, p.table.data(), p.diffuse, v.x, v.y, v.z, y.data(), out);
 }
 
-void BrdfProjection::evaluate(const float wo[3], float* out, float* scratch) const {
-  const Impl& p = *impl_;
+namespace {
+
+// The float b of `channels` (1: channel 0 only; 3: all, the grey shortcut included).
+void evaluate_float(const BrdfProjection::Impl& p, const float wo[3], float* out, float* scratch,
+                    int channels) {
   const float len2 = wo[0] * wo[0] + wo[1] * wo[1] + wo[2] * wo[2];
   if (!(len2 > 0.f) || !std::isfinite(len2) || !(wo[2] > 0.f)) {
-    std::fill(out, out + 3 * p.order * p.order, 0.f);
+    std::fill(out, out + channels * p.order * p.order, 0.f);
     return;
   }
   const float s = 1.f / std::sqrt(len2);
   const float x = wo[0] * s, y = wo[1] * s, z = std::min(wo[2] * s, 1.f);
+  const int computed = p.grey_f ? 1 : channels;
   if (p.method == BrdfProjectionMethod::kIsotropicTable)
-    evaluate_table(p, p.iso_f.data(), x, y, z, out);
+    evaluate_table(p, p.iso_f.data(), x, y, z, out, computed);
   else if (p.method == BrdfProjectionMethod::kMatrix)
-    evaluate_matrix(p, p.matrix_f.data(), x, y, z, scratch, out);
+    evaluate_matrix(p, p.matrix_f.data(), x, y, z, scratch, out, computed);
   else
-    evaluate_zonal(p, p.table_f.data(), p.diffuse_f, x, y, z, scratch, out);
+    evaluate_zonal(p, p.table_f.data(), p.diffuse_f, x, y, z, scratch, out, computed);
+  if (computed < channels) {
+    const std::size_t n2 = std::size_t(p.order) * p.order;
+    std::copy(out, out + n2, out + n2);
+    std::copy(out, out + n2, out + 2 * n2);
+  }
+}
+
+}  // namespace
+
+void BrdfProjection::evaluate(const float wo[3], float* out, float* scratch) const {
+  evaluate_float(*impl_, wo, out, scratch, 3);
+}
+
+void BrdfProjection::evaluate_channel0(const float wo[3], float* out, float* scratch) const {
+  evaluate_float(*impl_, wo, out, scratch, 1);
+}
+
+bool BrdfProjection::grey() const {
+  return impl_->grey_f;
 }
 
 }  // namespace prt

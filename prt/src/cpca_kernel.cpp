@@ -1,7 +1,11 @@
-// cpca_kernel.cpp — the CPCA glossy kernel (CpcaKernel); see prt/glossy_kernel.h.
+// cpca_kernel.cpp — the CPCA glossy kernel (CpcaKernel); see prt/glossy_kernel.h and
+// docs/GLOSSY_CPCA.md ("Kernels").
 //
 // Compiled with -ffp-contract=off (prt/CMakeLists.txt): no path fuses a multiply and an add,
-// so the AVX2 and the portable paths round identically.
+// so the AVX2 and the portable paths round identically. (Fused multiply-adds in both paths were
+// measured, docs/GLOSSY_CPCA.md: no faster on the AMD EPYC of the benchmarks, which runs the
+// separate multiplies and adds on parallel units, and nine times slower in the portable path,
+// where std::fma is a library call.)
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -18,15 +22,39 @@
 
 namespace prt {
 
+namespace {
+constexpr std::size_t kWidth = 8;               // float lanes of one vector
+constexpr std::size_t kMaxN2 = 256;             // n² ≤ 256 (order ≤ 16)
+constexpr std::size_t kMaxStride = 3 * kMaxN2;  // 3·n², already a multiple of 8 at n = 16
+}  // namespace
+
+// The compressed transfer in the kernel's layouts (the means and vectors are kept only in
+// `columns`, transposed for `prepare`).
 struct CpcaKernel::Impl {
-  CpcaTransfer t;
-  std::size_t n2 = 1, stride = 8;
+  uint32_t order = 1, channels = 1;
+  std::size_t n2 = 1;
+  std::size_t stride = 8;      // 3·n² rounded up to 8: one projected vector, channels packed
+  std::size_t col_stride = 4;  // n² rounded up to 4: one column of a transposed matrix
+  std::size_t clusters = 0, vectors = 0, vertices = 0;
+  std::vector<uint32_t> cluster_of_vertex;
+  std::vector<float> weights;  // [v][k]
+  // [q][k ≤ K][m < channels][j][i < col_stride] (k = 0 the mean), zero beyond i = n².
+  std::vector<float> columns;
+  // Per output channel c: the vectors [u_lo, u_hi] of a projected vector that hold its lanes,
+  // and lane masks (all bits set where lane g = 8u + l has c·n² ≤ g < (c+1)·n²).
+  std::size_t u_lo[3] = {0, 0, 0}, u_hi[3] = {0, 0, 0};
+  std::vector<uint32_t> mask;  // [c][g < stride]
+  std::vector<uint32_t> tail;  // [l < 8]: lane l of the last vector lies below 3·n²
+  // Grey b in the AVX2 path, gathered in registers: lane g = 8u + l of the packed b is b[i],
+  // i = g mod n²; from b + grey_offset[u] + l where grey_far (i ≥ 8; such lanes are contiguous
+  // in b), else lane grey_index of b's first 8 values.
+  std::vector<uint32_t> grey_offset;  // [u]
+  std::vector<uint32_t> grey_far;     // [u][l]: all bits set or 0
+  std::vector<uint32_t> grey_index;   // [u][l]
+  std::vector<uint32_t> grey_first;   // [l]: l < n²
 };
 
 namespace {
-
-constexpr std::size_t kWidth = 8;        // lanes of one vector
-constexpr std::size_t kMaxStride = 256;  // n² ≤ 256 (order ≤ 16)
 
 struct Args {
   const CpcaKernel::Impl* im;
@@ -43,40 +71,94 @@ inline float horizontal(const float* r) {
   return (s0 + s2) + (s1 + s3);
 }
 
-// b of one channel padded with zeros to the stride.
-inline void pad_b(const float* src, std::size_t n2, std::size_t stride, float* dst) {
-  std::memcpy(dst, src, n2 * sizeof(float));
-  std::fill(dst + n2, dst + stride, 0.0f);
+// b of vertex `rel` in the packed layout (lane g = c·n² + i), zero beyond 3·n².
+inline void packed_b(const Args& a, std::size_t rel, float* dst) {
+  const std::size_t n2 = a.im->n2, s = a.im->stride;
+  if (a.b_channels == 3) {
+    std::memcpy(dst, a.b + rel * 3 * n2, 3 * n2 * sizeof(float));
+  } else {
+    for (std::size_t c = 0; c < 3; ++c)
+      std::memcpy(dst + c * n2, a.b + rel * n2, n2 * sizeof(float));
+  }
+  std::fill(dst + 3 * n2, dst + s, 0.0f);
+}
+
+// Vertices are shaded in chunks, each in the order of its clusters (the results do not depend
+// on the order): consecutive vertices then read the same projected vectors, which stay in the
+// L1 cache instead of being fetched again for every vertex.
+constexpr std::size_t kChunk = 1024;
+
+// Offsets in [0, n) of the vertices first + offset (n ≤ kChunk), stably sorted by cluster id
+// (least-significant-digit radix sort on bytes, as many passes as `clusters` − 1 has bytes).
+void order_by_cluster(const uint32_t* cluster, std::size_t first, std::size_t n,
+                      std::size_t clusters, uint16_t* order) {
+  uint16_t tmp[kChunk];
+  for (std::size_t i = 0; i < n; ++i) order[i] = static_cast<uint16_t>(i);
+  for (unsigned shift = 0; shift < 32 && ((clusters - 1) >> shift) != 0; shift += 8) {
+    std::size_t start[257] = {};
+    for (std::size_t i = 0; i < n; ++i) ++start[((cluster[first + order[i]] >> shift) & 255u) + 1];
+    for (std::size_t d = 1; d < 257; ++d) start[d] += start[d - 1];
+    for (std::size_t i = 0; i < n; ++i)
+      tmp[start[(cluster[first + order[i]] >> shift) & 255u]++] = order[i];
+    std::copy(tmp, tmp + n, order);
+  }
+}
+
+// Calls shade_vertex(a, v) for every vertex of the range, chunk by chunk in cluster order.
+template <typename F>
+inline void for_each_vertex(const Args& a, F shade_vertex) {
+  uint16_t order[kChunk];
+  const std::size_t end = a.first + a.count;
+  for (std::size_t start = a.first; start < end; start += kChunk) {
+    const std::size_t n = std::min(kChunk, end - start);
+    order_by_cluster(a.im->cluster_of_vertex.data(), start, n, a.im->clusters, order);
+    for (std::size_t i = 0; i < n; ++i) shade_vertex(a, start + order[i]);
+  }
 }
 
 // ---- portable path ----
 
 void vertex_portable(const Args& a, std::size_t v) {
   const CpcaKernel::Impl& im = *a.im;
-  const std::size_t k_count = im.t.vector_count, s = im.stride, n2 = im.n2;
+  const std::size_t k_count = im.vectors, s = im.stride, n2 = im.n2;
   const std::size_t rel = v - a.first;
-  const float* p = a.projected + std::size_t(im.t.cluster_of_vertex[v]) * (k_count + 1) * 3 * s;
-  const float* w = im.t.weights.data() + v * k_count;
+  const float* p = a.projected + std::size_t(im.cluster_of_vertex[v]) * (k_count + 1) * s;
+  const float* w = im.weights.data() + v * k_count;
   alignas(32) float acc[kMaxStride], bp[kMaxStride];
+  std::memcpy(acc, p, s * sizeof(float));
+  for (std::size_t k = 1; k <= k_count; ++k) {
+    const float wk = w[k - 1];
+    const float* pk = p + k * s;
+    for (std::size_t g = 0; g < s; ++g) acc[g] = acc[g] + pk[g] * wk;
+  }
+  if (a.b == nullptr) {
+    std::memcpy(a.out + rel * 3 * n2, acc, 3 * n2 * sizeof(float));
+    return;
+  }
+  packed_b(a, rel, bp);
   for (std::size_t c = 0; c < 3; ++c) {
-    std::memcpy(acc, p + c * s, s * sizeof(float));
-    for (std::size_t k = 1; k <= k_count; ++k) {
-      const float wk = w[k - 1];
-      const float* pk = p + (k * 3 + c) * s;
-      for (std::size_t i = 0; i < s; ++i) acc[i] = acc[i] + pk[i] * wk;
-    }
-    if (a.b == nullptr) {
-      std::memcpy(a.out + (rel * 3 + c) * n2, acc, n2 * sizeof(float));
-      continue;
-    }
-    const std::size_t bc = static_cast<std::size_t>(a.b_channels);
-    pad_b(a.b + (rel * bc + (bc == 1 ? 0 : c)) * n2, n2, s, bp);
+    const uint32_t* m = im.mask.data() + c * s;
+    const auto lane_b = [&](std::size_t g) { return m[g] != 0 ? bp[g] : 0.0f; };
     float r[kWidth];
-    for (std::size_t l = 0; l < kWidth; ++l) r[l] = bp[l] * acc[l];
-    for (std::size_t i0 = kWidth; i0 < s; i0 += kWidth) {
-      for (std::size_t l = 0; l < kWidth; ++l) r[l] = r[l] + bp[i0 + l] * acc[i0 + l];
+    for (std::size_t l = 0, g = im.u_lo[c] * kWidth; l < kWidth; ++l, ++g)
+      r[l] = lane_b(g) * acc[g];
+    for (std::size_t u = im.u_lo[c] + 1; u <= im.u_hi[c]; ++u) {
+      for (std::size_t l = 0, g = u * kWidth; l < kWidth; ++l, ++g) {
+        r[l] = r[l] + lane_b(g) * acc[g];
+      }
     }
     a.out[rel * 3 + c] = horizontal(r);
+  }
+}
+
+// Rows [i0, i0 + count) of U·L_c (U: one transposed matrix, `used2` columns) into dst, the sums
+// in double with j ascending, each rounded once to float.
+void project_rows_portable(const float* col, std::size_t col_stride, const double* l,
+                           std::size_t used2, std::size_t i0, std::size_t count, float* dst) {
+  for (std::size_t i = i0; i < i0 + count; ++i) {
+    double sum = 0.0;
+    for (std::size_t j = 0; j < used2; ++j) sum = sum + double(col[j * col_stride + i]) * l[j];
+    dst[i - i0] = static_cast<float>(sum);
   }
 }
 
@@ -90,65 +172,152 @@ PRT_AVX2 inline float horizontal_avx2(__m256 r) {
   return _mm_cvtss_f32(_mm_add_ss(t, _mm_shuffle_ps(t, t, 1)));
 }
 
-// NC vectors per channel (0: the stride decides at run time). The three channels advance
-// together over k (3·NC independent sums keep the adders busy); each lane's operations and
-// their order are those of vertex_portable.
-template <int NC>
+// Order N (0: the order decides at run time; a fixed N lets every vector index be a constant,
+// so the accumulators stay in registers). Each lane's operations and their order are those of
+// vertex_portable.
+template <int N>
 PRT_AVX2 void vertex_avx2(const Args& a, std::size_t v) {
   const CpcaKernel::Impl& im = *a.im;
-  const std::size_t k_count = im.t.vector_count, s = im.stride, n2 = im.n2;
-  const std::size_t nc = NC != 0 ? static_cast<std::size_t>(NC) : s / kWidth;
-  constexpr std::size_t kMaxNc = NC != 0 ? static_cast<std::size_t>(NC) : kMaxStride / kWidth;
+  constexpr std::size_t kN2 = std::size_t(N) * N, kNc = (3 * kN2 + kWidth - 1) / kWidth;
+  constexpr std::size_t kMaxNc = N != 0 ? kNc : kMaxStride / kWidth;
+  const std::size_t k_count = im.vectors, s = im.stride, n2 = N != 0 ? kN2 : im.n2;
+  const std::size_t nc = N != 0 ? kNc : s / kWidth;
   const std::size_t rel = v - a.first;
-  const float* p = a.projected + std::size_t(im.t.cluster_of_vertex[v]) * (k_count + 1) * 3 * s;
-  const float* w = im.t.weights.data() + v * k_count;
-  __m256 acc[3][kMaxNc];
-  for (std::size_t c = 0; c < 3; ++c) {
-    for (std::size_t u = 0; u < nc; ++u) acc[c][u] = _mm256_loadu_ps(p + c * s + u * kWidth);
-  }
+  const float* p = a.projected + std::size_t(im.cluster_of_vertex[v]) * (k_count + 1) * s;
+  const float* w = im.weights.data() + v * k_count;
+  __m256 acc[kMaxNc];
+#pragma GCC unroll 16
+  for (std::size_t u = 0; u < nc; ++u) acc[u] = _mm256_loadu_ps(p + u * kWidth);
   for (std::size_t k = 1; k <= k_count; ++k) {
     const __m256 wk = _mm256_broadcast_ss(w + k - 1);
-    for (std::size_t c = 0; c < 3; ++c) {
-      const float* pk = p + (k * 3 + c) * s;
-      for (std::size_t u = 0; u < nc; ++u) {
-        acc[c][u] = _mm256_add_ps(acc[c][u], _mm256_mul_ps(_mm256_loadu_ps(pk + u * kWidth), wk));
-      }
+    const float* pk = p + k * s;
+#pragma GCC unroll 16
+    for (std::size_t u = 0; u < nc; ++u) {
+      acc[u] = _mm256_add_ps(acc[u], _mm256_mul_ps(_mm256_loadu_ps(pk + u * kWidth), wk));
     }
   }
-  alignas(32) float bp[kMaxStride], tmp[kMaxStride];
-  for (std::size_t c = 0; c < 3; ++c) {
-    if (a.b == nullptr) {
-      for (std::size_t u = 0; u < nc; ++u) _mm256_store_ps(tmp + u * kWidth, acc[c][u]);
-      std::memcpy(a.out + (rel * 3 + c) * n2, tmp, n2 * sizeof(float));
-      continue;
+  const __m256i tail = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(im.tail.data()));
+  if (a.b == nullptr) {
+    float* o = a.out + rel * 3 * n2;
+#pragma GCC unroll 16
+    for (std::size_t u = 0; u + 1 < nc; ++u) _mm256_storeu_ps(o + u * kWidth, acc[u]);
+    _mm256_maskstore_ps(o + (nc - 1) * kWidth, tail, acc[nc - 1]);
+    return;
+  }
+  __m256 bv[kMaxNc];
+  if (a.b_channels == 3) {
+    const float* src = a.b + rel * 3 * n2;
+#pragma GCC unroll 16
+    for (std::size_t u = 0; u + 1 < nc; ++u) bv[u] = _mm256_loadu_ps(src + u * kWidth);
+    bv[nc - 1] = _mm256_maskload_ps(src + (nc - 1) * kWidth, tail);
+  } else {
+    // The same values as packed_b(), without a store and reload (data movement only).
+    const float* src = a.b + rel * n2;
+    const __m256 first8 = _mm256_maskload_ps(
+        src, _mm256_loadu_si256(reinterpret_cast<const __m256i*>(im.grey_first.data())));
+#pragma GCC unroll 16
+    for (std::size_t u = 0; u < nc; ++u) {
+      const __m256i far =
+          _mm256_loadu_si256(reinterpret_cast<const __m256i*>(im.grey_far.data() + u * kWidth));
+      const __m256i index =
+          _mm256_loadu_si256(reinterpret_cast<const __m256i*>(im.grey_index.data() + u * kWidth));
+      bv[u] = _mm256_blendv_ps(_mm256_permutevar8x32_ps(first8, index),
+                               _mm256_maskload_ps(src + im.grey_offset[u], far),
+                               _mm256_castsi256_ps(far));
     }
-    const std::size_t bc = static_cast<std::size_t>(a.b_channels);
-    if (c == 0 || bc == 3) pad_b(a.b + (rel * bc + (bc == 1 ? 0 : c)) * n2, n2, s, bp);
-    __m256 r = _mm256_mul_ps(_mm256_load_ps(bp), acc[c][0]);
-    for (std::size_t u = 1; u < nc; ++u) {
-      r = _mm256_add_ps(r, _mm256_mul_ps(_mm256_load_ps(bp + u * kWidth), acc[c][u]));
+  }
+#pragma GCC unroll 3
+  for (std::size_t c = 0; c < 3; ++c) {
+    const float* m = reinterpret_cast<const float*>(im.mask.data() + c * s);
+    const std::size_t lo = N != 0 ? c * kN2 / kWidth : im.u_lo[c];
+    const std::size_t hi = N != 0 ? ((c + 1) * kN2 - 1) / kWidth : im.u_hi[c];
+    __m256 r = _mm256_mul_ps(_mm256_and_ps(bv[lo], _mm256_loadu_ps(m + lo * kWidth)), acc[lo]);
+#pragma GCC unroll 16
+    for (std::size_t u = lo + 1; u <= hi; ++u) {
+      r = _mm256_add_ps(
+          r, _mm256_mul_ps(_mm256_and_ps(bv[u], _mm256_loadu_ps(m + u * kWidth)), acc[u]));
     }
     a.out[rel * 3 + c] = horizontal_avx2(r);
   }
 }
 
+template <int N>
+PRT_AVX2 void run_avx2_order(const Args& a) {
+  for_each_vertex(a, vertex_avx2<N>);
+}
+
 PRT_AVX2 void run_avx2(const Args& a) {
-  const std::size_t nc = a.im->stride / kWidth, end = a.first + a.count;
-  for (std::size_t v = a.first; v < end; ++v) {
-    switch (nc) {
-      case 1:
-        vertex_avx2<1>(a, v);
-        break;
-      case 2:
-        vertex_avx2<2>(a, v);
-        break;
-      case 4:
-        vertex_avx2<4>(a, v);
-        break;
-      default:
-        vertex_avx2<0>(a, v);
-        break;
+  switch (a.im->order) {
+    case 1:
+      run_avx2_order<1>(a);
+      break;
+    case 2:
+      run_avx2_order<2>(a);
+      break;
+    case 3:
+      run_avx2_order<3>(a);
+      break;
+    case 4:
+      run_avx2_order<4>(a);
+      break;
+    case 5:
+      run_avx2_order<5>(a);
+      break;
+    case 6:
+      run_avx2_order<6>(a);
+      break;
+    default:
+      run_avx2_order<0>(a);
+      break;
+  }
+}
+
+// project_rows_portable for NV·4 rows at once (lanes over i; the same operations per row).
+template <int NV>
+PRT_AVX2 void project_rows_avx2(const float* col, std::size_t col_stride, const double* l,
+                                std::size_t used2, std::size_t i0, float* dst) {
+  __m256d acc[NV];
+  for (int u = 0; u < NV; ++u) acc[u] = _mm256_setzero_pd();
+  for (std::size_t j = 0; j < used2; ++j) {
+    const __m256d lj = _mm256_broadcast_sd(l + j);
+    const float* row = col + j * col_stride + i0;
+    for (int u = 0; u < NV; ++u) {
+      const __m256d m = _mm256_cvtps_pd(_mm_loadu_ps(row + 4 * u));
+      acc[u] = _mm256_add_pd(acc[u], _mm256_mul_pd(m, lj));
     }
+  }
+  for (int u = 0; u < NV; ++u) _mm_storeu_ps(dst + 4 * u, _mm256_cvtpd_ps(acc[u]));
+}
+
+PRT_AVX2 void project_avx2(const float* col, std::size_t col_stride, const double* l,
+                           std::size_t used2, float* dst) {
+  std::size_t i0 = 0;
+  for (; i0 + 32 <= col_stride; i0 += 32)
+    project_rows_avx2<8>(col, col_stride, l, used2, i0, dst + i0);
+  switch ((col_stride - i0) / 4) {
+    case 7:
+      project_rows_avx2<7>(col, col_stride, l, used2, i0, dst + i0);
+      break;
+    case 6:
+      project_rows_avx2<6>(col, col_stride, l, used2, i0, dst + i0);
+      break;
+    case 5:
+      project_rows_avx2<5>(col, col_stride, l, used2, i0, dst + i0);
+      break;
+    case 4:
+      project_rows_avx2<4>(col, col_stride, l, used2, i0, dst + i0);
+      break;
+    case 3:
+      project_rows_avx2<3>(col, col_stride, l, used2, i0, dst + i0);
+      break;
+    case 2:
+      project_rows_avx2<2>(col, col_stride, l, used2, i0, dst + i0);
+      break;
+    case 1:
+      project_rows_avx2<1>(col, col_stride, l, used2, i0, dst + i0);
+      break;
+    default:
+      break;
   }
 }
 #undef PRT_AVX2
@@ -159,10 +328,10 @@ bool avx2_available() {
   return available;
 }
 
-Status run_cpca(const CpcaKernel::Impl& im, KernelPath path, const CpcaFrame& frame,
-                const float* b, int b_channels, std::size_t first, std::size_t count, float* out,
+Status run_cpca(const CpcaKernel::Impl& im, KernelPath path, const CpcaFrame& frame, const float* b,
+                int b_channels, std::size_t first, std::size_t count, float* out,
                 const char* what) {
-  const std::size_t n = static_cast<std::size_t>(im.t.vertex_count);
+  const std::size_t n = im.vertices;
   if (first > n || count > n - first) {
     std::ostringstream os;
     os << what << ": vertex range [" << first << ", +" << count << ") exceeds the " << n
@@ -170,7 +339,7 @@ Status run_cpca(const CpcaKernel::Impl& im, KernelPath path, const CpcaFrame& fr
     return Status::Error(os.str());
   }
   if (frame.owner != &im || frame.stride != im.stride ||
-      frame.projected.size() != im.t.cluster_count * (im.t.vector_count + 1) * 3 * im.stride) {
+      frame.projected.size() != im.clusters * (im.vectors + 1) * im.stride) {
     return Status::Error(std::string(what) + ": the frame was not prepared by this relighter");
   }
   if (count == 0) return Status::Ok();
@@ -186,8 +355,66 @@ Status run_cpca(const CpcaKernel::Impl& im, KernelPath path, const CpcaFrame& fr
     return Status::Error(std::string(what) + ": the AVX2 path exists on x86-64 only");
 #endif
   }
-  for (std::size_t v = first; v < first + count; ++v) vertex_portable(a, v);
+  for_each_vertex(a, vertex_portable);
   return Status::Ok();
+}
+
+// The kernel's layouts of a validated CPCA form.
+void build_layouts(const CpcaTransfer& t, CpcaKernel::Impl& im) {
+  const std::size_t n2 = std::size_t(t.order) * t.order, k1 = std::size_t(t.vector_count) + 1;
+  const std::size_t d = t.dimension(), ch = t.channels;
+  im.order = t.order;
+  im.channels = t.channels;
+  im.n2 = n2;
+  im.stride = (3 * n2 + kWidth - 1) / kWidth * kWidth;
+  im.col_stride = (n2 + 3) / 4 * 4;
+  im.clusters = t.cluster_count;
+  im.vectors = t.vector_count;
+  im.vertices = static_cast<std::size_t>(t.vertex_count);
+  im.cluster_of_vertex = t.cluster_of_vertex;
+  im.weights = t.weights;
+  im.columns.assign(im.clusters * k1 * ch * n2 * im.col_stride, 0.0f);
+  for (std::size_t q = 0; q < im.clusters; ++q) {
+    for (std::size_t k = 0; k < k1; ++k) {
+      const float* m =
+          k == 0 ? t.means.data() + q * d : t.basis.data() + (q * (k1 - 1) + k - 1) * d;
+      float* dst = im.columns.data() + (q * k1 + k) * ch * n2 * im.col_stride;
+      for (std::size_t c = 0; c < ch; ++c) {
+        for (std::size_t i = 0; i < n2; ++i) {
+          for (std::size_t j = 0; j < n2; ++j) {
+            dst[(c * n2 + j) * im.col_stride + i] = m[(c * n2 + i) * n2 + j];
+          }
+        }
+      }
+    }
+  }
+  im.mask.assign(3 * im.stride, 0u);
+  for (std::size_t c = 0; c < 3; ++c) {
+    for (std::size_t g = c * n2; g < (c + 1) * n2; ++g) im.mask[c * im.stride + g] = ~0u;
+    im.u_lo[c] = c * n2 / kWidth;
+    im.u_hi[c] = ((c + 1) * n2 - 1) / kWidth;
+  }
+  const std::size_t nc = im.stride / kWidth;
+  im.grey_offset.assign(nc, 0u);
+  im.grey_far.assign(nc * kWidth, 0u);
+  im.grey_index.assign(nc * kWidth, 0u);
+  im.grey_first.assign(kWidth, 0u);
+  for (std::size_t l = 0; l < kWidth && l < n2; ++l) im.grey_first[l] = ~0u;
+  for (std::size_t u = 0; u < nc; ++u) {
+    im.grey_offset[u] = static_cast<uint32_t>(u * kWidth % n2);
+    for (std::size_t l = 0; l < kWidth; ++l) {
+      const std::size_t g = u * kWidth + l, i = g % n2;
+      if (g >= 3 * n2) continue;
+      // Lanes with i ≥ 8 come before the vector's wrap to i = 0 (i cannot reach 8 again within
+      // 8 lanes), so i = offset + l for them.
+      if (i >= kWidth) im.grey_far[u * kWidth + l] = ~0u;
+      im.grey_index[u * kWidth + l] = static_cast<uint32_t>(i % kWidth);
+    }
+  }
+  im.tail.assign(kWidth, 0u);
+  for (std::size_t l = 0; l < kWidth; ++l) {
+    if (im.stride - kWidth + l < 3 * n2) im.tail[l] = ~0u;
+  }
 }
 
 }  // namespace
@@ -202,9 +429,7 @@ Result<CpcaKernel> CpcaKernel::create(const CpcaTransfer& cpca) {
   if (!s.ok()) return s;
   try {
     CpcaKernel r;
-    r.impl_->t = cpca;
-    r.impl_->n2 = std::size_t(cpca.order) * cpca.order;
-    r.impl_->stride = (r.impl_->n2 + kWidth - 1) / kWidth * kWidth;
+    build_layouts(cpca, *r.impl_);
     return r;
   } catch (const std::bad_alloc&) {
     return Status::Error("cpca: out of memory");
@@ -212,27 +437,26 @@ Result<CpcaKernel> CpcaKernel::create(const CpcaTransfer& cpca) {
 }
 
 std::size_t CpcaKernel::vertex_count() const {
-  return static_cast<std::size_t>(impl_->t.vertex_count);
+  return impl_->vertices;
 }
 int CpcaKernel::order() const {
-  return static_cast<int>(impl_->t.order);
+  return static_cast<int>(impl_->order);
 }
 int CpcaKernel::channels() const {
-  return static_cast<int>(impl_->t.channels);
+  return static_cast<int>(impl_->channels);
 }
 int CpcaKernel::vectors() const {
-  return static_cast<int>(impl_->t.vector_count);
+  return static_cast<int>(impl_->vectors);
 }
 
 Status CpcaKernel::prepare(const ShLighting& light, CpcaFrame* frame) const {
   if (frame == nullptr) return Status::Error("cpca prepare: null frame");
   const Impl& im = *impl_;
-  const std::size_t n2 = im.n2, s = im.stride, k1 = im.t.vector_count + 1;
-  const std::size_t d = im.t.dimension(), q_count = im.t.cluster_count;
-  const std::size_t used =
-      static_cast<std::size_t>(std::min<int>(static_cast<int>(im.t.order), light.order()));
+  const std::size_t n2 = im.n2, s = im.stride, k1 = im.vectors + 1, cs = im.col_stride;
+  const std::size_t q_count = im.clusters, ch = im.channels;
+  const std::size_t used = static_cast<std::size_t>(std::min<int>(int(im.order), light.order()));
   try {
-    frame->projected.assign(q_count * k1 * 3 * s, 0.0f);
+    frame->projected.resize(q_count * k1 * s);
   } catch (const std::bad_alloc&) {
     return Status::Error("cpca prepare: out of memory");
   }
@@ -240,40 +464,45 @@ Status CpcaKernel::prepare(const ShLighting& light, CpcaFrame* frame) const {
   frame->cluster_count = q_count;
   frame->vectors = k1 - 1;
   frame->owner = impl_.get();
-  for (std::size_t q = 0; q < q_count; ++q) {
-    for (std::size_t k = 0; k < k1; ++k) {
-      const float* m =
-          k == 0 ? im.t.means.data() + q * d : im.t.basis.data() + (q * (k1 - 1) + k - 1) * d;
-      for (std::size_t c = 0; c < 3; ++c) {
-        const float* mc = m + (im.t.channels == 1 ? 0 : c) * n2 * n2;
-        const double* l = light.coefficients_double(static_cast<int>(c));
-        float* dst = frame->projected.data() + ((q * k1 + k) * 3 + c) * s;
-        for (std::size_t i = 0; i < n2; ++i) {
-          double sum = 0.0;
-          for (std::size_t j = 0; j < used * used; ++j) sum += double(mc[i * n2 + j]) * l[j];
-          dst[i] = static_cast<float>(sum);
-        }
+  const bool avx2 = avx2_available();
+  alignas(32) float rows[kMaxN2];
+  for (std::size_t qk = 0; qk < q_count * k1; ++qk) {
+    float* dst = frame->projected.data() + qk * s;
+    for (std::size_t c = 0; c < 3; ++c) {
+      const float* col = im.columns.data() + (qk * ch + (ch == 1 ? 0 : c)) * n2 * cs;
+      const double* l = light.coefficients_double(static_cast<int>(c));
+#if PRT_HAVE_X86_DISPATCH
+      if (avx2) {
+        project_avx2(col, cs, l, used * used, rows);
+      } else {
+        project_rows_portable(col, cs, l, used * used, 0, n2, rows);
       }
+#else
+      (void)avx2;
+      project_rows_portable(col, cs, l, used * used, 0, n2, rows);
+#endif
+      std::memcpy(dst + c * n2, rows, n2 * sizeof(float));
     }
+    std::fill(dst + 3 * n2, dst + s, 0.0f);
   }
   return Status::Ok();
 }
 
 Status CpcaKernel::transfer(const CpcaFrame& frame, std::size_t first, std::size_t count,
-                               float* out) const {
+                            float* out) const {
   return transfer_using(KernelPath::Auto, frame, first, count, out);
 }
-Status CpcaKernel::shade(const CpcaFrame& frame, const float* b, int b_channels,
-                            std::size_t first, std::size_t count, float* out_rgb) const {
+Status CpcaKernel::shade(const CpcaFrame& frame, const float* b, int b_channels, std::size_t first,
+                         std::size_t count, float* out_rgb) const {
   return shade_using(KernelPath::Auto, frame, b, b_channels, first, count, out_rgb);
 }
 Status CpcaKernel::transfer_using(KernelPath path, const CpcaFrame& frame, std::size_t first,
-                                     std::size_t count, float* out) const {
+                                  std::size_t count, float* out) const {
   return run_cpca(*impl_, path, frame, nullptr, 0, first, count, out, "cpca transfer");
 }
 Status CpcaKernel::shade_using(KernelPath path, const CpcaFrame& frame, const float* b,
-                                  int b_channels, std::size_t first, std::size_t count,
-                                  float* out_rgb) const {
+                               int b_channels, std::size_t first, std::size_t count,
+                               float* out_rgb) const {
   if (b_channels != 1 && b_channels != 3) {
     return Status::Error("cpca shade: b has " + std::to_string(b_channels) +
                          " channels, not 1 or 3");

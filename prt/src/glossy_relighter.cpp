@@ -69,11 +69,12 @@ struct GlossyRelighter::Impl {
   GlossyKernel kernel;          // kKernel
   CpcaKernel cpca;              // compressed
   std::vector<BrdfProjection> projections;
+  bool grey_b = false;  // every projection is grey: the kernels take b of channel 0 only
 
   Status shade_portable(const ShLighting& light, const float eye[3], std::size_t first,
                         std::size_t count, float* out_rgb) const;
   void view_vectors(const float eye[3], std::size_t first, std::size_t count, float* b,
-                    float* scratch) const;
+                    float* scratch, int b_channels) const;
 };
 
 GlossyRelighter::GlossyRelighter() : impl_(std::make_unique<Impl>()) {}
@@ -120,6 +121,8 @@ Status set_geometry(const GlossyTransferData& data, const BrdfProjectionOptions&
     if (!projection) return projection.status();
     p.projections.push_back(std::move(projection).value());
   }
+  p.grey_b = std::all_of(p.projections.begin(), p.projections.end(),
+                         [](const BrdfProjection& b) { return b.grey(); });
   return Status::Ok();
 }
 
@@ -185,11 +188,12 @@ Status GlossyRelighter::prepare(const ShLighting& light, GlossyFrame* frame) con
   return Status::Ok();
 }
 
-// b of vertices [first, first + count) toward `eye`: 3·n² floats per vertex, zero where the
-// eye is below the tangent plane (or at the vertex, or not finite).
+// b of vertices [first, first + count) toward `eye`: b_channels·n² floats per vertex (1: channel
+// 0 only, for grey projections), zero where the eye is below the tangent plane (or at the vertex,
+// or not finite).
 void GlossyRelighter::Impl::view_vectors(const float eye[3], std::size_t first, std::size_t count,
-                                         float* b, float* scratch) const {
-  const std::size_t n2 = std::size_t(order) * order;
+                                         float* b, float* scratch, int b_channels) const {
+  const std::size_t n2 = std::size_t(order) * order, per_vertex = std::size_t(b_channels) * n2;
   for (std::size_t k = first; k < first + count; ++k) {
     const float* f = &frames[9 * k];
     const float d[3] = {eye[0] - positions[3 * k], eye[1] - positions[3 * k + 1],
@@ -197,12 +201,15 @@ void GlossyRelighter::Impl::view_vectors(const float eye[3], std::size_t first, 
     const float local[3] = {f[0] * d[0] + f[1] * d[1] + f[2] * d[2],
                             f[3] * d[0] + f[4] * d[1] + f[5] * d[2],
                             f[6] * d[0] + f[7] * d[1] + f[8] * d[2]};
-    float* bk = b + (k - first) * 3 * n2;
+    float* bk = b + (k - first) * per_vertex;
     if (!(local[2] > 0.f)) {
-      std::fill(bk, bk + 3 * n2, 0.f);
+      std::fill(bk, bk + per_vertex, 0.f);
       continue;
     }
-    projections[material_of_vertex[k]].evaluate(local, bk, scratch);
+    if (b_channels == 1)
+      projections[material_of_vertex[k]].evaluate_channel0(local, bk, scratch);
+    else
+      projections[material_of_vertex[k]].evaluate(local, bk, scratch);
   }
 }
 
@@ -228,18 +235,23 @@ Status GlossyRelighter::shade(const GlossyFrame& frame, const float eye[3], std:
                          std::to_string(p.vertex_count));
   if (count == 0) return Status::Ok();
   if (eye == nullptr || out_rgb == nullptr) return Status::Error("glossy shading: null pointer");
-  constexpr std::size_t kBlock = 256;  // b of a block stays in cache between the two steps
+  // Blocks: b of a block stays in cache between the two steps, and a CPCA block is long enough
+  // for the kernel to shade many vertices of each cluster in a row.
+  constexpr std::size_t kBlock = 1024;
   const std::size_t n2 = std::size_t(p.order) * p.order;
+  // Grey b: channel 0 alone for the uncompressed kernel (it transposes b into lanes per block,
+  // a third of the work); CpcaKernel reads b in place, so three channels suit it best.
+  const int bc = p.grey_b && !p.compressed ? 1 : 3;
   std::size_t scratch_size = 0;
   for (const BrdfProjection& b : p.projections)
     scratch_size = std::max(scratch_size, b.scratch_floats());
-  std::vector<float> scratch(scratch_size), b(kBlock * 3 * n2);
+  std::vector<float> scratch(scratch_size), b(kBlock * std::size_t(bc) * n2);
   for (std::size_t at = first; at < first + count; at += kBlock) {
     const std::size_t n = std::min(kBlock, first + count - at);
-    p.view_vectors(eye, at, n, b.data(), scratch.data());
+    p.view_vectors(eye, at, n, b.data(), scratch.data(), bc);
     float* out = out_rgb + 3 * (at - first);
-    const Status s = p.compressed ? p.cpca.shade(frame.cpca, b.data(), 3, at, n, out)
-                                  : p.kernel.shade(frame.light, b.data(), 3, at, n, out);
+    const Status s = p.compressed ? p.cpca.shade(frame.cpca, b.data(), bc, at, n, out)
+                                  : p.kernel.shade(frame.light, b.data(), bc, at, n, out);
     if (!s) return s;
   }
   return Status::Ok();

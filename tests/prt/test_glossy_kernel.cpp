@@ -180,7 +180,7 @@ TEST_CASE("Glossy kernels: AVX2 and portable paths agree bit for bit", "[glossy]
     WARN("skipping: this CPU lacks AVX2/F16C/FMA");
     return;
   }
-  for (int order : {1, 2, 3, 4, 5, 6}) {
+  for (int order : {1, 2, 3, 4, 5, 6, 7}) {  // 7: the AVX2 CPCA code for any order
     for (int channels : {1, 3}) {
       const GlossyTransferData d = prt::test::synthetic_glossy(45, order, channels, 128);
       const int n2 = order * order;

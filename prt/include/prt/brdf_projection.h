@@ -117,6 +117,12 @@ class BrdfProjection {
   void evaluate(const brdf::Vec3& wo, double* out) const;
   // Float version for the shading kernel. `scratch` holds at least scratch_floats() floats.
   void evaluate(const float wo[3], float* out, float* scratch) const;
+  // The same for channel 0 only (order² values), the same bits as evaluate()'s channel 0.
+  void evaluate_channel0(const float wo[3], float* out, float* scratch) const;
+  // True when the float evaluate() gives three bitwise equal channels for every ωo (a grey
+  // material: its float tables repeat one channel); evaluate() then computes channel 0 and
+  // copies it, and a caller may keep channel 0 alone.
+  bool grey() const;
   std::size_t scratch_floats() const;
 
   struct Impl;

@@ -20,11 +20,13 @@
 // machine:
 //   uncompressed  — 16 vertices side by side; L'_c,i = Σ_j M_i,j·L_c,j (j ascending), then
 //                   e_c = Σ_i b_c,i·L'_c,i (i ascending), each lane on its own;
-//   CPCA          — per vertex, coefficient i in lane i mod 8 of ⌈n²/8⌉ vectors;
-//                   L'_c = P_0,c + Σ_k w_k·P_k,c (k ascending), with P_k,c = U_k·L_c (k = 0: the
-//                   mean) computed once per frame in double and rounded to float; then
-//                   e_c = h(Σ_chunks b·L') with the 8-lane horizontal sum
-//                   h(r) = ((r0+r4)+(r2+r6)) + ((r1+r5)+(r3+r7)).
+//   CPCA          — per vertex, the three channels packed: lane g = c·n² + i of ⌈3n²/8⌉
+//                   vectors; L' = P_0 + Σ_k w_k·P_k (k ascending), with P_k,c = U_k·L_c (k = 0:
+//                   the mean) computed once per frame in double and rounded to float; then per
+//                   channel r = Σ_u (b masked to the channel's lanes)_u·L'_u (u ascending) and
+//                   e_c = h(r) with the 8-lane horizontal sum
+//                   h(r) = ((r0+r4)+(r2+r6)) + ((r1+r5)+(r3+r7)). Vertices are shaded in an
+//                   order grouped by cluster (no result depends on it).
 // Error: |e − e_exact| ≲ (n² + K + 3)·2⁻²⁴ · Σ |terms| (docs/GLOSSY_CPCA.md).
 //
 // Threads: the shading calls are const and use the stack only; call them from any number of
@@ -81,8 +83,8 @@ class GlossyKernel {
 // The per-frame products of a CpcaKernel with one lighting (reuse it across frames: its
 // storage is kept).
 struct CpcaFrame {
-  std::vector<float> projected;  // [cluster][k ≤ K][c][i padded to stride], k = 0 the mean
-  std::size_t stride = 0;        // n² rounded up to 8
+  std::vector<float> projected;  // [cluster][k ≤ K][c·n² + i, padded to stride], k = 0 the mean
+  std::size_t stride = 0;        // 3·n² rounded up to 8
   std::size_t cluster_count = 0;
   std::size_t vectors = 0;      // K
   const void* owner = nullptr;  // the CpcaKernel that prepared it

@@ -202,3 +202,45 @@ TEST_CASE("Isotropic table: b of isotropic materials to interpolation accuracy",
   REQUIRE_FALSE(BrdfProjection::create(aniso, 4, o).ok());
   REQUIRE(BrdfProjection::create(aniso, 4)->method() == BrdfProjectionMethod::kMatrix);
 }
+
+TEST_CASE("Float b of a grey material: three equal channels, as the double path",
+          "[glossy][projection]") {
+  // A grey material's float tables repeat one channel, and the float evaluate computes that
+  // channel once and copies it: the three channels must be bitwise equal and each within float
+  // rounding of the double path (which always computes three). A coloured material must keep
+  // its channels apart (the copy must not be taken for it).
+  Material lambert;
+  lambert.diffuse = prt::brdf::grey(0.7);
+  Material aniso_grey = ward(0.3, 0.1);
+  aniso_grey.specular = prt::brdf::grey(0.6);
+  BrdfProjectionOptions zonal;
+  zonal.method = BrdfProjectionMethod::kZonal;
+  BrdfProjectionOptions coarse_matrix;
+  coarse_matrix.inner_theta = 16;
+  coarse_matrix.inner_phi = 32;
+  const int order = 4, n2 = order * order;
+  struct Case {
+    Material m;
+    BrdfProjectionOptions o;
+    bool grey;
+  };
+  for (const Case& c : {Case{lambert, {}, true}, Case{blinn_phong(30), zonal, true},
+                        Case{blinn_phong(30), {}, true}, Case{aniso_grey, coarse_matrix, true},
+                        Case{ward(0.2, 0.2), {}, false}}) {
+    auto p = BrdfProjection::create(c.m, order, c.o);
+    REQUIRE(p.ok());
+    std::vector<double> b(3 * n2);
+    std::vector<float> bf(3 * n2), scratch(p->scratch_floats());
+    for (const Vec3& wo : {view(0, 0), view(35.2, 77), view(62.9, 301)}) {
+      p->evaluate(wo, b.data());
+      const float w[3] = {float(wo.x), float(wo.y), float(wo.z)};
+      p->evaluate(w, bf.data(), scratch.data());
+      double scale = 0;
+      for (double x : b) scale = std::max(scale, std::abs(x));
+      for (int k = 0; k < 3 * n2; ++k) REQUIRE(bf[k] == Approx(b[k]).margin(1e-5 * scale));
+      bool equal = true;
+      for (int k = 0; k < n2; ++k) equal = equal && bf[k] == bf[n2 + k] && bf[k] == bf[2 * n2 + k];
+      CHECK(equal == c.grey);
+    }
+  }
+}

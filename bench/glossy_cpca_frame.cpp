@@ -1,0 +1,157 @@
+// glossy_cpca_frame — frame CPU time of glossy shading on a REAL bake, from files already written
+// (no compression in the process, so it runs in seconds): a .prtg from `prt bake --glossy` and a
+// .prtq from `prt compress` of it. For the uncompressed GlossyRelighter and for CpcaKernel with
+// the first K vectors of every cluster (cpca_truncate, for each K of the list), prints the
+// thread CPU milliseconds of one frame on the calling thread (prepare + shade of every vertex,
+// b(ω_o) included; the median and the least of `repeats`), of CpcaKernel::prepare alone, and the
+// relative RMS of the CPCA exit radiance against the uncompressed one (grace_probe at order 5, one
+// eye point 2.5 bounding radii from the mesh's centre), so a change of the kernel can be checked
+// for speed and accuracy at once. Usage: [PRT_SHARED_DATA_DIR=DIR] glossy_cpca_frame FILE.prtg
+// FILE.prtq [vectors=16,32,64]
+//        [repeats=7]
+// Run under `taskset -c 1` (figures in docs/GLOSSY_CPCA.md).
+#include <time.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+#include <vector>
+
+#include "prt/cpca.h"
+#include "prt/cpca_file.h"
+#include "prt/glossy_kernel.h"
+#include "prt/glossy_relighter.h"
+#include "prt/glossy_transfer_file.h"
+#include "relight/image_io.h"
+
+namespace {
+
+double thread_seconds() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return double(t.tv_sec) + 1e-9 * double(t.tv_nsec);
+}
+
+template <typename T>
+T require(prt::Result<T> r) {
+  if (!r.ok()) {
+    std::fprintf(stderr, "%s\n", r.status().message().c_str());
+    std::exit(1);
+  }
+  return std::move(r).value();
+}
+
+struct Times {
+  double median, min;
+};
+
+Times summary(std::vector<double> t) {
+  std::sort(t.begin(), t.end());
+  return {t[t.size() / 2], t[0]};
+}
+
+// Thread CPU ms of one frame (median and least of `repeats`); the last frame's exit radiance
+// into out.
+Times frame_ms(const prt::GlossyRelighter& r, const prt::ShLighting& light, const float eye[3],
+               int repeats, std::vector<float>* out) {
+  std::vector<double> t;
+  out->assign(3 * r.vertex_count(), 0.f);
+  prt::GlossyFrame frame;
+  for (int i = 0; i < repeats; ++i) {
+    const double t0 = thread_seconds();
+    if (!r.prepare(light, &frame).ok() ||
+        !r.shade(frame, eye, 0, r.vertex_count(), out->data()).ok())
+      std::exit(1);
+    t.push_back(1e3 * (thread_seconds() - t0));
+  }
+  return summary(t);
+}
+
+Times prepare_ms(const prt::CpcaTransfer& c, const prt::ShLighting& light, int repeats) {
+  const prt::CpcaKernel k = require(prt::CpcaKernel::create(c));
+  prt::CpcaFrame frame;
+  std::vector<double> t;
+  for (int i = 0; i < repeats; ++i) {
+    const double t0 = thread_seconds();
+    if (!k.prepare(light, &frame).ok()) std::exit(1);
+    t.push_back(1e3 * (thread_seconds() - t0));
+  }
+  return summary(t);
+}
+
+double relative_rms(const std::vector<float>& a, const std::vector<float>& ref) {
+  double err = 0, norm = 0;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    err += (double(a[i]) - ref[i]) * (double(a[i]) - ref[i]);
+    norm += double(ref[i]) * ref[i];
+  }
+  return std::sqrt(err / norm);
+}
+
+std::vector<uint32_t> list_arg(const char* text) {
+  std::vector<uint32_t> out;
+  for (const char* p = text; *p != 0;) {
+    char* end = nullptr;
+    out.push_back(static_cast<uint32_t>(std::strtoul(p, &end, 10)));
+    if (end == p) break;
+    p = *end == ',' ? end + 1 : end;
+  }
+  return out;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc < 3) {
+    std::fprintf(stderr, "usage: glossy_cpca_frame FILE.prtg FILE.prtq [vectors] [repeats]\n");
+    return 2;
+  }
+  const prt::GlossyTransferData d = require(prt::read_glossy_transfer_file(argv[1]));
+  const prt::CpcaTransfer cpca = require(prt::read_cpca_file(argv[2]));
+  const std::vector<uint32_t> ks = list_arg(argc > 3 ? argv[3] : "16,32,64");
+  const int repeats = argc > 4 ? std::max(1, std::atoi(argv[4])) : 7;
+  const char* env = std::getenv("PRT_SHARED_DATA_DIR");
+  const std::string dir = env != nullptr ? env : PRT_SHARED_DATA_DIR;
+  const prt::ShLighting light = require(prt::ShLighting::from_env_map(
+      prt::relight::read_environment(dir + "/probes/grace_probe.hdr", std::nullopt), int(d.order)));
+  float lo[3] = {1e30f, 1e30f, 1e30f}, hi[3] = {-1e30f, -1e30f, -1e30f};
+  for (std::size_t v = 0; v < d.vertex_count; ++v)
+    for (int a = 0; a < 3; ++a) {
+      lo[a] = std::min(lo[a], d.positions[3 * v + a]);
+      hi[a] = std::max(hi[a], d.positions[3 * v + a]);
+    }
+  const float r =
+      0.5f * std::sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
+                       (hi[2] - lo[2]) * (hi[2] - lo[2]));
+  const float dir_len = std::sqrt(0.3f * 0.3f + 0.5f * 0.5f + 1.0f);
+  const float eye[3] = {0.5f * (lo[0] + hi[0]) + 2.5f * r * 0.3f / dir_len,
+                        0.5f * (lo[1] + hi[1]) + 2.5f * r * 0.5f / dir_len,
+                        0.5f * (lo[2] + hi[2]) + 2.5f * r * 1.0f / dir_len};
+  const prt::GlossyRelighter full = require(prt::GlossyRelighter::create(d));
+  std::vector<float> reference, out;
+  const Times t_full = frame_ms(full, light, eye, repeats, &reference);
+  std::printf("%s: %zu vertices, order %u; %s: %u clusters, %u vectors\n", argv[1],
+              std::size_t(d.vertex_count), d.order, argv[2], cpca.cluster_count, cpca.vector_count);
+  std::printf("uncompressed frame CPU ms, median (least) of %d: %.2f (%.2f)\n", repeats,
+              t_full.median, t_full.min);
+  std::printf(
+      "| K | frame CPU ms, median (least) | prepare CPU ms, median (least) | relit rel. RMS vs "
+      "uncompressed |\n|---:|---:|---:|---:|\n");
+  for (uint32_t k : ks) {
+    if (k > cpca.vector_count) continue;
+    const prt::CpcaTransfer c = prt::cpca_truncate(cpca, k);
+    prt::GlossyTransferData geometry = d;
+    geometry.matrices.clear();
+    const prt::GlossyRelighter rel =
+        require(prt::GlossyRelighter::create_cpca(std::move(geometry), c));
+    const Times t = frame_ms(rel, light, eye, repeats, &out);
+    const Times tp = prepare_ms(c, light, repeats);
+    std::printf("| %u | %.2f (%.2f) | %.2f (%.2f) | %.5f |\n", k, t.median, t.min, tp.median,
+                tp.min, relative_rms(out, reference));
+    std::fflush(stdout);
+  }
+  return 0;
+}
