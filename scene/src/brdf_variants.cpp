@@ -187,7 +187,8 @@ QuantisedVectors quantise_parameters(const std::vector<std::vector<double>>& sam
   std::vector<std::vector<double>> cell_of(samples.size());
   for (std::size_t i = 0; i < samples.size(); ++i) {
     cell_of[i] = row(i);
-    for (std::size_t k = 0; k < axes.size(); ++k) cell_of[i][k] = double(axes[k].index(cell_of[i][k]));
+    for (std::size_t k = 0; k < axes.size(); ++k)
+      cell_of[i][k] = double(axes[k].index(cell_of[i][k]));
     cells.emplace(cell_of[i], 0u);
   }
   for (auto& [cell, index] : cells) {
@@ -200,7 +201,8 @@ QuantisedVectors quantise_parameters(const std::vector<std::vector<double>>& sam
     const uint32_t level = cells.at(cell_of[i]);
     out.level_of.push_back(level);
     for (std::size_t k = 0; k < k_count; ++k)
-      out.max_error[k] = std::max(out.max_error[k], std::fabs(out.levels[level][k] - columns[k][i]));
+      out.max_error[k] =
+          std::max(out.max_error[k], std::fabs(out.levels[level][k] - columns[k][i]));
   }
   return out;
 }

@@ -65,12 +65,12 @@ std::vector<Slot> material_slots(const tinygltf::Material& m) {
                        std::nullopt,
                        {},
                        glm::dvec3(1.0)});
-  slots.push_back(extension_slot(m, "KHR_materials_specular", "specularTexture",
-                                 TextureContent::kAlpha));
+  slots.push_back(
+      extension_slot(m, "KHR_materials_specular", "specularTexture", TextureContent::kAlpha));
   slots.push_back(extension_slot(m, "KHR_materials_specular", "specularColorTexture",
                                  TextureContent::kSrgbColour));
-  slots.push_back(extension_slot(m, "KHR_materials_anisotropy", "anisotropyTexture",
-                                 TextureContent::kLinear));
+  slots.push_back(
+      extension_slot(m, "KHR_materials_anisotropy", "anisotropyTexture", TextureContent::kLinear));
   return slots;
 }
 
@@ -149,9 +149,8 @@ void note_errors(const std::string& path, const tinygltf::Material& m, const Qua
                "%s: note: material '%s': textured parameters quantised to %zu variants over %zu "
                "vertices (max |error| roughness %.3g, metalness %.3g, specular %.3g, specular "
                "colour %.3g, anisotropy %.3g)\n",
-               path.c_str(), m.name.c_str(), q.levels.size(), vertex_count,
-               q.max_error[kRoughness], q.max_error[kMetalness], q.max_error[kSpecular], colour,
-               q.max_error[kAnisotropy]);
+               path.c_str(), m.name.c_str(), q.levels.size(), vertex_count, q.max_error[kRoughness],
+               q.max_error[kMetalness], q.max_error[kSpecular], colour, q.max_error[kAnisotropy]);
 }
 
 }  // namespace

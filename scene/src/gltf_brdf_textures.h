@@ -38,9 +38,10 @@ namespace prt::scene::detail {
 // TEXCOORD_1").
 using TexcoordReader = std::function<std::vector<glm::vec2>(int set, std::string* problem)>;
 
-// Reads the textures of `material` for the primitive `out` of `vertex_count` vertices, whose BRDF base colour is `base_color`; sets out.brdf,
-// brdf_variants, brdf_variant_of_vertex, brdf_textured, anisotropy_rotation_of_vertex or
-// brdf_texture_problem. Prints one note when quantising made errors.
+// Reads the textures of `material` for the primitive `out` of `vertex_count` vertices, whose BRDF
+// base colour is `base_color`; sets out.brdf, brdf_variants, brdf_variant_of_vertex, brdf_textured,
+// anisotropy_rotation_of_vertex or brdf_texture_problem. Prints one note when quantising made
+// errors.
 void read_brdf_textures(const std::string& path, const tinygltf::Material& material,
                         GltfTextures& textures, const TexcoordReader& texcoords,
                         std::size_t vertex_count, const glm::vec3& base_color, ScenePrimitive& out);

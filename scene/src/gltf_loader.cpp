@@ -1,7 +1,7 @@
 // glTF 2.0 reading through tinygltf (see gltf_loader.h and scene/scene_loader.h).
 #include "gltf_loader.h"
-#include "gltf_emission.h"
 #include "gltf_brdf_textures.h"
+#include "gltf_emission.h"
 #include "gltf_extensions.h"
 #include "gltf_materials.h"
 #include "gltf_textures.h"

@@ -70,10 +70,11 @@ const GltfTextures::CachedImage& GltfTextures::image(int index, TextureContent c
           model_.buffers[static_cast<std::size_t>(view.buffer)].data;
       if (view.byteOffset > data.size() || view.byteLength > data.size() - view.byteOffset)
         throw std::runtime_error(label + ": its buffer view lies outside its buffer");
-      slot.image = load_texture_bytes(data.data() + view.byteOffset, view.byteLength, label, content);
-    } else if (image.uri.rfind("data:", 0) == 0) {
       slot.image =
-          load_texture_bytes(image.image.data(), image.image.size(), label + " (data URI)", content);
+          load_texture_bytes(data.data() + view.byteOffset, view.byteLength, label, content);
+    } else if (image.uri.rfind("data:", 0) == 0) {
+      slot.image = load_texture_bytes(image.image.data(), image.image.size(), label + " (data URI)",
+                                      content);
     } else {
       const std::string file =
           (std::filesystem::path(path_).parent_path() / decode_uri(image.uri)).string();
@@ -142,8 +143,8 @@ std::optional<GltfTextures::ParameterTexture> GltfTextures::metallic_roughness(
 }
 
 std::optional<GltfTextures::ParameterTexture> GltfTextures::parameter(const TextureRef& ref,
-                                                                       TextureContent content,
-                                                                       std::string* problem) {
+                                                                      TextureContent content,
+                                                                      std::string* problem) {
   problem->clear();
   if (ref.index < 0) return std::nullopt;
   const tinygltf::Texture* texture = this->texture(ref.index, problem);

@@ -189,7 +189,8 @@ TEST_CASE(
   prt::scene::apply_material_overrides(
       overridden, {prt::scene::parse_material_override("m=ggx:roughness=0.5")});
   CHECK(overridden.primitives[0].anisotropy_rotation_of_vertex.empty());
-  for (const glm::vec4& f : prt::scene::tangent_frames(overridden)) CHECK(f == glm::vec4(1, 0, 0, 1));
+  for (const glm::vec4& f : prt::scene::tangent_frames(overridden))
+    CHECK(f == glm::vec4(1, 0, 0, 1));
 }
 
 TEST_CASE("constant specular and anisotropy textures give the factors' material",
@@ -215,7 +216,8 @@ TEST_CASE("constant specular and anisotropy textures give the factors' material"
   REQUIRE(b.primitives[0].brdf.has_value());
   CHECK(a.primitives[0].brdf_texture_problem.empty());
   CHECK(a.primitives[0].brdf_variants.empty());  // one value everywhere: no variants
-  INFO(prt::brdf::describe(*a.primitives[0].brdf) << " vs " << prt::brdf::describe(*b.primitives[0].brdf));
+  INFO(prt::brdf::describe(*a.primitives[0].brdf)
+       << " vs " << prt::brdf::describe(*b.primitives[0].brdf));
   CHECK(prt::scene::same_material(*a.primitives[0].brdf, *b.primitives[0].brdf));
   CHECK_FALSE(a.primitives[0].brdf->isotropic());
   REQUIRE(a.primitives[0].anisotropy_rotation_of_vertex.size() == 8);
@@ -335,7 +337,7 @@ TEST_CASE("quantise_parameters: exact up to 64 vectors, else a grid with bounded
       CHECK(worst[k] == q.max_error[k]);
       CHECK(q.max_error[k] <= (hi[k] - lo[k]) / 8 + 1e-12);
     }
-    CHECK(q.max_error[1] == 0.0);  // constant: exact
+    CHECK(q.max_error[1] == 0.0);                  // constant: exact
     CHECK(q.max_error[0] > (hi[0] - lo[0]) / 16);  // really binned (not exact)
   }
   SECTION("only the first two varying: the metal-roughness grid") {

@@ -34,8 +34,8 @@ inline std::string base64_bytes(const std::vector<unsigned char>& bytes) {
 }
 
 // A 4 × 4 PNG of `channels` channels whose column i holds columns[i] (channels bytes) in every row.
-inline std::vector<unsigned char> column_png(int channels,
-                                             const std::vector<std::vector<unsigned char>>& columns) {
+inline std::vector<unsigned char> column_png(
+    int channels, const std::vector<std::vector<unsigned char>>& columns) {
   std::vector<unsigned char> texels;
   for (int row = 0; row < 4; ++row)
     for (int i = 0; i < 4; ++i) {
@@ -97,11 +97,10 @@ inline nlohmann::json texture_strip_gltf(const nlohmann::json& material,
       {"scene", 0},
       {"scenes", json::array({{{"nodes", {0}}}})},
       {"nodes", json::array({{{"mesh", 0}}})},
-      {"meshes",
-       json::array({{{"name", "strip"},
-                     {"primitives", json::array({{{"attributes", attributes},
-                                                  {"indices", index_accessor},
-                                                  {"material", 0}}})}}})},
+      {"meshes", json::array({{{"name", "strip"},
+                               {"primitives", json::array({{{"attributes", attributes},
+                                                            {"indices", index_accessor},
+                                                            {"material", 0}}})}}})},
       {"materials", json::array({material})},
       {"accessors", accessors},
       {"bufferViews", views},

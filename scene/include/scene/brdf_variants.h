@@ -17,8 +17,8 @@
 //     [lo, hi] whose value is the bin's centre. Both axes continuous: 16 roughness × 4 metalness
 //     levels. The error per vertex is then at most half a bin: |Δroughness| ≤ (hi − lo)/32 (or
 //     (hi − lo)/(2·⌊64/count⌋) with metalness exact), |Δmetalness| ≤ (hi − lo)/8.
-// What that costs (docs/GLOSSY.md "Textured roughness"): with glTF's α = r², Δα ≈ 2 r Δr, and
-// the GGX peak D(0) = 1/(π α²) changes by ≈ 2 Δα/α = 4 Δr/r: for r ≥ 0.3 and Δr ≤ 1/32, under
+// What that costs (docs/BRDF.md "Textured material parameters"): with glTF's α = r², Δα ≈ 2 r Δr,
+// and the GGX peak D(0) = 1/(π α²) changes by ≈ 2 Δα/α = 4 Δr/r: for r ≥ 0.3 and Δr ≤ 1/32, under
 // 42 % at the peak of an unfiltered lobe (much less once SH order ≤ 10 has blurred it); the
 // reported max_*_error are the errors actually made, which the loader prints when non-zero.
 //

@@ -57,10 +57,11 @@ struct ScenePrimitive {
   // turned by anisotropyRotation, i.e. atan2(y, x) + anisotropyRotation. Empty otherwise.
   std::vector<float> anisotropy_rotation_of_vertex;
   // Per-vertex variants of `brdf` when a texture varies its parameters (glTF
-  // metallicRoughnessTexture: scene/brdf_variants.h): at most kMaxBrdfVariants materials and,
-  // for each of the primitive's vertices (in order), the index of its own. Empty otherwise;
-  // used only when brdf_variant_of_vertex has vertex_count entries. `brdf` is then the material
-  // of the texture's mean (what the surface looks like from afar; absent when that is Lambert).
+  // metallicRoughnessTexture, specular and anisotropy textures: scene/brdf_variants.h): at most
+  // kMaxBrdfVariants materials and, for each of the primitive's vertices (in order), the index of
+  // its own. Empty otherwise; used only when brdf_variant_of_vertex has vertex_count entries.
+  // `brdf` is then the material of the texture's mean (what the surface looks like from afar;
+  // absent when that is Lambert).
   std::vector<brdf::Material> brdf_variants;
   std::vector<uint32_t> brdf_variant_of_vertex;
   // The parameters the textures vary, for messages: "roughness/metalness", "specular",
@@ -68,8 +69,8 @@ struct ScenePrimitive {
   std::string brdf_textured;
   // A texture the BRDF needs that could not be used, as one line ("material 'M':
   // metallicRoughnessTexture FILE: problem", or specularTexture, specularColorTexture,
-  // anisotropyTexture); "" when none (the first problem when several). The loader uses the factors and
-  // prints nothing (describe_materials lists it); a glossy bake refuses the scene with it.
+  // anisotropyTexture); "" when none (the first problem when several). The loader uses the factors
+  // and prints nothing (describe_materials lists it); a glossy bake refuses the scene with it.
   std::string brdf_texture_problem;
 };
 
