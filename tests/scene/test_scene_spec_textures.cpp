@@ -227,6 +227,24 @@ TEST_CASE("constant specular and anisotropy textures give the factors' material"
   CHECK(b.primitives[0].anisotropy_rotation_of_vertex.empty());
 }
 
+TEST_CASE("a specularTexture without alpha reads A = 1: the factor alone", "[scene][materials]") {
+  json factors = base_material(0.5, 0.0, 0.5);
+  factors["extensions"]["KHR_materials_specular"] = {{"specularFactor", 0.5}};
+  json textured = factors;
+  textured["extensions"]["KHR_materials_specular"]["specularTexture"] = {{"index", 0}};
+  // RGB texels that differ per column: reading R, G or B as A would give four variants.
+  const std::vector<unsigned char> rgb =
+      prt::test::column_png(3, {{10, 20, 30}, {90, 60, 30}, {200, 100, 50}, {255, 0, 128}});
+  const Scene a = load_strip("spec_rgb_only.glb", textured, {rgb});
+  const Scene b = load_strip("spec_rgb_factor.glb", factors, {});
+  CHECK(a.primitives[0].brdf_texture_problem.empty());
+  CHECK(a.primitives[0].brdf_variants.empty());
+  REQUIRE(a.primitives[0].brdf.has_value());
+  REQUIRE(b.primitives[0].brdf.has_value());
+  CHECK(a.primitives[0].brdf->specular.r == Approx(0.04 * 0.5).epsilon(1e-12));
+  CHECK(prt::scene::same_material(*a.primitives[0].brdf, *b.primitives[0].brdf));
+}
+
 TEST_CASE("unusable specular and anisotropy textures are recorded in one line, factors used",
           "[scene][materials]") {
   const std::vector<unsigned char> png = prt::test::column_png(4, kSpecularTexels);
