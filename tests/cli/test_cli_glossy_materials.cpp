@@ -238,7 +238,7 @@ TEST_CASE(
 
 TEST_CASE(
     "cli: a textured anisotropy direction reaches the glossy file's tangents, its strength the "
-    "materials; a bad specularTexture index stops the glossy bake in one line naming the file",
+    "materials, and a bad specularTexture index stops the glossy bake in one line naming the file",
     "[cli][materials]") {
   const fs::path dir = scratch("glossy_aniso_texture");
   nlohmann::json m = {{"name", "brushed"},
