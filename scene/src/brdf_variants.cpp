@@ -108,4 +108,103 @@ QuantisedParameters quantise_metal_roughness(const std::vector<glm::dvec2>& samp
   return out;
 }
 
+namespace {
+
+// Levels per component for the greedy grid (see the header).
+std::vector<std::size_t> grid_levels(const std::vector<std::vector<double>>& columns,
+                                     std::size_t budget) {
+  const std::size_t k_count = columns.size();
+  std::vector<std::size_t> levels(k_count, 1), distinct(k_count);
+  std::vector<double> width(k_count);
+  for (std::size_t k = 0; k < k_count; ++k) {
+    distinct[k] = distinct_count(columns[k]);
+    const auto [lo, hi] = std::minmax_element(columns[k].begin(), columns[k].end());
+    width[k] = columns[k].empty() ? 0.0 : *hi - *lo;
+  }
+  std::size_t product = 1;
+  for (;;) {
+    std::size_t best = k_count;
+    for (std::size_t k = 0; k < k_count; ++k) {
+      if (levels[k] >= distinct[k] || product / levels[k] * (levels[k] + 1) > budget) continue;
+      if (best == k_count || width[k] / double(levels[k]) > width[best] / double(levels[best]))
+        best = k;
+    }
+    if (best == k_count) return levels;
+    product = product / levels[best] * (levels[best] + 1);
+    ++levels[best];
+  }
+}
+
+}  // namespace
+
+QuantisedVectors quantise_parameters(const std::vector<std::vector<double>>& samples,
+                                     int max_variants) {
+  if (max_variants < 1 || max_variants > kMaxBrdfVariants)
+    throw std::invalid_argument("quantise_parameters: max_variants outside [1, 64]");
+  const std::size_t budget = std::size_t(max_variants);
+  const std::size_t k_count = samples.empty() ? 0 : samples.front().size();
+  std::vector<std::vector<double>> columns(k_count, std::vector<double>(samples.size()));
+  for (std::size_t i = 0; i < samples.size(); ++i) {
+    if (samples[i].size() != k_count)
+      throw std::invalid_argument("quantise_parameters: vectors of different lengths");
+    for (std::size_t k = 0; k < k_count; ++k)
+      columns[k][i] = std::isnan(samples[i][k]) ? 0.0 : samples[i][k];
+  }
+  QuantisedVectors out;
+  out.max_error.assign(k_count, 0.0);
+  const auto row = [&](std::size_t i) {
+    std::vector<double> r(k_count);
+    for (std::size_t k = 0; k < k_count; ++k) r[k] = columns[k][i];
+    return r;
+  };
+  std::map<std::vector<double>, uint32_t> distinct;
+  for (std::size_t i = 0; i < samples.size(); ++i) distinct.emplace(row(i), 0u);
+  bool only_first_two = k_count >= 2;
+  for (std::size_t k = 2; k < k_count && only_first_two; ++k)
+    only_first_two = distinct_count(columns[k]) <= 1;
+  if (distinct.size() > budget && only_first_two) {
+    // The two-parameter grid; the constant components ride along.
+    std::vector<glm::dvec2> pairs(samples.size());
+    for (std::size_t i = 0; i < samples.size(); ++i) pairs[i] = {columns[0][i], columns[1][i]};
+    const QuantisedParameters q = quantise_metal_roughness(pairs, max_variants);
+    for (const glm::dvec2& level : q.levels) {
+      std::vector<double> v = row(0);
+      v[0] = level.x;
+      v[1] = level.y;
+      out.levels.push_back(std::move(v));
+    }
+    out.level_of = q.level_of;
+    out.max_error[0] = q.max_roughness_error;
+    out.max_error[1] = q.max_metalness_error;
+    return out;
+  }
+  std::vector<Axis> axes;
+  const std::vector<std::size_t> levels =
+      distinct.size() <= budget ? std::vector<std::size_t>() : grid_levels(columns, budget);
+  for (std::size_t k = 0; k < levels.size(); ++k) axes.emplace_back(columns[k], levels[k]);
+  // Exact: every distinct vector its own cell (the axes are left empty).
+  std::map<std::vector<double>, uint32_t> cells;
+  std::vector<std::vector<double>> cell_of(samples.size());
+  for (std::size_t i = 0; i < samples.size(); ++i) {
+    cell_of[i] = row(i);
+    for (std::size_t k = 0; k < axes.size(); ++k)
+      cell_of[i][k] = double(axes[k].index(cell_of[i][k]));
+    cells.emplace(cell_of[i], 0u);
+  }
+  for (auto& [cell, index] : cells) {
+    index = static_cast<uint32_t>(out.levels.size());
+    std::vector<double> value = cell;
+    for (std::size_t k = 0; k < axes.size(); ++k) value[k] = axes[k].value(std::size_t(cell[k]));
+    out.levels.push_back(std::move(value));
+  }
+  for (std::size_t i = 0; i < samples.size(); ++i) {
+    const uint32_t level = cells.at(cell_of[i]);
+    out.level_of.push_back(level);
+    for (std::size_t k = 0; k < k_count; ++k)
+      out.max_error[k] =
+          std::max(out.max_error[k], std::fabs(out.levels[level][k] - columns[k][i]));
+  }
+  return out;
+}
+
 }  // namespace prt::scene

@@ -1,10 +1,10 @@
 // glTF 2.0 reading through tinygltf (see gltf_loader.h and scene/scene_loader.h).
 #include "gltf_loader.h"
+#include "gltf_brdf_textures.h"
 #include "gltf_emission.h"
 #include "gltf_extensions.h"
 #include "gltf_materials.h"
 #include "gltf_textures.h"
-#include "scene/brdf_variants.h"
 #include "scene/scene_loader.h"
 #include "scene_file_errors.h"
 
@@ -427,65 +427,25 @@ class GltfReader {
         glm::vec3(0.f), glm::vec3(kMaxTexturedAlbedo));
   }
 
-  // The material's metallicRoughnessTexture sampled (bilinear, as the sampler says) at each
-  // vertex's TEXCOORD_n: roughness = roughnessFactor × G, metalness = metallicFactor × B,
-  // quantised to per-vertex variants (scene/brdf_variants.h); `brdf` becomes the material of
-  // the texture's mean. A texture that cannot be used is recorded in brdf_texture_problem, and
-  // the factors stay in use.
+  // The material's parameter textures read at each vertex's TEXCOORD_n (gltf_brdf_textures.h).
   void read_brdf_texture(const tinygltf::Primitive& primitive, const std::string& name,
                          std::size_t vertex_count, ScenePrimitive& out) {
     if (primitive.material < 0 || primitive.material >= static_cast<int>(model_.materials.size()))
       return;
     const tinygltf::Material& m = model_.materials[static_cast<std::size_t>(primitive.material)];
-    std::string problem;
-    const auto texture = textures_.metallic_roughness(primitive.material, &problem);
-    std::vector<glm::vec2> uv;
-    if (texture) {
-      const std::string attribute = "TEXCOORD_" + std::to_string(texture->texcoord);
+    const auto texcoords = [&](int set, std::string* problem) {
+      const std::string attribute = "TEXCOORD_" + std::to_string(set);
       const auto it = primitive.attributes.find(attribute);
-      if (it == primitive.attributes.end())
-        problem = "mesh '" + name + "' has no " + attribute;
-      else
-        uv = read_texcoords(it->second, name + " " + attribute);
-      if (problem.empty() && uv.size() != vertex_count)
+      if (it == primitive.attributes.end()) {
+        *problem = "mesh '" + name + "' has no " + attribute;
+        return std::vector<glm::vec2>();
+      }
+      std::vector<glm::vec2> uv = read_texcoords(it->second, name + " " + attribute);
+      if (uv.size() != vertex_count)
         fail(path_, "mesh '" + name + "': " + attribute + " and POSITION counts differ");
-    }
-    if (!problem.empty()) {
-      // Not printed here: only a glossy bake needs the texture (it refuses the scene with this
-      // line); `prt info` lists it with the materials.
-      out.brdf_texture_problem = "material '" + m.name + "': metallicRoughnessTexture " + problem;
-      return;
-    }
-    if (!texture) return;
-    const tinygltf::PbrMetallicRoughness& pbr = m.pbrMetallicRoughness;
-    const glm::dvec2 factors(pbr.roughnessFactor, pbr.metallicFactor);
-    std::vector<glm::dvec2> samples(vertex_count);
-    for (std::size_t v = 0; v < vertex_count; ++v) {
-      const glm::vec3 c = texture->image->sample(uv[v], texture->sampler);
-      samples[v] = factors * glm::dvec2(c.y, c.z);
-    }
-    const QuantisedParameters q = quantise_metal_roughness(samples);
-    const glm::vec3 base = brdf_base_color(out);
-    const glm::dvec3 mean = texture->image->mean();
-    const glm::dvec2 mean_parameters = factors * glm::dvec2(mean.y, mean.z);
-    out.brdf = gltf_brdf(path_, m, base, &mean_parameters).brdf;
-    if (q.levels.size() <= 1) {  // one value everywhere: no variants needed
-      if (!q.levels.empty()) out.brdf = gltf_brdf(path_, m, base, &q.levels[0]).brdf;
-      return;
-    }
-    for (const glm::dvec2& level : q.levels) {
-      const GltfBrdf variant = gltf_brdf(path_, m, base, &level);
-      brdf::Material lambert;
-      lambert.diffuse = {base.x, base.y, base.z};
-      out.brdf_variants.push_back(variant.brdf ? *variant.brdf : lambert);
-    }
-    out.brdf_variant_of_vertex = q.level_of;
-    if (q.max_roughness_error > 0 || q.max_metalness_error > 0)
-      std::fprintf(stderr,
-                   "%s: note: material '%s': metallicRoughnessTexture quantised to %zu variants "
-                   "over %zu vertices (max |error| roughness %.3g, metalness %.3g)\n",
-                   path_.c_str(), m.name.c_str(), q.levels.size(), vertex_count,
-                   q.max_roughness_error, q.max_metalness_error);
+      return uv;
+    };
+    read_brdf_textures(path_, m, textures_, texcoords, vertex_count, brdf_base_color(out), out);
   }
 
   // The primitive's TANGENT attribute (object space, validated), or empty when it has none.

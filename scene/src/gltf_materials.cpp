@@ -37,15 +37,46 @@ brdf::Rgb rgb(const glm::dvec3& c) {
 
 }  // namespace
 
-GltfBrdf gltf_brdf(const std::string& path, const tinygltf::Material& m,
-                   const glm::vec3& base_color, const glm::dvec2* roughness_metalness) {
+GltfParameters gltf_factors(const std::string& path, const tinygltf::Material& m) {
   const tinygltf::PbrMetallicRoughness& pbr = m.pbrMetallicRoughness;
-  double metallic = checked(path, m, "metallicFactor", pbr.metallicFactor, 0.0, 1.0);
-  double roughness = checked(path, m, "roughnessFactor", pbr.roughnessFactor, 0.0, 1.0);
-  if (roughness_metalness) {
-    roughness = std::clamp(roughness_metalness->x, 0.0, 1.0);
-    metallic = std::clamp(roughness_metalness->y, 0.0, 1.0);
+  GltfParameters out;
+  out.metalness = checked(path, m, "metallicFactor", pbr.metallicFactor, 0.0, 1.0);
+  out.roughness = checked(path, m, "roughnessFactor", pbr.roughnessFactor, 0.0, 1.0);
+  if (const tinygltf::Value* specular = find_extension(m, "KHR_materials_specular")) {
+    out.specular = checked(path, m, "specularFactor",
+                           extension_number(*specular, "specularFactor", 1.0), 0.0, 1.0);
+    if (specular->Has("specularColorFactor")) {
+      const tinygltf::Value& c = specular->Get("specularColorFactor");
+      for (int k = 0; k < 3 && c.IsArray() && c.ArrayLen() == 3; ++k)
+        out.specular_color[k] = c.Get(k).IsNumber() ? c.Get(k).GetNumberAsDouble() : 1.0;
+      for (int k = 0; k < 3; ++k)
+        checked(path, m, "specularColorFactor", out.specular_color[k], 0.0, 1e6);
+    }
   }
+  if (const tinygltf::Value* aniso = find_extension(m, "KHR_materials_anisotropy"))
+    out.anisotropy = checked(path, m, "anisotropyStrength",
+                             extension_number(*aniso, "anisotropyStrength", 0.0), 0.0, 1.0);
+  return out;
+}
+
+double gltf_anisotropy_rotation(const std::string& path, const tinygltf::Material& m) {
+  const tinygltf::Value* aniso = find_extension(m, "KHR_materials_anisotropy");
+  const double rotation = aniso ? extension_number(*aniso, "anisotropyRotation", 0.0) : 0.0;
+  if (!std::isfinite(rotation)) {
+    char text[96];
+    std::snprintf(text, sizeof text, "anisotropyRotation %g is not finite", rotation);
+    fail(path, "material '" + m.name + "': " + text);
+  }
+  return rotation;
+}
+
+GltfBrdf gltf_brdf(const std::string& path, const tinygltf::Material& m,
+                   const glm::vec3& base_color, const GltfParameters* parameters) {
+  const GltfParameters factors = gltf_factors(path, m);
+  const double rotation = gltf_anisotropy_rotation(path, m);
+  const GltfParameters& p = parameters ? *parameters : factors;
+  const auto unit = [](double v) { return std::isnan(v) ? 0.0 : std::clamp(v, 0.0, 1.0); };
+  const double metallic = unit(p.metalness), roughness = unit(p.roughness);
 
   double f0_ior = 0.04;
   if (const tinygltf::Value* ior = find_extension(m, "KHR_materials_ior")) {
@@ -55,16 +86,8 @@ GltfBrdf gltf_brdf(const std::string& path, const tinygltf::Material& m,
   glm::dvec3 f0_dielectric(f0_ior);
   const tinygltf::Value* specular = find_extension(m, "KHR_materials_specular");
   if (specular) {
-    const double factor = checked(path, m, "specularFactor",
-                                  extension_number(*specular, "specularFactor", 1.0), 0.0, 1.0);
-    glm::dvec3 color(1.0);
-    if (specular->Has("specularColorFactor")) {
-      const tinygltf::Value& c = specular->Get("specularColorFactor");
-      for (int k = 0; k < 3 && c.IsArray() && c.ArrayLen() == 3; ++k)
-        color[k] = c.Get(k).IsNumber() ? c.Get(k).GetNumberAsDouble() : 1.0;
-      for (int k = 0; k < 3; ++k) checked(path, m, "specularColorFactor", color[k], 0.0, 1e6);
-    }
-    f0_dielectric = glm::min(f0_ior * color, glm::dvec3(1.0)) * factor;
+    const glm::dvec3 color = glm::max(p.specular_color, glm::dvec3(0.0));
+    f0_dielectric = glm::min(f0_ior * color, glm::dvec3(1.0)) * unit(p.specular);
   }
   const glm::dvec3 base(base_color);
   const glm::dvec3 f0 = f0_dielectric * (1.0 - metallic) + base * metallic;
@@ -81,11 +104,8 @@ GltfBrdf gltf_brdf(const std::string& path, const tinygltf::Material& m,
   material.specular = rgb(glm::clamp(f0, 0.0, 1.0));
   material.diffuse = rgb(glm::clamp(base * (1.0 - metallic), 0.0, 1.0));
   material.alpha_x = material.alpha_y = alpha;
-  if (const tinygltf::Value* aniso = find_extension(m, "KHR_materials_anisotropy")) {
-    const double strength = checked(path, m, "anisotropyStrength",
-                                    extension_number(*aniso, "anisotropyStrength", 0.0), 0.0, 1.0);
-    const double rotation = extension_number(*aniso, "anisotropyRotation", 0.0);
-    if (!std::isfinite(rotation)) fail(path, "material '" + m.name + "': anisotropyRotation NaN");
+  if (find_extension(m, "KHR_materials_anisotropy")) {
+    const double strength = unit(p.anisotropy);
     material.alpha_x = alpha + (1.0 - alpha) * strength * strength;
     out.anisotropy_rotation = static_cast<float>(rotation);
   }

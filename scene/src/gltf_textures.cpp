@@ -52,9 +52,9 @@ bool keep_image_bytes(tinygltf::Image* image, int, std::string*, std::string*, i
 GltfTextures::GltfTextures(const std::string& path, const tinygltf::Model& model)
     : path_(path), model_(model) {}
 
-const GltfTextures::CachedImage& GltfTextures::image(int index, bool srgb) {
-  if (const auto it = images_.find({index, srgb}); it != images_.end()) return it->second;
-  CachedImage& slot = images_[{index, srgb}];
+const GltfTextures::CachedImage& GltfTextures::image(int index, TextureContent content) {
+  if (const auto it = images_.find({index, content}); it != images_.end()) return it->second;
+  CachedImage& slot = images_[{index, content}];
   const tinygltf::Image& image = model_.images[static_cast<std::size_t>(index)];
   const std::string label =
       "image " + std::to_string(index) + (image.name.empty() ? "" : " '" + image.name + "'");
@@ -70,18 +70,19 @@ const GltfTextures::CachedImage& GltfTextures::image(int index, bool srgb) {
           model_.buffers[static_cast<std::size_t>(view.buffer)].data;
       if (view.byteOffset > data.size() || view.byteLength > data.size() - view.byteOffset)
         throw std::runtime_error(label + ": its buffer view lies outside its buffer");
-      slot.image = load_texture_bytes(data.data() + view.byteOffset, view.byteLength, label, srgb);
-    } else if (image.uri.rfind("data:", 0) == 0) {
       slot.image =
-          load_texture_bytes(image.image.data(), image.image.size(), label + " (data URI)", srgb);
+          load_texture_bytes(data.data() + view.byteOffset, view.byteLength, label, content);
+    } else if (image.uri.rfind("data:", 0) == 0) {
+      slot.image = load_texture_bytes(image.image.data(), image.image.size(), label + " (data URI)",
+                                      content);
     } else {
       const std::string file =
           (std::filesystem::path(path_).parent_path() / decode_uri(image.uri)).string();
       std::error_code ec;
       if (!image.image.empty())
-        slot.image = load_texture_bytes(image.image.data(), image.image.size(), file, srgb);
+        slot.image = load_texture_bytes(image.image.data(), image.image.size(), file, content);
       else if (std::filesystem::is_regular_file(file, ec))
-        slot.image = load_texture_file(file, srgb);
+        slot.image = load_texture_file(file, content);
       else
         slot.missing_file = file;
     }
@@ -116,7 +117,7 @@ std::optional<BaseColorTexture> GltfTextures::base_color(int material) {
     problems_.insert(problem);
     return std::nullopt;
   }
-  const CachedImage& cached = image(texture->source, /*srgb=*/true);
+  const CachedImage& cached = image(texture->source, TextureContent::kSrgbColour);
   if (!cached.image) {
     if (!cached.missing_file.empty()) missing_.insert(cached.missing_file);
     if (!cached.problem.empty()) problems_.insert(cached.problem);
@@ -138,10 +139,17 @@ std::optional<GltfTextures::ParameterTexture> GltfTextures::metallic_roughness(
   if (material < 0 || material >= static_cast<int>(model_.materials.size())) return std::nullopt;
   const tinygltf::TextureInfo& info = model_.materials[static_cast<std::size_t>(material)]
                                           .pbrMetallicRoughness.metallicRoughnessTexture;
-  if (info.index < 0) return std::nullopt;
-  const tinygltf::Texture* texture = this->texture(info.index, problem);
+  return parameter(TextureRef{info.index, info.texCoord}, TextureContent::kLinear, problem);
+}
+
+std::optional<GltfTextures::ParameterTexture> GltfTextures::parameter(const TextureRef& ref,
+                                                                      TextureContent content,
+                                                                      std::string* problem) {
+  problem->clear();
+  if (ref.index < 0) return std::nullopt;
+  const tinygltf::Texture* texture = this->texture(ref.index, problem);
   if (!texture) return std::nullopt;
-  const CachedImage& cached = image(texture->source, /*srgb=*/false);
+  const CachedImage& cached = image(texture->source, content);
   if (!cached.image) {
     *problem =
         cached.missing_file.empty() ? cached.problem : cached.missing_file + ": no such file";
@@ -151,7 +159,7 @@ std::optional<GltfTextures::ParameterTexture> GltfTextures::metallic_roughness(
   out.image = cached.image;
   if (texture->sampler >= 0 && texture->sampler < static_cast<int>(model_.samplers.size()))
     out.sampler = sampler_of(model_.samplers[static_cast<std::size_t>(texture->sampler)]);
-  out.texcoord = info.texCoord;
+  out.texcoord = ref.texcoord;
   return out;
 }
 

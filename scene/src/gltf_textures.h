@@ -10,8 +10,10 @@
 // An image that cannot be used (missing file, not PNG/JPEG, corrupt, too large) is not an error:
 // real assets are often shipped without their textures. Its materials fall back to their
 // baseColorFactor, and report() prints one warning line per problem, naming the image.
-// The metallicRoughnessTexture (linear data, not sRGB: G = roughness, B = metalness) is read
-// the same way; its problems come back to the caller, which records them on the primitive.
+// The metallicRoughnessTexture (linear data, not sRGB: G = roughness, B = metalness) and the
+// textures of KHR_materials_specular (specularTexture: linear, A; specularColorTexture: sRGB
+// colour) and KHR_materials_anisotropy (anisotropyTexture: linear RGB) are read the same way
+// (parameter()); their problems come back to the caller, which records them on the primitive.
 #pragma once
 
 #include <tiny_gltf.h>
@@ -22,6 +24,7 @@
 #include <string>
 
 #include "scene/texture.h"
+#include "texture_decoding.h"
 
 namespace prt::scene::detail {
 
@@ -50,6 +53,16 @@ class GltfTextures {
   // cannot be used, then with *problem set to one line naming the image file (or index).
   std::optional<ParameterTexture> metallic_roughness(int material, std::string* problem);
 
+  // A texture a material refers to (glTF textureInfo: index, texCoord; index < 0: none).
+  struct TextureRef {
+    int index = -1;
+    int texcoord = 0;
+  };
+  // The texture `ref` names, decoded as `content`: nullopt when ref.index < 0, or when it cannot
+  // be used, then with *problem set as for metallic_roughness().
+  std::optional<ParameterTexture> parameter(const TextureRef& ref, TextureContent content,
+                                            std::string* problem);
+
   // One warning line on stderr per image that could not be used (missing files in one line).
   void report() const;
 
@@ -58,14 +71,14 @@ class GltfTextures {
     std::shared_ptr<const TextureImage> image;  // null: unusable
     std::string missing_file, problem;          // why, when unusable
   };
-  // Image `index` decoded as sRGB-encoded colour or as linear data, once.
-  const CachedImage& image(int index, bool srgb);
+  // Image `index` decoded as `content`, once.
+  const CachedImage& image(int index, TextureContent content);
   // The texture `index` refers to, checked; null with *problem set when it is unusable.
   const tinygltf::Texture* texture(int index, std::string* problem) const;
 
   const std::string& path_;
   const tinygltf::Model& model_;
-  std::map<std::pair<int, bool>, CachedImage> images_;
+  std::map<std::pair<int, TextureContent>, CachedImage> images_;
   std::set<std::string> missing_, problems_;  // sorted: the report is deterministic
 };
 

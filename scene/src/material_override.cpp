@@ -221,6 +221,8 @@ void apply_material_overrides(Scene& scene, const std::vector<MaterialOverride>&
     for (std::size_t i : matched_primitives(scene, o)) matched.push_back(&scene.primitives[i]);
     for (ScenePrimitive* p : matched) {
       p->anisotropy_rotation = 0.f;
+      p->anisotropy_rotation_of_vertex.clear();
+      p->brdf_textured.clear();
       p->brdf_variants.clear();  // the override replaces the textured parameters too
       p->brdf_variant_of_vertex.clear();
       p->brdf_texture_problem.clear();
@@ -248,8 +250,10 @@ std::vector<std::string> describe_materials(const Scene& scene) {
     line += ": " + (p.brdf ? brdf::describe(*p.brdf) : "lambert(" + rgb_text(p.albedo) + ")");
     if (p.base_color_texture) line += ", textured";
     if (!p.brdf_variants.empty())
-      line +=
-          ", roughness/metalness textured: " + std::to_string(p.brdf_variants.size()) + " variants";
+      line += ", " + (p.brdf_textured.empty() ? std::string("parameters") : p.brdf_textured) +
+              " textured: " + std::to_string(p.brdf_variants.size()) + " variants";
+    if (!p.anisotropy_rotation_of_vertex.empty())
+      line += ", anisotropy direction textured (tangent rotated per vertex)";
     if (!p.brdf_texture_problem.empty()) line += "; not used: " + p.brdf_texture_problem;
     if (p.anisotropy_rotation != 0.f) {
       char text[48];

@@ -90,9 +90,13 @@ std::vector<glm::vec4> tangent_frames(const Scene& scene) {
     frames[v] = normal_only_tangent(normal);
   }
   for (const ScenePrimitive& p : scene.primitives) {
-    if (p.anisotropy_rotation == 0.f) continue;
-    for (uint32_t v = p.first_vertex; v < p.first_vertex + p.vertex_count && v < n; ++v)
-      frames[v] = rotated(scene.normals[v], frames[v], p.anisotropy_rotation);
+    const bool per_vertex = p.anisotropy_rotation_of_vertex.size() == p.vertex_count;
+    if (!per_vertex && p.anisotropy_rotation == 0.f) continue;
+    for (uint32_t v = p.first_vertex; v < p.first_vertex + p.vertex_count && v < n; ++v) {
+      const float r =
+          per_vertex ? p.anisotropy_rotation_of_vertex[v - p.first_vertex] : p.anisotropy_rotation;
+      if (r != 0.f) frames[v] = rotated(scene.normals[v], frames[v], r);
+    }
   }
   return frames;
 }

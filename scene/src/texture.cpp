@@ -125,6 +125,24 @@ TextureImage TextureImage::from_image(const FloatImage& image, std::string name,
   return from_linear_rgb(image.width, image.height, std::move(rgb), std::move(name));
 }
 
+TextureImage TextureImage::from_image_alpha(const FloatImage& image, std::string name) {
+  if (image.width <= 0 || image.height <= 0 || image.channels <= 0 ||
+      image.pixels.size() < static_cast<std::size_t>(image.width) * image.height *
+                                static_cast<std::size_t>(image.channels))
+    throw std::runtime_error(name + ": the texture image is empty or truncated");
+  const std::size_t texels = static_cast<std::size_t>(image.width) * image.height;
+  const int channels = image.channels;
+  const bool has_alpha = channels == 2 || channels >= 4;
+  std::vector<float> rgb(3 * texels, 1.f);
+  for (std::size_t t = 0; t < texels && has_alpha; ++t) {
+    const float a = image.pixels[t * static_cast<std::size_t>(channels) +
+                                 static_cast<std::size_t>(channels == 2 ? 1 : 3)];
+    const float clamped = std::isfinite(a) ? std::clamp(a, 0.f, 1.f) : 0.f;
+    for (std::size_t c = 0; c < 3; ++c) rgb[3 * t + c] = clamped;
+  }
+  return from_linear_rgb(image.width, image.height, std::move(rgb), std::move(name));
+}
+
 TextureImage TextureImage::from_linear_rgb(int width, int height, std::vector<float> rgb,
                                            std::string name) {
   if (width <= 0 || height <= 0 || rgb.size() != 3 * static_cast<std::size_t>(width) * height)

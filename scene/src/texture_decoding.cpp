@@ -26,7 +26,31 @@ std::string image_format_of(const unsigned char* bytes, std::size_t size) {
   return "";
 }
 
+namespace {
+
+std::shared_ptr<const TextureImage> texture_of(const FloatImage& image, const std::string& name,
+                                               TextureContent content) {
+  if (content == TextureContent::kAlpha)
+    return std::make_shared<const TextureImage>(TextureImage::from_image_alpha(image, name));
+  return std::make_shared<const TextureImage>(
+      TextureImage::from_image(image, name, content == TextureContent::kSrgbColour));
+}
+
+}  // namespace
+
 std::shared_ptr<const TextureImage> load_texture_file(const std::string& path, bool srgb_encoded) {
+  return load_texture_file(path,
+                           srgb_encoded ? TextureContent::kSrgbColour : TextureContent::kLinear);
+}
+
+std::shared_ptr<const TextureImage> load_texture_bytes(const unsigned char* bytes, std::size_t size,
+                                                       const std::string& name, bool srgb_encoded) {
+  return load_texture_bytes(bytes, size, name,
+                            srgb_encoded ? TextureContent::kSrgbColour : TextureContent::kLinear);
+}
+
+std::shared_ptr<const TextureImage> load_texture_file(const std::string& path,
+                                                      TextureContent content) {
   unsigned char head[8] = {};
   std::ifstream in(path, std::ios::binary);
   if (!in) throw std::runtime_error(path + ": no such file or not readable");
@@ -34,16 +58,17 @@ std::shared_ptr<const TextureImage> load_texture_file(const std::string& path, b
   const std::string format = image_format_of(head, static_cast<std::size_t>(in.gcount()));
   const FloatImage image =
       decode_image_file(path, format, kMaxTextureTexels, texture_read_options());
-  return std::make_shared<const TextureImage>(TextureImage::from_image(image, path, srgb_encoded));
+  return texture_of(image, path, content);
 }
 
 std::shared_ptr<const TextureImage> load_texture_bytes(const unsigned char* bytes, std::size_t size,
-                                                       const std::string& name, bool srgb_encoded) {
+                                                       const std::string& name,
+                                                       TextureContent content) {
   const std::string format = image_format_of(bytes, size);
   if (format.empty()) throw std::runtime_error(name + ": not a PNG or JPEG image");
   const FloatImage image =
       decode_image_memory(bytes, size, format, name, kMaxTextureTexels, texture_read_options());
-  return std::make_shared<const TextureImage>(TextureImage::from_image(image, name, srgb_encoded));
+  return texture_of(image, name, content);
 }
 
 }  // namespace prt::scene::detail

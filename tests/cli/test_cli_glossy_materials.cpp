@@ -1,8 +1,9 @@
 // `prt relight --material` with glossy files: a material's BRDF replaced at shading time equals
 // a bake with that material wherever the bake's transport does not depend on the materials
 // (shadowed transfer), a rougher lobe lowers the highlight, and bad overrides are refused in
-// one line before anything is written. Textured roughness (glTF metallicRoughnessTexture)
-// reaches the glossy file as per-vertex materials.
+// one line before anything is written. Textured roughness (glTF metallicRoughnessTexture) and
+// textured anisotropy (KHR_materials_anisotropy's anisotropyTexture: strength per-vertex
+// materials, direction per-vertex tangents) reach the glossy file.
 #include <algorithm>
 #include <cmath>
 #include <sstream>
@@ -16,6 +17,7 @@
 #include "scene/glb_writer.h"
 #include "scene/procedural_mesh.h"
 #include "support/metal_rough_glb.h"
+#include "support/texture_strip_glb.h"
 
 using namespace prt::test::cli;
 
@@ -232,4 +234,61 @@ TEST_CASE(
   CHECK(info.exit_code == 0);
   CHECK(info.out.find("not used: material 'patchy': metallicRoughnessTexture") !=
         std::string::npos);
+}
+
+TEST_CASE(
+    "cli: a textured anisotropy direction reaches the glossy file's tangents, its strength the "
+    "materials, and a bad specularTexture index stops the glossy bake in one line naming the file",
+    "[cli][materials]") {
+  const fs::path dir = scratch("glossy_aniso_texture");
+  nlohmann::json m = {{"name", "brushed"},
+                      {"pbrMetallicRoughness",
+                       {{"baseColorFactor", {0.9, 0.9, 0.9, 1.0}},
+                        {"metallicFactor", 1.0},
+                        {"roughnessFactor", 0.4}}}};
+  const double strength = 0.8, rotation = 0.5;
+  m["extensions"]["KHR_materials_anisotropy"] = {{"anisotropyStrength", strength},
+                                                 {"anisotropyRotation", rotation},
+                                                 {"anisotropyTexture", {{"index", 0}}}};
+  // Columns: direction (x, y) = 2·(R, G)/255 − 1, strength factor × B/255 (linear texels).
+  const std::vector<std::vector<unsigned char>> texels = {
+      {255, 128, 255}, {128, 255, 128}, {0, 0, 64}, {200, 40, 0}};
+  const fs::path good = dir / "brushed.glb", bad = dir / "bad_index.glb";
+  prt::test::write_glb_text(
+      good.string(), prt::test::texture_strip_gltf(m, {prt::test::column_png(3, texels)}).dump());
+  const fs::path out = dir / "brushed.prtg";
+  const RunResult baked = run(prt_cli() + " bake " + good.string() + " --glossy -o " +
+                              out.string() + " --order 3 --samples 16 --quiet");
+  INFO(baked.err);
+  REQUIRE(baked.exit_code == 0);
+  const prt::Result<prt::GlossyTransferData> data = prt::read_glossy_transfer_file(out.string());
+  REQUIRE(data.ok());
+  REQUIRE(data->tangents.size() == 4 * 8);
+  CHECK(data->materials.size() == 4);
+  const double c = std::cos(rotation), s = std::sin(rotation);
+  for (std::size_t v = 0; v < 8; ++v) {
+    const std::vector<unsigned char>& t = texels[v % 4];
+    const double x = 2.0 * t[0] / 255.0 - 1.0, y = 2.0 * t[1] / 255.0 - 1.0;
+    const double len = std::hypot(x, y);
+    INFO("vertex " << v);
+    // The file's TANGENT is +X, the bitangent +Y: the stored tangent is the rotated direction.
+    CHECK(data->tangents[4 * v] == Approx((c * x - s * y) / len).margin(1e-6));
+    CHECK(data->tangents[4 * v + 1] == Approx((s * x + c * y) / len).margin(1e-6));
+    CHECK(data->tangents[4 * v + 2] == Approx(0.0).margin(1e-6));
+    const double sv = strength * t[2] / 255.0;
+    const prt::brdf::Material& mat = data->materials[data->material_of_vertex[v]];
+    CHECK(mat.alpha_x == Approx(0.16 + 0.84 * sv * sv).epsilon(1e-6));
+    CHECK(mat.alpha_y == Approx(0.16).epsilon(1e-6));
+  }
+
+  m["extensions"]["KHR_materials_specular"] = {{"specularTexture", {{"index", 7}}}};
+  prt::test::write_glb_text(
+      bad.string(), prt::test::texture_strip_gltf(m, {prt::test::column_png(3, texels)}).dump());
+  const std::vector<std::string> before = files_in(dir);
+  const RunResult refused = run(prt_cli() + " bake " + bad.string() + " --glossy -o " +
+                                (dir / "bad.prtg").string() + " --order 3 --samples 16");
+  require_one_line_error(refused, bad.string() +
+                                      ": material 'brushed': specularTexture texture 7 "
+                                      "does not exist");
+  CHECK(files_in(dir) == before);
 }

@@ -1,5 +1,7 @@
 // scene/brdf_variants.h — per-vertex material parameters read from textures (glTF
-// metallicRoughnessTexture), reduced to a bounded number of material variants.
+// metallicRoughnessTexture, KHR_materials_specular's specularTexture and specularColorTexture,
+// KHR_materials_anisotropy's anisotropyTexture), reduced to a bounded number of material
+// variants.
 //
 // PRT is per vertex, and both the glossy bake and `prt relight` build one SH projection table
 // b(ω_o) per distinct material (prt/brdf_projection.h), so a textured roughness cannot give every
@@ -15,10 +17,22 @@
 //     [lo, hi] whose value is the bin's centre. Both axes continuous: 16 roughness × 4 metalness
 //     levels. The error per vertex is then at most half a bin: |Δroughness| ≤ (hi − lo)/32 (or
 //     (hi − lo)/(2·⌊64/count⌋) with metalness exact), |Δmetalness| ≤ (hi − lo)/8.
-// What that costs (docs/GLOSSY.md "Textured roughness"): with glTF's α = r², Δα ≈ 2 r Δr, and
-// the GGX peak D(0) = 1/(π α²) changes by ≈ 2 Δα/α = 4 Δr/r: for r ≥ 0.3 and Δr ≤ 1/32, under
+// What that costs (docs/BRDF.md "Textured material parameters"): with glTF's α = r², Δα ≈ 2 r Δr,
+// and the GGX peak D(0) = 1/(π α²) changes by ≈ 2 Δα/α = 4 Δr/r: for r ≥ 0.3 and Δr ≤ 1/32, under
 // 42 % at the peak of an unfiltered lobe (much less once SH order ≤ 10 has blurred it); the
 // reported max_*_error are the errors actually made, which the loader prints when non-zero.
+//
+// More parameters (quantise_parameters: a vector of K values per vertex, e.g. roughness,
+// metalness, specular, specular colour RGB, anisotropy strength):
+//   - at most 64 distinct vectors: kept exactly;
+//   - else, when only the first two components vary: quantise_metal_roughness's grid above;
+//   - else a grid with L_k levels on component k (exact values when L_k reaches its count of
+//     distinct values, else uniform bins over its [lo, hi] valued at their centres), the L_k
+//     grown one at a time, always on the component whose bin width (hi − lo)/L_k is largest
+//     (ties: the lower k), while Π L_k ≤ 64; each vertex takes its cell's centre, so the error
+//     of component k is at most (hi − lo)/(2 L_k); max_error reports the errors made.
+// (The anisotropyTexture's direction is not a BRDF parameter: it rotates the tangent frame per
+// vertex, ScenePrimitive::anisotropy_rotation_of_vertex, and is not quantised.)
 #pragma once
 
 #include <cstdint>
@@ -41,5 +55,17 @@ struct QuantisedParameters {
 // max_variants (1 .. kMaxBrdfVariants; 64 by default) levels as described above.
 QuantisedParameters quantise_metal_roughness(const std::vector<glm::dvec2>& samples,
                                              int max_variants = kMaxBrdfVariants);
+
+struct QuantisedVectors {
+  std::vector<std::vector<double>> levels;  // the variants' parameter vectors, ≤ max_variants
+  std::vector<uint32_t> level_of;           // one per sample, into `levels`
+  std::vector<double> max_error;            // per component: max over the samples of |error|
+};
+
+// Quantises parameter vectors (all of one length K ≥ 1; NaN is read as 0) to at most
+// max_variants (1 .. kMaxBrdfVariants) levels as described above. std::invalid_argument when
+// max_variants is outside that range or the vectors' lengths differ.
+QuantisedVectors quantise_parameters(const std::vector<std::vector<double>>& samples,
+                                     int max_variants = kMaxBrdfVariants);
 
 }  // namespace prt::scene

@@ -20,7 +20,7 @@
 // file are refused there. Errors throw std::invalid_argument with one line
 // "OPTION TEXT: problem" (OPTION as given, e.g. "--material").
 // Applying: a non-Lambert override sets ScenePrimitive::brdf (and anisotropy_rotation 0, and
-// drops the per-vertex variants of a textured roughness) and leaves the albedo of the diffuse
+// drops the per-vertex variants and tangent rotations of textured parameters) and leaves the albedo of the diffuse
 // path unchanged. Anisotropic overrides use the scene's
 // tangent frames (scene/tangent_frames.h): the file's TANGENT, else the texture coordinates
 // the loader kept (those of textured primitives and of glTF anisotropic materials), else the

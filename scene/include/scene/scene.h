@@ -52,16 +52,25 @@ struct ScenePrimitive {
   // direction along which `brdf`'s α_x applies, in the vertex tangent frames
   // (glTF KHR_materials_anisotropy's anisotropyRotation); scene/tangent_frames.h applies it.
   float anisotropy_rotation = 0.f;
+  // The same per vertex (the primitive's vertices in order), replacing anisotropy_rotation when
+  // it has vertex_count entries: glTF's anisotropyTexture direction (RG remapped to [−1, 1]²)
+  // turned by anisotropyRotation, i.e. atan2(y, x) + anisotropyRotation. Empty otherwise.
+  std::vector<float> anisotropy_rotation_of_vertex;
   // Per-vertex variants of `brdf` when a texture varies its parameters (glTF
-  // metallicRoughnessTexture: scene/brdf_variants.h): at most kMaxBrdfVariants materials and,
-  // for each of the primitive's vertices (in order), the index of its own. Empty otherwise;
-  // used only when brdf_variant_of_vertex has vertex_count entries. `brdf` is then the material
-  // of the texture's mean (what the surface looks like from afar; absent when that is Lambert).
+  // metallicRoughnessTexture, specular and anisotropy textures: scene/brdf_variants.h): at most
+  // kMaxBrdfVariants materials and, for each of the primitive's vertices (in order), the index of
+  // its own. Empty otherwise; used only when brdf_variant_of_vertex has vertex_count entries.
+  // `brdf` is then the material of the texture's mean (what the surface looks like from afar;
+  // absent when that is Lambert).
   std::vector<brdf::Material> brdf_variants;
   std::vector<uint32_t> brdf_variant_of_vertex;
+  // The parameters the textures vary, for messages: "roughness/metalness", "specular",
+  // "specular colour", "anisotropy" joined by ", " (empty without textured parameters).
+  std::string brdf_textured;
   // A texture the BRDF needs that could not be used, as one line ("material 'M':
-  // metallicRoughnessTexture FILE: problem"); "" when none. The loader uses the factors and
-  // prints nothing (describe_materials lists it); a glossy bake refuses the scene with it.
+  // metallicRoughnessTexture FILE: problem", or specularTexture, specularColorTexture,
+  // anisotropyTexture); "" when none (the first problem when several). The loader uses the factors
+  // and prints nothing (describe_materials lists it); a glossy bake refuses the scene with it.
   std::string brdf_texture_problem;
 };
 

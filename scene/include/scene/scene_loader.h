@@ -19,10 +19,11 @@
 // magFilter, minFilter) and image, PNG or JPEG, from a file beside the .gltf (URI
 // percent-decoding), a data: URI or a buffer view (GLB), decoded through the OpenImageIO plugin
 // (scene/image_codec.h) and linearised as sRGB. Albedo = baseColorFactor × the texture (clamped to
-// kMaxTexturedAlbedo). Besides base-colour images only metallicRoughnessTexture is decoded (as
-// linear data, for per-vertex BRDF variants: scene/brdf_variants.h; one that cannot be used is
-// recorded in ScenePrimitive::brdf_texture_problem, not warned about); normal and other maps are
-// never read. A texture that cannot be used — its file missing (real assets are often
+// kMaxTexturedAlbedo). Besides base-colour images only the BRDF parameter textures are decoded
+// (metallicRoughnessTexture, KHR_materials_specular's specularTexture and specularColorTexture,
+// KHR_materials_anisotropy's anisotropyTexture, for per-vertex BRDF variants and tangent
+// rotations: scene/brdf_variants.h; one that cannot be used is recorded in
+// ScenePrimitive::brdf_texture_problem, not warned about); normal and other maps are never read. A texture that cannot be used — its file missing (real assets are often
 // shipped geometry-only), not PNG/JPEG, corrupt, over kMaxTextureTexels, or the primitive lacks
 // its TEXCOORD_n — is NOT an error: one warning line on stderr ("PATH: warning: ..." naming the
 // image file or index) and the material falls back to its baseColorFactor (0.8 grey when that is

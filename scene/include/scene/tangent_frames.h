@@ -17,8 +17,9 @@
 //      Duff et al. 2017 ([12] of docs/REFERENCES.md): continuous except across the plane
 //      normal.z = 0 crossing at the branch sign, and the same for equal normals, so it is
 //      consistent between runs and between the baker and the renderer.
-// Then each primitive's anisotropy_rotation r (ScenePrimitive) turns the tangent about the
-// normal: t' = cos r · t + sin r · b (b the bitangent above), w unchanged.
+// Then each primitive's anisotropy_rotation r (ScenePrimitive; per vertex when it has
+// anisotropy_rotation_of_vertex) turns the tangent about the normal: t' = cos r · t + sin r · b
+// (b the bitangent above), w unchanged.
 // Frame and units: the Scene's (world space).
 #pragma once
 

@@ -72,6 +72,10 @@ class TextureImage {
   // clamped to [0, 1]. `name` (a file path, or "image N" of a glTF file) names it in messages.
   static TextureImage from_image(const FloatImage& image, std::string name,
                                  bool srgb_encoded = true);
+  // The alpha channel of an image as linear grey (r = g = b = alpha, clamped to [0, 1]): glTF
+  // parameter textures that keep a value in A (KHR_materials_specular's specularTexture). An image
+  // without alpha (one or three channels) is opaque: every sample is 1 (glTF 2.0 §3.8.3).
+  static TextureImage from_image_alpha(const FloatImage& image, std::string name);
   // The same from linear RGB samples (3 per texel, row 0 at the top): for tests and procedural
   // textures.
   static TextureImage from_linear_rgb(int width, int height, std::vector<float> rgb,

@@ -4,7 +4,7 @@
 // for the vertices it overrides.
 //
 // A primitive's vertices get its ScenePrimitive::brdf, or Lambert with its `albedo` when it has
-// none — or, when it has per-vertex variants (a textured roughness), each vertex its own; a vertex
+// none — or, when it has per-vertex variants (textured parameters), each vertex its own; a vertex
 // outside every primitive gets Lambert with its own albedo (kDefaultAlbedo when the scene has
 // none). Equal materials (every field equal) are stored once, in order of first use, so two
 // primitives with the same BRDF share one entry (and one b(ω_o) table at runtime).
