@@ -6,8 +6,9 @@
 // b(ω_o) included; the median and the least of `repeats`), of CpcaKernel::prepare alone, and the
 // relative RMS of the CPCA exit radiance against the uncompressed one (grace_probe at order 5, one
 // eye point 2.5 bounding radii from the mesh's centre), so a change of the kernel can be checked
-// for speed and accuracy at once. Usage: [PRT_SHARED_DATA_DIR=DIR] glossy_cpca_frame FILE.prtg
-// FILE.prtq [vectors=16,32,64]
+// for speed and accuracy at once; and the shading kernel alone through its AVX2 and AVX-512 paths
+// (the frame uses KernelPath::Auto: AVX-512 where the CPU has it). Usage: [PRT_SHARED_DATA_DIR=DIR]
+// glossy_cpca_frame FILE.prtg FILE.prtq [vectors=16,32,64]
 //        [repeats=7]
 // Run under `taskset -c 1` (figures in docs/GLOSSY_CPCA.md).
 #include <time.h>
@@ -17,6 +18,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <string>
 #include <vector>
 
@@ -102,6 +104,41 @@ std::vector<uint32_t> list_arg(const char* text) {
   return out;
 }
 
+// The CPCA shading kernel alone (CpcaKernel::shade_using over every vertex, grey b, the frame
+// prepared once) through KernelPath::Avx2 and KernelPath::Avx512, alternating within each
+// repeat so both see the same machine load; exits if the two disagree in any bit. avx512 is
+// negative when the CPU lacks AVX-512F.
+struct KernelTimes {
+  Times avx2, avx512;
+};
+
+KernelTimes kernel_ms(const prt::CpcaTransfer& c, const prt::ShLighting& light, int repeats) {
+  const prt::CpcaKernel k = require(prt::CpcaKernel::create(c));
+  prt::CpcaFrame frame;
+  if (!k.prepare(light, &frame).ok()) std::exit(1);
+  const std::size_t n = k.vertex_count(), n2 = std::size_t(k.order()) * k.order();
+  std::vector<float> b(n * n2), o2(3 * n), o512(3 * n);
+  for (std::size_t i = 0; i < b.size(); ++i) b[i] = 1.0f / float(1 + i % n2);
+  const bool wide = prt::CpcaKernel::avx512_path_available();
+  std::vector<double> t2, t512;
+  for (int i = 0; i < repeats; ++i) {
+    double t0 = thread_seconds();
+    if (!k.shade_using(prt::KernelPath::Avx2, frame, b.data(), 1, 0, n, o2.data()).ok())
+      std::exit(1);
+    t2.push_back(1e3 * (thread_seconds() - t0));
+    if (!wide) continue;
+    t0 = thread_seconds();
+    if (!k.shade_using(prt::KernelPath::Avx512, frame, b.data(), 1, 0, n, o512.data()).ok())
+      std::exit(1);
+    t512.push_back(1e3 * (thread_seconds() - t0));
+    if (std::memcmp(o2.data(), o512.data(), o2.size() * sizeof(float)) != 0) {
+      std::fprintf(stderr, "the AVX2 and AVX-512 kernels differ\n");
+      std::exit(1);
+    }
+  }
+  return {summary(t2), wide ? summary(t512) : Times{-1, -1}};
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -139,7 +176,8 @@ int main(int argc, char** argv) {
               t_full.median, t_full.min);
   std::printf(
       "| K | frame CPU ms, median (least) | prepare CPU ms, median (least) | relit rel. RMS vs "
-      "uncompressed |\n|---:|---:|---:|---:|\n");
+      "uncompressed | kernel CPU ms AVX2 | kernel CPU ms AVX-512 |\n"
+      "|---:|---:|---:|---:|---:|---:|\n");
   for (uint32_t k : ks) {
     if (k > cpca.vector_count) continue;
     const prt::CpcaTransfer c = prt::cpca_truncate(cpca, k);
@@ -149,8 +187,10 @@ int main(int argc, char** argv) {
         require(prt::GlossyRelighter::create_cpca(std::move(geometry), c));
     const Times t = frame_ms(rel, light, eye, repeats, &out);
     const Times tp = prepare_ms(c, light, repeats);
-    std::printf("| %u | %.2f (%.2f) | %.2f (%.2f) | %.5f |\n", k, t.median, t.min, tp.median,
-                tp.min, relative_rms(out, reference));
+    const KernelTimes tk = kernel_ms(c, light, repeats);
+    std::printf("| %u | %.2f (%.2f) | %.2f (%.2f) | %.5f | %.2f (%.2f) | %.2f (%.2f) |\n", k,
+                t.median, t.min, tp.median, tp.min, relative_rms(out, reference), tk.avx2.median,
+                tk.avx2.min, tk.avx512.median, tk.avx512.min);
     std::fflush(stdout);
   }
   return 0;

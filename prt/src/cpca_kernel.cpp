@@ -173,29 +173,23 @@ PRT_AVX2 inline float horizontal_avx2(__m256 r) {
 }
 
 // Order N (0: the order decides at run time; a fixed N lets every vector index be a constant,
-// so the accumulators stay in registers). Each lane's operations and their order are those of
-// vertex_portable.
+// so the accumulators stay in registers).
 template <int N>
-PRT_AVX2 void vertex_avx2(const Args& a, std::size_t v) {
+struct Shape {
+  static constexpr std::size_t kN2 = std::size_t(N) * N, kNc = (3 * kN2 + kWidth - 1) / kWidth;
+  static constexpr std::size_t kMaxNc = N != 0 ? kNc : kMaxStride / kWidth;
+};
+
+// The end of a vertex from its accumulated L' (acc: the stride's nc vectors): L' stored, or the
+// exit radiance with b. Each lane's operations and their order are those of vertex_portable;
+// both the AVX2 and the AVX-512 paths end here.
+template <int N>
+PRT_AVX2 __attribute__((always_inline)) inline void finish_avx2(const Args& a, std::size_t rel,
+                                                                const __m256* acc) {
   const CpcaKernel::Impl& im = *a.im;
-  constexpr std::size_t kN2 = std::size_t(N) * N, kNc = (3 * kN2 + kWidth - 1) / kWidth;
-  constexpr std::size_t kMaxNc = N != 0 ? kNc : kMaxStride / kWidth;
-  const std::size_t k_count = im.vectors, s = im.stride, n2 = N != 0 ? kN2 : im.n2;
-  const std::size_t nc = N != 0 ? kNc : s / kWidth;
-  const std::size_t rel = v - a.first;
-  const float* p = a.projected + std::size_t(im.cluster_of_vertex[v]) * (k_count + 1) * s;
-  const float* w = im.weights.data() + v * k_count;
-  __m256 acc[kMaxNc];
-#pragma GCC unroll 16
-  for (std::size_t u = 0; u < nc; ++u) acc[u] = _mm256_loadu_ps(p + u * kWidth);
-  for (std::size_t k = 1; k <= k_count; ++k) {
-    const __m256 wk = _mm256_broadcast_ss(w + k - 1);
-    const float* pk = p + k * s;
-#pragma GCC unroll 16
-    for (std::size_t u = 0; u < nc; ++u) {
-      acc[u] = _mm256_add_ps(acc[u], _mm256_mul_ps(_mm256_loadu_ps(pk + u * kWidth), wk));
-    }
-  }
+  constexpr std::size_t kN2 = Shape<N>::kN2, kMaxNc = Shape<N>::kMaxNc;
+  const std::size_t s = im.stride, n2 = N != 0 ? kN2 : im.n2;
+  const std::size_t nc = N != 0 ? Shape<N>::kNc : s / kWidth;
   const __m256i tail = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(im.tail.data()));
   if (a.b == nullptr) {
     float* o = a.out + rel * 3 * n2;
@@ -241,6 +235,28 @@ PRT_AVX2 void vertex_avx2(const Args& a, std::size_t v) {
   }
 }
 
+// The accumulation L' = P_0 + Σ_k w_k·P_k, 8 lanes a vector.
+template <int N>
+PRT_AVX2 void vertex_avx2(const Args& a, std::size_t v) {
+  const CpcaKernel::Impl& im = *a.im;
+  const std::size_t k_count = im.vectors, s = im.stride;
+  const std::size_t nc = N != 0 ? Shape<N>::kNc : s / kWidth;
+  const float* p = a.projected + std::size_t(im.cluster_of_vertex[v]) * (k_count + 1) * s;
+  const float* w = im.weights.data() + v * k_count;
+  __m256 acc[Shape<N>::kMaxNc];
+#pragma GCC unroll 16
+  for (std::size_t u = 0; u < nc; ++u) acc[u] = _mm256_loadu_ps(p + u * kWidth);
+  for (std::size_t k = 1; k <= k_count; ++k) {
+    const __m256 wk = _mm256_broadcast_ss(w + k - 1);
+    const float* pk = p + k * s;
+#pragma GCC unroll 16
+    for (std::size_t u = 0; u < nc; ++u) {
+      acc[u] = _mm256_add_ps(acc[u], _mm256_mul_ps(_mm256_loadu_ps(pk + u * kWidth), wk));
+    }
+  }
+  finish_avx2<N>(a, v - a.first, acc);
+}
+
 template <int N>
 PRT_AVX2 void run_avx2_order(const Args& a) {
   for_each_vertex(a, vertex_avx2<N>);
@@ -271,6 +287,61 @@ PRT_AVX2 void run_avx2(const Args& a) {
       break;
   }
 }
+
+// ---- AVX-512 path: the AVX2 path with the accumulation 16 lanes a vector ----
+#define PRT_AVX512 __attribute__((target("avx512f,avx2,f16c,fma")))
+
+// Lane l of wide vector u is lane l mod 8 of AVX2 vector 2u + l / 8 and goes through the same
+// multiply and add in the same k order, so it holds the same bits; the halves then go through
+// the AVX2 path's end (finish_avx2) unchanged. An odd last AVX2 vector is loaded with its upper
+// half masked off (no read beyond it).
+template <int N>
+PRT_AVX512 void vertex_avx512(const Args& a, std::size_t v) {
+  constexpr std::size_t kWide = 2 * kWidth, kMaxNw = (Shape<N>::kMaxNc + 1) / 2;
+  const CpcaKernel::Impl& im = *a.im;
+  const std::size_t k_count = im.vectors, s = im.stride;
+  const std::size_t nc = N != 0 ? Shape<N>::kNc : s / kWidth, nw = (nc + 1) / 2;
+  const __mmask16 last = nc % 2 != 0 ? __mmask16(0x00FF) : __mmask16(0xFFFF);
+  const float* p = a.projected + std::size_t(im.cluster_of_vertex[v]) * (k_count + 1) * s;
+  const float* w = im.weights.data() + v * k_count;
+  __m512 acc[kMaxNw];
+#pragma GCC unroll 8
+  for (std::size_t u = 0; u + 1 < nw; ++u) acc[u] = _mm512_loadu_ps(p + u * kWide);
+  acc[nw - 1] = _mm512_maskz_loadu_ps(last, p + (nw - 1) * kWide);
+  for (std::size_t k = 1; k <= k_count; ++k) {
+    const __m512 wk = _mm512_set1_ps(w[k - 1]);
+    const float* pk = p + k * s;
+#pragma GCC unroll 8
+    for (std::size_t u = 0; u + 1 < nw; ++u) {
+      acc[u] = _mm512_add_ps(acc[u], _mm512_mul_ps(_mm512_loadu_ps(pk + u * kWide), wk));
+    }
+    acc[nw - 1] = _mm512_add_ps(
+        acc[nw - 1], _mm512_mul_ps(_mm512_maskz_loadu_ps(last, pk + (nw - 1) * kWide), wk));
+  }
+  __m256 halves[Shape<N>::kMaxNc];
+#pragma GCC unroll 16
+  for (std::size_t u = 0; u < nc; ++u) {
+    const __m512 wide = acc[u / 2];
+    // (Not _mm512_castps512_ps256/_mm512_extractf32x8_ps: GCC 12's header warns about an
+    // uninitialised variable in them, and the latter needs AVX-512DQ.)
+    halves[u] = u % 2 == 0 ? __builtin_shufflevector(wide, wide, 0, 1, 2, 3, 4, 5, 6, 7)
+                           : __builtin_shufflevector(wide, wide, 8, 9, 10, 11, 12, 13, 14, 15);
+  }
+  finish_avx2<N>(a, v - a.first, halves);
+}
+
+template <int N>
+PRT_AVX512 void run_avx512_order(const Args& a) {
+  for_each_vertex(a, vertex_avx512<N>);
+}
+
+PRT_AVX512 void run_avx512(const Args& a) {
+  static constexpr void (*kByOrder[])(const Args&) = {
+      run_avx512_order<0>, run_avx512_order<1>, run_avx512_order<2>, run_avx512_order<3>,
+      run_avx512_order<4>, run_avx512_order<5>, run_avx512_order<6>};
+  kByOrder[a.im->order < 7 ? a.im->order : 0](a);
+}
+#undef PRT_AVX512
 
 // project_rows_portable for NV·4 rows at once (lanes over i; the same operations per row).
 template <int NV>
@@ -327,6 +398,10 @@ bool avx2_available() {
   static const bool available = detail::cpu_supports_avx2_f16c_fma();
   return available;
 }
+bool avx512_available() {
+  static const bool available = detail::cpu_supports_avx512f_avx2_f16c_fma();
+  return available;
+}
 
 Status run_cpca(const CpcaKernel::Impl& im, KernelPath path, const CpcaFrame& frame, const float* b,
                 int b_channels, std::size_t first, std::size_t count, float* out,
@@ -345,6 +420,17 @@ Status run_cpca(const CpcaKernel::Impl& im, KernelPath path, const CpcaFrame& fr
   if (count == 0) return Status::Ok();
   if (out == nullptr) return Status::Error(std::string(what) + ": null output");
   Args a{&im, frame.projected.data(), first, count, b, b_channels, out};
+  const bool avx512 =
+      path == KernelPath::Avx512 || (path == KernelPath::Auto && avx512_available());
+  if (avx512) {
+#if PRT_HAVE_X86_DISPATCH
+    if (!avx512_available()) return Status::Error(std::string(what) + ": this CPU lacks AVX-512F");
+    run_avx512(a);
+    return Status::Ok();
+#else
+    return Status::Error(std::string(what) + ": the AVX-512 path exists on x86-64 only");
+#endif
+  }
   const bool avx2 = path == KernelPath::Avx2 || (path == KernelPath::Auto && avx2_available());
   if (avx2) {
 #if PRT_HAVE_X86_DISPATCH
@@ -434,6 +520,10 @@ Result<CpcaKernel> CpcaKernel::create(const CpcaTransfer& cpca) {
   } catch (const std::bad_alloc&) {
     return Status::Error("cpca: out of memory");
   }
+}
+
+bool CpcaKernel::avx512_path_available() {
+  return avx512_available();
 }
 
 std::size_t CpcaKernel::vertex_count() const {

@@ -19,6 +19,11 @@ inline bool cpuid_has_f16c() noexcept {
 inline bool cpu_supports_avx2_f16c_fma() noexcept {
   return __builtin_cpu_supports("avx2") && cpuid_has_f16c() && __builtin_cpu_supports("fma");
 }
+// AVX-512 Foundation on top of the AVX2 set (the compiler's check includes the operating
+// system's saving of the 512-bit state).
+inline bool cpu_supports_avx512f_avx2_f16c_fma() noexcept {
+  return cpu_supports_avx2_f16c_fma() && __builtin_cpu_supports("avx512f");
+}
 inline bool cpu_supports_f16c() noexcept {
   return __builtin_cpu_supports("avx") && cpuid_has_f16c();
 }
@@ -28,6 +33,9 @@ inline bool cpu_supports_sse42() noexcept {
 #else
 #define PRT_HAVE_X86_DISPATCH 0
 inline bool cpu_supports_avx2_f16c_fma() noexcept {
+  return false;
+}
+inline bool cpu_supports_avx512f_avx2_f16c_fma() noexcept {
   return false;
 }
 inline bool cpu_supports_f16c() noexcept {

@@ -288,12 +288,12 @@ int GlossyKernel::channels() const {
 }
 
 Status GlossyKernel::transfer(const ShLighting& light, std::size_t first, std::size_t count,
-                                 float* out) const {
+                              float* out) const {
   return transfer_using(KernelPath::Auto, light, first, count, out);
 }
 
 Status GlossyKernel::shade(const ShLighting& light, const float* b, int b_channels,
-                              std::size_t first, std::size_t count, float* out_rgb) const {
+                           std::size_t first, std::size_t count, float* out_rgb) const {
   return shade_using(KernelPath::Auto, light, b, b_channels, first, count, out_rgb);
 }
 
@@ -317,6 +317,9 @@ Status run_glossy(const GlossyKernel::Impl& im, KernelPath path, const ShLightin
          b,
          b_channels,
          out};
+  if (path == KernelPath::Avx512) {
+    return Status::Error(std::string(what) + ": the uncompressed kernel has no AVX-512 path");
+  }
   const bool avx2 = path == KernelPath::Avx2 || (path == KernelPath::Auto && avx2_available());
   if (avx2) {
 #if PRT_HAVE_X86_DISPATCH
@@ -334,13 +337,13 @@ Status run_glossy(const GlossyKernel::Impl& im, KernelPath path, const ShLightin
 }  // namespace
 
 Status GlossyKernel::transfer_using(KernelPath path, const ShLighting& light, std::size_t first,
-                                       std::size_t count, float* out) const {
+                                    std::size_t count, float* out) const {
   return run_glossy(*impl_, path, light, nullptr, 0, first, count, out, "glossy transfer");
 }
 
 Status GlossyKernel::shade_using(KernelPath path, const ShLighting& light, const float* b,
-                                    int b_channels, std::size_t first, std::size_t count,
-                                    float* out) const {
+                                 int b_channels, std::size_t first, std::size_t count,
+                                 float* out) const {
   if (b_channels != 1 && b_channels != 3) {
     return Status::Error("glossy shade: b has " + std::to_string(b_channels) +
                          " channels, not 1 or 3");

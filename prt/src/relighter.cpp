@@ -389,6 +389,7 @@ Status Relighter::shade_using(KernelPath path, const ShLighting& light, std::siz
                count,
                out_rgb};
   const bool half = im.storage == Precision::F16;
+  if (path == KernelPath::Avx512) return Status::Error("shade: this kernel has no AVX-512 path");
   const bool use_avx2 = path == KernelPath::Avx2 || (path == KernelPath::Auto && avx2_available());
   if (use_avx2) {
 #if PRT_HAVE_X86_DISPATCH

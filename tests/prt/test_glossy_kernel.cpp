@@ -175,11 +175,15 @@ TEST_CASE("Glossy kernels match the double references to float rounding", "[glos
   }
 }
 
-TEST_CASE("Glossy kernels: AVX2 and portable paths agree bit for bit", "[glossy]") {
+// The CPCA kernel's AVX-512 path too, where the CPU has AVX-512F (a warning says when it is not
+// checked). Orders 1–7 cover an odd and an even count of 8-lane vectors and the generic code.
+TEST_CASE("Glossy kernels: AVX2, AVX-512 and portable paths agree bit for bit", "[glossy]") {
   if (!prt::Relighter::avx2_path_available()) {
     WARN("skipping: this CPU lacks AVX2/F16C/FMA");
     return;
   }
+  const bool wide = CpcaKernel::avx512_path_available();
+  if (!wide) WARN("the CPCA AVX-512 path is not checked: this CPU lacks AVX-512F");
   for (int order : {1, 2, 3, 4, 5, 6, 7}) {  // 7: the AVX2 CPCA code for any order
     for (int channels : {1, 3}) {
       const GlossyTransferData d = prt::test::synthetic_glossy(45, order, channels, 128);
@@ -207,6 +211,12 @@ TEST_CASE("Glossy kernels: AVX2 and portable paths agree bit for bit", "[glossy]
         REQUIRE(
             cpca->shade_using(KernelPath::Avx2, frame, b.data(), bc, first, count, a.data()).ok());
         CHECK(same_bits(p, a));
+        if (wide) {
+          std::fill(a.begin(), a.end(), -1.0f);
+          REQUIRE(cpca->shade_using(KernelPath::Avx512, frame, b.data(), bc, first, count, a.data())
+                      .ok());
+          CHECK(same_bits(p, a));
+        }
       }
       std::vector<float> p(3 * n2 * count), a(3 * n2 * count);
       REQUIRE(glossy->transfer_using(KernelPath::Portable, light, first, count, p.data()).ok());
@@ -215,6 +225,11 @@ TEST_CASE("Glossy kernels: AVX2 and portable paths agree bit for bit", "[glossy]
       REQUIRE(cpca->transfer_using(KernelPath::Portable, frame, first, count, p.data()).ok());
       REQUIRE(cpca->transfer_using(KernelPath::Avx2, frame, first, count, a.data()).ok());
       CHECK(same_bits(p, a));
+      if (wide) {
+        std::fill(a.begin(), a.end(), -1.0f);
+        REQUIRE(cpca->transfer_using(KernelPath::Avx512, frame, first, count, a.data()).ok());
+        CHECK(same_bits(p, a));
+      }
     }
   }
 }
@@ -260,6 +275,9 @@ TEST_CASE("Glossy kernels refuse bad calls", "[glossy]") {
   CHECK(glossy->shade(light, b.data(), 1, 5, 16, out.data()).message() ==
         "glossy shade: vertex range [5, +16) exceeds the 20 vertices");
   CHECK_FALSE(glossy->transfer(light, 0, 1, nullptr).ok());
+  // Only the CPCA kernel has an AVX-512 path.
+  CHECK(glossy->shade_using(KernelPath::Avx512, light, b.data(), 1, 0, 20, out.data()).message() ==
+        "glossy shade: the uncompressed kernel has no AVX-512 path");
   CpcaFrame frame;
   REQUIRE(other->prepare(light, &frame).ok());
   CHECK(cpca->shade(frame, b.data(), 1, 0, 20, out.data()).message() ==

@@ -16,8 +16,8 @@
 //   exit output: out_rgb[v_rel·3 + c]
 //
 // Arithmetic: every path accumulates in float with a separate multiply and add (never fused),
-// in one fixed order, so the AVX2 path and the portable path give identical bits on any
-// machine:
+// in one fixed order, so the AVX2 path and the portable path (and, for CPCA, the AVX-512 path)
+// give identical bits on any machine:
 //   uncompressed  — 16 vertices side by side; L'_c,i = Σ_j M_i,j·L_c,j (j ascending), then
 //                   e_c = Σ_i b_c,i·L'_c,i (i ascending), each lane on its own;
 //   CPCA          — per vertex, the three channels packed: lane g = c·n² + i of ⌈3n²/8⌉
@@ -26,7 +26,9 @@
 //                   channel r = Σ_u (b masked to the channel's lanes)_u·L'_u (u ascending) and
 //                   e_c = h(r) with the 8-lane horizontal sum
 //                   h(r) = ((r0+r4)+(r2+r6)) + ((r1+r5)+(r3+r7)). Vertices are shaded in an
-//                   order grouped by cluster (no result depends on it).
+//                   order grouped by cluster (no result depends on it). The AVX-512 path
+//                   (KernelPath::Avx512; Auto where the CPU has AVX-512F) accumulates 16 lanes
+//                   a vector with the same per-lane operations, then forms r as above.
 // Error: |e − e_exact| ≲ (n² + K + 3)·2⁻²⁴ · Σ |terms| (docs/GLOSSY_CPCA.md).
 //
 // Threads: the shading calls are const and use the stack only; call them from any number of
@@ -117,6 +119,9 @@ class CpcaKernel {
                         std::size_t count, float* out) const;
   Status shade_using(KernelPath path, const CpcaFrame& frame, const float* b, int b_channels,
                      std::size_t first, std::size_t count, float* out_rgb) const;
+
+  // Whether this CPU runs KernelPath::Avx512 (and KernelPath::Auto picks it).
+  static bool avx512_path_available();
 
   struct Impl;
 

@@ -39,6 +39,10 @@ enum class KernelPath {
   Auto,      // AVX2+F16C+FMA when the CPU has them, else Portable
   Portable,  // plain C++ (auto-vectorised, software binary16)
   Avx2,      // x86-64 with AVX2, F16C and FMA only; an error elsewhere
+  // The CPCA kernel only (CpcaKernel, prt/glossy_kernel.h): its AVX2 code with a 512-bit
+  // accumulation, x86-64 with AVX-512F as well; Auto picks it there. An error elsewhere and in
+  // the other kernels (they have no AVX-512 code; their Auto stays AVX2).
+  Avx512,
 };
 
 class Relighter {
