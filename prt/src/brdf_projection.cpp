@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <string>
 #include <utility>
 
@@ -496,7 +497,134 @@ void evaluate_float(const BrdfProjection::Impl& p, const float wo[3], float* out
   }
 }
 
+// θo ∈ [0, π/2] of cos θo = z ∈ [0, 1] without a libm call: Abramowitz & Stegun 4.4.46 ([116] of
+// docs/REFERENCES.md), acos z = √(1 − z) · (a0 + a1 z + … + a7 z⁷) with |error| ≤ 2·10⁻⁸ in exact
+// arithmetic; in float a few ulp of θo (measured against acosf in the tests: < 5·10⁻⁷ rad).
+inline float acos_unit(float z) {
+  float q = -0.0012624911f;
+  q = q * z + 0.0066700901f;
+  q = q * z - 0.0170881256f;
+  q = q * z + 0.0308918810f;
+  q = q * z - 0.0501743046f;
+  q = q * z + 0.0889789874f;
+  q = q * z - 0.2145988016f;
+  q = q * z + 1.5707963050f;
+  return std::sqrt(1.f - z) * q;
+}
+
+// Per view of a chunk: whether b ≠ 0, the table position in θo, and cos φo, sin φo.
+struct ViewChunk {
+  static constexpr std::size_t kSize = 64;
+  bool ok[kSize];
+  float position[kSize], c1[kSize], s1[kSize];
+};
+
+// The first pass of evaluate_table_many() over views [0, count ≤ kSize): the arithmetic of
+// evaluate_float() and rotate_about_z() except acosf (acos_unit() instead); no branches on data
+// but the validity select, so the loop may be vectorised.
+void prepare_views(const BrdfProjection::Impl& p, const float* wo, std::size_t count,
+                   ViewChunk* v) {
+  const float scale = float(p.iso_size - 1);
+  for (std::size_t i = 0; i < count; ++i) {
+    const float wx = wo[3 * i], wy = wo[3 * i + 1], wz = wo[3 * i + 2];
+    const float len2 = wx * wx + wy * wy + wz * wz;
+    const bool ok = len2 > 0.f && len2 <= std::numeric_limits<float>::max() && wz > 0.f;
+    const float s = 1.f / std::sqrt(ok ? len2 : 1.f);
+    const float x = wx * s, y = wy * s, z = std::min(ok ? wz * s : 1.f, 1.f);
+    v->ok[i] = ok;
+    v->position[i] = acos_unit(z) / float(0.5 * kPi) * scale;
+    const float r = std::sqrt(x * x + y * y);
+    const bool turn = ok && r > 0.f;
+    v->c1[i] = turn ? x / r : 1.f;
+    v->s1[i] = turn ? y / r : 0.f;
+  }
+}
+
+// One view of the table path: the lerp in θo and the rotation by φo fused, per band l the zonal
+// entry and the pairs (m, −m); the same operations per value as evaluate_table(). N > 0 is the
+// order known at compile time (the loops unrolled), N = 0 p.order.
+template <int N>
+void table_view(const BrdfProjection::Impl& p, const float* table, float position, float c1,
+                float s1, float* out, int channels) {
+  const int n = N > 0 ? N : p.order, n2 = n * n;
+  const int t0 = std::min(int(position), p.iso_size - 2);
+  const float a = position - float(t0);
+  const float* b0 = table + std::size_t(t0) * 3 * n2;
+  const float* b1 = b0 + 3 * n2;
+  for (int ch = 0; ch < channels; ++ch) {
+    const float* u = b0 + ch * n2;
+    const float* w = b1 + ch * n2;
+    float* o = out + ch * n2;
+    for (int l = 0; l < n; ++l) {
+      const int c = l * l + l;
+      o[c] = u[c] + a * (w[c] - u[c]);
+    }
+    // cos mφ, sin mφ by the recurrence of rotate_about_z(), in scalars (an array written
+    // element-wise and read back as a vector would stall store forwarding).
+    float cm = 1.f, sm = 0.f;
+    for (int m = 1; m < n; ++m) {
+      const float next_c = cm * c1 - sm * s1, next_s = sm * c1 + cm * s1;
+      cm = next_c;
+      sm = next_s;
+      for (int l = m; l < n; ++l) {
+        const int c = l * l + l;
+        const float pos = u[c + m] + a * (w[c + m] - u[c + m]);
+        const float neg = u[c - m] + a * (w[c - m] - u[c - m]);
+        o[c + m] = pos * cm - neg * sm;
+        o[c - m] = pos * sm + neg * cm;
+      }
+    }
+  }
+}
+
+template <int N>
+void evaluate_table_many(const BrdfProjection::Impl& p, const float* wo, std::size_t count,
+                         float* out, int channels) {
+  const std::size_t n2 = std::size_t(p.order) * p.order, per_view = channels * n2;
+  const int computed = p.grey_f ? 1 : channels;
+  ViewChunk v;
+  for (std::size_t at = 0; at < count; at += ViewChunk::kSize) {
+    const std::size_t m = std::min(ViewChunk::kSize, count - at);
+    prepare_views(p, wo + 3 * at, m, &v);
+    for (std::size_t i = 0; i < m; ++i) {
+      float* o = out + (at + i) * per_view;
+      if (!v.ok[i]) {
+        std::fill(o, o + per_view, 0.f);
+        continue;
+      }
+      table_view<N>(p, p.iso_f.data(), v.position[i], v.c1[i], v.s1[i], o, computed);
+      if (computed < channels) {
+        std::copy(o, o + n2, o + n2);
+        std::copy(o, o + n2, o + 2 * n2);
+      }
+    }
+  }
+}
+
 }  // namespace
+
+void BrdfProjection::evaluate_many(const float* wo, std::size_t count, float* out, float* scratch,
+                                   int channels) const {
+  const Impl& p = *impl_;
+  channels = channels == 1 ? 1 : 3;
+  if (p.method == BrdfProjectionMethod::kIsotropicTable && p.iso_size >= 2) {
+    switch (p.order) {  // the orders of interactive glossy PRT unrolled, the rest generic
+      case 3:
+        return evaluate_table_many<3>(p, wo, count, out, channels);
+      case 4:
+        return evaluate_table_many<4>(p, wo, count, out, channels);
+      case 5:
+        return evaluate_table_many<5>(p, wo, count, out, channels);
+      case 6:
+        return evaluate_table_many<6>(p, wo, count, out, channels);
+      default:
+        return evaluate_table_many<0>(p, wo, count, out, channels);
+    }
+  }
+  const std::size_t per_view = std::size_t(channels) * p.order * p.order;
+  for (std::size_t k = 0; k < count; ++k)
+    evaluate_float(p, wo + 3 * k, out + k * per_view, scratch, channels);
+}
 
 void BrdfProjection::evaluate(const float wo[3], float* out, float* scratch) const {
   evaluate_float(*impl_, wo, out, scratch, 3);

@@ -74,7 +74,7 @@ struct GlossyRelighter::Impl {
   Status shade_portable(const ShLighting& light, const float eye[3], std::size_t first,
                         std::size_t count, float* out_rgb) const;
   void view_vectors(const float eye[3], std::size_t first, std::size_t count, float* b,
-                    float* scratch, int b_channels) const;
+                    float* scratch, float* local, int b_channels) const;
 };
 
 GlossyRelighter::GlossyRelighter() : impl_(std::make_unique<Impl>()) {}
@@ -190,26 +190,28 @@ Status GlossyRelighter::prepare(const ShLighting& light, GlossyFrame* frame) con
 
 // b of vertices [first, first + count) toward `eye`: b_channels·n² floats per vertex (1: channel
 // 0 only, for grey projections), zero where the eye is below the tangent plane (or at the vertex,
-// or not finite).
+// or not finite). `local` holds 3·count floats (the views in the tangent frames); b is computed
+// for each run of vertices of one material at once (BrdfProjection::evaluate_many()).
 void GlossyRelighter::Impl::view_vectors(const float eye[3], std::size_t first, std::size_t count,
-                                         float* b, float* scratch, int b_channels) const {
+                                         float* b, float* scratch, float* local,
+                                         int b_channels) const {
   const std::size_t n2 = std::size_t(order) * order, per_vertex = std::size_t(b_channels) * n2;
   for (std::size_t k = first; k < first + count; ++k) {
     const float* f = &frames[9 * k];
     const float d[3] = {eye[0] - positions[3 * k], eye[1] - positions[3 * k + 1],
                         eye[2] - positions[3 * k + 2]};
-    const float local[3] = {f[0] * d[0] + f[1] * d[1] + f[2] * d[2],
-                            f[3] * d[0] + f[4] * d[1] + f[5] * d[2],
-                            f[6] * d[0] + f[7] * d[1] + f[8] * d[2]};
-    float* bk = b + (k - first) * per_vertex;
-    if (!(local[2] > 0.f)) {
-      std::fill(bk, bk + per_vertex, 0.f);
-      continue;
-    }
-    if (b_channels == 1)
-      projections[material_of_vertex[k]].evaluate_channel0(local, bk, scratch);
-    else
-      projections[material_of_vertex[k]].evaluate(local, bk, scratch);
+    float* l = local + 3 * (k - first);
+    l[0] = f[0] * d[0] + f[1] * d[1] + f[2] * d[2];
+    l[1] = f[3] * d[0] + f[4] * d[1] + f[5] * d[2];
+    l[2] = f[6] * d[0] + f[7] * d[1] + f[8] * d[2];
+  }
+  for (std::size_t k = first; k < first + count;) {
+    const uint32_t material = material_of_vertex[k];
+    std::size_t end = k + 1;
+    while (end < first + count && material_of_vertex[end] == material) ++end;
+    projections[material].evaluate_many(local + 3 * (k - first), end - k,
+                                        b + (k - first) * per_vertex, scratch, b_channels);
+    k = end;
   }
 }
 
@@ -245,10 +247,10 @@ Status GlossyRelighter::shade(const GlossyFrame& frame, const float eye[3], std:
   std::size_t scratch_size = 0;
   for (const BrdfProjection& b : p.projections)
     scratch_size = std::max(scratch_size, b.scratch_floats());
-  std::vector<float> scratch(scratch_size), b(kBlock * std::size_t(bc) * n2);
+  std::vector<float> scratch(scratch_size), b(kBlock * std::size_t(bc) * n2), local(3 * kBlock);
   for (std::size_t at = first; at < first + count; at += kBlock) {
     const std::size_t n = std::min(kBlock, first + count - at);
-    p.view_vectors(eye, at, n, b.data(), scratch.data(), bc);
+    p.view_vectors(eye, at, n, b.data(), scratch.data(), local.data(), bc);
     float* out = out_rgb + 3 * (at - first);
     const Status s = p.compressed ? p.cpca.shade(frame.cpca, b.data(), bc, at, n, out)
                                   : p.kernel.shade(frame.light, b.data(), bc, at, n, out);

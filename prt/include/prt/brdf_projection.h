@@ -119,6 +119,14 @@ class BrdfProjection {
   void evaluate(const float wo[3], float* out, float* scratch) const;
   // The same for channel 0 only (order² values), the same bits as evaluate()'s channel 0.
   void evaluate_channel0(const float wo[3], float* out, float* scratch) const;
+  // b for `count` views at once: wo holds 3 floats per view (as evaluate()'s), out receives
+  // channels·order² floats per view (channels 1: evaluate_channel0()'s values; otherwise 3:
+  // evaluate()'s). kIsotropicTable takes θo from a polynomial arccosine (Abramowitz & Stegun
+  // [116] of docs/REFERENCES.md) instead of acosf and fuses the lerp with the rotation, so its
+  // values may differ from evaluate()'s in the last bits (docs/GLOSSY_CPCA.md; the tests bound
+  // the difference); the other methods give evaluate()'s bits. `scratch` as evaluate()'s.
+  void evaluate_many(const float* wo, std::size_t count, float* out, float* scratch,
+                     int channels) const;
   // True when the float evaluate() gives three bitwise equal channels for every ωo (a grey
   // material: its float tables repeat one channel); evaluate() then computes channel 0 and
   // copies it, and a caller may keep channel 0 alone.
