@@ -9,24 +9,12 @@
 
 #include <nlohmann/json.hpp>
 
+#include "support/base64.h"
 #include "support/test_data.h"
 
 namespace gltf_test {
 
-inline std::string base64(const std::vector<unsigned char>& bytes) {
-  static const char* table = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-  std::string out;
-  for (std::size_t i = 0; i < bytes.size(); i += 3) {
-    const uint32_t n = (uint32_t(bytes[i]) << 16) |
-                       (i + 1 < bytes.size() ? uint32_t(bytes[i + 1]) << 8 : 0) |
-                       (i + 2 < bytes.size() ? uint32_t(bytes[i + 2]) : 0);
-    out += table[(n >> 18) & 63];
-    out += table[(n >> 12) & 63];
-    out += i + 1 < bytes.size() ? table[(n >> 6) & 63] : '=';
-    out += i + 2 < bytes.size() ? table[n & 63] : '=';
-  }
-  return out;
-}
+using prt::test::base64;
 
 inline std::string write_gltf(const std::string& name, const nlohmann::json& doc) {
   const auto path = prt::test::output_path(name);

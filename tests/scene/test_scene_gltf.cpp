@@ -15,6 +15,7 @@
 #include <OpenImageIO/imageio.h>
 
 #include "scene/scene_loader.h"
+#include "support/base64.h"
 #include "support/png_writer.h"
 #include "support/test_data.h"
 
@@ -431,20 +432,7 @@ std::vector<unsigned char> texture_png() {
   return prt::test::encode_png(2, 2, 3, texture_samples());
 }
 
-std::string base64(const std::vector<unsigned char>& bytes) {
-  static const char* kAlphabet = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-  std::string out;
-  for (std::size_t i = 0; i < bytes.size(); i += 3) {
-    const uint32_t n = (uint32_t{bytes[i]} << 16) |
-                       (i + 1 < bytes.size() ? uint32_t{bytes[i + 1]} << 8 : 0u) |
-                       (i + 2 < bytes.size() ? uint32_t{bytes[i + 2]} : 0u);
-    out += kAlphabet[(n >> 18) & 63];
-    out += kAlphabet[(n >> 12) & 63];
-    out += i + 1 < bytes.size() ? kAlphabet[(n >> 6) & 63] : '=';
-    out += i + 2 < bytes.size() ? kAlphabet[n & 63] : '=';
-  }
-  return out;
-}
+using prt::test::base64;
 
 // A unit quad in z = 0 whose TEXCOORD_1 equals (x, y) and whose TEXCOORD_0 is a decoy (0.9,
 // 0.9) everywhere; its material (0) has baseColorFactor (0.5, 1, 1) and baseColorTexture

@@ -14,24 +14,10 @@
 
 #include <nlohmann/json.hpp>
 
+#include "support/base64.h"
 #include "support/png_writer.h"
 
 namespace prt::test {
-
-inline std::string base64_bytes(const std::vector<unsigned char>& bytes) {
-  static const char* table = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-  std::string out;
-  for (std::size_t i = 0; i < bytes.size(); i += 3) {
-    const uint32_t n = (uint32_t(bytes[i]) << 16) |
-                       (i + 1 < bytes.size() ? uint32_t(bytes[i + 1]) << 8 : 0) |
-                       (i + 2 < bytes.size() ? uint32_t(bytes[i + 2]) : 0);
-    out += table[(n >> 18) & 63];
-    out += table[(n >> 12) & 63];
-    out += i + 1 < bytes.size() ? table[(n >> 6) & 63] : '=';
-    out += i + 2 < bytes.size() ? table[n & 63] : '=';
-  }
-  return out;
-}
 
 // A 4 × 4 PNG of `channels` channels whose column i holds columns[i] (channels bytes) in every row.
 inline std::vector<unsigned char> column_png(
@@ -89,7 +75,7 @@ inline nlohmann::json texture_strip_gltf(const nlohmann::json& material,
       add(indices.data(), indices.size() * 2, 5123, "SCALAR", indices.size());
   json images = json::array(), textures = json::array();
   for (std::size_t k = 0; k < pngs.size(); ++k) {
-    images.push_back({{"uri", "data:image/png;base64," + base64_bytes(pngs[k])}});
+    images.push_back({{"uri", "data:image/png;base64," + base64(pngs[k])}});
     textures.push_back({{"source", k}, {"sampler", 0}});
   }
   json doc = {
@@ -105,9 +91,8 @@ inline nlohmann::json texture_strip_gltf(const nlohmann::json& material,
       {"accessors", accessors},
       {"bufferViews", views},
       {"samplers", json::array({{{"magFilter", 9728}, {"minFilter", 9728}}})},
-      {"buffers",
-       json::array({{{"byteLength", bin.size()},
-                     {"uri", "data:application/octet-stream;base64," + base64_bytes(bin)}}})}};
+      {"buffers", json::array({{{"byteLength", bin.size()},
+                                {"uri", "data:application/octet-stream;base64," + base64(bin)}}})}};
   if (!images.empty()) {
     doc["images"] = images;
     doc["textures"] = textures;
