@@ -27,24 +27,11 @@
 #include "prt/glossy_kernel.h"
 #include "prt/glossy_relighter.h"
 #include "prt/glossy_transfer_file.h"
-#include "relight/image_io.h"
+#include "real_bake_bench_support.h"
 
 namespace {
 
-double thread_seconds() {
-  timespec t{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-  return double(t.tv_sec) + 1e-9 * double(t.tv_nsec);
-}
-
-template <typename T>
-T require(prt::Result<T> r) {
-  if (!r.ok()) {
-    std::fprintf(stderr, "%s\n", r.status().message().c_str());
-    std::exit(1);
-  }
-  return std::move(r).value();
-}
+using namespace prt::bench;
 
 struct Times {
   double median, min;
@@ -82,26 +69,6 @@ Times prepare_ms(const prt::CpcaTransfer& c, const prt::ShLighting& light, int r
     t.push_back(1e3 * (thread_seconds() - t0));
   }
   return summary(t);
-}
-
-double relative_rms(const std::vector<float>& a, const std::vector<float>& ref) {
-  double err = 0, norm = 0;
-  for (std::size_t i = 0; i < a.size(); ++i) {
-    err += (double(a[i]) - ref[i]) * (double(a[i]) - ref[i]);
-    norm += double(ref[i]) * ref[i];
-  }
-  return std::sqrt(err / norm);
-}
-
-std::vector<uint32_t> list_arg(const char* text) {
-  std::vector<uint32_t> out;
-  for (const char* p = text; *p != 0;) {
-    char* end = nullptr;
-    out.push_back(static_cast<uint32_t>(std::strtoul(p, &end, 10)));
-    if (end == p) break;
-    p = *end == ',' ? end + 1 : end;
-  }
-  return out;
 }
 
 // The CPCA shading kernel alone (CpcaKernel::shade_using over every vertex, grey b, the frame
@@ -150,23 +117,9 @@ int main(int argc, char** argv) {
   const prt::CpcaTransfer cpca = require(prt::read_cpca_file(argv[2]));
   const std::vector<uint32_t> ks = list_arg(argc > 3 ? argv[3] : "16,32,64");
   const int repeats = argc > 4 ? std::max(1, std::atoi(argv[4])) : 7;
-  const char* env = std::getenv("PRT_SHARED_DATA_DIR");
-  const std::string dir = env != nullptr ? env : PRT_SHARED_DATA_DIR;
-  const prt::ShLighting light = require(prt::ShLighting::from_env_map(
-      prt::relight::read_environment(dir + "/probes/grace_probe.hdr", std::nullopt), int(d.order)));
-  float lo[3] = {1e30f, 1e30f, 1e30f}, hi[3] = {-1e30f, -1e30f, -1e30f};
-  for (std::size_t v = 0; v < d.vertex_count; ++v)
-    for (int a = 0; a < 3; ++a) {
-      lo[a] = std::min(lo[a], d.positions[3 * v + a]);
-      hi[a] = std::max(hi[a], d.positions[3 * v + a]);
-    }
-  const float r =
-      0.5f * std::sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
-                       (hi[2] - lo[2]) * (hi[2] - lo[2]));
-  const float dir_len = std::sqrt(0.3f * 0.3f + 0.5f * 0.5f + 1.0f);
-  const float eye[3] = {0.5f * (lo[0] + hi[0]) + 2.5f * r * 0.3f / dir_len,
-                        0.5f * (lo[1] + hi[1]) + 2.5f * r * 0.5f / dir_len,
-                        0.5f * (lo[2] + hi[2]) + 2.5f * r * 1.0f / dir_len};
+  const prt::ShLighting light = load_probe("grace_probe.hdr", int(d.order));
+  const std::array<float, 3> first_eye = eye_points(d)[0];
+  const float* eye = first_eye.data();
   const prt::GlossyRelighter full = require(prt::GlossyRelighter::create(d));
   std::vector<float> reference, out;
   const Times t_full = frame_ms(full, light, eye, repeats, &reference);
