@@ -1,4 +1,4 @@
-// transfer_format.cpp — the pieces the binary files of prt share; see transfer_format.h.
+// binary_layout.cpp — the pieces the binary files of prt share; see binary_layout.h.
 #include "formats/binary_layout.h"
 
 #include <algorithm>

@@ -1,4 +1,4 @@
-// transfer_format.h (internal) — the byte layout of coefficient files (docs/FORMAT.md) and
+// binary_layout.h (internal) — the byte layout of coefficient files (docs/FORMAT.md) and
 // the parser shared by read_transfer_data() and Relighter::from_file_bytes(); and the pieces
 // every binary file of prt shares (coefficient, glossy transfer, emitter-response and CPCA
 // files): the one-line error, little-endian fields, the checksum, the recorded file size, the

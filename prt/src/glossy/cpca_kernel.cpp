@@ -1,4 +1,4 @@
-// cpca_kernel.cpp — the CPCA glossy kernel (CpcaKernel); see prt/glossy/kernel.h and
+// cpca_kernel.cpp — the CPCA glossy kernel (CpcaKernel); see prt/glossy/cpca_kernel.h and
 // docs/GLOSSY_CPCA.md ("Kernels").
 //
 // Compiled with -ffp-contract=off (prt/CMakeLists.txt): no path fuses a multiply and an add,

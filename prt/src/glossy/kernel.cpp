@@ -1,4 +1,4 @@
-// glossy_kernel.cpp — the uncompressed glossy kernel (GlossyKernel); see
+// kernel.cpp — the uncompressed glossy kernel (GlossyKernel); see
 // prt/glossy/kernel.h.
 //
 // Compiled with -ffp-contract=off (prt/CMakeLists.txt): no path fuses a multiply and an add,

@@ -1,4 +1,4 @@
-// glossy_reference.cpp — the slow double-precision references of prt/glossy/kernel.h.
+// reference.cpp — the slow double-precision references of prt/glossy/reference.h.
 #include <algorithm>
 #include <vector>
 

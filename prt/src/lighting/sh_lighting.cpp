@@ -1,4 +1,4 @@
-// lighting.cpp — SH lighting for the kernel; see prt/lighting/sh_lighting.h.
+// sh_lighting.cpp — SH lighting for the kernel; see prt/lighting/sh_lighting.h.
 #include "prt/lighting/sh_lighting.h"
 
 #include <cmath>
