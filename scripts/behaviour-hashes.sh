@@ -2,8 +2,10 @@
 # Prints SHA-256 fingerprints (16 hex digits) of what prt computes, at fixed seeds and small
 # settings, so that a refactor can show it changed nothing: run it on the binary before and
 # after and compare the outputs. One line per output, a label then the hash. Two runs of the
-# same binary print the same lines: bakes, compression and radiosity are bit-identical for any
-# thread count (checked with --threads 1 and 3), and nothing below depends on wall time.
+# same binary print the same lines (checked: three runs, one of them pinned to one core, and
+# from two checkout paths): the bakes and the compression are bit-identical for any thread
+# count (checked with --threads 1 and 3), radiosity seeds each patch's rays by its index, and
+# nothing hashed depends on wall time or on where the files are.
 #
 # * Coefficient files of every kind (.prt SH and Haar, .prtg glossy, .prtq CPCA, .prte emitter
 #   responses), "content": the bytes of every section and of the header, except what changes
@@ -23,9 +25,10 @@
 #   form-factor cache (the file, then reused with another emission); `prt env` (the JSON without
 #   the convention text) and the generated data (`prt make-scene`, `prt make-sky`).
 # The SH convention text is left out: every command prints it identically, and the tests compare
-# it as such. About 35 s of CPU. --quick runs every command with smaller settings (about a
-# third of the time) and prints the same labels, for the test that keeps this script working;
-# its hashes are not the reference ones.
+# it as such. About 25 s of CPU (under a minute on the shared 2-core machine). --quick runs every
+# command with smaller settings (15 s of CPU, mostly fixed start-up and BRDF-projection costs)
+# and prints the same labels, for the test that keeps this script working; its hashes are not
+# the reference ones.
 # Usage: scripts/behaviour-hashes.sh [--quick] [PRT_BINARY] > hashes.txt
 set -euo pipefail
 quick=0
