@@ -12,6 +12,7 @@
 #include <tbb/parallel_for.h>
 
 #include "prt/core/atomic_file.h"
+#include "prt/diffuse/relighter.h"
 #include "prt/formats/geometry_check.h"
 #include "prt/formats/transfer_file.h"
 #include "relight/auto_exposure.h"
