@@ -57,8 +57,8 @@ std::string format_amount(double value, PixelMetric metric) {
 }  // namespace
 
 Tolerance tolerance_for(const std::filesystem::path& reference) {
-  if (lower_extension(reference) == ".png") return {PixelMetric::Levels8, 2.0, 0.001};
-  return {PixelMetric::Relative, 0.005, 0.001};
+  if (lower_extension(reference) == ".png") return {PixelMetric::Levels8, 2.0, 0.001, 0.5};
+  return {PixelMetric::Relative, 0.005, 0.001, 0.001};
 }
 
 std::string Comparison::describe() const {

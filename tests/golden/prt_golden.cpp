@@ -44,9 +44,15 @@ int list() {
   for (const GoldenImage& image : golden_images()) {
     std::printf("%s -> tests/golden/references/%s\n  %s\n", image.name.c_str(), image.file.c_str(),
                 image.what.c_str());
-    const std::string out = "$WORK/" + image.name + fs::path(image.file).extension().string();
-    for (const auto& command : image.commands)
-      std::printf("  %s\n", command_line(command, "prt", "data", "$WORK", out).c_str());
+    // A placeholder that needs no quoting, shown as $WORK.
+    const std::string work = "WORKDIR",
+                      out = work + "/" + image.name + fs::path(image.file).extension().string();
+    for (const auto& command : image.commands) {
+      std::string line = command_line(command, "prt", "data", work, out);
+      for (std::size_t at; (at = line.find(work)) != std::string::npos;)
+        line.replace(at, work.size(), "$WORK");
+      std::printf("  %s\n", line.c_str());
+    }
   }
   return 0;
 }
