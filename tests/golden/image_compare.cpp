@@ -63,12 +63,13 @@ Tolerance tolerance_for(const std::filesystem::path& reference) {
 
 std::string Comparison::describe() const {
   if (!same_shape) return "shape differs: " + shape_problem;
-  char text[256];
+  char text[320];
   std::snprintf(text, sizeof text,
-                "%zu px, %zu beyond %s (%zu allowed), %zu differ, max %s, mean %s", pixels, beyond,
-                format_amount(tolerance.per_pixel, tolerance.metric).c_str(), allowed, differing,
-                format_amount(max_difference, tolerance.metric).c_str(),
-                format_amount(mean_difference, tolerance.metric).c_str());
+                "%zu px, %zu beyond %s (%zu allowed), %zu differ, max %s, mean %s (at most %s)",
+                pixels, beyond, format_amount(tolerance.per_pixel, tolerance.metric).c_str(),
+                allowed, differing, format_amount(max_difference, tolerance.metric).c_str(),
+                format_amount(mean_difference, tolerance.metric).c_str(),
+                format_amount(tolerance.mean, tolerance.metric).c_str());
   return text;
 }
 
