@@ -24,7 +24,8 @@ std::string UpdateResult::describe() const {
   if (!existed) return "new reference";
   const std::string figures = comparison.describe();
   if (!comparison.same_shape) return "CHANGED: " + figures;
-  if (!rewritten) return "unchanged (" + figures + ")";
+  if (!rewritten)
+    return "unchanged: stored pixels identical (render against reference: " + figures + ")";
   if (comparison.passed()) return "changed within tolerance: " + figures;
   return "CHANGED beyond tolerance: " + figures;
 }
