@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# Is the machine code of the relighting kernels (prt/src/relighter.cpp, glossy_kernel.cpp,
-# cpca_kernel.cpp) the same in two builds? One line per kernel, "identical" or "DIFFERENT" with
+# Is the machine code of the relighting kernels (prt/src/diffuse/relighter.cpp, glossy/kernel.cpp,
+# glossy/cpca_kernel.cpp) the same in two builds? One line per kernel, "identical" or "DIFFERENT" with
 # the functions that changed (--diff: their normalised disassembly). The objects are found by
 # the symbols they define, so a source may move; addresses, label numbering and the placement
 # of unrelated data are normalised away (scripts/kernel_code.py says how).

@@ -8,8 +8,8 @@ differs, 2 when a kernel cannot be found once in each build.
 
 The kernels are the object files that define them, found by symbol, not by path, so that a
 source file may move or be renamed: the object defining `Relighter::shade_using` (diffuse SH,
-prt/src/relighter.cpp), `GlossyKernel::create` (glossy_kernel.cpp) and `CpcaKernel::create`
-(cpca_kernel.cpp), in any namespace; the source's file name is the fallback.
+prt/src/diffuse/relighter.cpp), `GlossyKernel::create` (glossy/kernel.cpp) and `CpcaKernel::create`
+(glossy/cpca_kernel.cpp), in any namespace; the source's file name is the fallback.
 
 Every function of each object (`objdump -dr --no-show-raw-insn`: its own helpers, the inline
 and template functions it instantiates, the `.cold` parts) is normalised and compared by
