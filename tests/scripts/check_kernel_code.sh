@@ -19,14 +19,14 @@ echo "$out"
 rm -rf "$scratch"
 mkdir -p "$scratch/old/lib" "$scratch/new/moved/deeper"
 while read -r name path; do
-  cp "$path" "$scratch/old/lib/"
-  cp "$path" "$scratch/new/moved/deeper/"
+  cp "$path" "$scratch/old/lib/$name.o"  # named by kernel: sources of two subjects may share a name
+  cp "$path" "$scratch/new/moved/deeper/$name.o"
 done < <("$script" --list "$build")
 out="$("$script" "$scratch/old" "$scratch/new")" || fail "moved copies: exit $?"$'\n'"$out"
 [[ $(grep -c '^[a-z_]* *identical ' <<<"$out") == 3 ]] || fail "moved copies not identical"$'\n'"$out"
 
 # One byte of the first constant-pool entry of the glossy kernel's object.
-glossy="$(ls "$scratch"/new/moved/deeper/*glossy_kernel*)"
+glossy="$scratch/new/moved/deeper/glossy_kernel.o"
 python3 - "$source/scripts" "$glossy" <<'PY'
 import sys
 sys.path.insert(0, sys.argv[1])
