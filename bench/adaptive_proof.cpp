@@ -21,7 +21,7 @@
 #include "bake/adaptive/adaptive_baker.h"
 #include "bake/adaptive/triangle_hierarchy.h"
 #include "bake/transfer_baker.h"
-#include "prt/transfer_file.h"
+#include "prt/formats/transfer_file.h"
 #include "report/ground_truth.h"
 #include "scene/procedural_mesh.h"
 #include "scene/scene_loader.h"

@@ -23,7 +23,7 @@
 
 #include "bake/sampling.h"
 #include "bake/transfer_baker.h"
-#include "prt/transfer_file.h"
+#include "prt/formats/transfer_file.h"
 #include "scene/ray_caster.h"
 #include "scene/scene_loader.h"
 

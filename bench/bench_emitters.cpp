@@ -1,4 +1,4 @@
-// bench_emitters — relighting the emitters (prt/emitter_responses.h): the per-frame cost of
+// bench_emitters — relighting the emitters (prt/emitters/emitter_responses.h): the per-frame cost of
 // L_v = Σ_e c_e ⊙ R_e,v (new colours checked and resolved by name, then the recombination), for
 // a responses file written by `prt radiosity --per-emitter`, with its emitters replicated to
 // E = 1, 2, 4, 8 (the cost depends on V and E only, not on the values).
@@ -9,7 +9,7 @@
 
 #include <benchmark/benchmark.h>
 
-#include "prt/emitter_responses.h"
+#include "prt/emitters/emitter_responses.h"
 
 namespace {
 

@@ -1,4 +1,4 @@
-// bench_glossy — one frame of glossy shading (prt/glossy_kernel.h) for 50,000 vertices at
+// bench_glossy — one frame of glossy shading (prt/glossy/kernel.h) for 50,000 vertices at
 // order 5: RGB lighting, grey transfer matrices, per-vertex b = B·y(ω_o) computed in the loop
 // (frame change + SH evaluation + a 25×25 matrix–vector product, bench/glossy_bench_support.h),
 // then the fused dot. Uncompressed and CPCA (64 clusters, 16 vectors; CpcaKernel::prepare
@@ -12,8 +12,9 @@
 
 #include "glossy_bench_support.h"
 #include "prt/brdf/material.h"
-#include "prt/cpca.h"
-#include "prt/glossy_kernel.h"
+#include "bake/cpca/compressor.h"
+#include "prt/glossy/cpca_kernel.h"
+#include "prt/glossy/kernel.h"
 
 namespace {
 

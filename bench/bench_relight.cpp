@@ -1,4 +1,4 @@
-// bench_relight — the runtime relighting kernel (prt/relighter.h) against memcpy bandwidth,
+// bench_relight — the runtime relighting kernel (prt/diffuse/relighter.h) against memcpy bandwidth,
 // per-frame lighting work (projection + rotation at order 5), and the file checksum.
 // Run on one core: taskset -c 1 ./bench_relight  (figures in docs/BENCHMARKS.md).
 #include <chrono>
@@ -9,9 +9,9 @@
 
 #include <benchmark/benchmark.h>
 
-#include "prt/crc32c.h"
-#include "prt/lighting.h"
-#include "prt/relighter.h"
+#include "prt/formats/crc32c.h"
+#include "prt/lighting/sh_lighting.h"
+#include "prt/diffuse/relighter.h"
 #include "sh/rotation.h"
 
 namespace {

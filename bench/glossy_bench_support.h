@@ -1,5 +1,5 @@
 // bench/glossy_bench_support.h — the per-vertex b vector of glossy shading for the CPCA
-// benchmarks: b_i(ω_o) = ∫ y_i(ω_i) f(ω_i, ω_o) cos⁺θ_i dω_i (prt/glossy_transfer.h), taken
+// benchmarks: b_i(ω_o) = ∫ y_i(ω_i) f(ω_i, ω_o) cos⁺θ_i dω_i (prt/glossy/transfer.h), taken
 // as B·y(ω_o) with B the BRDF's n²×n² SH matrix (projected once; b is then exact to the
 // order-n projection in ω_o), as an engine does it: per vertex one frame change, one SH
 // evaluation and one n²×n² matrix–vector product.
@@ -15,7 +15,7 @@
 
 #include "prt/brdf/brdf.h"
 #include "prt/gauss_legendre.h"
-#include "prt/glossy_transfer.h"
+#include "prt/glossy/transfer.h"
 #include "sh/basis.h"
 #include "support/synthetic_glossy.h"
 

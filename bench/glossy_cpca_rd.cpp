@@ -1,8 +1,8 @@
-// glossy_cpca_rd — the rate–distortion curve of CPCA (prt/cpca.h) on glossy transfer:
+// glossy_cpca_rd — the rate–distortion curve of CPCA (prt/glossy/cpca_transfer.h) on glossy transfer:
 // bytes per vertex of the compressed form against
 //   * the relative RMS matrix error, and
 //   * the relit error: relative RMS over visible vertices and RGB of the exit radiance
-//     Σ_i b_i L'_i (double references of prt/glossy_kernel.h), CPCA against uncompressed,
+//     Σ_i b_i L'_i (double references of prt/glossy/kernel.h), CPCA against uncompressed,
 //     under light probes of ../shared/data/probes projected to SH order 5.
 // Matrices: tests/support/synthetic_glossy.h (shadowed transfer of an analytic scene; no
 // baker). BRDF: GGX α = 0.3, Schlick F0 = 0.04, plus a Lambert layer 0.3 (grey b).
@@ -18,8 +18,9 @@
 
 #include "glossy_bench_support.h"
 #include "prt/brdf/material.h"
-#include "prt/cpca.h"
-#include "prt/glossy_kernel.h"
+#include "bake/cpca/compressor.h"
+#include "prt/glossy/kernel.h"
+#include "prt/glossy/reference.h"
 #include "relight/image_io.h"
 
 namespace {

@@ -1,4 +1,4 @@
-// glossy_cpca_real — CPCA (prt/cpca.h) on a REAL glossy bake (a .prtg from prt bake --glossy):
+// glossy_cpca_real — CPCA (prt/glossy/cpca_transfer.h) on a REAL glossy bake (a .prtg from prt bake --glossy):
 // for each clusters × vectors setting,
 //   * bytes per vertex of the compressed matrices (CpcaTransfer::payload_bytes) and of the
 //     whole .prtq (with its source section), against the .prtg;
@@ -17,7 +17,7 @@
 // Usage: [PRT_SHARED_DATA_DIR=DIR] glossy_cpca_real [--metric=matrix|relit[:FLOOR]] FILE.prtg
 //        [threads=2]
 //        [clusters=16,64,256] [vectors=4,8,16,32] [repeats=5] [OTHER.prtg]
-// --metric=relit compresses under prt/cpca_metric.h's metric (FLOOR: its floor; default: the
+// --metric=relit compresses under bake/cpca/relit_metric.h's metric (FLOOR: its floor; default: the
 // plain matrix error);
 // the table's matrix error stays the plain one.
 // Run under `taskset -c 1` for the timings (figures in docs/GLOSSY_CPCA.md).
@@ -31,11 +31,11 @@
 #include <string>
 #include <vector>
 
-#include "prt/cpca.h"
-#include "prt/cpca_file.h"
-#include "prt/cpca_metric.h"
-#include "prt/glossy_relighter.h"
-#include "prt/glossy_transfer_file.h"
+#include "bake/cpca/compressor.h"
+#include "prt/formats/cpca_file.h"
+#include "bake/cpca/relit_metric.h"
+#include "prt/glossy/relighter.h"
+#include "prt/formats/glossy_transfer_file.h"
 #include "real_bake_bench_support.h"
 
 namespace {

@@ -27,7 +27,7 @@
 
 #include "bake/haar_baker.h"
 #include "prt/haar/relighter.h"
-#include "prt/haar/transfer_file.h"
+#include "prt/formats/haar_transfer_file.h"
 #include "relight/haar_relight.h"
 #include "relight/image_io.h"
 #include "scene/scene_loader.h"

@@ -15,8 +15,8 @@
 #include <string>
 #include <vector>
 
-#include "prt/glossy_transfer.h"
-#include "prt/lighting.h"
+#include "prt/glossy/transfer.h"
+#include "prt/lighting/sh_lighting.h"
 #include "relight/image_io.h"
 
 namespace prt::bench {

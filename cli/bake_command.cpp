@@ -1,5 +1,5 @@
 // `prt bake SCENE -o OUT.prt [...]`: bake per-vertex SH transfer (bake/transfer_baker.h) and
-// write a coefficient file (prt/transfer_file.h).
+// write a coefficient file (prt/formats/transfer_file.h).
 //
 // Defaults: --transfer shadowed, --order 3 (9 coefficients: what irradiance needs), --samples
 // 256 (cosine-weighted Owen-scrambled Sobol': AO error well under 1% on typical meshes),
@@ -28,7 +28,7 @@
 #include "output_safety.h"
 #include "progress_reporter.h"
 #include "prt/haar/cube_map.h"
-#include "prt/transfer_file.h"
+#include "prt/formats/transfer_file.h"
 #include "radiosity/materials.h"
 #include "relight/environment_input.h"
 #include "scene/scene_loader.h"

@@ -6,7 +6,7 @@
 #include <stdexcept>
 
 #include "command_registry.h"
-#include "prt/emitter_responses.h"
+#include "prt/emitters/emitter_responses.h"
 #include "relight/emitter_relight.h"
 
 namespace prt::cli {

@@ -5,7 +5,7 @@
 
 #include "command_registry.h"
 #include "emitter_cli.h"
-#include "prt/emitter_responses.h"
+#include "prt/emitters/emitter_responses.h"
 
 namespace prt::cli {
 namespace {

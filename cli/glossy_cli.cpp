@@ -14,10 +14,10 @@
 #include "command_registry.h"
 #include "output_safety.h"
 #include "progress_reporter.h"
-#include "prt/cpca.h"
-#include "prt/cpca_file.h"
-#include "prt/cpca_metric.h"
-#include "prt/glossy_transfer_file.h"
+#include "bake/cpca/compressor.h"
+#include "prt/formats/cpca_file.h"
+#include "bake/cpca/relit_metric.h"
+#include "prt/formats/glossy_transfer_file.h"
 #include "sh/basis.h"
 
 namespace prt::cli {

@@ -1,5 +1,5 @@
 // cli/glossy_cli.h — the glossy parts of `prt bake` and `prt info` (bake/glossy_transfer_baker.h,
-// prt/glossy_transfer_file.h), kept apart so the SH commands change by a few lines only.
+// prt/formats/glossy_transfer_file.h), kept apart so the SH commands change by a few lines only.
 //   prt bake SCENE --glossy -o OUT.prtg [--transfer shadowed|interreflected] [--order n]
 //            [--samples N] [--bounces k] [--tolerance x] [--seed s] [--threads t]
 //            [--precision f32|f16] [--albedo r,g,b] [--quiet]
@@ -40,7 +40,7 @@ struct GlossyCompressRequest {
   int vectors = 16;
   double target_error = 0;  // > 0: choose K (prt::CpcaOptions::target_relative_rms)
   int max_vectors = 32;
-  std::string metric = "relit";    // "relit" (prt/cpca_metric.h) or "matrix" (plain)
+  std::string metric = "relit";    // "relit" (bake/cpca/relit_metric.h) or "matrix" (plain)
   bool max_vectors_given = false;  // refused without target_error
   int iterations = 6;
   uint64_t seed = 1;

@@ -7,7 +7,7 @@
 #include "bake/transfer_baker.h"
 #include "command_registry.h"
 #include "progress_reporter.h"
-#include "prt/haar/transfer_file.h"
+#include "prt/formats/haar_transfer_file.h"
 #include "relight/haar_relight.h"
 
 namespace prt::cli {

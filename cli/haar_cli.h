@@ -10,7 +10,7 @@
 
 #include <CLI/CLI.hpp>
 
-#include "prt/transfer_data.h"
+#include "prt/formats/transfer_data.h"
 #include "relight/relight_pipeline.h"
 #include "scene/scene.h"
 

@@ -1,5 +1,5 @@
 // `prt info FILE.prt [--json | --csv]`: describe a coefficient file of any kind
-// (prt/coefficient_file.h), or a glossy transfer file (cli/glossy_cli.h: matrices, materials).
+// (prt/formats/coefficient_file.h), or a glossy transfer file (cli/glossy_cli.h: matrices, materials).
 // `prt info SCENE (.glb, .gltf, .obj) [--material NAME=MODEL:...]`: the scene's size and one
 // line per primitive with its material (prt::brdf::describe; scene/material_override.h for the
 // overrides, applied as prt bake applies them).
@@ -26,9 +26,9 @@
 #include "glossy_cli.h"
 #include "material_option.h"
 #include "output_safety.h"
-#include "prt/coefficient_file.h"
+#include "prt/formats/coefficient_file.h"
 #include "prt/haar/transform.h"
-#include "prt/transfer_data.h"
+#include "prt/formats/transfer_data.h"
 #include "scene/scene_loader.h"
 #include "sh/basis.h"
 

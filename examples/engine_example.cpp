@@ -11,10 +11,10 @@
 #include <string>
 #include <vector>
 
-#include <prt/geometry_check.h>
-#include <prt/lighting.h>
-#include <prt/relighter.h>
-#include <prt/transfer_file.h>
+#include <prt/formats/geometry_check.h>
+#include <prt/lighting/sh_lighting.h>
+#include <prt/diffuse/relighter.h>
+#include <prt/formats/transfer_file.h>
 #include <sh/basis.h>
 #include <sh/constants.h>
 #include <sh/rotation.h>

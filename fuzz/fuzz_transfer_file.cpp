@@ -7,7 +7,7 @@
 #include <cstdint>
 #include <cstdlib>
 
-#include "prt/transfer_file.h"
+#include "prt/formats/transfer_file.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const prt::Result<prt::TransferData> result = prt::read_transfer_data(data, size, "fuzz");

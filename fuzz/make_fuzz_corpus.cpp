@@ -18,7 +18,7 @@
 #include <utility>
 #include <vector>
 
-#include "prt/transfer_file.h"
+#include "prt/formats/transfer_file.h"
 #include "relight/image_io.h"
 #include "scene/glb_writer.h"
 #include "scene/procedural_mesh.h"

@@ -18,8 +18,8 @@
 #include "bake/progress.h"
 #include "bake/sampling.h"
 #include "hit_side.h"
-#include "prt/brdf_projection.h"
-#include "prt/geometry_check.h"
+#include "prt/glossy/brdf_projection.h"
+#include "prt/formats/geometry_check.h"
 #include "scene/ray_caster.h"
 #include "scene/scene_label.h"
 #include "scene/tangent_frames.h"
@@ -62,7 +62,7 @@ bool grey(const brdf::Rgb& c) {
   return c.r == c.g && c.g == c.b;
 }
 
-// The bounces' b(ω_o) of a material: the runtime's projection (prt/brdf_projection.h), so the
+// The bounces' b(ω_o) of a material: the runtime's projection (prt/glossy/brdf_projection.h), so the
 // bake and the shading use one implementation. Its float evaluate() takes a scratch buffer;
 // kProjectionScratch floats cover every order and view order it accepts (n² + m² + E ≤ 1652).
 constexpr std::size_t kProjectionScratch = 2048;

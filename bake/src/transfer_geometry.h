@@ -2,15 +2,15 @@
 // the scene by the bakers (transfer_baker.cpp, haar_baker.cpp).
 //
 // Positions in the scene frame and units (+Y up), normals normalised, primitives in file order,
-// and the fingerprint of prt::geometry_fingerprint over the positions (prt/transfer_data.h).
+// and the fingerprint of prt::geometry_fingerprint over the positions (prt/formats/transfer_data.h).
 #pragma once
 
 #include <cstddef>
 
 #include <glm/glm.hpp>
 
-#include "prt/geometry_check.h"
-#include "prt/transfer_data.h"
+#include "prt/formats/geometry_check.h"
+#include "prt/formats/transfer_data.h"
 #include "scene/scene.h"
 
 namespace prt::bake::detail {

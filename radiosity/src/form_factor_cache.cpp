@@ -10,8 +10,8 @@
 
 #include "form_factor_rows.h"
 #include "large_buffer.h"
-#include "prt/atomic_file.h"
-#include "prt/crc32c.h"
+#include "prt/core/atomic_file.h"
+#include "prt/formats/crc32c.h"
 
 namespace prt::radiosity {
 namespace {

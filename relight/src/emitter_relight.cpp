@@ -3,7 +3,7 @@
 
 #include <stdexcept>
 
-#include "prt/geometry_check.h"
+#include "prt/formats/geometry_check.h"
 #include "radiosity/materials.h"
 #include "relight_frames.h"
 

@@ -10,9 +10,9 @@
 #include <string>
 #include <utility>
 
-#include "prt/cpca_file.h"
-#include "prt/geometry_check.h"
-#include "prt/glossy_transfer_file.h"
+#include "prt/formats/cpca_file.h"
+#include "prt/formats/geometry_check.h"
+#include "prt/formats/glossy_transfer_file.h"
 #include "relight/environment_input.h"
 #include "relight/glossy_material_override.h"
 #include "relight_frames.h"

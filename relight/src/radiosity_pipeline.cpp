@@ -6,7 +6,7 @@
 #include <filesystem>
 #include <stdexcept>
 
-#include "prt/emitter_responses.h"
+#include "prt/emitters/emitter_responses.h"
 #include "radiosity/form_factor_cache.h"
 #include "radiosity/patches.h"
 #include "relight/camera.h"

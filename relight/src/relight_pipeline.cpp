@@ -11,9 +11,10 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
-#include "prt/atomic_file.h"
-#include "prt/geometry_check.h"
-#include "prt/transfer_file.h"
+#include "prt/core/atomic_file.h"
+#include "prt/diffuse/relighter.h"
+#include "prt/formats/geometry_check.h"
+#include "prt/formats/transfer_file.h"
 #include "relight/auto_exposure.h"
 #include "relight/emitter_relight.h"
 #include "relight/environment_input.h"

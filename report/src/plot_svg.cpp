@@ -10,7 +10,7 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "prt/atomic_file.h"
+#include "prt/core/atomic_file.h"
 
 namespace prt::report {
 namespace {

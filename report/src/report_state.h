@@ -21,8 +21,8 @@
 
 #include "bake/progress.h"
 #include "bake/transfer_baker.h"
-#include "prt/haar/transfer_file.h"
-#include "prt/lighting.h"
+#include "prt/formats/haar_transfer_file.h"
+#include "prt/lighting/sh_lighting.h"
 #include "relight/camera.h"
 #include "relight/relight_pipeline.h"
 #include "relight/renderer.h"

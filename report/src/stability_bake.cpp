@@ -22,8 +22,8 @@
 
 #include "bake/interreflection_solver.h"
 #include "bake/transfer_baker.h"
-#include "prt/half.h"
-#include "prt/transfer_file.h"
+#include "prt/core/half.h"
+#include "prt/formats/transfer_file.h"
 #include "scene/procedural_mesh.h"
 #include "scene/scene_loader.h"
 #include "sh/constants.h"

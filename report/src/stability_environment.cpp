@@ -16,7 +16,7 @@
 #include <string>
 #include <vector>
 
-#include "prt/lighting.h"
+#include "prt/lighting/sh_lighting.h"
 #include "sh/basis.h"
 #include "sh/constants.h"
 #include "sh/env_map.h"

@@ -8,7 +8,7 @@
 #include <limits>
 #include <stdexcept>
 
-#include "prt/brdf_projection.h"
+#include "prt/glossy/brdf_projection.h"
 #include "prt/gauss_legendre.h"
 #include "scene/procedural_mesh.h"
 #include "sh/basis.h"

@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "prt/brdf_projection.h"
+#include "prt/glossy/brdf_projection.h"
 #include "report/plot_svg.h"
 #include "report/sun_study.h"
 

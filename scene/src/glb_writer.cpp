@@ -10,7 +10,7 @@
 #include <tiny_gltf.h>
 #include <glm/gtc/quaternion.hpp>
 
-#include "prt/atomic_file.h"
+#include "prt/core/atomic_file.h"
 #include "scene_file_errors.h"
 
 namespace prt::scene {

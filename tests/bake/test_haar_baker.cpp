@@ -10,7 +10,7 @@
 #include "bake/haar_baker.h"
 #include "bake/transfer_baker.h"
 #include "prt/haar/relighter.h"
-#include "prt/haar/transfer_file.h"
+#include "prt/formats/haar_transfer_file.h"
 #include "prt/haar/transform.h"
 #include "relight/haar_relight.h"
 #include "scene/procedural_mesh.h"

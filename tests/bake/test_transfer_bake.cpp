@@ -8,7 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "bake/transfer_baker.h"
-#include "prt/transfer_file.h"
+#include "prt/formats/transfer_file.h"
 #include "scene/procedural_mesh.h"
 #include "scene/ray_caster.h"
 #include "support/test_data.h"

@@ -11,9 +11,9 @@
 
 #include "bake/glossy_transfer_baker.h"
 #include "cli_test_support.h"
-#include "prt/cpca.h"
-#include "prt/cpca_file.h"
-#include "prt/glossy_transfer_file.h"
+#include "bake/cpca/compressor.h"
+#include "prt/formats/cpca_file.h"
+#include "prt/formats/glossy_transfer_file.h"
 #include "relight/image_io.h"
 #include "scene/glb_writer.h"
 #include "scene/procedural_mesh.h"
@@ -148,7 +148,7 @@ TEST_CASE("cli: prt compress minimises the relit metric by default, the matrix e
   // The same lossy setting twice: --metric relit (the default) and --metric matrix. Each must
   // minimise what it says: the plain matrix error is lower with --metric matrix, and each run
   // names the error it reports. That the relit metric lowers the EXPECTED relit error (over
-  // views and lightings) is tested in tests/prt/test_cpca_metric.cpp; one eye under one sky,
+  // views and lightings) is tested in tests/bake/test_cpca_relit_metric.cpp; one eye under one sky,
   // as here, is a single sample of it (measured here: 0.28 against 0.26 relit CSV error, with
   // 2 vectors for 4 clusters, so either may win at a single view).
   const fs::path dir = scratch("cpca_metric");

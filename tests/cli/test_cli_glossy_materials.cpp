@@ -13,7 +13,7 @@
 #include <catch2/catch.hpp>
 
 #include "cli_test_support.h"
-#include "prt/glossy_transfer_file.h"
+#include "prt/formats/glossy_transfer_file.h"
 #include "scene/glb_writer.h"
 #include "scene/procedural_mesh.h"
 #include "support/metal_rough_glb.h"

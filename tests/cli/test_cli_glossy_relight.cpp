@@ -9,7 +9,7 @@
 
 #include "bake/glossy_transfer_baker.h"
 #include "cli_test_support.h"
-#include "prt/glossy_transfer_file.h"
+#include "prt/formats/glossy_transfer_file.h"
 #include "relight/image_io.h"
 #include "scene/glb_writer.h"
 #include "scene/procedural_mesh.h"

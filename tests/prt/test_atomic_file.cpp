@@ -1,4 +1,4 @@
-// Tests of prt/atomic_file.h: the new contents appear whole or not at all, and no temporary is
+// Tests of prt/core/atomic_file.h: the new contents appear whole or not at all, and no temporary is
 // ever left behind.
 #include <filesystem>
 #include <fstream>
@@ -8,7 +8,7 @@
 
 #include <catch2/catch.hpp>
 
-#include "prt/atomic_file.h"
+#include "prt/core/atomic_file.h"
 #include "support/test_data.h"
 
 namespace fs = std::filesystem;

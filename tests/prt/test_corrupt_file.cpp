@@ -6,9 +6,9 @@
 
 #include <catch2/catch.hpp>
 
-#include "prt/crc32c.h"
-#include "prt/relighter.h"
-#include "prt/transfer_file.h"
+#include "prt/formats/crc32c.h"
+#include "prt/diffuse/relighter.h"
+#include "prt/formats/transfer_file.h"
 #include "transfer_fixtures.h"
 
 using prt::Precision;

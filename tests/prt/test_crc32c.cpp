@@ -1,11 +1,11 @@
-// Tests of prt/crc32c.h against the published check value and between implementations.
+// Tests of prt/formats/crc32c.h against the published check value and between implementations.
 #include <cstring>
 #include <random>
 #include <vector>
 
 #include <catch2/catch.hpp>
 
-#include "prt/crc32c.h"
+#include "prt/formats/crc32c.h"
 
 namespace {
 

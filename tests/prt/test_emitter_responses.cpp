@@ -1,4 +1,4 @@
-// Emitter-response files (prt/emitter_responses.h): byte round trip, the layout of
+// Emitter-response files (prt/emitters/emitter_responses.h): byte round trip, the layout of
 // docs/FORMAT.md checked at fixed offsets, every corrupt or truncated variant refused with one
 // line, recombination against hand-computed sums, and bad colours or names refused.
 #include <cmath>
@@ -10,9 +10,9 @@
 
 #include <catch2/catch.hpp>
 
-#include "prt/crc32c.h"
-#include "prt/emitter_responses.h"
-#include "prt/geometry_check.h"
+#include "prt/formats/crc32c.h"
+#include "prt/emitters/emitter_responses.h"
+#include "prt/formats/geometry_check.h"
 
 namespace fs = std::filesystem;
 

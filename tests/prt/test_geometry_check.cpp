@@ -1,11 +1,11 @@
-// Tests of prt/geometry_check.h: fingerprint sensitivity and the tolerant mesh comparison.
+// Tests of prt/formats/geometry_check.h: fingerprint sensitivity and the tolerant mesh comparison.
 #include <cmath>
 #include <string>
 #include <vector>
 
 #include <catch2/catch.hpp>
 
-#include "prt/geometry_check.h"
+#include "prt/formats/geometry_check.h"
 #include "transfer_fixtures.h"
 
 TEST_CASE("the fingerprint sees every coordinate to the last bit", "[geometry]") {

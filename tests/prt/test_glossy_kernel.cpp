@@ -1,4 +1,4 @@
-// Tests of prt/glossy_kernel.h: the uncompressed and CPCA kernels against the double
+// Tests of prt/glossy/kernel.h: the uncompressed and CPCA kernels against the double
 // references (to a float-rounding bound), AVX2 against portable bit for bit, an analytic
 // case for the references, the order rules and refused calls.
 #include <cmath>
@@ -8,7 +8,11 @@
 
 #include <catch2/catch.hpp>
 
-#include "prt/glossy_kernel.h"
+#include "bake/cpca/compressor.h"
+#include "prt/diffuse/relighter.h"  // Relighter::avx2_path_available
+#include "prt/glossy/cpca_kernel.h"
+#include "prt/glossy/kernel.h"
+#include "prt/glossy/reference.h"
 #include "support/synthetic_glossy.h"
 
 using prt::CpcaFrame;

@@ -1,4 +1,4 @@
-// Tests of the Haar kind of the coefficient file (prt/haar/transfer_file.h, docs/FORMAT.md):
+// Tests of the Haar kind of the coefficient file (prt/formats/haar_transfer_file.h, docs/FORMAT.md):
 // round trips for every quantisation, and corrupt or mismatched files refused with one-line
 // "NAME: problem" messages.
 #include <cstdio>
@@ -11,10 +11,10 @@
 
 #include <catch2/catch.hpp>
 
-#include "prt/coefficient_file.h"
-#include "prt/crc32c.h"
-#include "prt/haar/transfer_file.h"
-#include "prt/transfer_file.h"
+#include "prt/formats/coefficient_file.h"
+#include "prt/formats/crc32c.h"
+#include "prt/formats/haar_transfer_file.h"
+#include "prt/formats/transfer_file.h"
 #include "support/test_data.h"
 
 namespace {

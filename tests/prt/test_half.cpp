@@ -1,4 +1,4 @@
-// Tests of prt/half.h: exhaustive round trip, known values, an independent rounding model.
+// Tests of prt/core/half.h: exhaustive round trip, known values, an independent rounding model.
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -7,7 +7,7 @@
 
 #include <catch2/catch.hpp>
 
-#include "prt/half.h"
+#include "prt/core/half.h"
 
 namespace {
 

@@ -1,4 +1,4 @@
-// Tests of prt/lighting.h: projection of a constant map, rotation semantics, windows, errors.
+// Tests of prt/lighting/sh_lighting.h: projection of a constant map, rotation semantics, windows, errors.
 #include <array>
 #include <cmath>
 #include <random>
@@ -6,7 +6,7 @@
 
 #include <catch2/catch.hpp>
 
-#include "prt/lighting.h"
+#include "prt/lighting/sh_lighting.h"
 #include "sh/constants.h"
 
 using prt::ShLighting;

@@ -1,4 +1,4 @@
-// Tests of prt/relighter.h: the blocked kernel against the double vertex-major reference,
+// Tests of prt/diffuse/relighter.h: the blocked kernel against the double vertex-major reference,
 // order rules, the AVX2 path against the portable one, sRGB output, and an analytic case.
 #include <cmath>
 #include <cstring>
@@ -8,9 +8,9 @@
 
 #include <catch2/catch.hpp>
 
-#include "prt/half.h"
-#include "prt/relighter.h"
-#include "prt/transfer_file.h"
+#include "prt/core/half.h"
+#include "prt/diffuse/relighter.h"
+#include "prt/formats/transfer_file.h"
 #include "sh/basis.h"
 #include "sh/constants.h"
 #include "transfer_fixtures.h"

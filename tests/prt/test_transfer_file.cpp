@@ -1,4 +1,4 @@
-// Tests of prt/transfer_file.h: round trips, the documented byte layout, validation, atomicity.
+// Tests of prt/formats/transfer_file.h: round trips, the documented byte layout, validation, atomicity.
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -9,9 +9,9 @@
 
 #include <catch2/catch.hpp>
 
-#include "prt/crc32c.h"
-#include "prt/half.h"
-#include "prt/transfer_file.h"
+#include "prt/formats/crc32c.h"
+#include "prt/core/half.h"
+#include "prt/formats/transfer_file.h"
 #include "support/test_data.h"
 #include "transfer_fixtures.h"
 

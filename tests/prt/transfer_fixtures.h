@@ -5,8 +5,8 @@
 #include <random>
 #include <string>
 
-#include "prt/geometry_check.h"
-#include "prt/transfer_data.h"
+#include "prt/formats/geometry_check.h"
+#include "prt/formats/transfer_data.h"
 
 namespace prt::test {
 

@@ -8,7 +8,7 @@
 
 #include <catch2/catch.hpp>
 
-#include "prt/emitter_responses.h"
+#include "prt/emitters/emitter_responses.h"
 #include "radiosity/emitter_solve.h"
 #include "radiosity/form_factors.h"
 #include "radiosity/patches.h"

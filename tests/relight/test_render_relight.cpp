@@ -14,8 +14,8 @@
 #include <catch2/catch.hpp>
 
 #include "bake/transfer_baker.h"
-#include "prt/relighter.h"
-#include "prt/transfer_file.h"
+#include "prt/diffuse/relighter.h"
+#include "prt/formats/transfer_file.h"
 #include "relight/image_io.h"
 #include "relight/relight_pipeline.h"
 #include "scene/glb_writer.h"

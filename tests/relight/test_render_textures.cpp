@@ -12,7 +12,7 @@
 #include <catch2/catch.hpp>
 
 #include "bake/transfer_baker.h"
-#include "prt/relighter.h"
+#include "prt/diffuse/relighter.h"
 #include "relight/camera.h"
 #include "relight/relight_pipeline.h"
 #include "relight/renderer.h"

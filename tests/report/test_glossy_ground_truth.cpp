@@ -11,8 +11,8 @@
 #include <catch2/catch.hpp>
 
 #include "prt/brdf/material.h"
-#include "prt/glossy_relighter.h"
-#include "prt/lighting.h"
+#include "prt/glossy/relighter.h"
+#include "prt/lighting/sh_lighting.h"
 #include "report/glossy_ground_truth.h"
 #include "report/ground_truth.h"
 #include "scene/procedural_mesh.h"

@@ -7,7 +7,7 @@
 #include <catch2/catch.hpp>
 
 #include "prt/brdf/lambert.h"
-#include "prt/brdf_projection.h"
+#include "prt/glossy/brdf_projection.h"
 #include "report/sun_study.h"
 #include "sh/zonal.h"
 

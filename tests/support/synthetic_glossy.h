@@ -11,7 +11,7 @@
 // the tangent plane where the ray p + tω misses both spheres and (for points above the ground)
 // ω_y ≥ 0; V_k is a Fibonacci-sphere quadrature of `directions` rays. Then M = R·T with R the
 // SH rotation into the vertex's tangent frame (Duff et al.'s frame from the normal), as in
-// prt/glossy_transfer.h. No interreflection. channels = 3 scales M per channel by a smooth
+// prt/glossy/transfer.h. No interreflection. channels = 3 scales M per channel by a smooth
 // position-dependent gain (a stand-in for coloured bounce light, not a physical bounce).
 #pragma once
 
@@ -21,7 +21,7 @@
 #include <vector>
 
 #include "prt/gauss_legendre.h"
-#include "prt/glossy_transfer.h"
+#include "prt/glossy/transfer.h"
 #include "sh/basis.h"
 #include "sh/rotation.h"
 

@@ -1,6 +1,6 @@
 // bake/glossy_transfer_baker.h — per-vertex transfer MATRICES for glossy PRT (Sloan, Kautz &
 // Snyder 2002, §6; [2] of docs/REFERENCES.md), stored as prt::GlossyTransferData
-// (prt/glossy_transfer.h, file: prt/glossy_transfer_file.h).
+// (prt/glossy/transfer.h, file: prt/formats/glossy_transfer_file.h).
 //
 // Conventions: SH of sh/basis.h, order n, K = n². Row index i: SH of the vertex's LOCAL frame
 // (scene/tangent_frames.h: +z the normal, +x the tangent, +y = w · cross(n, t)); column j: SH of
@@ -9,7 +9,7 @@
 //
 // Domain: the UPPER hemisphere of the vertex (local z > 0) only: L' is the projection of
 // V(ω)·L(ω)·[ω above the horizon]. No cosine: the BRDF's cos θ_i is in b at runtime
-// (b_i(ω_o) = ∫ y_i f cos⁺θ_i, prt/glossy_transfer.h), and f = 0 below the horizon, so nothing
+// (b_i(ω_o) = ∫ y_i f cos⁺θ_i, prt/glossy/transfer.h), and f = 0 below the horizon, so nothing
 // below it contributes to exit radiance; leaving it at zero (rather than at whatever a ray into
 // the surface sees) keeps L' free of radiance the surface cannot reflect.
 //
@@ -28,7 +28,7 @@
 // barycentrics β brings the radiance the hit point sends back along −ω_s,
 //     L(−ω_s) = Σ_a β_a · b_{q_a}(−ω_s in q_a's frame)ᵀ · M_{q_a} · L,
 // b the SH projection of the hit primitive's BRDF (prt::BrdfProjection with
-// GlossyBakeOptions::projection, the runtime's own, prt/brdf_projection.h); for a Lambert hit
+// GlossyBakeOptions::projection, the runtime's own, prt/glossy/brdf_projection.h); for a Lambert hit
 // b = ρ(hit)/π · (clamped-cosine zonal row), ρ(hit) = Scene::albedo_at (the texture when there
 // is one), exactly as the diffuse bake's bounce. So M = S + G(M),
 //     G(M)_p = (2π/N) Σ_{s hits} y_local,p(ω_s) ⊗ L(−ω_s)-row,
@@ -47,8 +47,8 @@
 #include <vector>
 
 #include "bake/transfer_baker.h"
-#include "prt/brdf_projection.h"
-#include "prt/glossy_transfer.h"
+#include "prt/glossy/brdf_projection.h"
+#include "prt/glossy/transfer.h"
 #include "scene/scene.h"
 
 namespace prt::bake {
@@ -63,7 +63,7 @@ struct GlossyBakeOptions {
   double bounce_tolerance = 1e-4;
   uint64_t seed = 1;
   int threads = 0;                        // 0 = all hardware threads
-  prt::BrdfProjectionOptions projection;  // b(ω_o) for the bounces (prt/brdf_projection.h)
+  prt::BrdfProjectionOptions projection;  // b(ω_o) for the bounces (prt/glossy/brdf_projection.h)
   prt::Precision precision = prt::Precision::F32;
 };
 

@@ -40,8 +40,8 @@
 #include <cstdint>
 
 #include "prt/haar/transfer.h"
-#include "prt/haar/transfer_file.h"
-#include "prt/transfer_data.h"
+#include "prt/formats/haar_transfer_file.h"
+#include "prt/formats/transfer_data.h"
 #include "scene/scene.h"
 
 namespace prt::bake {

@@ -80,7 +80,7 @@
 #include <vector>
 
 #include "bake/adaptive/triangle_hierarchy.h"
-#include "prt/transfer_data.h"
+#include "prt/formats/transfer_data.h"
 #include "scene/scene.h"
 #include "sh/constants.h"
 
@@ -204,7 +204,7 @@ BakeResult bake_transfer(const scene::Scene& scene, const BakeOptions& options,
                          ProgressSink* progress = nullptr);
 
 // "unshadowed" / "shadowed" / "interreflected" / "haar" (defined by the runtime,
-// prt/transfer_data.h).
+// prt/formats/transfer_data.h).
 using prt::transfer_kind_name;
 
 }  // namespace prt::bake

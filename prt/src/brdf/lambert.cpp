@@ -3,7 +3,7 @@
 
 #include <cmath>
 
-#include "parameter_check.h"
+#include "brdf/parameter_check.h"
 #include "sh/constants.h"
 
 namespace prt::brdf {

@@ -3,7 +3,7 @@
 #include <cstdio>
 #include <utility>
 
-#include "lobe_mix.h"
+#include "brdf/lobe_mix.h"
 #include "prt/brdf/blinn_phong.h"
 #include "prt/brdf/lambert.h"
 #include "prt/brdf/merl.h"

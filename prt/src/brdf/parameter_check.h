@@ -6,7 +6,7 @@
 #include <string>
 
 #include "prt/brdf/vec3.h"
-#include "prt/status.h"
+#include "prt/core/status.h"
 
 namespace prt::brdf::detail {
 

@@ -3,8 +3,8 @@
 
 #include <cmath>
 
-#include "lobe_mix.h"
-#include "parameter_check.h"
+#include "brdf/lobe_mix.h"
+#include "brdf/parameter_check.h"
 #include "prt/brdf/lambert.h"
 #include "prt/brdf/microfacet.h"
 #include "sh/constants.h"

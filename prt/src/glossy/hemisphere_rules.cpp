@@ -1,5 +1,5 @@
 // prt/src/glossy/hemisphere_rules.cpp — Gauss–Legendre panels and hemisphere product rules.
-#include "hemisphere_rules.h"
+#include "glossy/hemisphere_rules.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,5 +1,5 @@
 // radiosity/emitter_solve.h — one radiosity solution per emitter, for relighting the emitters
-// afterwards (prt/emitter_responses.h: L = Σ_e c_e ⊙ R_e, exact because the radiosity equation
+// afterwards (prt/emitters/emitter_responses.h: L = Σ_e c_e ⊙ R_e, exact because the radiosity equation
 // is linear in the emission E, channel by channel).
 //
 // An emitter is an emitting material: every primitive with a non-zero emission is grouped by
@@ -19,7 +19,7 @@
 
 #include <glm/glm.hpp>
 
-#include "prt/emitter_responses.h"
+#include "prt/emitters/emitter_responses.h"
 #include "radiosity/form_factors.h"
 #include "radiosity/patches.h"
 #include "radiosity/solver.h"

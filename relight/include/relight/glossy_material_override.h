@@ -1,7 +1,7 @@
 // relight/glossy_material_override.h — `prt relight --material NAME=MODEL[:KEY=VALUE,...]` for
 // glossy transfer files: a look-dev change of a material's BRDF without baking again.
 //
-// A glossy file's matrices M_p (prt/glossy_transfer.h) carry transport only: the vertex's own
+// A glossy file's matrices M_p (prt/glossy/transfer.h) carry transport only: the vertex's own
 // BRDF f_p enters at shading time, through b_i(ω_o) = ∫ y_i f_p cos⁺θ_i. Replacing f_p of the
 // vertices of a material therefore changes exactly what a bake with that material would change
 // in the light those vertices reflect DIRECTLY toward the eye — for a shadowed (bounces 0) bake
@@ -19,7 +19,7 @@
 
 #include <vector>
 
-#include "prt/glossy_transfer.h"
+#include "prt/glossy/transfer.h"
 #include "scene/material_override.h"
 #include "scene/scene.h"
 

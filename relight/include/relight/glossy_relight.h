@@ -1,4 +1,4 @@
-// relight/glossy_relight.h — `prt relight` for glossy transfer files (prt/glossy_transfer.h):
+// relight/glossy_relight.h — `prt relight` for glossy transfer files (prt/glossy/transfer.h):
 // view-dependent images in which the camera's eye point drives the view direction.
 //
 // Per frame: SH lighting of the environment at the file's order (windowed and rotated exactly as
@@ -17,7 +17,7 @@
 // an error raised before anything is written (the values depend on the view).
 // Materials come from the file (the scene's own are not read); the albedo is inside the BRDF.
 // Files: a glossy transfer file (.prtg, shaded through prt::GlossyKernel) or a CPCA file (.prtq)
-// with a source section (prt/cpca_file.h, made by `prt compress`), shaded through
+// with a source section (prt/formats/cpca_file.h, made by `prt compress`), shaded through
 // prt::CpcaKernel; both are checked against the scene's geometry the same way.
 // GlossyRelightOptions::material_overrides replace some of them before shading (only the
 // vertex's own BRDF changes; interreflections stay as baked: relight/glossy_material_override.h).
@@ -30,10 +30,10 @@
 
 #include <glm/glm.hpp>
 
-#include "prt/brdf_projection.h"
-#include "prt/cpca.h"
-#include "prt/glossy_relighter.h"
-#include "prt/glossy_transfer.h"
+#include "prt/glossy/brdf_projection.h"
+#include "prt/glossy/cpca_transfer.h"
+#include "prt/glossy/relighter.h"
+#include "prt/glossy/transfer.h"
 #include "relight/camera.h"
 #include "relight/relight_pipeline.h"
 #include "scene/material_override.h"

@@ -40,7 +40,7 @@ struct RadiosityRequest {
   std::string output_path;         // .exr, .hdr or .png; optional if another output is given
   std::string vertex_colors_path;  // .glb, optional
   std::string csv_path;            // optional
-  // Optional: per-emitter responses (prt/emitter_responses.h, radiosity/emitter_solve.h), one
+  // Optional: per-emitter responses (prt/emitters/emitter_responses.h, radiosity/emitter_solve.h), one
   // more solve per emitter on the same form factors; needs a full-matrix solver.
   std::string per_emitter_path;
   std::vector<radiosity::MaterialValue> emission, albedo;  // per-material overrides

@@ -4,7 +4,7 @@
 // every bounce. It shares no code with the SH paths (no projection, no transfer matrices, no b
 // tables); the BRDF classes are shared and tested on their own (tests/prt/brdf).
 //
-// Quantity (the convention of prt/glossy_relighter.h): for vertex p with tangent frame
+// Quantity (the convention of prt/glossy/relighter.h): for vertex p with tangent frame
 // (t, b = w·n × t, n) (scene/tangent_frames.h, the tangent Gram–Schmidt-orthonormalised against
 // the vertex normal once), ω_o = normalize(eye − p) in that frame, and
 //     L_o(p, ω_o) = ∫_{H+} f_p(ω_i, ω_o) L_in(p, ω_i) cos θ_i dω_i      (RGB, map units),

@@ -41,7 +41,7 @@
 #include <vector>
 
 #include "bake/progress.h"
-#include "prt/transfer_data.h"
+#include "prt/formats/transfer_data.h"
 #include "sh/env_map.h"
 
 namespace prt::report {

@@ -1,7 +1,7 @@
 // report/sun_study.h — where SH fails: the exit radiance of glossy surfaces under a sun (a disc of
 // the sun's real angular diameter, 0.53°) plus a uniform sky, shaded through prt's glossy runtime
-// path (prt/brdf_projection.h: b(ωo) · L', with L' the lighting's SH in the local frame, as
-// prt/glossy_relighter.h does for an unshadowed convex surface, whose transfer matrix is the SH
+// path (prt/glossy/brdf_projection.h: b(ωo) · L', with L' the lighting's SH in the local frame, as
+// prt/glossy/relighter.h does for an unshadowed convex surface, whose transfer matrix is the SH
 // rotation into the local frame), against the exact exit radiance, a quadrature of f·cos over
 // the sun disc that uses no SH. `prt report --sun-study` runs it; docs/GLOSSY.md, "Where SH
 // fails", has the figures.
@@ -25,7 +25,7 @@
 
 #include "prt/brdf/brdf.h"
 #include "prt/brdf/material.h"
-#include "prt/brdf_projection.h"
+#include "prt/glossy/brdf_projection.h"
 
 namespace prt::report {
 

@@ -18,7 +18,7 @@
 #include <cstddef>
 #include <string>
 
-#include "prt/status.h"
+#include "prt/core/status.h"
 #include "scene/float_image.h"
 
 namespace prt::scene {

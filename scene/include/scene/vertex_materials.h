@@ -1,5 +1,5 @@
 // scene/vertex_materials.h — the BRDF of every vertex of a scene, as a table of distinct
-// materials and one index per vertex: what a glossy bake stores (prt/glossy_transfer.h:
+// materials and one index per vertex: what a glossy bake stores (prt/glossy/transfer.h:
 // GlossyTransferData::materials, material_of_vertex) and what `prt relight --material` rebuilds
 // for the vertices it overrides.
 //

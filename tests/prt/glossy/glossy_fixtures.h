@@ -8,12 +8,12 @@
 #include <vector>
 
 #include "prt/brdf/material.h"
-#include "prt/glossy_transfer.h"
-#include "prt/lighting.h"
+#include "prt/glossy/transfer.h"
+#include "prt/lighting/sh_lighting.h"
 
 namespace glossy_test {
 
-// Rows t, b, n of vertex v's frame (the convention of prt/glossy_transfer.h, w = +1).
+// Rows t, b, n of vertex v's frame (the convention of prt/glossy/transfer.h, w = +1).
 std::array<double, 9> frame_rows(const prt::GlossyTransferData& data, std::size_t v);
 
 // `count` vertices on the unit sphere (Fibonacci spiral) with normal = position, tangent from

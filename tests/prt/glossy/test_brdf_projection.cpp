@@ -1,11 +1,11 @@
-// BRDF projection (prt/brdf_projection.h): the reference quadrature against closed forms, the
+// BRDF projection (prt/glossy/brdf_projection.h): the reference quadrature against closed forms, the
 // zonal approximation's error, and the view-side matrix converging with its order.
 #include <cmath>
 #include <vector>
 
 #include <catch2/catch.hpp>
 
-#include "prt/brdf_projection.h"
+#include "prt/glossy/brdf_projection.h"
 #include "sh/basis.h"
 #include "sh/zonal.h"
 

@@ -1,4 +1,4 @@
-// BrdfProjection::evaluate_many() (prt/brdf_projection.h) against the per-view float evaluate():
+// BrdfProjection::evaluate_many() (prt/glossy/brdf_projection.h) against the per-view float evaluate():
 // the batched isotropic-table path replaces acosf by a polynomial and fuses the lerp with the
 // rotation about +z, so it may differ in the last bits only; the other methods fall back to the
 // per-view code and must give its bits.
@@ -10,7 +10,7 @@
 
 #include <catch2/catch.hpp>
 
-#include "prt/brdf_projection.h"
+#include "prt/glossy/brdf_projection.h"
 
 using prt::BrdfProjection;
 using prt::BrdfProjectionMethod;

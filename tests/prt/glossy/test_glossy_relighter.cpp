@@ -1,4 +1,4 @@
-// Glossy shading (prt/glossy_relighter.h) on an unshadowed sphere built in memory: Lambert
+// Glossy shading (prt/glossy/relighter.h) on an unshadowed sphere built in memory: Lambert
 // through the glossy path against diffuse SH shading, glossy materials against a Monte Carlo
 // rendering integral, and the handling of views from below the tangent plane.
 #include <cmath>
@@ -7,7 +7,7 @@
 #include <catch2/catch.hpp>
 
 #include "glossy_fixtures.h"
-#include "prt/glossy_relighter.h"
+#include "prt/glossy/relighter.h"
 #include "sh/basis.h"
 #include "sh/zonal.h"
 

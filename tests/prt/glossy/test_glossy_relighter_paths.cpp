@@ -1,4 +1,4 @@
-// The shading paths of prt::GlossyRelighter (prt/glossy_relighter.h): the kernel path
+// The shading paths of prt::GlossyRelighter (prt/glossy/relighter.h): the kernel path
 // (prt::GlossyKernel) against the portable per-vertex loop, and compressed transfer
 // (create_cpca, prt::CpcaKernel) against the uncompressed matrices. Matrices: the shadowed
 // synthetic transfer of tests/support/synthetic_glossy.h; materials: a Ward lobe on some
@@ -10,8 +10,8 @@
 #include <catch2/catch.hpp>
 
 #include "glossy_fixtures.h"
-#include "prt/cpca.h"
-#include "prt/glossy_relighter.h"
+#include "bake/cpca/compressor.h"
+#include "prt/glossy/relighter.h"
 #include "support/synthetic_glossy.h"
 
 using prt::brdf::Material;
@@ -191,7 +191,7 @@ TEST_CASE("Glossy shading of CPCA transfer: within the Cauchy-Schwarz bound of t
 TEST_CASE("Glossy shading of full-rank CPCA equals the uncompressed shading to float rounding",
           "[glossy][cpca]") {
   // Order 2, K = D = 16: every matrix lies in its cluster's span, so the CPCA form reproduces
-  // M to float rounding (tests of prt/cpca.h) and so does the shading: relative 1e-5 of the
+  // M to float rounding (tests of prt/glossy/cpca_transfer.h) and so does the shading: relative 1e-5 of the
   // magnitude of the terms (|Δe| ≈ (2n² + K)·2⁻²⁴·Σ|terms| ≈ 3e-6 of it, plus the basis's own
   // rounding); a wrong cluster or vector order gives errors of the size of e itself.
   const prt::GlossyTransferData d = two_material_data(300, 2, 1);

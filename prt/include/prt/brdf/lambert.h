@@ -7,7 +7,7 @@
 #pragma once
 
 #include "prt/brdf/brdf.h"
-#include "prt/status.h"
+#include "prt/core/status.h"
 
 namespace prt::brdf {
 

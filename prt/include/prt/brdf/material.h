@@ -14,7 +14,7 @@
 #include "prt/brdf/brdf.h"
 #include "prt/brdf/microfacet.h"
 #include "prt/brdf/ward.h"
-#include "prt/status.h"
+#include "prt/core/status.h"
 
 namespace prt::brdf {
 

@@ -23,7 +23,7 @@
 #include <vector>
 
 #include "prt/brdf/brdf.h"
-#include "prt/status.h"
+#include "prt/core/status.h"
 
 namespace prt::brdf {
 

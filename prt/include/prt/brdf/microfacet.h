@@ -21,7 +21,7 @@
 
 #include "prt/brdf/brdf.h"
 #include "prt/brdf/microfacet_distribution.h"
-#include "prt/status.h"
+#include "prt/core/status.h"
 
 namespace prt::brdf {
 

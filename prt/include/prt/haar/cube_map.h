@@ -24,7 +24,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "prt/status.h"
+#include "prt/core/status.h"
 
 namespace prt {
 

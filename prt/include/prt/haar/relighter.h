@@ -34,7 +34,7 @@
 #include "prt/haar/approximation.h"
 #include "prt/haar/cube_map.h"
 #include "prt/haar/transfer.h"
-#include "prt/status.h"
+#include "prt/core/status.h"
 
 namespace prt {
 

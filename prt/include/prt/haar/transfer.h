@@ -32,7 +32,7 @@
 #include <vector>
 
 #include "prt/haar/cube_map.h"
-#include "prt/status.h"
+#include "prt/core/status.h"
 
 namespace prt {
 
