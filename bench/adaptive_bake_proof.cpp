@@ -1,4 +1,4 @@
-// adaptive_proof — `prt bake --auto` against the fixed recipe at equal measured error.
+// adaptive_bake_proof — `prt bake --auto` against the fixed recipe at equal measured error.
 // Writes docs/adaptive/README.md (or the path given as argv[1]).
 //
 // Per scene: a reference (fixed interreflected bake, order 8, 2048 samples, solved to 1e-6),
@@ -95,7 +95,7 @@ double error_against_truth(const std::vector<double>& b, const GroundTruthResult
 }
 
 std::size_t file_bytes(const prt::TransferData& data) {
-  const std::string path = "/tmp/adaptive_proof_" + std::to_string(getpid()) + ".prt";
+  const std::string path = "/tmp/adaptive_bake_proof_" + std::to_string(getpid()) + ".prt";
   if (!prt::write_transfer_file(path, data).ok()) return 0;
   std::error_code ec;
   const auto bytes = std::filesystem::file_size(path, ec);
@@ -557,7 +557,7 @@ int main(int argc, char** argv) {
   };
   std::ofstream f(out);
   f << "# Adaptive baking (`prt bake --auto`) against the fixed recipe\n\n"
-    << "Written by `adaptive_proof` (bench/adaptive_proof.cpp). Tolerance " << kTolerance
+    << "Written by `adaptive_bake_proof` (bench/adaptive_bake_proof.cpp). Tolerance " << kTolerance
     << "; error = relative RMS of exit radiance over vertices and RGB under a band-limited sky "
        "(bands 0–5), measured against a fixed interreflected bake at order 8 with 2048 samples "
        "(an independent seed) solved to 1e-6. The fixed setting is interreflected at the order "
