@@ -180,10 +180,3 @@ TEST_CASE("run_stability_report writes stability.md and stability.json", "[stabi
   const std::string text((std::istreambuf_iterator<char>(md)), std::istreambuf_iterator<char>());
   CHECK(text.find("cases passed") != std::string::npos);
 }
-
-// The full-size report (8192×4096 map, larger meshes): run by hand with
-//   test_stability "[.full]"   (writes build/tests/output/stability_full/)
-TEST_CASE("Full stability report", "[.full]") {
-  const std::filesystem::path dir = prt::test::output_path("stability_full");
-  CHECK(prt::report::run_stability_report(dir.string(), false) == 0);
-}
