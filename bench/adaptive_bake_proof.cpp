@@ -138,314 +138,365 @@ AutoBakeOptions auto_options(const std::vector<double>& sky) {
   return o;
 }
 
-Row run_scene(const std::string& name, const Scene& scene, const std::vector<double>& sky,
-              int gt_stride) {
-  Row row;
-  row.name = name;
-  row.vertices = scene.vertex_count();
-  if (const char* repeat = std::getenv("PRT_PROOF_AUTO_ONLY")) {
-    // For profiling: only the --auto bake, N times (no reference, no sweep).
-    AutoBakeOptions o = auto_options(sky);
-    if (std::getenv("PRT_PROOF_SHADOWED")) {
-      // The sampling prediction alone: a shadowed --auto bake against a shadowed fixed bake at
-      // the same order with 4096 samples (no truncation, no interreflection in the difference).
-      o.bake.kind = prt::TransferKind::Shadowed;
-      const AutoBakeResult a = bake_transfer_auto(scene, o);
-      BakeOptions f;
-      f.kind = prt::TransferKind::Shadowed;
-      f.order = a.report.order;
-      f.samples = 4096;
-      f.seed = 99;
-      const std::vector<double> ref_s =
-          exit_radiance(bake_transfer(scene, f).data, sky, kLightingOrder);
-      std::printf(
-          "%s: shadowed auto, order %d: predicted sampling %.4f, measured against 4096 "
-          "samples %.4f\n",
-          name.c_str(), a.report.order, a.report.predicted_sampling_error,
-          relative_rms_error(exit_radiance(a.bake.data, sky, kLightingOrder), ref_s));
-      return row;
-    }
-    if (std::getenv("PRT_PROOF_TIME_HIERARCHY")) {
-      for (int i = 0; i < 3; ++i) {
-        const auto t0 = std::chrono::steady_clock::now();
-        const TriangleHierarchy h = build_triangle_hierarchy(scene);
-        std::printf("hierarchy %zu nodes: %.3f s\n", h.nodes.size(),
-                    std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
-      }
-      return row;
-    }
-    if (const char* fo = std::getenv("PRT_PROOF_FIXED_ONLY")) {
-      // For profiling: only a fixed interreflected bake at order FO with PRT_PROOF_FIXED_SAMPLES.
-      BakeOptions f;
-      f.kind = prt::TransferKind::Interreflected;
-      f.order = std::atoi(fo);
-      const char* fs = std::getenv("PRT_PROOF_FIXED_SAMPLES");
-      f.samples = fs ? std::atoi(fs) : 128;
-      for (int i = 0; i < std::atoi(repeat); ++i) {
-        const BakeResult b = bake_transfer(scene, f);
-        std::printf("%s: fixed %d samples: %.3f s (rays %.3f s, %llu rays, solve %.3f s)\n",
-                    name.c_str(), f.samples, b.stats.seconds_total, b.stats.seconds_rays,
-                    static_cast<unsigned long long>(b.stats.rays), b.stats.seconds_solve);
-      }
-      return row;
-    }
-    for (int i = 0; i < std::atoi(repeat); ++i) {
-      const AutoBakeResult a = bake_transfer_auto(scene, o);
-      std::printf(
-          "%s: auto bake %.3f s (rays %.3f s, %llu rays, solve %.3f s), order %d, rounds %d, c "
-          "%.3f "
-          "/ caps %.3f, budget met %d, predicted sampling %.4f truncation %.4f total %.4f, mean "
-          "samples %.0f; analysis %.3f s, pilot %.3f s, caps %.3f s, bvh %.3f s\n",
-          name.c_str(), a.bake.stats.seconds_total, a.bake.stats.seconds_rays,
-          static_cast<unsigned long long>(a.bake.stats.rays), a.bake.stats.seconds_solve,
-          a.report.order, a.bake.stats.allocation_rounds, a.bake.stats.qmc_calibration,
-          a.bake.stats.qmc_calibration_caps, a.bake.stats.allocation_budget_met ? 1 : 0,
-          a.report.predicted_sampling_error, a.report.predicted_truncation_error,
-          a.report.predicted_error, a.report.mean_samples, a.report.analysis_seconds,
-          a.report.pilot_seconds, a.bake.stats.seconds_caps, a.bake.stats.seconds_bvh);
-      std::printf("  capped vertices %llu (cap-open %llu)\n",
-                  static_cast<unsigned long long>(a.bake.stats.cap_vertices),
-                  static_cast<unsigned long long>(a.bake.stats.cap_open_vertices));
-      std::printf("  truncation by order:");
-      for (double e : a.report.order_choice.predicted_by_order) std::printf(" %.4f", e);
-      std::printf(" (tail %.4f, skips %.4f)\n", a.report.order_choice.tail_bound,
-                  a.report.predicted_skip_error);
-      if (const char* fs = std::getenv("PRT_PROOF_FIXED_SAMPLES")) {
-        // The fixed bake's phases beside it, at the same order.
-        BakeOptions f;
-        f.kind = prt::TransferKind::Interreflected;
-        f.order = a.report.order;
-        f.samples = std::atoi(fs);
-        const char* repeat_fixed = std::getenv("PRT_PROOF_FIXED_REPEAT");
-        const int reps = repeat_fixed ? std::max(1, std::atoi(repeat_fixed)) : 1;
-        for (int r = 1; r < reps; ++r) bake_transfer(scene, f);  // for profiling
-        const BakeResult b = bake_transfer(scene, f);
-        std::printf(
-            "  fixed %d samples: %.3f s (rays %.3f s, %llu rays, solve %.3f s, bvh %.3f s)\n",
-            f.samples, b.stats.seconds_total, b.stats.seconds_rays,
-            static_cast<unsigned long long>(b.stats.rays), b.stats.seconds_solve,
-            b.stats.seconds_bvh);
-      }
-    }
-    return row;
+// --- Profiling modes (PRT_PROOF_AUTO_ONLY=N): no reference, no sweep; see docs/adaptive/README.md.
+
+// PRT_PROOF_SHADOWED: the sampling prediction alone, a shadowed --auto bake against a shadowed
+// fixed bake at the same order with 4096 samples (no truncation, no interreflection in the
+// difference).
+void profile_shadowed_prediction(const std::string& name, const Scene& scene,
+                                 const std::vector<double>& sky, AutoBakeOptions o) {
+  o.bake.kind = prt::TransferKind::Shadowed;
+  const AutoBakeResult a = bake_transfer_auto(scene, o);
+  BakeOptions f;
+  f.kind = prt::TransferKind::Shadowed;
+  f.order = a.report.order;
+  f.samples = 4096;
+  f.seed = 99;
+  const std::vector<double> ref_s =
+      exit_radiance(bake_transfer(scene, f).data, sky, kLightingOrder);
+  std::printf(
+      "%s: shadowed auto, order %d: predicted sampling %.4f, measured against 4096 "
+      "samples %.4f\n",
+      name.c_str(), a.report.order, a.report.predicted_sampling_error,
+      relative_rms_error(exit_radiance(a.bake.data, sky, kLightingOrder), ref_s));
+}
+
+// PRT_PROOF_TIME_HIERARCHY: the triangle hierarchy's build time, three times.
+void time_triangle_hierarchy(const Scene& scene) {
+  for (int i = 0; i < 3; ++i) {
+    const auto t0 = std::chrono::steady_clock::now();
+    const TriangleHierarchy h = build_triangle_hierarchy(scene);
+    std::printf("hierarchy %zu nodes: %.3f s\n", h.nodes.size(),
+                std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
   }
+}
+
+// PRT_PROOF_FIXED_ONLY=ORDER: only a fixed interreflected bake at that order with
+// PRT_PROOF_FIXED_SAMPLES (default 128), `repeat` times.
+void profile_fixed_bakes(const std::string& name, const Scene& scene, int order, int repeat) {
+  BakeOptions f;
+  f.kind = prt::TransferKind::Interreflected;
+  f.order = order;
+  const char* fs = std::getenv("PRT_PROOF_FIXED_SAMPLES");
+  f.samples = fs ? std::atoi(fs) : 128;
+  for (int i = 0; i < repeat; ++i) {
+    const BakeResult b = bake_transfer(scene, f);
+    std::printf("%s: fixed %d samples: %.3f s (rays %.3f s, %llu rays, solve %.3f s)\n",
+                name.c_str(), f.samples, b.stats.seconds_total, b.stats.seconds_rays,
+                static_cast<unsigned long long>(b.stats.rays), b.stats.seconds_solve);
+  }
+}
+
+// The phases and predictions of one --auto bake, on stdout.
+void print_auto_phases(const std::string& name, const AutoBakeResult& a) {
+  std::printf(
+      "%s: auto bake %.3f s (rays %.3f s, %llu rays, solve %.3f s), order %d, rounds %d, c "
+      "%.3f "
+      "/ caps %.3f, budget met %d, predicted sampling %.4f truncation %.4f total %.4f, mean "
+      "samples %.0f; analysis %.3f s, pilot %.3f s, caps %.3f s, bvh %.3f s\n",
+      name.c_str(), a.bake.stats.seconds_total, a.bake.stats.seconds_rays,
+      static_cast<unsigned long long>(a.bake.stats.rays), a.bake.stats.seconds_solve,
+      a.report.order, a.bake.stats.allocation_rounds, a.bake.stats.qmc_calibration,
+      a.bake.stats.qmc_calibration_caps, a.bake.stats.allocation_budget_met ? 1 : 0,
+      a.report.predicted_sampling_error, a.report.predicted_truncation_error,
+      a.report.predicted_error, a.report.mean_samples, a.report.analysis_seconds,
+      a.report.pilot_seconds, a.bake.stats.seconds_caps, a.bake.stats.seconds_bvh);
+  std::printf("  capped vertices %llu (cap-open %llu)\n",
+              static_cast<unsigned long long>(a.bake.stats.cap_vertices),
+              static_cast<unsigned long long>(a.bake.stats.cap_open_vertices));
+  std::printf("  truncation by order:");
+  for (double e : a.report.order_choice.predicted_by_order) std::printf(" %.4f", e);
+  std::printf(" (tail %.4f, skips %.4f)\n", a.report.order_choice.tail_bound,
+              a.report.predicted_skip_error);
+}
+
+// PRT_PROOF_FIXED_SAMPLES beside a profiled --auto bake: the fixed bake's phases at the same
+// order (PRT_PROOF_FIXED_REPEAT bakes, the last one printed).
+void print_fixed_phases_beside(const Scene& scene, int order, int samples) {
+  BakeOptions f;
+  f.kind = prt::TransferKind::Interreflected;
+  f.order = order;
+  f.samples = samples;
+  const char* repeat_fixed = std::getenv("PRT_PROOF_FIXED_REPEAT");
+  const int reps = repeat_fixed ? std::max(1, std::atoi(repeat_fixed)) : 1;
+  for (int r = 1; r < reps; ++r) bake_transfer(scene, f);  // for profiling
+  const BakeResult b = bake_transfer(scene, f);
+  std::printf("  fixed %d samples: %.3f s (rays %.3f s, %llu rays, solve %.3f s, bvh %.3f s)\n",
+              f.samples, b.stats.seconds_total, b.stats.seconds_rays,
+              static_cast<unsigned long long>(b.stats.rays), b.stats.seconds_solve,
+              b.stats.seconds_bvh);
+}
+
+// PRT_PROOF_AUTO_ONLY=N: the --auto bake N times (or one of the modes above), for profiling.
+void run_profiling(const std::string& name, const Scene& scene, const std::vector<double>& sky,
+                   int repeat) {
+  const AutoBakeOptions o = auto_options(sky);
+  if (std::getenv("PRT_PROOF_SHADOWED")) return profile_shadowed_prediction(name, scene, sky, o);
+  if (std::getenv("PRT_PROOF_TIME_HIERARCHY")) return time_triangle_hierarchy(scene);
+  if (const char* fo = std::getenv("PRT_PROOF_FIXED_ONLY"))
+    return profile_fixed_bakes(name, scene, std::atoi(fo), repeat);
+  for (int i = 0; i < repeat; ++i) {
+    const AutoBakeResult a = bake_transfer_auto(scene, o);
+    print_auto_phases(name, a);
+    if (const char* fs = std::getenv("PRT_PROOF_FIXED_SAMPLES"))
+      print_fixed_phases_beside(scene, a.report.order, std::atoi(fs));
+  }
+}
+
+// --- The proof's measurements.
+
+// The reference: a fixed interreflected bake at the lighting's order, 2048 samples, solved to
+// 1e-6, with a seed independent of the seed-1 bakes measured against it; its exit radiance.
+// With `noise`, also the reference's own error: a second reference with another seed differs
+// from it by √2 × that error (independent, equal variance).
+std::vector<double> reference_radiance(const Scene& scene, const std::vector<double>& sky,
+                                       double* noise) {
   BakeOptions ref;
   ref.kind = prt::TransferKind::Interreflected;
   ref.order = kLightingOrder;
   ref.samples = 2048;
   ref.bounce_tolerance = 1e-6;
-  ref.seed = 7919;  // independent of the seed-1 bakes measured against it
+  ref.seed = 7919;
   const std::vector<double> b_ref =
       exit_radiance(bake_transfer(scene, ref).data, sky, kLightingOrder);
-  if (std::getenv("PRT_PROOF_AUTO_ONLY") == nullptr &&
-      std::getenv("PRT_PROOF_TOLERANCES") == nullptr) {
-    // The reference's own error: a second reference with another seed differs from it by
-    // √2 × that error (independent, equal variance).
+  if (noise != nullptr) {
     BakeOptions ref2 = ref;
     ref2.seed = 7920;
-    row.ref_noise =
-        relative_rms_error(exit_radiance(bake_transfer(scene, ref2).data, sky, kLightingOrder),
-                           b_ref) /
-        std::sqrt(2.0);
+    *noise = relative_rms_error(exit_radiance(bake_transfer(scene, ref2).data, sky, kLightingOrder),
+                                b_ref) /
+             std::sqrt(2.0);
   }
+  return b_ref;
+}
 
-  AutoBakeOptions o = auto_options(sky);
-  if (const char* list = std::getenv("PRT_PROOF_TOLERANCES")) {
-    // For tuning: --auto's error against time at several tolerances (best of 3 times).
-    int last_order = 3;
-    for (const char* c = list; *c != '\0';) {
-      AutoBakeOptions t = o;
-      t.tolerance = std::strtod(c, const_cast<char**>(&c));
-      if (*c == ',') ++c;
-      double best = 1e30, err = 0.0, samples = 0.0;
-      int order = 0;
-      for (int i = 0; i < 3; ++i) {
-        const auto t0 = std::chrono::steady_clock::now();
-        const AutoBakeResult a = bake_transfer_auto(scene, t);
-        best = std::min(
-            best, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
-        err = relative_rms_error(exit_radiance(a.bake.data, sky, kLightingOrder), b_ref);
-        samples = a.report.mean_samples;
-        order = a.report.order;
-      }
-      std::printf("  tolerance %.4f: auto %.3f s, error %.4f, order %d, mean samples %.0f\n",
-                  t.tolerance, best, err, order, samples);
-      last_order = order;
-    }
-    std::vector<int> orders;  // PRT_PROOF_FIXED_ORDERS="4,5", else the last --auto order
-    if (const char* fo = std::getenv("PRT_PROOF_FIXED_ORDERS"))
-      for (const char* c = fo; *c != '\0';) {
-        orders.push_back(static_cast<int>(std::strtol(c, const_cast<char**>(&c), 10)));
-        if (*c == ',') ++c;
-      }
-    if (orders.empty()) orders.push_back(last_order);
-    for (int order : orders) {
-      if (order < 1) continue;  // "0": no fixed sweep
-      for (int samples : {32, 64, 128, 256, 512}) {
-        BakeOptions f;
-        f.kind = prt::TransferKind::Interreflected;
-        f.order = order;
-        f.samples = samples;
-        double best = 1e30, err = 0.0;
-        for (int i = 0; i < 3; ++i) {
-          const BakeResult r = bake_transfer(scene, f);
-          best = std::min(best, r.stats.seconds_total);
-          err = relative_rms_error(exit_radiance(r.data, sky, kLightingOrder), b_ref);
-        }
-        std::printf("  fixed order %d, %d samples: %.3f s, error %.4f\n", order, samples, best,
-                    err);
-      }
-    }
-    return row;
+// A comma-separated list of integers ("4,5").
+std::vector<int> parse_int_list(const char* list) {
+  std::vector<int> values;
+  for (const char* c = list; *c != '\0';) {
+    values.push_back(static_cast<int>(std::strtol(c, const_cast<char**>(&c), 10)));
+    if (*c == ',') ++c;
   }
-  // Wall time of the whole --auto bake (analysis, pilot, bake); best of 3 when under 2 s (these
-  // VMs are noisy; the fixed bakes get the same treatment).
-  const auto t0 = std::chrono::steady_clock::now();
-  const AutoBakeResult a = bake_transfer_auto(scene, o);
-  row.auto_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  for (int i = 0; i < 2 && row.auto_seconds < kRepeatBelowSeconds; ++i) {
-    const auto t1 = std::chrono::steady_clock::now();
-    bake_transfer_auto(scene, o);
-    row.auto_seconds =
-        std::min(row.auto_seconds,
-                 std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count());
-  }
-  row.auto_error = relative_rms_error(exit_radiance(a.bake.data, sky, kLightingOrder), b_ref);
-  row.predicted = a.report.predicted_error;
-  row.order = a.report.order;
-  row.mean_samples = a.report.mean_samples;
-  row.auto_kind = transfer_kind_name(a.bake.data.kind);
-  row.auto_bytes = file_bytes(a.bake.data);
-  row.open = a.report.open_vertices;
-  row.bounded = a.report.bounded_skip_vertices;
+  return values;
+}
 
-  if (const char* dump = std::getenv("PRT_PROOF_DUMP")) {
-    const std::vector<double> ba = exit_radiance(a.bake.data, sky, kLightingOrder);
-    std::vector<std::vector<double>> bf;
-    std::vector<double> secs;
-    const int counts[] = {16, 32, 64, 128, 256, 512, 1024};
-    for (int n : counts) {
-      BakeOptions f;
-      f.kind = prt::TransferKind::Interreflected;
-      f.order = row.order;
-      f.samples = n;
-      const BakeResult r = bake_transfer(scene, f);
-      secs.push_back(r.stats.seconds_total);
-      bf.push_back(exit_radiance(r.data, sky, kLightingOrder));
-      BakeOptions g = f;
-      g.kind = prt::TransferKind::Shadowed;
-      const BakeResult rs = bake_transfer(scene, g);
-      std::printf("  fixed %d: interreflected %.3f s (rays %.3f, solve %.3f), shadowed %.3f s\n", n,
-                  r.stats.seconds_total, r.stats.seconds_rays, r.stats.seconds_solve,
-                  rs.stats.seconds_total);
+// PRT_PROOF_TOLERANCES="T1,T2,…", for tuning: --auto's error against time at each tolerance
+// (best of 3 times), then fixed bakes of 32…512 samples at PRT_PROOF_FIXED_ORDERS="4,5" (else the
+// last --auto order; "0": none).
+void tolerance_sweep(const Scene& scene, const std::vector<double>& sky, const AutoBakeOptions& o,
+                     const std::vector<double>& b_ref, const char* list) {
+  int last_order = 3;
+  for (const char* c = list; *c != '\0';) {
+    AutoBakeOptions t = o;
+    t.tolerance = std::strtod(c, const_cast<char**>(&c));
+    if (*c == ',') ++c;
+    double best = 1e30, err = 0.0, samples = 0.0;
+    int order = 0;
+    for (int i = 0; i < 3; ++i) {
+      const auto t0 = std::chrono::steady_clock::now();
+      const AutoBakeResult a = bake_transfer_auto(scene, t);
+      best = std::min(best,
+                      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+      err = relative_rms_error(exit_radiance(a.bake.data, sky, kLightingOrder), b_ref);
+      samples = a.report.mean_samples;
+      order = a.report.order;
     }
-    std::ofstream d(dump);
-    d << "v,y,n,se,ref,auto";
-    for (int n : counts) d << ",f" << n;
-    d << "\n";
-    for (std::size_t v = 0; v < scene.vertex_count(); ++v) {
-      d << v << ',' << scene.positions[v].y << ',' << a.bake.stats.vertex_samples[v] << ','
-        << a.bake.stats.vertex_standard_error[v] << ',' << b_ref[3 * v] << ',' << ba[3 * v];
-      for (const auto& b : bf) d << ',' << b[3 * v];
-      d << '\n';
-    }
+    std::printf("  tolerance %.4f: auto %.3f s, error %.4f, order %d, mean samples %.0f\n",
+                t.tolerance, best, err, order, samples);
+    last_order = order;
   }
-  // A fixed bake's time: best of 3 when under kRepeatBelowSeconds.
-  const auto fixed_bake = [&](const BakeOptions& f, double* seconds) {
-    BakeResult r = bake_transfer(scene, f);
-    *seconds = r.stats.seconds_total;
-    for (int i = 0; i < 2 && *seconds < kRepeatBelowSeconds; ++i)
-      *seconds = std::min(*seconds, bake_transfer(scene, f).stats.seconds_total);
-    return r;
-  };
-  // Sweeps 64…1024 samples at `order` until the error is ≤ the auto error; `on_bake` sees each.
-  const auto sweep = [&](int order, std::string& table, std::vector<double>& errors,
-                         std::vector<double>& times, const auto& on_bake) {
-    for (int samples : {64, 128, 256, 512, 1024}) {
+  const char* fo = std::getenv("PRT_PROOF_FIXED_ORDERS");
+  std::vector<int> orders = fo ? parse_int_list(fo) : std::vector<int>{};
+  if (orders.empty()) orders.push_back(last_order);
+  for (int order : orders) {
+    if (order < 1) continue;  // "0": no fixed sweep
+    for (int samples : {32, 64, 128, 256, 512}) {
       BakeOptions f;
       f.kind = prt::TransferKind::Interreflected;
       f.order = order;
       f.samples = samples;
-      double seconds = 0.0;
-      const BakeResult r = fixed_bake(f, &seconds);
-      const double err = relative_rms_error(exit_radiance(r.data, sky, kLightingOrder), b_ref);
-      char line[160];
-      std::snprintf(line, sizeof line, "%d: %.4f in %.2f s; ", samples, err, seconds);
-      table += line;
-      errors.push_back(err);
-      times.push_back(seconds);
-      on_bake(samples, seconds, err, r);
-      if (err <= row.auto_error) break;  // the cheapest fixed setting at equal error
+      double best = 1e30, err = 0.0;
+      for (int i = 0; i < 3; ++i) {
+        const BakeResult r = bake_transfer(scene, f);
+        best = std::min(best, r.stats.seconds_total);
+        err = relative_rms_error(exit_radiance(r.data, sky, kLightingOrder), b_ref);
+      }
+      std::printf("  fixed order %d, %d samples: %.3f s, error %.4f\n", order, samples, best, err);
     }
-  };
-  bool found = false;
-  sweep(row.order, row.fixed_table, row.sweep_error, row.sweep_seconds,
-        [&](int samples, double seconds, double err, const BakeResult& r) {
-          // Keep the first setting at equal error, else the most accurate one so far.
-          if (!found || (row.fixed_error > row.auto_error && err < row.fixed_error)) {
-            row.fixed_samples = samples;
-            row.fixed_seconds = seconds;
-            row.fixed_error = err;
-            row.fixed_bytes = file_bytes(r.data);
-          }
-          found = true;
-        });
-  // The same sweep one SH order higher: a higher order with fewer rays can be the cheaper fixed
-  // setting at equal error (its truncation error is lower).
-  sweep(row.order + 1, row.fixed_table_higher, row.sweep2_error, row.sweep2_seconds,
-        [](int, double, double, const BakeResult&) {});
-  // The prediction checked against the ground truth (report/ground_truth.h) on every
-  // gt_stride-th vertex, at 1% relative standard error (its noise is removed, see above).
-  {
-    GroundTruthOptions g;
-    g.target_relative_se = 0.01;
-    g.max_samples = 1 << 14;
-    for (uint32_t v = 0; v < scene.vertex_count(); v += gt_stride) g.vertices.push_back(v);
-    const prt::sh::EnvMap env = sky_map(sky);
-    const GroundTruthResult gt = compute_ground_truth(scene, env, g);
-    row.gt_se = gt.relative_rms_se;
-    row.gt_auto =
-        error_against_truth(exit_radiance(a.bake.data, sky, kLightingOrder), gt, g.vertices);
+  }
+}
+
+// The --auto bake, and the wall time of the whole of it (analysis, pilot, bake): best of 3 when
+// under kRepeatBelowSeconds (these VMs are noisy; the fixed bakes get the same treatment).
+AutoBakeResult timed_auto_bake(const Scene& scene, const AutoBakeOptions& o, double* seconds) {
+  const auto t0 = std::chrono::steady_clock::now();
+  AutoBakeResult a = bake_transfer_auto(scene, o);
+  *seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  for (int i = 0; i < 2 && *seconds < kRepeatBelowSeconds; ++i) {
+    const auto t1 = std::chrono::steady_clock::now();
+    bake_transfer_auto(scene, o);
+    *seconds = std::min(
+        *seconds, std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count());
+  }
+  return a;
+}
+
+// PRT_PROOF_DUMP=PATH: per vertex, the samples and standard error of the --auto bake and the exit
+// radiance (red) of the reference, the --auto bake and fixed bakes of 16…1024 samples, as CSV.
+void dump_fixed_bakes(const std::string& path, const Scene& scene, const std::vector<double>& sky,
+                      const AutoBakeResult& a, const std::vector<double>& b_ref, int order) {
+  const std::vector<double> ba = exit_radiance(a.bake.data, sky, kLightingOrder);
+  std::vector<std::vector<double>> bf;
+  const int counts[] = {16, 32, 64, 128, 256, 512, 1024};
+  for (int n : counts) {
     BakeOptions f;
     f.kind = prt::TransferKind::Interreflected;
-    f.order = row.order;
-    f.samples = row.fixed_samples;
-    row.gt_fixed = error_against_truth(
-        exit_radiance(bake_transfer(scene, f).data, sky, kLightingOrder), gt, g.vertices);
-    if (std::getenv("PRT_PROOF_GTDIRECT")) {
-      GroundTruthOptions g0 = g;
-      g0.max_bounces = 0;
-      const GroundTruthResult gt0 = compute_ground_truth(scene, env, g0);
-      BakeOptions s8;
-      s8.kind = prt::TransferKind::Shadowed;
-      s8.order = kLightingOrder;
-      s8.samples = 2048;
-      BakeOptions i8 = s8;
-      i8.kind = prt::TransferKind::Interreflected;
-      i8.bounce_tolerance = 1e-6;
-      std::printf(
-          "  direct only: shadowed order 8 vs GT(0 bounces) %.4f; interreflected order 8 "
-          "vs GT %.4f; ref vs GT %.4f\n",
-          error_against_truth(exit_radiance(bake_transfer(scene, s8).data, sky, kLightingOrder),
-                              gt0, g.vertices),
-          error_against_truth(exit_radiance(bake_transfer(scene, i8).data, sky, kLightingOrder), gt,
-                              g.vertices),
-          error_against_truth(b_ref, gt, g.vertices));
-    }
-    if (const char* path = std::getenv("PRT_PROOF_GTDUMP")) {
-      std::ofstream d(std::string(path) + "." + std::to_string(scene.vertex_count()));
-      d << "v,x,y,z,nx,ny,nz,ref,gt,se\n";
-      for (uint32_t v : g.vertices)
-        d << v << ',' << scene.positions[v].x << ',' << scene.positions[v].y << ','
-          << scene.positions[v].z << ',' << scene.normals[v].x << ',' << scene.normals[v].y << ','
-          << scene.normals[v].z << ',' << b_ref[3 * v] << ',' << gt.radiance[3 * v] << ','
-          << gt.standard_error[3 * v] << '\n';
-    }
-    std::printf("  ground truth (%zu vertices, s = %.4f, %.1f s): auto %.4f, fixed %.4f\n",
-                g.vertices.size(), gt.relative_rms_se, gt.seconds, row.gt_auto, row.gt_fixed);
+    f.order = order;
+    f.samples = n;
+    const BakeResult r = bake_transfer(scene, f);
+    bf.push_back(exit_radiance(r.data, sky, kLightingOrder));
+    BakeOptions g = f;
+    g.kind = prt::TransferKind::Shadowed;
+    const BakeResult rs = bake_transfer(scene, g);
+    std::printf("  fixed %d: interreflected %.3f s (rays %.3f, solve %.3f), shadowed %.3f s\n", n,
+                r.stats.seconds_total, r.stats.seconds_rays, r.stats.seconds_solve,
+                rs.stats.seconds_total);
   }
+  std::ofstream d(path);
+  d << "v,y,n,se,ref,auto";
+  for (int n : counts) d << ",f" << n;
+  d << "\n";
+  for (std::size_t v = 0; v < scene.vertex_count(); ++v) {
+    d << v << ',' << scene.positions[v].y << ',' << a.bake.stats.vertex_samples[v] << ','
+      << a.bake.stats.vertex_standard_error[v] << ',' << b_ref[3 * v] << ',' << ba[3 * v];
+    for (const auto& b : bf) d << ',' << b[3 * v];
+    d << '\n';
+  }
+}
+
+// A fixed bake, and its time: best of 3 when under kRepeatBelowSeconds.
+BakeResult timed_fixed_bake(const Scene& scene, const BakeOptions& f, double* seconds) {
+  BakeResult r = bake_transfer(scene, f);
+  *seconds = r.stats.seconds_total;
+  for (int i = 0; i < 2 && *seconds < kRepeatBelowSeconds; ++i)
+    *seconds = std::min(*seconds, bake_transfer(scene, f).stats.seconds_total);
+  return r;
+}
+
+// One fixed sweep at `order`: 64…1024 samples until the error is ≤ the auto error (the cheapest
+// fixed setting at equal error), each appended to `table`, `errors` and `times`; `on_bake` sees
+// each bake.
+template <typename OnBake>
+void sweep_fixed(const Scene& scene, const std::vector<double>& sky,
+                 const std::vector<double>& b_ref, int order, double auto_error, std::string& table,
+                 std::vector<double>& errors, std::vector<double>& times, const OnBake& on_bake) {
+  for (int samples : {64, 128, 256, 512, 1024}) {
+    BakeOptions f;
+    f.kind = prt::TransferKind::Interreflected;
+    f.order = order;
+    f.samples = samples;
+    double seconds = 0.0;
+    const BakeResult r = timed_fixed_bake(scene, f, &seconds);
+    const double err = relative_rms_error(exit_radiance(r.data, sky, kLightingOrder), b_ref);
+    char line[160];
+    std::snprintf(line, sizeof line, "%d: %.4f in %.2f s; ", samples, err, seconds);
+    table += line;
+    errors.push_back(err);
+    times.push_back(seconds);
+    on_bake(samples, seconds, err, r);
+    if (err <= auto_error) break;
+  }
+}
+
+// The fixed sweeps at the order --auto chose (keeping the first setting at equal error, else
+// the most accurate one) and one SH order higher: a higher order with fewer rays can be the
+// cheaper fixed setting at equal error (its truncation error is lower).
+void fixed_sweeps(const Scene& scene, const std::vector<double>& sky,
+                  const std::vector<double>& b_ref, Row& row) {
+  bool found = false;
+  sweep_fixed(scene, sky, b_ref, row.order, row.auto_error, row.fixed_table, row.sweep_error,
+              row.sweep_seconds, [&](int samples, double seconds, double err, const BakeResult& r) {
+                if (!found || (row.fixed_error > row.auto_error && err < row.fixed_error)) {
+                  row.fixed_samples = samples;
+                  row.fixed_seconds = seconds;
+                  row.fixed_error = err;
+                  row.fixed_bytes = file_bytes(r.data);
+                }
+                found = true;
+              });
+  sweep_fixed(scene, sky, b_ref, row.order + 1, row.auto_error, row.fixed_table_higher,
+              row.sweep2_error, row.sweep2_seconds, [](int, double, double, const BakeResult&) {});
+}
+
+// PRT_PROOF_GTDIRECT: the direct light alone (shadowed order-8 bake against a ground truth
+// without bounces) beside the interreflected order-8 bake and the reference.
+void print_direct_only(const Scene& scene, const std::vector<double>& sky,
+                       const prt::sh::EnvMap& env, const GroundTruthOptions& g,
+                       const GroundTruthResult& gt, const std::vector<double>& b_ref) {
+  GroundTruthOptions g0 = g;
+  g0.max_bounces = 0;
+  const GroundTruthResult gt0 = compute_ground_truth(scene, env, g0);
+  BakeOptions s8;
+  s8.kind = prt::TransferKind::Shadowed;
+  s8.order = kLightingOrder;
+  s8.samples = 2048;
+  BakeOptions i8 = s8;
+  i8.kind = prt::TransferKind::Interreflected;
+  i8.bounce_tolerance = 1e-6;
+  std::printf(
+      "  direct only: shadowed order 8 vs GT(0 bounces) %.4f; interreflected order 8 "
+      "vs GT %.4f; ref vs GT %.4f\n",
+      error_against_truth(exit_radiance(bake_transfer(scene, s8).data, sky, kLightingOrder), gt0,
+                          g.vertices),
+      error_against_truth(exit_radiance(bake_transfer(scene, i8).data, sky, kLightingOrder), gt,
+                          g.vertices),
+      error_against_truth(b_ref, gt, g.vertices));
+}
+
+// PRT_PROOF_GTDUMP=PATH: the ground truth's vertices, the reference and the ground truth with
+// its standard error (red), as CSV in PATH.<vertex count>.
+void dump_ground_truth(const std::string& path, const Scene& scene, const GroundTruthResult& gt,
+                       const std::vector<uint32_t>& vertices, const std::vector<double>& b_ref) {
+  std::ofstream d(path + "." + std::to_string(scene.vertex_count()));
+  d << "v,x,y,z,nx,ny,nz,ref,gt,se\n";
+  for (uint32_t v : vertices)
+    d << v << ',' << scene.positions[v].x << ',' << scene.positions[v].y << ','
+      << scene.positions[v].z << ',' << scene.normals[v].x << ',' << scene.normals[v].y << ','
+      << scene.normals[v].z << ',' << b_ref[3 * v] << ',' << gt.radiance[3 * v] << ','
+      << gt.standard_error[3 * v] << '\n';
+}
+
+// The prediction checked against the ground truth (report/ground_truth.h) on every
+// gt_stride-th vertex, at 1% relative standard error (its noise is removed, see
+// error_against_truth): the --auto bake and the fixed setting at equal error.
+void compare_with_ground_truth(const Scene& scene, const std::vector<double>& sky,
+                               const AutoBakeResult& a, const std::vector<double>& b_ref,
+                               int gt_stride, Row& row) {
+  GroundTruthOptions g;
+  g.target_relative_se = 0.01;
+  g.max_samples = 1 << 14;
+  for (uint32_t v = 0; v < scene.vertex_count(); v += gt_stride) g.vertices.push_back(v);
+  const prt::sh::EnvMap env = sky_map(sky);
+  const GroundTruthResult gt = compute_ground_truth(scene, env, g);
+  row.gt_se = gt.relative_rms_se;
+  row.gt_auto =
+      error_against_truth(exit_radiance(a.bake.data, sky, kLightingOrder), gt, g.vertices);
+  BakeOptions f;
+  f.kind = prt::TransferKind::Interreflected;
+  f.order = row.order;
+  f.samples = row.fixed_samples;
+  row.gt_fixed = error_against_truth(
+      exit_radiance(bake_transfer(scene, f).data, sky, kLightingOrder), gt, g.vertices);
+  if (std::getenv("PRT_PROOF_GTDIRECT")) print_direct_only(scene, sky, env, g, gt, b_ref);
+  if (const char* path = std::getenv("PRT_PROOF_GTDUMP"))
+    dump_ground_truth(path, scene, gt, g.vertices, b_ref);
+  std::printf("  ground truth (%zu vertices, s = %.4f, %.1f s): auto %.4f, fixed %.4f\n",
+              g.vertices.size(), gt.relative_rms_se, gt.seconds, row.gt_auto, row.gt_fixed);
+}
+
+// The scene's row and the --auto bake's phases, on stdout.
+void print_row(const Row& row, const AutoBakeResult& a) {
   std::printf("%s: auto %.2f s err %.4f (pred %.4f) | fixed %d: %.2f s err %.4f | %s\n",
-              name.c_str(), row.auto_seconds, row.auto_error, row.predicted, row.fixed_samples,
+              row.name.c_str(), row.auto_seconds, row.auto_error, row.predicted, row.fixed_samples,
               row.fixed_seconds, row.fixed_error, row.fixed_table.c_str());
   std::printf(
       "  auto: analysis %.3f s, pilot %.3f s, rays %.3f s (%llu rays), solve %.3f s, bake total "
@@ -460,6 +511,41 @@ Row run_scene(const std::string& name, const Scene& scene, const std::vector<dou
       a.bake.stats.qmc_calibration_caps, a.bake.stats.seconds_caps, a.bake.stats.allocation_rounds,
       a.report.predicted_truncation_error);
   std::fflush(stdout);
+}
+
+// One scene of the proof: the reference, the --auto bake, the fixed sweeps and the ground truth
+// (or, under the environment's digging overrides, one of the modes above instead).
+Row run_scene(const std::string& name, const Scene& scene, const std::vector<double>& sky,
+              int gt_stride) {
+  Row row;
+  row.name = name;
+  row.vertices = scene.vertex_count();
+  if (const char* repeat = std::getenv("PRT_PROOF_AUTO_ONLY")) {
+    run_profiling(name, scene, sky, std::atoi(repeat));
+    return row;
+  }
+  const char* tolerances = std::getenv("PRT_PROOF_TOLERANCES");
+  const std::vector<double> b_ref =
+      reference_radiance(scene, sky, tolerances == nullptr ? &row.ref_noise : nullptr);
+  const AutoBakeOptions o = auto_options(sky);
+  if (tolerances != nullptr) {
+    tolerance_sweep(scene, sky, o, b_ref, tolerances);
+    return row;
+  }
+  const AutoBakeResult a = timed_auto_bake(scene, o, &row.auto_seconds);
+  row.auto_error = relative_rms_error(exit_radiance(a.bake.data, sky, kLightingOrder), b_ref);
+  row.predicted = a.report.predicted_error;
+  row.order = a.report.order;
+  row.mean_samples = a.report.mean_samples;
+  row.auto_kind = transfer_kind_name(a.bake.data.kind);
+  row.auto_bytes = file_bytes(a.bake.data);
+  row.open = a.report.open_vertices;
+  row.bounded = a.report.bounded_skip_vertices;
+  if (const char* dump = std::getenv("PRT_PROOF_DUMP"))
+    dump_fixed_bakes(dump, scene, sky, a, b_ref, row.order);
+  fixed_sweeps(scene, sky, b_ref, row);
+  compare_with_ground_truth(scene, sky, a, b_ref, gt_stride, row);
+  print_row(row, a);
   return row;
 }
 
