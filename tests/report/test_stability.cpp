@@ -13,8 +13,8 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "report/stability_report.h"
 #include "report/stability_cases.h"
+#include "report/stability_report.h"
 #include "support/test_data.h"
 
 using namespace prt::report::stability;

@@ -20,8 +20,7 @@ std::string write_file(const std::string& name, const std::string& text) {
 
 }  // namespace
 
-TEST_CASE("OBJ normals that are not unit length are normalised (fuzz_scene_obj)",
-          "[regression]") {
+TEST_CASE("OBJ normals that are not unit length are normalised (fuzz_scene_obj)", "[regression]") {
   const std::string path = write_file("regression_vn_not_unit.obj",
                                       "v 0 0 0\nv 1 0 0\nv 1 0 1\nv 0 0 1\nvn 5 1 0\nvn 0 0 0\n"
                                       "f 1//1 4//1 3//1\nf 1//2 3//2 2//2\n");
