@@ -37,8 +37,8 @@ int main(int argc, char** argv) {
           solve_with_refinement(prt::test::shadow_scene(4), {}, {}, options);
       const prt::test::FloorSolution r{refined.scene, refined.patches, refined.solution.radiance};
       // Uniform n × n floor with about as many patches (2n² floor triangles + 4 others).
-      const int n = static_cast<int>(
-          std::lround(std::sqrt(double(refined.patches.size() - 4) / 2.0)));
+      const int n =
+          static_cast<int>(std::lround(std::sqrt(double(refined.patches.size() - 4) / 2.0)));
       const prt::test::FloorSolution u = prt::test::uniform_floor(n);
       const double e_refined = prt::test::floor_error(r, reference);
       const double e_uniform = prt::test::floor_error(u, reference);

@@ -56,8 +56,8 @@ void print_row(const std::string& name, double max_edge, const prt::scene::Scene
   for (const glm::uvec3& t : out.triangles) {
     double longest = 0.0, perimeter = 0.0;
     for (int k = 0; k < 3; ++k) {
-      const double l = glm::length(glm::dvec3(out.positions[t[k]]) -
-                                   glm::dvec3(out.positions[t[(k + 1) % 3]]));
+      const double l =
+          glm::length(glm::dvec3(out.positions[t[k]]) - glm::dvec3(out.positions[t[(k + 1) % 3]]));
       longest = std::max(longest, l), perimeter += l;
     }
     const double aspect =
@@ -95,8 +95,8 @@ int main(int argc, char** argv) {
     std::printf("Cornell box: skipped, %s is missing\n", box.c_str());
   for (const auto& [name, scene] : scenes) {
     const bool cornell = name == "cornell";
-    std::vector<double> edges = cornell ? std::vector<double>{100, 70, 50, 35, 29}
-                                        : std::vector<double>{0.37, 0.2};
+    std::vector<double> edges =
+        cornell ? std::vector<double>{100, 70, 50, 35, 29} : std::vector<double>{0.37, 0.2};
     if (quick) edges.resize(1);
     for (const double max_edge : edges)
       print_row(name, max_edge, prt::scene::subdivide_to_edge_length(scene, max_edge));
