@@ -2,6 +2,7 @@
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -57,6 +58,58 @@ inline scene::Scene open_room(const std::string& lamp_material) {
          scene::make_quad({0.35f, 0.9f, 0.35f}, {0.3f, 0, 0}, {0, 0, 0.3f}, 2, 2, glm::vec3(0.5f),
                           "lamp"),
          lamp_material, glm::vec3(10.f));
+  return s;
+}
+
+// An irregular octahedron (vertices at +x 1, −x 0.5, +y 2.3, −y 1.1, +z 0.6, −z 1.4 from the
+// origin: its eight faces all differ, so neighbours ask for different splits), outward, closed.
+// One primitive sharing its 6 vertices, or two (the faces above and below y = 0, each primitive
+// with its own copies of the 4 equator vertices).
+inline scene::Scene octahedron(bool two_primitives) {
+  const glm::vec3 x(1.f, 0, 0), y(0, 2.3f, 0), z(0, 0, 0.6f);
+  const glm::vec3 nx(-0.5f, 0, 0), ny(0, -1.1f, 0), nz(0, 0, -1.4f);
+  const std::vector<std::array<glm::vec3, 3>> faces = {
+      {x, y, z},  {z, y, nx},  {nx, y, nz},  {nz, y, x},  // above y = 0
+      {x, z, ny}, {z, nx, ny}, {nx, nz, ny}, {nz, x, ny}};
+  scene::Scene s;
+  for (int half = 0; half < (two_primitives ? 2 : 1); ++half) {
+    scene::ScenePrimitive p;
+    p.first_vertex = uint32_t(s.positions.size());
+    p.first_triangle = uint32_t(s.triangles.size());
+    p.material = half == 0 ? "upper" : "lower";
+    std::vector<glm::vec3> corners = {x, nx, y, ny, z, nz};
+    for (const glm::vec3& c : corners) {
+      s.positions.push_back(c);
+      s.normals.push_back(glm::normalize(c));
+      s.albedo.push_back(glm::vec3(0.5f));
+    }
+    for (std::size_t f = 0; f < faces.size(); ++f) {
+      if (two_primitives && (f < 4) != (half == 0)) continue;
+      glm::uvec3 t;
+      for (int k = 0; k < 3; ++k)
+        t[k] = p.first_vertex +
+               uint32_t(std::find(corners.begin(), corners.end(), faces[f][k]) - corners.begin());
+      s.triangles.push_back(t);
+    }
+    p.vertex_count = uint32_t(s.positions.size()) - p.first_vertex;
+    p.triangle_count = uint32_t(s.triangles.size()) - p.first_triangle;
+    s.primitives.push_back(p);
+  }
+  return s;
+}
+
+// A 1 × 1 floor (z = 0, facing up) split into n × n squares, a small lamp above it facing
+// down, high enough to light the floor almost evenly, and an occluding square near the floor
+// casting a sharp shadow (a narrow penumbra).
+inline scene::Scene shadow_scene(int n) {
+  scene::Scene s;
+  append(s, scene::make_quad({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, n, n, glm::vec3(0.5f)), "floor");
+  append(s,
+         scene::make_quad({0.45f, 0.45f, 2.f}, {0, 0.1f, 0}, {0.1f, 0, 0}, 1, 1, glm::vec3(0.5f)),
+         "lamp", glm::vec3(200.f));
+  append(s,
+         scene::make_quad({0.3f, 0.25f, 0.15f}, {0, 0.3f, 0}, {0.3f, 0, 0}, 1, 1, glm::vec3(0.5f)),
+         "occluder");
   return s;
 }
 
