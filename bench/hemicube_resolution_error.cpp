@@ -15,10 +15,10 @@
 #include <string>
 #include <vector>
 
-#include "hemicube_errors.h"
+#include "fixtures/radiosity/hemicube_errors.h"
 #include "radiosity/form_factors.h"
 #include "radiosity/patches.h"
-#include "radiosity_fixtures.h"
+#include "fixtures/radiosity/radiosity_fixtures.h"
 #include "scene/ray_caster.h"
 
 int main(int argc, char** argv) {

@@ -11,8 +11,8 @@
 #include <vector>
 
 #include "radiosity/patch_refinement.h"
-#include "radiosity_fixtures.h"
-#include "shadow_floor.h"
+#include "fixtures/radiosity/radiosity_fixtures.h"
+#include "fixtures/radiosity/shadow_floor.h"
 
 int main(int argc, char** argv) {
   using namespace prt::radiosity;

@@ -18,8 +18,8 @@
 #include <utility>
 #include <vector>
 
-#include "mesh_quality.h"
-#include "radiosity_fixtures.h"
+#include "fixtures/radiosity/mesh_quality.h"
+#include "fixtures/radiosity/radiosity_fixtures.h"
 #include "scene/scene_loader.h"
 #include "scene/subdivide.h"
 

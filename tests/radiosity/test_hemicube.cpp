@@ -7,11 +7,11 @@
 #include <tbb/global_control.h>
 #include <catch2/catch.hpp>
 
-#include "hemicube_errors.h"
+#include "fixtures/radiosity/hemicube_errors.h"
 #include "radiosity/form_factors.h"
 #include "radiosity/hemicube.h"
 #include "radiosity/patches.h"
-#include "radiosity_fixtures.h"
+#include "fixtures/radiosity/radiosity_fixtures.h"
 #include "scene/procedural_mesh.h"
 #include "scene/ray_caster.h"
 #include "support/test_data.h"
