@@ -29,7 +29,9 @@ DEMO_PACKAGES=(
   g++ cmake make                       # a fresh Debian 12 has no compiler
   libembree-dev libtbb-dev libglm-dev  # ray casting (scene/)
   libopenimageio-dev                   # image I/O plugin (scene/plugin/); Imath comes with it
-  libopencv-core-dev                   # OpenImageIO's CMake target lists /usr/include/opencv4
+  openimageio-tools libopencv-core-dev # find_package(OpenImageIO) fails without them: its CMake
+                                       # files check that oiiotool & co. and /usr/include/opencv4
+                                       # exist
   libtinygltf-dev libtinyobjloader-dev nlohmann-json3-dev  # scene loaders, JSON output
   libcli11-dev                         # the command line (cli/)
 )
@@ -41,8 +43,8 @@ TEST_PACKAGES=(
                                        # report tests exercise (without it: SVG only, tests pass)
   clang libclang-rt-14-dev             # scripts/fuzz.sh (libFuzzer)
 )
-# Not installed by either side: openimageio-tools (oiiotool, idiff), used only by the commands in
-# docs/ that regenerate documentation images.
+# Not needed by either side: pkg-config (no find module calls it) and libopenexr-dev (OpenImageIO
+# 2.4 takes half and Imath from libimath-dev; prt includes no OpenEXR header).
 
 packages=("${DEMO_PACKAGES[@]}")
 if [ "$side" = test ]; then packages+=("${TEST_PACKAGES[@]}"); fi
