@@ -14,7 +14,7 @@ set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 
 usage() { echo "usage: scripts/install-deps.sh [--for demo|test]" >&2; exit 2; }
-side=test
+side="test"
 while [ $# -gt 0 ]; do
   case "$1" in
     --for) [ $# -ge 2 ] || usage; side="$2"; shift 2 ;;
