@@ -10,9 +10,10 @@
 
 #include <benchmark/benchmark.h>
 
+#include "bake/cpca/compressor.h"
+#include "fixtures/synthetic_glossy.h"
 #include "glossy_bench_support.h"
 #include "prt/brdf/material.h"
-#include "bake/cpca/compressor.h"
 #include "prt/glossy/cpca_kernel.h"
 #include "prt/glossy/kernel.h"
 
@@ -34,7 +35,7 @@ struct Fixture {
 const Fixture& fixture() {
   static const std::unique_ptr<Fixture> f = [] {
     auto x = std::make_unique<Fixture>();
-    x->data = prt::test::synthetic_glossy(kVertices, kOrder, 1, 256);
+    x->data = prt::fixtures::synthetic_glossy(kVertices, kOrder, 1, 256);
     x->glossy = std::move(prt::GlossyKernel::create(x->data).value());
     prt::CpcaOptions o;
     o.clusters = 64;

@@ -17,7 +17,6 @@
 #include "prt/gauss_legendre.h"
 #include "prt/glossy/transfer.h"
 #include "sh/basis.h"
-#include "support/synthetic_glossy.h"
 
 namespace prt::bench {
 

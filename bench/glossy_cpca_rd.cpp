@@ -1,10 +1,10 @@
-// glossy_cpca_rd — the rate–distortion curve of CPCA (prt/glossy/cpca_transfer.h) on glossy transfer:
-// bytes per vertex of the compressed form against
+// glossy_cpca_rd — the rate–distortion curve of CPCA (prt/glossy/cpca_transfer.h) on glossy
+// transfer: bytes per vertex of the compressed form against
 //   * the relative RMS matrix error, and
 //   * the relit error: relative RMS over visible vertices and RGB of the exit radiance
 //     Σ_i b_i L'_i (double references of prt/glossy/kernel.h), CPCA against uncompressed,
 //     under light probes of ../shared/data/probes projected to SH order 5.
-// Matrices: tests/support/synthetic_glossy.h (shadowed transfer of an analytic scene; no
+// Matrices: fixtures/synthetic_glossy.h (shadowed transfer of an analytic scene; no
 // baker). BRDF: GGX α = 0.3, Schlick F0 = 0.04, plus a Lambert layer 0.3 (grey b).
 // Usage: [PRT_SHARED_DATA_DIR=DIR] glossy_cpca_rd [vertices=20000] [threads=2]
 //        [clusters=16,64,256] [vectors=2,4,8,16,24,32]
@@ -16,9 +16,10 @@
 #include <string>
 #include <vector>
 
+#include "bake/cpca/compressor.h"
+#include "fixtures/synthetic_glossy.h"
 #include "glossy_bench_support.h"
 #include "prt/brdf/material.h"
-#include "bake/cpca/compressor.h"
 #include "prt/glossy/kernel.h"
 #include "prt/glossy/reference.h"
 #include "relight/image_io.h"
@@ -97,7 +98,7 @@ int main(int argc, char** argv) {
   const std::size_t n = argc > 1 ? std::strtoul(argv[1], nullptr, 10) : 20000;
   const unsigned threads = argc > 2 ? static_cast<unsigned>(std::atoi(argv[2])) : 2;
   auto t0 = std::chrono::steady_clock::now();
-  const prt::GlossyTransferData d = prt::test::synthetic_glossy(n, 5, 1, 1024);
+  const prt::GlossyTransferData d = prt::fixtures::synthetic_glossy(n, 5, 1, 1024);
   auto seconds = [](auto a) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - a).count();
   };

@@ -20,17 +20,15 @@
 #include "bake/transfer_baker.h"
 #include "cli_parsing.h"
 #include "command_registry.h"
-#include "progress_reporter.h"
 #include "glossy_cli.h"
-#include "material_option.h"
 #include "haar_cli.h"
 #include "material_option.h"
 #include "output_safety.h"
 #include "progress_reporter.h"
 #include "prt/haar/cube_map.h"
 #include "prt/formats/transfer_file.h"
-#include "radiosity/materials.h"
 #include "relight/environment_input.h"
+#include "scene/material_assignment.h"
 #include "scene/scene_loader.h"
 #include "scene/subdivide.h"
 #include "sh/projection.h"
@@ -45,8 +43,8 @@ struct BakeArguments {
   int samples = 256;
   int bounces = -1;
   double tolerance = 1e-4;
-  std::vector<std::string> albedo;  // r,g,b for every material, or MATERIAL=r,g,b (repeatable)
-  std::optional<double> max_edge;   // subdivide (scene/subdivide.h) before baking
+  std::vector<std::string> albedo;     // r,g,b for every material, or MATERIAL=r,g,b (repeatable)
+  std::optional<double> max_edge;      // subdivide (scene/subdivide.h) before baking
   std::vector<std::string> materials;  // --material overrides (cli/material_option.h)
   bool ao = false, bent_normals = false;
   uint64_t seed = 1;
@@ -78,7 +76,7 @@ glm::vec3 parse_albedo(const std::string& text) {
 // number of MATERIAL=r,g,b (each component in [0, 1)).
 struct AlbedoChoice {
   std::optional<glm::vec3> every;
-  std::vector<radiosity::MaterialValue> per_material;
+  std::vector<scene::MaterialColour> per_material;
 };
 
 AlbedoChoice parse_albedo_options(const std::vector<std::string>& texts) {
@@ -90,9 +88,9 @@ AlbedoChoice parse_albedo_options(const std::vector<std::string>& texts) {
       choice.every = parse_albedo(text);
       continue;
     }
-    radiosity::MaterialValue value;
+    scene::MaterialColour value;
     try {
-      value = radiosity::parse_material_value("--albedo", text);
+      value = scene::parse_material_colour("--albedo", text);
     } catch (const std::invalid_argument& e) {
       throw UsageError(e.what());
     }
@@ -113,13 +111,13 @@ scene::Scene load_bake_scene(const BakeArguments& args) {
   load.material_overrides = parse_material_options(args.materials);
   scene::Scene scene = scene::load_scene(args.scene, load);
   try {
-    radiosity::apply_albedo(scene, albedo.per_material);
+    scene::apply_albedo(scene, albedo.per_material);
+    for (const scene::MaterialColour& value : albedo.per_material)
+      for (std::size_t i : scene::matched_primitives(scene, value))
+        scene.primitives[i].base_color_texture.reset();
   } catch (const std::invalid_argument& e) {
     throw UsageError(e.what());
   }
-  for (const radiosity::MaterialValue& value : albedo.per_material)
-    for (scene::ScenePrimitive& p : scene.primitives)
-      if (p.material == value.material) p.base_color_texture.reset();
   if (args.max_edge) scene = scene::subdivide_to_edge_length(scene, *args.max_edge);
   return scene;
 }

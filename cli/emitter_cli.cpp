@@ -8,6 +8,7 @@
 #include "command_registry.h"
 #include "prt/emitters/emitter_responses.h"
 #include "relight/emitter_relight.h"
+#include "scene/material_assignment.h"
 
 namespace prt::cli {
 namespace {
@@ -16,7 +17,11 @@ std::vector<prt::EmitterColor> parse_colors(const EmitterRelightArguments& a) {
   std::vector<prt::EmitterColor> colors;
   for (const std::string& text : a.emitter) {
     try {
-      colors.push_back(relight::parse_emitter_color("--emitter", text));
+      const scene::MaterialColour value = scene::parse_material_colour("--emitter", text);
+      prt::EmitterColor color;
+      color.name = value.name;
+      for (int c = 0; c < 3; ++c) color.rgb[c] = value.rgb[c];
+      colors.push_back(color);
     } catch (const std::invalid_argument& e) {
       throw UsageError(e.what());
     }

@@ -1,5 +1,5 @@
-// `prt radiosity SCENE -o OUT [...]`: light a scene by its own emitters (diffuse radiosity) and
-// render it (relight/radiosity_pipeline.h does the work).
+// `prt radiosity SCENE -o OUT [...]`: light a scene by its own emitters (diffuse radiosity,
+// radiosity/scene_solve.h) and draw the solution (relight/radiosity_render.h).
 #include <cmath>
 #include <cstdio>
 #include <memory>
@@ -10,7 +10,9 @@
 #include <CLI/CLI.hpp>
 
 #include "command_registry.h"
-#include "relight/radiosity_pipeline.h"
+#include "radiosity/scene_solve.h"
+#include "relight/radiosity_render.h"
+#include "scene/material_assignment.h"
 
 namespace prt::cli {
 namespace {
@@ -52,34 +54,31 @@ void parse_size(const std::string& text, relight::RenderOptions* render) {
   render->height = h;
 }
 
-relight::RadiosityRequest make_request(const RadiosityArguments& a) {
-  relight::RadiosityRequest r;
+radiosity::SceneSolveRequest make_solve_request(const RadiosityArguments& a) {
+  radiosity::SceneSolveRequest r;
   r.scene_path = a.scene;
-  r.output_path = a.output;
-  r.vertex_colors_path = a.vertex_colors;
-  r.csv_path = a.csv;
   r.per_emitter_path = a.per_emitter;
   for (const std::string& e : a.emission)
-    r.emission.push_back(radiosity::parse_material_value("--emission", e));
+    r.emission.push_back(scene::parse_material_colour("--emission", e));
   for (const std::string& e : a.albedo)
-    r.albedo.push_back(radiosity::parse_material_value("--albedo", e));
+    r.albedo.push_back(scene::parse_material_colour("--albedo", e));
   r.max_edge = a.max_edge;
   r.form_factor_cache = a.form_factor_cache;
-  for (const std::string& m : a.moves) r.moves.push_back(relight::parse_object_move(m));
-  if (a.adaptive) {
+  for (const std::string& m : a.moves) r.moves.push_back(radiosity::parse_object_move(m));
+  if (a.adaptive) {  // --adaptive T: patch refinement
     if (!(*a.adaptive > 0.0) || !std::isfinite(*a.adaptive))
       throw CommandError("--adaptive " + std::to_string(*a.adaptive) +
                          ": the threshold must be a finite positive number");
     if (a.adaptive_passes < 1 || a.adaptive_passes > 32)
       throw CommandError("--adaptive-passes: must be in 1..32");
-    radiosity::AdaptiveOptions o;
+    radiosity::PatchRefinementOptions o;
     o.threshold = *a.adaptive;
     o.max_patches = a.max_patches;
     o.max_passes = a.adaptive_passes;
     if (a.adaptive_levels < 1 || a.adaptive_levels > 16)
       throw CommandError("--adaptive-levels: must be in 1..16");
     o.max_levels = a.adaptive_levels;
-    r.adaptive = o;
+    r.refinement = o;
   } else if (a.max_patches != 0) {
     throw CommandError("--max-patches: only with --adaptive");
   }
@@ -130,6 +129,15 @@ relight::RadiosityRequest make_request(const RadiosityArguments& a) {
   r.form_factors.quadrature_points = a.quadrature;
   r.solve.tolerance = a.tolerance;
   r.solve.max_iterations = a.max_iterations;
+  return r;
+}
+
+relight::RadiosityRenderRequest make_render_request(const RadiosityArguments& a) {
+  relight::RadiosityRenderRequest r;
+  r.scene_path = a.scene;
+  r.output_path = a.output;
+  r.vertex_colors_path = a.vertex_colors;
+  r.csv_path = a.csv;
   r.exposure_ev = a.exposure;
   parse_size(a.size, &r.render);
   if (a.spp < 1 || a.spp > 16) throw CommandError("--spp: must be in 1..16 (N×N per pixel)");
@@ -138,12 +146,38 @@ relight::RadiosityRequest make_request(const RadiosityArguments& a) {
   return r;
 }
 
+struct RadiosityRun {
+  radiosity::SceneSolution solution;
+  relight::RadiosityRenderSummary render;
+};
+
+// Checks every output, solves (the camera resolved on the patch scene before the solve, so
+// that a bad one fails first), then draws the solution.
+RadiosityRun solve_and_render(const RadiosityArguments& args) {
+  const radiosity::SceneSolveRequest solve = make_solve_request(args);
+  const relight::RadiosityRenderRequest draw = make_render_request(args);
+  if (draw.output_path.empty() && draw.vertex_colors_path.empty() && draw.csv_path.empty() &&
+      solve.per_emitter_path.empty())
+    throw CommandError("nothing to write: give -o IMAGE, --vertex-colors, --csv or --per-emitter");
+  radiosity::check_scene_solve(solve, {draw.output_path, draw.vertex_colors_path, draw.csv_path});
+  relight::check_radiosity_outputs(draw);
+  relight::Camera camera;
+  RadiosityRun run;
+  run.solution = radiosity::solve_scene(solve, [&](const scene::Scene& patch_scene) {
+    camera = relight::radiosity_camera(draw, patch_scene);
+  });
+  run.render =
+      relight::render_radiosity(draw, run.solution.scene, run.solution.vertex_radiance, camera);
+  return run;
+}
+
 void run(const RadiosityArguments& args) {
-  const relight::RadiositySummary s = relight::run_radiosity(make_request(args));
+  const RadiosityRun result = solve_and_render(args);
   if (args.quiet) return;
+  const radiosity::SceneSolution& s = result.solution;
   const radiosity::Solution& solution = s.solution;
-  for (std::size_t k = 0; k < s.adaptive_passes.size(); ++k) {
-    const radiosity::AdaptivePass& p = s.adaptive_passes[k];
+  for (std::size_t k = 0; k < s.refinement_passes.size(); ++k) {
+    const radiosity::RefinementPass& p = s.refinement_passes[k];
     std::printf(
         "adaptive pass %zu: %zu patches, %zu over the threshold (and splittable), %zu split\n",
         k + 1, p.patches, p.marked, p.refined);
@@ -154,16 +188,17 @@ void run(const RadiosityArguments& args) {
   std::printf(
       "%zu patches, %zu vertices; form factors %.2f s, solve %.2f s (%zu %s%s), "
       "render %.2f s\n",
-      s.patches, s.vertices, s.form_factor_seconds, s.solve_seconds, solution.iterations,
-      args.solver == "progressive" ? "shots" : "sweeps",
-      solution.converged ? "" : ", NOT converged: raise --max-iterations", s.render_seconds);
-  if (s.cache == relight::RadiositySummary::Cache::Loaded)
+      s.patches, s.scene.vertex_count(), s.form_factor_seconds, s.solve_seconds,
+      solution.iterations, args.solver == "progressive" ? "shots" : "sweeps",
+      solution.converged ? "" : ", NOT converged: raise --max-iterations",
+      result.render.render_seconds);
+  if (s.cache == radiosity::SceneSolution::Cache::Loaded)
     std::printf("form factors loaded from %s (%.2f s)\n", args.form_factor_cache.c_str(),
                 s.cache_seconds);
-  if (s.cache == relight::RadiositySummary::Cache::Saved)
+  if (s.cache == radiosity::SceneSolution::Cache::Saved)
     std::printf("form factors saved to %s (%.2f s)\n", args.form_factor_cache.c_str(),
                 s.cache_seconds);
-  if (!args.moves.empty() && s.cache != relight::RadiositySummary::Cache::None)
+  if (!args.moves.empty() && s.cache != radiosity::SceneSolution::Cache::None)
     std::printf("moved %zu patches: recomputed %zu rows and %zu entries (%.2f s)\n",
                 s.update.moved_patches, s.update.rows_recomputed, s.update.entries_recomputed,
                 s.update_seconds);
@@ -171,7 +206,7 @@ void run(const RadiosityArguments& args) {
       "unshot power %.3g of emitted; absorbed %.6f, escaped %.6f; balance error %.2g; "
       "exposure %+.2f EV\n",
       solution.relative_unshot, share(e.absorbed), share(e.escaped), e.balance_error(),
-      double(s.exposure_ev));
+      double(result.render.exposure_ev));
   if (!s.emitter_reports.empty()) {
     std::printf("per-emitter responses: %zu emitter%s solved in %.2f s on the same form factors:",
                 s.emitter_reports.size(), s.emitter_reports.size() == 1 ? "" : "s",
@@ -183,6 +218,7 @@ void run(const RadiosityArguments& args) {
   }
   std::printf("wrote:");
   for (const std::string& file : s.files_written) std::printf(" %s", file.c_str());
+  for (const std::string& file : result.render.files_written) std::printf(" %s", file.c_str());
   std::printf("\n");
 }
 

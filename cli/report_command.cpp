@@ -33,7 +33,8 @@
 #include "material_option.h"
 #include "output_safety.h"
 #include "progress_reporter.h"
-#include "radiosity/materials.h"
+#include "radiosity/form_factors.h"
+#include "radiosity/solver.h"
 #include "report/glossy_report.h"
 #include "report/radiosity_report.h"
 #include "report/report.h"
@@ -232,9 +233,9 @@ void run_radiosity(const ReportArguments& a) {
   o.quick = a.quick;
   o.seed = a.seed;
   for (const std::string& e : a.emission)
-    o.emission.push_back(rad::parse_material_value("--emission", e));
+    o.emission.push_back(scene::parse_material_colour("--emission", e));
   for (const std::string& e : a.albedo)
-    o.albedo.push_back(rad::parse_material_value("--albedo", e));
+    o.albedo.push_back(scene::parse_material_colour("--albedo", e));
   o.max_edges = parse_max_edges(a.max_edges).value_or(std::vector<double>{});
   o.methods = parse_names<rad::FormFactorMethod>("--methods", a.methods,
                                                  {{"analytic", rad::FormFactorMethod::Analytic},

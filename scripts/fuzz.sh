@@ -12,7 +12,7 @@
 #   TARGET      fuzz_transfer_file fuzz_scene_obj fuzz_scene_gltf fuzz_env_map fuzz_env_map_exr
 #               (default: all)
 # Environment: BUILD_DIR (default <repo>/build-fuzz), REGENERATE_CORPUS=1 rewrites the seeds.
-# Needs clang and libclang-rt-14-dev (scripts/install-deps.sh installs them).
+# Needs clang and libclang-rt-14-dev (scripts/install-deps.sh --for test installs them).
 set -euo pipefail
 
 ROOT="$(cd "$(dirname "$0")/.." && pwd)"
@@ -35,7 +35,7 @@ if [ ${#TARGETS[@]} -eq 0 ]; then
 fi
 
 if ! command -v clang++ >/dev/null || ! ls /usr/lib/llvm-*/lib/clang/*/lib/linux/libclang_rt.fuzzer-x86_64.a >/dev/null 2>&1; then
-  "$ROOT/scripts/install-deps.sh"
+  "$ROOT/scripts/install-deps.sh" --for test
 fi
 
 cmake -S "$ROOT/fuzz" -B "$BUILD_DIR" -DCMAKE_CXX_COMPILER=clang++ \

@@ -1,33 +1,66 @@
 #!/usr/bin/env bash
-# Install everything prt needs to build and test on Debian 12, as root.
-# Does nothing when every package is already present.
-#   1. Debian packages (apt), including Node.js and npm for the glTF viewer check.
-#   2. The npm packages of tests/viewer (three.js, pinned by its package-lock.json) into
-#      tests/viewer/node_modules, with `npm ci`. Nothing is downloaded at build or test time.
+# Installs what prt needs on Debian 12, as root (or through sudo). Does nothing when every package
+# is already present. This is the one place that names the packages.
+#
+# Usage: scripts/install-deps.sh [--for demo|test]
+#   --for demo  what building the `prt` program needs (scripts/demo.sh): the compiler, CMake and
+#               the libraries prt links. No test framework, no Node.js, no clang.
+#   --for test  (the default) the demo's packages plus what only the tests, benchmarks and fuzzers
+#               use (scripts/test.sh, scripts/build.sh, scripts/fuzz.sh), and the npm packages of
+#               tests/viewer (three.js, pinned by its package-lock.json) into
+#               tests/viewer/node_modules, with `npm ci`. Nothing is downloaded at build or test
+#               time.
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 
-PACKAGES=(
-  g++ cmake make pkg-config
-  libembree-dev libglm-dev
-  libopenimageio-dev openimageio-tools libopencv-core-dev
-  libopenexr-dev libtinygltf-dev catch2 libtbb-dev
-  libcli11-dev nlohmann-json3-dev libtinyobjloader-dev
-  libbenchmark-dev
-  librsvg2-bin
-  clang libclang-rt-14-dev  # scripts/fuzz.sh (libFuzzer)
+usage() { echo "usage: scripts/install-deps.sh [--for demo|test]" >&2; exit 2; }
+side="test"
+while [ $# -gt 0 ]; do
+  case "$1" in
+    --for) [ $# -ge 2 ] || usage; side="$2"; shift 2 ;;
+    --for=*) side="${1#--for=}"; shift ;;
+    *) usage ;;
+  esac
+done
+case "$side" in demo | test) ;; *) usage ;; esac
+
+# Building the `prt` program (PRT_BUILD_TESTS=OFF, PRT_BUILD_BENCHMARKS=OFF).
+DEMO_PACKAGES=(
+  g++ cmake make                       # a fresh Debian 12 has no compiler
+  libembree-dev libtbb-dev libglm-dev  # ray casting (scene/)
+  libopenimageio-dev                   # image I/O plugin (scene/plugin/); Imath comes with it
+  openimageio-tools libopencv-core-dev # find_package(OpenImageIO) fails without them: its CMake
+                                       # files check that oiiotool & co. and /usr/include/opencv4
+                                       # exist
+  libtinygltf-dev libtinyobjloader-dev nlohmann-json3-dev  # scene loaders, JSON output
+  libcli11-dev                         # the command line (cli/)
 )
+# Only the tests, benchmarks and fuzzers.
+TEST_PACKAGES=(
+  catch2                               # tests/ (Catch2 v2)
+  libbenchmark-dev                     # bench/ (Google Benchmark)
+  librsvg2-bin                         # rsvg-convert: the PNG plots of `prt report`, which the
+                                       # report tests exercise (without it: SVG only, tests pass)
+  clang libclang-rt-14-dev             # scripts/fuzz.sh (libFuzzer)
+)
+# Not needed by either side: pkg-config (no find module calls it) and libopenexr-dev (OpenImageIO
+# 2.4 takes half and Imath from libimath-dev; prt includes no OpenEXR header).
+
+packages=("${DEMO_PACKAGES[@]}")
+if [ "$side" = test ]; then packages+=("${TEST_PACKAGES[@]}"); fi
 
 missing=()
-for p in "${PACKAGES[@]}"; do
+for p in "${packages[@]}"; do
   if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
     missing+=("$p")
   fi
 done
-# Node.js and npm (tests/viewer): Debian's packages, unless node and npm are already on the
-# PATH (a Node.js from elsewhere conflicts with Debian's npm package).
-command -v node >/dev/null 2>&1 || missing+=(nodejs)
-command -v npm >/dev/null 2>&1 || missing+=(npm)
+if [ "$side" = test ]; then
+  # Node.js and npm (tests/viewer): Debian's packages, unless node and npm are already on the
+  # PATH (a Node.js from elsewhere conflicts with Debian's npm package).
+  command -v node >/dev/null 2>&1 || missing+=(nodejs)
+  command -v npm >/dev/null 2>&1 || missing+=(npm)
+fi
 
 if [ ${#missing[@]} -gt 0 ]; then
   echo "install-deps: installing ${missing[*]}" >&2
@@ -38,11 +71,13 @@ if [ ${#missing[@]} -gt 0 ]; then
   $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
 fi
 
-# three.js for the viewer check, at the version package-lock.json pins.
-viewer="$root/tests/viewer"
-wanted="$(cd "$viewer" && node -p "require('./package-lock.json').packages['node_modules/three'].version")"
-have="$(cd "$viewer" && node -p "try { require('./node_modules/three/package.json').version } catch (e) { '' }")"
-if [ "$have" != "$wanted" ]; then
-  echo "install-deps: installing three@$wanted into tests/viewer/node_modules (npm ci)" >&2
-  (cd "$viewer" && npm ci --no-audit --no-fund --ignore-scripts --loglevel=error >/dev/null)
+if [ "$side" = test ]; then
+  # three.js for the viewer check, at the version package-lock.json pins.
+  viewer="$root/tests/viewer"
+  wanted="$(cd "$viewer" && node -p "require('./package-lock.json').packages['node_modules/three'].version")"
+  have="$(cd "$viewer" && node -p "try { require('./node_modules/three/package.json').version } catch (e) { '' }")"
+  if [ "$have" != "$wanted" ]; then
+    echo "install-deps: installing three@$wanted into tests/viewer/node_modules (npm ci)" >&2
+    (cd "$viewer" && npm ci --no-audit --no-fund --ignore-scripts --loglevel=error >/dev/null)
+  fi
 fi

@@ -1,9 +1,11 @@
 #!/usr/bin/env python3
-"""Lists functions longer than a limit (default 150 lines) in the C++ sources.
+"""Lists functions longer than a limit (default 150 lines) in the C++ sources, tests and benchmarks.
 
 Usage: scripts/long-functions.py [--limit N] [FOLDER ...]   (default: sh prt scene bake radiosity relight
-report cli). A function is a top-level or namespace-level brace block whose opening line looks
-like a definition; lambdas count as part of the function that holds them.
+report cli, and tests bench fuzz examples fixtures). A function is a top-level or namespace-level
+brace block whose opening line looks like a definition (a Catch2 TEST_CASE counts as one);
+lambdas count as part of the function that holds them. Exits 1 when it lists any (ctest runs it
+as `long_functions`).
 """
 import argparse
 import pathlib
@@ -36,7 +38,8 @@ def functions(path):
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--limit", type=int, default=150)
-    ap.add_argument("folders", nargs="*", default=["sh", "prt", "scene", "bake", "radiosity", "relight", "report", "cli"])
+    ap.add_argument("folders", nargs="*", default=["sh", "prt", "scene", "bake", "radiosity", "relight", "report", "cli",
+                                                   "tests", "bench", "fuzz", "examples", "fixtures"])
     args = ap.parse_args()
     root = pathlib.Path(__file__).resolve().parent.parent
     found = []

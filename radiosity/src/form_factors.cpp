@@ -11,8 +11,8 @@
 
 #include "form_factor_rows.h"
 #include "large_buffer.h"
+#include "radiosity/scrambled_sobol.h"
 #include "random.h"
-#include "sobol.h"
 
 namespace prt::radiosity {
 namespace {
@@ -127,7 +127,7 @@ class RowSamples {
 
   const Patch& s_;
   detail::PatchRandom random_;
-  detail::ScrambledSobol4 sobol_;
+  ScrambledSobol4 sobol_;
   bool independent_;
 };
 

@@ -4,18 +4,9 @@
 #include <stdexcept>
 
 #include "prt/formats/geometry_check.h"
-#include "radiosity/materials.h"
 #include "relight_frames.h"
 
 namespace prt::relight {
-
-prt::EmitterColor parse_emitter_color(const std::string& option, const std::string& text) {
-  const radiosity::MaterialValue value = radiosity::parse_material_value(option, text);
-  prt::EmitterColor color;
-  color.name = value.material;
-  for (int c = 0; c < 3; ++c) color.rgb[c] = value.rgb[c];
-  return color;
-}
 
 prt::EmitterResponses load_emitter_responses(const std::string& path) {
   prt::Result<prt::EmitterResponses> data = prt::read_emitter_responses(path);

@@ -11,6 +11,7 @@
 #include <stdexcept>
 #include <tuple>
 
+#include "radiosity/materials.h"
 #include "radiosity/patches.h"
 #include "radiosity_report_outputs.h"
 #include "report/emitter_ground_truth.h"
@@ -44,8 +45,8 @@ bool emits(const radiosity::Patch& p) {
 // The scene with the command line's emission and albedo, checked; throws when nothing emits.
 scene::Scene load_lit_scene(const RadiosityReportOptions& o) {
   scene::Scene s = scene::load_scene(o.scene_path);
-  radiosity::apply_emission(s, o.emission);
-  radiosity::apply_albedo(s, o.albedo);
+  scene::apply_emission(s, o.emission);
+  scene::apply_albedo(s, o.albedo);
   radiosity::check_materials(s);
   bool any = false;
   for (const scene::ScenePrimitive& p : s.primitives)

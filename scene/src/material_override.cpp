@@ -24,12 +24,9 @@ class OverrideParser {
 
   MaterialOverride parse() {
     MaterialOverride out;
-    out.text = text_;
-    out.option = option_;
-    const std::size_t eq = text_.find('=');
-    if (eq == std::string::npos || eq == 0) fail("expected NAME=MODEL[:KEY=VALUE,...]");
-    out.name = text_.substr(0, eq);
-    const std::string rest = text_.substr(eq + 1);
+    static_cast<MaterialAssignment&>(out) =
+        parse_material_assignment(option_, text_, AssignedValue::Brdf);
+    const std::string& rest = out.value;
     const std::size_t colon = rest.find(':');
     const std::string model = rest.substr(0, colon);
     const std::string args = colon == std::string::npos ? "" : rest.substr(colon + 1);
@@ -194,25 +191,6 @@ std::string rgb_text(const glm::vec3& c) {
 
 MaterialOverride parse_material_override(const std::string& text, const std::string& option) {
   return OverrideParser(text, option).parse();
-}
-
-std::vector<std::size_t> matched_primitives(const Scene& scene, const MaterialOverride& o) {
-  std::vector<std::size_t> matched;
-  for (std::size_t i = 0; i < scene.primitives.size(); ++i)
-    if (o.name == "*" || scene.primitives[i].material == o.name) matched.push_back(i);
-  if (matched.empty())
-    for (std::size_t i = 0; i < scene.primitives.size(); ++i)
-      if (scene.primitives[i].name == o.name) matched.push_back(i);
-  if (matched.empty()) {
-    std::string names;
-    for (const ScenePrimitive& p : scene.primitives)
-      if (!p.material.empty() && names.find("'" + p.material + "'") == std::string::npos)
-        names += (names.empty() ? "'" : ", '") + p.material + "'";
-    throw std::invalid_argument(o.option + " " + o.text + ": no material or primitive named '" +
-                                o.name + "' in " + scene.source_path +
-                                " (materials: " + (names.empty() ? "none" : names) + ")");
-  }
-  return matched;
 }
 
 void apply_material_overrides(Scene& scene, const std::vector<MaterialOverride>& overrides) {

@@ -1,16 +1,16 @@
-// Tests of prt/glossy/cpca_transfer.h: exact reconstruction at full rank, error monotone in vectors and
-// clusters, target-error selection, determinism across thread counts, refused input.
-// The matrices are tests/support/synthetic_glossy.h's (shadowed transfer of a small analytic
-// scene, rotated into each vertex's tangent frame).
+// Tests of prt/glossy/cpca_transfer.h: exact reconstruction at full rank, error monotone in vectors
+// and clusters, target-error selection, determinism across thread counts, refused input. The
+// matrices are fixtures/synthetic_glossy.h's (shadowed transfer of a small analytic scene, rotated
+// into each vertex's tangent frame).
 #include <cmath>
 #include <vector>
 
 #include <catch2/catch.hpp>
 
 #include "bake/cpca/compressor.h"
+#include "fixtures/synthetic_glossy.h"
 #include "prt/formats/cpca_file.h"
 #include "prt/formats/geometry_check.h"
-#include "support/synthetic_glossy.h"
 #include "support/test_data.h"
 
 using prt::CpcaOptions;
@@ -20,7 +20,7 @@ using prt::GlossyTransferData;
 namespace {
 
 const GlossyTransferData& data_order5() {
-  static const GlossyTransferData d = prt::test::synthetic_glossy(600, 5, 1, 512);
+  static const GlossyTransferData d = prt::fixtures::synthetic_glossy(600, 5, 1, 512);
   return d;
 }
 
@@ -53,7 +53,7 @@ TEST_CASE("CPCA with as many vectors as dimensions reconstructs to float roundin
   // mean and weights leaves ~sqrt(D)·2^-24 relative per entry; 1e-5 allows 10x that and
   // more, and is far below the truncation error of fewer vectors (K = 3 below: > 1e-3).
   for (int channels : {1, 3}) {
-    const GlossyTransferData d = prt::test::synthetic_glossy(300, 2, channels, 256);
+    const GlossyTransferData d = prt::fixtures::synthetic_glossy(300, 2, channels, 256);
     CpcaOptions o;
     o.clusters = 5;
     o.vectors = 16 * channels;
@@ -67,7 +67,7 @@ TEST_CASE("CPCA with as many vectors as dimensions reconstructs to float roundin
 TEST_CASE("CPCA with K at least the cluster size reconstructs exactly at order 5", "[cpca]") {
   // 40 vertices in 4 clusters, K = 40 ≥ every cluster's size: each cluster's members lie in
   // mean + span of its vectors (D = 625 > K: the Gram side of the subspace iteration).
-  const GlossyTransferData d = prt::test::synthetic_glossy(40, 5, 1, 256);
+  const GlossyTransferData d = prt::fixtures::synthetic_glossy(40, 5, 1, 256);
   CpcaOptions o;
   o.clusters = 4;
   o.vectors = 40;
@@ -158,7 +158,7 @@ TEST_CASE("CPCA is identical for any thread count", "[cpca]") {
 }
 
 TEST_CASE("CPCA refuses bad input with a one-line message", "[cpca]") {
-  GlossyTransferData d = prt::test::synthetic_glossy(20, 2, 1, 64);
+  GlossyTransferData d = prt::fixtures::synthetic_glossy(20, 2, 1, 64);
   CpcaOptions o;
   o.clusters = 3;
   o.vectors = 2;
@@ -184,7 +184,7 @@ TEST_CASE("CPCA refuses bad input with a one-line message", "[cpca]") {
 }
 
 TEST_CASE("CPCA file: round trip, size, and refused damage", "[cpca]") {
-  GlossyTransferData d = prt::test::synthetic_glossy(50, 3, 3, 64);
+  GlossyTransferData d = prt::fixtures::synthetic_glossy(50, 3, 3, 64);
   d.fingerprint = 0x1234567890abcdefull;
   CpcaOptions o;
   o.clusters = 4;
@@ -222,7 +222,7 @@ TEST_CASE("CPCA file with a source section: geometry and materials round trip", 
   // The source section carries what the glossy file had besides its matrices, so that the
   // .prtq relights on its own; everything must come back as written, and the section must
   // agree with the CPCA header.
-  GlossyTransferData d = prt::test::synthetic_glossy(90, 3, 1, 128);
+  GlossyTransferData d = prt::fixtures::synthetic_glossy(90, 3, 1, 128);
   d.materials.resize(2);
   d.materials[1].model = prt::brdf::MaterialModel::kWard;
   d.materials[1].specular = prt::brdf::grey(0.4);
@@ -272,7 +272,7 @@ TEST_CASE("CPCA file with a source section: geometry and materials round trip", 
   moved.positions[0] += 0.5f;
   moved.fingerprint = 0;
   CHECK_FALSE(prt::encode_cpca_file(t, moved).ok());
-  GlossyTransferData fewer = prt::test::synthetic_glossy(80, 3, 1, 128);
+  GlossyTransferData fewer = prt::fixtures::synthetic_glossy(80, 3, 1, 128);
   CHECK_FALSE(prt::encode_cpca_file(t, fewer).ok());
   // A damaged section fails the file's checksum; a truncated one its size.
   std::vector<unsigned char> bad = *with;

@@ -1,17 +1,17 @@
-// Tests of bake/cpca/relit_metric.h and CpcaOptions::row_metric (prt/glossy/cpca_transfer.h): the relit metric against
-// closed forms and an independent Monte Carlo estimate of the relit error, the identity metric
-// against the plain compressor, exactness at full rank, and refused metrics.
+// Tests of bake/cpca/relit_metric.h and CpcaOptions::row_metric (prt/glossy/cpca_transfer.h): the
+// relit metric against closed forms and an independent Monte Carlo estimate of the relit error, the
+// identity metric against the plain compressor, exactness at full rank, and refused metrics.
 #include <cmath>
 #include <random>
 #include <vector>
 
 #include <catch2/catch.hpp>
 
-#include "prt/glossy/brdf_projection.h"
 #include "bake/cpca/compressor.h"
 #include "bake/cpca/relit_metric.h"
+#include "fixtures/synthetic_glossy.h"
+#include "prt/glossy/brdf_projection.h"
 #include "sh/zonal.h"
-#include "support/synthetic_glossy.h"
 
 using prt::CpcaOptions;
 using prt::CpcaTransfer;
@@ -75,7 +75,7 @@ TEST_CASE("Relit metric of a Lambert surface is the clamped cosine's outer produ
   // view (sh/zonal.h's clamped-cosine coefficients: an independent closed form). So
   // C = (ρ/π)² z zᵀ, rank one; scaled to a largest eigenvalue of 1 it is z zᵀ/|z|², and the
   // floor adds floor²·I. The kZonal projection is exact for Lambert: tolerance 1e-12.
-  GlossyTransferData d = prt::test::synthetic_glossy(20, 5, 1, 64);
+  GlossyTransferData d = prt::fixtures::synthetic_glossy(20, 5, 1, 64);
   d.materials[0] = prt::brdf::Material{};  // Lambert, ρ = 0.8
   prt::RelitMetricOptions o;
   o.floor = 0.1;
@@ -105,7 +105,7 @@ TEST_CASE("Relit metric measures the expected relit error of a glossy surface", 
   // the ratio of expected relit errors (random views, 40,000 samples: ~1% noise on each; the
   // metric's 16×32 view grid is accurate to well under 1% for this smooth b). Tolerance 4%.
   // The plain (identity) metric would give a ratio of 1; the measured ratio is far from it.
-  GlossyTransferData d = prt::test::synthetic_glossy(20, 5, 1, 64);
+  GlossyTransferData d = prt::fixtures::synthetic_glossy(20, 5, 1, 64);
   d.materials[0] = glossy_material();
   prt::RelitMetricOptions o;
   o.floor = 1e-6;  // (the floor adds 1e-12·I: negligible here)
@@ -134,7 +134,7 @@ TEST_CASE("Relit metric measures the expected relit error of a glossy surface", 
 TEST_CASE("CPCA under the identity metric is the plain compression, bit for bit",
           "[cpca][metric]") {
   // W = I exactly (Jacobi leaves a diagonal matrix alone), so every step is the plain one.
-  const GlossyTransferData d = prt::test::synthetic_glossy(200, 3, 3, 128);
+  const GlossyTransferData d = prt::fixtures::synthetic_glossy(200, 3, 3, 128);
   CpcaOptions o;
   o.clusters = 4;
   o.vectors = 5;
@@ -152,14 +152,14 @@ TEST_CASE("CPCA under the identity metric is the plain compression, bit for bit"
 
 TEST_CASE("CPCA under the relit metric: exact at full rank, lower relit error at a fixed size",
           "[cpca][metric]") {
-  GlossyTransferData d = prt::test::synthetic_glossy(400, 5, 1, 256);
+  GlossyTransferData d = prt::fixtures::synthetic_glossy(400, 5, 1, 256);
   d.materials[0] = glossy_material();
   CpcaOptions o;
   o.row_metric = require(prt::cpca_relit_metric(d));
   {
     // 40 vertices in 4 clusters with K = 40: every member in mean + span, to rounding. The map
     // back by W⁻¹ (condition number ≤ 1/floor = 20) scales the float rounding: 1e-4.
-    GlossyTransferData small = prt::test::synthetic_glossy(40, 5, 1, 256);
+    GlossyTransferData small = prt::fixtures::synthetic_glossy(40, 5, 1, 256);
     small.materials[0] = glossy_material();
     o.clusters = 4;
     o.vectors = 40;
@@ -197,7 +197,7 @@ TEST_CASE("CPCA under the relit metric: exact at full rank, lower relit error at
 }
 
 TEST_CASE("CPCA refuses a malformed metric with a one-line message", "[cpca][metric]") {
-  const GlossyTransferData d = prt::test::synthetic_glossy(30, 2, 1, 64);
+  const GlossyTransferData d = prt::fixtures::synthetic_glossy(30, 2, 1, 64);
   CpcaOptions o;
   o.clusters = 2;
   o.vectors = 2;

@@ -1,25 +1,19 @@
-// tests/cli/test_cli_progress.cpp — progress on stderr (cli/progress_reporter.h): what the
-// commands print while they work, that --quiet silences it and that stdout keeps only results.
+// tests/cli/test_cli_progress.cpp — progress on stderr: what the commands print while they work,
+// that --quiet silences it and that stdout keeps only results.
 //
 // The binary runs with PRT_PROGRESS_INTERVAL=0 (a line on every update when stderr is not a
 // terminal) so that short runs show their progress; the reporter's throttling itself is tested
-// on the class with a file as its output.
+// on the class with a file as its output (test_progress_reporter.cpp).
 #include <chrono>
-#include <cstdio>
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
-#include <thread>
 #include <vector>
-
-#include <unistd.h>
 
 #include <catch2/catch.hpp>
 
 #include "cli_run.h"
-#include "progress_reporter.h"
 #include "relight/image_io.h"
 #include "support/test_data.h"
 
@@ -149,90 +143,4 @@ TEST_CASE("cli progress: a long env projection reports its progress and --quiet 
     CHECK(quiet.err.find("projecting") == std::string::npos);
     CHECK(quiet.out == shown.out);
   }
-}
-
-TEST_CASE("progress reporter: plain lines are throttled to one per interval") {
-  const fs::path dir = scratch("reporter");
-  const fs::path log = dir / "log.txt";
-  std::FILE* file = std::fopen(log.string().c_str(), "w");
-  REQUIRE(file);
-  const double interval = 0.05;
-  const auto start = std::chrono::steady_clock::now();
-  {
-    prt::cli::ProgressReporter reporter(false, file, false, interval);
-    reporter.start_fraction("work");
-    for (int i = 1; i <= 400; ++i) {
-      reporter.set_done(i, 400);
-      std::this_thread::sleep_for(std::chrono::milliseconds(1));
-    }
-    reporter.finish();
-    reporter.start_items("quick", 10, "item");  // ends before the first interval: silent
-    reporter.set_done(10, 10);
-    reporter.finish();
-  }
-  const double elapsed =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  std::fclose(file);
-  const std::vector<std::string> lines = lines_of(read_all(log));
-  INFO(read_all(log));
-  // One line per elapsed interval at most (the first after one interval), plus the final line.
-  REQUIRE(!lines.empty());
-  CHECK(lines.size() <= static_cast<std::size_t>(elapsed / interval) + 1);
-  CHECK(lines.back().find("work: done in") == 0);
-  CHECK(count_containing(read_all(log), "quick") == 0);
-  if (elapsed > 4 * interval) CHECK(lines.size() >= 2);  // progress while it worked
-
-  // Quiet: nothing, whatever the interval.
-  std::FILE* silent = std::fopen(log.string().c_str(), "w");
-  REQUIRE(silent);
-  {
-    prt::cli::ProgressReporter reporter(true, silent, false, 0.0);
-    reporter.start("bake", 5);
-    reporter.advance(5, 100);
-    reporter.message("a step");
-    reporter.finish();
-  }
-  std::fclose(silent);
-  CHECK(read_all(log).empty());
-}
-
-TEST_CASE("progress reporter: a terminal gets one status line redrawn in place") {
-  const fs::path log = scratch("terminal") / "tty.txt";
-  std::FILE* file = std::fopen(log.string().c_str(), "w");
-  REQUIRE(file);
-  {
-    prt::cli::ProgressReporter reporter(false, file, true, 5.0);
-    reporter.start_items("turntable", 3, "frame");
-    std::this_thread::sleep_for(std::chrono::milliseconds(350));  // past the 0.3 s delay
-    reporter.set_done(1, 3);
-    reporter.message("a note");  // ends the status line first
-    std::this_thread::sleep_for(std::chrono::milliseconds(120));
-    reporter.set_done(3, 3);
-    reporter.finish();
-  }
-  std::fclose(file);
-  const std::string text = read_all(log);
-  INFO(text);
-  // Each redraw returns the carriage and erases the old line (ESC[K) before writing.
-  CHECK(text.find("\r\033[Kturntable: frame 1/3") != std::string::npos);
-  CHECK(text.find("\na note\n") != std::string::npos);
-  CHECK(text.find("\r\033[Kturntable: 3 frames done in") != std::string::npos);
-  CHECK(text.back() == '\n');
-
-  // A phase cut short (an exception unwinding past the reporter) leaves an erased line, not a
-  // half-drawn one that the error message would be appended to.
-  std::FILE* cut = std::fopen(log.string().c_str(), "w");
-  REQUIRE(cut);
-  {
-    prt::cli::ProgressReporter reporter(false, cut, true, 5.0);
-    reporter.start_fraction("projecting");
-    std::this_thread::sleep_for(std::chrono::milliseconds(350));
-    reporter.set_done(1, 4);
-  }
-  std::fclose(cut);
-  const std::string cut_text = read_all(log);
-  INFO(cut_text);
-  CHECK(cut_text.find("projecting:  25%") != std::string::npos);
-  CHECK(cut_text.size() >= 4);
-  CHECK(cut_text.substr(cut_text.size() - 4) == "\r\033[K");
 }

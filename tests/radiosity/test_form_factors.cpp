@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <random>
 #include <vector>
 
 #include <tbb/global_control.h>
@@ -11,12 +12,10 @@
 
 #include "radiosity/form_factors.h"
 #include "radiosity/patches.h"
-#include "radiosity_fixtures.h"
+#include "radiosity/scrambled_sobol.h"
+#include "fixtures/radiosity/radiosity_fixtures.h"
 #include "scene/procedural_mesh.h"
 #include "scene/ray_caster.h"
-// The sampler is internal to the module (header-only, no dependencies).
-#include "../../radiosity/src/random.h"
-#include "../../radiosity/src/sobol.h"
 
 using namespace prt::radiosity;
 using prt::test::two_squares;
@@ -304,7 +303,7 @@ TEST_CASE("scrambled Sobol' points are stratified in every coordinate",
           "[radiosity][form-factors]") {
   // 2^m points: each coordinate has exactly one point in each interval of length 2^-m, and
   // coordinates (0, 1) form a (0, m, 2)-net (one point in each 2^-a × 2^-(m-a) box).
-  const prt::radiosity::detail::ScrambledSobol4 sobol({0x12345678u, 0x9abcdef0u, 0x0f1e2d3cu, 7u});
+  const ScrambledSobol4 sobol({0x12345678u, 0x9abcdef0u, 0x0f1e2d3cu, 7u});
   const int m = 10, n = 1 << m;
   std::vector<std::array<double, 4>> points;
   for (int k = 0; k < n; ++k) points.push_back(sobol.point(static_cast<uint32_t>(k)));
@@ -373,15 +372,16 @@ TEST_CASE("ray streams find the same closest hits as single rays", "[radiosity][
   const prt::scene::Scene box =
       prt::scene::make_box({0, 0, 0}, {1, 1.5, 2}, 4, /*normals_inward=*/true, glm::vec3(0.5f));
   const prt::scene::RayCaster caster(box);
+  // Origins inside the box, directions uniform on the sphere (normalised Gaussian vectors).
   std::vector<glm::vec3> origins, dirs;
-  prt::radiosity::detail::PatchRandom random(3, 0);
+  std::mt19937_64 engine(3);
+  std::uniform_real_distribution<double> uniform(0.0, 1.0);
+  std::normal_distribution<double> normal;
   for (int k = 0; k < 448; ++k) {
-    origins.emplace_back(0.1 + 0.8 * random.uniform(), 0.1 + 1.3 * random.uniform(),
-                         0.1 + 1.8 * random.uniform());
-    dirs.push_back(glm::vec3(prt::radiosity::detail::cosine_direction(
-        glm::normalize(
-            glm::dvec3(random.uniform() - 0.5, random.uniform() - 0.5, random.uniform() - 0.5)),
-        random.uniform(), random.uniform())));
+    const double x = uniform(engine), y = uniform(engine), z = uniform(engine);
+    origins.emplace_back(0.1 + 0.8 * x, 0.1 + 1.3 * y, 0.1 + 1.8 * z);
+    const double dx = normal(engine), dy = normal(engine), dz = normal(engine);
+    dirs.push_back(glm::vec3(glm::normalize(glm::dvec3(dx, dy, dz))));
   }
   const float inf = std::numeric_limits<float>::infinity();
   for (int length : {1, 7, 64})

@@ -2,124 +2,38 @@
 // ray geometry and against the ray-cast item buffer, and its convergence with the resolution.
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <vector>
 
 #include <tbb/global_control.h>
 #include <catch2/catch.hpp>
 
+#include "fixtures/radiosity/hemicube_errors.h"
 #include "radiosity/form_factors.h"
 #include "radiosity/hemicube.h"
-#include "radiosity/materials.h"
 #include "radiosity/patches.h"
-#include "radiosity_fixtures.h"
+#include "fixtures/radiosity/radiosity_fixtures.h"
 #include "scene/procedural_mesh.h"
 #include "scene/ray_caster.h"
-#include "scene/scene_loader.h"
-#include "scene/subdivide.h"
 #include "support/test_data.h"
 
 using namespace prt::radiosity;
+using prt::test::hemicube_square_to_square;
+using prt::test::kOppositeUnitSquare;
+using prt::test::kPerpendicularUnitSquare;
+using prt::test::row_difference;
 using prt::test::two_squares;
+using prt::test::worst_point_error;
 
 namespace {
 
-const std::vector<glm::dvec3> kOpposite = {{0, 0, 1}, {0, 1, 1}, {1, 1, 1}, {1, 0, 1}};
-const std::vector<glm::dvec3> kPerpendicular = {{0, 0, 0}, {0, 1, 0}, {0, 1, 1}, {0, 0, 1}};
-
-// F from the first `half` patches (square A) to the rest (square B) by hemicubes, area-weighted.
-double hemicube_square_to_square(const std::vector<Patch>& patches, std::size_t half, int r) {
-  const prt::scene::Scene none;
-  double weighted = 0.0, area = 0.0;
-  std::vector<float> row;
-  HemicubeBuffer buffer;
-  for (uint32_t i = 0; i < half; ++i) {
-    rasterize_hemicube(patches, i, r, &buffer);
-    hemicube_form_factors(buffer, patches.size(), &row);
-    area += patches[i].area;
-    for (std::size_t j = half; j < patches.size(); ++j) weighted += patches[i].area * row[j];
-  }
-  return weighted / area;
-}
-
-// The largest |hemicube − Lambert at the centroid| over A's patches (point value: the
-// hemicube's own error, without the collocation error of standing at one point).
-double worst_point_error(const std::vector<Patch>& patches, std::size_t half,
-                         const std::vector<glm::dvec3>& b, int r) {
-  double worst = 0.0;
-  std::vector<float> row;
-  HemicubeBuffer buffer;
-  for (uint32_t i = 0; i < half; ++i) {
-    rasterize_hemicube(patches, i, r, &buffer);
-    hemicube_form_factors(buffer, patches.size(), &row);
-    double f = 0.0;
-    for (std::size_t j = half; j < patches.size(); ++j) f += row[j];
-    worst = std::max(
-        worst, std::abs(f - point_polygon_form_factor(patches[i].centroid, patches[i].normal, b)));
-  }
-  return worst;
-}
-
 // The Cornell box (shared data) subdivided to `max_edge`.
 prt::scene::Scene cornell_box(double max_edge) {
-  prt::scene::Scene scene =
-      prt::scene::load_scene(prt::test::shared_data("meshes/cornell_box.obj").string());
-  apply_albedo(scene, {parse_material_value("--albedo", "white=0.73")});
-  return prt::scene::subdivide_to_edge_length(scene, max_edge);
-}
-
-// Area-weighted mean over rows of Σ_j |F_ij − G_ij| (the share of row i's power sent to a
-// different patch), and the largest such row difference.
-std::pair<double, double> row_difference(const std::vector<Patch>& patches,
-                                         const FormFactorMatrix& f, const FormFactorMatrix& g) {
-  double weighted = 0.0, area = 0.0, worst = 0.0;
-  for (std::size_t i = 0; i < patches.size(); ++i) {
-    double d = 0.0;
-    for (std::size_t j = 0; j < patches.size(); ++j) d += std::abs(double(f.at(i, j)) - g.at(i, j));
-    weighted += patches[i].area * d;
-    area += patches[i].area;
-    worst = std::max(worst, d);
-  }
-  return {weighted / area, worst};
+  return prt::test::cornell_box(prt::test::shared_data("meshes/cornell_box.obj").string(),
+                                max_edge);
 }
 
 }  // namespace
 
-TEST_CASE("hemicube error against resolution (measurement, prints a table)",
-          "[.][measure][hemicube]") {
-  for (int segments : {1, 8}) {
-    for (bool perpendicular : {false, true}) {
-      const std::vector<Patch> patches = make_patches(two_squares(perpendicular, segments));
-      const std::size_t half = patches.size() / 2;
-      const double exact =
-          perpendicular ? prt::test::kPerpendicularUnitSquares : prt::test::kParallelUnitSquares;
-      for (int r = 16; r <= 512; r *= 2) {
-        const double f = hemicube_square_to_square(patches, half, r);
-        const double point =
-            worst_point_error(patches, half, perpendicular ? kPerpendicular : kOpposite, r);
-        std::printf("%s segments %d R %4d: F %.6f  |F - closed| %.2e  worst point error %.2e\n",
-                    perpendicular ? "perpendicular" : "parallel", segments, r, f,
-                    std::abs(f - exact), point);
-      }
-    }
-  }
-  const std::filesystem::path obj = prt::test::shared_data("meshes/cornell_box.obj");
-  PRT_REQUIRE_SHARED_DATA(obj);
-  const prt::scene::Scene scene = cornell_box(100.0);
-  const prt::scene::RayCaster caster(scene);
-  const std::vector<Patch> patches = make_patches(scene);
-  FormFactorOptions analytic;
-  analytic.quadrature_points = 1;  // the hemicube's point: its centroid
-  const FormFactorMatrix reference = compute_form_factors(patches, caster, analytic);
-  for (int r = 16; r <= 512; r *= 2) {
-    FormFactorOptions o;
-    o.method = FormFactorMethod::Hemicube;
-    o.hemicube_resolution = r;
-    const auto d = row_difference(patches, compute_form_factors(patches, caster, o), reference);
-    std::printf("Cornell box, %zu patches, R %4d: mean row L1 %.2e, worst row %.2e\n",
-                patches.size(), r, d.first, d.second);
-  }
-}
 TEST_CASE("delta form factors tile the hemisphere: sum 1, the faces' symmetries, ~ΔA/π(r²)²",
           "[radiosity][hemicube]") {
   for (int r : {2, 16, 64, 250}) {
@@ -303,7 +217,8 @@ TEST_CASE("hemicube form factors converge to Lambert's formula like 1/R and to t
   // at R = 512 under 1e-3.
   for (bool perpendicular : {false, true}) {
     const std::vector<Patch> patches = make_patches(two_squares(perpendicular));
-    const std::vector<glm::dvec3>& b = perpendicular ? kPerpendicular : kOpposite;
+    const std::vector<glm::dvec3>& b =
+        perpendicular ? kPerpendicularUnitSquare : kOppositeUnitSquare;
     const double e16 = worst_point_error(patches, 2, b, 16);
     const double e512 = worst_point_error(patches, 2, b, 512);
     const double slope = std::log(e16 / e512) / std::log(32.0);

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -14,15 +13,20 @@
 
 #include <catch2/catch.hpp>
 
+#include "fixtures/radiosity/mesh_quality.h"
 #include "radiosity/materials.h"
 #include "radiosity/patches.h"
-#include "relight/radiosity_pipeline.h"
+#include "fixtures/radiosity/radiosity_fixtures.h"
+#include "scene/material_assignment.h"
 #include "scene/procedural_mesh.h"
 #include "scene/scene_loader.h"
 #include "scene/subdivide.h"
 #include "support/test_data.h"
 
 using namespace prt::radiosity;
+using prt::test::octahedron;
+using prt::test::smallest_angle_degrees;
+using prt::test::triangle_area;
 
 namespace {
 
@@ -30,62 +34,6 @@ double total_area(const prt::scene::Scene& s) {
   double a = 0.0;
   for (const Patch& p : make_patches(s)) a += p.area;
   return a;
-}
-
-// An irregular octahedron (vertices at +x 1, −x 0.5, +y 2.3, −y 1.1, +z 0.6, −z 1.4 from the
-// origin: its eight faces all differ, so neighbours ask for different splits), outward, closed.
-// One primitive sharing its 6 vertices, or two (the faces above and below y = 0, each primitive
-// with its own copies of the 4 equator vertices).
-prt::scene::Scene octahedron(bool two_primitives) {
-  const glm::vec3 x(1.f, 0, 0), y(0, 2.3f, 0), z(0, 0, 0.6f);
-  const glm::vec3 nx(-0.5f, 0, 0), ny(0, -1.1f, 0), nz(0, 0, -1.4f);
-  const std::vector<std::array<glm::vec3, 3>> faces = {
-      {x, y, z},  {z, y, nx},  {nx, y, nz},  {nz, y, x},  // above y = 0
-      {x, z, ny}, {z, nx, ny}, {nx, nz, ny}, {nz, x, ny}};
-  prt::scene::Scene s;
-  for (int half = 0; half < (two_primitives ? 2 : 1); ++half) {
-    prt::scene::ScenePrimitive p;
-    p.first_vertex = uint32_t(s.positions.size());
-    p.first_triangle = uint32_t(s.triangles.size());
-    p.material = half == 0 ? "upper" : "lower";
-    std::vector<glm::vec3> corners = {x, nx, y, ny, z, nz};
-    for (const glm::vec3& c : corners) {
-      s.positions.push_back(c);
-      s.normals.push_back(glm::normalize(c));
-      s.albedo.push_back(glm::vec3(0.5f));
-    }
-    for (std::size_t f = 0; f < faces.size(); ++f) {
-      if (two_primitives && (f < 4) != (half == 0)) continue;
-      glm::uvec3 t;
-      for (int k = 0; k < 3; ++k)
-        t[k] = p.first_vertex +
-               uint32_t(std::find(corners.begin(), corners.end(), faces[f][k]) - corners.begin());
-      s.triangles.push_back(t);
-    }
-    p.vertex_count = uint32_t(s.positions.size()) - p.first_vertex;
-    p.triangle_count = uint32_t(s.triangles.size()) - p.first_triangle;
-    s.primitives.push_back(p);
-  }
-  return s;
-}
-
-double triangle_area(const prt::scene::Scene& s, const glm::uvec3& t) {
-  const glm::dvec3 a(s.positions[t.x]), b(s.positions[t.y]), c(s.positions[t.z]);
-  return 0.5 * glm::length(glm::cross(b - a, c - a));
-}
-
-// The smallest angle of any triangle, in degrees.
-double smallest_angle(const prt::scene::Scene& s) {
-  double smallest = 180.0;
-  for (const glm::uvec3& t : s.triangles)
-    for (int k = 0; k < 3; ++k) {
-      const glm::dvec3 p(s.positions[t[k]]), u = glm::dvec3(s.positions[t[(k + 1) % 3]]) - p,
-                                             v = glm::dvec3(s.positions[t[(k + 2) % 3]]) - p;
-      smallest =
-          std::min(smallest, glm::degrees(std::acos(std::clamp(
-                                 glm::dot(u, v) / (glm::length(u) * glm::length(v)), -1.0, 1.0))));
-    }
-  return smallest;
 }
 
 std::string write_text(const std::string& name, const std::string& text) {
@@ -222,76 +170,9 @@ TEST_CASE("subdivision is conforming: no T-junctions, a closed mesh stays closed
       CHECK(longest <= max_edge * (1 + 1e-6));
       // Well shaped: the Delaunay triangulation of the points keeps the smallest angle near
       // the input's (32.4° here; the n² lattice of the input's faces would keep it exactly).
-      const double angle = smallest_angle(out);
-      INFO("smallest angle " << angle << "°, input " << smallest_angle(in) << "°");
-      CHECK(angle > 0.6 * smallest_angle(in));
-    }
-  }
-}
-
-namespace {
-
-// Edges (as position pairs) on other than one triangle in each direction, and vertices strictly
-// inside another triangle's edge (brute force: small meshes only).
-std::pair<std::size_t, std::size_t> seams(const prt::scene::Scene& s, bool t_junctions) {
-  using Key = std::array<float, 6>;
-  std::map<Key, int> directed;
-  for (const glm::uvec3& t : s.triangles)
-    for (int k = 0; k < 3; ++k) {
-      const glm::vec3 a = s.positions[t[k]], b = s.positions[t[(k + 1) % 3]];
-      ++directed[Key{a.x, a.y, a.z, b.x, b.y, b.z}];
-    }
-  std::size_t unmatched = 0, inside = 0;
-  for (const auto& [e, count] : directed) {
-    const auto found = directed.find(Key{e[3], e[4], e[5], e[0], e[1], e[2]});
-    if (count != 1 || found == directed.end() || found->second != 1) ++unmatched;
-    if (!t_junctions) continue;
-    const glm::dvec3 a(e[0], e[1], e[2]), b(e[3], e[4], e[5]);
-    const double length2 = glm::dot(b - a, b - a);
-    for (const glm::vec3& p : s.positions) {
-      const double t = glm::dot(glm::dvec3(p) - a, b - a) / length2;
-      const glm::dvec3 off = glm::dvec3(p) - (a + t * (b - a));
-      if (t > 1e-6 && t < 1 - 1e-6 && glm::dot(off, off) < 1e-12 * length2) ++inside;
-    }
-  }
-  return {unmatched, inside};
-}
-
-}  // namespace
-
-// Prints, for the Cornell box (shared data) and the octahedron above, what subdivision makes:
-// triangles, vertices, smallest angle, worst and mean aspect ratio (longest edge × perimeter /
-// (4√3 · area): 1 for an equilateral triangle), edges not matched by a reverse edge (the box
-// is open at the front and its parts do not share edges: its count is a baseline) and vertices
-// inside another triangle's edge (T-junctions).
-TEST_CASE("subdivision: measure", "[.][measure][subdivide]") {
-  std::vector<std::pair<std::string, prt::scene::Scene>> scenes;
-  scenes.emplace_back("octahedron", octahedron(false));
-  const auto box = prt::test::shared_data("meshes/cornell_box.obj");
-  if (std::filesystem::exists(box))
-    scenes.emplace_back("cornell", prt::scene::load_scene(box.string()));
-  for (const auto& [name, scene] : scenes) {
-    const bool cornell = name == "cornell";
-    for (const double max_edge :
-         cornell ? std::vector<double>{100, 70, 50, 35, 29} : std::vector<double>{0.37, 0.2}) {
-      const prt::scene::Scene out = prt::scene::subdivide_to_edge_length(scene, max_edge);
-      double worst = 0.0, mean = 0.0;
-      for (const glm::uvec3& t : out.triangles) {
-        double longest = 0.0, perimeter = 0.0;
-        for (int k = 0; k < 3; ++k) {
-          const double l = glm::length(glm::dvec3(out.positions[t[k]]) -
-                                       glm::dvec3(out.positions[t[(k + 1) % 3]]));
-          longest = std::max(longest, l), perimeter += l;
-        }
-        const double aspect = longest * perimeter / (4 * std::sqrt(3.0) * triangle_area(out, t));
-        worst = std::max(worst, aspect), mean += aspect / double(out.triangles.size());
-      }
-      const auto [unmatched, inside] = seams(out, out.triangles.size() < 20000);
-      std::printf(
-          "%-10s L=%-5g triangles %6zu vertices %6zu smallest angle %6.2f° aspect worst %6.2f mean "
-          "%5.3f unmatched edges %5zu T-junction vertices %5zu\n",
-          name.c_str(), max_edge, out.triangles.size(), out.positions.size(), smallest_angle(out),
-          worst, mean, unmatched, inside);
+      const double angle = smallest_angle_degrees(out);
+      INFO("smallest angle " << angle << "°, input " << smallest_angle_degrees(in) << "°");
+      CHECK(angle > 0.6 * smallest_angle_degrees(in));
     }
   }
 }
@@ -307,15 +188,18 @@ TEST_CASE("OBJ Ke is read as emission, MATERIAL=r,g,b overrides it", "[radiosity
   CHECK(scene.primitives[0].material == "lamp");
   CHECK(scene.primitives[0].emission == glm::vec3(3, 2, 1));
   CHECK(scene.primitives[1].emission == glm::vec3(0.f));
-  apply_emission(scene, {parse_material_value("--emission", "wall=0.5,0,2")});
+  using prt::scene::parse_material_colour;
+  prt::scene::apply_emission(scene, {parse_material_colour("--emission", "wall=0.5,0,2")});
   CHECK(scene.primitives[1].emission == glm::vec3(0.5f, 0.f, 2.f));
-  apply_albedo(scene, {parse_material_value("--albedo", "wall=0.1")});
+  prt::scene::apply_albedo(scene, {parse_material_colour("--albedo", "wall=0.1")});
   CHECK(scene.albedo[scene.primitives[1].first_vertex] == glm::vec3(0.1f));
   check_materials(scene);
   const std::vector<Patch> patches = make_patches(scene);
   CHECK(patches[0].emission == glm::dvec3(3, 2, 1));
-  CHECK_THROWS_WITH(apply_emission(scene, {parse_material_value("--emission", "glass=1")}),
-                    Catch::Contains("no primitive") && Catch::Contains("lamp, wall"));
+  CHECK_THROWS_WITH(
+      prt::scene::apply_emission(scene, {parse_material_colour("--emission", "glass=1")}),
+      Catch::Contains("--emission glass=1: no material or primitive named 'glass'") &&
+          Catch::Contains("'lamp', 'wall'"));
 }
 
 TEST_CASE("glTF emission is emissiveFactor times KHR_materials_emissive_strength",
@@ -347,9 +231,6 @@ TEST_CASE("glTF emission is emissiveFactor times KHR_materials_emissive_strength
 }
 
 TEST_CASE("bad emission and albedo values are refused with one line", "[radiosity][scene]") {
-  for (const char* text : {"light=-1,0,0", "light=nan", "light=inf,1,1", "light=1,2", "=1",
-                           "light=", "light", "light=1,x,2"})
-    CHECK_THROWS_AS(parse_material_value("--emission", text), std::invalid_argument);
   prt::scene::Scene scene =
       prt::scene::make_quad({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, 1, 1, glm::vec3(0.5f));
   scene.source_path = "quad.obj";
@@ -380,16 +261,4 @@ TEST_CASE("vertex radiance is the area-weighted mean of the patches around a ver
   CHECK(v[0] == Approx(1.0));
   CHECK(v[3 * 3] == Approx(4.0));
   CHECK(v[3 * 1] == Approx((0.5 * 1 + 1.5 * 4) / 2.0));
-}
-
-TEST_CASE("automatic exposure maps the log-average luminance of lit pixels to 0.18",
-          "[radiosity][scene]") {
-  prt::relight::Image image;
-  image.width = 4;
-  image.height = 1;
-  // Two grey pixels of luminance 0.09 and 1.44 (log-average 0.36), two black ones (ignored).
-  image.rgb = {0.09f, 0.09f, 0.09f, 1.44f, 1.44f, 1.44f, 0.f, 0.f, 0.f, 0.f, 0.f, 0.f};
-  CHECK(prt::relight::automatic_exposure_ev(image) == Approx(-1.0).margin(1e-5));
-  image.rgb.assign(12, 0.f);
-  CHECK(prt::relight::automatic_exposure_ev(image) == 0.f);
 }

@@ -10,6 +10,7 @@
 #include "radiosity/patches.h"
 #include "radiosity/solver.h"
 #include "report/emitter_ground_truth.h"
+#include "scene/material_assignment.h"
 #include "scene/procedural_mesh.h"
 #include "scene/ray_caster.h"
 #include "scene/scene.h"
@@ -187,10 +188,11 @@ TEST_CASE(
   const auto path = prt::test::shared_data("meshes/cornell_box.obj");
   PRT_REQUIRE_SHARED_DATA(path);
   prt::scene::Scene s = prt::scene::load_scene(path.string());
-  prt::radiosity::apply_emission(s, {{"light", glm::vec3(20.f)}});
-  prt::radiosity::apply_albedo(s, {{"white", glm::vec3(0.73f)},
-                                   {"red", glm::vec3(0.63f, 0.065f, 0.05f)},
-                                   {"green", glm::vec3(0.14f, 0.45f, 0.091f)}});
+  using prt::scene::parse_material_colour;
+  prt::scene::apply_emission(s, {parse_material_colour("--emission", "light=20")});
+  prt::scene::apply_albedo(s, {parse_material_colour("--albedo", "white=0.73"),
+                               parse_material_colour("--albedo", "red=0.63,0.065,0.05"),
+                               parse_material_colour("--albedo", "green=0.14,0.45,0.091")});
   s = prt::scene::subdivide_to_edge_length(s, 150.0);
   EmitterGroundTruthOptions o;
   o.samples = 2048;

@@ -9,6 +9,7 @@
 
 #include "report/radiosity_report.h"
 #include "scene/glb_writer.h"
+#include "scene/material_assignment.h"
 #include "scene/procedural_mesh.h"
 #include "support/test_data.h"
 
@@ -58,7 +59,7 @@ TEST_CASE("radiosity report: rows, files, and a measure that separates methods",
   prt::report::RadiosityReportOptions o;
   o.scene_path = write_open_scene(dir);
   o.output_dir = (dir / "out").string();
-  o.emission = {{"lamp", glm::vec3(10.f)}};
+  o.emission = {prt::scene::parse_material_colour("--emission", "lamp=10")};
   o.max_edges = {0.25, 0.125};
   o.methods = {rad::FormFactorMethod::Analytic, rad::FormFactorMethod::Rays};
   o.solvers = {rad::SolverKind::GaussSeidel, rad::SolverKind::Progressive};

@@ -220,14 +220,16 @@ TEST_CASE("the Haar axis: cube sizes x lighting terms with K >= 6N^2 collapsed i
   CHECK(report_axes(true, std::vector<int>{}).size() + 1 == report_axes(true).size());
 }
 
-TEST_CASE("end-to-end quick report on a small scene writes consistent files") {
-  // A box on a floor (~150 vertices) under a small lat-long sky with a bright sun texel.
+namespace {
+
+// A box on a floor (~150 vertices) under a small lat-long sky with a bright sun texel, written
+// to dir as scene.glb and sky.exr; the quick report's options on them.
+ReportOptions write_box_on_floor_under_sun(const std::filesystem::path& dir) {
   prt::scene::Scene scene = prt::scene::make_quad(
       glm::vec3(-2, 0, 2), glm::vec3(4, 0, 0), glm::vec3(0, 0, -4), 6, 6, glm::vec3(0.6f), "floor");
   prt::scene::append_scene(
       scene, prt::scene::make_box(glm::vec3(-0.5f, 0, -0.5f), glm::vec3(0.5f, 1, 0.5f), 2, false,
                                   glm::vec3(0.5f, 0.3f, 0.2f)));
-  const auto dir = prt::test::output_path("report_e2e");
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   const std::string scene_path = (dir / "scene.glb").string();
@@ -248,11 +250,11 @@ TEST_CASE("end-to-end quick report on a small scene writes consistent files") {
   o.quick = true;
   o.haar_cubes = std::vector<int>{8, 16};  // quick's 8 plus 16: the cube-size trend (0.1 s here)
   o.image_width = 64, o.image_height = 36;
-  const ReportResult r = run_report(o);
-  for (const char* f :
-       {"results.csv", "results.json", "pareto.svg", "error_vs_order.svg", "summary.md"})
-    CHECK(std::filesystem::exists(dir / "out" / f));
-  // Every setting of every axis was measured once.
+  return o;
+}
+
+// Every setting of every axis was measured once, without failure, to a finite error.
+void check_every_setting_measured_once(const ReportResult& r, const ReportOptions& o) {
   std::size_t unique = 0;
   std::vector<ReportSetting> seen;
   for (const ReportAxis& a : report_axes(true, o.haar_cubes))
@@ -278,37 +280,43 @@ TEST_CASE("end-to-end quick report on a small scene writes consistent files") {
     any_front |= m.on_pareto_front;
   }
   CHECK(any_front);
-  // Physics the report must show: shadowed-only transfer (bounces 0) is worse than converged
-  // interreflection (the floor and box reflect 50-60%), and order 2 is worse than order 6 with a
-  // sun in the map.
-  auto find = [&](int order, int samples, int bounces) {
-    for (const ReportMeasurement& m : r.measurements)
-      if (m.setting.basis == ReportBasis::Sh && m.setting.order == order &&
-          m.setting.samples == samples && m.setting.bounces == bounces &&
-          m.setting.precision == prt::Precision::F32)
-        return m.relative_rms;
-    return static_cast<double>(NAN);
-  };
+}
+
+// The relative RMS error of the SH setting (F32) with this order, samples and bounces; NaN when
+// the report has none.
+double sh_error(const ReportResult& r, int order, int samples, int bounces) {
+  for (const ReportMeasurement& m : r.measurements)
+    if (m.setting.basis == ReportBasis::Sh && m.setting.order == order &&
+        m.setting.samples == samples && m.setting.bounces == bounces &&
+        m.setting.precision == prt::Precision::F32)
+      return m.relative_rms;
+  return static_cast<double>(NAN);
+}
+
+// Physics the report must show: shadowed-only transfer (bounces 0) is worse than converged
+// interreflection (the floor and box reflect 50-60%), and order 2 is worse than order 6 with a
+// sun in the map.
+void check_sh_errors_show_the_physics(const ReportResult& r) {
   const ReportSetting base = base_setting(true);
-  CHECK(find(base.order, base.samples, 0) > find(base.order, base.samples, -1));
-  CHECK(find(2, base.samples, -1) > find(6, base.samples, -1));
+  CHECK(sh_error(r, base.order, base.samples, 0) > sh_error(r, base.order, base.samples, -1));
+  CHECK(sh_error(r, 2, base.samples, -1) > sh_error(r, 6, base.samples, -1));
   // Projection error falls with order (the split is monotone within 1% slack for GT noise).
   REQUIRE(r.projection_error.size() == r.orders.size());
   CHECK(r.projection_error.back() < r.projection_error.front());
+}
 
-  // Haar rows: for each cube (the test asks for 8 and 16), one per K of the quick axis, sharing
-  // one bake (same bake time and file size).
+// Haar rows: for each cube (the test asks for 8 and 16), one per K of the quick axis, sharing
+// one bake (same bake time and file size); the rows by K, all terms (K = 0) last.
+std::map<int, std::vector<const ReportMeasurement*>> check_haar_rows(const ReportResult& r) {
   std::map<int, std::vector<const ReportMeasurement*>> haar;  // cube → rows by K, all (0) last
   for (const int cube : {8, 16})
     for (const int64_t k : haar_terms(true))
       for (const ReportMeasurement& m : r.measurements)
         if (m.setting.basis == ReportBasis::Haar && m.setting.cube == cube && m.setting.terms == k)
           haar[cube].push_back(&m);
-  std::size_t haar_rows = 0;
   for (const auto& [cube, rows] : haar) {
     INFO("cube " << cube);
     REQUIRE(rows.size() == haar_terms(true).size());
-    haar_rows += rows.size();
     for (const ReportMeasurement* m : rows) {
       CHECK(m->axis == "haar");
       CHECK(m->bake_seconds == rows.front()->bake_seconds);
@@ -331,13 +339,18 @@ TEST_CASE("end-to-end quick report on a small scene writes consistent files") {
     }
     CHECK(rows.back()->relative_rms * 2 < rows.front()->relative_rms);
   }
-  const double haar8 = haar[8].back()->relative_rms, haar16 = haar[16].back()->relative_rms;
+  return haar;
+}
+
+// The Haar rows with every term against SH: interreflection, cube resolution, all frequencies.
+void check_haar_against_sh(const ReportResult& r, double haar8, double haar16) {
+  const ReportSetting base = base_setting(true);
   INFO("all terms: cube 8 " << haar8 << ", cube 16 " << haar16 << "; SH order 3 "
-                            << find(3, base.samples, -1) << ", shadowed SH "
-                            << find(base.order, base.samples, 0));
+                            << sh_error(r, 3, base.samples, -1) << ", shadowed SH "
+                            << sh_error(r, base.order, base.samples, 0));
   // The rows hold interreflection: better than the shadowed-only SH transfer (bounces 0, which
   // misses the 50-60% reflecting floor and box; measured 10.1% vs Haar 6.2% and 2.3%).
-  CHECK(haar8 * 1.25 < find(base.order, base.samples, 0));
+  CHECK(haar8 * 1.25 < sh_error(r, base.order, base.samples, 0));
   // Cube resolution: with one direction per texel the 8-cube (texels ≈ 14° at a face centre)
   // puts the sun (a 5.6° lat-long texel) in a texel twice its size and shifts the box's shadow
   // edge; the 16-cube (≈ 7°) nearly resolves it. Measured 6.2% → 2.3%; required ≥ 1.5x.
@@ -346,12 +359,13 @@ TEST_CASE("end-to-end quick report on a small scene writes consistent files") {
   // (7.4%); the 16-cube must be at least 2x better (measured 3.2x), and must beat every SH
   // setting of the sweep (best: order 6 at 1024 spp, 4.3%) — if it did not, a frame or sign
   // error in the Haar lighting (the sun in the wrong texel) would be the likely cause.
-  CHECK(haar16 * 2 < find(3, base.samples, -1));
+  CHECK(haar16 * 2 < sh_error(r, 3, base.samples, -1));
   for (const ReportMeasurement& m : r.measurements)
     if (m.setting.basis == ReportBasis::Sh) CHECK(haar16 < m.relative_rms);
-  // The JSON mirrors the measurements and prints the basis convention.
-  std::ifstream jf(dir / "out" / "results.json");
-  const nlohmann::json j = nlohmann::json::parse(jf);
+}
+
+// The JSON mirrors the measurements and prints the basis convention.
+void check_results_json(const nlohmann::json& j, const ReportResult& r, std::size_t haar_rows) {
   CHECK(j["results"].size() == r.measurements.size());
   CHECK(j["sh_basis"].get<std::string>().find("no Condon-Shortley") != std::string::npos);
   CHECK(j["ground_truth"]["samples_per_vertex"].get<int>() == r.ground_truth_samples);
@@ -372,8 +386,12 @@ TEST_CASE("end-to-end quick report on a small scene writes consistent files") {
     }
   }
   CHECK(json_haar == static_cast<int>(haar_rows));
-  // CSV: a header and one row per measurement.
-  std::ifstream cf(dir / "out" / "results.csv");
+}
+
+// CSV: a header and one row per measurement.
+void check_results_csv(const std::filesystem::path& csv, const ReportResult& r,
+                       std::size_t haar_rows) {
+  std::ifstream cf(csv);
   int lines = 0, csv_haar = 0;
   std::string header;
   for (std::string line; std::getline(cf, line);) {
@@ -384,30 +402,32 @@ TEST_CASE("end-to-end quick report on a small scene writes consistent files") {
   CHECK(lines == static_cast<int>(r.measurements.size()) + 1);
   CHECK(header.rfind("axis,basis,order,samples,cube,terms,bounces,precision,", 0) == 0);
   CHECK(csv_haar == static_cast<int>(haar_rows));
-  // The summary names the cheapest setting for each target and embeds both plots.
-  std::ifstream mf(dir / "out" / "summary.md");
-  std::stringstream md;
-  md << mf.rdbuf();
-  CHECK(md.str().find("| 10% |") != std::string::npos);
-  CHECK(md.str().find("(pareto.png)") != std::string::npos);
-  CHECK(md.str().find("(error_vs_order.png)") != std::string::npos);
-  CHECK(md.str().find("## Haar wavelets") != std::string::npos);
-  CHECK(md.str().find("(haar_error_vs_terms.png)") != std::string::npos);
-  CHECK(std::filesystem::exists(dir / "out" / "haar_error_vs_terms.svg"));
+}
+
+// The summary names the cheapest setting for each target and embeds both plots.
+void check_summary(const std::string& md, const std::filesystem::path& out_dir) {
+  CHECK(md.find("| 10% |") != std::string::npos);
+  CHECK(md.find("(pareto.png)") != std::string::npos);
+  CHECK(md.find("(error_vs_order.png)") != std::string::npos);
+  CHECK(md.find("## Haar wavelets") != std::string::npos);
+  CHECK(md.find("(haar_error_vs_terms.png)") != std::string::npos);
+  CHECK(std::filesystem::exists(out_dir / "haar_error_vs_terms.svg"));
   // The cheapest-setting lines name the basis.
-  const std::string ten = md.str().substr(md.str().find("| 10% |"), 40);
+  const std::string ten = md.substr(md.find("| 10% |"), 40);
   CHECK((ten.find("| SH order") != std::string::npos ||
          ten.find("| Haar cube") != std::string::npos));
+}
 
-  // The `prt bake --auto` row (quick: tolerance 5%). The 500× sun texel puts energy in every
-  // band; the pilot, raised to 4096 samples because 256 do not resolve that, finds an SH order
-  // ≤ 12 whose truncation stays within 80% of the tolerance (order 10; a 256-sample pilot saw
-  // none, fell back to order 12 and measured 8.3%). The prediction must be honest against the
-  // same ground truth the fixed settings are measured with: measured 5.08% against 4.72%
-  // predicted. The prediction leaves out the mesh's interpolation of interreflected light,
-  // which the ground truth sees, so the bound is 1.25× the prediction; and it must not be a
-  // loose upper bound either (≤ 2× the measurement). The fastest fixed setting at its error is
-  // the one brute force finds among the measurements.
+// The `prt bake --auto` row (quick: tolerance 5%). The 500× sun texel puts energy in every
+// band; the pilot, raised to 4096 samples because 256 do not resolve that, finds an SH order
+// ≤ 12 whose truncation stays within 80% of the tolerance (order 10; a 256-sample pilot saw
+// none, fell back to order 12 and measured 8.3%). The prediction must be honest against the
+// same ground truth the fixed settings are measured with: measured 5.08% against 4.72%
+// predicted. The prediction leaves out the mesh's interpolation of interreflected light,
+// which the ground truth sees, so the bound is 1.25× the prediction; and it must not be a
+// loose upper bound either (≤ 2× the measurement). The fastest fixed setting at its error is
+// the one brute force finds among the measurements.
+void check_auto_row(const ReportResult& r, const nlohmann::json& j, const std::string& md) {
   REQUIRE(r.autos.size() == 1);
   const ReportAuto& a = r.autos[0];
   REQUIRE(a.failure.empty());
@@ -432,5 +452,31 @@ TEST_CASE("end-to-end quick report on a small scene writes consistent files") {
   CHECK(a.cheapest_fixed == fastest);
   CHECK(j["auto"].size() == 1);
   CHECK(j["auto"][0]["relative_rms"].get<double>() == a.relative_rms);
-  CHECK(md.str().find("## Scene-adaptive bake (`prt bake --auto`)") != std::string::npos);
+  CHECK(md.find("## Scene-adaptive bake (`prt bake --auto`)") != std::string::npos);
+}
+
+}  // namespace
+
+TEST_CASE("end-to-end quick report on a small scene writes consistent files") {
+  const auto dir = prt::test::output_path("report_e2e");
+  const ReportOptions o = write_box_on_floor_under_sun(dir);
+  const ReportResult r = run_report(o);
+  const std::filesystem::path out = dir / "out";
+  for (const char* f :
+       {"results.csv", "results.json", "pareto.svg", "error_vs_order.svg", "summary.md"})
+    CHECK(std::filesystem::exists(out / f));
+  check_every_setting_measured_once(r, o);
+  check_sh_errors_show_the_physics(r);
+  const std::map<int, std::vector<const ReportMeasurement*>> haar = check_haar_rows(r);
+  const std::size_t haar_rows = haar.at(8).size() + haar.at(16).size();
+  check_haar_against_sh(r, haar.at(8).back()->relative_rms, haar.at(16).back()->relative_rms);
+  std::ifstream jf(out / "results.json");
+  const nlohmann::json j = nlohmann::json::parse(jf);
+  check_results_json(j, r, haar_rows);
+  check_results_csv(out / "results.csv", r, haar_rows);
+  std::ifstream mf(out / "summary.md");
+  std::stringstream md;
+  md << mf.rdbuf();
+  check_summary(md.str(), out);
+  check_auto_row(r, j, md.str());
 }

@@ -13,8 +13,8 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "report/stability_report.h"
 #include "report/stability_cases.h"
+#include "report/stability_report.h"
 #include "support/test_data.h"
 
 using namespace prt::report::stability;
@@ -179,11 +179,4 @@ TEST_CASE("run_stability_report writes stability.md and stability.json", "[stabi
   std::ifstream md(dir / "stability.md");
   const std::string text((std::istreambuf_iterator<char>(md)), std::istreambuf_iterator<char>());
   CHECK(text.find("cases passed") != std::string::npos);
-}
-
-// The full-size report (8192×4096 map, larger meshes): run by hand with
-//   test_stability "[.full]"   (writes build/tests/output/stability_full/)
-TEST_CASE("Full stability report", "[.full]") {
-  const std::filesystem::path dir = prt::test::output_path("stability_full");
-  CHECK(prt::report::run_stability_report(dir.string(), false) == 0);
 }

@@ -281,7 +281,6 @@ TEST_CASE("rotate_coefficients equals Rotation::apply", "[sh][rotation]") {
   for (int order = 1; order <= 10; ++order) orders.push_back(order);
   orders.push_back(prt::sh::kFastRotateOrder);      // the largest fast-path order
   orders.push_back(prt::sh::kFastRotateOrder + 1);  // falls back to Rotation
-  double worst = 0.0;
   for (std::size_t c = 0; c < cases.size(); ++c) {
     const Matrix3& m = cases[c];
     for (int order : orders) {
@@ -295,16 +294,14 @@ TEST_CASE("rotate_coefficients equals Rotation::apply", "[sh][rotation]") {
         INFO("case=" << c << " order=" << order << " k=" << k);
         REQUIRE(std::isfinite(actual[k]));
         REQUIRE(std::abs(actual[k] - expected[k]) <= 1e-12);
-        worst = std::max(worst, std::abs(actual[k] - expected[k]));
       }
     }
   }
-  WARN("worst |rotate_coefficients − Rotation::apply| = " << worst);
 }
 
 TEST_CASE("rotate_coefficients composes: R(a)(R(b) x) = R(ab) x", "[sh][rotation]") {
-  // The group law checks the factorisation independently of prt::sh::Rotation. Two chained rotations
-  // against one: roundoff ~1e-14 at order 10, 1e-12 as above.
+  // The group law checks the factorisation independently of prt::sh::Rotation. Two chained
+  // rotations against one: roundoff ~1e-14 at order 10, 1e-12 as above.
   std::mt19937_64 rng(92);
   for (int trial = 0; trial < 100; ++trial) {
     const Matrix3 a = random_rotation(rng), b = random_rotation(rng);
@@ -324,8 +321,8 @@ TEST_CASE("rotate_coefficients composes: R(a)(R(b) x) = R(ab) x", "[sh][rotation
 }
 
 TEST_CASE("rotate_coefficients rotates an evaluated lobe to M·d", "[sh][rotation]") {
-  // Independent of prt::sh::Rotation: the coefficients of a delta at d are Y(d), and f(Mᵀω) for that
-  // delta is a delta at M·d, so R·Y(d) = Y(M·d) exactly. Roundoff ~1e-14; 1e-12 bound.
+  // Independent of prt::sh::Rotation: the coefficients of a delta at d are Y(d), and f(Mᵀω) for
+  // that delta is a delta at M·d, so R·Y(d) = Y(M·d) exactly. Roundoff ~1e-14; 1e-12 bound.
   std::mt19937_64 rng(93);
   std::normal_distribution<double> g;
   for (int trial = 0; trial < 100; ++trial) {

@@ -3,16 +3,16 @@
 # three.js's GLTFLoader under Node (check_unlit_glb.mjs), plain and tone-mapped.
 # Usage: run_viewer_check.sh PRT_BINARY REPOSITORY_ROOT SCRATCH_DIR
 # Exits 77 (ctest: skipped) with a message when node or the pinned three package is missing;
-# scripts/install-deps.sh installs both. Nothing is downloaded here.
+# scripts/install-deps.sh --for test installs both. Nothing is downloaded here.
 set -euo pipefail
 prt="$1" root="$2" out="$3"
 here="$root/tests/viewer"
 if ! command -v node >/dev/null 2>&1; then
-  echo "skipping: node is not installed (bash scripts/install-deps.sh installs it)"
+  echo "skipping: node is not installed (bash scripts/install-deps.sh --for test installs it)"
   exit 77
 fi
 if [ ! -f "$here/node_modules/three/examples/jsm/loaders/GLTFLoader.js" ]; then
-  echo "skipping: $here/node_modules/three is missing (bash scripts/install-deps.sh installs it)"
+  echo "skipping: $here/node_modules/three is missing (bash scripts/install-deps.sh --for test installs it)"
   exit 77
 fi
 rm -rf "$out" && mkdir -p "$out"

@@ -18,10 +18,6 @@
 
 namespace prt::relight {
 
-// Parses "NAME=r,g,b" or "NAME=v" (grey) for OPTION; throws std::invalid_argument
-// "OPTION TEXT: problem" for a malformed, negative, NaN or infinite value.
-prt::EmitterColor parse_emitter_color(const std::string& option, const std::string& text);
-
 // Reads a responses file; throws "PATH: problem".
 prt::EmitterResponses load_emitter_responses(const std::string& path);
 

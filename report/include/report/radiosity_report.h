@@ -36,8 +36,8 @@
 #include <glm/glm.hpp>
 
 #include "radiosity/form_factors.h"
-#include "radiosity/materials.h"
 #include "radiosity/solver.h"
+#include "scene/material_assignment.h"
 
 namespace prt::report {
 
@@ -46,7 +46,7 @@ inline const glm::dvec3 kResolveScale{0.5, 1.0, 2.0};
 
 struct RadiosityReportOptions {
   std::string scene_path, output_dir;
-  std::vector<radiosity::MaterialValue> emission, albedo;  // per-material overrides
+  std::vector<scene::MaterialColour> emission, albedo;  // per-material values
   bool quick = false;
   std::vector<double> max_edges;  // empty: the mode's default (default_max_edges)
   std::vector<radiosity::FormFactorMethod> methods = {radiosity::FormFactorMethod::Analytic,

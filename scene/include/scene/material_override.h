@@ -2,9 +2,9 @@
 //
 // Syntax of one override (the value of `--material`, repeatable):
 //   NAME=MODEL[:KEY=VALUE,KEY=VALUE,...]      NAME=merl:FILE
-// NAME is a material name (glTF material name, OBJ `newmtl`), else a primitive name
-// ("mesh/0", an OBJ shape); `*` is every primitive. A colour is one grey value or r/g/b
-// ("0.9/0.6/0.5"). MODEL and its keys (prt/brdf/*.h for the models and their ranges):
+// NAME and its matching are those of every material assignment (scene/material_assignment.h:
+// a material name, else a primitive name; `*` is every primitive). A colour is one grey value
+// or r/g/b ("0.9/0.6/0.5"). MODEL and its keys (prt/brdf/*.h for the models and their ranges):
 //   lambert      kd (or albedo): replaces the diffuse albedo (textures dropped) and removes
 //                any BRDF; without kd only the BRDF is removed.
 //   blinn-phong  kd (k_L, default 0), ks (k_G, required), s (exponent, required).
@@ -20,36 +20,28 @@
 // file are refused there. Errors throw std::invalid_argument with one line
 // "OPTION TEXT: problem" (OPTION as given, e.g. "--material").
 // Applying: a non-Lambert override sets ScenePrimitive::brdf (and anisotropy_rotation 0, and
-// drops the per-vertex variants and tangent rotations of textured parameters) and leaves the albedo of the diffuse
-// path unchanged. Anisotropic overrides use the scene's
-// tangent frames (scene/tangent_frames.h): the file's TANGENT, else the texture coordinates
-// the loader kept (those of textured primitives and of glTF anisotropic materials), else the
-// frame from the normal.
+// drops the per-vertex variants and tangent rotations of textured parameters) and leaves the albedo
+// of the diffuse path unchanged. Anisotropic overrides use the scene's tangent frames
+// (scene/tangent_frames.h): the file's TANGENT, else the texture coordinates the loader kept (those
+// of textured primitives and of glTF anisotropic materials), else the frame from the normal.
 #pragma once
 
 #include <string>
 #include <vector>
 
 #include "prt/brdf/material.h"
+#include "scene/material_assignment.h"
 #include "scene/scene.h"
 
 namespace prt::scene {
 
-struct MaterialOverride {
-  std::string name;         // material or primitive name, or "*"
+struct MaterialOverride : MaterialAssignment {
   brdf::Material material;  // checked: make_brdf accepts it
   bool set_albedo = false;  // lambert with kd: the albedo to give
-  std::string text;         // as given, for messages
-  std::string option = "--material";
 };
 
 MaterialOverride parse_material_override(const std::string& text,
                                          const std::string& option = "--material");
-
-// Indices of the primitives `o` applies to: those whose material is o.name (every one for
-// "*"), else those whose primitive name is o.name. Throws std::invalid_argument
-// "OPTION TEXT: no material or primitive named 'NAME' in PATH (materials: ...)" when none is.
-std::vector<std::size_t> matched_primitives(const Scene& scene, const MaterialOverride& o);
 
 // Applies the overrides in order (a later one wins). Throws std::invalid_argument
 // "OPTION TEXT: no material or primitive named 'NAME' in PATH (materials: ...)" when an

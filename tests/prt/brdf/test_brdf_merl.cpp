@@ -139,8 +139,6 @@ TEST_CASE("a MERL file written from an analytic model reads back exactly at cell
     const Rgb a_merl = directional_albedo(*merl, wo, 512, 5);
     const Rgb a_ref =
         directional_albedo(ref.diffuse, wo, 512, 5) + directional_albedo(ref.glossy, wo, 512, 5);
-    std::printf("MERL albedo at theta_o = %g: table %.5f %.5f %.5f, model %.5f %.5f %.5f\n", deg,
-                a_merl.r, a_merl.g, a_merl.b, a_ref.r, a_ref.g, a_ref.b);
     INFO("theta_o = " << deg << ": MERL " << a_merl.r << " " << a_merl.g << " " << a_merl.b
                       << ", model " << a_ref.r << " " << a_ref.g << " " << a_ref.b);
     CHECK(a_merl.r == Approx(a_ref.r).epsilon(0.005));

@@ -1,5 +1,5 @@
-// BRDF projection (prt/glossy/brdf_projection.h): the reference quadrature against closed forms, the
-// zonal approximation's error, and the view-side matrix converging with its order.
+// BRDF projection (prt/glossy/brdf_projection.h): the reference quadrature against closed forms,
+// the zonal approximation's error, and the view-side matrix converging with its order.
 #include <cmath>
 #include <vector>
 
@@ -134,7 +134,7 @@ TEST_CASE("Zonal projection: exact for Lambert and small error for isotropic lob
     zonal->evaluate(view(c.theta, 25), bz.data());
     const std::vector<double> ref = reference_b(c.m, 8, view(c.theta, 25));
     const double error = distance(bz, ref) / norm(ref);
-    WARN(prt::brdf::describe(c.m) << " theta " << c.theta << ": zonal relative error " << error);
+    INFO(prt::brdf::describe(c.m) << " theta " << c.theta << ": zonal relative error " << error);
     REQUIRE(error < c.bound);
   }
 }
@@ -162,7 +162,7 @@ TEST_CASE("BRDF matrix converges to the reference b with the view order", "[glos
       sum += e * e;
     }
     const double rms = std::sqrt(sum / double(views.size()));
-    WARN("view order " << view_order << ": RMS relative error " << rms);
+    INFO("view order " << view_order << ": RMS relative error " << rms);
     REQUIRE(rms < previous);
     previous = rms;
   }
@@ -187,7 +187,7 @@ TEST_CASE("Isotropic table: b of isotropic materials to interpolation accuracy",
       p->evaluate(wo, b.data());
       const std::vector<double> ref = reference_b(m, 8, wo);
       const double error = distance(b, ref) / norm(ref);
-      WARN(prt::brdf::describe(m) << " at " << wo.z << ": table relative error " << error);
+      INFO(prt::brdf::describe(m) << " at " << wo.z << ": table relative error " << error);
       REQUIRE(error < 2e-3);
       // The float path agrees with the double path to float rounding.
       std::vector<float> bf(3 * 64), scratch(p->scratch_floats());

@@ -1,7 +1,7 @@
-// BrdfProjection::evaluate_many() (prt/glossy/brdf_projection.h) against the per-view float evaluate():
-// the batched isotropic-table path replaces acosf by a polynomial and fuses the lerp with the
-// rotation about +z, so it may differ in the last bits only; the other methods fall back to the
-// per-view code and must give its bits.
+// BrdfProjection::evaluate_many() (prt/glossy/brdf_projection.h) against the per-view float
+// evaluate(): the batched isotropic-table path replaces acosf by a polynomial and fuses the lerp
+// with the rotation about +z, so it may differ in the last bits only; the other methods fall back
+// to the per-view code and must give its bits.
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -104,7 +104,7 @@ TEST_CASE("Batched b equals the per-view float b to float rounding", "[glossy][p
           REQUIRE(std::isfinite(a));
           worst = std::max(worst, std::abs(a - b));
         }
-      WARN(prt::brdf::describe(c.m)
+      INFO(prt::brdf::describe(c.m)
            << " order " << c.order << ", " << channels
            << " channels: largest |batched - single| / max|b| = " << worst / scale);
       REQUIRE(worst <= 2e-6f * scale);

@@ -136,7 +136,7 @@ TEST_CASE("Glossy sphere: error against the rendering integral within the trunca
       }
       ++checked;
     }
-    WARN("order " << order << ": " << checked
+    INFO("order " << order << ": " << checked
                   << " vertices, worst |fast - MC| / (|tail| + 4 sigma) = " << worst_ratio);
     REQUIRE(checked >= 12);
   }

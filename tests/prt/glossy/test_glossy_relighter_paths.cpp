@@ -1,7 +1,7 @@
 // The shading paths of prt::GlossyRelighter (prt/glossy/relighter.h): the kernel path
 // (prt::GlossyKernel) against the portable per-vertex loop, and compressed transfer
 // (create_cpca, prt::CpcaKernel) against the uncompressed matrices. Matrices: the shadowed
-// synthetic transfer of tests/support/synthetic_glossy.h; materials: a Ward lobe on some
+// synthetic transfer of fixtures/synthetic_glossy.h; materials: a Ward lobe on some
 // vertices and Lambert on the others, so b has both dense and zonal rows.
 #include <algorithm>
 #include <cmath>
@@ -9,10 +9,10 @@
 
 #include <catch2/catch.hpp>
 
-#include "glossy_fixtures.h"
 #include "bake/cpca/compressor.h"
+#include "fixtures/synthetic_glossy.h"
+#include "glossy_fixtures.h"
 #include "prt/glossy/relighter.h"
-#include "support/synthetic_glossy.h"
 
 using prt::brdf::Material;
 using prt::brdf::MaterialModel;
@@ -22,7 +22,7 @@ namespace {
 constexpr double kUnit = 1.0 / 16777216.0;  // 2⁻²⁴, the unit roundoff of float
 
 prt::GlossyTransferData two_material_data(std::size_t count, int order, int channels) {
-  prt::GlossyTransferData d = prt::test::synthetic_glossy(count, order, channels, 256);
+  prt::GlossyTransferData d = prt::fixtures::synthetic_glossy(count, order, channels, 256);
   Material ward;
   ward.model = MaterialModel::kWard;
   ward.diffuse = {0.2, 0.1, 0.05};
@@ -191,9 +191,9 @@ TEST_CASE("Glossy shading of CPCA transfer: within the Cauchy-Schwarz bound of t
 TEST_CASE("Glossy shading of full-rank CPCA equals the uncompressed shading to float rounding",
           "[glossy][cpca]") {
   // Order 2, K = D = 16: every matrix lies in its cluster's span, so the CPCA form reproduces
-  // M to float rounding (tests of prt/glossy/cpca_transfer.h) and so does the shading: relative 1e-5 of the
-  // magnitude of the terms (|Δe| ≈ (2n² + K)·2⁻²⁴·Σ|terms| ≈ 3e-6 of it, plus the basis's own
-  // rounding); a wrong cluster or vector order gives errors of the size of e itself.
+  // M to float rounding (tests of prt/glossy/cpca_transfer.h) and so does the shading: relative
+  // 1e-5 of the magnitude of the terms (|Δe| ≈ (2n² + K)·2⁻²⁴·Σ|terms| ≈ 3e-6 of it, plus the
+  // basis's own rounding); a wrong cluster or vector order gives errors of the size of e itself.
   const prt::GlossyTransferData d = two_material_data(300, 2, 1);
   prt::CpcaOptions o;
   o.clusters = 5;

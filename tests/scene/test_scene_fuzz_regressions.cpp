@@ -1,6 +1,5 @@
-// tests/report/test_stability_regressions.cpp — regression tests for bugs found by the fuzzers
-// (fuzz/) and the stability cases, in other modules' code. Each input is the minimal form of
-// the finding.
+// tests/scene/test_scene_fuzz_regressions.cpp — regression tests for bugs the fuzzers (fuzz/)
+// found in the scene loaders. Each input is the minimal form of the finding.
 #include <catch2/catch.hpp>
 
 #include <cmath>
@@ -21,8 +20,7 @@ std::string write_file(const std::string& name, const std::string& text) {
 
 }  // namespace
 
-TEST_CASE("OBJ normals that are not unit length are normalised (fuzz_scene_obj)",
-          "[stability][regression]") {
+TEST_CASE("OBJ normals that are not unit length are normalised (fuzz_scene_obj)", "[regression]") {
   const std::string path = write_file("regression_vn_not_unit.obj",
                                       "v 0 0 0\nv 1 0 0\nv 1 0 1\nv 0 0 1\nvn 5 1 0\nvn 0 0 0\n"
                                       "f 1//1 4//1 3//1\nf 1//2 3//2 2//2\n");
@@ -39,7 +37,7 @@ TEST_CASE("OBJ normals that are not unit length are normalised (fuzz_scene_obj)"
 TEST_CASE(
     "A glTF accessor index out of range is a SceneError, not std::out_of_range "
     "(fuzz_scene_gltf)",
-    "[stability][regression]") {
+    "[regression]") {
   const std::string path =
       write_file("regression_bad_accessor.gltf",
                  R"({"asset":{"version":"2.0"},"scenes":[{"nodes":[0]}],"nodes":[{"mesh":0}],

@@ -1,10 +1,6 @@
 // `prt radiosity` as a user runs it: bad emission, albedo and --max-edge refused with one line
 // on stderr, a non-zero exit and nothing written; a small lit room written and lit.
-#include <sys/wait.h>
-#include <unistd.h>
-
 #include <cstdio>
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -12,12 +8,13 @@
 
 #include <catch2/catch.hpp>
 
-#include "cli/cli_test_support.h"
+#include "cli_test_support.h"
 
 namespace fs = std::filesystem;
 
 namespace {
 
+using prt::test::cli::line_count;
 using prt::test::cli::RunResult;
 using prt::test::cli::slurp;
 
@@ -52,17 +49,11 @@ fs::path write_room(const fs::path& dir, const std::string& lamp_ke, const std::
   return dir / "room.obj";
 }
 
-std::size_t lines(const std::string& text) {
-  std::size_t n = 0;
-  for (char c : text) n += c == '\n';
-  return n;
-}
-
 void check_refused(const fs::path& dir, const std::string& args, const std::string& expected) {
   const RunResult r = run(args);
   INFO(args << "\nstderr: " << r.err);
   CHECK(r.exit_code == 1);
-  CHECK(lines(r.err) == 1);
+  CHECK(line_count(r.err) == 1);
   CHECK(r.err.find(expected) != std::string::npos);
   for (const char* name : {"out.png", "out.glb", "out.csv"}) CHECK_FALSE(fs::exists(dir / name));
 }
@@ -177,7 +168,7 @@ TEST_CASE("prt radiosity --form-factor-cache: saved, reused, refused for another
             (dir / "out.png").string());
     INFO(other << "\n" << r.err);
     CHECK(r.exit_code == 1);
-    CHECK(lines(r.err) == 1);
+    CHECK(line_count(r.err) == 1);
     CHECK(r.err.find(cache + ": made for another scene or other form-factor options") !=
           std::string::npos);
     CHECK_FALSE(fs::exists(dir / "out.csv"));
@@ -189,7 +180,7 @@ TEST_CASE("prt radiosity --form-factor-cache: saved, reused, refused for another
   r = run(common + (dir / "out.csv").string() + " --max-edge 0.25 --form-factor-cache " +
           (dir / "short.ffm").string());
   CHECK(r.exit_code == 1);
-  CHECK(lines(r.err) == 1);
+  CHECK(line_count(r.err) == 1);
   CHECK(r.err.find("short.ffm: truncated") != std::string::npos);
   CHECK_FALSE(fs::exists(dir / "out.csv"));
   // An unknown object to move.

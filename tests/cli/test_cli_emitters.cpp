@@ -4,11 +4,9 @@
 // FILE.prt ENV --max-edge L --emitters RESPONSES` equals the sum of the two separate relights;
 // unknown names, bad colours, corrupt and truncated files and mismatched geometry are refused
 // with one line and nothing written; `prt info` describes the file.
-#include <sys/wait.h>
 
 #include <algorithm>
 #include <cmath>
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -17,12 +15,13 @@
 
 #include <catch2/catch.hpp>
 
-#include "cli/cli_test_support.h"
+#include "cli_test_support.h"
 
 namespace fs = std::filesystem;
 
 namespace {
 
+using prt::test::cli::line_count;
 using prt::test::cli::RunResult;
 using prt::test::cli::slurp;
 
@@ -80,15 +79,11 @@ double relative_difference(const std::vector<double>& a, const std::vector<doubl
   return worst / scale;
 }
 
-std::size_t lines(const std::string& text) {
-  return std::size_t(std::count(text.begin(), text.end(), '\n'));
-}
-
 void check_refused(const fs::path& dir, const std::string& args, const std::string& expected) {
   const RunResult r = prt_run(args);
   INFO(args << "\nstderr: " << r.err);
   CHECK(r.exit_code != 0);
-  CHECK(lines(r.err) == 1);
+  CHECK(line_count(r.err) == 1);
   CHECK(r.err.find(expected) != std::string::npos);
   CHECK_FALSE(fs::exists(dir / "refused.csv"));
   CHECK_FALSE(fs::exists(dir / "refused.exr"));
@@ -243,7 +238,7 @@ TEST_CASE("prt bake --albedo MATERIAL=value sets one material's albedo and refus
     const RunResult r = prt_run(bake + d + "refused.prt" + bad);
     INFO(bad << ": " << r.err);
     CHECK(r.exit_code != 0);
-    CHECK(lines(r.err) == 1);
+    CHECK(line_count(r.err) == 1);
     CHECK_FALSE(fs::exists(d + "refused.prt"));
   }
 }

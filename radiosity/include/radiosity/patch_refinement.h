@@ -1,5 +1,6 @@
-// radiosity/adaptive.h — adaptive patches: refine where the radiosity changes fast, by
-// longest-edge bisection ([80] of docs/REFERENCES.md).
+// radiosity/patch_refinement.h — patch refinement: split the patches where the radiosity changes
+// fast (neighbours differ by more than a threshold), by longest-edge bisection ([80] of
+// docs/REFERENCES.md), and solve again. `prt radiosity --adaptive T` (the flag keeps its name).
 //
 // Starting from the given patches (e.g. scene::subdivide_to_edge_length), repeat: compute form
 // factors and solve (radiosity/form_factors.h, radiosity/solver.h); mark every patch whose
@@ -29,7 +30,7 @@
 
 namespace prt::radiosity {
 
-struct AdaptiveOptions {
+struct PatchRefinementOptions {
   double threshold = 0.05;      // relative to L_ref; finite and > 0
   std::size_t max_patches = 0;  // budget; 0: 4 × the starting count (at most kMaxPatches)
   int max_passes = 8;           // refinement passes at most
@@ -39,18 +40,18 @@ struct AdaptiveOptions {
   int max_levels = 3;
 };
 
-struct AdaptivePass {
+struct RefinementPass {
   std::size_t patches = 0;  // patches solved in this pass
   std::size_t marked = 0;   // patches over the threshold
   std::size_t refined = 0;  // patches split after it (≤ marked, by the budget)
   double form_factor_seconds = 0, solve_seconds = 0;
 };
 
-struct AdaptiveResult {
+struct PatchRefinementResult {
   scene::Scene scene;  // the refined scene (patch t = triangle t)
   std::vector<Patch> patches;
   Solution solution;
-  std::vector<AdaptivePass> passes;
+  std::vector<RefinementPass> passes;
 };
 
 // Per patch: the largest relative difference to an edge neighbour (0 without neighbours).
@@ -60,7 +61,9 @@ std::vector<double> neighbour_differences(const scene::Scene& scene,
 
 // Throws std::invalid_argument for a threshold that is not finite and > 0, a budget over
 // kMaxPatches or below the starting count, or max_levels outside 1..16.
-AdaptiveResult solve_adaptive(scene::Scene scene, const FormFactorOptions& form_factors,
-                              const SolveOptions& solve, const AdaptiveOptions& options);
+PatchRefinementResult solve_with_refinement(scene::Scene scene,
+                                            const FormFactorOptions& form_factors,
+                                            const SolveOptions& solve,
+                                            const PatchRefinementOptions& options);
 
 }  // namespace prt::radiosity

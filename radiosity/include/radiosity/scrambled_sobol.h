@@ -1,5 +1,6 @@
-// sobol.h — the first four dimensions of the Sobol' sequence in base 2, randomised by a hashed
-// nested scramble, for the ray form factors' 4-D samples (point on the sending patch × direction).
+// radiosity/scrambled_sobol.h — the first four dimensions of the Sobol' sequence in base 2,
+// randomised by a hashed nested scramble: the ray form factors' 4-D samples (point on the
+// sending patch × direction; radiosity/form_factors.h, RaySampling::Sobol). Header-only.
 //
 // Generator matrices: dimension 0 is the van der Corput sequence (the identity); dimensions 1–3
 // use the primitive polynomials and initial direction numbers of Joe & Kuo ([90] of
@@ -24,7 +25,7 @@
 #include <array>
 #include <cstdint>
 
-namespace prt::radiosity::detail {
+namespace prt::radiosity {
 
 class ScrambledSobol4 {
  public:
@@ -101,4 +102,4 @@ class ScrambledSobol4 {
   std::array<uint32_t, kDimensions> seeds_;
 };
 
-}  // namespace prt::radiosity::detail
+}  // namespace prt::radiosity

@@ -1,7 +1,6 @@
 // Tests of `prt bake --auto` (bake/adaptive/adaptive_baker.h, bake/adaptive/scene_analysis.h,
 // bake/adaptive/order_selection.h and the adaptive path of bake/transfer_baker.h).
 #include <cmath>
-#include <cstdio>
 #include <vector>
 
 #include <catch2/catch.hpp>
@@ -198,13 +197,11 @@ TEST_CASE(
   for (std::size_t v = 0; v < scene.vertex_count(); ++v)
     for (int k = 0; k < n * n; ++k) cut.coefficients.push_back(ref.data.coefficients[v * K8 + k]);
   const double truncation = relative_rms_error(exit_radiance(cut, lighting, lighting_order), b_ref);
-  std::printf(
-      "order %d: predicted %.4f (truncation %.4f, sampling %.4f); measured %.4f "
-      "(truncation %.4f); rays %llu vs %llu\n",
-      n, a.report.predicted_error, a.report.predicted_truncation_error,
-      a.report.predicted_sampling_error, measured, truncation,
-      static_cast<unsigned long long>(a.bake.stats.rays),
-      static_cast<unsigned long long>(ref.stats.rays));
+  INFO("order " << n << ": predicted " << a.report.predicted_error << " (truncation "
+                << a.report.predicted_truncation_error << ", sampling "
+                << a.report.predicted_sampling_error << "); measured " << measured
+                << " (truncation " << truncation << "); rays " << a.bake.stats.rays << " vs "
+                << ref.stats.rays);
   CHECK(measured <= tolerance);
   // Honest prediction: the measured truncation stays within the predicted truncation budget
   // (tolerance/2), and the measured total within the predicted total plus the reference's
@@ -249,8 +246,8 @@ TEST_CASE(
       den += gt.radiance[3 * v + c] * gt.radiance[3 * v + c];
     }
   const double against_truth = std::sqrt(std::max(0.0, num - se2) / den);
-  std::printf("against the ground truth (%zu vertices, s = %.4f): %.4f\n", g.vertices.size(),
-              gt.relative_rms_se, against_truth);
+  INFO("against the ground truth (" << g.vertices.size() << " vertices, s = " << gt.relative_rms_se
+                                    << "): " << against_truth);
   CHECK(against_truth <= tolerance);
 }
 
@@ -599,8 +596,8 @@ TEST_CASE("the tail bound beyond the pilot order bounds a sun's error, exact or 
   const double true_tail = std::sqrt(tail2 / total2);
   const OrderChoice e = choose_order(exact, albedo, np, lighting, nl, 0.01, 12);
   const OrderChoice m = choose_order(noisy, albedo, np, lighting, nl, 0.01, 12);
-  std::printf("tail beyond band 15: true %.4f, stand-in exact pilot %.4f, noisy pilot %.4f\n",
-              true_tail, e.tail_bound, m.tail_bound);
+  INFO("tail beyond band 15: true " << true_tail << ", stand-in exact pilot " << e.tail_bound
+                                    << ", noisy pilot " << m.tail_bound);
   CHECK(e.tail_bound >= true_tail);
   CHECK(m.tail_bound >= true_tail);
 }

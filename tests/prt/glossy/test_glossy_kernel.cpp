@@ -9,11 +9,11 @@
 #include <catch2/catch.hpp>
 
 #include "bake/cpca/compressor.h"
-#include "prt/diffuse/relighter.h"  // Relighter::avx2_path_available
+#include "fixtures/synthetic_glossy.h"
+#include "prt/diffuse/relighter.h"
 #include "prt/glossy/cpca_kernel.h"
 #include "prt/glossy/kernel.h"
 #include "prt/glossy/reference.h"
-#include "support/synthetic_glossy.h"
 
 using prt::CpcaFrame;
 using prt::CpcaKernel;
@@ -125,7 +125,7 @@ TEST_CASE("Glossy kernels match the double references to float rounding", "[glos
   // rounding of the per-frame products. |e − e_ref| ≤ (2n² + K + 4)·2^-24·Σ|terms| is the
   // standard bound γ_N·Σ|terms|; the test allows exactly that (no extra factor).
   for (int channels : {1, 3}) {
-    const GlossyTransferData d = prt::test::synthetic_glossy(150, 5, channels, 256);
+    const GlossyTransferData d = prt::fixtures::synthetic_glossy(150, 5, channels, 256);
     const CpcaTransfer t = compress(d, 6, 5);
     const GlossyTransferData rec = reconstructed(d, t);
     auto glossy = GlossyKernel::create(d);
@@ -190,7 +190,7 @@ TEST_CASE("Glossy kernels: AVX2, AVX-512 and portable paths agree bit for bit", 
   if (!wide) WARN("the CPCA AVX-512 path is not checked: this CPU lacks AVX-512F");
   for (int order : {1, 2, 3, 4, 5, 6, 7}) {  // 7: the AVX2 CPCA code for any order
     for (int channels : {1, 3}) {
-      const GlossyTransferData d = prt::test::synthetic_glossy(45, order, channels, 128);
+      const GlossyTransferData d = prt::fixtures::synthetic_glossy(45, order, channels, 128);
       const int n2 = order * order;
       const CpcaTransfer t = compress(d, 3, std::min(4, n2 * n2 * channels));
       auto glossy = GlossyKernel::create(d);
@@ -239,7 +239,7 @@ TEST_CASE("Glossy kernels: AVX2, AVX-512 and portable paths agree bit for bit", 
 }
 
 TEST_CASE("Glossy kernels: a chunked range gives the same bits as one call", "[glossy]") {
-  const GlossyTransferData d = prt::test::synthetic_glossy(70, 4, 1, 128);
+  const GlossyTransferData d = prt::fixtures::synthetic_glossy(70, 4, 1, 128);
   auto glossy = GlossyKernel::create(d);
   auto cpca = CpcaKernel::create(compress(d, 4, 3));
   REQUIRE(glossy.ok());
@@ -265,7 +265,7 @@ TEST_CASE("Glossy kernels: a chunked range gives the same bits as one call", "[g
 }
 
 TEST_CASE("Glossy kernels refuse bad calls", "[glossy]") {
-  const GlossyTransferData d = prt::test::synthetic_glossy(20, 2, 1, 64);
+  const GlossyTransferData d = prt::fixtures::synthetic_glossy(20, 2, 1, 64);
   auto glossy = GlossyKernel::create(d);
   auto cpca = CpcaKernel::create(compress(d, 2, 2));
   auto other = CpcaKernel::create(compress(d, 2, 2));

@@ -1,4 +1,5 @@
-#include "radiosity/adaptive.h"
+// radiosity/src/patch_refinement.cpp — see radiosity/patch_refinement.h.
+#include "radiosity/patch_refinement.h"
 
 #include <algorithm>
 #include <chrono>
@@ -22,7 +23,7 @@ double since(Clock::time_point t) {
 
 // Solves the current patches (the full-matrix solvers or progressive refinement).
 Solution solve_once(const std::vector<Patch>& patches, const scene::RayCaster& caster,
-                    const FormFactorOptions& ff, const SolveOptions& solve, AdaptivePass* pass) {
+                    const FormFactorOptions& ff, const SolveOptions& solve, RefinementPass* pass) {
   if (solve.solver == SolverKind::Progressive) {
     const Clock::time_point t = Clock::now();
     Solution s = solve_progressive(patches, caster, ff, solve);
@@ -42,7 +43,7 @@ Solution solve_once(const std::vector<Patch>& patches, const scene::RayCaster& c
 // budget allows (4 new patches each).
 std::vector<bool> choose(const std::vector<double>& difference, double threshold,
                          const std::vector<bool>& splittable, std::size_t room,
-                         AdaptivePass* pass) {
+                         RefinementPass* pass) {
   std::vector<uint32_t> over;
   for (uint32_t t = 0; t < difference.size(); ++t)
     if (difference[t] > threshold && splittable[t]) over.push_back(t);
@@ -92,8 +93,10 @@ std::vector<double> neighbour_differences(const scene::Scene& scene,
   return difference;
 }
 
-AdaptiveResult solve_adaptive(scene::Scene scene, const FormFactorOptions& form_factors,
-                              const SolveOptions& solve, const AdaptiveOptions& options) {
+PatchRefinementResult solve_with_refinement(scene::Scene scene,
+                                            const FormFactorOptions& form_factors,
+                                            const SolveOptions& solve,
+                                            const PatchRefinementOptions& options) {
   if (!(options.threshold > 0.0) || !std::isfinite(options.threshold))
     throw std::invalid_argument("--adaptive " + std::to_string(options.threshold) +
                                 ": the threshold must be a finite positive number");
@@ -101,12 +104,12 @@ AdaptiveResult solve_adaptive(scene::Scene scene, const FormFactorOptions& form_
   const std::size_t budget =
       options.max_patches ? options.max_patches : std::min(4 * start, kMaxPatches);
   if (options.max_levels < 1 || options.max_levels > 16)
-    throw std::invalid_argument("adaptive: max_levels must be in 1..16");
+    throw std::invalid_argument("patch refinement: max_levels must be in 1..16");
   if (budget > kMaxPatches || budget < start)
     throw std::invalid_argument("--max-patches " + std::to_string(budget) + ": must be in " +
                                 std::to_string(start) + ".." + std::to_string(kMaxPatches) +
                                 " (the starting patches .. the dense form-factor limit)");
-  AdaptiveResult result;
+  PatchRefinementResult result;
   // The smallest area each patch may be split to (from its starting patch).
   std::vector<double> smallest(start);
   {
@@ -115,7 +118,7 @@ AdaptiveResult solve_adaptive(scene::Scene scene, const FormFactorOptions& form_
     for (std::size_t t = 0; t < start; ++t) smallest[t] = initial[t].area / shrink;
   }
   for (int pass_index = 0;; ++pass_index) {
-    AdaptivePass pass;
+    RefinementPass pass;
     pass.patches = scene.triangles.size();
     const scene::RayCaster caster(scene);
     std::vector<Patch> patches = make_patches(scene);

@@ -1,0 +1,92 @@
+// radiosity/scene_solve.h — the solve of `prt radiosity`, from a scene file to per-vertex exit
+// radiance: load the scene, set its emitters and albedos (scene/material_assignment.h), move
+// objects, subdivide it into patches, compute the form factors (or load them from a cache and
+// bring them up to date for the moves), solve; on request refine the patches and solve again
+// (patch_refinement.h), or solve once more per emitter and write the responses (.prte,
+// prt/emitters/emitter_responses.h). Drawing the result is relight's (relight/radiosity_render.h), from
+// the solution's scene and vertex radiance alone.
+//
+// Units: radiance in the units of the emission; the scene's frame.
+// Errors throw std::runtime_error / std::invalid_argument / scene::SceneError with one line
+// naming the file or option; check_scene_solve refuses a bad request before any file is read,
+// solve_scene checks every input before it computes, and each file is written atomically.
+#pragma once
+
+#include <cstddef>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "radiosity/emitter_solve.h"
+#include "radiosity/form_factor_update.h"
+#include "radiosity/form_factors.h"
+#include "radiosity/patch_refinement.h"
+#include "radiosity/solver.h"
+#include "scene/material_assignment.h"
+#include "scene/scene.h"
+
+namespace prt::radiosity {
+
+// Moves an object before solving: every primitive whose name is `object` (or whose glTF mesh
+// part, before the '/', is) is translated by `offset` (scene units) before subdivision.
+struct ObjectMove {
+  std::string object;
+  glm::dvec3 offset{0.0};
+};
+
+// Parses "OBJECT=dx,dy,dz"; throws std::invalid_argument "--move TEXT: problem".
+ObjectMove parse_object_move(const std::string& text);
+
+struct SceneSolveRequest {
+  std::string scene_path;
+  std::vector<scene::MaterialColour> emission, albedo;  // --emission, --albedo
+  std::optional<double> max_edge;  // subdivide to this edge length (scene units)
+  // Refine where the radiance changes fast (patch_refinement.h), starting from max_edge.
+  std::optional<PatchRefinementOptions> refinement;
+  FormFactorOptions form_factors;
+  SolveOptions solve;
+  // Form-factor cache (form_factor_cache.h) of the scene as loaded (before `moves`): absent →
+  // computed and saved; present → loaded when its key matches, refused otherwise.
+  std::string form_factor_cache;
+  std::vector<ObjectMove> moves;  // form factors updated partially when a cache is loaded
+  // Optional: per-emitter responses (emitter_solve.h), one more solve per emitter on the same
+  // form factors; needs a full-matrix solver.
+  std::string per_emitter_path;
+};
+
+struct SceneSolution {
+  scene::Scene scene;                  // the patch scene: patch t is triangle t
+  std::vector<float> vertex_radiance;  // 3 per vertex: patches' display radiance, area-weighted
+  std::size_t patches = 0;
+  Solution solution;  // its radiance vectors emptied; history and energy account kept
+  double form_factor_seconds = 0, solve_seconds = 0;
+  double cache_seconds = 0;   // loading or saving the form-factor cache
+  double update_seconds = 0;  // the partial update after the moves
+  double gather_seconds = 0;  // K from F (part of solve_seconds)
+  enum class Cache { None, Loaded, Saved } cache = Cache::None;
+  FormFactorUpdate update;   // counts of the partial update
+  double escape_probe = -1;  // escape fraction measured for albedo-1 scenes (else −1)
+  std::vector<RefinementPass> refinement_passes;    // with `refinement`: one per solve
+  double per_emitter_seconds = 0;                   // the per-emitter solves
+  std::vector<EmitterSolveReport> emitter_reports;  // one per emitter
+  std::vector<std::string> files_written;           // the cache when saved, the responses
+};
+
+// Checks the request before any file is read: the responses file (.prte, a full-matrix
+// solver), max_edge, the cache (a full-matrix solver; none of `other_outputs` — the caller's
+// own output files — may be it), refinement (not with a cache, moves or per-emitter responses)
+// and the tolerance. Outputs may not be the scene file (scene/output_path.h).
+void check_scene_solve(const SceneSolveRequest& request,
+                       const std::vector<std::string>& other_outputs);
+
+// Solves the request (check_scene_solve first). `before_solve` (optional) is called once with
+// the patch scene (loaded, its materials checked, moved and subdivided; not yet refined) before
+// any ray is cast: a caller's own checks on the scene (e.g. its camera) fail there, before the
+// long part; an exception it throws leaves no file written.
+SceneSolution solve_scene(const SceneSolveRequest& request,
+                          const std::function<void(const scene::Scene&)>& before_solve = {});
+
+}  // namespace prt::radiosity

@@ -1,0 +1,253 @@
+// radiosity/src/scene_solve.cpp — see radiosity/scene_solve.h.
+#include "radiosity/scene_solve.h"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <stdexcept>
+#include <system_error>
+
+#include "prt/emitters/emitter_responses.h"
+#include "radiosity/form_factor_cache.h"
+#include "radiosity/materials.h"
+#include "radiosity/patches.h"
+#include "scene/output_path.h"
+#include "scene/ray_caster.h"
+#include "scene/scene_loader.h"
+#include "scene/subdivide.h"
+
+namespace prt::radiosity {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double since(Clock::time_point t) {
+  return std::chrono::duration<double>(Clock::now() - t).count();
+}
+
+void apply_moves(scene::Scene& scene, const SceneSolveRequest& r) {
+  for (const ObjectMove& move : r.moves) {
+    bool found = false;
+    std::string names;
+    for (const scene::ScenePrimitive& p : scene.primitives) {
+      const std::string mesh = p.name.substr(0, p.name.find('/'));
+      if (names.size() < 200) names += (names.empty() ? "" : ", ") + p.name;
+      if (p.name != move.object && mesh != move.object) continue;
+      found = true;
+      for (uint32_t v = 0; v < p.vertex_count; ++v)
+        scene.positions[p.first_vertex + v] += glm::vec3(move.offset);
+    }
+    if (!found)
+      throw std::invalid_argument("--move " + move.object + ": no object of " + r.scene_path +
+                                  " has this name (objects: " + names + ")");
+  }
+}
+
+// Loads the scene and applies and checks its materials; throws when nothing emits. With
+// `moved`, the objects of the moves are translated before subdivision.
+scene::Scene prepare_scene(const SceneSolveRequest& r, bool moved) {
+  scene::Scene scene = scene::load_scene(r.scene_path);
+  if (moved) apply_moves(scene, r);
+  scene::apply_emission(scene, r.emission);
+  scene::apply_albedo(scene, r.albedo);
+  check_materials(scene);
+  bool emits = false;
+  for (const scene::ScenePrimitive& p : scene.primitives)
+    emits = emits || (p.triangle_count > 0 && p.emission != glm::vec3(0.f));
+  if (!emits)
+    throw std::runtime_error(
+        r.scene_path +
+        ": nothing emits light (give a material glTF emissiveFactor or OBJ Ke, "
+        "or --emission MATERIAL=r,g,b)");
+  if (r.max_edge) scene = scene::subdivide_to_edge_length(scene, *r.max_edge);
+  return scene;
+}
+
+// The form factors of `after`. With a cache: those of the scene as loaded (`before`), loaded
+// when the cache exists, else computed and saved, then brought up to date for the moves.
+FormFactorMatrix form_factors(const SceneSolveRequest& r, const scene::Scene& before,
+                              const std::vector<Patch>& after, const scene::RayCaster& caster,
+                              SceneSolution* out) {
+  Clock::time_point t = Clock::now();
+  if (r.form_factor_cache.empty()) {
+    FormFactorMatrix f = compute_form_factors(after, caster, r.form_factors);
+    out->form_factor_seconds = since(t);
+    return f;
+  }
+  const std::vector<Patch> unmoved = make_patches(before);
+  if (unmoved.size() != after.size())
+    throw std::runtime_error(r.scene_path + ": --move changed how the scene subdivides (" +
+                             std::to_string(unmoved.size()) + " patches before, " +
+                             std::to_string(after.size()) + " after); use it without a cache");
+  const uint64_t key = form_factor_key(unmoved, r.form_factors);
+  FormFactorMatrix f;
+  if (std::filesystem::exists(r.form_factor_cache)) {
+    f = load_form_factors(r.form_factor_cache, key);
+    out->cache_seconds = since(t);
+    out->cache = SceneSolution::Cache::Loaded;
+  } else {
+    if (r.moves.empty()) {
+      f = compute_form_factors(after, caster, r.form_factors);
+    } else {
+      const scene::RayCaster unmoved_caster(before);
+      f = compute_form_factors(unmoved, unmoved_caster, r.form_factors);
+    }
+    out->form_factor_seconds = since(t);
+    t = Clock::now();
+    save_form_factors(r.form_factor_cache, f, key);
+    out->cache_seconds = since(t);
+    out->cache = SceneSolution::Cache::Saved;
+    out->files_written.push_back(r.form_factor_cache);
+  }
+  if (!r.moves.empty()) {
+    t = Clock::now();
+    out->update = update_form_factors(unmoved, after, caster, r.form_factors, &f);
+    out->update_seconds = since(t);
+  }
+  return f;
+}
+
+// The full-matrix solve on `f`, and with per_emitter_path one solve per emitter, written.
+void solve_on(const SceneSolveRequest& r, const scene::Scene& scene,
+              const std::vector<Patch>& patches, const FormFactorMatrix& f, SceneSolution* out) {
+  Clock::time_point t = Clock::now();
+  const GatherMatrix k = make_gather_matrix(patches, f);
+  out->gather_seconds = since(t);
+  out->solution = solve_matrix(patches, k, r.solve);
+  out->solve_seconds = since(t);
+  if (!r.per_emitter_path.empty()) {  // the same form factors, one solve per emitter
+    t = Clock::now();
+    const prt::EmitterResponses responses =
+        solve_emitter_responses(scene, patches, f, r.solve, &out->emitter_reports);
+    out->per_emitter_seconds = since(t);
+    const prt::Status written = prt::write_emitter_responses(r.per_emitter_path, responses);
+    if (!written.ok()) throw std::runtime_error(written.message());
+    out->files_written.push_back(r.per_emitter_path);
+  }
+}
+
+void check_patch_count(const SceneSolveRequest& r, const scene::Scene& scene) {
+  const std::size_t n = scene.triangles.size();
+  if (n <= kMaxPatches) return;
+  std::string advice;
+  if (r.max_edge) {
+    // Patches grow as 1/edge²: this edge gives about kMaxPatches, rounded up with a margin.
+    const double edge = *r.max_edge * std::sqrt(double(n) / kMaxPatches) * 1.1;
+    char text[64];
+    std::snprintf(text, sizeof text, "%.3g", edge);
+    advice = "use a larger --max-edge (about " + std::string(text) + " or more)";
+  } else {
+    advice = "the scene itself has that many triangles: simplify it (--max-edge only splits)";
+  }
+  throw std::runtime_error(r.scene_path + ": " + std::to_string(n) + " patches, more than the " +
+                           std::to_string(kMaxPatches) +
+                           " that dense form-factor storage allows (8·N² bytes); " + advice);
+}
+
+void check_unit_albedo(const SceneSolveRequest& r, const scene::Scene& scene,
+                       const std::vector<Patch>& patches, SceneSolution* out) {
+  if (!has_unit_albedo(scene)) return;
+  const scene::RayCaster probe(scene);
+  out->escape_probe = escape_fraction(patches, probe, 64, 7);
+  if (out->escape_probe == 0.0)
+    throw std::runtime_error(r.scene_path +
+                             ": albedo 1 in a closed scene (no probe ray escapes): the "
+                             "radiosity grows without bound; lower it with --albedo "
+                             "MATERIAL=r,g,b");
+}
+
+// Patch refinement: replaces `scene` with the refined one and returns its patches.
+std::vector<Patch> solve_refined(const SceneSolveRequest& r, scene::Scene* scene,
+                                 SceneSolution* out) {
+  PatchRefinementResult result =
+      solve_with_refinement(std::move(*scene), r.form_factors, r.solve, *r.refinement);
+  *scene = std::move(result.scene);
+  out->solution = std::move(result.solution);
+  out->refinement_passes = result.passes;
+  for (const RefinementPass& pass : result.passes) {
+    out->form_factor_seconds += pass.form_factor_seconds;
+    out->solve_seconds += pass.solve_seconds;
+  }
+  return std::move(result.patches);
+}
+
+}  // namespace
+
+ObjectMove parse_object_move(const std::string& text) {
+  const std::size_t eq = text.find('=');
+  ObjectMove m;
+  char extra = 0;
+  if (eq == std::string::npos || eq == 0 ||
+      std::sscanf(text.c_str() + eq + 1, "%lf,%lf,%lf%c", &m.offset.x, &m.offset.y, &m.offset.z,
+                  &extra) != 3 ||
+      !std::isfinite(m.offset.x) || !std::isfinite(m.offset.y) || !std::isfinite(m.offset.z))
+    throw std::invalid_argument("--move " + text + ": expected OBJECT=dx,dy,dz (finite numbers)");
+  m.object = text.substr(0, eq);
+  return m;
+}
+
+void check_scene_solve(const SceneSolveRequest& r, const std::vector<std::string>& other_outputs) {
+  scene::check_output_path(r.per_emitter_path, r.scene_path, {".prte"});
+  if (!r.per_emitter_path.empty() && r.solve.solver == SolverKind::Progressive)
+    throw std::invalid_argument(
+        "--per-emitter needs a full-matrix solver (--solver gauss-seidel or jacobi)");
+  if (r.max_edge && !(*r.max_edge > 0.0 && std::isfinite(*r.max_edge)))
+    throw std::invalid_argument("--max-edge " + std::to_string(*r.max_edge) +
+                                ": the target edge length must be a finite positive number");
+  if (!r.form_factor_cache.empty()) {
+    scene::check_output_path(r.form_factor_cache, r.scene_path, {});
+    if (r.solve.solver == SolverKind::Progressive)
+      throw std::invalid_argument("--form-factor-cache " + r.form_factor_cache +
+                                  ": needs a full-matrix solver (gauss-seidel or jacobi)");
+    for (const std::string& out : other_outputs) {
+      std::error_code ec;
+      if (!out.empty() &&
+          (out == r.form_factor_cache || std::filesystem::equivalent(out, r.form_factor_cache, ec)))
+        throw std::invalid_argument(out + ": an output may not overwrite the form-factor cache");
+    }
+  }
+  if (r.refinement) {
+    const char* other = !r.form_factor_cache.empty()  ? "--form-factor-cache"
+                        : !r.moves.empty()            ? "--move"
+                        : !r.per_emitter_path.empty() ? "--per-emitter"
+                                                      : nullptr;
+    if (other)
+      throw std::invalid_argument(std::string("--adaptive: not with ") + other +
+                                  " (the patches change from pass to pass)");
+  }
+  if (!(r.solve.tolerance > 0.0 && r.solve.tolerance < 1.0))
+    throw std::invalid_argument("--tolerance " + std::to_string(r.solve.tolerance) +
+                                ": must be in (0, 1)");
+}
+
+SceneSolution solve_scene(const SceneSolveRequest& r,
+                          const std::function<void(const scene::Scene&)>& before_solve) {
+  check_scene_solve(r, {});
+  const scene::Scene before = prepare_scene(r, false);
+  scene::Scene scene = r.moves.empty() ? before : prepare_scene(r, true);
+  check_patch_count(r, scene);
+  if (!r.per_emitter_path.empty()) emitter_groups(scene);  // refused before solving
+  if (before_solve) before_solve(scene);
+  SceneSolution out;
+  std::vector<Patch> patches = make_patches(scene);
+  check_unit_albedo(r, scene, patches, &out);
+  if (r.refinement) {
+    patches = solve_refined(r, &scene, &out);  // pass by pass
+  } else if (r.solve.solver == SolverKind::Progressive) {
+    const scene::RayCaster caster(scene);
+    const Clock::time_point t = Clock::now();
+    out.solution = solve_progressive(patches, caster, r.form_factors, r.solve);
+    out.solve_seconds = since(t);  // includes the rows computed on the fly
+  } else {
+    const scene::RayCaster caster(scene);
+    solve_on(r, scene, patches, form_factors(r, before, patches, caster, &out), &out);
+  }
+  out.patches = patches.size();
+  out.vertex_radiance = vertex_radiance(scene, patches, out.solution.display_radiance);
+  out.solution.radiance.clear();
+  out.solution.display_radiance.clear();
+  out.scene = std::move(scene);
+  return out;
+}
+
+}  // namespace prt::radiosity

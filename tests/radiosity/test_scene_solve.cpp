@@ -1,0 +1,149 @@
+// The solve of `prt radiosity` from a scene file (radiosity/scene_solve.h): the same vertex
+// radiance as its steps run by hand, the patch scene handed to the caller before any ray, its
+// refusals before anything is written, and the files it writes.
+#include <filesystem>
+#include <fstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <catch2/catch.hpp>
+
+#include "radiosity/form_factors.h"
+#include "radiosity/patches.h"
+#include "radiosity/scene_solve.h"
+#include "radiosity/solver.h"
+#include "scene/material_assignment.h"
+#include "scene/ray_caster.h"
+#include "scene/scene_loader.h"
+#include "scene/subdivide.h"
+
+using namespace prt::radiosity;
+namespace fs = std::filesystem;
+
+namespace {
+
+fs::path scratch(const std::string& name) {
+  const fs::path dir = fs::path(PRT_TEST_OUTPUT_DIR) / "scene_solve" / name;
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+// A room open at the front (z = 0), 1 unit wide: white walls, a lamp under the ceiling
+// (material `lamp`, Ke 5) and a panel on the back wall (material `panel`, no emission).
+std::string write_room(const fs::path& dir) {
+  std::ofstream(dir / "room.mtl") << "newmtl white\nKd 0.7 0.6 0.5\n"
+                                     "newmtl lamp\nKd 0.5 0.5 0.5\nKe 5 5 5\n"
+                                     "newmtl panel\nKd 0.3 0.3 0.3\n";
+  std::ofstream(dir / "room.obj")
+      << "mtllib room.mtl\n"
+         "v 0 0 0\nv 1 0 0\nv 1 0 1\nv 0 0 1\nv 0 1 0\nv 1 1 0\nv 1 1 1\nv 0 1 1\n"
+         "v 0.4 0.99 0.4\nv 0.6 0.99 0.4\nv 0.6 0.99 0.6\nv 0.4 0.99 0.6\n"
+         "v 0.2 0.1 0.99\nv 0.2 0.3 0.99\nv 0.6 0.3 0.99\nv 0.6 0.1 0.99\n"
+         "o walls\nusemtl white\n"
+         "f 1 4 3 2\nf 5 6 7 8\nf 1 5 8 4\nf 2 3 7 6\nf 4 8 7 3\n"
+         "o lamp\nusemtl lamp\nf 9 10 11 12\n"
+         "o panel\nusemtl panel\nf 13 14 15 16\n";
+  return (dir / "room.obj").string();
+}
+
+}  // namespace
+
+TEST_CASE("solve_scene equals its steps run by hand and hands the patch scene over first",
+          "[radiosity][scene-solve]") {
+  const fs::path dir = scratch("by_hand");
+  SceneSolveRequest request;
+  request.scene_path = write_room(dir);
+  request.emission = {prt::scene::parse_material_colour("--emission", "panel=0.5,1,2")};
+  request.albedo = {prt::scene::parse_material_colour("--albedo", "white=0.6")};
+  request.max_edge = 0.3;
+  request.solve.tolerance = 1e-6;
+  std::size_t calls = 0, triangles_seen = 0;
+  const SceneSolution s = solve_scene(request, [&](const prt::scene::Scene& scene) {
+    ++calls;
+    triangles_seen = scene.triangles.size();
+  });
+  CHECK(calls == 1);
+  CHECK(triangles_seen == s.scene.triangles.size());
+  CHECK(s.patches == s.scene.triangles.size());
+  CHECK(s.solution.radiance.empty());  // emptied: the vertex radiance is the result
+  CHECK(s.solution.converged);
+  CHECK(s.files_written.empty());
+  CHECK(s.cache == SceneSolution::Cache::None);
+
+  // The same steps by hand: deterministic code on the same input, so equal bit for bit.
+  prt::scene::Scene scene = prt::scene::load_scene(request.scene_path);
+  prt::scene::apply_emission(scene, request.emission);
+  prt::scene::apply_albedo(scene, request.albedo);
+  scene = prt::scene::subdivide_to_edge_length(scene, *request.max_edge);
+  const std::vector<Patch> patches = make_patches(scene);
+  const prt::scene::RayCaster caster(scene);
+  const Solution solution = solve_matrix(
+      patches, compute_form_factors(patches, caster, request.form_factors), request.solve);
+  CHECK(s.vertex_radiance == vertex_radiance(scene, patches, solution.display_radiance));
+  CHECK(s.solution.iterations == solution.iterations);
+  REQUIRE(s.scene.vertex_count() == scene.vertex_count());
+  CHECK(s.vertex_radiance.size() == 3 * scene.vertex_count());
+}
+
+TEST_CASE("solve_scene refuses before writing: a bad request, a caller's check, a bad scene",
+          "[radiosity][scene-solve]") {
+  const fs::path dir = scratch("refused");
+  SceneSolveRequest request;
+  request.scene_path = write_room(dir);
+  request.form_factor_cache = (dir / "cache.ff").string();
+  request.per_emitter_path = (dir / "responses.prte").string();
+  // The caller's own check fails: nothing computed, nothing written.
+  CHECK_THROWS_WITH(
+      solve_scene(request, [](const prt::scene::Scene&) { throw std::runtime_error("camera"); }),
+      "camera");
+  CHECK_FALSE(fs::exists(request.form_factor_cache));
+  CHECK_FALSE(fs::exists(request.per_emitter_path));
+  // Refused by check_scene_solve, before the scene is read.
+  SceneSolveRequest bad = request;
+  bad.per_emitter_path = (dir / "responses.csv").string();
+  CHECK_THROWS_WITH(solve_scene(bad), Catch::Contains("unsupported output type '.csv'"));
+  bad = request;
+  bad.solve.solver = SolverKind::Progressive;
+  CHECK_THROWS_WITH(solve_scene(bad), Catch::Contains("--per-emitter needs a full-matrix solver"));
+  bad = request;
+  bad.refinement = PatchRefinementOptions{};
+  CHECK_THROWS_WITH(solve_scene(bad), Catch::Contains("--adaptive: not with --form-factor-cache"));
+  CHECK_THROWS_WITH(check_scene_solve(request, {request.form_factor_cache}),
+                    Catch::Contains("may not overwrite the form-factor cache"));
+  bad = request;
+  bad.per_emitter_path = request.scene_path;
+  CHECK_THROWS_WITH(solve_scene(bad), Catch::Contains("unsupported output type '.obj'"));
+  bad.per_emitter_path = (dir / "room.prte").string();
+  bad.moves = {parse_object_move("nosuch=0,1,0")};
+  CHECK_THROWS_WITH(solve_scene(bad), Catch::Contains("--move nosuch: no object of"));
+  bad = request;
+  bad.emission = {prt::scene::parse_material_colour("--emission", "lamp=0")};
+  CHECK_THROWS_WITH(solve_scene(bad), Catch::Contains("nothing emits light"));
+  // Only the scene files are there.
+  for (const auto& e : fs::directory_iterator(dir)) {
+    const std::string name = e.path().filename().string();
+    CHECK((name == "room.obj" || name == "room.mtl"));
+  }
+}
+
+TEST_CASE("solve_scene writes the cache, then loads it, and the per-emitter responses",
+          "[radiosity][scene-solve]") {
+  const fs::path dir = scratch("files");
+  SceneSolveRequest request;
+  request.scene_path = write_room(dir);
+  request.max_edge = 0.4;
+  request.form_factor_cache = (dir / "cache.ff").string();
+  request.per_emitter_path = (dir / "responses.prte").string();
+  const SceneSolution saved = solve_scene(request);
+  CHECK(saved.cache == SceneSolution::Cache::Saved);
+  CHECK(saved.files_written ==
+        std::vector<std::string>{request.form_factor_cache, request.per_emitter_path});
+  REQUIRE(saved.emitter_reports.size() == 1);
+  CHECK(saved.emitter_reports[0].name == "lamp");
+  const SceneSolution loaded = solve_scene(request);
+  CHECK(loaded.cache == SceneSolution::Cache::Loaded);
+  CHECK(loaded.form_factor_seconds == 0.0);  // nothing computed
+  CHECK(loaded.vertex_radiance == saved.vertex_radiance);
+}
