@@ -9,6 +9,7 @@
 #include <catch2/catch.hpp>
 
 #include "bake/cpca/compressor.h"
+#include "prt/diffuse/relighter.h"
 #include "prt/glossy/cpca_kernel.h"
 #include "prt/glossy/kernel.h"
 #include "prt/glossy/reference.h"

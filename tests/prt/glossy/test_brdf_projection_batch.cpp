@@ -1,7 +1,7 @@
-// BrdfProjection::evaluate_many() (prt/glossy/brdf_projection.h) against the per-view float evaluate():
-// the batched isotropic-table path replaces acosf by a polynomial and fuses the lerp with the
-// rotation about +z, so it may differ in the last bits only; the other methods fall back to the
-// per-view code and must give its bits.
+// BrdfProjection::evaluate_many() (prt/glossy/brdf_projection.h) against the per-view float
+// evaluate(): the batched isotropic-table path replaces acosf by a polynomial and fuses the lerp
+// with the rotation about +z, so it may differ in the last bits only; the other methods fall back
+// to the per-view code and must give its bits.
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -10,6 +10,7 @@
 
 #include <catch2/catch.hpp>
 
+#include "numerics/constants.h"
 #include "prt/glossy/brdf_projection.h"
 
 using prt::BrdfProjection;
@@ -19,7 +20,7 @@ using prt::brdf::MaterialModel;
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using prt::numerics::kPi;
 
 Material ggx(double alpha, prt::brdf::Rgb f0, double kd) {
   Material m;
