@@ -8,6 +8,7 @@
 
 #include <catch2/catch.hpp>
 
+#include "numerics/constants.h"
 #include "radiosity/adaptive.h"
 #include "radiosity/patches.h"
 #include "radiosity_fixtures.h"
@@ -50,7 +51,8 @@ double smallest_angle_degrees(const Scene& s) {
       const glm::dvec3 a(s.positions[t[k]]), b(s.positions[t[(k + 1) % 3]]),
           c(s.positions[t[(k + 2) % 3]]);
       const double cosine = glm::dot(glm::normalize(b - a), glm::normalize(c - a));
-      smallest = std::min(smallest, std::acos(std::clamp(cosine, -1.0, 1.0)) * 180.0 / M_PI);
+      smallest =
+          std::min(smallest, std::acos(std::clamp(cosine, -1.0, 1.0)) * 180.0 / prt::numerics::kPi);
     }
   return smallest;
 }
@@ -232,7 +234,8 @@ TEST_CASE("adaptive against uniform patches (measurement, prints a table)", "[.]
       options.max_patches = budget;
       const AdaptiveResult adaptive = solve_adaptive(shadow_scene(4), {}, {}, options);
       const FloorSolution a{adaptive.scene, adaptive.patches, adaptive.solution.radiance};
-      const int n = static_cast<int>(std::lround(std::sqrt(double(adaptive.patches.size() - 4) / 2.0)));
+      const int n =
+          static_cast<int>(std::lround(std::sqrt(double(adaptive.patches.size() - 4) / 2.0)));
       const FloorSolution u = uniform(n);
       std::printf("threshold %.2f budget %zu: passes", threshold, budget);
       for (const AdaptivePass& p : adaptive.passes)

@@ -62,7 +62,8 @@ enum class FormFactorMethod { Analytic, Rays, Hemicube };
 enum class RaySampling {
   Independent,  // every sample from the row's pseudo-random stream
   Sobol,        // the first N points of the 4-D Sobol' sequence, scrambled (nested) per row
-                // (sobol.h; [90], [91] of docs/REFERENCES.md): stratified in every projection
+                // (numerics/low_discrepancy.h; [90], [91] of docs/REFERENCES.md): stratified in
+                // every projection
 };
 
 // rays: how the rows of emitting patches (emission ≠ 0) are made.
