@@ -15,6 +15,9 @@
 #include "bake/haar_baker.h"
 #include "bake/sampling.h"
 #include "bake/transfer_baker.h"
+#include "numerics/constants.h"
+#include "numerics/rng.h"
+#include "numerics/sampling.h"
 #include "prt/haar/approximation.h"
 #include "prt/haar/relighter.h"
 #include "prt/haar/transform.h"
@@ -32,7 +35,7 @@ using prt::report::GroundTruthResult;
 
 namespace {
 
-constexpr double kPi = prt::test::kPi;
+using prt::numerics::kPi;
 // The budget for every closed form: stratified sampling and tessellation stay well
 // below it (see each case), a wrong ray origin does not (the old offset missed by 0.12).
 constexpr double kClosedFormTolerance = 0.01;
@@ -131,17 +134,14 @@ double stratified_ao(const RayCaster& caster, const Scene& scene, uint32_t v) {
   build_orthonormal_basis(n, t, b);
   const glm::vec3 o = caster.vertex_origin(v);
   constexpr int kStrata = 128;
-  uint64_t state = 0x9E3779B97F4A7C15ull ^ v;
-  auto uniform = [&state] {
-    state = state * 6364136223846793005ull + 1442695040888963407ull;
-    return static_cast<float>(static_cast<double>(state >> 40) * 0x1p-24);
-  };
+  prt::numerics::SplitMix64 rng{v};
+  auto uniform = [&rng] { return static_cast<float>(rng.next_u64() >> 40) * 0x1p-24f; };
   int visible = 0;
   for (int i = 0; i < kStrata; ++i)
     for (int j = 0; j < kStrata; ++j) {
       const glm::vec2 u((static_cast<float>(i) + uniform()) / kStrata,
                         (static_cast<float>(j) + uniform()) / kStrata);
-      const glm::vec3 l = sample_cosine_hemisphere(u);
+      const glm::vec3 l = to_glm(prt::numerics::sample_cosine_hemisphere(to_numerics(u)));
       const glm::vec3 d = glm::normalize(l.x * t + l.y * b + l.z * n);
       visible += caster.occluded(o, d, 0.f, INFINITY) ? 0 : 1;
     }
@@ -290,7 +290,7 @@ double occluded_fraction(const RayCaster& caster, const Scene& scene, uint32_t v
   for (int i = 0; i < N; ++i) {
     const float fi = static_cast<float>(i);
     const glm::vec2 u((fi + 0.5f) / static_cast<float>(N), std::fmod(fi * 0.618034f, 1.f));
-    const glm::vec3 l = sample_cosine_hemisphere(u);
+    const glm::vec3 l = to_glm(prt::numerics::sample_cosine_hemisphere(to_numerics(u)));
     const glm::vec3 d = glm::normalize(l.x * t + l.y * b + l.z * n);
     hits += caster.occluded(caster.vertex_origin(v), d, 0.f, INFINITY) ? 1 : 0;
   }

@@ -20,7 +20,8 @@
 #include <cstddef>
 #include <vector>
 
-#include "prt/gauss_legendre.h"
+#include "numerics/constants.h"
+#include "numerics/gauss_legendre.h"
 #include "prt/glossy/transfer.h"
 #include "sh/basis.h"
 #include "sh/rotation.h"
@@ -32,12 +33,12 @@ inline std::vector<double> triple_products(int order) {
   const int n2 = order * order, big = 2 * order - 1, kk = big * big;
   const int nz = 2 * order + 2, nphi = 8 * order;
   std::vector<double> zx, zw, y(kk), g(std::size_t(n2) * n2 * kk, 0.0);
-  append_gauss_legendre(nz, -1.0, 1.0, &zx, &zw);
+  numerics::append_gauss_legendre(nz, -1.0, 1.0, &zx, &zw);
   for (int a = 0; a < nz; ++a) {
     for (int b = 0; b < nphi; ++b) {
-      const double phi = 2.0 * M_PI * (b + 0.5) / nphi, s = std::sqrt(1.0 - zx[a] * zx[a]);
+      const double phi = 2.0 * numerics::kPi * (b + 0.5) / nphi, s = std::sqrt(1.0 - zx[a] * zx[a]);
       sh::evaluate(big, s * std::cos(phi), s * std::sin(phi), zx[a], y.data());
-      const double w = zw[a] * 2.0 * M_PI / nphi;
+      const double w = zw[a] * 2.0 * numerics::kPi / nphi;
       for (int i = 0; i < n2; ++i) {
         for (int j = 0; j < n2; ++j) {
           const double wij = w * y[i] * y[j];
@@ -89,7 +90,7 @@ inline GlossyTransferData synthetic_glossy(std::size_t count, int order, int cha
   const std::vector<double> g = triple_products(order);
   // Fibonacci directions and their basis values.
   std::vector<double> dirs(3 * std::size_t(directions)), ydir(std::size_t(directions) * kk);
-  const double golden = M_PI * (3.0 - std::sqrt(5.0));
+  const double golden = numerics::kPi * (3.0 - std::sqrt(5.0));
   for (int s = 0; s < directions; ++s) {
     const double z = 1.0 - (2.0 * s + 1.0) / directions, r = std::sqrt(1.0 - z * z);
     dirs[3 * s] = r * std::cos(golden * s);
@@ -144,7 +145,7 @@ inline GlossyTransferData synthetic_glossy(std::size_t count, int order, int cha
       const double* ys = &ydir[std::size_t(s) * kk];
       for (int k = 0; k < kk; ++k) vk[k] += ys[k];
     }
-    for (int k = 0; k < kk; ++k) vk[k] *= 4.0 * M_PI / directions;
+    for (int k = 0; k < kk; ++k) vk[k] *= 4.0 * numerics::kPi / directions;
     for (int i = 0; i < n2; ++i) {
       for (int j = 0; j < n2; ++j) {
         const double* gij = &g[(std::size_t(i) * n2 + j) * kk];
