@@ -173,6 +173,17 @@ TEST_CASE("Sobol' matrices carry Joe & Kuo's direction numbers", "[numerics][sob
   for (int k = 0; k + 1 < 32; ++k)
     CHECK(nm::kSobolMatrices.v[1][k + 1] ==
           (nm::kSobolMatrices.v[1][k] ^ (nm::kSobolMatrices.v[1][k] >> 1)));
+  // sobol_bits computes dimensions 0 and 1 without the table: the same points as the matrices.
+  nm::SplitMix64 rng{3};
+  for (int s = 0; s < 20000; ++s) {
+    const uint32_t i = s < 10000 ? uint32_t(s) : static_cast<uint32_t>(rng.next_u64());
+    for (int d : {0, 1, 2}) {
+      uint32_t r = 0;
+      for (int k = 0; k < 32; ++k)
+        if ((i >> k) & 1u) r ^= nm::kSobolMatrices.v[d][k];
+      REQUIRE(nm::sobol_bits(i, d) == r);
+    }
+  }
 }
 
 TEST_CASE("unscrambled Sobol' points are the published ones", "[numerics][sobol]") {

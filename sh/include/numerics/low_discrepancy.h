@@ -107,6 +107,14 @@ inline constexpr detail::SobolMatrices kSobolMatrices = detail::make_sobol_matri
 // Unscrambled coordinate `dimension` (0 ≤ dimension < kSobolDimensions) of Sobol' point `index`.
 constexpr uint32_t sobol_bits(uint32_t index, int dimension) {
   if (dimension == 0) return reverse_bits32(index);
+  if (dimension == 1) {
+    // Pascal's matrix mod 2 (= kSobolMatrices.v[1]) built on the fly, column k + 1 being
+    // column k ⊕ (column k ≫ 1): no table loads in the bakers' 2-D loop.
+    uint32_t r = 0;
+    for (uint32_t v = 1u << 31; index != 0; index >>= 1, v ^= v >> 1)
+      if (index & 1u) r ^= v;
+    return r;
+  }
   uint32_t r = 0;
   for (int k = 0; index != 0; ++k, index >>= 1)
     if (index & 1u) r ^= kSobolMatrices.v[dimension][k];
