@@ -120,7 +120,7 @@ TEST_CASE("Gauss-Legendre: appends, n = 0 appends nothing, a smooth integrand co
   CHECK(sum == Approx(-3.0).epsilon(1e-15));
 }
 
-TEST_CASE("Gauss-Legendre: the tabulated 5-point rule; gauss_legendre is the rule on [-1, 1]",
+TEST_CASE("Gauss-Legendre: the tabulated 5-point rule, and gauss_legendre is the rule on [-1, 1]",
           "[gauss_legendre]") {
   // Abramowitz & Stegun, Table 25.4 (n = 5), 16 digits: nodes ±0.9061798459386640,
   // ±0.5384693101056831, 0 and weights 0.2369268850561891, 0.4786286704993665, 128/225. The

@@ -112,7 +112,7 @@ TEST_CASE("mix64 avalanches: each input bit flips each output bit half the time"
   CHECK(std::adjacent_find(out.begin(), out.end()) == out.end());
 }
 
-TEST_CASE("hash_values chains hash_seed; WordHash is FNV-1a over words, finalised",
+TEST_CASE("hash_values chains hash_seed, and WordHash is FNV-1a over words, finalised",
           "[numerics][hash]") {
   CHECK(nm::hash_values(7) == nm::splitmix64(7));
   CHECK(nm::hash_values(7, 11) == nm::hash_seed(7, 11));
@@ -377,7 +377,7 @@ TEST_CASE("disc and triangle samplers are uniform", "[numerics][sampling]") {
   CHECK(nm::uniform_triangle_pdf(0.25) == 4.0);
 }
 
-TEST_CASE("float and double samplers agree; the basis is right-handed orthonormal",
+TEST_CASE("float and double samplers agree, and the basis is right-handed orthonormal",
           "[numerics][sampling]") {
   nm::SplitMix64 rng{5};
   for (int i = 0; i < 1000; ++i) {
