@@ -17,6 +17,7 @@
 
 #include <glm/glm.hpp>
 
+#include "numerics/constants.h"
 #include "radiosity/patches.h"
 #include "scene/ray_caster.h"
 #include "scene/scene_loader.h"
@@ -51,7 +52,7 @@ Rays make_rays(const std::vector<prt::radiosity::Patch>& patches,
       const double s = std::sqrt(u(engine)), v = u(engine);
       const glm::dvec3 x =
           p.corners[0] * (1 - s) + p.corners[1] * (s * (1 - v)) + p.corners[2] * (s * v);
-      const double r2 = u(engine), phi = 2 * M_PI * u(engine);
+      const double r2 = u(engine), phi = 2 * prt::numerics::kPi * u(engine);
       const glm::dvec3 d = b1 * (std::sqrt(r2) * std::cos(phi)) +
                            b2 * (std::sqrt(r2) * std::sin(phi)) + n * std::sqrt(1 - r2);
       r.origins.push_back(caster.surface_origin(uint32_t(i), glm::vec3(x), glm::vec3(p.normal)));

@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "numerics/rng.h"
 #include "prt/haar/approximation.h"
 #include "prt/haar/relighter.h"
 
@@ -22,21 +23,11 @@ constexpr int kSize = 32;
 constexpr int64_t kVertices = 50000;
 constexpr int kTerms = 200;
 
-// xorshift64*: fast, deterministic.
-struct Rng {
-  uint64_t s;
-  uint64_t next() {
-    s ^= s >> 12;
-    s ^= s << 25;
-    s ^= s >> 27;
-    return s * 2685821657736338717ull;
-  }
-  double uniform() { return static_cast<double>(next() >> 11) * 0x1.0p-53; }
-};
+using Rng = prt::numerics::SplitMix64;
 
 prt::HaarTransfer make_synthetic_transfer(bool coarse_dense) {
   prt::HaarTransferBuilder builder(kSize, 3, prt::HaarQuantization::Bits16);
-  Rng rng{0x9e3779b97f4a7c15ull};
+  Rng rng{1};
   const uint32_t n2 = kSize * kSize, total = 6 * n2;
   prt::SparseVertexTransfer v;
   for (int64_t vertex = 0; vertex < kVertices; ++vertex) {

@@ -13,8 +13,9 @@
 #include <immintrin.h>
 #endif
 
+#include "numerics/constants.h"
+#include "numerics/gauss_legendre.h"
 #include "prt/brdf/brdf.h"
-#include "prt/gauss_legendre.h"
 #include "prt/glossy/transfer.h"
 #include "sh/basis.h"
 
@@ -26,7 +27,7 @@ namespace prt::bench {
 inline std::vector<float> brdf_sh_matrix(const prt::brdf::Brdf& f, int order, int n_theta) {
   const int n2 = order * order, n_phi = 2 * n_theta;
   std::vector<double> gx, gw;
-  prt::append_gauss_legendre(n_theta, -1.0, 1.0, &gx, &gw);
+  prt::numerics::append_gauss_legendre(n_theta, -1.0, 1.0, &gx, &gw);
   struct Node {
     prt::brdf::Vec3 w;
     double weight;
@@ -36,8 +37,10 @@ inline std::vector<float> brdf_sh_matrix(const prt::brdf::Brdf& f, int order, in
   for (int a = 0; a < n_theta; ++a) {
     const double z = 0.5 * (gx[a] + 1.0), s = std::sqrt(1.0 - z * z);
     for (int b = 0; b < n_phi; ++b) {
-      const double phi = 2.0 * M_PI * (b + 0.5) / n_phi;
-      Node nd{{s * std::cos(phi), s * std::sin(phi), z}, 0.5 * gw[a] * 2.0 * M_PI / n_phi, {}};
+      const double phi = 2.0 * prt::numerics::kPi * (b + 0.5) / n_phi;
+      Node nd{{s * std::cos(phi), s * std::sin(phi), z},
+              0.5 * gw[a] * 2.0 * prt::numerics::kPi / n_phi,
+              {}};
       nd.y.resize(n2);
       sh::evaluate(order, nd.w.x, nd.w.y, nd.w.z, nd.y.data());
       nodes.push_back(std::move(nd));

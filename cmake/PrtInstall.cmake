@@ -1,6 +1,7 @@
 # prt_install_component(TARGET name COMPONENT component [HEADERS dir])
 # Installs a library as the exported component prt::<component>: its archive, its public headers
-# (the folder `dir`, default <folder>/include/), and prt_<component>Targets.cmake, which
+# (the folder `dir`, default <folder>/include/; a folder given without a trailing slash is installed
+# as a folder of that name), and prt_<component>Targets.cmake, which
 # cmake/prtConfig.cmake.in includes when the component is asked for.
 include(GNUInstallDirs)
 function(prt_install_component)

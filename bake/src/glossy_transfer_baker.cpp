@@ -18,8 +18,8 @@
 #include "bake/progress.h"
 #include "bake/sampling.h"
 #include "hit_side.h"
-#include "prt/glossy/brdf_projection.h"
 #include "prt/formats/geometry_check.h"
+#include "prt/glossy/brdf_projection.h"
 #include "scene/ray_caster.h"
 #include "scene/scene_label.h"
 #include "scene/tangent_frames.h"
@@ -62,8 +62,8 @@ bool grey(const brdf::Rgb& c) {
   return c.r == c.g && c.g == c.b;
 }
 
-// The bounces' b(ω_o) of a material: the runtime's projection (prt/glossy/brdf_projection.h), so the
-// bake and the shading use one implementation. Its float evaluate() takes a scratch buffer;
+// The bounces' b(ω_o) of a material: the runtime's projection (prt/glossy/brdf_projection.h), so
+// the bake and the shading use one implementation. Its float evaluate() takes a scratch buffer;
 // kProjectionScratch floats cover every order and view order it accepts (n² + m² + E ≤ 1652).
 constexpr std::size_t kProjectionScratch = 2048;
 
@@ -113,17 +113,10 @@ struct GlossyJob {
   std::size_t blocks() const { return (V + kBlock - 1) / kBlock; }
 };
 
-// Uniform direction on the upper hemisphere (local frame), pdf 1/2π: z = 1 − u₁, φ = 2π u₂.
-glm::vec3 uniform_hemisphere(const glm::vec2& u) {
-  const float z = 1.f - u.x;
-  const float r = std::sqrt(std::max(0.f, 1.f - z * z));
-  const float phi = 2.f * static_cast<float>(sh::kPi) * u.y;
-  return {r * std::cos(phi), r * std::sin(phi), z};
-}
-
 void sample_direction(const GlossyJob& job, std::size_t v, uint64_t vertex_seed, uint32_t i,
                       glm::vec3& local, glm::vec3& world) {
-  local = uniform_hemisphere(sample_sobol_2d(i, vertex_seed));
+  // Uniform on the upper hemisphere of the local frame, pdf 1/2π.
+  local = to_glm(numerics::sample_uniform_hemisphere(to_numerics(sample_sobol_2d(i, vertex_seed))));
   const Frame& f = job.frames[v];
   world = glm::normalize(local.x * f.t + local.y * f.b + local.z * f.n);
 }

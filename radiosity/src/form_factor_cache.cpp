@@ -10,6 +10,7 @@
 
 #include "form_factor_rows.h"
 #include "large_buffer.h"
+#include "numerics/hash.h"
 #include "prt/core/atomic_file.h"
 #include "prt/formats/crc32c.h"
 
@@ -20,29 +21,6 @@ constexpr char kMagic[8] = {'P', 'R', 'T', 'F', 'F', 'M', '1', '\n'};
 constexpr uint32_t kVersion = 1;
 constexpr std::size_t kHeaderSize = 64;
 constexpr std::size_t kChecksumOffset = 48;
-
-class Fnv32 {
- public:
-  void word(uint32_t w) { h_ = (h_ ^ w) * 0x100000001b3ull; }
-  void u64(uint64_t v) {
-    word(static_cast<uint32_t>(v));
-    word(static_cast<uint32_t>(v >> 32));
-  }
-  void f32(float v) {
-    uint32_t w;
-    std::memcpy(&w, &v, 4);
-    word(w == 0x80000000u ? 0u : w);
-  }
-  uint64_t finish() const {
-    uint64_t z = h_;
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-    return z ^ (z >> 31);
-  }
-
- private:
-  uint64_t h_ = 0xcbf29ce484222325ull;
-};
 
 struct Header {
   uint32_t version = kVersion, header_size = kHeaderSize;
@@ -76,37 +54,37 @@ struct FileCloser {
 }  // namespace
 
 uint64_t form_factor_key(const std::vector<Patch>& patches, const FormFactorOptions& options) {
-  Fnv32 h;
-  h.u64(patches.size());
+  numerics::WordHash h;
+  h.add_u64(patches.size());
   for (const Patch& p : patches)
     for (const glm::dvec3& c : p.corners)
-      for (int k = 0; k < 3; ++k) h.f32(static_cast<float>(c[k]));
-  h.word(static_cast<uint32_t>(options.method));
+      for (int k = 0; k < 3; ++k) h.add_float(static_cast<float>(c[k]));
+  h.add_word(static_cast<uint32_t>(options.method));
   switch (options.method) {
     case FormFactorMethod::Analytic:
-      h.word(static_cast<uint32_t>(options.quadrature_points));
+      h.add_word(static_cast<uint32_t>(options.quadrature_points));
       break;
     case FormFactorMethod::Rays:
-      h.word(static_cast<uint32_t>(options.rays_per_patch));
-      h.u64(options.seed);
+      h.add_word(static_cast<uint32_t>(options.rays_per_patch));
+      h.add_u64(options.seed);
       // Which patches shoot more rays is part of how F was estimated (not their emission).
       if (options.emitter_rays_per_patch > 0 || options.emitter_rows == EmitterRows::Reciprocal) {
-        h.word(static_cast<uint32_t>(options.emitter_rays_per_patch));
+        h.add_word(static_cast<uint32_t>(options.emitter_rays_per_patch));
         for (std::size_t i = 0; i < patches.size(); ++i)
-          if (patches[i].emission != glm::dvec3(0.0)) h.u64(i);
+          if (patches[i].emission != glm::dvec3(0.0)) h.add_u64(i);
       }
       // Independent samples and ray-cast emitter rows add nothing, so that a cache made before
       // these choices existed (the same F, bit for bit) keeps its key; any other choice changes
       // the key, so a cache of another estimator is refused.
       if (options.sampling != RaySampling::Independent)
-        h.word(0x50000000u + static_cast<uint32_t>(options.sampling));
+        h.add_word(0x50000000u + static_cast<uint32_t>(options.sampling));
       if (options.emitter_rows != EmitterRows::Rays) {
-        h.word(0x45000000u + static_cast<uint32_t>(options.emitter_rows));
-        h.word(static_cast<uint32_t>(options.quadrature_points));
+        h.add_word(0x45000000u + static_cast<uint32_t>(options.emitter_rows));
+        h.add_word(static_cast<uint32_t>(options.quadrature_points));
       }
       break;
     case FormFactorMethod::Hemicube:
-      h.word(static_cast<uint32_t>(options.hemicube_resolution));
+      h.add_word(static_cast<uint32_t>(options.hemicube_resolution));
       break;
   }
   return h.finish();

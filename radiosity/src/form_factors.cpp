@@ -11,7 +11,9 @@
 
 #include "form_factor_rows.h"
 #include "large_buffer.h"
-#include "radiosity/scrambled_sobol.h"
+#include "numerics/constants.h"
+#include "numerics/hash.h"
+#include "numerics/low_discrepancy.h"
 #include "random.h"
 
 namespace prt::radiosity {
@@ -101,8 +103,7 @@ class RowSamples {
   RowSamples(const Patch& s, uint32_t i, const FormFactorOptions& options)
       : s_(s),
         random_(options.seed, i),
-        sobol_(options.sampling == RaySampling::Sobol ? seeds(&random_)
-                                                      : std::array<uint32_t, 4>{}),
+        sobol_seed_(numerics::hash_seed(options.seed, i)),
         independent_(options.sampling == RaySampling::Independent) {}
 
   void next(uint32_t k, glm::dvec3* p, glm::dvec3* d) {
@@ -111,23 +112,19 @@ class RowSamples {
       *d = random_.cosine_direction(s_.normal);
       return;
     }
+    // Owen-scrambled Sobol' dimensions 0-3 of the row's sequence (numerics/low_discrepancy.h).
     // Dimensions 0 and 1 (the (0, m, 2)-net) go to the direction, which decides the hit more
     // than the point on a small patch does.
-    const std::array<double, 4> u = sobol_.point(k);
+    double u[4];
+    for (int dim = 0; dim < 4; ++dim) u[dim] = numerics::sobol_owen_double(k, dim, sobol_seed_);
     *d = detail::cosine_direction(s_.normal, u[0], u[1]);
     *p = detail::point_on(s_, u[2], u[3]);
   }
 
  private:
-  static std::array<uint32_t, 4> seeds(detail::PatchRandom* random) {
-    std::array<uint32_t, 4> words;
-    for (uint32_t& w : words) w = random->word();
-    return words;
-  }
-
   const Patch& s_;
   detail::PatchRandom random_;
-  ScrambledSobol4 sobol_;
+  uint64_t sobol_seed_;
   bool independent_;
 };
 
@@ -230,7 +227,7 @@ double point_polygon_form_factor(const glm::dvec3& x, const glm::dvec3& n,
     const double beta = std::atan2(length, glm::dot(a, b));
     sum += beta * glm::dot(n, c) / length;
   }
-  return std::clamp(std::abs(sum) / (2.0 * M_PI), 0.0, 1.0);
+  return std::clamp(std::abs(sum) / numerics::kTwoPi, 0.0, 1.0);
 }
 
 double polygon_polygon_form_factor(const std::vector<glm::dvec3>& a,

@@ -13,7 +13,9 @@
 #include <tbb/parallel_for.h>
 
 #include "bake/sampling.h"
-#include "sample_rng.h"
+#include "numerics/hash.h"
+#include "numerics/rng.h"
+#include "numerics/sampling.h"
 #include "scene/ray_caster.h"
 #include "scene/scene_label.h"
 #include "sh/constants.h"
@@ -26,7 +28,7 @@ constexpr int kRouletteFromDepth = 2;  // path vertices 0 and 1 never roulette
 constexpr float kFar = 1e30f;
 constexpr double kShadowShorten = 1.0 - 1e-4;  // shadow rays stop short of the emitter's point
 
-using Rng = detail::SampleRng;
+using Rng = numerics::SplitMix64;
 
 double luminance(const glm::dvec3& c) {
   return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z;
@@ -35,8 +37,8 @@ double luminance(const glm::dvec3& c) {
 // Uniform point on triangle (a, b, c) from two uniforms (square-root parametrisation).
 glm::dvec3 uniform_triangle_point(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c,
                                   double u1, double u2) {
-  const double su = std::sqrt(u1);
-  return (1.0 - su) * a + su * (1.0 - u2) * b + su * u2 * c;
+  const numerics::Vec3<double> w = numerics::sample_uniform_triangle<double>({u1, u2});
+  return w.x * a + w.y * b + w.z * c;
 }
 
 // The flat triangles of the scene with their materials, and the emitter distribution.
@@ -112,7 +114,7 @@ struct Tracer {
   // weighted against cosine sampling; adds throughput-weighted light to *out.
   uint32_t next_event(const glm::dvec3& x, const glm::vec3& origin, const glm::dvec3& n,
                       const glm::dvec3& beta, Rng& rng, glm::dvec3* out) const {
-    const double u0 = rng.next(), u1 = rng.next(), u2 = rng.next();
+    const double u0 = rng.uniform(), u1 = rng.uniform(), u2 = rng.uniform();
     if (tris.emitters.empty()) return 0;
     const uint32_t e = tris.pick_emitter(u0);
     const glm::dvec3 y = uniform_triangle_point(tris.a[e], tris.b[e], tris.c[e], u1, u2);
@@ -143,8 +145,10 @@ struct Tracer {
       glm::vec3 t, b;
       const glm::vec3 nf = to_float(n);
       bake::build_orthonormal_basis(nf, t, b);
-      const glm::vec3 local = bake::sample_cosine_hemisphere(
-          glm::vec2(static_cast<float>(rng.next()), static_cast<float>(rng.next())));
+      // (glm::vec2's constructor: the two draws in the compiler's argument order, as before.)
+      const glm::vec2 u(static_cast<float>(rng.uniform()), static_cast<float>(rng.uniform()));
+      const glm::vec3 local =
+          bake::to_glm(numerics::sample_cosine_hemisphere(bake::to_numerics(u)));
       const glm::vec3 d = glm::normalize(local.x * t + local.y * b + local.z * nf);
       const double cos_x = glm::dot(n, glm::dvec3(d));
       if (!(cos_x > 0.0)) break;
@@ -166,7 +170,7 @@ struct Tracer {
       beta *= rho;
       if (depth + 1 >= kRouletteFromDepth) {
         const double survive = std::clamp(std::max({rho.x, rho.y, rho.z}), 0.05, 0.99);
-        if (rng.next() >= survive) break;
+        if (rng.uniform() >= survive) break;
         beta /= survive;
       }
       x = p;
@@ -232,8 +236,8 @@ EmitterGroundTruthResult compute_emitter_ground_truth(const scene::Scene& scene,
     glm::dvec3 sum(0.0), sum2(0.0);
     uint64_t cast = 0;
     for (int s = 0; s < o.samples; ++s) {
-      Rng rng{bake::hash_seed(bake::hash_seed(o.seed, t), static_cast<uint64_t>(s))};
-      const double u1 = rng.next(), u2 = rng.next();
+      Rng rng{numerics::hash_seed(numerics::hash_seed(o.seed, t), static_cast<uint64_t>(s))};
+      const double u1 = rng.uniform(), u2 = rng.uniform();
       const glm::dvec3 x = uniform_triangle_point(tris.a[t], tris.b[t], tris.c[t], u1, u2);
       const glm::vec3 origin = caster.surface_origin(t, to_float(x), to_float(tris.normal[t]));
       glm::dvec3 l(0.0);
@@ -272,8 +276,8 @@ glm::dvec3 point_reflected_radiance(const scene::Scene& scene, const glm::dvec3&
   const glm::dvec3 unit_n = glm::normalize(n);
   glm::dvec3 sum(0.0), sum2(0.0);
   for (int s = 0; s < o.samples; ++s) {
-    Rng rng{bake::hash_seed(bake::hash_seed(o.seed, ~0ull), static_cast<uint64_t>(s))};
-    rng.next(), rng.next();  // the point's two uniforms in the patch estimator
+    Rng rng{numerics::hash_seed(numerics::hash_seed(o.seed, ~0ull), static_cast<uint64_t>(s))};
+    rng.uniform(), rng.uniform();  // the point's two uniforms in the patch estimator
     glm::dvec3 l(0.0);
     tracer.trace(x, to_float(x), unit_n, rho, rng, &l);
     sum += l, sum2 += l * l;

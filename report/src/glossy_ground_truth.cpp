@@ -9,8 +9,10 @@
 
 #include "bake/sampling.h"
 #include "bake/transfer_baker.h"
+#include "numerics/hash.h"
+#include "numerics/rng.h"
+#include "numerics/sampling.h"
 #include "prt/brdf/material.h"
-#include "sample_rng.h"
 #include "scene/ray_caster.h"
 #include "scene/scene_label.h"
 #include "scene/tangent_frames.h"
@@ -20,15 +22,15 @@ namespace prt::report {
 namespace {
 
 using bake::BakeError;
-using bake::hash_seed;
 using brdf::Rgb;
 using brdf::Vec3;
+using numerics::hash_seed;
 using sh::kPi;
 constexpr int kRouletteFromDepth = 2;  // path vertices 0 and 1 never roulette
 constexpr std::size_t kVertexBlock = 16;
 constexpr uint32_t kNoPrimitive = ~0u;
 
-using detail::SampleRng;
+using SampleRng = numerics::SplitMix64;
 
 // An orthonormal shading frame (t, b, n) in world space.
 struct Frame {
@@ -69,8 +71,8 @@ struct Surface {
     if (brdf) return brdf->sample(wo, u1, u2);
     brdf::BrdfSample s;
     if (wo.z <= 0) return s;
-    const glm::vec3 l =
-        bake::sample_cosine_hemisphere(glm::vec2(static_cast<float>(u1), static_cast<float>(u2)));
+    const numerics::Vec3<float> l = numerics::sample_cosine_hemisphere(
+        numerics::Vec2<float>{static_cast<float>(u1), static_cast<float>(u2)});
     s.wi = brdf::normalize({l.x, l.y, l.z});
     if (!(s.wi.z > 0)) return s;
     s.pdf = s.wi.z / kPi;
@@ -198,7 +200,7 @@ uint32_t GlossyPaths::sample_vertex(uint32_t v, uint64_t sample_index, double ou
   for (int depth = 0;; ++depth) {
     // Light sample, balance heuristic against the BRDF sample.
     double ld[3], lrgb[3], lpdf;
-    const double u0 = rng.next(), u1 = rng.next(), u2 = rng.next();
+    const double u0 = rng.uniform(), u1 = rng.uniform(), u2 = rng.uniform();
     if (light.sample(u0, u1, u2, ld, lrgb, &lpdf) && lpdf > 0) {
       const Vec3 wi = frame.to_local(glm::dvec3(ld[0], ld[1], ld[2]));
       if (wi.z > 0) {
@@ -215,7 +217,7 @@ uint32_t GlossyPaths::sample_vertex(uint32_t v, uint64_t sample_index, double ou
       }
     }
     // BRDF sample: escape → weighted map radiance; front hit → continue the path.
-    const double s1 = rng.next(), s2 = rng.next();
+    const double s1 = rng.uniform(), s2 = rng.uniform();
     const brdf::BrdfSample s = surf.sample(wo, s1, s2);
     if (!(s.pdf > 0) || !(s.wi.z > 0)) break;
     double gain[3];
@@ -242,7 +244,7 @@ uint32_t GlossyPaths::sample_vertex(uint32_t v, uint64_t sample_index, double ou
     for (int c = 0; c < 3; ++c) beta[c] *= gain[c];
     if (depth + 1 >= kRouletteFromDepth) {
       const double survive = std::clamp(std::max({gain[0], gain[1], gain[2]}), 0.05, 0.99);
-      if (rng.next() >= survive) break;
+      if (rng.uniform() >= survive) break;
       for (double& x : beta) x /= survive;
     }
     const glm::uvec3 tri = scene.triangles[hit.triangle];

@@ -8,9 +8,11 @@
 
 #include "bake/sampling.h"
 #include "bake/transfer_baker.h"
+#include "numerics/hash.h"
+#include "numerics/rng.h"
+#include "numerics/sampling.h"
 #include "scene/ray_caster.h"
 
-#include "sample_rng.h"
 #include "scene/scene_label.h"
 #include "sh/constants.h"
 
@@ -19,8 +21,7 @@ namespace {
 
 using bake::BakeError;
 using bake::build_orthonormal_basis;
-using bake::hash_seed;
-using bake::sample_cosine_hemisphere;
+using numerics::hash_seed;
 
 using sh::kPi;
 constexpr int kRouletteFromDepth = 2;  // path vertices 0 and 1 never roulette
@@ -30,7 +31,7 @@ double luminance(const double rgb[3]) {
   return 0.2126 * rgb[0] + 0.7152 * rgb[1] + 0.0722 * rgb[2];
 }
 
-using detail::SampleRng;
+using SampleRng = numerics::SplitMix64;
 
 // Face direction of the cube layouts (sh/env_map.h): face index in +X, −X, +Y, −Y, +Z, −Z order.
 void cube_face_direction(int face, double a, double b, bool faces_layout, double d[3]) {
@@ -215,7 +216,7 @@ uint32_t DiffusePaths::sample_vertex(uint32_t v, uint64_t sample_index, double o
   for (int depth = 0;; ++depth) {
     // Light sample, weighted by the balance heuristic against the cosine sample.
     double ld[3], lrgb[3], lpdf;
-    const double u0 = rng.next(), u1 = rng.next(), u2 = rng.next();
+    const double u0 = rng.uniform(), u1 = rng.uniform(), u2 = rng.uniform();
     if (light.sample(u0, u1, u2, ld, lrgb, &lpdf)) {
       const glm::vec3 d(static_cast<float>(ld[0]), static_cast<float>(ld[1]),
                         static_cast<float>(ld[2]));
@@ -232,8 +233,9 @@ uint32_t DiffusePaths::sample_vertex(uint32_t v, uint64_t sample_index, double o
     // Cosine sample: escape → weighted map radiance; front hit → continue the path.
     glm::vec3 t, b;
     build_orthonormal_basis(normal, t, b);
-    const glm::vec3 local = sample_cosine_hemisphere(
-        glm::vec2(static_cast<float>(rng.next()), static_cast<float>(rng.next())));
+    // (glm::vec2's constructor: the two draws in the compiler's argument order, as before.)
+    const glm::vec2 u(static_cast<float>(rng.uniform()), static_cast<float>(rng.uniform()));
+    const glm::vec3 local = bake::to_glm(numerics::sample_cosine_hemisphere(bake::to_numerics(u)));
     glm::vec3 d = glm::normalize(local.x * t + local.y * b + local.z * normal);
     const double cosine = glm::dot(normal, d);
     if (!(cosine > 0)) break;
@@ -263,7 +265,7 @@ uint32_t DiffusePaths::sample_vertex(uint32_t v, uint64_t sample_index, double o
     if (depth + 1 >= kRouletteFromDepth) {
       const double survive =
           std::clamp<double>(std::max({albedo.x, albedo.y, albedo.z}), 0.05, 0.99);
-      if (rng.next() >= survive) break;
+      if (rng.uniform() >= survive) break;
       for (double& x : beta) x /= survive;
     }
     const glm::vec3 p = w0 * scene.positions[tri.x] + hit.u * scene.positions[tri.y] +

@@ -8,8 +8,9 @@
 #include <limits>
 #include <stdexcept>
 
+#include "numerics/constants.h"
+#include "numerics/gauss_legendre.h"
 #include "prt/glossy/brdf_projection.h"
-#include "prt/gauss_legendre.h"
 #include "scene/procedural_mesh.h"
 #include "sh/basis.h"
 #include "sh/zonal.h"
@@ -17,9 +18,9 @@
 namespace prt::report {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 using brdf::Rgb;
 using brdf::Vec3;
+using numerics::kPi;
 
 double dot3(const Vec3& a, const Vec3& b) {
   return a.x * b.x + a.y * b.y + a.z * b.z;
@@ -43,7 +44,7 @@ void graded_polar_rule(double uniform, std::vector<double>* x, std::vector<doubl
   for (double e = uniform; e < kPi / 2 - 1e-12; e += uniform) edges.push_back(e);
   edges.push_back(kPi / 2);
   for (std::size_t k = 0; k + 1 < edges.size(); ++k)
-    if (edges[k + 1] > edges[k]) append_gauss_legendre(8, edges[k], edges[k + 1], x, w);
+    if (edges[k + 1] > edges[k]) numerics::append_gauss_legendre(8, edges[k], edges[k + 1], x, w);
 }
 
 // Legendre P_0..P_{n−1}(t) into p.
@@ -104,7 +105,7 @@ Rgb sun_exit_radiance(const brdf::Brdf& brdf, const Vec3& wo, const Vec3& sun, d
   const Vec3 helper = std::fabs(s.z) < 0.9 ? Vec3{0, 0, 1} : Vec3{1, 0, 0};
   const Vec3 e1 = normalized(cross3(helper, s)), e2 = cross3(s, e1);
   std::vector<double> u, wu;
-  append_gauss_legendre(rings, std::cos(half_angle), 1.0, &u, &wu);
+  numerics::append_gauss_legendre(rings, std::cos(half_angle), 1.0, &u, &wu);
   double sum[3] = {0, 0, 0};
   for (std::size_t i = 0; i < u.size(); ++i) {
     const double r = std::sqrt(std::max(0.0, 1.0 - u[i] * u[i]));

@@ -6,7 +6,7 @@
 #include <cmath>
 #include <limits>
 
-#include "gauss_legendre.h"
+#include "numerics/gauss_legendre.h"
 #include "sh/constants.h"
 
 namespace prt::sh {
@@ -93,7 +93,7 @@ double g_over_r2(double r) {
 struct QuadratureRule {
   std::vector<double> nodes, weights;
   explicit QuadratureRule(int n) {
-    detail::gauss_legendre(n, &nodes, &weights);
+    numerics::gauss_legendre(n, &nodes, &weights);
     for (std::size_t i = 0; i < nodes.size(); ++i) {
       nodes[i] = 0.5 * (nodes[i] + 1.0);
       weights[i] *= 0.5;

@@ -121,11 +121,18 @@ TEST_CASE("CPCA target-error selection meets its target with few vectors", "[cpc
     INFO("target " << target << ": K = " << t.vector_count << ", error " << e);
     CHECK(e <= target);
     CHECK(t.vector_count <= 24);
-    // One vector fewer (same clustering, nested) misses the target, unless K = 0.
+    // K is the smallest count whose truncation of the max_vectors clustering meets the target:
+    // that clustering (the same run, deterministic for a seed) truncated to K − 1 misses it.
     if (t.vector_count > 0) {
       o.target_relative_rms = 0;
+      o.vectors = o.max_vectors;
+      const CpcaTransfer full = compress(d, o);
+      CHECK(prt::cpca_relative_rms_error_truncated(full, d.matrices.data(), t.vector_count - 1) >
+            target);
+      // A run clustered for K − 1 vectors can do better than that truncation, but not by much:
+      // measured 14% and 13% below the targets 0.3 and 0.1 (seed 1); the margin varies by seed.
       o.vectors = t.vector_count - 1;
-      CHECK(prt::cpca_relative_rms_error(compress(d, o), d.matrices.data()) > target * 0.9);
+      CHECK(prt::cpca_relative_rms_error(compress(d, o), d.matrices.data()) > target * 0.8);
     }
   }
   CpcaOptions o;

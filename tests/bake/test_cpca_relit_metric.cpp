@@ -10,6 +10,7 @@
 #include "bake/cpca/compressor.h"
 #include "bake/cpca/relit_metric.h"
 #include "fixtures/synthetic_glossy.h"
+#include "numerics/constants.h"
 #include "prt/glossy/brdf_projection.h"
 #include "sh/zonal.h"
 
@@ -54,7 +55,7 @@ double relit_error2(const prt::BrdfProjection& p, const std::vector<double>& del
   std::vector<double> b(3 * n2);
   double sum = 0.0;
   for (int s = 0; s < samples; ++s) {
-    const double z = u(rng), phi = 2.0 * M_PI * u(rng), r = std::sqrt(1.0 - z * z);
+    const double z = u(rng), phi = 2.0 * prt::numerics::kPi * u(rng), r = std::sqrt(1.0 - z * z);
     p.evaluate({r * std::cos(phi), r * std::sin(phi), z}, b.data());
     for (int c = 0; c < 3; ++c) {
       for (int j = 0; j < n2; ++j) {

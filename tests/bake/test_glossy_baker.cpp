@@ -11,9 +11,10 @@
 
 #include "bake/glossy_transfer_baker.h"
 #include "bake/transfer_baker.h"
+#include "numerics/constants.h"
 #include "prt/brdf/blinn_phong.h"
-#include "prt/glossy/brdf_projection.h"
 #include "prt/formats/glossy_transfer_file.h"
+#include "prt/glossy/brdf_projection.h"
 #include "scene/procedural_mesh.h"
 #include "sh/basis.h"
 #include "sh/rotation.h"
@@ -25,7 +26,7 @@ using prt::bake::GlossyBakeOptions;
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using prt::numerics::kPi;
 
 // Hemisphere Gram matrix H_ik = ∫_{z>0} y_i y_k dω by the midpoint rule on (z, φ): the integrand
 // is a polynomial in z times trigonometric terms of degree < 2n in φ, so 64 azimuths are exact

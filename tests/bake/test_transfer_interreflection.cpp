@@ -11,6 +11,7 @@
 
 #include "bake/interreflection_solver.h"
 #include "bake/transfer_baker.h"
+#include "numerics/rng.h"
 #include "scene/procedural_mesh.h"
 #include "support/transfer_references.h"
 
@@ -222,11 +223,8 @@ TEST_CASE("stiff box with a small opening: Krylov beats bounces and agrees with 
 // contraction), so every clone adds the same products in the same order and the results must be
 // bit-identical — the same file on every CPU. A wrong column, weight or tail is off by O(1).
 TEST_CASE("the solver's gather equals a plain loop for any column count") {
-  uint64_t state = 0x9e3779b97f4a7c15ull;
-  auto next = [&] {
-    state = state * 6364136223846793005ull + 1442695040888963407ull;
-    return static_cast<double>(state >> 11) * 0x1.0p-53;
-  };
+  prt::numerics::SplitMix64 rng{1};
+  auto next = [&] { return rng.uniform(); };
   const std::size_t rows = 300;
   prt::bake::SparseTransferMatrix h;
   for (std::size_t v = 0; v < rows; ++v) {

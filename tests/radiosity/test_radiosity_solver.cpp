@@ -10,6 +10,7 @@
 #include <tbb/global_control.h>
 #include <catch2/catch.hpp>
 
+#include "numerics/constants.h"
 #include "radiosity/form_factors.h"
 #include "radiosity/patches.h"
 #include "radiosity/solver.h"
@@ -77,7 +78,7 @@ namespace {
 // cell for completeness; the matrix solvers read only area, albedo and emission.
 std::vector<Patch> spherical_cells(int rings, int segments, int cap_rings, glm::dvec3 albedo,
                                    glm::dvec3 emission) {
-  const double pi = 3.14159265358979323846, dphi = 2.0 * pi / segments;
+  const double pi = prt::numerics::kPi, dphi = 2.0 * pi / segments;
   const auto at = [](double theta, double phi) {
     return glm::dvec3(std::sin(theta) * std::cos(phi), std::cos(theta),
                       std::sin(theta) * std::sin(phi));
@@ -119,7 +120,7 @@ TEST_CASE("closed sphere with exact form factors F_ij = A_j / A: B = rho E / (1 
   double total_area = 0.0;
   glm::dvec3 emitted(0.0);
   for (const Patch& p : cells) total_area += p.area, emitted += p.area * p.emission;
-  REQUIRE(total_area == Approx(4.0 * 3.14159265358979323846).epsilon(1e-12));
+  REQUIRE(total_area == Approx(prt::numerics::kFourPi).epsilon(1e-12));
   const glm::dvec3 expected = rho * (emitted / total_area) / (glm::dvec3(1.0) - rho);
   FormFactorMatrix f;
   f.size = n;

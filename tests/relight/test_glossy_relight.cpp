@@ -6,6 +6,7 @@
 
 #include <catch2/catch.hpp>
 
+#include "numerics/constants.h"
 #include "relight/glossy_relight.h"
 #include "sh/rotation.h"
 
@@ -24,8 +25,10 @@ TEST_CASE("Glossy turntable: the camera orbits the vertical line through its tar
     CHECK(o.target == c.target);
     // Frame i is turned by 360°·i/N: the horizontal offset's angle.
     const float angle = std::atan2(o.eye.x - c.target.x, o.eye.z - c.target.z);
-    const float expected = std::remainder(2.f * 3.14159265f * float(i) / n, 2.f * 3.14159265f);
-    CHECK(std::remainder(angle - expected, 2.f * 3.14159265f) == Approx(0.f).margin(1e-5));
+    const float expected =
+        std::remainder(2.f * prt::numerics::kPiFloat * float(i) / n, 2.f * prt::numerics::kPiFloat);
+    CHECK(std::remainder(angle - expected, 2.f * prt::numerics::kPiFloat) ==
+          Approx(0.f).margin(1e-5));
   }
   // Frame N is frame 0 (full circle), frame 0 the camera itself.
   const Camera full = prt::relight::orbit_camera(c, n, n);

@@ -10,6 +10,7 @@
 
 #include <catch2/catch.hpp>
 
+#include "numerics/constants.h"
 #include "prt/brdf/material.h"
 #include "prt/glossy/relighter.h"
 #include "prt/lighting/sh_lighting.h"
@@ -25,7 +26,7 @@ using prt::scene::Scene;
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using prt::numerics::kPi;
 
 // A lat-long map: a sky of 0.4 and a bright disc (radiance 25, 12°) toward `towards`.
 prt::sh::EnvMap spot_map(const glm::dvec3& towards) {

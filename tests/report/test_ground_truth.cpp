@@ -9,6 +9,7 @@
 #include <catch2/catch.hpp>
 
 #include "bake/transfer_baker.h"
+#include "numerics/constants.h"
 #include "report/ground_truth.h"
 #include "scene/procedural_mesh.h"
 #include "sh/basis.h"
@@ -20,7 +21,7 @@ using prt::scene::Scene;
 
 namespace {
 
-constexpr double kPi = prt::test::kPi;
+using prt::numerics::kPi;
 
 prt::sh::EnvMap constant_map(prt::sh::EnvLayout layout, int w, int h, float value) {
   prt::sh::EnvMap m;
@@ -84,7 +85,7 @@ TEST_CASE("image_point_direction agrees with prt::sh::direction_to_texel in ever
       for (int col = 0; col < c.w * sub; ++col) {
         double d[3], jac;
         if (prt::report::image_point_direction(c.layout, c.w, c.h, (col + 0.5) / sub,
-                                             (row + 0.5) / sub, d, &jac))
+                                               (row + 0.5) / sub, d, &jac))
           total_j += jac / (sub * sub);
       }
     CHECK(total_j == Approx(4.0 * kPi).epsilon(0.005));

@@ -6,6 +6,7 @@
 
 #include <catch2/catch.hpp>
 
+#include "numerics/constants.h"
 #include "prt/brdf/lambert.h"
 #include "prt/glossy/brdf_projection.h"
 #include "report/sun_study.h"
@@ -15,7 +16,7 @@ namespace {
 
 using prt::brdf::Vec3;
 namespace rep = prt::report;
-constexpr double kPi = 3.14159265358979323846;
+using prt::numerics::kPi;
 const double kSunHalfAngle = 0.5 * rep::kSunAngularDiameterDegrees * kPi / 180.0;
 
 std::shared_ptr<const prt::brdf::Brdf> make(const prt::brdf::Material& m) {

@@ -10,7 +10,9 @@
 
 #include <catch2/catch.hpp>
 
-#include "prt/brdf/lambert.h"
+#include "numerics/constants.h"
+#include "numerics/rng.h"
+#include "numerics/sampling.h"
 #include "scene/orthonormal_basis.h"
 #include "scene/procedural_mesh.h"
 #include "scene/ray_caster.h"
@@ -30,7 +32,7 @@ using prt::test::occluded_fraction;
 
 namespace {
 
-constexpr double kPi = prt::test::kPi;
+using prt::numerics::kPi;
 
 // A vertical tube of radius R and height h standing on y = 0 around (cx, cz), normals inward.
 Scene tube(float cx, float cz, float R, float h, int segments) {
@@ -67,18 +69,16 @@ double stratified_ao(const RayCaster& caster, const Scene& scene, uint32_t v) {
   build_orthonormal_basis(n, t, b);
   const glm::vec3 o = caster.vertex_origin(v);
   constexpr int kStrata = 128;
-  uint64_t state = 0x9E3779B97F4A7C15ull ^ v;
-  auto uniform = [&state] {
-    state = state * 6364136223846793005ull + 1442695040888963407ull;
-    return static_cast<double>(state >> 40) * 0x1p-24;
-  };
+  prt::numerics::SplitMix64 rng{v};
+  auto uniform = [&rng] { return static_cast<float>(rng.next_u64() >> 40) * 0x1p-24f; };
   int visible = 0;
   for (int i = 0; i < kStrata; ++i)
     for (int j = 0; j < kStrata; ++j) {
-      const double u1 = (i + uniform()) / kStrata, u2 = (j + uniform()) / kStrata;
-      const prt::brdf::Vec3 l = prt::brdf::sample_cosine_hemisphere(u1, u2);
-      const glm::vec3 d = glm::normalize(static_cast<float>(l.x) * t + static_cast<float>(l.y) * b +
-                                         static_cast<float>(l.z) * n);
+      const glm::vec2 u((static_cast<float>(i) + uniform()) / kStrata,
+                        (static_cast<float>(j) + uniform()) / kStrata);
+      const prt::numerics::Vec3<float> l =
+          prt::numerics::sample_cosine_hemisphere(prt::numerics::Vec2<float>{u.x, u.y});
+      const glm::vec3 d = glm::normalize(l.x * t + l.y * b + l.z * n);
       visible += caster.occluded(o, d, 0.f, INFINITY) ? 0 : 1;
     }
   return visible / double(kStrata * kStrata);

@@ -17,6 +17,7 @@
 #include <nlohmann/json.hpp>
 
 #include "gltf_test_files.h"
+#include "numerics/constants.h"
 #include "scene/glb_writer.h"
 #include "scene/material_override.h"
 #include "scene/procedural_mesh.h"
@@ -32,7 +33,7 @@ using prt::scene::Scene;
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using prt::numerics::kPi;
 
 // One triangle in the z = 0 plane (normal +Z) with NORMAL, optional TANGENT and TEXCOORD_0,
 // and one material; `node` is merged into the node (e.g. a scale).

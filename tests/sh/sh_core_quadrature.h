@@ -3,13 +3,14 @@
 // Gauss–Legendre in t = cos θ (about a chosen axis, over t ∈ [t0, t1]) times a uniform rule in
 // φ. With nt nodes and nphi angles it integrates exactly every polynomial in (x, y, z) of
 // degree ≤ min(2·nt − 1, nphi − 1) over the zone t0 ≤ ω·axis ≤ t1 (the φ rule is exact for
-// trigonometric degree < nphi). Nodes are found by Newton's method on P_nt in long double.
+// trigonometric degree < nphi). The nodes are numerics/gauss_legendre.h's.
 #pragma once
 
 #include <array>
 #include <cmath>
 #include <vector>
 
+#include "numerics/gauss_legendre.h"
 #include "sh/constants.h"
 
 namespace sh_test {
@@ -19,30 +20,8 @@ struct Quadrature {
   std::vector<double> weights;
 };
 
-// Gauss–Legendre nodes and weights on [−1, 1].
-inline void gauss_legendre(int n, std::vector<double>* nodes, std::vector<double>* weights) {
-  nodes->assign(n, 0.0);
-  weights->assign(n, 0.0);
-  const long double pi = prt::sh::kPiLong;
-  for (int i = 0; i < n; ++i) {
-    long double t = std::cos(pi * (i + 0.75L) / (n + 0.5L));  // Tricomi's initial guess
-    long double dp = 0;
-    for (int iteration = 0; iteration < 100; ++iteration) {
-      long double p0 = 1, p1 = t;  // Bonnet: (k+1) P_{k+1} = (2k+1) t P_k − k P_{k−1}
-      for (int k = 1; k < n; ++k) {
-        const long double p2 = ((2 * k + 1) * t * p1 - k * p0) / (k + 1);
-        p0 = p1;
-        p1 = p2;
-      }
-      dp = n * (t * p1 - p0) / (t * t - 1);
-      const long double step = p1 / dp;
-      t -= step;
-      if (std::fabs(step) < 1e-19L) break;
-    }
-    (*nodes)[i] = static_cast<double>(t);
-    (*weights)[i] = static_cast<double>(2 / ((1 - t * t) * dp * dp));
-  }
-}
+// Gauss–Legendre nodes and weights on [−1, 1] (numerics/gauss_legendre.h).
+using prt::numerics::gauss_legendre;
 
 // The product rule over the zone t0 ≤ ω·axis ≤ t1 (unit axis).
 inline Quadrature make_zone_quadrature(int nt, int nphi, double t0 = -1.0, double t1 = 1.0,

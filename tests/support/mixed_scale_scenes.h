@@ -13,7 +13,7 @@
 #include <catch2/catch.hpp>
 #include <glm/glm.hpp>
 
-#include "prt/brdf/lambert.h"
+#include "numerics/sampling.h"
 #include "scene/orthonormal_basis.h"
 #include "scene/ray_caster.h"
 #include "scene/scene.h"
@@ -110,10 +110,11 @@ inline double occluded_fraction(const scene::RayCaster& caster, const scene::Sce
   scene::build_orthonormal_basis(n, t, b);
   int hits = 0;
   for (int i = 0; i < N; ++i) {
-    const double u1 = (i + 0.5) / N, u2 = std::fmod(i * 0.618034, 1.0);
-    const brdf::Vec3 l = brdf::sample_cosine_hemisphere(u1, u2);
-    const glm::vec3 d = glm::normalize(static_cast<float>(l.x) * t + static_cast<float>(l.y) * b +
-                                       static_cast<float>(l.z) * n);
+    const float fi = static_cast<float>(i);
+    const prt::numerics::Vec2<float> u{(fi + 0.5f) / static_cast<float>(N),
+                                       std::fmod(fi * 0.618034f, 1.f)};
+    const prt::numerics::Vec3<float> l = prt::numerics::sample_cosine_hemisphere(u);
+    const glm::vec3 d = glm::normalize(l.x * t + l.y * b + l.z * n);
     hits += caster.occluded(caster.vertex_origin(v), d, 0.f, INFINITY) ? 1 : 0;
   }
   return hits / double(N);

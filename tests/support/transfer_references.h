@@ -8,12 +8,12 @@
 
 #include <glm/glm.hpp>
 
+#include "numerics/constants.h"
 #include "scene/scene.h"
-#include "sh/constants.h"
 
 namespace prt::test {
 
-using prt::sh::kPi;
+using prt::numerics::kPi;
 
 // Cosine-weighted fraction of the hemisphere around unit n at p that the planar polygon
 // `loop` covers (the differential-area-to-polygon form factor), by Lambert's formula

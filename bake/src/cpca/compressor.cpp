@@ -10,6 +10,7 @@
 #include <sstream>
 #include <thread>
 
+#include "numerics/rng.h"
 #include "pca.h"
 #include "row_metric.h"
 
@@ -17,7 +18,6 @@ namespace prt {
 namespace {
 
 using detail::dot;
-
 
 // Runs fn(i) for i < n on up to `threads` threads (indices interleaved in chunks of 16).
 // Every fn(i) must write only its own outputs: the result then does not depend on threads.
@@ -97,13 +97,8 @@ double reconstruction_error(const Model& m, std::size_t q, const float* x, doubl
 // vertex joins its nearest seed.
 void seed_clusters(const Problem& pb, Model* m) {
   const std::size_t n = pb.n, d = pb.d;
-  uint64_t state = pb.options->seed * 0x9e3779b97f4a7c15ull + 0x2545f4914f6cdd1dull;
-  auto next_uniform = [&state]() {
-    state ^= state << 13;
-    state ^= state >> 7;
-    state ^= state << 17;
-    return static_cast<double>(state >> 11) * 0x1p-53;
-  };
+  numerics::SplitMix64 rng{pb.options->seed};
+  auto next_uniform = [&rng]() { return rng.uniform(); };
   std::vector<std::size_t> seeds;
   seeds.push_back(
       std::min(n - 1, static_cast<std::size_t>(next_uniform() * static_cast<double>(n))));

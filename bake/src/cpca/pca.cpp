@@ -5,23 +5,19 @@
 #include <cmath>
 #include <numeric>
 
+#include "numerics/rng.h"
+
 namespace prt::detail {
 namespace {
 
 // Oversampling of the subspace iteration: p = k + kOversample columns.
 constexpr std::size_t kOversample = 8;
 
-uint64_t splitmix64(uint64_t x) {
-  x += 0x9e3779b97f4a7c15ull;
-  x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ull;
-  x = (x ^ (x >> 27)) * 0x94d049bb133111ebull;
-  return x ^ (x >> 31);
-}
-
 // A deterministic pseudo-random value in [-1, 1) for (seed, row, column).
 double hash_uniform(uint64_t seed, std::size_t row, std::size_t col) {
+  using numerics::splitmix64;
   const uint64_t h = splitmix64(seed ^ splitmix64(row * 0x100000001b3ull + col));
-  return static_cast<double>(h >> 11) * 0x1p-52 - 1.0;
+  return 2.0 * numerics::unit_double_from_bits(h) - 1.0;
 }
 
 // z[m·p + j] = y_m · q_j.

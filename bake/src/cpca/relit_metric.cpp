@@ -5,13 +5,14 @@
 #include <cmath>
 #include <string>
 
+#include "numerics/constants.h"
 #include "pca.h"
 #include "prt/glossy/brdf_projection.h"
 
 namespace prt {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using numerics::kPi;
 
 // Adds count · E_ωo[b_c(ω_o) b_c(ω_o)ᵀ] of one material to second[c·n⁴ + i·n² + k].
 Status add_material(const brdf::Material& material, int order, double count,

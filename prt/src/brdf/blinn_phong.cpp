@@ -47,7 +47,7 @@ BrdfSample BlinnPhong::sample(const Vec3& wo, double u1, double u2) const {
   if (wo.z <= 0.0) return {};
   BrdfSample out;
   if (detail::pick_diffuse(p_diffuse_, u1)) {
-    out.wi = sample_cosine_hemisphere(u1, u2);
+    out.wi = detail::sample_cosine_direction(u1, u2);
   } else {
     const double cos_h = std::pow(1.0 - u1, 1.0 / (s_ + 1.0));  // 1 − u1 keeps cos_h > 0
     const Vec3 h = spherical_direction(cos_h, 2.0 * kPi * u2);

@@ -4,35 +4,22 @@
 #include <algorithm>
 #include <cmath>
 
+#include "numerics/constants.h"
+#include "numerics/rng.h"
+
 namespace prt::brdf {
-
-namespace {
-
-// splitmix64 (Steele, Lea & Flood 2014), mapped to [0, 1) with 53 bits.
-struct SplitMix64 {
-  uint64_t state;
-  double next() {
-    uint64_t z = (state += 0x9e3779b97f4a7c15ull);
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-    z ^= z >> 31;
-    return static_cast<double>(z >> 11) * 0x1.0p-53;
-  }
-};
-
-}  // namespace
 
 Rgb directional_albedo(const Brdf& brdf, const Vec3& wo, int n, uint64_t seed,
                        double* standard_error) {
-  SplitMix64 rng{seed};
+  numerics::SplitMix64 rng{seed};
   double sum[3] = {0, 0, 0}, sum2[3] = {0, 0, 0};
   const int count = std::max(1, n) * std::max(1, n);
   for (int i = 0; i < n; ++i) {
     for (int j = 0; j < n; ++j) {
-      const double u1 = (i + rng.next()) / n;
-      const double u2 = (j + rng.next()) / n;
-      const BrdfSample s =
-          brdf.sample(wo, std::min(u1, 0x1.fffffffffffffp-1), std::min(u2, 0x1.fffffffffffffp-1));
+      const double u1 = (i + rng.uniform()) / n;
+      const double u2 = (j + rng.uniform()) / n;
+      const BrdfSample s = brdf.sample(wo, std::min(u1, numerics::kOneMinusEpsilon),
+                                       std::min(u2, numerics::kOneMinusEpsilon));
       if (!(s.pdf > 0.0) || s.wi.z <= 0.0) continue;
       const double w = s.wi.z / s.pdf;
       const double v[3] = {s.f.r * w, s.f.g * w, s.f.b * w};

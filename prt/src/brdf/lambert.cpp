@@ -3,6 +3,7 @@
 
 #include <cmath>
 
+#include "brdf/lobe_mix.h"
 #include "brdf/parameter_check.h"
 #include "sh/constants.h"
 
@@ -23,17 +24,11 @@ Rgb Lambert::eval(const Vec3& wi, const Vec3& wo) const {
   return (1.0 / kPi) * rho_;
 }
 
-Vec3 sample_cosine_hemisphere(double u1, double u2) {
-  const double r = std::sqrt(u1);
-  const double phi = 2.0 * kPi * u2;
-  return {r * std::cos(phi), r * std::sin(phi), std::sqrt(std::fmax(0.0, 1.0 - u1))};
-}
-
 BrdfSample sample_by_cosine(const Brdf& f, const Vec3& wo, double u1, double u2) {
   if (wo.z <= 0.0) return {};
   BrdfSample s;
-  s.wi = sample_cosine_hemisphere(u1, u2);
-  s.pdf = s.wi.z / kPi;
+  s.wi = detail::sample_cosine_direction(u1, u2);
+  s.pdf = numerics::cosine_hemisphere_pdf(s.wi.z);
   s.f = f.eval(s.wi, wo);
   return s;
 }

@@ -1,6 +1,9 @@
-// Choosing between a diffuse and a glossy lobe with one uniform number (internal header).
+// Choosing between a diffuse and a glossy lobe with one uniform number, and sampling the diffuse
+// lobe (internal header).
 #pragma once
 
+#include "numerics/constants.h"
+#include "numerics/sampling.h"
 #include "prt/brdf/vec3.h"
 
 namespace prt::brdf::detail {
@@ -19,8 +22,15 @@ inline bool pick_diffuse(double p_diffuse, double& u) {
     return true;
   }
   u = (u - p_diffuse) / (1.0 - p_diffuse);
-  if (u >= 1.0) u = 0x1.fffffffffffffp-1;
+  if (u >= 1.0) u = numerics::kOneMinusEpsilon;
   return false;
+}
+
+// A cosine-weighted direction on the upper hemisphere of the shading frame (pdf cos θ/π):
+// numerics::sample_cosine_hemisphere, Malley's method on the concentric disc.
+inline Vec3 sample_cosine_direction(double u1, double u2) {
+  const numerics::Vec3<double> l = numerics::sample_cosine_hemisphere<double>({u1, u2});
+  return {l.x, l.y, l.z};
 }
 
 }  // namespace prt::brdf::detail

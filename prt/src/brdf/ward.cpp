@@ -56,7 +56,7 @@ BrdfSample Ward::sample(const Vec3& wo, double u1, double u2) const {
   if (wo.z <= 0.0) return {};
   BrdfSample out;
   if (detail::pick_diffuse(p_diffuse_, u1)) {
-    out.wi = sample_cosine_hemisphere(u1, u2);
+    out.wi = detail::sample_cosine_direction(u1, u2);
   } else {
     const Vec3 m = beckmann_.sample_normal(u1, u2);
     if (dot(wo, m) <= 0.0) return {};

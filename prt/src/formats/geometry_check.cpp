@@ -3,41 +3,19 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <limits>
 #include <sstream>
 
+#include "numerics/hash.h"
+
 namespace prt {
-namespace {
-
-constexpr uint64_t kFnvOffsetBasis = 0xcbf29ce484222325ull;
-constexpr uint64_t kFnvPrime = 0x100000001b3ull;
-
-uint64_t mix_word(uint64_t h, uint32_t word) {
-  return (h ^ word) * kFnvPrime;
-}
-
-uint64_t finalise_splitmix64(uint64_t z) {
-  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-  z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-  return z ^ (z >> 31);
-}
-
-}  // namespace
 
 uint64_t geometry_fingerprint(const float* positions_xyz, std::size_t vertex_count) noexcept {
-  const auto count = static_cast<uint64_t>(vertex_count);
-  uint64_t h = kFnvOffsetBasis;
-  h = mix_word(h, static_cast<uint32_t>(count & 0xffffffffu));
-  h = mix_word(h, static_cast<uint32_t>(count >> 32));
+  numerics::WordHash h;
+  h.add_u64(static_cast<uint64_t>(vertex_count));
   const std::size_t n = 3 * vertex_count;
-  for (std::size_t i = 0; i < n; ++i) {
-    uint32_t word;
-    std::memcpy(&word, positions_xyz + i, sizeof word);
-    if (word == 0x80000000u) word = 0;  // −0 → +0
-    h = mix_word(h, word);
-  }
-  return finalise_splitmix64(h);
+  for (std::size_t i = 0; i < n; ++i) h.add_float(positions_xyz[i]);  // −0 enters as +0
+  return h.finish();
 }
 
 Status check_geometry(const TransferData& data, const float* positions_xyz,

@@ -10,13 +10,13 @@
 #include <utility>
 
 #include "glossy/hemisphere_rules.h"
+#include "numerics/constants.h"
 #include "sh/basis.h"
 #include "sh/zonal.h"
 
 namespace prt {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
+using numerics::kPi;
 
 using brdf::Rgb;
 using brdf::Vec3;

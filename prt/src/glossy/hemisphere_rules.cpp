@@ -4,14 +4,13 @@
 #include <algorithm>
 #include <cmath>
 
-#include "prt/gauss_legendre.h"
+#include "numerics/constants.h"
+#include "numerics/gauss_legendre.h"
 
 namespace prt::glossy {
-namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-
-}  // namespace
+using numerics::append_gauss_legendre;
+using numerics::kPi;
 
 void graded_rule(double a, double b, double centre, const std::vector<double>& widths,
                  int per_panel, std::vector<double>* nodes, std::vector<double>* weights) {

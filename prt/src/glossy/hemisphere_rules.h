@@ -1,5 +1,5 @@
 // prt/src/glossy/hemisphere_rules.h — private: quadrature rules on the local hemisphere used by
-// the BRDF projections (prt/glossy/brdf_projection.h), built from prt/gauss_legendre.h's rule.
+// the BRDF projections (prt/glossy/brdf_projection.h), built from numerics/gauss_legendre.h's rule.
 #pragma once
 
 #include <vector>

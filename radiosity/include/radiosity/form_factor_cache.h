@@ -3,15 +3,16 @@
 // (new emission or albedo: neither enters F). Layout: docs/FORMAT.md, "Form-factor cache".
 //
 // The file is bound to what F depends on by a 64-bit key: FNV-1a-64 over 32-bit words with the
-// splitmix64 finaliser (as the geometry fingerprint of prt/formats/geometry_check.h, [17] of
-// docs/REFERENCES.md) of the patch count, every patch's corners (float bit patterns, −0 as +0)
-// and the method's options (analytic: quadrature points; rays: rays per patch and seed;
-// with emitter_rays_per_patch > 0 or reciprocal emitter rows also that count and the indices
-// of the emitting patches; the sampling unless Independent; the emitter rows and quadrature
-// points unless Rays; hemicube: resolution) with the method's number. Emission values do not enter
-// it. A loaded file must carry the key of the caller's patches and options, its size must match N,
-// and its CRC-32C (prt/formats/crc32c.h) must hold. Errors throw std::runtime_error with one line that
-// names the file; saving is atomic (prt/core/atomic_file.h), so a failed save leaves no file behind.
+// splitmix64 finaliser (numerics::WordHash of numerics/hash.h, as the geometry fingerprint of
+// prt/formats/geometry_check.h; [17] of docs/REFERENCES.md) of the patch count, every patch's
+// corners (float bit patterns, −0 as +0) and the method's options (analytic: quadrature points;
+// rays: rays per patch and seed; with emitter_rays_per_patch > 0 or reciprocal emitter rows also
+// that count and the indices of the emitting patches; the sampling unless Independent; the emitter
+// rows and quadrature points unless Rays; hemicube: resolution) with the method's number. Emission
+// values do not enter it. A loaded file must carry the key of the caller's patches and options, its
+// size must match N, and its CRC-32C (prt/formats/crc32c.h) must hold. Errors throw
+// std::runtime_error with one line that names the file; saving is atomic (prt/core/atomic_file.h),
+// so a failed save leaves no file behind.
 #pragma once
 
 #include <cstdint>

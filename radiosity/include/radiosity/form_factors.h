@@ -61,10 +61,9 @@ enum class FormFactorMethod { Analytic, Rays, Hemicube };
 // direction) are drawn. Both are unbiased and depend only on (seed, row).
 enum class RaySampling {
   Independent,  // every sample from the row's pseudo-random stream
-  // Sobol: the first N points of the 4-D Sobol' sequence, scrambled (nested) per row
-  // (radiosity/scrambled_sobol.h; [90], [91] of docs/REFERENCES.md): stratified in every
-  // projection.
-  Sobol,
+  Sobol,        // the first N points of the 4-D Sobol' sequence, scrambled (nested) per row
+                // (numerics/low_discrepancy.h; [90], [91] of docs/REFERENCES.md): stratified in
+                // every projection
 };
 
 // rays: how the rows of emitting patches (emission ≠ 0) are made.

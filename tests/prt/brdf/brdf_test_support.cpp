@@ -69,14 +69,6 @@ constexpr double kGlW[6] = {0.1713244923791704, 0.3607615730481386, 0.4679139345
 
 }  // namespace
 
-double Rng::next() {
-  uint64_t z = (state += 0x9e3779b97f4a7c15ull);
-  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-  z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-  z ^= z >> 31;
-  return static_cast<double>(z >> 11) * 0x1.0p-53;
-}
-
 std::vector<NamedBrdf> analytic_models() {
   const auto ggx = NormalDistribution::kGgx;
   const auto beck = NormalDistribution::kBeckmann;
@@ -220,7 +212,7 @@ ChiSquareResult chi_square(const Brdf& brdf, const Vec3& wo, long long samples, 
   const double n = static_cast<double>(samples);
   Rng rng{seed};
   for (long long k = 0; k < samples; ++k) {
-    const double u1 = rng.next(), u2 = rng.next();
+    const double u1 = rng.uniform(), u2 = rng.uniform();
     const BrdfSample s = brdf.sample(wo, u1, u2);
     if (!(s.pdf > 0.0)) {
       ++r.no_sample;

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "numerics/rng.h"
 #include "prt/brdf/brdf.h"
 
 namespace brdf_test {
@@ -61,10 +62,7 @@ ChiSquareResult chi_square(const Brdf& brdf, const Vec3& wo, long long samples, 
 // degrees of freedom is Q(k/2, χ²/2).
 double gamma_q(double a, double x);
 
-// A reproducible uniform generator in [0, 1) (splitmix64, 53 bits).
-struct Rng {
-  uint64_t state;
-  double next();
-};
+// A reproducible uniform generator in [0, 1): rng.uniform() (numerics/rng.h, 53 bits).
+using Rng = prt::numerics::SplitMix64;
 
 }  // namespace brdf_test

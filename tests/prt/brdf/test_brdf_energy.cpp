@@ -34,8 +34,8 @@ TEST_CASE("reciprocal models satisfy f(wi, wo) = f(wo, wi)", "[brdf][energy]") {
   for (const NamedBrdf& m : analytic_models()) {
     REQUIRE(m.brdf->reciprocal());
     for (int k = 0; k < 2000; ++k) {
-      const Vec3 a = spherical_direction(rng.next(), 2.0 * kPi * rng.next());
-      const Vec3 b = spherical_direction(rng.next(), 2.0 * kPi * rng.next());
+      const Vec3 a = spherical_direction(rng.uniform(), 2.0 * kPi * rng.uniform());
+      const Vec3 b = spherical_direction(rng.uniform(), 2.0 * kPi * rng.uniform());
       const Rgb fab = m.brdf->eval(a, b), fba = m.brdf->eval(b, a);
       INFO(m.name);
       REQUIRE(fab.r == Approx(fba.r).epsilon(1e-12));
@@ -113,7 +113,7 @@ TEST_CASE("GGX visible-normal samples have weight G2/G1(wo) <= 1", "[brdf][energ
     for (const Vec3& wo : test_outgoing_directions()) {
       Rng rng{5};
       for (int k = 0; k < 20000; ++k) {
-        const double u1 = rng.next(), u2 = rng.next();
+        const double u1 = rng.uniform(), u2 = rng.uniform();
         const BrdfSample s = m.sample(wo, u1, u2);
         if (!(s.pdf > 0.0)) continue;
         const double w = s.f.r * s.wi.z / s.pdf;

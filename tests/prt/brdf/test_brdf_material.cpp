@@ -12,6 +12,7 @@
 #include <catch2/catch.hpp>
 
 #include "brdf_test_support.h"
+#include "numerics/constants.h"
 #include "prt/brdf/blinn_phong.h"
 #include "prt/brdf/lambert.h"
 #include "prt/brdf/material.h"
@@ -35,8 +36,8 @@ double max_difference(const Brdf& a, const Brdf& b) {
   Rng rng{42};
   double worst = 0.0;
   for (int k = 0; k < 2000; ++k) {
-    const Vec3 wi = spherical_direction(rng.next(), 6.283185307179586 * rng.next());
-    const Vec3 wo = spherical_direction(rng.next(), 6.283185307179586 * rng.next());
+    const Vec3 wi = spherical_direction(rng.uniform(), prt::numerics::kTwoPi * rng.uniform());
+    const Vec3 wo = spherical_direction(rng.uniform(), prt::numerics::kTwoPi * rng.uniform());
     const Rgb fa = a.eval(wi, wo), fb = b.eval(wi, wo);
     for (double d : {fa.r - fb.r, fa.g - fb.g, fa.b - fb.b}) {
       const double scale = std::max({1e-12, std::fabs(fa.r), std::fabs(fb.r)});
@@ -105,15 +106,15 @@ TEST_CASE("the layered microfacet material is the Lambert layer plus the lobe",
   const Lambert diffuse = Lambert::create(m.diffuse).value();
   Rng rng{7};
   for (int k = 0; k < 500; ++k) {
-    const Vec3 wi = spherical_direction(rng.next(), 6.283185307179586 * rng.next());
-    const Vec3 wo = spherical_direction(rng.next(), 6.283185307179586 * rng.next());
+    const Vec3 wi = spherical_direction(rng.uniform(), prt::numerics::kTwoPi * rng.uniform());
+    const Vec3 wo = spherical_direction(rng.uniform(), prt::numerics::kTwoPi * rng.uniform());
     const Rgb f = layered->eval(wi, wo), a = diffuse.eval(wi, wo), b = lobe.eval(wi, wo);
     REQUIRE(f.r == Approx(a.r + b.r).epsilon(1e-12));
     REQUIRE(f.b == Approx(a.b + b.b).epsilon(1e-12));
   }
   // Far from the specular peak the Lambert layer dominates: f ≈ kd/π (within the lobe's share).
   const Rgb far = layered->eval(spherical_direction(0.99, 0.0), spherical_direction(0.2, 3.1));
-  CHECK(far.r > 0.5 / 3.141592653589793);
+  CHECK(far.r > 0.5 / prt::numerics::kPi);
   CHECK(layered->reciprocal());
 }
 

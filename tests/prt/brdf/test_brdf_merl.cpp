@@ -115,9 +115,10 @@ TEST_CASE("a MERL file written from an analytic model reads back exactly at cell
   Rng rng{77};
   int checked = 0;
   for (int k = 0; k < 20000; ++k) {
-    const int ih = int(rng.next() * kH), id = int(rng.next() * kD), ip = int(rng.next() * kP);
+    const int ih = int(rng.uniform() * kH), id = int(rng.uniform() * kD),
+              ip = int(rng.uniform() * kP);
     Vec3 wi, wo;
-    cell_directions(ih, id, ip, 2.0 * kPi * rng.next(), wi, wo);
+    cell_directions(ih, id, ip, 2.0 * kPi * rng.uniform(), wi, wo);
     if (wi.z <= 1e-6 || wo.z <= 1e-6) continue;
     const Rgb want = ref.eval(wi, wo), got = merl->eval(wi, wo);
     INFO("cell " << ih << " " << id << " " << ip);

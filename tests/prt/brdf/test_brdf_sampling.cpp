@@ -25,7 +25,7 @@ TEST_CASE("each pdf integrates to 1 minus its discarded fraction", "[brdf][pdf]"
       const int n = 200000;
       int none = 0;
       for (int k = 0; k < n; ++k) {
-        const double u1 = rng.next(), u2 = rng.next();
+        const double u1 = rng.uniform(), u2 = rng.uniform();
         if (!(m.brdf->sample(wo, u1, u2).pdf > 0.0)) ++none;
       }
       INFO(m.name << ", cos(theta_o) = " << wo.z << ": integral " << integral << ", no-sample "
@@ -42,7 +42,7 @@ TEST_CASE("sample() returns the pdf and value of the direction it draws", "[brdf
     for (const Vec3& wo : test_outgoing_directions()) {
       Rng rng{99};
       for (int k = 0; k < 2000; ++k) {
-        const double u1 = rng.next(), u2 = rng.next();
+        const double u1 = rng.uniform(), u2 = rng.uniform();
         const prt::brdf::BrdfSample s = m.brdf->sample(wo, u1, u2);
         if (!(s.pdf > 0.0)) continue;
         INFO(m.name << " wo.z=" << wo.z);

@@ -5,6 +5,8 @@
 
 #include <catch2/catch.hpp>
 
+#include "numerics/constants.h"
+#include "numerics/rng.h"
 #include "sh/basis.h"
 #include "sh/rotation.h"
 #include "sh/zonal.h"
@@ -12,17 +14,7 @@
 namespace glossy_test {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-
-uint64_t splitmix(uint64_t* state) {
-  uint64_t z = (*state += 0x9E3779B97F4A7C15ull);
-  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-  z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-  return z ^ (z >> 31);
-}
-double uniform(uint64_t* state) {
-  return double(splitmix(state) >> 11) * 0x1.0p-53;
-}
+using prt::numerics::kPi;
 
 }  // namespace
 
@@ -80,12 +72,12 @@ prt::ShLighting band_limited_lighting(int order, const std::array<double, 3>& to
       std::sqrt(towards[0] * towards[0] + towards[1] * towards[1] + towards[2] * towards[2]);
   prt::sh::rotate_zonal(order, zonal.data(), towards[0] / len, towards[1] / len, towards[2] / len,
                         lobe.data());
-  uint64_t state = seed;
+  prt::numerics::SplitMix64 rng{seed};
   const double tint[3] = {1.0, 0.8, 0.6};
   for (int c = 0; c < 3; ++c)
     for (int k = 0; k < n2; ++k)
       rgb[std::size_t(c * n2 + k)] =
-          tint[c] * lobe[std::size_t(k)] + 0.15 * (uniform(&state) - 0.5) + (k == 0 ? 1.5 : 0.0);
+          tint[c] * lobe[std::size_t(k)] + 0.15 * (rng.uniform() - 0.5) + (k == 0 ? 1.5 : 0.0);
   prt::Result<prt::ShLighting> light = prt::ShLighting::from_coefficients(order, rgb.data());
   REQUIRE(light.ok());
   return light.value();
@@ -105,10 +97,10 @@ std::array<double, 3> monte_carlo_exit(const prt::GlossyTransferData& data,
   const int order = light.order(), n2 = order * order;
   std::vector<double> y(static_cast<std::size_t>(n2));
   double sum[3] = {0, 0, 0}, sum2[3] = {0, 0, 0};
-  uint64_t state = 12345 + uint64_t(v);
+  prt::numerics::SplitMix64 rng{12345 + uint64_t(v)};
   for (int a = 0; a < strata; ++a)
     for (int b = 0; b < strata; ++b) {
-      const double u1 = (a + uniform(&state)) / strata, u2 = (b + uniform(&state)) / strata;
+      const double u1 = (a + rng.uniform()) / strata, u2 = (b + rng.uniform()) / strata;
       const prt::brdf::BrdfSample s = made.value()->sample(wo, u1, u2);
       if (!(s.pdf > 0.0) || wo.z <= 0.0) continue;
       const double g[3] = {f[0] * s.wi.x + f[3] * s.wi.y + f[6] * s.wi.z,

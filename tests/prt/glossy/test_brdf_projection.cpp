@@ -5,6 +5,7 @@
 
 #include <catch2/catch.hpp>
 
+#include "numerics/constants.h"
 #include "prt/glossy/brdf_projection.h"
 #include "sh/basis.h"
 #include "sh/zonal.h"
@@ -18,7 +19,7 @@ using prt::brdf::Vec3;
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using prt::numerics::kPi;
 
 std::vector<double> reference_b(const Material& material, int order, const Vec3& wo,
                                 int nodes = 12) {

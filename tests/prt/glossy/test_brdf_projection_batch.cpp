@@ -10,6 +10,7 @@
 
 #include <catch2/catch.hpp>
 
+#include "numerics/constants.h"
 #include "prt/glossy/brdf_projection.h"
 
 using prt::BrdfProjection;
@@ -19,7 +20,7 @@ using prt::brdf::MaterialModel;
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using prt::numerics::kPi;
 
 Material ggx(double alpha, prt::brdf::Rgb f0, double kd) {
   Material m;

@@ -7,6 +7,7 @@
 #include <catch2/catch.hpp>
 
 #include "glossy_fixtures.h"
+#include "numerics/constants.h"
 #include "prt/glossy/relighter.h"
 #include "sh/basis.h"
 #include "sh/zonal.h"
@@ -17,7 +18,7 @@ using prt::brdf::MaterialModel;
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using prt::numerics::kPi;
 
 Material ward_material(double alpha) {
   Material m;

@@ -52,8 +52,8 @@ class Brdf {
 };
 
 // Directional albedo a(ωo) = ∫ f(ωi, ωo) cos θi dωi (per channel), estimated by importance
-// sampling with n × n jittered strata (splitmix64 stream from `seed`). Its standard error is
-// returned in *standard_error (per-channel maximum) when that pointer is not null.
+// sampling with n × n jittered strata (numerics::SplitMix64 stream from `seed`). Its standard error
+// is returned in *standard_error (per-channel maximum) when that pointer is not null.
 Rgb directional_albedo(const Brdf& brdf, const Vec3& wo, int n, uint64_t seed = 1,
                        double* standard_error = nullptr);
 

@@ -28,12 +28,9 @@ class Lambert final : public Brdf {
   Rgb rho_;
 };
 
-// Cosine-weighted direction on the upper hemisphere (Malley's method: uniform on the disc,
-// projected up); its pdf is cos θ / π.
-Vec3 sample_cosine_hemisphere(double u1, double u2);
-
 // Sampling of `f` by the cosine alone (Lambert, and MERL, whose measured lobe is not sampled):
-// wi = sample_cosine_hemisphere(u1, u2), pdf = cos θi / π, f = f.eval(wi, wo); an empty
+// wi cosine-weighted (numerics::sample_cosine_hemisphere, Malley's method on the concentric
+// disc), pdf = cos θi / π, f = f.eval(wi, wo); an empty
 // sample (pdf 0) for wo at or below the horizon.
 BrdfSample sample_by_cosine(const Brdf& f, const Vec3& wo, double u1, double u2);
 // The pdf of sample_by_cosine: cos θi / π, 0 when wo or wi is at or below the horizon.

@@ -7,11 +7,10 @@
 // Fingerprint: FNV-1a-64 (Fowler–Noll–Vo; offset basis 0xcbf29ce484222325, prime
 // 0x100000001b3) applied to 32-bit words instead of bytes — first the vertex count as two
 // words (low, high), then the IEEE binary32 bit pattern of every coordinate x0 y0 z0 x1 …
-// with −0 replaced by +0 — followed by the splitmix64 finaliser (Steele et al. 2014).
-// Each step is a bijection of the state, so changing any single coordinate (even by 1 ulp)
-// always changes the fingerprint. Positions are in the scene frame (glTF, +Y up), scene
-// units. Compiles as C++17.
-// References: [17] of docs/REFERENCES.md.
+// with −0 replaced by +0 — followed by the splitmix64 finaliser (Steele et al. 2014):
+// numerics::WordHash of numerics/hash.h. Each step is a bijection of the state, so changing any
+// single coordinate (even by 1 ulp) always changes the fingerprint. Positions are in the scene
+// frame (glTF, +Y up), scene units. Compiles as C++17. References: [17] of docs/REFERENCES.md.
 #pragma once
 
 #include <cstddef>

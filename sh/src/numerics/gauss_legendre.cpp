@@ -1,14 +1,11 @@
-// prt/src/gauss_legendre.cpp — the Gauss–Legendre rule of prt/gauss_legendre.h.
-#include "prt/gauss_legendre.h"
+// sh/src/numerics/gauss_legendre.cpp — the Gauss–Legendre rule of numerics/gauss_legendre.h.
+#include "numerics/gauss_legendre.h"
 
 #include <cmath>
 
-namespace prt {
-namespace {
+#include "numerics/constants.h"
 
-constexpr double kPi = 3.14159265358979323846;
-
-}  // namespace
+namespace prt::numerics {
 
 void append_gauss_legendre(int n, double a, double b, std::vector<double>* nodes,
                            std::vector<double>* weights) {
@@ -33,4 +30,10 @@ void append_gauss_legendre(int n, double a, double b, std::vector<double>* nodes
   }
 }
 
-}  // namespace prt
+void gauss_legendre(int n, std::vector<double>* nodes, std::vector<double>* weights) {
+  nodes->clear();
+  weights->clear();
+  append_gauss_legendre(n, -1.0, 1.0, nodes, weights);
+}
+
+}  // namespace prt::numerics

@@ -1,17 +1,18 @@
-// prt/gauss_legendre.h: the rule against the closed-form 3-point rule, its exactness degree
-// 2n − 1 on several intervals (and that degree 2n is not exact), the node order and sum of
-// weights, appending, and a smooth integrand.
+// numerics/gauss_legendre.h: the rule against the closed-form 3-point rule and the tabulated
+// 5-point rule, its exactness degree 2n − 1 on several intervals (and that degree 2n is not
+// exact), the node order and sum of weights, appending, the [−1, 1] form, and a smooth integrand.
 #include <algorithm>
 #include <cmath>
 #include <vector>
 
 #include <catch2/catch.hpp>
 
-#include "prt/gauss_legendre.h"
+#include "numerics/constants.h"
+#include "numerics/gauss_legendre.h"
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using prt::numerics::kPi;
 
 struct Rule {
   std::vector<double> x, w;
@@ -19,7 +20,7 @@ struct Rule {
 
 Rule rule(int n, double a, double b) {
   Rule r;
-  prt::append_gauss_legendre(n, a, b, &r.x, &r.w);
+  prt::numerics::append_gauss_legendre(n, a, b, &r.x, &r.w);
   return r;
 }
 
@@ -91,9 +92,9 @@ TEST_CASE("Gauss-Legendre: exact to degree 2n - 1 on any interval, not to degree
 TEST_CASE("Gauss-Legendre: appends, n = 0 appends nothing, a smooth integrand converges",
           "[gauss_legendre]") {
   std::vector<double> x{42.0}, w{-1.0};
-  prt::append_gauss_legendre(4, 0.0, 1.0, &x, &w);
-  prt::append_gauss_legendre(0, 0.0, 1.0, &x, &w);
-  prt::append_gauss_legendre(4, 1.0, 2.0, &x, &w);
+  prt::numerics::append_gauss_legendre(4, 0.0, 1.0, &x, &w);
+  prt::numerics::append_gauss_legendre(0, 0.0, 1.0, &x, &w);
+  prt::numerics::append_gauss_legendre(4, 1.0, 2.0, &x, &w);
   REQUIRE(x.size() == 9);
   CHECK(x[0] == 42.0);
   CHECK(w[0] == -1.0);
@@ -117,4 +118,32 @@ TEST_CASE("Gauss-Legendre: appends, n = 0 appends nothing, a smooth integrand co
     sum += rev.w[i];
   }
   CHECK(sum == Approx(-3.0).epsilon(1e-15));
+}
+
+TEST_CASE("Gauss-Legendre: the tabulated 5-point rule, and gauss_legendre is the rule on [-1, 1]",
+          "[gauss_legendre]") {
+  // Abramowitz & Stegun, Table 25.4 (n = 5), 16 digits: nodes ±0.9061798459386640,
+  // ±0.5384693101056831, 0 and weights 0.2369268850561891, 0.4786286704993665, 128/225. The
+  // rule's nodes and weights are good to a few ulp: 1e-15 relative (absolute for the 0 node).
+  const double nodes[5] = {0.9061798459386640, 0.5384693101056831, 0.0, -0.5384693101056831,
+                           -0.9061798459386640};
+  const double weights[5] = {0.2369268850561891, 0.4786286704993665, 128.0 / 225.0,
+                             0.4786286704993665, 0.2369268850561891};
+  std::vector<double> x{1.0, 2.0}, w{3.0};  // replaced, not appended to
+  prt::numerics::gauss_legendre(5, &x, &w);
+  REQUIRE(x.size() == 5);
+  REQUIRE(w.size() == 5);
+  for (int i = 0; i < 5; ++i) {
+    INFO("node " << i);
+    CHECK(std::abs(x[i] - nodes[i]) <= 1e-15 * std::max(1.0, std::abs(nodes[i])));
+    CHECK(w[i] == Approx(weights[i]).epsilon(1e-15));
+  }
+  // The same numbers, bit for bit, as the interval form on [−1, 1].
+  for (int n : {1, 2, 3, 6, 17, 40}) {
+    std::vector<double> a, wa, b, wb;
+    prt::numerics::gauss_legendre(n, &a, &wa);
+    prt::numerics::append_gauss_legendre(n, -1.0, 1.0, &b, &wb);
+    CHECK(a == b);
+    CHECK(wa == wb);
+  }
 }
