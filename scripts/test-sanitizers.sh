@@ -4,7 +4,7 @@
 # and runs it. Any sanitizer report fails the test that triggered it.
 #
 # Usage: scripts/test-sanitizers.sh [--all]
-#   default  the short CI pass: the sh/, prt/, scene/, bake/ and stability test executables
+#   default  the short CI pass: the numerics, sh/, prt/, scene/, bake/ and stability test executables
 #            (the runtime library, the SH maths, scene loading, the baker and the stiff cases);
 #   --all    every test target and the whole ctest suite.
 # Environment: BUILD_DIR (default <repo>/build-asan), JOBS (default 2).
@@ -16,7 +16,7 @@ JOBS="${JOBS:-2}"
 ALL=0
 if [ "${1:-}" = "--all" ]; then ALL=1; fi
 
-SHORT_TARGETS=(test_sh_core test_sh_env test_prt_runtime test_scene test_transfer_baker
+SHORT_TARGETS=(test_numerics test_sh_core test_sh_env test_prt_runtime test_scene test_transfer_baker
                test_stability)
 
 start=$(date +%s)
