@@ -1,5 +1,5 @@
-// bench_emitters — relighting the emitters (prt/emitters/emitter_responses.h): the per-frame cost of
-// L_v = Σ_e c_e ⊙ R_e,v (new colours checked and resolved by name, then the recombination), for
+// bench_emitters — relighting the emitters (prt/emitters/emitter_responses.h): the per-frame cost
+// of L_v = Σ_e c_e ⊙ R_e,v (new colours checked and resolved by name, then the recombination), for
 // a responses file written by `prt radiosity --per-emitter`, with its emitters replicated to
 // E = 1, 2, 4, 8 (the cost depends on V and E only, not on the values).
 // Usage: bench_emitters FILE.prte [Google Benchmark options]  (figures in docs/BENCHMARKS.md)

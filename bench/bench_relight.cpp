@@ -9,9 +9,9 @@
 
 #include <benchmark/benchmark.h>
 
+#include "prt/diffuse/relighter.h"
 #include "prt/formats/crc32c.h"
 #include "prt/lighting/sh_lighting.h"
-#include "prt/diffuse/relighter.h"
 #include "sh/rotation.h"
 
 namespace {

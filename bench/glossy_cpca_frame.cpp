@@ -22,12 +22,12 @@
 #include <string>
 #include <vector>
 
-#include "prt/glossy/cpca_transfer.h"
 #include "prt/formats/cpca_file.h"
+#include "prt/formats/glossy_transfer_file.h"
 #include "prt/glossy/cpca_kernel.h"
+#include "prt/glossy/cpca_transfer.h"
 #include "prt/glossy/kernel.h"
 #include "prt/glossy/relighter.h"
-#include "prt/formats/glossy_transfer_file.h"
 #include "real_bake_bench_support.h"
 
 namespace {

@@ -1,5 +1,5 @@
-// glossy_cpca_real — CPCA (prt/glossy/cpca_transfer.h) on a REAL glossy bake (a .prtg from prt bake --glossy):
-// for each clusters × vectors setting,
+// glossy_cpca_real — CPCA (prt/glossy/cpca_transfer.h) on a REAL glossy bake (a .prtg from prt bake
+// --glossy): for each clusters × vectors setting,
 //   * bytes per vertex of the compressed matrices (CpcaTransfer::payload_bytes) and of the
 //     whole .prtq (with its source section), against the .prtg;
 //   * the relative RMS matrix error;
@@ -32,10 +32,10 @@
 #include <vector>
 
 #include "bake/cpca/compressor.h"
-#include "prt/formats/cpca_file.h"
 #include "bake/cpca/relit_metric.h"
-#include "prt/glossy/relighter.h"
+#include "prt/formats/cpca_file.h"
 #include "prt/formats/glossy_transfer_file.h"
+#include "prt/glossy/relighter.h"
 #include "real_bake_bench_support.h"
 
 namespace {

@@ -18,8 +18,8 @@
 #include <vector>
 
 #include "bake/glossy_transfer_baker.h"
-#include "prt/glossy/relighter.h"
 #include "prt/formats/glossy_transfer_file.h"
+#include "prt/glossy/relighter.h"
 #include "scene/glb_writer.h"
 #include "scene/procedural_mesh.h"
 #include "scene/scene_loader.h"

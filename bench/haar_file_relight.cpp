@@ -26,8 +26,8 @@
 #include <vector>
 
 #include "bake/haar_baker.h"
-#include "prt/haar/relighter.h"
 #include "prt/formats/haar_transfer_file.h"
+#include "prt/haar/relighter.h"
 #include "relight/haar_relight.h"
 #include "relight/image_io.h"
 #include "scene/scene_loader.h"

@@ -16,9 +16,9 @@
 #include <vector>
 
 #include "fixtures/radiosity/hemicube_errors.h"
+#include "fixtures/radiosity/radiosity_fixtures.h"
 #include "radiosity/form_factors.h"
 #include "radiosity/patches.h"
-#include "fixtures/radiosity/radiosity_fixtures.h"
 #include "scene/ray_caster.h"
 
 int main(int argc, char** argv) {

@@ -10,9 +10,9 @@
 #include <cstring>
 #include <vector>
 
-#include "radiosity/patch_refinement.h"
 #include "fixtures/radiosity/radiosity_fixtures.h"
 #include "fixtures/radiosity/shadow_floor.h"
+#include "radiosity/patch_refinement.h"
 
 int main(int argc, char** argv) {
   using namespace prt::radiosity;

@@ -1,5 +1,6 @@
-// `prt compress`: clustered PCA of a glossy transfer file (prt/glossy/cpca_transfer.h) into a CPCA file (.prtq,
-// prt/formats/cpca_file.h) that `prt relight` and `prt info` read like the .prtg it came from.
+// `prt compress`: clustered PCA of a glossy transfer file (bake/cpca/compressor.h) into a CPCA
+// file (.prtq, prt/formats/cpca_file.h) that `prt relight` and `prt info` read like the .prtg it
+// came from.
 //
 //   prt compress IN.prtg -o OUT.prtq [--clusters Q] [--vectors K]
 //                [--target-error E [--max-vectors K]] [--metric relit|matrix]

@@ -10,13 +10,13 @@
 
 #include <nlohmann/json.hpp>
 
+#include "bake/cpca/compressor.h"
+#include "bake/cpca/relit_metric.h"
 #include "bake/glossy_transfer_baker.h"
 #include "command_registry.h"
 #include "output_safety.h"
 #include "progress_reporter.h"
-#include "bake/cpca/compressor.h"
 #include "prt/formats/cpca_file.h"
-#include "bake/cpca/relit_metric.h"
 #include "prt/formats/glossy_transfer_file.h"
 #include "sh/basis.h"
 

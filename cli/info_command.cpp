@@ -1,8 +1,8 @@
 // `prt info FILE.prt [--json | --csv]`: describe a coefficient file of any kind
-// (prt/formats/coefficient_file.h), or a glossy transfer file (cli/glossy_cli.h: matrices, materials).
-// `prt info SCENE (.glb, .gltf, .obj) [--material NAME=MODEL:...]`: the scene's size and one
-// line per primitive with its material (prt::brdf::describe; scene/material_override.h for the
-// overrides, applied as prt bake applies them).
+// (prt/formats/coefficient_file.h), or a glossy transfer file (cli/glossy_cli.h: matrices,
+// materials). `prt info SCENE (.glb, .gltf, .obj) [--material NAME=MODEL:...]`: the scene's size
+// and one line per primitive with its material (prt::brdf::describe; scene/material_override.h for
+// the overrides, applied as prt bake applies them).
 //   default  the header (kind, order or cube size, channels, precision, vertices, primitives,
 //            fingerprint, sections) and the metadata JSON, as text;
 //   --json   the same as one JSON object;
@@ -27,8 +27,8 @@
 #include "material_option.h"
 #include "output_safety.h"
 #include "prt/formats/coefficient_file.h"
-#include "prt/haar/transform.h"
 #include "prt/formats/transfer_data.h"
+#include "prt/haar/transform.h"
 #include "scene/scene_loader.h"
 #include "sh/basis.h"
 

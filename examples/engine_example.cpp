@@ -11,10 +11,10 @@
 #include <string>
 #include <vector>
 
-#include <prt/formats/geometry_check.h>
-#include <prt/lighting/sh_lighting.h>
 #include <prt/diffuse/relighter.h>
+#include <prt/formats/geometry_check.h>
 #include <prt/formats/transfer_file.h>
+#include <prt/lighting/sh_lighting.h>
 #include <sh/basis.h>
 #include <sh/constants.h>
 #include <sh/rotation.h>

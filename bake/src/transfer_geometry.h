@@ -2,7 +2,8 @@
 // the scene by the bakers (transfer_baker.cpp, haar_baker.cpp).
 //
 // Positions in the scene frame and units (+Y up), normals normalised, primitives in file order,
-// and the fingerprint of prt::geometry_fingerprint over the positions (prt/formats/transfer_data.h).
+// and the fingerprint of prt::geometry_fingerprint over the positions
+// (prt/formats/transfer_data.h).
 #pragma once
 
 #include <cstddef>

@@ -7,8 +7,8 @@
 #include <utility>
 #include <vector>
 
-#include "prt/haar/relighter.h"
 #include "prt/formats/haar_transfer_file.h"
+#include "prt/haar/relighter.h"
 #include "prt/haar/transform.h"
 #include "relight/environment_input.h"
 #include "relight/image_io.h"

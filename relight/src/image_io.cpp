@@ -120,7 +120,8 @@ FloatImage read_with_openimageio(const std::string& path, const std::vector<unsi
   return scene::decode_image_file(path, format, max_texels);
 }
 
-// Writes pixels of `buffer_type`, stored as `file_type`, to PATH atomically (prt/core/atomic_file.h).
+// Writes pixels of `buffer_type`, stored as `file_type`, to PATH atomically
+// (prt/core/atomic_file.h).
 void write_atomically(const std::string& path, int width, int height, int channels,
                       ImageSampleType file_type, ImageSampleType buffer_type, bool name_y,
                       const void* pixels) {

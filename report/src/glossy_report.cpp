@@ -13,10 +13,10 @@
 #include <thread>
 #include <utility>
 
-#include "bake/glossy_transfer_baker.h"
-#include "glossy_report_outputs.h"
 #include "bake/cpca/compressor.h"
 #include "bake/cpca/relit_metric.h"
+#include "bake/glossy_transfer_baker.h"
+#include "glossy_report_outputs.h"
 #include "prt/glossy/relighter.h"
 #include "prt/lighting/sh_lighting.h"
 #include "relight/camera.h"
@@ -293,7 +293,8 @@ void sweep_cpca(const GlossyReportOptions& o, const GlossyTransferData& base,
     co.clusters = size.clusters, co.vectors = size.vectors, co.seed = o.seed;
     co.threads = std::max(1u, std::thread::hardware_concurrency());
     const Clock::time_point t0 = Clock::now();
-    // As prt compress does by default: minimise the expected relit error (bake/cpca/relit_metric.h).
+    // As prt compress does by default: minimise the expected relit error
+    // (bake/cpca/relit_metric.h).
     Result<std::vector<double>> metric = cpca_relit_metric(base);
     if (!metric.ok())
       throw std::runtime_error(o.scene_path + ": CPCA: " + metric.status().message());

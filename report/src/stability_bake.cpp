@@ -24,10 +24,10 @@
 #include "bake/transfer_baker.h"
 #include "prt/core/half.h"
 #include "prt/formats/transfer_file.h"
+#include "report/stability_cases.h"
 #include "scene/procedural_mesh.h"
 #include "scene/scene_loader.h"
 #include "sh/constants.h"
-#include "report/stability_cases.h"
 
 namespace prt::report::stability {
 namespace {

@@ -17,13 +17,13 @@
 #include <vector>
 
 #include "prt/lighting/sh_lighting.h"
+#include "report/stability_cases.h"
 #include "sh/basis.h"
 #include "sh/constants.h"
 #include "sh/env_map.h"
 #include "sh/projection.h"
 #include "sh/window.h"
 #include "sh/zonal.h"
-#include "report/stability_cases.h"
 
 namespace prt::report::stability {
 namespace {

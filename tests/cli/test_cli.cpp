@@ -292,8 +292,8 @@ TEST_CASE("cli: prt bake --auto says what it left out, and the file records it")
 }
 
 TEST_CASE("cli: prt info describes a Haar file, and its CSV holds every stored term") {
-  // One reader for every kind (prt/formats/coefficient_file.h): a Haar bake is described with its cube
-  // size, and --csv expands the per-wavelet vertex lists into dense rows: with unquantised
+  // One reader for every kind (prt/formats/coefficient_file.h): a Haar bake is described with its
+  // cube size, and --csv expands the per-wavelet vertex lists into dense rows: with unquantised
   // values (--haar-bits 32, every non-zero term kept) the non-zero cells are exactly the stored
   // entries × channels.
   const fs::path dir = scratch("info_haar");

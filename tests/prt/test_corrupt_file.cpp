@@ -6,8 +6,8 @@
 
 #include <catch2/catch.hpp>
 
-#include "prt/formats/crc32c.h"
 #include "prt/diffuse/relighter.h"
+#include "prt/formats/crc32c.h"
 #include "prt/formats/transfer_file.h"
 #include "transfer_fixtures.h"
 

@@ -10,8 +10,8 @@
 
 #include <catch2/catch.hpp>
 
-#include "prt/formats/crc32c.h"
 #include "prt/emitters/emitter_responses.h"
+#include "prt/formats/crc32c.h"
 #include "prt/formats/geometry_check.h"
 
 namespace fs = std::filesystem;

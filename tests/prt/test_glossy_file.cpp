@@ -1,5 +1,5 @@
-// Tests of prt/formats/glossy_transfer_file.h: round trips f32/f16, the documented header, refusal of
-// truncated, corrupted and inconsistent files, atomic writes.
+// Tests of prt/formats/glossy_transfer_file.h: round trips f32/f16, the documented header, refusal
+// of truncated, corrupted and inconsistent files, atomic writes.
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -11,9 +11,9 @@
 
 #include <catch2/catch.hpp>
 
+#include "prt/core/half.h"
 #include "prt/formats/crc32c.h"
 #include "prt/formats/glossy_transfer_file.h"
-#include "prt/core/half.h"
 #include "support/test_data.h"
 
 namespace fs = std::filesystem;

@@ -1,6 +1,6 @@
-// Tests of the Haar kind of the coefficient file (prt/formats/haar_transfer_file.h, docs/FORMAT.md):
-// round trips for every quantisation, and corrupt or mismatched files refused with one-line
-// "NAME: problem" messages.
+// Tests of the Haar kind of the coefficient file (prt/formats/haar_transfer_file.h,
+// docs/FORMAT.md): round trips for every quantisation, and corrupt or mismatched files refused with
+// one-line "NAME: problem" messages.
 #include <cstdio>
 #include <cstring>
 #include <filesystem>

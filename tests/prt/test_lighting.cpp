@@ -1,4 +1,5 @@
-// Tests of prt/lighting/sh_lighting.h: projection of a constant map, rotation semantics, windows, errors.
+// Tests of prt/lighting/sh_lighting.h: projection of a constant map, rotation semantics, windows,
+// errors.
 #include <array>
 #include <cmath>
 #include <random>
@@ -45,7 +46,8 @@ TEST_CASE("a constant map projects to sqrt(4 pi) c in k = 0", "[lighting]") {
   for (int i = 0; i < w * h; ++i) {
     for (int c = 0; c < 3; ++c) pixels[3 * i + c] = rgb[c];
   }
-  const auto light = ShLighting::from_pixels(prt::sh::EnvLayout::LatLong, w, h, pixels.data(), order);
+  const auto light =
+      ShLighting::from_pixels(prt::sh::EnvLayout::LatLong, w, h, pixels.data(), order);
   REQUIRE(light.ok());
   REQUIRE(light->order() == order);
   for (int c = 0; c < 3; ++c) {
@@ -60,7 +62,8 @@ TEST_CASE("a constant map projects to sqrt(4 pi) c in k = 0", "[lighting]") {
     }
   }
   // Errors: a size that does not fit the layout, a NaN texel, a bad order.
-  const auto bad_size = ShLighting::from_pixels(prt::sh::EnvLayout::LatLong, 63, 32, pixels.data(), 3);
+  const auto bad_size =
+      ShLighting::from_pixels(prt::sh::EnvLayout::LatLong, 63, 32, pixels.data(), 3);
   REQUIRE_FALSE(bad_size.ok());
   CHECK(bad_size.status().message().rfind("lighting: ", 0) == 0);
   pixels[100] = NAN;

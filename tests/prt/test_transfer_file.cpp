@@ -1,4 +1,5 @@
-// Tests of prt/formats/transfer_file.h: round trips, the documented byte layout, validation, atomicity.
+// Tests of prt/formats/transfer_file.h: round trips, the documented byte layout, validation,
+// atomicity.
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -9,8 +10,8 @@
 
 #include <catch2/catch.hpp>
 
-#include "prt/formats/crc32c.h"
 #include "prt/core/half.h"
+#include "prt/formats/crc32c.h"
 #include "prt/formats/transfer_file.h"
 #include "support/test_data.h"
 #include "transfer_fixtures.h"

@@ -8,12 +8,12 @@
 
 #include <catch2/catch.hpp>
 
+#include "fixtures/radiosity/radiosity_fixtures.h"
 #include "prt/emitters/emitter_responses.h"
 #include "radiosity/emitter_solve.h"
 #include "radiosity/form_factors.h"
 #include "radiosity/patches.h"
 #include "radiosity/solver.h"
-#include "fixtures/radiosity/radiosity_fixtures.h"
 #include "scene/procedural_mesh.h"
 #include "scene/ray_caster.h"
 

@@ -8,11 +8,11 @@
 #include <catch2/catch.hpp>
 
 #include "fixtures/radiosity/hemicube_errors.h"
+#include "fixtures/radiosity/radiosity_fixtures.h"
 #include "numerics/constants.h"
 #include "radiosity/form_factors.h"
 #include "radiosity/hemicube.h"
 #include "radiosity/patches.h"
-#include "fixtures/radiosity/radiosity_fixtures.h"
 #include "scene/procedural_mesh.h"
 #include "scene/ray_caster.h"
 #include "support/test_data.h"

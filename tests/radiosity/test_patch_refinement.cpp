@@ -8,13 +8,13 @@
 #include <catch2/catch.hpp>
 
 #include "fixtures/radiosity/mesh_quality.h"
+#include "fixtures/radiosity/radiosity_fixtures.h"
+#include "fixtures/radiosity/shadow_floor.h"
 #include "radiosity/patch_refinement.h"
 #include "radiosity/patches.h"
-#include "fixtures/radiosity/radiosity_fixtures.h"
 #include "scene/procedural_mesh.h"
 #include "scene/ray_caster.h"
 #include "scene/subdivide.h"
-#include "fixtures/radiosity/shadow_floor.h"
 
 using namespace prt::radiosity;
 using prt::scene::Scene;

@@ -11,12 +11,12 @@
 #include <tbb/global_control.h>
 #include <catch2/catch.hpp>
 
+#include "fixtures/radiosity/radiosity_fixtures.h"
 #include "radiosity/form_factor_cache.h"
 #include "radiosity/form_factor_update.h"
 #include "radiosity/form_factors.h"
 #include "radiosity/patches.h"
 #include "radiosity/solver.h"
-#include "fixtures/radiosity/radiosity_fixtures.h"
 #include "scene/procedural_mesh.h"
 #include "scene/ray_caster.h"
 

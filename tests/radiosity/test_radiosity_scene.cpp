@@ -14,9 +14,9 @@
 #include <catch2/catch.hpp>
 
 #include "fixtures/radiosity/mesh_quality.h"
+#include "fixtures/radiosity/radiosity_fixtures.h"
 #include "radiosity/materials.h"
 #include "radiosity/patches.h"
-#include "fixtures/radiosity/radiosity_fixtures.h"
 #include "scene/material_assignment.h"
 #include "scene/procedural_mesh.h"
 #include "scene/scene_loader.h"

@@ -10,11 +10,11 @@
 #include <tbb/global_control.h>
 #include <catch2/catch.hpp>
 
+#include "fixtures/radiosity/radiosity_fixtures.h"
 #include "numerics/constants.h"
 #include "radiosity/form_factors.h"
 #include "radiosity/patches.h"
 #include "radiosity/solver.h"
-#include "fixtures/radiosity/radiosity_fixtures.h"
 #include "scene/procedural_mesh.h"
 #include "scene/ray_caster.h"
 

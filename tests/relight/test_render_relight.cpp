@@ -257,8 +257,8 @@ TEST_CASE("relight: SH-rotated lighting equals projecting the rotated (resampled
       REQUIRE(prt::sh::texel_direction(env.layout, env.width, env.height, col, row, d));
       double source[3];
       for (int i = 0; i < 3; ++i) source[i] = m[i] * d[0] + m[3 + i] * d[1] + m[6 + i] * d[2];
-      prt::sh::sample_bilinear(env, source,
-                          &resampled.rgb[3 * (static_cast<std::size_t>(row) * env.width + col)]);
+      prt::sh::sample_bilinear(
+          env, source, &resampled.rgb[3 * (static_cast<std::size_t>(row) * env.width + col)]);
     }
   const prt::ShLighting projected = prt::relight::project_lighting(resampled, order, {});
   const prt::ShLighting unrotated = prt::relight::project_lighting(env, order, {});

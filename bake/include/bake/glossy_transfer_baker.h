@@ -28,8 +28,8 @@
 // barycentrics β brings the radiance the hit point sends back along −ω_s,
 //     L(−ω_s) = Σ_a β_a · b_{q_a}(−ω_s in q_a's frame)ᵀ · M_{q_a} · L,
 // b the SH projection of the hit primitive's BRDF (prt::BrdfProjection with
-// GlossyBakeOptions::projection, the runtime's own, prt/glossy/brdf_projection.h); for a Lambert hit
-// b = ρ(hit)/π · (clamped-cosine zonal row), ρ(hit) = Scene::albedo_at (the texture when there
+// GlossyBakeOptions::projection, the runtime's own, prt/glossy/brdf_projection.h); for a Lambert
+// hit b = ρ(hit)/π · (clamped-cosine zonal row), ρ(hit) = Scene::albedo_at (the texture when there
 // is one), exactly as the diffuse bake's bounce. So M = S + G(M),
 //     G(M)_p = (2π/N) Σ_{s hits} y_local,p(ω_s) ⊗ L(−ω_s)-row,
 // solved by Jacobi bounces M⁽ᵏ⁺¹⁾ = S + G(M⁽ᵏ⁾) from M⁽⁰⁾ = S: `bounces` of them, or (−1) until

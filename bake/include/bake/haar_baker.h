@@ -39,9 +39,9 @@
 
 #include <cstdint>
 
-#include "prt/haar/transfer.h"
 #include "prt/formats/haar_transfer_file.h"
 #include "prt/formats/transfer_data.h"
+#include "prt/haar/transfer.h"
 #include "scene/scene.h"
 
 namespace prt::bake {

@@ -1,8 +1,8 @@
-// bake/src/cpca/row_metric.h (internal) — the metric of the CPCA compressor (CpcaOptions::row_metric):
-// per channel c a symmetric positive definite n²×n² matrix G_c acting on the rows of the
-// vertex's transfer matrices, the squared norm of an error δ being Σ_c tr(δ_cᵀ G_c δ_c).
-// With W_c = G_c^{1/2} (symmetric, from the eigen-decomposition) that is the plain squared norm
-// of W δ, so CPCA runs on W x and maps its means and vectors back by W⁻¹.
+// bake/src/cpca/row_metric.h (internal) — the metric of the CPCA compressor
+// (CpcaOptions::row_metric): per channel c a symmetric positive definite n²×n² matrix G_c acting on
+// the rows of the vertex's transfer matrices, the squared norm of an error δ being Σ_c tr(δ_cᵀ G_c
+// δ_c). With W_c = G_c^{1/2} (symmetric, from the eigen-decomposition) that is the plain squared
+// norm of W δ, so CPCA runs on W x and maps its means and vectors back by W⁻¹.
 #pragma once
 
 #include <cstddef>

@@ -47,7 +47,9 @@ Result<std::shared_ptr<const Brdf>> share(Result<T> made) {
   return std::shared_ptr<const Brdf>(std::make_shared<T>(std::move(made).value()));
 }
 
-bool zero(const Rgb& c) { return c.r == 0.0 && c.g == 0.0 && c.b == 0.0; }
+bool zero(const Rgb& c) {
+  return c.r == 0.0 && c.g == 0.0 && c.b == 0.0;
+}
 
 std::string rgb_text(const Rgb& c) {
   char text[96];
@@ -102,8 +104,8 @@ Result<std::shared_ptr<const Brdf>> make_brdf(const Material& m) {
     case MaterialModel::kBlinnPhong:
       return share(BlinnPhong::create(m.diffuse, m.specular, m.exponent));
     case MaterialModel::kWard:
-      return share(Ward::create(WardParams{m.diffuse, m.specular, m.alpha_x, m.alpha_y,
-                                           m.ward_form}));
+      return share(
+          Ward::create(WardParams{m.diffuse, m.specular, m.alpha_x, m.alpha_y, m.ward_form}));
     case MaterialModel::kMerl:
       return share(MerlBrdf::read(m.merl_path));
     case MaterialModel::kMicrofacet: {

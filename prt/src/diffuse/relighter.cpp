@@ -13,9 +13,9 @@
 #include <vector>
 
 #include "core/cpu_features.h"
+#include "formats/binary_layout.h"
 #include "prt/core/half.h"
 #include "prt/formats/transfer_file.h"
-#include "formats/binary_layout.h"
 
 #if PRT_HAVE_X86_DISPATCH
 #include <immintrin.h>

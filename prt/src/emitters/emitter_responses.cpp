@@ -7,9 +7,9 @@
 #include <new>
 #include <set>
 
+#include "formats/binary_layout.h"
 #include "prt/core/atomic_file.h"
 #include "prt/formats/geometry_check.h"
-#include "formats/binary_layout.h"
 
 #if defined(__BYTE_ORDER__) && __BYTE_ORDER__ != __ORDER_LITTLE_ENDIAN__
 #error "prt emitter-response files are little-endian; this reader copies arrays directly"

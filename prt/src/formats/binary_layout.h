@@ -67,8 +67,8 @@ inline uint64_t align_up(uint64_t x, uint64_t alignment = kSectionAlignment) {
   return (x + alignment - 1) / alignment * alignment;
 }
 
-// CRC-32C (prt/formats/crc32c.h) of `size` bytes with the 4-byte checksum field at `checksum_offset`
-// taken as zero; size ≥ checksum_offset + 4.
+// CRC-32C (prt/formats/crc32c.h) of `size` bytes with the 4-byte checksum field at
+// `checksum_offset` taken as zero; size ≥ checksum_offset + 4.
 uint32_t file_checksum(const unsigned char* bytes, std::size_t size, std::size_t checksum_offset);
 
 // The file size a header records against the `size` bytes present: "truncated: …" when the file
@@ -116,8 +116,8 @@ struct ParsedTransferFile {
 // --- Haar kind (docs/FORMAT.md, "Haar-wavelet transfer") ---
 // For kind 3 the header's `order` field holds the cube size N (a power of two in 8..128), the
 // `storage` field the quantisation (32 f32, 16 i16, 8 i8), and the coefficient section holds
-// the sparse CSR payload decoded by prt/formats/haar_transfer_file.h; parse_transfer_file checks only
-// the container (the payload is checked by its decoder).
+// the sparse CSR payload decoded by prt/formats/haar_transfer_file.h; parse_transfer_file checks
+// only the container (the payload is checked by its decoder).
 inline constexpr uint32_t kHaarStorageF32 = 32, kHaarStorageI16 = 16, kHaarStorageI8 = 8;
 
 // Checks the fields every kind shares: channels, vertex count, array sizes of positions,

@@ -1,4 +1,5 @@
-// prt/src/formats/coefficient_file.cpp — the reader of every coefficient-file kind (prt/formats/coefficient_file.h).
+// prt/src/formats/coefficient_file.cpp — the reader of every coefficient-file kind
+// (prt/formats/coefficient_file.h).
 #include "prt/formats/coefficient_file.h"
 
 #include <utility>

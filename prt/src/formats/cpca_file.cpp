@@ -5,10 +5,10 @@
 #include <cstring>
 #include <new>
 
+#include "formats/binary_layout.h"
 #include "prt/core/atomic_file.h"
 #include "prt/formats/geometry_check.h"
 #include "prt/formats/glossy_transfer_file.h"
-#include "formats/binary_layout.h"
 
 namespace prt {
 namespace {

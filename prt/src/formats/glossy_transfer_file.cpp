@@ -11,10 +11,10 @@
 #include <new>
 #include <sstream>
 
-#include "prt/core/atomic_file.h"
-#include "prt/formats/geometry_check.h"
-#include "prt/core/half.h"
 #include "formats/binary_layout.h"
+#include "prt/core/atomic_file.h"
+#include "prt/core/half.h"
+#include "prt/formats/geometry_check.h"
 
 #if defined(__BYTE_ORDER__) && __BYTE_ORDER__ != __ORDER_LITTLE_ENDIAN__
 #error "prt glossy transfer files are little-endian; this reader copies arrays directly"

@@ -9,8 +9,8 @@
 #include <new>
 #include <stdexcept>
 
-#include "prt/core/atomic_file.h"
 #include "formats/binary_layout.h"
+#include "prt/core/atomic_file.h"
 
 namespace prt {
 namespace {

@@ -13,10 +13,10 @@
 #include <new>
 #include <sstream>
 
-#include "prt/core/atomic_file.h"
-#include "prt/formats/geometry_check.h"
-#include "prt/core/half.h"
 #include "formats/binary_layout.h"
+#include "prt/core/atomic_file.h"
+#include "prt/core/half.h"
+#include "prt/formats/geometry_check.h"
 
 #if defined(__BYTE_ORDER__) && __BYTE_ORDER__ != __ORDER_LITTLE_ENDIAN__
 #error "prt coefficient files are little-endian; this reader copies arrays directly"
@@ -322,9 +322,10 @@ Status read_header_fields(const unsigned char* b, const std::string& name, bool 
   }
   const bool haar = h->haar = kind == static_cast<uint32_t>(TransferKind::Haar);
   if (haar && !allow_haar) {
-    return fail(name,
-                "holds Haar-wavelet transfer (kind 3, cube size " + std::to_string(order) +
-                    "): read it with prt::read_haar_transfer_file (prt/formats/haar_transfer_file.h)");
+    return fail(
+        name,
+        "holds Haar-wavelet transfer (kind 3, cube size " + std::to_string(order) +
+            "): read it with prt::read_haar_transfer_file (prt/formats/haar_transfer_file.h)");
   }
   if (haar) {
     if (order < 8 || order > 128 || (order & (order - 1)) != 0) {

@@ -1,7 +1,7 @@
 // prt/src/glossy/relighter.cpp — exit radiance of glossy transfer toward an eye point
 // (prt/glossy/relighter.h).
-#include "prt/glossy/reference.h"
 #include "prt/glossy/relighter.h"
+#include "prt/glossy/reference.h"
 
 #include <algorithm>
 #include <cmath>

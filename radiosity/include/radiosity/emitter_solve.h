@@ -1,6 +1,6 @@
 // radiosity/emitter_solve.h — one radiosity solution per emitter, for relighting the emitters
-// afterwards (prt/emitters/emitter_responses.h: L = Σ_e c_e ⊙ R_e, exact because the radiosity equation
-// is linear in the emission E, channel by channel).
+// afterwards (prt/emitters/emitter_responses.h: L = Σ_e c_e ⊙ R_e, exact because the radiosity
+// equation is linear in the emission E, channel by channel).
 //
 // An emitter is an emitting material: every primitive with a non-zero emission is grouped by
 // its material name (primitives without a material name form the emitter "<none>"); all

@@ -3,8 +3,8 @@
 // objects, subdivide it into patches, compute the form factors (or load them from a cache and
 // bring them up to date for the moves), solve; on request refine the patches and solve again
 // (patch_refinement.h), or solve once more per emitter and write the responses (.prte,
-// prt/emitters/emitter_responses.h). Drawing the result is relight's (relight/radiosity_render.h), from
-// the solution's scene and vertex radiance alone.
+// prt/emitters/emitter_responses.h). Drawing the result is relight's (relight/radiosity_render.h),
+// from the solution's scene and vertex radiance alone.
 //
 // Units: radiance in the units of the emission; the scene's frame.
 // Errors throw std::runtime_error / std::invalid_argument / scene::SceneError with one line

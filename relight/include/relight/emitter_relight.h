@@ -1,6 +1,7 @@
 // relight/emitter_relight.h — `prt relight` for per-emitter radiosity responses (".prte",
-// prt/emitters/emitter_responses.h): recolour the emitters, L_v = Σ_e c_e ⊙ R_e,v, and render; and adding
-// such a file to the exit radiance of a coefficient file (environment + emitters in one image).
+// prt/emitters/emitter_responses.h): recolour the emitters, L_v = Σ_e c_e ⊙ R_e,v, and render; and
+// adding such a file to the exit radiance of a coefficient file (environment + emitters in one
+// image).
 //
 // Units: radiance in the units of the emission; glTF frame. The mesh is the one stored in the
 // responses file (the subdivided scene the radiosity was solved on): positions, normals,
@@ -26,8 +27,8 @@ prt::EmitterResponses load_emitter_responses(const std::string& path);
 scene::Scene scene_from_responses(const prt::EmitterResponses& data, const std::string& path);
 
 // Throws "PATH: was not computed for SCENE: …" unless the responses were computed on exactly
-// the vertices of `scene` (equal vertex counts and geometry fingerprints, prt/formats/geometry_check.h);
-// the message suggests --max-edge when the counts differ.
+// the vertices of `scene` (equal vertex counts and geometry fingerprints,
+// prt/formats/geometry_check.h); the message suggests --max-edge when the counts differ.
 void check_responses_match_scene(const prt::EmitterResponses& data, const std::string& path,
                                  const scene::Scene& scene);
 

@@ -7,9 +7,9 @@
 // Rotations are row-major 3×3 matrices M acting on column vectors; lighting "rotated by M" is
 // g(ω) = f(Mᵀω) (sh/rotation.h), so its SH coefficients are rotated, never re-projected.
 // The turntable turns the light about +Y by 360°·i/N on top of --rotate: M_i = Ry(360°·i/N)·M.
-// Exit radiance B_p = Σ_k T_p,k L_k (prt/formats/transfer_data.h), linear; a file that keeps the albedo
-// apart (albedo_folded = false, e.g. baked from a textured scene) gives radiance per unit albedo,
-// and the render multiplies it by the surface's albedo per pixel (relight/renderer.h): the
+// Exit radiance B_p = Σ_k T_p,k L_k (prt/formats/transfer_data.h), linear; a file that keeps the
+// albedo apart (albedo_folded = false, e.g. baked from a textured scene) gives radiance per unit
+// albedo, and the render multiplies it by the surface's albedo per pixel (relight/renderer.h): the
 // texture is applied per pixel, not per vertex. The vertex-coloured GLB holds the exit radiance
 // at each vertex (its own albedo × that value), whatever the file.
 // Every error throws std::runtime_error (or scene::SceneError) with one line "PATH: problem";
@@ -24,10 +24,10 @@
 #include <string>
 #include <vector>
 
-#include "prt/emitters/emitter_responses.h"
-#include "prt/lighting/sh_lighting.h"
 #include "prt/diffuse/relighter.h"
+#include "prt/emitters/emitter_responses.h"
 #include "prt/formats/transfer_data.h"
+#include "prt/lighting/sh_lighting.h"
 #include "relight/renderer.h"
 #include "scene/scene.h"
 #include "sh/env_map.h"

@@ -1,6 +1,6 @@
 // report/glossy_report.h — `prt report --glossy`: the error of glossy PRT (bake/glossy_transfer_
-// baker.h, prt/glossy/relighter.h, compressed by prt/glossy/cpca_transfer.h) against its cost, measured against
-// the independent glossy ground truth of report/glossy_ground_truth.h.
+// baker.h, prt/glossy/relighter.h, compressed by prt/glossy/cpca_transfer.h) against its cost,
+// measured against the independent glossy ground truth of report/glossy_ground_truth.h.
 //
 // What is measured: the exit radiance toward an eye point of a subset of vertices (below), from
 // the PRT path — bake, SH projection of the map at the bake's order

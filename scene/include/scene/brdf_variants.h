@@ -4,8 +4,8 @@
 // variants.
 //
 // PRT is per vertex, and both the glossy bake and `prt relight` build one SH projection table
-// b(ω_o) per distinct material (prt/glossy/brdf_projection.h), so a textured roughness cannot give every
-// vertex its own material: the (roughness, metalness) pairs sampled at the vertices of one
+// b(ω_o) per distinct material (prt/glossy/brdf_projection.h), so a textured roughness cannot give
+// every vertex its own material: the (roughness, metalness) pairs sampled at the vertices of one
 // source material are quantised to at most kMaxBrdfVariants (64) pairs, and each vertex is mapped
 // to one of them (ScenePrimitive::brdf_variants, brdf_variant_of_vertex).
 //

@@ -1,5 +1,6 @@
-// bake/cpca/relit_metric.h — a metric for CPCA (bake/cpca/compressor.h, CpcaOptions::row_metric) under which the
-// compressor's error tracks the RELIT error of the vertices' own BRDFs, not the matrix error.
+// bake/cpca/relit_metric.h — a metric for CPCA (bake/cpca/compressor.h, CpcaOptions::row_metric)
+// under which the compressor's error tracks the RELIT error of the vertices' own BRDFs, not the
+// matrix error.
 //
 // A vertex's exit radiance is e_c = Σ_i b_c,i(ω_o) Σ_j M_c,ij L_c,j (prt/glossy/transfer.h,
 // prt/glossy/brdf_projection.h). An error δM changes it by δe_c = b_cᵀ δM_c L_c. Averaged over view
@@ -23,8 +24,8 @@
 
 #include <vector>
 
-#include "prt/glossy/transfer.h"
 #include "prt/core/status.h"
+#include "prt/glossy/transfer.h"
 
 namespace prt {
 

@@ -2,14 +2,14 @@
 //
 // B_v,c = Σ_{k < K} T_v,c',k · L_c,k  for the output channels c = R, G, B, where c' = c for
 // 3-channel transfer and c' = 0 for 1-channel (grey) transfer (which gives RGB under RGB
-// lighting). The basis is sh/basis.h's; L is *radiance* (prt/lighting/sh_lighting.h); T is the file's
-// transfer (prt/formats/transfer_data.h), so B is exit radiance in the units of L.
+// lighting). The basis is sh/basis.h's; L is *radiance* (prt/lighting/sh_lighting.h); T is the
+// file's transfer (prt/formats/transfer_data.h), so B is exit radiance in the units of L.
 //
 // Orders: K = min(order_file, order_light)² — lighting of a higher order is truncated to the
 // file's bands, lighting of a lower order is zero-extended (the missing bands contribute 0).
 //
-// Layout: coefficients are kept as in the file (prt/formats/transfer_file.h): blocks of 16 vertices,
-// within a block channel-major, coefficient-major, then the 16 vertices; f32 or binary16.
+// Layout: coefficients are kept as in the file (prt/formats/transfer_file.h): blocks of 16
+// vertices, within a block channel-major, coefficient-major, then the 16 vertices; f32 or binary16.
 //
 // Arithmetic: each block accumulates in float over k in increasing order, one multiply and
 // one add per term (never fused, on every path), so results are deterministic and identical

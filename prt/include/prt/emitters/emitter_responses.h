@@ -1,5 +1,5 @@
-// prt/emitters/emitter_responses.h — per-emitter radiosity responses (".prte" files) and relighting the
-// emitters by recombining them (precomputed radiosity transfer).
+// prt/emitters/emitter_responses.h — per-emitter radiosity responses (".prte" files) and relighting
+// the emitters by recombining them (precomputed radiosity transfer).
 //
 // Radiosity is linear in the emission, channel by channel (albedo acts per RGB channel): if
 // R_e,v is the exit radiance at vertex v when emitter e alone emits unit white radiance and every
@@ -11,8 +11,8 @@
 // stores, for E emitters (an emitter is every primitive with one emitting material), the name
 // and the original emission c_e of each (so the default recombination reproduces the plain
 // solve), the mesh the responses live on (positions, normals, triangles: what a renderer needs)
-// with its geometry fingerprint (prt/formats/geometry_check.h), and the responses R (3 floats per vertex
-// per emitter). The byte layout is in docs/FORMAT.md ("Emitter responses"): magic "PRTE",
+// with its geometry fingerprint (prt/formats/geometry_check.h), and the responses R (3 floats per
+// vertex per emitter). The byte layout is in docs/FORMAT.md ("Emitter responses"): magic "PRTE",
 // version 1, CRC-32C (prt/formats/crc32c.h) over the whole file with the checksum field zeroed.
 //
 // Nothing here throws or starts threads: errors come back as a Status whose message is one line

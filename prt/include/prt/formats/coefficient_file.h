@@ -1,7 +1,8 @@
-// prt/formats/coefficient_file.h — one way to open any coefficient file the prt tools write, whatever
-// its kind: SH transfer (unshadowed, shadowed, interreflected; prt/formats/transfer_file.h) or
-// all-frequency Haar-wavelet transfer (prt/formats/haar_transfer_file.h). The container is the same
-// (docs/FORMAT.md); the header's kind says which payload follows.
+// prt/formats/coefficient_file.h — one way to open any coefficient file the prt tools write,
+// whatever its kind: SH transfer (unshadowed, shadowed, interreflected;
+// prt/formats/transfer_file.h) or all-frequency Haar-wavelet transfer
+// (prt/formats/haar_transfer_file.h). The container is the same (docs/FORMAT.md); the header's kind
+// says which payload follows.
 //
 //   prt::Result<prt::CoefficientFile> file = prt::read_coefficient_file("scene.prt");
 //   if (!file.ok()) { /* file.status().message(): "scene.prt: problem" */ }
@@ -14,9 +15,9 @@
 #include <optional>
 #include <string>
 
-#include "prt/haar/transfer.h"
 #include "prt/core/status.h"
 #include "prt/formats/transfer_data.h"
+#include "prt/haar/transfer.h"
 
 namespace prt {
 

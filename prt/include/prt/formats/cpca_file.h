@@ -1,22 +1,22 @@
-// prt/formats/cpca_file.h — the CPCA glossy transfer file (`.prtq`): a CpcaTransfer (prt/glossy/cpca_transfer.h) on
-// disk, byte by byte in docs/GLOSSY_CPCA.md ("File format"). It holds the compressed matrices
-// only; positions, frames and materials stay with the glossy transfer it was made from, which
-// the geometry fingerprint names — unless the file carries them itself in its SOURCE SECTION
-// (header flag bit 0, written by `prt compress`): the positions, normals, tangents, materials,
-// primitives and metadata of that glossy transfer, so that a `.prtq` relights on its own.
-// The section is stored as a glossy transfer file (prt/formats/glossy_transfer_file.h) of order 1 whose
-// 1×1 matrices are zero (binary16); its matrices mean nothing and are dropped on reading.
-// Nothing here throws; failures return prt::Status with one line naming the file.
-// Compiles as C++17.
+// prt/formats/cpca_file.h — the CPCA glossy transfer file (`.prtq`): a CpcaTransfer
+// (prt/glossy/cpca_transfer.h) on disk, byte by byte in docs/GLOSSY_CPCA.md ("File format"). It
+// holds the compressed matrices only; positions, frames and materials stay with the glossy transfer
+// it was made from, which the geometry fingerprint names — unless the file carries them itself in
+// its SOURCE SECTION (header flag bit 0, written by `prt compress`): the positions, normals,
+// tangents, materials, primitives and metadata of that glossy transfer, so that a `.prtq` relights
+// on its own. The section is stored as a glossy transfer file (prt/formats/glossy_transfer_file.h)
+// of order 1 whose 1×1 matrices are zero (binary16); its matrices mean nothing and are dropped on
+// reading. Nothing here throws; failures return prt::Status with one line naming the file. Compiles
+// as C++17.
 #pragma once
 
 #include <cstddef>
 #include <string>
 #include <vector>
 
+#include "prt/core/status.h"
 #include "prt/glossy/cpca_transfer.h"
 #include "prt/glossy/transfer.h"
-#include "prt/core/status.h"
 
 namespace prt {
 

@@ -1,14 +1,14 @@
-// prt/formats/glossy_transfer_file.h — reading and writing glossy transfer files (prt::GlossyTransferData,
-// prt/glossy/transfer.h: one n²×n² transfer matrix per vertex, global lighting SH to local
-// incident radiance SH).
+// prt/formats/glossy_transfer_file.h — reading and writing glossy transfer files
+// (prt::GlossyTransferData, prt/glossy/transfer.h: one n²×n² transfer matrix per vertex, global
+// lighting SH to local incident radiance SH).
 //
 // The byte layout is specified in docs/FORMAT.md ("Glossy transfer files"): little-endian,
 // magic "PRTG", version 1, a 192-byte header, 16-byte-aligned sections (primitive table,
 // positions, normals, tangents, materials, material of each vertex, matrices, metadata),
-// CRC-32C (prt/formats/crc32c.h) over the whole file with the checksum field zeroed, and the geometry
-// fingerprint of the coefficient files (prt/formats/geometry_check.h). Matrices are stored vertex-major,
-// channel, row i (local), column j (global) — the in-memory order — as IEEE binary32 or
-// binary16 (prt/core/half.h); binary16 is expanded to float on reading. Materials are stored as
+// CRC-32C (prt/formats/crc32c.h) over the whole file with the checksum field zeroed, and the
+// geometry fingerprint of the coefficient files (prt/formats/geometry_check.h). Matrices are stored
+// vertex-major, channel, row i (local), column j (global) — the in-memory order — as IEEE binary32
+// or binary16 (prt/core/half.h); binary16 is expanded to float on reading. Materials are stored as
 // their model and every parameter (binary64); a MERL material by its path (the file it names
 // is not read here).
 //
@@ -22,8 +22,8 @@
 #include <string>
 #include <vector>
 
-#include "prt/glossy/transfer.h"
 #include "prt/core/status.h"
+#include "prt/glossy/transfer.h"
 
 namespace prt {
 

@@ -1,5 +1,5 @@
-// prt/formats/haar_transfer_file.h — reading and writing all-frequency (Haar-wavelet) transfer in the
-// coefficient-file container (docs/FORMAT.md, "Haar-wavelet transfer", kind 3).
+// prt/formats/haar_transfer_file.h — reading and writing all-frequency (Haar-wavelet) transfer in
+// the coefficient-file container (docs/FORMAT.md, "Haar-wavelet transfer", kind 3).
 //
 // The file is the same container as SH transfer (magic "PRTC", version 1, CRC-32C, 16-byte
 // aligned sections, positions/normals/primitives/AO/metadata as for SH); for kind Haar the
@@ -23,9 +23,9 @@
 #include <string>
 #include <vector>
 
-#include "prt/haar/transfer.h"
 #include "prt/core/status.h"
 #include "prt/formats/transfer_data.h"
+#include "prt/haar/transfer.h"
 
 namespace prt {
 

@@ -1,5 +1,5 @@
-// prt/glossy/brdf_projection.h — the BRDF side of glossy PRT: the vector b(ωo) that turns transferred
-// incident radiance into exit radiance (prt/glossy/transfer.h),
+// prt/glossy/brdf_projection.h — the BRDF side of glossy PRT: the vector b(ωo) that turns
+// transferred incident radiance into exit radiance (prt/glossy/transfer.h),
 //     b_c,i(ωo) = ∫ y_i(ωi) f_c(ωi, ωo) cos⁺θi dωi,   i < n², c = R, G, B,
 // so that L_o,c(ωo) = Σ_i b_c,i(ωo) L'_c,i for incident radiance L' of order n (exact when L' is
 // band-limited to order n). Sloan, Kautz & Snyder 2002 [2]; Kautz, Sloan & Snyder 2002 [55] of

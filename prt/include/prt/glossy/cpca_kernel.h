@@ -22,8 +22,8 @@
 #include <memory>
 #include <vector>
 
-#include "prt/core/status.h"
 #include "prt/core/kernel_path.h"
+#include "prt/core/status.h"
 #include "prt/glossy/cpca_transfer.h"
 #include "prt/lighting/sh_lighting.h"
 

@@ -17,8 +17,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "prt/glossy/transfer.h"
 #include "prt/core/status.h"
+#include "prt/glossy/transfer.h"
 
 namespace prt {
 

@@ -1,13 +1,13 @@
 // prt/glossy/kernel.h — the glossy shading kernel of uncompressed transfer: transferred
-// radiance L'_v = M_v·L per vertex from the matrices (prt/glossy/transfer.h), and exit radiance e_v,c = Σ_i b_v,c,i · L'_v,c,i for a per-vertex vector b
-// the caller supplies (b_i(ω_o) = ∫ y_i f cos⁺θ_i dω_i in the local frame: it depends on the
-// BRDF and the eye, not on the lighting; Sloan, Kautz & Snyder 2002 and Sloan et al. 2003,
-// [2] and [3] of docs/REFERENCES.md).
+// radiance L'_v = M_v·L per vertex from the matrices (prt/glossy/transfer.h), and exit radiance
+// e_v,c = Σ_i b_v,c,i · L'_v,c,i for a per-vertex vector b the caller supplies (b_i(ω_o) = ∫ y_i f
+// cos⁺θ_i dω_i in the local frame: it depends on the BRDF and the eye, not on the lighting; Sloan,
+// Kautz & Snyder 2002 and Sloan et al. 2003, [2] and [3] of docs/REFERENCES.md).
 //
-// Channels: L is RGB (prt/lighting/sh_lighting.h). A grey matrix (channels = 1) gives L'_c = M·L_c for
-// c = R, G, B; an RGB matrix gives L'_c = M_c·L_c. b has 1 (grey) or 3 (RGB) channels.
-// Orders: j runs over min(order_file, order_light)² lighting coefficients (higher lighting
-// bands are dropped, missing ones are zero); L' and b always have order_file² coefficients.
+// Channels: L is RGB (prt/lighting/sh_lighting.h). A grey matrix (channels = 1) gives L'_c = M·L_c
+// for c = R, G, B; an RGB matrix gives L'_c = M_c·L_c. b has 1 (grey) or 3 (RGB) channels. Orders:
+// j runs over min(order_file, order_light)² lighting coefficients (higher lighting bands are
+// dropped, missing ones are zero); L' and b always have order_file² coefficients.
 //
 // Layouts (n = order_file, all float):
 //   L' output:  out[(v_rel·3 + c)·n² + i]               v_rel = v − first
@@ -34,10 +34,10 @@
 #include <memory>
 #include <vector>
 
-#include "prt/glossy/transfer.h"
-#include "prt/lighting/sh_lighting.h"
 #include "prt/core/kernel_path.h"
 #include "prt/core/status.h"
+#include "prt/glossy/transfer.h"
+#include "prt/lighting/sh_lighting.h"
 
 namespace prt {
 

@@ -6,10 +6,10 @@
 //   L'_c = M_p,c' · L_c  (c' = c for 3-channel transfer, 0 for grey transfer, which gives RGB
 //                         under RGB lighting);
 //   exit_c = Σ_i b_c,i(ωo) · L'_c,i,  b from the vertex's material (prt/glossy/brdf_projection.h).
-// Orders as in prt/diffuse/relighter.h: K = min(order_file, order_light)² lighting coefficients are used
-// (a higher-order lighting is truncated, a lower one zero-extended); b and L' have the file's n².
-// View directions handled deliberately: the BRDFs are one-sided, so a vertex seen from below its
-// tangent plane (n·(eye − p) ≤ 0, which happens near silhouettes where the interpolated normal
+// Orders as in prt/diffuse/relighter.h: K = min(order_file, order_light)² lighting coefficients are
+// used (a higher-order lighting is truncated, a lower one zero-extended); b and L' have the file's
+// n². View directions handled deliberately: the BRDFs are one-sided, so a vertex seen from below
+// its tangent plane (n·(eye − p) ≤ 0, which happens near silhouettes where the interpolated normal
 // turns away from the eye) has exit radiance 0, and so has a vertex at the eye point itself or
 // an eye that is not finite. The renderer interpolates the vertex values (per-vertex ωo).
 // Lighting is radiance in the units of the environment; exit is radiance in the same units.
@@ -28,13 +28,13 @@
 #include <memory>
 #include <vector>
 
+#include "prt/core/status.h"
 #include "prt/glossy/brdf_projection.h"
-#include "prt/glossy/cpca_transfer.h"
 #include "prt/glossy/cpca_kernel.h"
+#include "prt/glossy/cpca_transfer.h"
 #include "prt/glossy/kernel.h"
 #include "prt/glossy/transfer.h"
 #include "prt/lighting/sh_lighting.h"
-#include "prt/core/status.h"
 
 namespace prt {
 
@@ -72,8 +72,8 @@ class GlossyRelighter {
                                         const BrdfProjectionOptions& options,
                                         GlossyShadingPath path);
   // Compressed transfer: positions, frames and materials from `geometry` (its matrices are not
-  // read and may be empty), the matrices from `cpca` (prt/glossy/cpca_transfer.h), shaded through CpcaKernel.
-  // Errors: those above, and a CPCA whose vertex count, order or channels differ from
+  // read and may be empty), the matrices from `cpca` (prt/glossy/cpca_transfer.h), shaded through
+  // CpcaKernel. Errors: those above, and a CPCA whose vertex count, order or channels differ from
   // geometry's, or that cpca_validate refuses.
   static Result<GlossyRelighter> create_cpca(GlossyTransferData&& geometry,
                                              const CpcaTransfer& cpca,

@@ -31,10 +31,10 @@
 #include <cstdint>
 #include <vector>
 
+#include "prt/core/status.h"
 #include "prt/haar/approximation.h"
 #include "prt/haar/cube_map.h"
 #include "prt/haar/transfer.h"
-#include "prt/core/status.h"
 
 namespace prt {
 

@@ -31,8 +31,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "prt/haar/cube_map.h"
 #include "prt/core/status.h"
+#include "prt/haar/cube_map.h"
 
 namespace prt {
 
