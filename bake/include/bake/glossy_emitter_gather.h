@@ -1,0 +1,55 @@
+// bake/glossy_emitter_gather.h — the incident radiance of a scene's emitters at the vertices of a
+// glossy transfer file, in each vertex's local SH frame, gathered from a radiosity solution
+// (prt/emitters/glossy_emitter_radiance.h holds the result and shades it).
+//
+// For vertex p and emitting material e of a per-emitter radiosity responses file (.prte,
+// prt/emitters/emitter_responses.h: R_e,q the exit radiance of vertex q when e alone emits unit
+// white radiance, emission included):
+//     G_e,p,c,i = ∫_{H+(p)} y_i(R_p ω) R_e,c(hit_p(ω)) dω
+//              ≈ (2π/N) Σ_s y_i(ω_s,local) · Σ_a β_a R_e,c,q_a,
+// over the upper hemisphere of p's local frame (glossy_vertex_frame: the frame the glossy file
+// is shaded in), N directions uniform on it (pdf 1/2π) from the Owen-scrambled Sobol' points the
+// glossy bake uses (bake/sampling.h, seeded by (seed, vertex)); a ray that meets the FRONT of
+// triangle (q₀, q₁, q₂) at barycentrics β brings the responses interpolated there; a miss or a
+// back face brings nothing (the environment is the glossy file's part; radiosity surfaces are
+// one-sided). Rays leave RayCaster::vertex_origin(p), as in the glossy bake.
+// So every bounce the radiosity solve made (diffuse, with the scene's albedos) is in G; light
+// that a glossy surface reflects toward another is taken as the radiosity's diffuse estimate of
+// it (the .prte treats every surface as Lambert with its albedo).
+// Preconditions: `scene`, `glossy` and `responses` hold the same vertices in the same order and
+// the same triangles (the caller checks fingerprints; this checks counts and triangles).
+// Determinism: each vertex from its own samples, accumulated in double: bit-identical for any
+// thread count.
+#pragma once
+
+#include <cstdint>
+
+#include "prt/emitters/emitter_responses.h"
+#include "prt/emitters/glossy_emitter_radiance.h"
+#include "prt/glossy/transfer.h"
+#include "scene/scene.h"
+
+namespace prt::bake {
+
+struct GlossyEmitterGatherOptions {
+  int samples = 1024;  // per vertex, rounded up to a multiple of 16; 16 .. 2^24
+  uint64_t seed = 1;
+  int threads = 0;  // 0 = all hardware threads
+};
+
+struct GlossyEmitterGatherStatistics {
+  uint64_t rays = 0;
+  uint64_t front_hits = 0;  // rays that brought radiosity
+  double seconds = 0;
+};
+
+// G for every vertex of `glossy` at its order. Throws BakeError (bake/transfer_baker.h) when the
+// three do not hold the same mesh, the options are out of range, or a frame is degenerate;
+// std::runtime_error from Embree.
+prt::GlossyEmitterRadiance gather_glossy_emitters(const scene::Scene& scene,
+                                                  const prt::GlossyTransferData& glossy,
+                                                  const prt::EmitterResponses& responses,
+                                                  const GlossyEmitterGatherOptions& options = {},
+                                                  GlossyEmitterGatherStatistics* stats = nullptr);
+
+}  // namespace prt::bake
