@@ -15,6 +15,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "bake/glossy_emitter_gather.h"
 #include "cli_parsing.h"
 #include "command_registry.h"
 #include "emitter_cli.h"
@@ -150,10 +151,6 @@ void check_options(const RelightArguments& args, const CLI::App& cmd) {
   if (haar && given("--window") && args.window != "none")
     throw UsageError("--window applies to SH files; " + args.transfer + " holds Haar wavelets");
   for (const char* option : {"--emitters", "--max-edge"})
-    if (glossy && given(option))
-      throw UsageError(std::string(option) + " applies to diffuse SH files; " + args.transfer +
-                       " is a glossy file (emitters are not summed with glossy transfer yet)");
-  for (const char* option : {"--emitters", "--max-edge"})
     if (haar && given(option))
       throw UsageError(std::string(option) + " applies to SH files; " + args.transfer +
                        " holds Haar wavelets");
@@ -267,6 +264,10 @@ void run(const RelightArguments& args, const CLI::App& cmd) {
                        : args.turntable_orbit == "light" ? relight::GlossyTurntable::kLight
                                                          : relight::GlossyTurntable::kBoth;
     glossy.material_overrides = overrides;
+    glossy.gather_emitters = [](const scene::Scene& scene, const prt::GlossyTransferData& data,
+                                const prt::EmitterResponses& responses) {
+      return bake::gather_glossy_emitters(scene, data, responses);  // bake/glossy_emitter_gather.h
+    };
     summary = relight::run_glossy_relight(request, glossy);
   } else {
     summary = relight::run_relight(request);

@@ -88,6 +88,24 @@ void gather_vertex(const scene::Scene& scene, const scene::RayCaster& caster,
   }
 }
 
+// The emitter each vertex lies on: its primitive's material name among the responses' emitters
+// (radiosity/emitter_solve.h groups emitting primitives by material, "<none>" without a name).
+std::vector<uint32_t> emitters_of_vertices(const scene::Scene& scene,
+                                           const prt::EmitterResponses& responses) {
+  std::vector<uint32_t> out(scene.vertex_count(), prt::kNotAnEmitter);
+  for (const scene::ScenePrimitive& p : scene.primitives) {
+    const bool unnamed = p.material.empty();
+    if (unnamed && p.emission == glm::vec3(0.f)) continue;
+    const std::string name = unnamed ? "<none>" : p.material;
+    uint32_t e = 0;
+    while (e < responses.emitter_count() && responses.emitters[e].name != name) ++e;
+    if (e == responses.emitter_count()) continue;
+    for (uint32_t k = 0; k < p.vertex_count && p.first_vertex + k < out.size(); ++k)
+      out[p.first_vertex + k] = e;
+  }
+  return out;
+}
+
 }  // namespace
 
 prt::GlossyEmitterRadiance gather_glossy_emitters(const scene::Scene& scene,
@@ -109,6 +127,7 @@ prt::GlossyEmitterRadiance gather_glossy_emitters(const scene::Scene& scene,
   out.vertex_count = V;
   out.emitters = responses.emitters;
   out.coefficients.assign(V * E * 3 * K, 0.f);
+  out.emitter_of_vertex = emitters_of_vertices(scene, responses);
   std::vector<double> frames(9 * V);
   for (std::size_t v = 0; v < V; ++v)
     if (const prt::Status s = prt::glossy_vertex_frame(glossy, v, &frames[9 * v]); !s.ok())

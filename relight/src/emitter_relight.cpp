@@ -1,7 +1,10 @@
 // emitter_relight.cpp — see relight/emitter_relight.h.
 #include "relight/emitter_relight.h"
 
+#include <chrono>
 #include <stdexcept>
+
+#include <tbb/parallel_for.h>
 
 #include "prt/formats/geometry_check.h"
 #include "relight_frames.h"
@@ -86,6 +89,60 @@ RelightSummary run_emitter_relight(const RelightRequest& request,
       [&](int) { return emitter_radiance(data, request.transfer_path, colors); },  // timed
       &summary);
   return summary;
+}
+
+std::optional<GlossyEmitterLight> prepare_glossy_emitters(const RelightRequest& request,
+                                                          const scene::Scene& scene,
+                                                          const prt::GlossyTransferData& glossy,
+                                                          const GlossyEmitterGatherer& gather) {
+  if (request.emitters_path.empty()) return std::nullopt;
+  const std::string& path = request.emitters_path;
+  const prt::EmitterResponses responses = load_emitter_responses(path);
+  check_responses_match_scene(responses, path, scene);
+  prt::Result<std::vector<float>> colors = prt::emitter_colors(responses, request.emitter_colors);
+  if (!colors.ok()) throw std::invalid_argument(path + ": " + colors.status().message());
+  if (!gather) throw std::runtime_error(path + ": no emitter gather given to the glossy relight");
+  GlossyEmitterLight light;
+  light.colors = std::move(colors).value();
+  light.geometry.order = glossy.order;
+  light.geometry.vertex_count = glossy.vertex_count;
+  light.geometry.positions = glossy.positions;
+  light.geometry.normals = glossy.normals;
+  light.geometry.tangents = glossy.tangents;
+  light.geometry.materials = glossy.materials;
+  light.geometry.material_of_vertex = glossy.material_of_vertex;
+  const auto start = std::chrono::steady_clock::now();
+  try {
+    light.radiance = gather(scene, light.geometry, responses);
+  } catch (const std::exception& e) {
+    throw std::runtime_error(path + ": " + e.what());
+  }
+  light.gather_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (const prt::Status s = prt::validate_glossy_emitter_radiance(light.radiance); !s.ok())
+    throw std::runtime_error(path + ": " + s.message());
+  return light;
+}
+
+void add_glossy_emitters(const GlossyEmitterLight& light,
+                         const std::vector<prt::BrdfProjection>& projections, const glm::vec3& eye,
+                         std::vector<float>& radiance) {
+  const std::size_t count = light.radiance.vertex_count;
+  if (radiance.size() != 3 * count)
+    throw std::runtime_error("glossy emitters: radiance of the wrong size");
+  constexpr std::size_t kRange = 1024;
+  const std::size_t ranges = (count + kRange - 1) / kRange;
+  std::vector<std::string> errors(ranges);
+  const double eye_xyz[3] = {eye.x, eye.y, eye.z};
+  tbb::parallel_for(std::size_t{0}, ranges, [&](std::size_t r) {
+    const std::size_t first = r * kRange, n = std::min(kRange, count - first);
+    const prt::Status s =
+        prt::shade_glossy_emitters(light.radiance, light.colors, light.geometry, projections,
+                                   eye_xyz, first, n, &radiance[3 * first]);
+    if (!s.ok()) errors[r] = s.message();
+  });
+  for (const std::string& error : errors)
+    if (!error.empty()) throw std::runtime_error(error);
 }
 
 }  // namespace prt::relight

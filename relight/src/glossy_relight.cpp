@@ -5,6 +5,7 @@
 #include <tbb/parallel_for.h>
 
 #include <chrono>
+#include <cstdio>
 #include <fstream>
 #include <stdexcept>
 #include <string>
@@ -17,6 +18,7 @@
 #include "relight/glossy_material_override.h"
 #include "relight_frames.h"
 #include "scene/scene_loader.h"
+#include "scene/subdivide.h"
 #include "sh/rotation.h"
 
 namespace prt::relight {
@@ -38,12 +40,13 @@ glm::vec3 turn(const std::array<double, 9>& m, const glm::vec3& v) {
 void write_first_frame_extras(const RelightRequest& request, const GlossyRelightOptions& options,
                               const scene::Scene& scene, const prt::GlossyRelighter& relighter,
                               const prt::ShLighting& lighting, const std::vector<float>& radiance,
-                              RelightSummary* summary) {
+                              const GlossyEmitterLight* emitters, RelightSummary* summary) {
   summary->exposure_auto = !request.exposure_ev.has_value();
   summary->exposure_ev =
       request.exposure_ev ? *request.exposure_ev : choose_auto_exposure(radiance);
   if (request.csv_path.empty() && request.vertex_colors_path.empty()) return;
-  const std::vector<float> at_eye = shade_glossy_vertices(relighter, lighting, *options.eye);
+  std::vector<float> at_eye = shade_glossy_vertices(relighter, lighting, *options.eye);
+  if (emitters) add_glossy_emitters(*emitters, relighter.projections(), *options.eye, at_eye);
   if (!request.vertex_colors_path.empty()) {
     const std::vector<glm::vec3> colors =
         detail::vertex_colors(at_eye, request.vertex_colors_tonemapped, summary->exposure_ev);
@@ -156,9 +159,12 @@ RelightSummary run_glossy_relight(const RelightRequest& request,
   check_relight_outputs(request);
   check_glossy_request(request, options);
   RelightSummary summary;
-  const scene::Scene scene = scene::load_scene(request.scene_path);
+  scene::Scene scene = scene::load_scene(request.scene_path);
+  if (request.max_edge) scene = scene::subdivide_to_edge_length(scene, *request.max_edge);
   LoadedGlossy loaded = load_glossy_any_for_scene(request.transfer_path, scene);
   override_glossy_materials(loaded.data, scene, options.material_overrides);
+  const std::optional<GlossyEmitterLight> emitters =
+      prepare_glossy_emitters(request, scene, loaded.data, options.gather_emitters);
   const prt::GlossyTransferData& data = loaded.data;
   EnvironmentUse use;
   use.sh_order = static_cast<int>(data.order);
@@ -169,6 +175,13 @@ RelightSummary run_glossy_relight(const RelightRequest& request,
   summary.order = static_cast<int>(data.order);
   const prt::ShLighting base =
       project_lighting(env, summary.order, request.lighting, &summary.window_note);
+  if (emitters) {
+    const std::size_t count = emitters->radiance.emitter_count();
+    char note[96];
+    std::snprintf(note, sizeof note, "; %zu emitter%s gathered in %.2f s", count,
+                  count == 1 ? "" : "s", emitters->gather_seconds);
+    summary.window_note += note;
+  }
   const prt::GlossyRelighter relighter =
       make_glossy_relighter(std::move(loaded), request.transfer_path, options.projection);
 
@@ -190,13 +203,15 @@ RelightSummary run_glossy_relight(const RelightRequest& request,
     const Camera view = table && orbit ? orbit_camera(camera, frame, frames) : camera;
     const prt::ShLighting lighting = rotate_lighting(base, m);
     auto start = Clock::now();
-    const std::vector<float> radiance = shade_glossy_vertices(relighter, lighting, view.eye);
+    std::vector<float> radiance = shade_glossy_vertices(relighter, lighting, view.eye);
+    if (emitters) add_glossy_emitters(*emitters, relighter.projections(), view.eye, radiance);
     summary.shade_seconds += seconds_since(start);
     const std::size_t negative = detail::count_negative_vertices(radiance);
     summary.negative_vertices = std::max(summary.negative_vertices, negative);
     summary.negative_frames += negative > 0 ? 1 : 0;
     if (frame == 0)
-      write_first_frame_extras(request, options, scene, relighter, lighting, radiance, &summary);
+      write_first_frame_extras(request, options, scene, relighter, lighting, radiance,
+                               emitters ? &*emitters : nullptr, &summary);
     start = Clock::now();
     const Image image = render(scene, caster, radiance, &env, m, view, request.render);
     summary.render_seconds += seconds_since(start);

@@ -48,6 +48,7 @@ prt::scene::Scene lamp_scene() {
       prt::scene::make_quad({-kLampHalf, kLampHeight, -kLampHalf}, {2 * kLampHalf, 0.f, 0.f},
                             {0.f, 0.f, 2 * kLampHalf}, 1, 1, glm::vec3(0.5f), "lamp");
   prt::scene::append_scene(floor, lamp);
+  floor.primitives[1].material = "lamp";  // the emitter's name in the responses
   return floor;
 }
 
@@ -252,6 +253,23 @@ TEST_CASE("glossy emitter radiance is linear in the emitter colours", "[glossy][
   REQUIRE(brightest > 0.05);
   for (std::size_t k = 0; k < once.size(); ++k)
     CHECK(std::abs(twice[k] - 2.f * once[k]) <= 1e-6 * brightest);
+  // The lamp's own vertices (the last four) show its emission from below, plus what its
+  // Lambert 0.5 reflects of the floor's 0.3 (at most 0.5 · 0.3); nothing from above.
+  const std::size_t lamp_vertex = V - 1;
+  REQUIRE(g.emitter_of_vertex[lamp_vertex] == 0);
+  REQUIRE(g.emitter_of_vertex[0] == prt::kNotAnEmitter);
+  float lamp_out[3] = {0, 0, 0};
+  const double below[3] = {0.2, 0.1, 0.3}, above[3] = {0.2, 3.0, 0.3};
+  REQUIRE(prt::shade_glossy_emitters(g, {1.f, 1.f, 1.f}, glossy, projections, below, lamp_vertex, 1,
+                                     lamp_out)
+              .ok());
+  CHECK(lamp_out[0] >= 1.f);
+  CHECK(lamp_out[0] <= 1.f + 0.5f * 0.3f);
+  lamp_out[0] = 0.f;
+  REQUIRE(prt::shade_glossy_emitters(g, {1.f, 1.f, 1.f}, glossy, projections, above, lamp_vertex, 1,
+                                     lamp_out)
+              .ok());
+  CHECK(lamp_out[0] == 0.f);
   // The channels follow the colour: (1, 0.5, 0.25) on a grey BRDF.
   CHECK(std::abs(once[3 * 24 + 1] - 0.5f * once[3 * 24]) <= 1e-6 * brightest);
   // Bad colours and mismatched data are refused, not shaded.

@@ -16,6 +16,9 @@
 // So every bounce the radiosity solve made (diffuse, with the scene's albedos) is in G; light
 // that a glossy surface reflects toward another is taken as the radiosity's diffuse estimate of
 // it (the .prte treats every surface as Lambert with its albedo).
+// emitter_of_vertex: the vertices of the primitives whose material carries an emitter's name
+// (primitives without a material name and with a non-zero emission for "<none>", radiosity's
+// grouping), so that the emitters' surfaces show their emission.
 // Preconditions: `scene`, `glossy` and `responses` hold the same vertices in the same order and
 // the same triangles (the caller checks fingerprints; this checks counts and triangles).
 // Determinism: each vertex from its own samples, accumulated in double: bit-identical for any

@@ -37,6 +37,13 @@ Status validate_glossy_emitter_radiance(const GlossyEmitterRadiance& data) {
                          " coefficients, the counts need " + std::to_string(expected));
   for (float x : data.coefficients)
     if (!std::isfinite(x)) return Status::Error("glossy emitters: a coefficient is not finite");
+  if (data.emitter_of_vertex.size() != data.vertex_count)
+    return Status::Error("glossy emitters: " + std::to_string(data.emitter_of_vertex.size()) +
+                         " emitter indices for " + std::to_string(data.vertex_count) + " vertices");
+  for (uint32_t e : data.emitter_of_vertex)
+    if (e != kNotAnEmitter && e >= data.emitter_count())
+      return Status::Error("glossy emitters: emitter index " + std::to_string(e) + " of " +
+                           std::to_string(data.emitter_count()));
   return Status::Ok();
 }
 
@@ -115,8 +122,10 @@ Status shade_glossy_emitters(const GlossyEmitterRadiance& data,
     projections[material].evaluate(wo, b.data());
     if (Status s = combine_glossy_emitters(data, colors_rgb, v, incident.data()); !s.ok()) return s;
     float* out = out_rgb + 3 * (v - first);
+    const uint32_t own =
+        v < data.emitter_of_vertex.size() ? data.emitter_of_vertex[v] : kNotAnEmitter;
     for (int c = 0; c < 3; ++c) {
-      double sum = 0;
+      double sum = own < data.emitter_count() ? double(colors_rgb[3 * own + c]) : 0.0;
       for (std::size_t i = 0; i < K; ++i) sum += b[c * K + i] * double(incident[c * K + i]);
       out[c] = static_cast<float>(double(out[c]) + sum);
     }

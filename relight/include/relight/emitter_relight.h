@@ -10,10 +10,17 @@
 // option; every input is checked before anything is written, and files are written atomically.
 #pragma once
 
+#include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include <glm/glm.hpp>
+
 #include "prt/emitters/emitter_responses.h"
+#include "prt/emitters/glossy_emitter_radiance.h"
+#include "prt/glossy/brdf_projection.h"
+#include "prt/glossy/transfer.h"
 #include "relight/relight_pipeline.h"
 #include "scene/scene.h"
 
@@ -43,5 +50,35 @@ std::vector<float> emitter_radiance(const prt::EmitterResponses& data, const std
 // exposure rules as SH relighting).
 RelightSummary run_emitter_relight(const RelightRequest& request,
                                    const std::vector<prt::EmitterColor>& colors);
+
+// --- Glossy files with emitters (`prt relight SCENE FILE.prtg|.prtq ENV --emitters R.prte`) ---
+// The exit radiance adds Σ_e c_e ⊙ (b(ωo) · G_e,v) to the environment's glossy result, G the
+// emitters' incident radiance in the vertex's local SH frame (prt/emitters/
+// glossy_emitter_radiance.h), gathered from the responses at the file's vertices. The gather
+// casts rays (bake/glossy_emitter_gather.h), which relight/ does not link: the caller passes it.
+using GlossyEmitterGatherer = std::function<prt::GlossyEmitterRadiance(
+    const scene::Scene&, const prt::GlossyTransferData&, const prt::EmitterResponses&)>;
+
+struct GlossyEmitterLight {
+  prt::GlossyEmitterRadiance radiance;
+  std::vector<float> colors;         // 3 per emitter: stored emission or --emitter
+  prt::GlossyTransferData geometry;  // positions, frames, material_of_vertex (no matrices)
+  double gather_seconds = 0;
+};
+
+// Nothing when request.emitters_path is empty. Otherwise reads the responses, checks them
+// against `scene` (check_responses_match_scene) and request.emitter_colors against them, and
+// gathers G at the vertices of `glossy` (whose geometry the caller checked against `scene`).
+// Throws "PATH: problem" (one line) before any output is written.
+std::optional<GlossyEmitterLight> prepare_glossy_emitters(const RelightRequest& request,
+                                                          const scene::Scene& scene,
+                                                          const prt::GlossyTransferData& glossy,
+                                                          const GlossyEmitterGatherer& gather);
+
+// Adds the emitters' exit radiance toward `eye` (scene frame) to `radiance` (3 floats per
+// vertex), `projections` the relighter's (one per material, GlossyRelighter::projections()).
+void add_glossy_emitters(const GlossyEmitterLight& light,
+                         const std::vector<prt::BrdfProjection>& projections, const glm::vec3& eye,
+                         std::vector<float>& radiance);
 
 }  // namespace prt::relight

@@ -21,6 +21,9 @@
 // prt::CpcaKernel; both are checked against the scene's geometry the same way.
 // GlossyRelightOptions::material_overrides replace some of them before shading (only the
 // vertex's own BRDF changes; interreflections stay as baked: relight/glossy_material_override.h).
+// Emitters (RelightRequest::emitters_path, a .prte computed on the same vertices: max_edge
+// subdivides the scene as `prt bake --max-edge` did): their exit radiance toward each frame's eye
+// is added to the environment's (relight/emitter_relight.h), for .prtg and .prtq alike.
 // Errors throw std::runtime_error with one line "PATH: problem".
 #pragma once
 
@@ -35,6 +38,7 @@
 #include "prt/glossy/relighter.h"
 #include "prt/glossy/transfer.h"
 #include "relight/camera.h"
+#include "relight/emitter_relight.h"
 #include "relight/relight_pipeline.h"
 #include "scene/material_override.h"
 #include "scene/scene.h"
@@ -49,6 +53,9 @@ struct GlossyRelightOptions {
   prt::BrdfProjectionOptions projection;
   // `--material` overrides of the file's BRDFs (relight/glossy_material_override.h).
   std::vector<scene::MaterialOverride> material_overrides;
+  // With RelightRequest::emitters_path: gathers the emitters' incident radiance at the file's
+  // vertices (relight/emitter_relight.h; the CLI passes bake/glossy_emitter_gather.h's).
+  GlossyEmitterGatherer gather_emitters;
 };
 
 // Reads a glossy transfer file and checks that it was baked for `scene` (prt::check_geometry).
