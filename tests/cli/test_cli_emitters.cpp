@@ -242,3 +242,99 @@ TEST_CASE("prt bake --albedo MATERIAL=value sets one material's albedo and refus
     CHECK_FALSE(fs::exists(d + "refused.prt"));
   }
 }
+
+namespace {
+
+// A black lat-long map (PFM, 64 × 32): glossy relights under it show the emitters alone.
+std::string write_black_map(const fs::path& dir) {
+  const fs::path path = dir / "black.pfm";
+  std::ofstream out(path, std::ios::binary);
+  out << "PF\n64 32\n-1.0\n";
+  const std::vector<float> zeros(64 * 32 * 3, 0.f);
+  out.write(reinterpret_cast<const char*>(zeros.data()), std::streamsize(zeros.size() * 4));
+  return path.string();
+}
+
+}  // namespace
+
+TEST_CASE("glossy file + emitters: doubling an emitter adds its contribution, the sky adds",
+          "[radiosity][emitters][glossy][cli]") {
+  const fs::path dir = scratch("glossy");
+  const std::string room = write_room(dir).string();
+  const std::string d = dir.string() + "/";
+  REQUIRE(prt_run("radiosity " + room + " --max-edge 0.25 --per-emitter " + d + "room.prte")
+              .exit_code == 0);
+  RunResult r = prt_run("bake " + room + " --glossy --max-edge 0.25 --order 4 --samples 32 -o " +
+                        d + "room.prtg --quiet");
+  INFO(r.err);
+  REQUIRE(r.exit_code == 0);
+  const std::string black = write_black_map(dir);
+  REQUIRE(prt_run("make-sky -o " + d + "sky.hdr --width 64 --height 32").exit_code == 0);
+  const auto relight = [&](const std::string& file, const std::string& env,
+                           const std::string& extra, const std::string& csv) {
+    const RunResult run = prt_run("relight " + room + " " + d + file + " " + env +
+                                  " --max-edge 0.25 --eye 0.5,0.6,-1 -o " + d + csv +
+                                  ".exr --csv " + d + csv + ".csv" + extra + kSmall);
+    INFO(run.err);
+    REQUIRE(run.exit_code == 0);
+    return csv_rgb(d + csv + ".csv");
+  };
+  const std::string em = " --emitters " + d + "room.prte";
+  const std::vector<double> stored = relight("room.prtg", black, em, "stored"),
+                            twice = relight("room.prtg", black, em + " --emitter lamp=10", "twice"),
+                            lamp = relight("room.prtg", black, em + " --emitter panel=0", "lamp"),
+                            sky = relight("room.prtg", d + "sky.hdr", "", "sky"),
+                            both = relight("room.prtg", d + "sky.hdr", em, "both");
+  std::vector<double> expected_twice(stored.size()), expected_both(stored.size());
+  for (std::size_t i = 0; i < stored.size(); ++i) {
+    expected_twice[i] = stored[i] + lamp[i];  // lamp 5 → 10: its contribution once more
+    expected_both[i] = sky[i] + stored[i];
+  }
+  CHECK(relative_difference(twice, expected_twice) < 1e-6);  // float sums, 9 printed digits
+  CHECK(relative_difference(twice, stored) > 0.1);
+  CHECK(relative_difference(both, expected_both) < 1e-6);
+  CHECK(relative_difference(both, sky) > 0.05);
+  CHECK(relative_difference(both, stored) > 0.01);  // of the lamp's emission 5, the brightest
+
+  // A .prtq keeps the geometry, frames and materials: its emitter part is the .prtg's.
+  r = prt_run("compress " + d + "room.prtg -o " + d + "room.prtq --clusters 4 --vectors 4 --quiet");
+  INFO(r.err);
+  REQUIRE(r.exit_code == 0);
+  CHECK(relative_difference(relight("room.prtq", black, em, "cpca"), stored) < 1e-6);
+}
+
+TEST_CASE("glossy file + emitters: responses of another scene and bad names are refused",
+          "[radiosity][emitters][glossy][cli]") {
+  const fs::path dir = scratch("glossy_refused");
+  const std::string room = write_room(dir).string();
+  const std::string d = dir.string() + "/";
+  // The same room with the lamp 5 cm lower: the same vertex count, other positions.
+  fs::create_directories(dir / "other");
+  const std::string other = write_room(dir / "other").string();
+  {
+    std::string text = slurp(other);
+    const std::string from = "v 0.4 0.99 0.4\nv 0.6 0.99 0.4\nv 0.6 0.99 0.6\nv 0.4 0.99 0.6\n";
+    REQUIRE(text.find(from) != std::string::npos);
+    text.replace(text.find(from), from.size(),
+                 "v 0.4 0.94 0.4\nv 0.6 0.94 0.4\nv 0.6 0.94 0.6\nv 0.4 0.94 0.6\n");
+    std::ofstream(other) << text;
+  }
+  REQUIRE(
+      prt_run("radiosity " + room + " --max-edge 0.5 --per-emitter " + d + "room.prte").exit_code ==
+      0);
+  REQUIRE(prt_run("radiosity " + other + " --max-edge 0.5 --per-emitter " + d + "other.prte")
+              .exit_code == 0);
+  REQUIRE(prt_run("bake " + room + " --glossy --max-edge 0.5 --order 3 --samples 16 -o " + d +
+                  "room.prtg --quiet")
+              .exit_code == 0);
+  const std::string black = write_black_map(dir);
+  const std::string relight = "relight " + room + " " + d + "room.prtg " + black;
+  const std::string out =
+      " -o " + d + "refused.exr --csv " + d + "refused.csv --eye 0.5,0.5,-1" + kSmall;
+  check_refused(dir, relight + " --max-edge 0.5 --emitters " + d + "other.prte" + out,
+                "other.prte: was not computed for");
+  check_refused(
+      dir, relight + " --max-edge 0.5 --emitters " + d + "room.prte --emitter sun=1" + out, "sun");
+  check_refused(dir, relight + " --emitters " + d + "room.prte" + out, "vertex count");
+  check_refused(dir, relight + " --max-edge 0.5 --emitter lamp=1" + out, "--emitters");
+}
