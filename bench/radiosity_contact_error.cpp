@@ -47,22 +47,26 @@ double emitter_visibility(const scene::Scene& s, const std::vector<radiosity::Pa
   for (int k = 0; k < count; ++k) {
     const radiosity::Patch& e = patches[emitters[k % emitters.size()]];
     // A fixed lattice of barycentrics per emitter.
-    const double a = std::fmod(0.5 + k * 0.6180339887, 1.0), b = std::fmod(0.5 + k * 0.7548776662, 1.0);
+    const double a = std::fmod(0.5 + k * 0.6180339887, 1.0),
+                 b = std::fmod(0.5 + k * 0.7548776662, 1.0);
     const double u = a + b > 1.0 ? 1.0 - a : a, w = a + b > 1.0 ? 1.0 - b : b;
-    const glm::dvec3 y = e.corners[0] + u * (e.corners[1] - e.corners[0]) + w * (e.corners[2] - e.corners[0]);
+    const glm::dvec3 y =
+        e.corners[0] + u * (e.corners[1] - e.corners[0]) + w * (e.corners[2] - e.corners[0]);
     const glm::dvec3 d = y - x;
     if (glm::dot(d, n) <= 0.0 || glm::dot(-d, e.normal) <= 0.0) continue;
     ++in_front;
     const double len = glm::length(d);
-    arrive += caster.occluded(glm::vec3(x), glm::vec3(d / len), 0.f, float(len * (1 - 1e-4))) ? 0 : 1;
+    arrive +=
+        caster.occluded(glm::vec3(x), glm::vec3(d / len), 0.f, float(len * (1 - 1e-4))) ? 0 : 1;
   }
   (void)s;
   return in_front == 0 ? -1.0 : double(arrive) / in_front;
 }
 
 void print(const char* what, const test::VertexErrors& e) {
-  std::printf("  %-34s %5zu lit  RMS %6.2f%%  weighted %6.2f%%  >20%% %5zu  (reference noise %.2f%%)\n",
-              what, e.lit, 100 * e.rms, 100 * e.weighted_rms, e.over_20, 100 * e.rms_noise);
+  std::printf(
+      "  %-34s %5zu lit  RMS %6.2f%%  weighted %6.2f%%  >20%% %5zu  (reference noise %.2f%%)\n",
+      what, e.lit, 100 * e.rms, 100 * e.weighted_rms, e.over_20, 100 * e.rms_noise);
 }
 
 }  // namespace
@@ -75,11 +79,16 @@ int main(int argc, char** argv) {
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     const bool more = i + 1 < argc;
-    if (a == "--quick") quick = true;
-    else if (a == "--max-edge" && more) max_edge = std::atof(argv[++i]);
-    else if (a == "--samples" && more) samples = std::atoi(argv[++i]);
-    else if (a == "--method" && more) method = argv[++i];
-    else if (a == "--csv" && more) csv = argv[++i];
+    if (a == "--quick")
+      quick = true;
+    else if (a == "--max-edge" && more)
+      max_edge = std::atof(argv[++i]);
+    else if (a == "--samples" && more)
+      samples = std::atoi(argv[++i]);
+    else if (a == "--method" && more)
+      method = argv[++i];
+    else if (a == "--csv" && more)
+      csv = argv[++i];
     else {
       std::fprintf(stderr,
                    "usage: radiosity_contact_error [--quick] [--max-edge L] [--method "
@@ -125,11 +134,45 @@ int main(int argc, char** argv) {
   const std::vector<float> before = radiosity::vertex_radiance(s, patches, sol.radiance);
   radiosity::mark_hidden_parts(&patches, caster, ff);
   const std::vector<float> after = radiosity::vertex_radiance(s, patches, sol.radiance);
+  // A variant: partly hidden patches only where a vertex has no wholly visible patch.
+  std::vector<radiosity::Patch> whole = patches;
+  {
+    std::vector<char> has_whole(s.vertex_count(), 0);
+    for (uint32_t t = 0; t < patches.size(); ++t)
+      for (int k = 0; k < 3; ++k) has_whole[s.triangles[t][k]] |= patches[t].visible == 1.0;
+    for (uint32_t t = 0; t < patches.size(); ++t) {
+      bool all = true;
+      for (int k = 0; k < 3; ++k) all = all && has_whole[s.triangles[t][k]];
+      (void)all;
+    }
+  }
+  std::vector<float> whole_only(3 * s.vertex_count(), 0.f);
+  {
+    std::vector<glm::dvec3> sum(s.vertex_count(), glm::dvec3(0.0)), psum = sum;
+    std::vector<double> w(s.vertex_count(), 0.0), pw = w;
+    for (uint32_t t = 0; t < patches.size(); ++t)
+      for (int k = 0; k < 3; ++k) {
+        const uint32_t v = s.triangles[t][k];
+        if (patches[t].visible == 1.0)
+          sum[v] += patches[t].area * sol.radiance[t], w[v] += patches[t].area;
+        else if (patches[t].visible > 0.0)
+          psum[v] += patches[t].area * sol.radiance[t],
+              pw[v] += patches[t].area * patches[t].visible;
+      }
+    for (std::size_t v = 0; v < s.vertex_count(); ++v)
+      for (int c = 0; c < 3; ++c)
+        whole_only[3 * v + c] = float(w[v] > 0    ? sum[v][c] / w[v]
+                                      : pw[v] > 0 ? psum[v][c] / pw[v]
+                                                  : 0.0);
+  }
   std::size_t hidden = 0, partly = 0;
-  for (const radiosity::Patch& p : patches) hidden += p.visible == 0.0, partly += p.visible > 0.0 && p.visible < 1.0;
-  std::printf("%s, %s form factors: %zu patches (%zu hidden, %zu partly), %zu vertices, %d paths per vertex\n",
-              quick ? "block on a floor" : "Cornell box", method.c_str(), patches.size(), hidden,
-              partly, s.vertex_count(), samples);
+  for (const radiosity::Patch& p : patches)
+    hidden += p.visible == 0.0, partly += p.visible > 0.0 && p.visible < 1.0;
+  std::printf(
+      "%s, %s form factors: %zu patches (%zu hidden, %zu partly), %zu vertices, %d paths per "
+      "vertex\n",
+      quick ? "block on a floor" : "Cornell box", method.c_str(), patches.size(), hidden, partly,
+      s.vertex_count(), samples);
   std::vector<double> visible(patches.size());
   for (std::size_t t = 0; t < patches.size(); ++t) visible[t] = patches[t].visible;
   const test::VertexReference ref = test::vertex_reference(s, samples, &visible);
@@ -144,14 +187,16 @@ int main(int argc, char** argv) {
     const double len = glm::length(normal[v]);
     if (!ref.compared[v] || !(len > 0.0)) continue;
     const glm::dvec3 nv = normal[v] / len;
-    const double vis = emitter_visibility(s, patches, caster,
-                                          glm::dvec3(s.positions[v]) + 1e-4 * max_edge * nv, nv, 64);
+    const double vis = emitter_visibility(
+        s, patches, caster, glm::dvec3(s.positions[v]) + 1e-4 * max_edge * nv, nv, 64);
     penumbra[v] = !touched[v] && vis > 0.0 && vis < 1.0;
     rest[v] = !touched[v] && !penumbra[v];
   }
-  for (int pass = 0; pass < 2; ++pass) {
-    const std::vector<float>& l = pass == 0 ? before : after;
-    std::printf("%s:\n", pass == 0 ? "before (area means of all patches)" : "after (hidden parts left out)");
+  for (int pass = 0; pass < 3; ++pass) {
+    const std::vector<float>& l = pass == 0 ? before : pass == 1 ? after : whole_only;
+    std::printf("%s:\n", pass == 0   ? "before (area means of all patches)"
+                         : pass == 1 ? "after (hidden parts left out)"
+                                     : "variant (wholly visible patches first)");
     print("all lit vertices", test::vertex_errors(l, ref));
     print("touched by the change", test::vertex_errors(l, ref, &touched));
     print("lamp's penumbra (not touched)", test::vertex_errors(l, ref, &penumbra));

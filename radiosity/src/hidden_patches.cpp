@@ -23,8 +23,7 @@ std::array<glm::dvec3, kEnclosureProbes> local_probes() {
     const double theta = polar_degrees[ring] * numerics::kPi / 180.0;
     for (int s = 0; s < 6; ++s) {
       const double phi = (s + 0.5 * (ring % 2)) * numerics::kPi / 3.0;
-      d[k++] = {std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi),
-                std::cos(theta)};
+      d[k++] = {std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta)};
     }
   }
   return d;

@@ -5,9 +5,9 @@
 // patches darken every vertex around a contact line, and the renderer spreads that darkness
 // over the visible floor beside the block (the D0 discontinuity of Lischinski, Tampieri &
 // Greenberg, "Discontinuity meshing for accurate radiosity", IEEE CG&A 12(6), 1992, left
-// unresolved by a mesh that does not follow it). vertex_radiance (patches.h) therefore weights each patch by its visible area and takes
-// the radiance of its visible part; the solve itself keeps every patch (hidden ones absorb and
-// emit nothing, so the energy account is unchanged).
+// unresolved by a mesh that does not follow it). vertex_radiance (patches.h) therefore weights each
+// patch by its visible area and takes the radiance of its visible part; the solve itself keeps
+// every patch (hidden ones absorb and emit nothing, so the energy account is unchanged).
 //
 // A point x of a patch is *enclosed* when every one of kEnclosureProbes fixed directions of the
 // hemisphere in front of it (the normal, and rings of six at 30°, 55°, 75° and 86° from it) meets a
