@@ -12,6 +12,7 @@
 //   default: the Cornell box of ../shared/data (white 0.73, red, green, light=20, as in
 //   docs/RADIOSITY.md), --max-edge 29, analytic form factors, 1024 paths per vertex;
 //   --quick: the block-on-a-floor scene of fixtures/radiosity/contact_scene.h (for the tests).
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -132,20 +133,12 @@ int main(int argc, char** argv) {
   const radiosity::Solution sol =
       radiosity::solve_matrix(patches, radiosity::compute_form_factors(patches, caster, ff), so);
   const std::vector<float> before = radiosity::vertex_radiance(s, patches, sol.radiance);
+  const auto t0 = std::chrono::steady_clock::now();
   radiosity::mark_hidden_parts(&patches, caster, ff);
+  const double mark_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   const std::vector<float> after = radiosity::vertex_radiance(s, patches, sol.radiance);
   // A variant: partly hidden patches only where a vertex has no wholly visible patch.
-  std::vector<radiosity::Patch> whole = patches;
-  {
-    std::vector<char> has_whole(s.vertex_count(), 0);
-    for (uint32_t t = 0; t < patches.size(); ++t)
-      for (int k = 0; k < 3; ++k) has_whole[s.triangles[t][k]] |= patches[t].visible == 1.0;
-    for (uint32_t t = 0; t < patches.size(); ++t) {
-      bool all = true;
-      for (int k = 0; k < 3; ++k) all = all && has_whole[s.triangles[t][k]];
-      (void)all;
-    }
-  }
   std::vector<float> whole_only(3 * s.vertex_count(), 0.f);
   {
     std::vector<glm::dvec3> sum(s.vertex_count(), glm::dvec3(0.0)), psum = sum;
@@ -173,6 +166,7 @@ int main(int argc, char** argv) {
       "vertex\n",
       quick ? "block on a floor" : "Cornell box", method.c_str(), patches.size(), hidden, partly,
       s.vertex_count(), samples);
+  std::printf("visible fractions: %.3f s\n", mark_seconds);
   std::vector<double> visible(patches.size());
   for (std::size_t t = 0; t < patches.size(); ++t) visible[t] = patches[t].visible;
   const test::VertexReference ref = test::vertex_reference(s, samples, &visible);
