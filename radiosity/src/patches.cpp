@@ -33,10 +33,11 @@ std::vector<float> vertex_radiance(const scene::Scene& scene, const std::vector<
   std::vector<glm::dvec3> sum(scene.vertex_count(), glm::dvec3(0.0));
   std::vector<double> weight(scene.vertex_count(), 0.0);
   for (std::size_t t = 0; t < patches.size(); ++t) {
+    if (!(patches[t].visible > 0.0)) continue;  // wholly hidden: seen from nowhere
     for (int k = 0; k < 3; ++k) {
       const uint32_t v = scene.triangles[t][k];
       sum[v] += patches[t].area * patch_radiance[t];
-      weight[v] += patches[t].area;
+      weight[v] += patches[t].area * patches[t].visible;
     }
   }
   std::vector<float> out(3 * scene.vertex_count(), 0.f);

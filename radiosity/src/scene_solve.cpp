@@ -10,6 +10,7 @@
 
 #include "prt/emitters/emitter_responses.h"
 #include "radiosity/form_factor_cache.h"
+#include "radiosity/hidden_patches.h"
 #include "radiosity/materials.h"
 #include "radiosity/patches.h"
 #include "scene/output_path.h"
@@ -233,13 +234,16 @@ SceneSolution solve_scene(const SceneSolveRequest& r,
   check_unit_albedo(r, scene, patches, &out);
   if (r.refinement) {
     patches = solve_refined(r, &scene, &out);  // pass by pass
+    if (r.hide_enclosed) mark_hidden_parts(&patches, scene::RayCaster(scene), r.form_factors);
   } else if (r.solve.solver == SolverKind::Progressive) {
     const scene::RayCaster caster(scene);
+    if (r.hide_enclosed) mark_hidden_parts(&patches, caster, r.form_factors);
     const Clock::time_point t = Clock::now();
     out.solution = solve_progressive(patches, caster, r.form_factors, r.solve);
     out.solve_seconds = since(t);  // includes the rows computed on the fly
   } else {
     const scene::RayCaster caster(scene);
+    if (r.hide_enclosed) mark_hidden_parts(&patches, caster, r.form_factors);
     solve_on(r, scene, patches, form_factors(r, before, patches, caster, &out), &out);
   }
   out.patches = patches.size();

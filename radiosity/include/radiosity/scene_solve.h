@@ -55,6 +55,9 @@ struct SceneSolveRequest {
   // Optional: per-emitter responses (emitter_solve.h), one more solve per emitter on the same
   // form factors; needs a full-matrix solver.
   std::string per_emitter_path;
+  // Keep the hidden parts of patches (the floor under a block resting on it) out of the vertex
+  // radiance (radiosity/hidden_patches.h); false: plain area-weighted patch means.
+  bool hide_enclosed = true;
 };
 
 struct SceneSolution {
