@@ -48,7 +48,7 @@ ObjectMove parse_object_move(const std::string& text);
 // kDefaultRaysError relative RMS of the analytic solution on the same patches.
 constexpr std::size_t kAnalyticPatchLimit = 1500;
 constexpr int kDefaultRaysPerPatch = 1024;
-constexpr double kDefaultRaysError = 0.02;
+constexpr double kDefaultRaysError = 0.01;
 
 struct FormFactorChoice {
   FormFactorOptions options;  // `given` with the method (and for rays its sampling) chosen
