@@ -19,7 +19,7 @@ namespace {
 
 struct RadiosityArguments {
   std::string scene, output, vertex_colors, csv, per_emitter;
-  std::string form_factors = "analytic";
+  std::string form_factors = "auto";
   std::string solver = "gauss-seidel";
   std::vector<std::string> emission, albedo, moves;
   std::string form_factor_cache;
@@ -82,14 +82,17 @@ radiosity::SceneSolveRequest make_solve_request(const RadiosityArguments& a) {
   } else if (a.max_patches != 0) {
     throw CommandError("--max-patches: only with --adaptive");
   }
-  if (a.form_factors == "analytic") {
+  if (a.form_factors == "auto") {
+    r.choose_method = true;  // by the patch count (radiosity::choose_form_factors)
+  } else if (a.form_factors == "analytic") {
     r.form_factors.method = radiosity::FormFactorMethod::Analytic;
   } else if (a.form_factors == "rays") {
     r.form_factors.method = radiosity::FormFactorMethod::Rays;
   } else if (a.form_factors == "hemicube") {
     r.form_factors.method = radiosity::FormFactorMethod::Hemicube;
   } else {
-    throw CommandError("--form-factors " + a.form_factors + ": expected analytic|rays|hemicube");
+    throw CommandError("--form-factors " + a.form_factors +
+                       ": expected auto|analytic|rays|hemicube");
   }
   if (a.solver == "gauss-seidel") {
     r.solve.solver = radiosity::SolverKind::GaussSeidel;
@@ -176,6 +179,7 @@ void run(const RadiosityArguments& args) {
   if (args.quiet) return;
   const radiosity::SceneSolution& s = result.solution;
   const radiosity::Solution& solution = s.solution;
+  if (!s.form_factor_choice.empty()) std::printf("%s\n", s.form_factor_choice.c_str());
   for (std::size_t k = 0; k < s.refinement_passes.size(); ++k) {
     const radiosity::RefinementPass& p = s.refinement_passes[k];
     std::printf(
@@ -257,7 +261,9 @@ void register_radiosity(CLI::App& app) {
   cmd->add_option("--adaptive-levels", args->adaptive_levels,
                   "For --adaptive: split a starting patch into at most 4^N (edges / 2^N)")
       ->capture_default_str();
-  cmd->add_option("--form-factors", args->form_factors, "analytic|rays|hemicube")
+  cmd->add_option("--form-factors", args->form_factors,
+                  "auto|analytic|rays|hemicube; auto: analytic up to 1500 patches, above that "
+                  "rays (1024 per patch); the choice is printed")
       ->capture_default_str();
   cmd->add_option("--hemicube", args->hemicube,
                   "Cells across the hemicube's top face for --form-factors hemicube")

@@ -85,6 +85,11 @@ FormFactorUpdate update_form_factors(const std::vector<Patch>& before,
     return segment_meets(a, b, region_before) || segment_meets(a, b, region_after);
   };
 
+  if (options.method == FormFactorMethod::Hemicube) {  // each entry needs two hemicubes
+    *f = compute_form_factors(after, caster, options);
+    update.rows_recomputed = n;
+    return update;
+  }
   const bool analytic = options.method == FormFactorMethod::Analytic;
   std::vector<std::vector<glm::dvec3>> points(analytic ? n : 0);
   for (std::size_t i = 0; i < points.size(); ++i)

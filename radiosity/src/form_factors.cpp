@@ -14,6 +14,7 @@
 #include "numerics/constants.h"
 #include "numerics/hash.h"
 #include "numerics/low_discrepancy.h"
+#include "radiosity/hemicube.h"
 #include "random.h"
 
 namespace prt::radiosity {
@@ -278,6 +279,7 @@ FormFactorMatrix compute_form_factors(const std::vector<Patch>& patches,
                         detail::row_into(patches, caster, static_cast<uint32_t>(i), options,
                                          m.f.data() + i * m.size);
                     });
+  if (options.method == FormFactorMethod::Hemicube) combine_hemicube_estimates(patches, &m.f);
   return m;
 }
 

@@ -10,6 +10,8 @@
 #include <mutex>
 #include <stdexcept>
 
+#include <tbb/parallel_for.h>
+
 #include "radiosity/form_factors.h"
 
 namespace prt::radiosity {
@@ -308,6 +310,44 @@ void hemicube_form_factors(const HemicubeBuffer& buffer, std::size_t patch_count
   }
   row->assign(patch_count, 0.f);
   for (std::size_t j = 0; j < patch_count; ++j) (*row)[j] = static_cast<float>(sums[j]);
+}
+
+void combine_hemicube_estimates(const std::vector<Patch>& patches, std::vector<float>* f) {
+  const std::size_t n = patches.size();
+  if (f->size() != n * n)
+    throw std::invalid_argument("combine_hemicube_estimates: an N × N matrix is needed");
+  constexpr std::size_t kTile = 64;  // pairs in 64 × 64 tiles: both entries stay in cache
+  const std::size_t tiles = (n + kTile - 1) / kTile;
+  float* m = f->data();
+
+  // Task a handles every pair (i, j), i in tile a, j in a tile b ≥ a: the tasks write disjoint
+  // entries, each from the same two raw values whatever the thread count.
+  tbb::parallel_for(std::size_t(0), tiles, [&](std::size_t a) {
+    for (std::size_t b = a; b < tiles; ++b)
+      for (std::size_t i = a * kTile; i < std::min(n, (a + 1) * kTile); ++i) {
+        const double ai = patches[i].area;
+        for (std::size_t j = std::max(b * kTile, i + 1); j < std::min(n, (b + 1) * kTile); ++j) {
+          const double aj = patches[j].area;
+          float& fij = m[i * n + j];
+          float& fji = m[j * n + i];
+          if (!(ai > 0.0) || !(aj > 0.0)) {
+            fij = fji = 0.f;
+            continue;
+          }
+          const double g = ai * aj / (ai + aj) * (double(fij) + double(fji));
+          fij = static_cast<float>(g / ai);
+          fji = static_cast<float>(g / aj);
+        }
+      }
+  });
+  tbb::parallel_for(std::size_t(0), n, [&](std::size_t i) {
+    float* row = m + i * n;
+    if (!(patches[i].area > 0.0)) std::fill(row, row + n, 0.f);
+    double sum = 0.0;
+    for (std::size_t j = 0; j < n; ++j) sum += row[j];
+    if (sum > 1.0)
+      for (std::size_t j = 0; j < n; ++j) row[j] = static_cast<float>(row[j] / sum);
+  });
 }
 
 void hemicube_row(const std::vector<Patch>& patches, const scene::RayCaster& /*caster*/, uint32_t i,

@@ -1,6 +1,7 @@
 // radiosity/src/scene_solve.cpp — see radiosity/scene_solve.h.
 #include "radiosity/scene_solve.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -174,6 +175,32 @@ std::vector<Patch> solve_refined(const SceneSolveRequest& r, scene::Scene* scene
 
 }  // namespace
 
+FormFactorChoice choose_form_factors(std::size_t patches, const FormFactorOptions& given) {
+  FormFactorChoice c;
+  c.options = given;
+  char text[256];
+  if (patches <= kAnalyticPatchLimit) {
+    c.options.method = FormFactorMethod::Analytic;
+    c.options.quadrature_points = 3;
+    std::snprintf(text, sizeof text,
+                  "form factors: analytic (%zu patches, at most %zu: exact and cheap; "
+                  "--form-factors rays|hemicube to override)",
+                  patches, kAnalyticPatchLimit);
+  } else {
+    c.options.method = FormFactorMethod::Rays;
+    c.options.rays_per_patch = kDefaultRaysPerPatch;
+    c.options.emitter_rays_per_patch = 0;
+    c.options.sampling = RaySampling::Sobol;
+    c.options.emitter_rows = EmitterRows::Reciprocal;
+    std::snprintf(text, sizeof text,
+                  "form factors: rays, %d per patch (%zu patches, more than %zu: analytic costs "
+                  "N^2; rays stay within %.0f%% RMS of it; --form-factors analytic to override)",
+                  kDefaultRaysPerPatch, patches, kAnalyticPatchLimit, 100 * kDefaultRaysError);
+  }
+  c.reason = text;
+  return c;
+}
+
 ObjectMove parse_object_move(const std::string& text) {
   const std::size_t eq = text.find('=');
   ObjectMove m;
@@ -221,15 +248,25 @@ void check_scene_solve(const SceneSolveRequest& r, const std::vector<std::string
                                 ": must be in (0, 1)");
 }
 
-SceneSolution solve_scene(const SceneSolveRequest& r,
+SceneSolution solve_scene(const SceneSolveRequest& request,
                           const std::function<void(const scene::Scene&)>& before_solve) {
-  check_scene_solve(r, {});
+  check_scene_solve(request, {});
+  SceneSolveRequest r = request;
   const scene::Scene before = prepare_scene(r, false);
   scene::Scene scene = r.moves.empty() ? before : prepare_scene(r, true);
   check_patch_count(r, scene);
   if (!r.per_emitter_path.empty()) emitter_groups(scene);  // refused before solving
   if (before_solve) before_solve(scene);
   SceneSolution out;
+  if (r.choose_method) {
+    std::size_t count = scene.triangles.size();
+    if (r.refinement)
+      count =
+          r.refinement->max_patches ? r.refinement->max_patches : std::min(4 * count, kMaxPatches);
+    const FormFactorChoice choice = choose_form_factors(count, r.form_factors);
+    r.form_factors = choice.options;
+    out.form_factor_choice = choice.reason;
+  }
   std::vector<Patch> patches = make_patches(scene);
   check_unit_albedo(r, scene, patches, &out);
   if (r.refinement) {

@@ -256,8 +256,12 @@ TEST_CASE("hemicube form factors do not depend on the thread count", "[radiosity
     one = compute_form_factors(patches, caster, o);
   }
   CHECK(many.f == one.f);
-  for (std::size_t i = 0; i < patches.size(); ++i)
-    CHECK(many.row_sum(i) == Approx(1.0).margin(1e-6));
+  // Closed box: the raw rows sum to 1; the combined ones (hemicube.h) to at most 1, less the
+  // other patches' centroid and cell errors (measured 0.965 at worst).
+  for (std::size_t i = 0; i < patches.size(); ++i) {
+    CHECK(many.row_sum(i) <= 1.0 + 1e-6);
+    CHECK(many.row_sum(i) > 0.95);
+  }
 }
 
 TEST_CASE("Cornell box: hemicube rows approach the analytic ones (centroid rule) as R grows",
@@ -285,4 +289,86 @@ TEST_CASE("Cornell box: hemicube rows approach the analytic ones (centroid rule)
                       << " at R = 128");
   CHECK(mean[1] < 0.07);
   CHECK(mean[0] > 3 * mean[1]);
+}
+
+namespace {
+
+// A 1 × 1 floor in z = 0 (facing +z) split into 16 × 16 squares (512 triangles of area 1/512)
+// under a 0.5 × 0.5 lamp at height 1 facing down (2 triangles, 64× a floor patch's area).
+prt::scene::Scene floor_under_lamp() {
+  prt::scene::Scene s;
+  prt::test::append(
+      s, prt::scene::make_quad({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, 16, 16, glm::vec3(0.5f)), "floor");
+  prt::test::append(
+      s,
+      prt::scene::make_quad({0.25f, 0.25f, 1.f}, {0, 0.5f, 0}, {0.5f, 0, 0}, 1, 1, glm::vec3(0.5f)),
+      "lamp");
+  return s;
+}
+
+// Per floor patch j: the lamp's light it gathers, Σ_l A_l F_lj / A_j (l the lamp's patches), as
+// a relative error against the exact Σ_l F_jl (reciprocity; Lambert's formula integrated over j).
+std::pair<double, double> floor_gather_errors(const std::vector<Patch>& patches,
+                                              const std::vector<float>& f) {
+  const std::size_t n = patches.size();
+  double worst = 0.0, squares = 0.0;
+  std::size_t floor = 0;
+  for (std::size_t j = 0; j < n; ++j) {
+    if (patches[j].normal.z < 0.5) continue;  // the lamp
+    double gathered = 0.0, exact = 0.0;
+    for (std::size_t l = 0; l < n; ++l) {
+      if (patches[l].normal.z > -0.5) continue;
+      gathered += patches[l].area * f[l * n + j] / patches[j].area;
+      exact += polygon_polygon_form_factor(
+          {patches[j].corners[0], patches[j].corners[1], patches[j].corners[2]},
+          {patches[l].corners[0], patches[l].corners[1], patches[l].corners[2]}, 8);
+    }
+    const double e = std::abs(gathered - exact) / exact;
+    worst = std::max(worst, e);
+    squares += e * e;
+    ++floor;
+  }
+  return {std::sqrt(squares / double(floor)), worst};
+}
+
+}  // namespace
+
+TEST_CASE("hemicube: receivers smaller than a cell gather the lamp's light without aliasing",
+          "[radiosity][hemicube]") {
+  // The lamp's hemicube (R = 32) sees each floor patch as about one cell (its solid angle
+  // ≈ 0.002 sr against ≈ 0.004 sr per cell): its raw row gives a patch 0, 1 or 2 cells, and a
+  // regular grid of such patches gathers a checkerboard. The combined estimate takes a small
+  // receiver's light from its own hemicube, where the lamp covers ~60 cells.
+  const prt::scene::Scene scene = floor_under_lamp();
+  const prt::scene::RayCaster caster(scene);
+  const std::vector<Patch> patches = make_patches(scene);
+  REQUIRE(patches.size() == 514);
+  const int r = 32;
+  std::vector<float> raw(patches.size() * patches.size(), 0.f);
+  for (uint32_t i = 0; i < patches.size(); ++i) {
+    std::vector<float> row;
+    hemicube_row(patches, caster, i, r, &row);
+    std::copy(row.begin(), row.end(), raw.begin() + std::size_t(i) * patches.size());
+  }
+  FormFactorOptions o;
+  o.method = FormFactorMethod::Hemicube;
+  o.hemicube_resolution = r;
+  const FormFactorMatrix combined = compute_form_factors(patches, caster, o);
+  const auto [raw_rms, raw_worst] = floor_gather_errors(patches, raw);
+  const auto [rms, worst] = floor_gather_errors(patches, combined.f);
+  INFO("relative error of the lamp's light per floor patch, raw sender rows: RMS "
+       << raw_rms << ", worst " << raw_worst << "; combined: RMS " << rms << ", worst " << worst);
+  // Measured: raw RMS 10.6%, worst 21%; combined RMS 2.3%, worst 4.8% (what is left: the lamp
+  // seen through ~60 cells from each receiver's centroid).
+  CHECK(raw_rms > 0.08);  // the aliasing this guards against is real at this resolution
+  CHECK(rms < 0.035);
+  CHECK(worst < 0.07);
+  CHECK(raw_rms > 3 * rms);
+  // Reciprocity is exact (no row here sums above 1) and rows sum to at most 1.
+  for (std::size_t i = 0; i < patches.size(); ++i) {
+    CHECK(combined.row_sum(i) <= 1.0 + 1e-6);
+    for (std::size_t j = i + 1; j < patches.size(); j += 37)
+      CHECK(patches[i].area * combined.at(i, j) ==
+            Approx(patches[j].area * combined.at(j, i)).epsilon(1e-6).margin(1e-12));
+  }
 }

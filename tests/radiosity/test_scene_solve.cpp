@@ -1,6 +1,7 @@
 // The solve of `prt radiosity` from a scene file (radiosity/scene_solve.h): the same vertex
 // radiance as its steps run by hand, the patch scene handed to the caller before any ray, its
 // refusals before anything is written, and the files it writes.
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <stdexcept>
@@ -146,4 +147,64 @@ TEST_CASE("solve_scene writes the cache, then loads it, and the per-emitter resp
   CHECK(loaded.cache == SceneSolution::Cache::Loaded);
   CHECK(loaded.form_factor_seconds == 0.0);  // nothing computed
   CHECK(loaded.vertex_radiance == saved.vertex_radiance);
+}
+
+TEST_CASE("the default form factors: analytic up to the patch limit, rays above",
+          "[radiosity][scene-solve][form-factor-choice]") {
+  FormFactorOptions given;
+  given.seed = 7;
+  given.quadrature_points = 1;
+  given.rays_per_patch = 3;  // the choice sets its own ray count
+  given.emitter_rows = EmitterRows::Rays;
+  const FormFactorChoice small = choose_form_factors(kAnalyticPatchLimit, given);
+  CHECK(small.options.method == FormFactorMethod::Analytic);
+  CHECK(small.options.quadrature_points == 3);
+  CHECK(small.reason.rfind("form factors: analytic (", 0) == 0);
+  CHECK(small.reason.find('\n') == std::string::npos);
+  const FormFactorChoice large = choose_form_factors(kAnalyticPatchLimit + 1, given);
+  CHECK(large.options.method == FormFactorMethod::Rays);
+  CHECK(large.options.rays_per_patch == kDefaultRaysPerPatch);
+  CHECK(large.options.emitter_rays_per_patch == 0);
+  CHECK(large.options.sampling == RaySampling::Sobol);
+  CHECK(large.options.emitter_rows == EmitterRows::Reciprocal);
+  CHECK(large.options.seed == 7);  // what the choice does not decide is kept
+  CHECK(large.reason.rfind("form factors: rays, 1024 per patch (1501 patches", 0) == 0);
+  CHECK(choose_form_factors(1, given).options.method == FormFactorMethod::Analytic);
+  CHECK(choose_form_factors(kMaxPatches, given).options.method == FormFactorMethod::Rays);
+}
+
+TEST_CASE("the default above the patch limit stays within its stated error of analytic",
+          "[radiosity][scene-solve][form-factor-choice]") {
+  // The room of write_room at max edge 0.11: more patches than kAnalyticPatchLimit, so the
+  // default is rays; analytic on the same patches is still cheap here (a few CPU seconds).
+  const fs::path dir = scratch("choice");
+  SceneSolveRequest request;
+  request.scene_path = write_room(dir);
+  request.max_edge = 0.11;
+  request.choose_method = true;
+  request.solve.tolerance = 1e-6;
+  const SceneSolution chosen = solve_scene(request);
+  INFO(chosen.form_factor_choice);
+  REQUIRE(chosen.patches > kAnalyticPatchLimit);
+  CHECK(chosen.form_factor_choice.rfind("form factors: rays", 0) == 0);
+  request.choose_method = false;
+  request.form_factors.method = FormFactorMethod::Analytic;
+  const SceneSolution analytic = solve_scene(request);
+  CHECK(analytic.form_factor_choice.empty());
+  REQUIRE(analytic.vertex_radiance.size() == chosen.vertex_radiance.size());
+  // Relative RMS over every vertex and channel but the lamp's (radiance 5 and more), as
+  // scripts/radiosity_compare.py --exclude-above 2.5 computes it.
+  double difference = 0.0, reference = 0.0;
+  for (std::size_t v = 0; v < analytic.vertex_radiance.size(); v += 3) {
+    if (analytic.vertex_radiance[v] > 2.5f) continue;
+    for (std::size_t c = v; c < v + 3; ++c) {
+      const double d = double(chosen.vertex_radiance[c]) - analytic.vertex_radiance[c];
+      difference += d * d;
+      reference += double(analytic.vertex_radiance[c]) * analytic.vertex_radiance[c];
+    }
+  }
+  const double error = std::sqrt(difference / reference);
+  INFO(chosen.patches << " patches: rays against analytic, relative RMS " << error);
+  CHECK(error <= kDefaultRaysError);
+  CHECK(error > 1e-4);  // they are different methods: a zero would mean analytic twice
 }

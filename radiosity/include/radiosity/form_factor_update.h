@@ -12,10 +12,11 @@
 //     stored sum is ≥ 1 − 1e-6 may have been scaled (sampled visibility summing above 1) and is
 //     recomputed whole; a patched row that now sums above 1 is scaled as the full computation
 //     would scale it.
-//   rays, hemicube: row i is recomputed when i moved or when R reaches the half-space in front
-//     of patch i (a ray leaving i can then have met the object before or after); the others'
-//     rays cannot reach R. Random streams are per row, so a recomputed row equals the full
-//     computation's.
+//   rays: row i is recomputed when i moved or when R reaches the half-space in front of patch i
+//     (a ray leaving i can then have met the object before or after); the others' rays cannot
+//     reach R. Random streams are per row, so a recomputed row equals the full computation's.
+//   hemicube: every row is recomputed (each entry combines the hemicubes of both its patches,
+//     radiosity/hemicube.h, and the stored matrix no longer holds them apart).
 // Either way the result equals compute_form_factors on the new patches bit for bit (rows and
 // entries are computed by the same code; test_radiosity checks it).
 #pragma once

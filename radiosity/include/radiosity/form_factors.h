@@ -23,6 +23,10 @@
 //     at the centroid of patch i; each cell credits the patch whose front face it shows with its
 //     exact delta form factor (radiosity/hemicube.h), so the cells sum to 1. The ray caster is
 //     not used (radiosity/hemicube.h has the ray-cast item buffer as a second method).
+//     compute_form_factors combines the two hemicubes of every pair, weighted by the other
+//     patch's area (combine_hemicube_estimates, radiosity/hemicube.h), so that receivers
+//     smaller than a cell are not aliased; form_factor_row and hemicube_row give the raw row
+//     of the hemicube at i (progressive refinement shoots those).
 //
 // F_ij is the fraction of the power leaving patch i that arrives at the front of patch j; patch
 // i's row is computed at i (the sender), so every row sums to at most 1 (analytic: up to float

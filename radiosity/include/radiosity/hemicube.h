@@ -33,6 +33,27 @@
 // clipped patches' bounding boxes, plus the 3R² cells. Memory: 12 bytes per cell and thread
 // (item and depth buffers, kept per thread): 3 MB at R = 512, 600 MB at R = 4096.
 //
+// Combined estimate (what compute_form_factors returns for the hemicube method). A hemicube at
+// patch i resolves patch j only as finely as its cells: a receiver j that covers less than a
+// cell's solid angle gets 0 or 1 cell, so F_ij is 0 or several times too large. In the gather
+// L_j = E_j + ρ_j Σ_i (A_i F_ij / A_j) L_i that error is divided by the small A_j, and on a
+// regular grid of small receivers (refined patches, radiosity/patch_refinement.h) the 0s and 1s
+// form a checkerboard. Every pair has a second estimate of the same quantity G_ij = A_i F_ij =
+// A_j F_ji: the hemicube at j, in which i is seen with A_i/A_j times as many cells. With the
+// aliasing error of a patch covering n cells taken as ∝ √n cells (edge cells), the two
+// estimates' standard errors are ∝ √(A_i G δ) and √(A_j G δ) (δ a cell's delta form factor), so
+// the inverse-variance combination is
+//     G_ij = A_i A_j / (A_i + A_j) · (F^(i)_ij + F^(j)_ji),
+// which weights each hemicube by the other patch's area: a small receiver's light comes from
+// its own hemicube (Cohen & Greenberg's gathering), equal patches average the two. G is
+// symmetric; rows F_ij = G_ij / A_i that sum above 1 are scaled to 1. A row no longer sums to
+// exactly its own hemicube's total: in a closed scene it sums to 1 up to the other patches'
+// centroid and cell errors (0.965..1 for the 3 × 3-per-face box of test_radiosity at R = 24).
+// Scaling rows to their raw sums instead was tried and is worse: a large sender's raw sum
+// carries the error of standing at its centroid only (+3.9% for the lamp of the test).
+// A row then depends on every other row: progressive refinement (rows on demand) and the
+// partial update after a move (radiosity/form_factor_update.h) recompute from raw rows.
+//
 // The second, independent item buffer `ray_cast_hemicube` shoots one Embree ray per cell centre
 // (from scene::RayCaster::surface_origin at c); the two agree cell for cell except where a
 // cell's centre lies within float rounding of a patch's edge.
@@ -93,5 +114,9 @@ void ray_cast_hemicube(const std::vector<Patch>& patches, const scene::RayCaster
 // F_ij = Σ of the delta form factors of the cells showing j's front face; `patch_count` floats.
 void hemicube_form_factors(const HemicubeBuffer& buffer, std::size_t patch_count,
                            std::vector<float>* row);
+
+// Replaces raw hemicube rows F^(i) (row i from the hemicube at i; `f` holds all of them) by the
+// combined estimate above, in place; entries of zero-area patches become 0.
+void combine_hemicube_estimates(const std::vector<Patch>& patches, std::vector<float>* f);
 
 }  // namespace prt::radiosity
