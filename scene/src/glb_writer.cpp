@@ -81,17 +81,16 @@ void write_microfacet(tinygltf::Model& model, tinygltf::Material& material, cons
                       float rotation) {
   auto& pbr = material.pbrMetallicRoughness;
   const bool gltf = m.model == brdf::MaterialModel::kGltf;
-  const bool metal = gltf ? m.metallic == 1.0
-                          : m.diffuse.r == 0.0 && m.diffuse.g == 0.0 && m.diffuse.b == 0.0;
+  const bool metal =
+      gltf ? m.metallic == 1.0 : m.diffuse.r == 0.0 && m.diffuse.g == 0.0 && m.diffuse.b == 0.0;
   const brdf::Rgb base = gltf || !metal ? m.diffuse : m.specular;
   pbr.metallicFactor = gltf ? m.metallic : metal ? 1.0 : 0.0;
   pbr.baseColorFactor = {base.r, base.g, base.b, 1.0};
   if (!metal) {
     tinygltf::Value::Object specular;
     specular["specularFactor"] = number(1.0);
-    specular["specularColorFactor"] = tinygltf::Value(
-        tinygltf::Value::Array{number(m.specular.r / 0.04), number(m.specular.g / 0.04),
-                               number(m.specular.b / 0.04)});
+    specular["specularColorFactor"] = tinygltf::Value(tinygltf::Value::Array{
+        number(m.specular.r / 0.04), number(m.specular.g / 0.04), number(m.specular.b / 0.04)});
     material.extensions[kSpecularExtension] = tinygltf::Value(specular);
     use_extension(model, kSpecularExtension);
   }

@@ -302,9 +302,8 @@ TEST_CASE("cli: materials that create energy are refused before the bake", "[cli
   const Files f = make_two_spheres(dir);
   const std::vector<std::string> before = files_in(dir);
   const std::string out = (dir / "x.prtg").string();
-  const RunResult r =
-      run(prt_cli() + " bake " + f.scene.string() + " --glossy --bounces 3 -o " + out +
-          " --material '*=ggx:roughness=0.9,kd=0.95,f0=0.95'");
+  const RunResult r = run(prt_cli() + " bake " + f.scene.string() + " --glossy --bounces 3 -o " +
+                          out + " --material '*=ggx:roughness=0.9,kd=0.95,f0=0.95'");
   INFO(r.err);
   require_one_line_error(r, "material '*' ggx(alpha 0.81x0.81, F0 0.95, diffuse 0.95) reflects ");
   CHECK(r.err.find("x the light arriving at ") != std::string::npos);
@@ -343,8 +342,8 @@ TEST_CASE("cli: a glossy file says converged only when the bounces reached the t
   const auto converged = [&](const std::string& bounces, const std::string& name) {
     const fs::path out = dir / name;
     const RunResult b = run(prt_cli() + " bake " + f.scene.string() + " --glossy -o " +
-                            out.string() + " --order 3 --samples 32 --quiet --bounces " +
-                            bounces + " --material 'left=gltf:base=0.8,roughness=0.4'");
+                            out.string() + " --order 3 --samples 32 --quiet --bounces " + bounces +
+                            " --material 'left=gltf:base=0.8,roughness=0.4'");
     INFO(b.err);
     REQUIRE(b.exit_code == 0);
     const RunResult info = run(prt_cli() + " info " + out.string() + " --json");

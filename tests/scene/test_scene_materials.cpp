@@ -426,7 +426,8 @@ TEST_CASE("material overrides: every model parses to the expected Material", "[s
   CHECK(spec.material.metallic == 0.5);
   CHECK(spec.material.alpha_x == Approx(0.16));
   // gltf-additive: F0 = mix(0.04, base, m) over an added Lambert layer base · (1 − m).
-  const auto add = parse_material_override("a=gltf-additive:base=0.2/0.4/0.8,roughness=0.4,metallic=0.5");
+  const auto add =
+      parse_material_override("a=gltf-additive:base=0.2/0.4/0.8,roughness=0.4,metallic=0.5");
   CHECK(add.material.model == MaterialModel::kMicrofacet);
   check_rgb(add.material.diffuse, 0.1, 0.2, 0.4);
   check_rgb(add.material.specular, 0.12, 0.22, 0.42);

@@ -116,8 +116,8 @@ Result<std::shared_ptr<const Brdf>> make_brdf(const Material& m) {
     case MaterialModel::kMerl:
       return share(MerlBrdf::read(m.merl_path));
     case MaterialModel::kGltf:
-      return share(GltfPbr::create(
-          GltfPbrParams{m.diffuse, m.metallic, m.alpha_x, m.alpha_y, m.specular}));
+      return share(
+          GltfPbr::create(GltfPbrParams{m.diffuse, m.metallic, m.alpha_x, m.alpha_y, m.specular}));
     case MaterialModel::kMicrofacet: {
       MicrofacetParams p;
       p.distribution = m.distribution;
