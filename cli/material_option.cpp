@@ -8,11 +8,15 @@ namespace prt::cli {
 
 void add_material_option(CLI::App& command, std::vector<std::string>& values) {
   command
-      .add_option("--material", values,
-                  "Override a material's BRDF: NAME=MODEL[:KEY=VALUE,...] with MODEL lambert "
-                  "(kd), blinn-phong (kd, ks, s), ward (rho_d, rho_s, ax, ay), ggx or beckmann "
-                  "(f0, kd, ax, ay | roughness), or NAME=merl:FILE; colours r/g/b; NAME * = "
-                  "all. Repeatable")
+      .add_option(
+          "--material", values,
+          "Override a material's BRDF: NAME=MODEL[:KEY=VALUE,...] with MODEL lambert "
+          "(kd), blinn-phong (kd, ks, s), ward (rho_d, rho_s, ax, ay), ggx or beckmann "
+          "(f0, kd, ax, ay | roughness), gltf (glTF 2.0's BRDF: base, metallic, roughness), "
+          "gltf-additive (the same keys, Lambert layer added to the GGX lobe instead of "
+          "the spec's Fresnel mix), or NAME=merl:FILE; colours r/g/b; NAME * = all. "
+          "A material that reflects more light than arrives (directional albedo above "
+          "1) is refused. Repeatable")
       ->take_all()
       ->allow_extra_args(false);
 }

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <limits>
 #include <memory>
@@ -353,7 +354,27 @@ void lambert_exit(const GlossyJob& job, const std::vector<float>& M, std::vector
   });
 }
 
-// Jacobi bounces: data.matrices holds M⁽ᵏ⁾; returns when done.
+// Throws BakeError when the bounces diverge: a change that is not finite, or one that exceeds
+// the whole direct transfer (max |S|) and the bounce before it. A convergent solve's changes
+// shrink, and none exceeds the direct transfer: a bounce's incident radiance is at most the
+// brightest sky a vertex sees directly, times an albedo of at most 1.
+void check_divergence(const GlossyJob& job) {
+  const std::vector<double>& c = job.st.bounce_change;
+  const std::size_t k = c.size();
+  const bool nonfinite = !std::isfinite(c.back());
+  const bool growing = k >= 2 && c[k - 1] > 1.0 && c[k - 1] > c[k - 2];
+  if (!nonfinite && !growing) return;
+  char text[200];
+  std::snprintf(text, sizeof text,
+                ": glossy interreflection diverges: bounce %zu changed the transfer by %.3g of its "
+                "direct part (bounce %zu: %.3g); a material reflects more light than arrives",
+                k, c[k - 1], k - 1, k >= 2 ? c[k - 2] : 0.0);
+  throw BakeError(scene::scene_label(job.scene) + text);
+}
+
+// Jacobi bounces: data.matrices holds M⁽ᵏ⁾; returns when done. Converged means the last bounce
+// changed no entry by more than bounce_tolerance × max|S|, whether the bounces were counted or
+// solved for.
 void run_bounces(GlossyJob& job, std::vector<float>& M) {
   const Clock::time_point t0 = Clock::now();
   float s_max = 0.f;
@@ -362,7 +383,7 @@ void run_bounces(GlossyJob& job, std::vector<float>& M) {
   std::vector<float> next(M.size());
   const std::size_t per_vertex = std::size_t(job.C) * job.KK();
   if (job.progress) job.progress->start("glossy bounces", job.o.bounces < 0 ? 0 : max_bounces);
-  job.st.converged = job.o.bounces >= 0;
+  job.st.converged = false;
   std::vector<float> exit(job.V * job.C * std::size_t(job.K));
   for (int k = 0; k < max_bounces; ++k) {
     lambert_exit(job, M, exit);
@@ -372,21 +393,24 @@ void run_bounces(GlossyJob& job, std::vector<float>& M) {
       const std::size_t end = std::min(job.V, (blk + 1) * kBlock);
       for (std::size_t p = blk * kBlock; p < end; ++p) {
         g.gather(p, &next[p * per_vertex]);
-        for (std::size_t e = p * per_vertex; e < (p + 1) * per_vertex; ++e)
-          block_change[blk] = std::max(block_change[blk], std::fabs(next[e] - M[e]));
+        for (std::size_t e = p * per_vertex; e < (p + 1) * per_vertex; ++e) {
+          const float d = std::fabs(next[e] - M[e]);
+          // NaN compares false: keep it, so that a non-finite bounce is seen.
+          if (!(d <= block_change[blk])) block_change[blk] = d;
+        }
       }
     });
     M.swap(next);
     float change = 0.f;
-    for (float c : block_change) change = std::max(change, c);
+    for (float c : block_change)
+      if (!(c <= change)) change = c;
     const double relative = s_max > 0.f ? double(change) / s_max : 0.0;
     job.st.bounce_change.push_back(relative);
     job.st.bounces = k + 1;
     if (job.progress) job.progress->advance(1, 0);
-    if (job.o.bounces < 0 && relative <= job.o.bounce_tolerance) {
-      job.st.converged = true;
-      break;
-    }
+    check_divergence(job);
+    job.st.converged = relative <= job.o.bounce_tolerance;
+    if (job.o.bounces < 0 && job.st.converged) break;
   }
   if (job.progress) job.progress->finish();
   job.st.seconds_bounces = seconds_since(t0);

@@ -68,8 +68,10 @@ tinygltf::Value number(double v) {
   return tinygltf::Value(v);
 }
 
-// A GGX + Schlick BRDF as the metallic-roughness material the loader maps back to it
-// (scene/src/gltf_materials.h, inverted): a pure lobe (no Lambert layer) is a metal with
+// A glTF BRDF (MaterialModel::kGltf) as itself: baseColor, metallic, and, unless a pure metal,
+// KHR_materials_specular with specularColorFactor = F0_dielectric / 0.04. A GGX + Schlick
+// microfacet BRDF as the nearest metallic-roughness material (the loader reads it back as the
+// spec's mix, not the added layer): a pure lobe (no Lambert layer) is a metal with
 // baseColor = F0; otherwise a dielectric with baseColor = the Lambert layer and
 // KHR_materials_specular's specularColorFactor = F0 / 0.04 (always written, so that a
 // roughness of 1 is not read back as Lambert). α_x ≠ α_y: KHR_materials_anisotropy with
@@ -78,13 +80,13 @@ tinygltf::Value number(double v) {
 void write_microfacet(tinygltf::Model& model, tinygltf::Material& material, const brdf::Material& m,
                       float rotation) {
   auto& pbr = material.pbrMetallicRoughness;
-  const bool metal = m.diffuse.r == 0.0 && m.diffuse.g == 0.0 && m.diffuse.b == 0.0;
-  if (metal) {
-    pbr.metallicFactor = 1.0;
-    pbr.baseColorFactor = {m.specular.r, m.specular.g, m.specular.b, 1.0};
-  } else {
-    pbr.metallicFactor = 0.0;
-    pbr.baseColorFactor = {m.diffuse.r, m.diffuse.g, m.diffuse.b, 1.0};
+  const bool gltf = m.model == brdf::MaterialModel::kGltf;
+  const bool metal =
+      gltf ? m.metallic == 1.0 : m.diffuse.r == 0.0 && m.diffuse.g == 0.0 && m.diffuse.b == 0.0;
+  const brdf::Rgb base = gltf || !metal ? m.diffuse : m.specular;
+  pbr.metallicFactor = gltf ? m.metallic : metal ? 1.0 : 0.0;
+  pbr.baseColorFactor = {base.r, base.g, base.b, 1.0};
+  if (!metal) {
     tinygltf::Value::Object specular;
     specular["specularFactor"] = number(1.0);
     specular["specularColorFactor"] = tinygltf::Value(tinygltf::Value::Array{
@@ -120,9 +122,10 @@ tinygltf::Material make_material(tinygltf::Model& model, const ScenePrimitive& p
     material.pbrMetallicRoughness.baseColorFactor = {primitive.albedo.x, primitive.albedo.y,
                                                      primitive.albedo.z, 1.0};
     const std::optional<brdf::Material>& b = primitive.brdf;
-    if (b && b->model == brdf::MaterialModel::kMicrofacet &&
-        b->distribution == brdf::NormalDistribution::kGgx &&
-        b->fresnel == brdf::FresnelMode::kSchlick)
+    if (b && (b->model == brdf::MaterialModel::kGltf ||
+              (b->model == brdf::MaterialModel::kMicrofacet &&
+               b->distribution == brdf::NormalDistribution::kGgx &&
+               b->fresnel == brdf::FresnelMode::kSchlick)))
       write_microfacet(model, material, *b, primitive.anisotropy_rotation);
   }
   return material;

@@ -98,11 +98,12 @@ GltfBrdf gltf_brdf(const std::string& path, const tinygltf::Material& m,
 
   const double alpha = std::max(roughness * roughness, kGltfMinAlpha);
   brdf::Material material;
-  material.model = brdf::MaterialModel::kMicrofacet;
+  material.model = brdf::MaterialModel::kGltf;
   material.distribution = brdf::NormalDistribution::kGgx;
   material.fresnel = brdf::FresnelMode::kSchlick;
-  material.specular = rgb(glm::clamp(f0, 0.0, 1.0));
-  material.diffuse = rgb(glm::clamp(base * (1.0 - metallic), 0.0, 1.0));
+  material.diffuse = rgb(glm::clamp(base, 0.0, 1.0));
+  material.specular = rgb(glm::clamp(f0_dielectric, 0.0, 1.0));
+  material.metallic = metallic;
   material.alpha_x = material.alpha_y = alpha;
   if (find_extension(m, "KHR_materials_anisotropy")) {
     const double strength = unit(p.anisotropy);

@@ -2,16 +2,16 @@
 //
 // glTF 2.0's metallic-roughness material (§3.9.2, Appendix B) with the KHR_materials_specular,
 // KHR_materials_ior and KHR_materials_anisotropy extensions, as a prt::brdf::Material
-// (prt/brdf/material.h): a GGX microfacet lobe with Schlick's Fresnel over a Lambert layer.
+// (prt/brdf/material.h): MaterialModel::kGltf, the spec's mix of a Lambert layer weighted by
+// 1 − F and a GGX lobe with Schlick's Fresnel (prt/brdf/gltf_pbr.h).
 //   α        = roughnessFactor² (the spec's "alphaRoughness"), raised to 0.001 (the smallest
 //              roughness the microfacet model takes; glTF's 0 is a mirror);
 //   anisotropy (strength s, rotation r): α_x = mix(α, 1, s²) along the tangent rotated by r
 //              (counter-clockwise toward the bitangent), α_y = α across it — the extension's
 //              "at" and "ab"; r goes to ScenePrimitive::anisotropy_rotation;
-//   F0       = mix(F0_dielectric, baseColor, metallic), with
-//              F0_dielectric = min(((ior − 1)/(ior + 1))² · specularColorFactor, 1) ·
-//              specularFactor (ior 1.5 → 0.04 by default);
-//   diffuse  = baseColor · (1 − metallic) (the Lambert layer);
+//   F0_dielectric = min(((ior − 1)/(ior + 1))² · specularColorFactor, 1) · specularFactor
+//              (ior 1.5 → 0.04 by default), the Material's `specular`; the metal's F0 is
+//              baseColor, mixed by metallic inside the BRDF;
 //   baseColor = the primitive's albedo (baseColorFactor, × the texture's mean when textured).
 // Defaults are the spec's: metallicFactor 1, roughnessFactor 1, baseColorFactor 1 — so a
 // material object with no pbrMetallicRoughness is a rough (α = 1) white metal. (A primitive with
@@ -22,8 +22,7 @@
 // specularColorTexture RGB (sRGB-encoded, decoded to linear) × specularColorFactor, inside the
 // min(…, 1) above; anisotropyTexture B (linear) × anisotropyStrength. The anisotropyTexture's
 // direction (RG) is a rotation of the tangent frame, not a BRDF parameter (the loader's).
-// Departures from the spec, stated: the Lambert layer is added to the lobe (the spec weights it
-// by 1 − F); specularFactor scales F0 but f90 stays 1; baseColor stays the primitive's (the
+// Departures from the spec, stated: specularFactor scales F0 but f90 stays 1; baseColor stays the primitive's (the
 // base-colour texture's mean), so a textured metal's F0 does not follow its base-colour texture.
 // Plain Lambert (no BRDF set) when metallic = 0 and either F0 = 0 (specularFactor 0: the spec's
 // pure diffuse) or roughness = 1 with no KHR_materials_specular (prt's convention for a matte

@@ -7,6 +7,8 @@
 #include <map>
 #include <stdexcept>
 
+#include "prt/brdf/energy_check.h"
+
 namespace prt::scene {
 namespace {
 
@@ -42,6 +44,8 @@ class OverrideParser {
     }
     const Result<std::shared_ptr<const brdf::Brdf>> made = brdf::make_brdf(out.material);
     if (!made) fail(made.status().message());
+    const Status energy = brdf::check_energy_conservation(out.material);
+    if (!energy) fail("material '" + out.name + "' " + energy.message());
     return out;
   }
 
@@ -166,10 +170,37 @@ class OverrideParser {
       else
         fail("fresnel '" + fresnel + "': expected schlick, dielectric or none");
       m.eta = number("eta", 1.5);
+    } else if (model == "gltf" || model == "gltf-additive") {
+      gltf(model, m);
     } else {
       fail("unknown model '" + model +
-           "' (expected lambert, blinn-phong, ward, ggx, beckmann or merl)");
+           "' (expected lambert, blinn-phong, ward, ggx, beckmann, gltf, gltf-additive or merl)");
     }
+  }
+
+  // glTF metallic-roughness from base, metallic (default 0), roughness (α = r²): the spec's mix
+  // (gltf) or F0 = mix(0.04, base, metallic) over an added Lambert layer base·(1 − metallic)
+  // (gltf-additive).
+  void gltf(const std::string& model, Material& m) {
+    require("base", model);
+    require("roughness", model);
+    const brdf::Rgb base = colour("base", brdf::grey(1.0));
+    const double metallic = number("metallic", 0.0);
+    const double r = number("roughness", 0.0);
+    m.alpha_x = m.alpha_y = r * r;
+    m.distribution = brdf::NormalDistribution::kGgx;
+    m.fresnel = brdf::FresnelMode::kSchlick;
+    if (model == "gltf") {
+      m.model = MaterialModel::kGltf;
+      m.diffuse = base;
+      m.metallic = metallic;
+      m.specular = brdf::grey(0.04);
+      return;
+    }
+    if (!(metallic >= 0.0 && metallic <= 1.0)) fail("metallic must be in [0, 1]");
+    m.model = MaterialModel::kMicrofacet;
+    m.diffuse = (1.0 - metallic) * base;
+    m.specular = (1.0 - metallic) * brdf::grey(0.04) + metallic * base;
   }
 
   const std::string& text_;

@@ -19,6 +19,7 @@
 
 #include <tiny_obj_loader.h>
 
+#include "prt/brdf/energy_check.h"
 #include "scene/mesh_normals.h"
 #include "texture_decoding.h"
 
@@ -294,6 +295,18 @@ class ObjSceneBuilder {
     scene_.primitives.push_back(std::move(primitive));
   }
 
+  // The largest directional albedo of the Blinn-Phong lobe alone (k_L = 0, k_G = 1) at exponent
+  // s, by the white-furnace quadrature; 1 when s is refused (make_brdf reports it below).
+  static double glossy_lobe_albedo(double s) {
+    brdf::Material lobe;
+    lobe.model = brdf::MaterialModel::kBlinnPhong;
+    lobe.diffuse = brdf::grey(0.0);
+    lobe.specular = brdf::grey(1.0);
+    lobe.exponent = s;
+    const Result<std::shared_ptr<const brdf::Brdf>> made = brdf::make_brdf(lobe);
+    return made ? brdf::max_furnace_albedo(*made.value(), true).albedo : 1.0;
+  }
+
   // The material's Blinn-Phong BRDF (k_L = Kd, k_G = Ks, s = Ns) when Ks is not zero and
   // illum is not 1 (see scene/scene_loader.h); nullopt otherwise.
   std::optional<brdf::Material> blinn_phong_of(const tinyobj::material_t& m) {
@@ -307,17 +320,23 @@ class ObjSceneBuilder {
     double* glossy[3] = {&material.specular.r, &material.specular.g, &material.specular.b};
     const double diffuse[3] = {material.diffuse.r, material.diffuse.g, material.diffuse.b};
     bool lowered = false;
+    double lobe = 1.0;  // the glossy lobe's largest albedo at k_G = 1 (≥ 1: the normalisation)
     for (int c = 0; c < 3; ++c) {
       if (diffuse[c] + *glossy[c] > 1.0 && diffuse[c] <= 1.0) {
-        *glossy[c] = 1.0 - diffuse[c];
+        if (!lowered) lobe = std::max(1.0, glossy_lobe_albedo(material.exponent));
+        *glossy[c] = (1.0 - diffuse[c]) / lobe;
         lowered = true;
       }
     }
     if (lowered && reported_lowered_.insert(m.name).second)
-      std::fprintf(stderr, "%s: note: material '%s': Kd + Ks exceeds 1, Ks lowered to 1 - Kd\n",
-                   path_.c_str(), m.name.c_str());
+      std::fprintf(stderr,
+                   "%s: note: material '%s': Kd + Ks exceeds 1, Ks lowered to (1 - Kd)/%.4g "
+                   "(the Blinn-Phong lobe's largest albedo at Ns %g)\n",
+                   path_.c_str(), m.name.c_str(), lobe, material.exponent);
     const Result<std::shared_ptr<const brdf::Brdf>> made = brdf::make_brdf(material);
     if (!made) fail(path_, "material '" + m.name + "': " + made.status().message());
+    const Status energy = brdf::check_energy_conservation(material);
+    if (!energy) fail(path_, "material '" + m.name + "' " + energy.message());
     return material;
   }
 

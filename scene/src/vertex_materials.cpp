@@ -24,7 +24,7 @@ bool same_material(const brdf::Material& a, const brdf::Material& b) {
   return a.model == b.model && same_rgb(a.diffuse, b.diffuse) && same_rgb(a.specular, b.specular) &&
          a.exponent == b.exponent && a.alpha_x == b.alpha_x && a.alpha_y == b.alpha_y &&
          a.ward_form == b.ward_form && a.distribution == b.distribution && a.fresnel == b.fresnel &&
-         a.eta == b.eta && a.merl_path == b.merl_path;
+         a.eta == b.eta && a.metallic == b.metallic && a.merl_path == b.merl_path;
 }
 
 uint32_t material_index(std::vector<brdf::Material>& materials, const brdf::Material& m) {

@@ -6,6 +6,7 @@
 // materials, direction per-vertex tangents) reach the glossy file.
 #include <algorithm>
 #include <cmath>
+#include <fstream>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -291,4 +292,66 @@ TEST_CASE(
                                       ": material 'brushed': specularTexture texture 7 "
                                       "does not exist");
   CHECK(files_in(dir) == before);
+}
+
+// The white-furnace check (prt/brdf/energy_check.h): a --material that reflects more light than
+// arrives is a command-line error (exit 2), one from a scene file an input error (exit 1); both
+// name the material and the angle, and nothing is written.
+TEST_CASE("cli: materials that create energy are refused before the bake", "[cli][materials]") {
+  const fs::path dir = scratch("glossy_energy");
+  const Files f = make_two_spheres(dir);
+  const std::vector<std::string> before = files_in(dir);
+  const std::string out = (dir / "x.prtg").string();
+  const RunResult r = run(prt_cli() + " bake " + f.scene.string() + " --glossy --bounces 3 -o " +
+                          out + " --material '*=ggx:roughness=0.9,kd=0.95,f0=0.95'");
+  INFO(r.err);
+  require_one_line_error(r, "material '*' ggx(alpha 0.81x0.81, F0 0.95, diffuse 0.95) reflects ");
+  CHECK(r.err.find("x the light arriving at ") != std::string::npos);
+  CHECK(r.err.find("°: directional albedo must not exceed 1") != std::string::npos);
+  CHECK(r.exit_code == 2);
+  // The additive glTF layering with a white base exceeds 1; the spec's mix is accepted.
+  const RunResult additive = run(prt_cli() + " bake " + f.scene.string() + " --glossy -o " + out +
+                                 " --material 'left=gltf-additive:base=1,roughness=0.5'");
+  require_one_line_error(additive, "material 'left' ggx(");
+  CHECK(additive.exit_code == 2);
+  CHECK(files_in(dir) == before);
+
+  const fs::path obj = dir / "shiny.obj", mtl = dir / "shiny.mtl";
+  {
+    std::ofstream m(mtl);
+    m << "newmtl shiny\nKd 0.5 0.5 0.5\nKs 0.5 0.5 0.5\nNs 10\nillum 2\n";
+    std::ofstream o(obj);
+    o << "mtllib shiny.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nusemtl shiny\nf 1//1 2//1 3//1\n";
+  }
+  const std::vector<std::string> with_obj = files_in(dir);
+  const RunResult from_file =
+      run(prt_cli() + " bake " + obj.string() + " --glossy -o " + out + " --samples 16");
+  INFO(from_file.err);
+  require_one_line_error(from_file, obj.string() + ": material 'shiny' blinn-phong(");
+  CHECK(from_file.err.find("directional albedo must not exceed 1") != std::string::npos);
+  CHECK(from_file.exit_code == 1);
+  CHECK(files_in(dir) == with_obj);
+}
+
+// "converged" in a glossy file's metadata is true only when the last bounce changed the transfer
+// by at most the tolerance: a single bounce of an interreflecting pair of spheres is not.
+TEST_CASE("cli: a glossy file says converged only when the bounces reached the tolerance",
+          "[cli][materials]") {
+  const fs::path dir = scratch("glossy_converged");
+  const Files f = make_two_spheres(dir);
+  const auto converged = [&](const std::string& bounces, const std::string& name) {
+    const fs::path out = dir / name;
+    const RunResult b = run(prt_cli() + " bake " + f.scene.string() + " --glossy -o " +
+                            out.string() + " --order 3 --samples 32 --quiet --bounces " + bounces +
+                            " --material 'left=gltf:base=0.8,roughness=0.4'");
+    INFO(b.err);
+    REQUIRE(b.exit_code == 0);
+    const RunResult info = run(prt_cli() + " info " + out.string() + " --json");
+    REQUIRE(info.exit_code == 0);
+    const std::size_t at = info.out.find("\"converged\"");
+    REQUIRE(at != std::string::npos);
+    return info.out.substr(at, 20).find("true") != std::string::npos;
+  };
+  CHECK_FALSE(converged("1", "one.prtg"));
+  CHECK(converged("-1", "solved.prtg"));
 }

@@ -34,14 +34,14 @@ std::vector<GoldenImage> make_set() {
   set.push_back(
       {"glossy_sphere",
        "glossy_sphere.exr",
-       "the red sphere of `prt make-scene --scene glossy` made GGX (roughness 0.3) with "
-       "--material, glossy transfer (order 5, shadowed, 256 rays), relit toward the camera under "
-       "data/sky.hdr; linear EXR: glossy bake, BRDF projection, glossy relighting kernel",
+       "the red sphere of `prt make-scene --scene glossy` made glTF 2.0's BRDF (roughness 0.3) "
+       "with --material, glossy transfer (order 5, shadowed, 256 rays), relit toward the camera "
+       "under data/sky.hdr; linear EXR: glossy bake, BRDF projection, glossy relighting kernel",
        nullptr,
        {{"make-scene", "--scene", "glossy", "-o", "@WORK@/glossy.glb"},
         {"bake", "@WORK@/glossy.glb", "--glossy", "--order", "5", "--samples", "256", "--transfer",
-         "shadowed", "--material", "glossy_red=ggx:f0=0.04,kd=0.7/0.08/0.06,roughness=0.3",
-         "--seed", "1", "-o", "@WORK@/glossy.prtg"},
+         "shadowed", "--material", "glossy_red=gltf:base=0.7/0.08/0.06,roughness=0.3", "--seed",
+         "1", "-o", "@WORK@/glossy.prtg"},
         {"relight", "@WORK@/glossy.glb", "@WORK@/glossy.prtg", "@DATA@/sky.hdr", "-o", "@OUT@",
          "--size", "128x96", "--spp", "2", "--camera", "-0.6,1.5,2.6,-1.1,0.55,0.2,0,1,0,35"}}});
   set.push_back(

@@ -18,6 +18,7 @@
 
 #include "gltf_test_files.h"
 #include "numerics/constants.h"
+#include "prt/brdf/blinn_phong.h"
 #include "scene/glb_writer.h"
 #include "scene/material_override.h"
 #include "scene/procedural_mesh.h"
@@ -110,28 +111,28 @@ json pbr(std::vector<double> base, double metallic, double roughness) {
 
 // Tolerance 1e-6: factors are float (baseColor goes through the float albedo), the mapping is
 // exact arithmetic.
-TEST_CASE("glTF metallic-roughness maps to GGX: alpha = roughness^2, F0 = mix(0.04, base, m)",
+TEST_CASE("glTF metallic-roughness maps to the spec's BRDF: alpha = roughness^2, base, metallic",
           "[scene][materials]") {
   const Scene s = load("pbr_mix.gltf", triangle(pbr({0.5, 0.4, 0.3}, 0.25, 0.6)));
   REQUIRE(s.primitives.size() == 1);
   REQUIRE(s.primitives[0].brdf.has_value());
   const Material& m = *s.primitives[0].brdf;
-  CHECK(m.model == MaterialModel::kMicrofacet);
+  CHECK(m.model == MaterialModel::kGltf);
   CHECK(m.distribution == prt::brdf::NormalDistribution::kGgx);
   CHECK(m.fresnel == prt::brdf::FresnelMode::kSchlick);
   CHECK(m.alpha_x == Approx(0.36).margin(1e-12));
   CHECK(m.alpha_y == Approx(0.36).margin(1e-12));
-  check_rgb(m.specular, 0.04 * 0.75 + 0.5 * 0.25, 0.04 * 0.75 + 0.4 * 0.25,
-            0.04 * 0.75 + 0.3 * 0.25);
-  check_rgb(m.diffuse, 0.5 * 0.75, 0.4 * 0.75, 0.3 * 0.75);
+  check_rgb(m.specular, 0.04, 0.04, 0.04);  // the dielectric F0; the mix is the BRDF's
+  check_rgb(m.diffuse, 0.5, 0.4, 0.3);
+  CHECK(m.metallic == 0.25);
   CHECK(s.primitives[0].albedo.x == Approx(0.5f));  // the diffuse path is unchanged
   CHECK(prt::brdf::make_brdf(m).ok());
 
-  // A metal: no Lambert layer, F0 = baseColor; roughness 0 is raised to alpha 0.001.
+  // A metal: metallic 1, base colour its F0; roughness 0 is raised to alpha 0.001.
   const Scene metal = load("pbr_metal.gltf", triangle(pbr({0.9, 0.6, 0.3}, 1.0, 0.0)));
   const Material& mm = *metal.primitives[0].brdf;
-  check_rgb(mm.specular, 0.9, 0.6, 0.3);
-  check_rgb(mm.diffuse, 0, 0, 0);
+  CHECK(mm.metallic == 1.0);
+  check_rgb(mm.diffuse, 0.9, 0.6, 0.3);
   CHECK(mm.alpha_x == 1e-3);
   CHECK(prt::brdf::make_brdf(mm).ok());
 }
@@ -158,8 +159,8 @@ TEST_CASE("glTF defaults: which materials stay Lambert", "[scene][materials]") {
   REQUIRE(defaults.primitives[0].brdf);
   const Material& d = *defaults.primitives[0].brdf;
   CHECK(d.alpha_x == 1.0);
-  check_rgb(d.specular, 1, 1, 1);
-  check_rgb(d.diffuse, 0, 0, 0);
+  CHECK(d.metallic == 1.0);
+  check_rgb(d.diffuse, 1, 1, 1);
 }
 
 TEST_CASE("KHR_materials_specular and KHR_materials_ior scale the dielectric F0",
@@ -176,11 +177,12 @@ TEST_CASE("KHR_materials_specular and KHR_materials_ior scale the dielectric F0"
   const Material b = *load("specular_ior.gltf", triangle(m)).primitives[0].brdf;
   const double f0 = std::pow(0.33 / 2.33, 2.0);
   check_rgb(b.specular, 1.0, f0, f0);
-  // A metal ignores both.
+  // A metal's F0 is its base colour (metallic 1 weights the dielectric F0 by 0 in the BRDF).
   json metal = pbr({0.8, 0.7, 0.6}, 1.0, 0.5);
   metal["extensions"] = m["extensions"];
-  check_rgb(load("specular_metal.gltf", triangle(metal)).primitives[0].brdf->specular, 0.8, 0.7,
-            0.6);
+  const Material mm = *load("specular_metal.gltf", triangle(metal)).primitives[0].brdf;
+  CHECK(mm.metallic == 1.0);
+  check_rgb(mm.diffuse, 0.8, 0.7, 0.6);
 }
 
 TEST_CASE("KHR_materials_anisotropy: alpha_t = mix(alpha, 1, s^2) along the rotated tangent",
@@ -288,10 +290,23 @@ TEST_CASE("OBJ Ks/Ns become normalised Blinn-Phong (k_L = Kd, k_G = Ks, s = Ns)"
       prt::scene::load_scene(write_obj("illum1", "Kd 0.5 0.5 0.5\nKs 0.3 0.3 0.3\nillum 1\n"))
           .primitives[0]
           .brdf);
-  // Kd + Ks > 1: k_G lowered to 1 − Kd in that channel only.
+  // Kd + Ks > 1: k_G lowered in that channel only, to (1 − Kd) over the lobe's largest albedo —
+  // at normal incidence for Blinn-Phong, the closed form (8 + s)/(8π) normalisation's 1.0748 at
+  // s = 10 (the quadrature's bound, 3e-3, as the tolerance).
   const Scene over =
       prt::scene::load_scene(write_obj("over", "Kd 0.8 0.2 0.2\nKs 0.5 0.5 0.5\nNs 10\n"));
-  check_rgb(over.primitives[0].brdf->specular, 0.2, 0.5, 0.5, 1e-6);
+  check_rgb(over.primitives[0].brdf->specular, 0.2 / prt::brdf::blinn_phong_normal_albedo(10.0),
+            0.5, 0.5, 3e-3);
+  // Kd + Ks ≤ 1 whose normalised lobe still reflects more than arrives: refused, one line.
+  try {
+    prt::scene::load_scene(write_obj("hot", "Kd 0.5 0.5 0.5\nKs 0.5 0.5 0.5\nNs 10\n"));
+    FAIL("accepted a Blinn-Phong material of albedo 1.04");
+  } catch (const prt::scene::SceneError& e) {
+    const std::string message = e.what();
+    INFO(message);
+    CHECK(message.find("hot.obj: material 'm' blinn-phong(") != std::string::npos);
+    CHECK(message.find("directional albedo must not exceed 1") != std::string::npos);
+  }
   // A negative exponent is refused in one line naming the material.
   try {
     prt::scene::load_scene(write_obj("neg_ns", "Kd 0.5 0.5 0.5\nKs 0.3 0.3 0.3\nNs -3\n"));
@@ -404,6 +419,19 @@ TEST_CASE("material overrides: every model parses to the expected Material", "[s
   CHECK(g.material.alpha_x == 0.25);
   CHECK(g.material.alpha_y == 0.25);
   check_rgb(g.material.diffuse, 0.1, 0.1, 0.1);
+  const auto spec = parse_material_override("s=gltf:base=0.2/0.4/0.8,roughness=0.4,metallic=0.5");
+  CHECK(spec.material.model == MaterialModel::kGltf);
+  check_rgb(spec.material.diffuse, 0.2, 0.4, 0.8);
+  check_rgb(spec.material.specular, 0.04, 0.04, 0.04);
+  CHECK(spec.material.metallic == 0.5);
+  CHECK(spec.material.alpha_x == Approx(0.16));
+  // gltf-additive: F0 = mix(0.04, base, m) over an added Lambert layer base · (1 − m).
+  const auto add =
+      parse_material_override("a=gltf-additive:base=0.2/0.4/0.8,roughness=0.4,metallic=0.5");
+  CHECK(add.material.model == MaterialModel::kMicrofacet);
+  check_rgb(add.material.diffuse, 0.1, 0.2, 0.4);
+  check_rgb(add.material.specular, 0.12, 0.22, 0.42);
+  CHECK(add.material.alpha_y == Approx(0.16));
   const auto b = parse_material_override("x=beckmann:alpha=0.2,fresnel=dielectric,eta=1.33");
   CHECK(b.material.distribution == prt::brdf::NormalDistribution::kBeckmann);
   CHECK(b.material.fresnel == prt::brdf::FresnelMode::kDielectric);
@@ -503,7 +531,8 @@ TEST_CASE("the glossy scene round-trips through glTF with its materials and tang
     if (!a.brdf) continue;
     ++glossy;
     anisotropic += a.brdf->isotropic() ? 0 : 1;
-    CHECK(b.brdf->model == MaterialModel::kMicrofacet);
+    CHECK(b.brdf->model == MaterialModel::kGltf);
+    CHECK(b.brdf->metallic == a.brdf->metallic);
     CHECK(b.brdf->alpha_x == Approx(a.brdf->alpha_x).margin(1e-9));
     CHECK(b.brdf->alpha_y == Approx(a.brdf->alpha_y).margin(1e-9));
     check_rgb(b.brdf->specular, a.brdf->specular.r, a.brdf->specular.g, a.brdf->specular.b, 1e-7);

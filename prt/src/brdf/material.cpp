@@ -5,6 +5,7 @@
 
 #include "brdf/lobe_mix.h"
 #include "prt/brdf/blinn_phong.h"
+#include "prt/brdf/gltf_pbr.h"
 #include "prt/brdf/lambert.h"
 #include "prt/brdf/merl.h"
 
@@ -66,6 +67,7 @@ bool Material::isotropic() const {
   switch (model) {
     case MaterialModel::kWard:
     case MaterialModel::kMicrofacet:
+    case MaterialModel::kGltf:
       return alpha_x == alpha_y;
     default:
       return true;
@@ -93,6 +95,11 @@ std::string describe(const Material& m) {
       return text;
     case MaterialModel::kMerl:
       return "merl(" + m.merl_path + ")";
+    case MaterialModel::kGltf:
+      std::snprintf(text, sizeof text, "gltf(base %s, metallic %.3g, alpha %.3gx%.3g, F0 %s)",
+                    rgb_text(m.diffuse).c_str(), m.metallic, m.alpha_x, m.alpha_y,
+                    rgb_text(m.specular).c_str());
+      return text;
   }
   return "unknown";
 }
@@ -108,6 +115,9 @@ Result<std::shared_ptr<const Brdf>> make_brdf(const Material& m) {
           Ward::create(WardParams{m.diffuse, m.specular, m.alpha_x, m.alpha_y, m.ward_form}));
     case MaterialModel::kMerl:
       return share(MerlBrdf::read(m.merl_path));
+    case MaterialModel::kGltf:
+      return share(
+          GltfPbr::create(GltfPbrParams{m.diffuse, m.metallic, m.alpha_x, m.alpha_y, m.specular}));
     case MaterialModel::kMicrofacet: {
       MicrofacetParams p;
       p.distribution = m.distribution;

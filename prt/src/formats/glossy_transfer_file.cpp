@@ -77,7 +77,7 @@ Status check_material(const brdf::Material& m, std::size_t index, const std::str
   const auto bad = [&](const std::string& what) {
     return fail(name, "material " + std::to_string(index) + ": " + what);
   };
-  if (static_cast<unsigned>(m.model) > static_cast<unsigned>(brdf::MaterialModel::kMerl)) {
+  if (static_cast<unsigned>(m.model) > static_cast<unsigned>(brdf::MaterialModel::kGltf)) {
     return bad("unknown model " + std::to_string(static_cast<unsigned>(m.model)));
   }
   if (static_cast<unsigned>(m.ward_form) > static_cast<unsigned>(brdf::WardForm::kNormalized)) {
@@ -91,8 +91,12 @@ Status check_material(const brdf::Material& m, std::size_t index, const std::str
     return bad("unknown Fresnel mode");
   }
   if (!finite_rgb(m.diffuse) || !finite_rgb(m.specular) || !std::isfinite(m.exponent) ||
-      !std::isfinite(m.alpha_x) || !std::isfinite(m.alpha_y) || !std::isfinite(m.eta)) {
+      !std::isfinite(m.alpha_x) || !std::isfinite(m.alpha_y) || !std::isfinite(m.eta) ||
+      !std::isfinite(m.metallic)) {
     return bad("a parameter is not finite");
+  }
+  if (m.model != brdf::MaterialModel::kGltf && m.metallic != 0.0) {
+    return bad("metallic is set for a model other than glTF");
   }
   if (m.model == brdf::MaterialModel::kMerl && m.merl_path.empty()) {
     return bad("a MERL material without a path");
@@ -110,6 +114,7 @@ void store_material(unsigned char* r, const brdf::Material& m, uint64_t path_off
   for (int i = 0; i < 10; ++i) store_f64(r + 16 + 8 * i, values[i]);
   store_u64(r + 96, path_offset);
   store_u64(r + 104, m.merl_path.size());
+  store_f64(r + 112, m.metallic);
 }
 
 // One record (enumerators range-checked by check_material afterwards).
@@ -129,7 +134,8 @@ Status load_material(const unsigned char* section, uint64_t section_size, uint64
   m->alpha_y = v[8];
   m->eta = v[9];
   const uint64_t at = load_u64(r + 96), size = load_u64(r + 104);
-  if (load_u64(r + 112) != 0 || load_u64(r + 120) != 0) {
+  m->metallic = load_f64(r + 112);
+  if (load_u64(r + 120) != 0) {
     return fail(name, "material " + std::to_string(index) + ": reserved fields are not zero");
   }
   if (at < table_size || at > section_size || size > section_size - at) {

@@ -361,7 +361,14 @@ Result<BrdfProjection> BrdfProjection::create(const brdf::Material& material, in
     out.impl_->grey_f = grey_tables(*out.impl_);
     return out;
   }
-  return create(std::move(f).value(), order, material.diffuse, o);
+  // glTF's diffuse layer is weighted by 1 − F(ωo·h): its Lambert part is taken at F = F0.
+  const brdf::Rgb lambert_part =
+      material.model == brdf::MaterialModel::kGltf
+          ? brdf::Rgb{(1.0 - material.metallic) * (1.0 - material.specular.r) * material.diffuse.r,
+                      (1.0 - material.metallic) * (1.0 - material.specular.g) * material.diffuse.g,
+                      (1.0 - material.metallic) * (1.0 - material.specular.b) * material.diffuse.b}
+          : material.diffuse;
+  return create(std::move(f).value(), order, lambert_part, o);
 }
 
 }  // namespace prt

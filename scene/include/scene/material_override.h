@@ -14,10 +14,17 @@
 //                layer, default 0), ax, ay, alpha, or roughness r (α = r², the glTF
 //                convention), fresnel = schlick (default) | dielectric | none, eta (dielectric,
 //                default 1.5).
+//   gltf         base (baseColor, required), metallic (default 0), roughness (required, α = r²):
+//                glTF 2.0's BRDF as its Appendix B mixes it (prt/brdf/gltf_pbr.h), what the
+//                glTF loader makes.
+//   gltf-additive  the same keys as a GGX lobe with F0 = mix(0.04, base, metallic) plus an added
+//                Lambert layer base · (1 − metallic): prt's layering before it followed the spec.
 //   merl         FILE: a MERL binary file ([40] of docs/REFERENCES.md).
 // Every override is checked when parsed by building its BRDF (prt::brdf::make_brdf), so a
 // roughness of 0 or NaN, a negative exponent, reflectances outside [0, 1] or a truncated MERL
-// file are refused there. Errors throw std::invalid_argument with one line
+// file are refused there, and by the white-furnace check (prt/brdf/energy_check.h): "material
+// 'NAME' DESCRIPTION reflects 1.23x the light arriving at 75°: directional albedo must not
+// exceed 1". Errors throw std::invalid_argument with one line
 // "OPTION TEXT: problem" (OPTION as given, e.g. "--material").
 // Applying: a non-Lambert override sets ScenePrimitive::brdf (and anisotropy_rotation 0, and
 // drops the per-vertex variants and tangent rotations of textured parameters) and leaves the albedo

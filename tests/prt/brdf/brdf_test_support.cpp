@@ -102,6 +102,23 @@ std::vector<NamedBrdf> analytic_models() {
       {"layered ggx kd=0.4 F0=0.04 a=0.09", layered(grey(0.4), grey(0.04), 0.09, 0.09), true});
   m.push_back({"layered ggx kd=0.3 F0=.5/.4/.3 a=(0.6,0.15)",
                layered(grey(0.3), Rgb{0.5, 0.4, 0.3}, 0.6, 0.15), true});
+  // glTF 2.0's BRDF (prt/brdf/gltf_pbr.h), as the glTF loader makes it: a half-metallic plastic
+  // (sampling, pdf and reciprocity; its albedo exceeds 1 towards grazing angles for bright base
+  // colours, so no energy claim) and an anisotropic metal (albedo ≤ 1: F ≤ 1 times the lobe).
+  const auto gltf = [](Rgb base, double metallic, double ax, double ay) {
+    prt::brdf::Material g;
+    g.model = prt::brdf::MaterialModel::kGltf;
+    g.diffuse = base;
+    g.metallic = metallic;
+    g.alpha_x = ax;
+    g.alpha_y = ay;
+    g.specular = grey(0.04);
+    return prt::brdf::make_brdf(g).value();
+  };
+  m.push_back(
+      {"gltf base=.2/.4/.8 m=0.5 a=0.16", gltf(Rgb{0.2, 0.4, 0.8}, 0.5, 0.16, 0.16), false});
+  m.push_back(
+      {"gltf metal base=.9/.6/.3 a=(0.4,0.1)", gltf(Rgb{0.9, 0.6, 0.3}, 1.0, 0.4, 0.1), true});
   return m;
 }
 

@@ -25,6 +25,9 @@ enum class MaterialModel {
   kMicrofacet,  // diffuse = a Lambert layer added to the lobe (0 for a pure metal),
                 // specular = F0 (Schlick), alpha_x/alpha_y, distribution, fresnel
   kMerl,        // merl_path: a MERL binary file
+  kGltf,        // glTF 2.0 metallic-roughness as Appendix B mixes it (prt/brdf/gltf_pbr.h):
+                // diffuse = baseColor, specular = the dielectric F0, metallic, alpha_x/alpha_y
+                // (GGX, Schlick)
 };
 
 struct Material {
@@ -36,7 +39,8 @@ struct Material {
   WardForm ward_form = WardForm::kNormalized;
   NormalDistribution distribution = NormalDistribution::kGgx;
   FresnelMode fresnel = FresnelMode::kSchlick;
-  double eta = 1.5;  // FresnelMode::kDielectric
+  double eta = 1.5;       // FresnelMode::kDielectric
+  double metallic = 0.0;  // kGltf
   std::string merl_path;
 
   // True for a pure Lambert material (the diffuse path applies unchanged).
@@ -51,7 +55,8 @@ std::string describe(const Material& material);
 
 // Builds the BRDF. Errors (one line, no exception): the model's own parameter checks
 // (a roughness of 0 or NaN, a negative exponent, …) and, for kMerl, the file's.
-// A Lambert-plus-lobe microfacet material is the sum of the two BRDFs.
+// A Lambert-plus-lobe microfacet material is the sum of the two BRDFs. make_brdf does not check
+// energy: prt/brdf/energy_check.h does, once per material, where materials enter prt.
 Result<std::shared_ptr<const Brdf>> make_brdf(const Material& material);
 
 }  // namespace prt::brdf
