@@ -20,6 +20,7 @@
 #include "progress_reporter.h"
 #include "prt/diffuse/relighter.h"
 #include "prt/formats/transfer_file.h"
+#include "relight/auto_camera.h"
 #include "relight/auto_exposure.h"
 #include "relight/camera.h"
 #include "relight/environment_input.h"
@@ -184,7 +185,8 @@ void run(const DemoArguments& args) {
   render_options.height = settings.height;
   render_options.samples_per_axis = settings.samples_per_axis;
   const float aspect = static_cast<float>(settings.width) / static_cast<float>(settings.height);
-  const relight::Camera camera = relight::parse_camera("auto", scene, aspect);
+  const relight::CameraChoice camera_choice = relight::choose_camera("auto", scene, caster, aspect);
+  const relight::Camera& camera = camera_choice.camera;
   const relight::Image image =
       relight::render(scene, caster, radiance, &sky, rotation, camera, render_options);
   for (const char* name : {kImageName, kLinearImageName}) {
@@ -230,7 +232,7 @@ void run(const DemoArguments& args) {
       window_note.c_str(), 1e3 * shade_seconds, settings.width, settings.height, exposure_ev,
       settings.samples_per_axis, settings.samples_per_axis, render_seconds);
   for (const std::string& file : written) std::printf(" %s", file.c_str());
-  std::printf(".\n");
+  std::printf(".\n%s\n", relight::describe_camera(camera_choice).c_str());
 }
 
 void register_demo(CLI::App& app) {

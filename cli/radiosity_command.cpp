@@ -11,6 +11,7 @@
 
 #include "command_registry.h"
 #include "radiosity/scene_solve.h"
+#include "relight/auto_exposure.h"
 #include "relight/radiosity_render.h"
 #include "scene/material_assignment.h"
 
@@ -152,6 +153,7 @@ relight::RadiosityRenderRequest make_render_request(const RadiosityArguments& a)
 struct RadiosityRun {
   radiosity::SceneSolution solution;
   relight::RadiosityRenderSummary render;
+  relight::CameraChoice camera;
 };
 
 // Checks every output, solves (the camera resolved on the patch scene before the solve, so
@@ -164,13 +166,12 @@ RadiosityRun solve_and_render(const RadiosityArguments& args) {
     throw CommandError("nothing to write: give -o IMAGE, --vertex-colors, --csv or --per-emitter");
   radiosity::check_scene_solve(solve, {draw.output_path, draw.vertex_colors_path, draw.csv_path});
   relight::check_radiosity_outputs(draw);
-  relight::Camera camera;
   RadiosityRun run;
   run.solution = radiosity::solve_scene(solve, [&](const scene::Scene& patch_scene) {
-    camera = relight::radiosity_camera(draw, patch_scene);
+    run.camera = relight::radiosity_camera(draw, patch_scene);
   });
-  run.render =
-      relight::render_radiosity(draw, run.solution.scene, run.solution.vertex_radiance, camera);
+  run.render = relight::render_radiosity(draw, run.solution.scene, run.solution.vertex_radiance,
+                                         run.camera.camera);
   return run;
 }
 
@@ -208,9 +209,10 @@ void run(const RadiosityArguments& args) {
                 s.update_seconds);
   std::printf(
       "unshot power %.3g of emitted; absorbed %.6f, escaped %.6f; balance error %.2g; "
-      "exposure %+.2f EV\n",
+      "%s\n",
       solution.relative_unshot, share(e.absorbed), share(e.escaped), e.balance_error(),
-      double(result.render.exposure_ev));
+      relight::describe_exposure(result.render.exposure_ev, result.render.exposure_auto).c_str());
+  if (!args.output.empty()) std::printf("%s\n", relight::describe_camera(result.camera).c_str());
   if (!s.emitter_reports.empty()) {
     std::printf("per-emitter responses: %zu emitter%s solved in %.2f s on the same form factors:",
                 s.emitter_reports.size(), s.emitter_reports.size() == 1 ? "" : "s",

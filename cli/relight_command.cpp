@@ -54,10 +54,11 @@ struct RelightArguments {
   EmitterRelightArguments emitters;      // --emitter, --emitters, --max-edge (emitter_cli.h)
   std::string eye;                       // glossy files: x,y,z for --csv and --vertex-colors
   std::string turntable_orbit = "both";  // glossy files: both | camera | light
+  std::string target;                    // glossy turntables: the orbit's centre x,y,z
   std::vector<std::string> materials;    // glossy files: --material (cli/material_option.h)
 };
 
-glm::vec3 parse_eye(const std::string& text) {
+glm::vec3 parse_point(const char* option, const std::string& text) {
   std::vector<double> v;
   std::size_t at = 0;
   try {
@@ -73,7 +74,7 @@ glm::vec3 parse_eye(const std::string& text) {
     v.clear();
   }
   if (v.size() != 3 || !std::isfinite(v[0]) || !std::isfinite(v[1]) || !std::isfinite(v[2]))
-    throw UsageError("--eye " + text + ": expected three finite numbers x,y,z");
+    throw UsageError(std::string(option) + " " + text + ": expected three finite numbers x,y,z");
   return {float(v[0]), float(v[1]), float(v[2])};
 }
 
@@ -137,6 +138,10 @@ void check_options(const RelightArguments& args, const CLI::App& cmd) {
     throw UsageError(
         "--eye applies to --csv and --vertex-colors (images are shaded toward the "
         "camera's eye)");
+  if (given("--target") && !(glossy && args.turntable > 0 && args.turntable_orbit != "light"))
+    throw UsageError(
+        "--target applies to glossy turntables whose camera orbits (--turntable N with "
+        "--turntable-orbit both|camera); the camera's own target is set with --camera");
   if (glossy && given("--turntable-orbit") && args.turntable == 0)
     throw UsageError("--turntable-orbit needs --turntable N");
   if (glossy && args.eye.empty() && (!args.csv.empty() || !args.vertex_colors.empty()))
@@ -259,7 +264,8 @@ void run(const RelightArguments& args, const CLI::App& cmd) {
   relight::RelightSummary summary;
   if (is_glossy_file(args.transfer)) {
     relight::GlossyRelightOptions glossy;
-    if (!args.eye.empty()) glossy.eye = parse_eye(args.eye);
+    if (!args.eye.empty()) glossy.eye = parse_point("--eye", args.eye);
+    if (!args.target.empty()) glossy.orbit_centre = parse_point("--target", args.target);
     glossy.turntable = args.turntable_orbit == "camera"  ? relight::GlossyTurntable::kCamera
                        : args.turntable_orbit == "light" ? relight::GlossyTurntable::kLight
                                                          : relight::GlossyTurntable::kBoth;
@@ -319,7 +325,8 @@ void register_relight(CLI::App& app) {
   cmd->add_option("--spp", args->spp, "N: N×N stratified samples per pixel")->capture_default_str();
   cmd->add_option("--camera", args->camera,
                   "auto | NAME | ex,ey,ez,tx,ty,tz,ux,uy,uz,fov_deg (auto: the scene's first "
-                  "camera, else outside an object, inside a room)")
+                  "camera, else an object from outside, a room from inside or through its open "
+                  "side; the output says which)")
       ->capture_default_str();
   cmd->add_option("--vertex-colors", args->vertex_colors,
                   "Also write a .glb with COLOR_0 = exit radiance (linear) and an unlit white "
@@ -338,6 +345,9 @@ void register_relight(CLI::App& app) {
                   "(highlights slide under fixed light) or light")
       ->check(CLI::IsMember({"both", "camera", "light"}))
       ->capture_default_str();
+  cmd->add_option("--target", args->target,
+                  "Glossy turntables: the point x,y,z whose vertical axis the camera orbits "
+                  "(default: the centre of the scene's bounding box)");
   cmd->add_option("--eye", args->eye,
                   "Glossy files: the eye point x,y,z (scene units) toward which --csv and "
                   "--vertex-colors are shaded (images use the camera's eye)");

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <cstdio>
 
 namespace prt::relight {
 
@@ -19,6 +20,18 @@ float choose_auto_exposure(const std::vector<float>& radiance_rgb) {
   std::nth_element(luminance.begin(), middle, luminance.end());
   const double ev = std::log2(kAutoExposureKey / *middle);
   return static_cast<float>(std::round(4 * ev) / 4);
+}
+
+std::string describe_exposure(float exposure_ev, bool automatic) {
+  char text[160];
+  if (automatic)
+    std::snprintf(text, sizeof text,
+                  "exposure %+.2f EV (automatic: median vertex luminance brought to %.2g, "
+                  "rounded to 1/4 EV; --exposure EV sets it)",
+                  double(exposure_ev), kAutoExposureKey);
+  else
+    std::snprintf(text, sizeof text, "exposure %+.2f EV (--exposure)", double(exposure_ev));
+  return text;
 }
 
 }  // namespace prt::relight

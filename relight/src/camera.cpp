@@ -117,10 +117,8 @@ bool project_to_ndc(const CameraBasis& basis, const glm::vec3& eye, const glm::v
 }
 
 Camera parse_camera(const std::string& spec, const scene::Scene& scene, float aspect) {
-  if (spec.empty() || spec == "auto") {
-    if (!scene.cameras.empty()) return from_scene_camera(scene.cameras.front());
-    return frame_bounds(scene.bounds_min(), scene.bounds_max(), aspect);
-  }
+  if (spec.empty() || spec == "auto")
+    throw std::invalid_argument("parse_camera: 'auto' is resolved by choose_camera");
   if (spec.find(',') != std::string::npos) {
     const std::vector<std::string> parts = split_commas(spec);
     if (parts.size() != 10)

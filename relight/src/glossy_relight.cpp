@@ -110,12 +110,13 @@ prt::GlossyRelighter make_glossy_relighter(LoadedGlossy&& loaded, const std::str
   return std::move(relighter).value();
 }
 
-Camera orbit_camera(const Camera& camera, int frame, int frame_count) {
+Camera orbit_camera(const Camera& camera, const glm::vec3& centre, int frame, int frame_count) {
   if (frame_count <= 0) return camera;
   const std::array<double, 9> m =
       sh::rotation_from_yaw_pitch_roll(360.0 * frame / frame_count, 0.0, 0.0);
   Camera out = camera;
-  out.eye = camera.target + turn(m, camera.eye - camera.target);
+  out.eye = centre + turn(m, camera.eye - centre);
+  out.target = centre + turn(m, camera.target - centre);
   out.up = turn(m, camera.up);
   return out;
 }
@@ -196,11 +197,13 @@ RelightSummary run_glossy_relight(const RelightRequest& request,
   const int frames = std::max(1, request.turntable_frames);
   const bool turn_light = options.turntable != GlossyTurntable::kCamera;
   const bool orbit = options.turntable != GlossyTurntable::kLight;
+  const glm::vec3 orbit_centre =
+      options.orbit_centre.value_or(0.5f * (scene.bounds_min() + scene.bounds_max()));
   for (int frame = 0; frame < frames; ++frame) {
     const bool table = request.turntable_frames > 0;
     const std::array<double, 9> m =
         table && turn_light ? turntable_rotation(rotation, frame, frames) : rotation;
-    const Camera view = table && orbit ? orbit_camera(camera, frame, frames) : camera;
+    const Camera view = table && orbit ? orbit_camera(camera, orbit_centre, frame, frames) : camera;
     const prt::ShLighting lighting = rotate_lighting(base, m);
     auto start = Clock::now();
     std::vector<float> radiance = shade_glossy_vertices(relighter, lighting, view.eye);

@@ -2,9 +2,9 @@
 #include "relight/radiosity_render.h"
 
 #include <chrono>
-#include <cmath>
 #include <stdexcept>
 
+#include "relight/auto_exposure.h"
 #include "relight/relight_pipeline.h"
 #include "scene/glb_writer.h"
 #include "scene/output_path.h"
@@ -18,20 +18,10 @@ void check_radiosity_outputs(const RadiosityRenderRequest& r) {
   scene::check_output_path(r.csv_path, r.scene_path, {});
 }
 
-Camera radiosity_camera(const RadiosityRenderRequest& r, const scene::Scene& scene) {
+CameraChoice radiosity_camera(const RadiosityRenderRequest& r, const scene::Scene& scene) {
   const float aspect = float(r.render.width) / float(r.render.height);
-  return parse_camera(r.camera, scene, aspect);
-}
-
-float automatic_exposure_ev(const Image& image) {
-  double log_sum = 0.0;
-  std::size_t count = 0;
-  for (std::size_t p = 0; p + 2 < image.rgb.size(); p += 3) {
-    const double y = 0.2126 * image.rgb[p] + 0.7152 * image.rgb[p + 1] + 0.0722 * image.rgb[p + 2];
-    if (y > 0.0 && std::isfinite(y)) log_sum += std::log(y), ++count;
-  }
-  if (count == 0) return 0.f;
-  return static_cast<float>(std::log2(0.18 / std::exp(log_sum / double(count))));
+  const scene::RayCaster caster(scene);
+  return choose_camera(r.camera, scene, caster, aspect);
 }
 
 RadiosityRenderSummary render_radiosity(const RadiosityRenderRequest& r, const scene::Scene& scene,
@@ -46,7 +36,8 @@ RadiosityRenderSummary render_radiosity(const RadiosityRenderRequest& r, const s
         render(scene, caster, radiance, nullptr, kIdentityRotation, camera, r.render);
     summary.render_seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
-    summary.exposure_ev = r.exposure_ev ? *r.exposure_ev : automatic_exposure_ev(image);
+    summary.exposure_auto = !r.exposure_ev.has_value();
+    summary.exposure_ev = r.exposure_ev ? *r.exposure_ev : choose_auto_exposure(radiance);
     write_rendered_image(r.output_path, image, summary.exposure_ev);
     summary.files_written.push_back(r.output_path);
   }

@@ -271,23 +271,12 @@ RelightSummary run_relight(const RelightRequest& request) {
 }
 
 std::string describe_view(const RelightRequest& request, const RelightSummary& summary) {
-  char text[200];
   const bool png = lower_extension(request.output_path) == ".png";
-  if (png || request.vertex_colors_tonemapped) {
-    if (summary.exposure_auto)
-      std::snprintf(text, sizeof text,
-                    "exposure %+.2f EV (automatic: median vertex luminance brought to %.2g; "
-                    "--exposure EV sets it)",
-                    double(summary.exposure_ev), kAutoExposureKey);
-    else
-      std::snprintf(text, sizeof text, "exposure %+.2f EV (--exposure)",
-                    double(summary.exposure_ev));
-  } else {
-    std::snprintf(text, sizeof text, "linear image, no exposure applied");
-  }
-  std::string line = text;
-  if (!summary.camera_note.empty()) line += "; " + summary.camera_note;
-  return line;
+  std::string text = png || request.vertex_colors_tonemapped
+                         ? describe_exposure(summary.exposure_ev, summary.exposure_auto)
+                         : "linear image, no exposure applied";
+  if (!summary.camera_note.empty()) text += "\n" + summary.camera_note;
+  return text;
 }
 
 }  // namespace prt::relight

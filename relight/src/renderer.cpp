@@ -81,7 +81,9 @@ Image render(const scene::Scene& scene, const scene::RayCaster& caster,
                 const glm::vec3 dir = ray_direction(basis, ndc_x, ndc_y);
                 const scene::RayCaster::Hit hit = caster.intersect(camera.eye, dir, 0.f, infinity);
                 float rgb[3] = {0.f, 0.f, 0.f};
-                if (hit.hit && hit.triangle < scene.triangles.size()) {
+                if (hit.hit && !hit.front_face) {
+                  // The back of a one-sided surface: black (renderer.h).
+                } else if (hit.hit && hit.triangle < scene.triangles.size()) {
                   const glm::uvec3 tri = scene.triangles[hit.triangle];
                   const float w[3] = {1.f - hit.u - hit.v, hit.u, hit.v};
                   for (int corner = 0; corner < 3; ++corner) {

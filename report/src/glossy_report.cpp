@@ -19,9 +19,10 @@
 #include "glossy_report_outputs.h"
 #include "prt/glossy/relighter.h"
 #include "prt/lighting/sh_lighting.h"
-#include "relight/camera.h"
+#include "relight/auto_camera.h"
 #include "relight/environment_input.h"
 #include "report/glossy_ground_truth.h"
+#include "scene/ray_caster.h"
 #include "scene/scene_loader.h"
 
 namespace prt::report {
@@ -77,10 +78,8 @@ std::vector<CpcaSize> glossy_cpca_sizes(bool quick) {
 // The camera's eye, and in full mode that eye turned by ±90° about the vertical through the
 // camera's target.
 std::vector<std::array<double, 3>> report_eyes(const scene::Scene& scene, bool quick) {
-  const relight::Camera cam =
-      scene.cameras.empty() ? relight::parse_camera("auto", scene, 16.f / 9.f)
-                            : relight::Camera{scene.cameras[0].eye, scene.cameras[0].target,
-                                              scene.cameras[0].up, scene.cameras[0].yfov_radians};
+  const scene::RayCaster caster(scene);
+  const relight::Camera cam = relight::choose_camera("auto", scene, caster, 16.f / 9.f).camera;
   std::vector<std::array<double, 3>> eyes{{cam.eye.x, cam.eye.y, cam.eye.z}};
   if (quick) return eyes;
   const glm::dvec3 d = glm::dvec3(cam.eye) - glm::dvec3(cam.target);

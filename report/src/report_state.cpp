@@ -9,6 +9,7 @@
 #include <utility>
 
 #include "prt/haar/cube_map.h"
+#include "relight/auto_camera.h"
 #include "relight/environment_input.h"
 #include "scene/scene_loader.h"
 
@@ -64,8 +65,10 @@ ReportInputs::ReportInputs(const ReportOptions& opt, const ReportLog& log)
   log(opt.scene_path + ": " + std::to_string(V) + " vertices; " + opt.environment_path + ": " +
       layout_note);
   ropt.width = opt.image_width, ropt.height = opt.image_height, ropt.samples_per_axis = 2;
-  camera = relight::parse_camera("auto", scene,
-                                 static_cast<float>(ropt.width) / static_cast<float>(ropt.height));
+  const relight::CameraChoice chosen = relight::choose_camera(
+      "auto", scene, caster, static_cast<float>(ropt.width) / static_cast<float>(ropt.height));
+  camera = chosen.camera;
+  log(relight::describe_camera(chosen));
   // Pixels fully covered by the scene: a rendering of radiance 1 everywhere is 1 there.
   const std::vector<float> ones = render_radiance(std::vector<float>(3 * V, 1.f));
   mask.resize(ones.size() / 3);

@@ -8,6 +8,7 @@
 #include "scene/scene_loader.h"
 #include "scene_file_errors.h"
 
+#include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <cstdio>
@@ -83,6 +84,7 @@ class GltfReader {
                    path_.c_str(), invalid_tangents_);
     if (!scene_.tangents.empty()) scene_.tangents.resize(scene_.positions.size(), glm::vec4(0.f));
     scene_.default_albedo_primitives = defaulted_albedo_primitives_;
+    aim_cameras_at_scene();
     return std::move(scene_);
   }
 
@@ -108,6 +110,23 @@ class GltfReader {
       add_camera(model_.cameras[static_cast<std::size_t>(node.camera)], world, node.name);
     }
     for (int child : node.children) visit(child, world);
+  }
+
+  // glTF gives a camera a direction, not a target: the target becomes the point of the view axis
+  // nearest the centre of the scene's bounding box, at least 1% of the box's diagonal ahead
+  // (scene_loader.h), so a turntable orbits the scene, not a point in front of the eye.
+  void aim_cameras_at_scene() {
+    if (scene_.positions.empty()) return;
+    const glm::dvec3 lo(scene_.bounds_min()), hi(scene_.bounds_max());
+    const glm::dvec3 centre = 0.5 * (lo + hi);
+    const double least = 0.01 * glm::length(hi - lo);
+    if (!(least > 0.0) || !std::isfinite(least)) return;
+    for (SceneCamera& camera : scene_.cameras) {
+      const glm::dvec3 eye(camera.eye);
+      const glm::dvec3 forward = glm::normalize(glm::dvec3(camera.target) - eye);
+      const double along = std::max(glm::dot(centre - eye, forward), least);
+      camera.target = glm::vec3(eye + along * forward);
+    }
   }
 
   void add_camera(const tinygltf::Camera& camera, const glm::dmat4& world,

@@ -12,9 +12,11 @@
 
 #include "relight/auto_camera.h"
 #include "relight/camera.h"
+#include "relight/radiosity_render.h"
 #include "scene/procedural_mesh.h"
 #include "scene/ray_caster.h"
 #include "scene/scene_loader.h"
+#include "scene/subdivide.h"
 #include "support/test_data.h"
 
 using prt::relight::Camera;
@@ -79,23 +81,27 @@ bool inside_bounds(const Scene& scene, glm::vec3 p) {
   return p.x > lo.x && p.y > lo.y && p.z > lo.z && p.x < hi.x && p.y < hi.y && p.z < hi.z;
 }
 
-void require_inside_view(const Scene& scene) {
+// A room's automatic view: it sees the room's inside (front faces, the view filled). A closed
+// room is seen from inside its bounds; an open one through its open side (from outside).
+void require_inside_view(const Scene& scene, bool closed = true) {
   const prt::scene::RayCaster caster(scene);
   const prt::relight::AutoCamera chosen = prt::relight::choose_auto_camera(scene, caster, kAspect);
   INFO("enclosed " << chosen.probe.enclosed_fraction << ", outside backs "
                    << chosen.probe.outside_back_fraction << ", open "
                    << chosen.probe.open_fraction);
   REQUIRE(chosen.inside);
-  CHECK(inside_bounds(scene, chosen.camera.eye));
+  if (closed) CHECK(inside_bounds(scene, chosen.camera.eye));
   const View view = look(caster, chosen.camera);
   INFO("coverage " << view.coverage << ", front " << view.front);
-  CHECK(view.coverage > 0.95);  // the view is filled by the room ...
+  // The view is filled by the room (through a square opening at 16:9: its height and a little
+  // over half its width) ...
+  CHECK(view.coverage > (closed ? 0.95 : 0.45));
   CHECK(view.front > 0.95);     // ... seen from inside
   // The failure this replaces: from outside, the same room shows mostly wall backs.
   const View outside =
       look(caster, prt::relight::frame_bounds(scene.bounds_min(), scene.bounds_max(), kAspect));
   CHECK(outside.front < 0.5);
-  CHECK(chosen.note.find("inside") != std::string::npos);
+  CHECK(chosen.note.find("a room") != std::string::npos);
 }
 
 void require_outside_view(const Scene& scene) {
@@ -113,15 +119,21 @@ void require_outside_view(const Scene& scene) {
 
 }  // namespace
 
-TEST_CASE("auto camera: an open box facing away from the default view gets a camera inside") {
+TEST_CASE("auto camera: an open box facing away from the default view is looked into") {
   const Scene room = make_room(kFront);
-  require_inside_view(room);
+  require_inside_view(room, false);
   const prt::scene::RayCaster caster(room);
   const auto chosen = prt::relight::choose_auto_camera(room, caster, kAspect);
-  // It stands near the open side (z = 0) and looks through the room toward the back wall (+Z).
+  // It stands in front of the open side (z = 0), on the box's axis, and looks through the room
+  // toward the back wall (+Z), the opening's frame just outside the 40° view (5% margin):
+  // distance 1.05 · 0.5 / tan 20° = 1.4425 from the opening.
   const glm::vec3 forward = glm::normalize(chosen.camera.target - chosen.camera.eye);
-  CHECK(forward.z > 0.99f);
-  CHECK(chosen.camera.eye.z < 0.1f);
+  CHECK(forward.z == 1.f);
+  CHECK(chosen.camera.eye.x == Approx(0.5f));
+  CHECK(chosen.camera.eye.y == Approx(0.5f));
+  CHECK(chosen.camera.eye.z == Approx(-1.05 * 0.5 / std::tan(20.0 * 3.14159265358979 / 180.0))
+                                   .epsilon(1e-5));
+  CHECK(chosen.camera.yfov_radians == Approx(40.0 * 3.14159265358979 / 180.0).epsilon(1e-6));
   CHECK(chosen.probe.open_fraction > 0.1);  // the missing wall subtends 1/6 of the sphere
 }
 
@@ -166,11 +178,38 @@ TEST_CASE("auto camera: objects keep the outside camera (sphere, sphere on a gro
   }
 }
 
-TEST_CASE("auto camera: the Cornell box is seen from inside, through its open side") {
+TEST_CASE("auto camera: a room whose opening is a window is seen from inside") {
+  // The front wall with a hole of 2 × 2 of its 4 × 4 cells: open (the hole subtends about 6% of
+  // the centre's sphere), but seen through the hole from outside, most of the view is the
+  // wall's back. The eye then stands inside.
+  const prt::scene::Scene window = [] {
+    Scene wall = prt::scene::make_quad({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, 4, 4, glm::vec3(0.6f),
+                                       "window_wall");
+    std::vector<glm::uvec3> kept;
+    for (const glm::uvec3& t : wall.triangles) {
+      const glm::vec3 c = (wall.positions[t.x] + wall.positions[t.y] + wall.positions[t.z]) / 3.f;
+      if (!(c.x > 0.25f && c.x < 0.75f && c.y > 0.25f && c.y < 0.75f)) kept.push_back(t);
+    }
+    wall.triangles = kept;
+    wall.primitives[0].triangle_count = static_cast<uint32_t>(kept.size());
+    return wall;
+  }();
+  Scene room = make_room(kFront);
+  prt::scene::append_scene(room, window);
+  const prt::scene::RayCaster caster(room);
+  const auto chosen = prt::relight::choose_auto_camera(room, caster, kAspect);
+  INFO(chosen.note);
+  REQUIRE(chosen.inside);
+  CHECK(chosen.probe.open_fraction > prt::relight::kOpenThreshold);
+  CHECK(inside_bounds(room, chosen.camera.eye));
+  CHECK(look(caster, chosen.camera).front > 0.95);
+}
+
+TEST_CASE("auto camera: the Cornell box is looked into through its open side") {
   const auto path = prt::test::shared_data("meshes/cornell_box.obj");
   PRT_REQUIRE_SHARED_DATA(path);
   const Scene cornell = prt::scene::load_scene(path.string());
-  require_inside_view(cornell);
+  require_inside_view(cornell, false);
   // Its front wall (z = 0) is commented out in the file: the camera looks toward +Z.
   const prt::scene::RayCaster caster(cornell);
   const auto chosen = prt::relight::choose_auto_camera(cornell, caster, kAspect);
@@ -184,7 +223,7 @@ TEST_CASE("resolve_camera: a scene camera or an explicit one wins over the room 
   const Camera given =
       prt::relight::resolve_camera("5,5,5,0,0,0,0,1,0,40", room, caster, kAspect, &note);
   CHECK(given.eye == glm::vec3(5.f));
-  CHECK(note == "camera as given");
+  CHECK_THAT(note, Catch::EndsWith("options (--camera)"));
   prt::scene::SceneCamera own;
   own.name = "own";
   own.eye = {0.5f, 0.5f, -2.f};
@@ -192,5 +231,50 @@ TEST_CASE("resolve_camera: a scene camera or an explicit one wins over the room 
   room.cameras.push_back(own);
   const Camera first = prt::relight::resolve_camera("auto", room, caster, kAspect, &note);
   CHECK(first.eye == own.eye);
-  CHECK(note.find("first camera") != std::string::npos);
+  CHECK(note.find("scene camera 'own'") != std::string::npos);
+}
+
+TEST_CASE("the camera rule: radiosity, a subdivided scene and relight get the same camera") {
+  // prt radiosity draws its patch scene (subdivided), prt relight the scene or a .prte's mesh
+  // (the same patches): the automatic camera must not depend on the tessellation, and the
+  // radiosity image must take it (before, it framed the bounds from outside, where a room
+  // shows the backs of its walls).
+  const Scene room = make_room(kFront);
+  const Scene patches = prt::scene::subdivide_to_edge_length(room, 0.1);
+  REQUIRE(patches.triangles.size() > 4 * room.triangles.size());
+  const prt::scene::RayCaster caster(room), patch_caster(patches);
+  const auto a = prt::relight::choose_camera("auto", room, caster, kAspect);
+  const auto b = prt::relight::choose_camera("auto", patches, patch_caster, kAspect);
+  CHECK(a.camera.eye == b.camera.eye);
+  CHECK(a.camera.target == b.camera.target);
+  CHECK(a.camera.yfov_radians == b.camera.yfov_radians);
+  prt::relight::RadiosityRenderRequest request;
+  request.render.width = 160;
+  request.render.height = 90;  // kAspect
+  const auto drawn = prt::relight::radiosity_camera(request, patches);
+  CHECK(drawn.camera.eye == b.camera.eye);
+  CHECK(drawn.origin == b.origin);
+  CHECK(look(patch_caster, drawn.camera).front > 0.95);
+}
+
+TEST_CASE("the camera rule says where the camera came from, in one line") {
+  Scene room = make_room(kFront);
+  const prt::scene::RayCaster caster(room);
+  const auto automatic = prt::relight::choose_camera("auto", room, caster, kAspect);
+  const std::string line = prt::relight::describe_camera(automatic);
+  CHECK(line.find('\n') == std::string::npos);
+  CHECK_THAT(line, Catch::StartsWith("camera: eye (0.5, 0.5, -1.442), target (0.5, 0.5, 0.5), "
+                                     "vertical fov 40.0°; automatic"));
+  const auto given = prt::relight::choose_camera("5,5,5,0,0,0,0,1,0,40", room, caster, kAspect);
+  CHECK_THAT(prt::relight::describe_camera(given),
+             Catch::EndsWith("vertical fov 40.0°; options (--camera)"));
+  prt::scene::SceneCamera own;
+  own.name = "own";
+  own.eye = {0.5f, 0.5f, -2.f};
+  own.target = {0.5f, 0.5f, 0.5f};
+  room.cameras.push_back(own);
+  CHECK_THAT(prt::relight::describe_camera(prt::relight::choose_camera("", room, caster, kAspect)),
+             Catch::EndsWith("; scene camera 'own' (its first)"));
+  CHECK_THAT(prt::relight::describe_camera(prt::relight::choose_camera("own", room, caster, 1.f)),
+             Catch::EndsWith("; scene camera 'own'"));
 }

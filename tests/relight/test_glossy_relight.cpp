@@ -12,29 +12,48 @@
 
 using prt::relight::Camera;
 
-TEST_CASE("Glossy turntable: the camera orbits the vertical line through its target", "[glossy]") {
+TEST_CASE("Glossy turntable: the camera orbits the vertical line through the scene's centre",
+          "[glossy]") {
+  // A scene camera as glTF gives it: a direction, here with its target a unit in front of the
+  // eye, while the scene's centre is 5 units away. Orbiting that nearby target (as before) swings
+  // the view off the scene; orbiting the centre keeps the centre where frame 0 shows it.
   Camera c;
   c.eye = {1.f, 2.f, 5.f};
-  c.target = {1.f, 0.5f, 0.f};
+  c.target = {0.8f, 1.7f, 4.05f};
+  const glm::vec3 centre{0.f, 0.5f, 0.f};
+  const float aspect = 1.5f;
+  const auto ndc_of_centre = [&](const Camera& camera) {
+    glm::vec2 ndc(9.f);
+    const auto basis = prt::relight::make_camera_basis(camera, aspect);
+    REQUIRE(prt::relight::project_to_ndc(basis, camera.eye, centre, &ndc));
+    return ndc;
+  };
+  const glm::vec2 first = ndc_of_centre(c);
+  REQUIRE(std::abs(first.x) < 1.f);
+  REQUIRE(std::abs(first.y) < 1.f);
   const int n = 8;
   for (int i = 0; i <= n; ++i) {
-    const Camera o = prt::relight::orbit_camera(c, i, n);
-    // Distance to the target and height are kept; the target does not move.
-    CHECK(glm::length(o.eye - o.target) == Approx(glm::length(c.eye - c.target)).epsilon(1e-6));
+    const Camera o = prt::relight::orbit_camera(c, centre, i, n);
+    // Distance to the axis, height and the view are kept: the centre stays at the same pixel
+    // (float round-off of a rotation and a projection).
+    const auto radius = [&](glm::vec3 p) { return std::hypot(p.x - centre.x, p.z - centre.z); };
+    CHECK(radius(o.eye) == Approx(radius(c.eye)).epsilon(1e-6));
     CHECK(o.eye.y == Approx(c.eye.y).margin(1e-6));
-    CHECK(o.target == c.target);
+    CHECK(glm::length(o.target - o.eye) == Approx(glm::length(c.target - c.eye)).epsilon(1e-5));
+    const glm::vec2 ndc = ndc_of_centre(o);
+    CHECK(ndc.x == Approx(first.x).margin(1e-4));
+    CHECK(ndc.y == Approx(first.y).margin(1e-4));
     // Frame i is turned by 360°·i/N: the horizontal offset's angle.
-    const float angle = std::atan2(o.eye.x - c.target.x, o.eye.z - c.target.z);
-    const float expected =
-        std::remainder(2.f * prt::numerics::kPiFloat * float(i) / n, 2.f * prt::numerics::kPiFloat);
+    const float angle = std::atan2(o.eye.x - centre.x, o.eye.z - centre.z);
+    const float start = std::atan2(c.eye.x - centre.x, c.eye.z - centre.z);
+    const float expected = start + 2.f * prt::numerics::kPiFloat * float(i) / n;
     CHECK(std::remainder(angle - expected, 2.f * prt::numerics::kPiFloat) ==
           Approx(0.f).margin(1e-5));
   }
-  // Frame N is frame 0 (full circle), frame 0 the camera itself.
-  const Camera full = prt::relight::orbit_camera(c, n, n);
-  CHECK(full.eye.x == Approx(c.eye.x).margin(1e-5));
-  CHECK(full.eye.z == Approx(c.eye.z).margin(1e-5));
-  CHECK(prt::relight::orbit_camera(c, 0, n).eye == c.eye);
+  // Frame 0 is the camera itself.
+  const Camera zero = prt::relight::orbit_camera(c, centre, 0, n);
+  CHECK(zero.eye == c.eye);
+  CHECK(zero.target == c.target);
 }
 
 TEST_CASE("Glossy relight: CSV and vertex colours need an eye point", "[glossy]") {

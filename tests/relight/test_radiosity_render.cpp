@@ -1,5 +1,6 @@
 // Drawing a radiosity solution (relight/radiosity_render.h) from a scene and per-vertex
-// radiance: its automatic exposure, the files it writes and the outputs it refuses.
+// radiance: its automatic exposure (the one rule), the files it writes and the outputs it
+// refuses.
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -9,6 +10,7 @@
 
 #include <catch2/catch.hpp>
 
+#include "relight/auto_exposure.h"
 #include "relight/radiosity_render.h"
 #include "scene/procedural_mesh.h"
 #include "support/test_data.h"
@@ -16,16 +18,35 @@
 namespace fs = std::filesystem;
 using prt::relight::RadiosityRenderRequest;
 
-TEST_CASE("automatic exposure maps the log-average luminance of lit pixels to 0.18",
+TEST_CASE("radiosity images take the one exposure rule: choose_auto_exposure, a quarter stop",
           "[relight][radiosity-render]") {
-  prt::relight::Image image;
-  image.width = 4;
-  image.height = 1;
-  // Two grey pixels of luminance 0.09 and 1.44 (log-average 0.36), two black ones (ignored).
-  image.rgb = {0.09f, 0.09f, 0.09f, 1.44f, 1.44f, 1.44f, 0.f, 0.f, 0.f, 0.f, 0.f, 0.f};
-  CHECK(prt::relight::automatic_exposure_ev(image) == Approx(-1.0).margin(1e-5));
-  image.rgb.assign(12, 0.f);
-  CHECK(prt::relight::automatic_exposure_ev(image) == 0.f);
+  // The exposure prt relight picks for the same vertex radiance (relight/auto_exposure.h), so
+  // a solution and the relight of its responses agree; before, the radiosity image had its own
+  // rule (log-average of the pixels to 0.18, not rounded).
+  const fs::path dir = prt::test::output_path("radiosity_render_exposure");
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const prt::scene::Scene quad =
+      prt::scene::make_quad({-1, -1, 0}, {2, 0, 0}, {0, 2, 0}, 4, 4, glm::vec3(0.5f));
+  std::vector<float> radiance(3 * quad.vertex_count());
+  for (std::size_t i = 0; i < radiance.size(); ++i) radiance[i] = 0.013f + 0.37f * float(i % 5);
+  RadiosityRenderRequest r;
+  r.scene_path = (dir / "quad.obj").string();
+  r.output_path = (dir / "quad.png").string();
+  r.render.width = 16;
+  r.render.height = 12;
+  r.render.samples_per_axis = 1;
+  r.camera = "0,0,3,0,0,0,0,1,0,60";
+  const prt::relight::RadiosityRenderSummary s =
+      prt::relight::render_radiosity(r, quad, radiance, prt::relight::radiosity_camera(r, quad).camera);
+  CHECK(s.exposure_auto);
+  CHECK(s.exposure_ev == prt::relight::choose_auto_exposure(radiance));
+  CHECK(std::fmod(double(s.exposure_ev) * 4.0, 1.0) == 0.0);  // a multiple of 1/4 EV, exactly
+  r.exposure_ev = 0.3f;  // a given one is kept as it is
+  const prt::relight::RadiosityRenderSummary given =
+      prt::relight::render_radiosity(r, quad, radiance, prt::relight::radiosity_camera(r, quad).camera);
+  CHECK_FALSE(given.exposure_auto);
+  CHECK(given.exposure_ev == 0.3f);
 }
 
 TEST_CASE("a radiosity solution is drawn from its vertex radiance: CSV, image, vertex colours",
@@ -48,7 +69,7 @@ TEST_CASE("a radiosity solution is drawn from its vertex radiance: CSV, image, v
   r.camera = "0,0,3,0,0,0,0,1,0,60";
   prt::relight::check_radiosity_outputs(r);
   const prt::relight::RadiosityRenderSummary s =
-      prt::relight::render_radiosity(r, quad, radiance, prt::relight::radiosity_camera(r, quad));
+      prt::relight::render_radiosity(r, quad, radiance, prt::relight::radiosity_camera(r, quad).camera);
   CHECK(s.files_written ==
         std::vector<std::string>{r.output_path, r.vertex_colors_path, r.csv_path});
   for (const std::string& file : s.files_written) CHECK(fs::file_size(file) > 0);
@@ -67,7 +88,7 @@ TEST_CASE("a radiosity solution is drawn from its vertex radiance: CSV, image, v
   CHECK(v == quad.vertex_count());
   // Radiance for other vertices is refused before anything is drawn.
   CHECK_THROWS(prt::relight::render_radiosity(r, quad, std::vector<float>(3),
-                                              prt::relight::radiosity_camera(r, quad)));
+                                              prt::relight::radiosity_camera(r, quad).camera));
 }
 
 TEST_CASE("radiosity outputs: image, GLB and CSV refused by type, directory and the scene",

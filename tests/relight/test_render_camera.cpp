@@ -86,16 +86,16 @@ TEST_CASE("ray_direction and project_to_ndc are inverse to each other") {
   CHECK(prt::relight::ray_direction(basis, 0.f, 1.f).y > centre.y);
 }
 
-TEST_CASE("parse_camera: auto, names, explicit numbers and clear errors") {
+TEST_CASE("parse_camera: names, explicit numbers and clear errors") {
   prt::scene::Scene scene = make_two_point_scene(glm::vec3(-1.f), glm::vec3(2.f));
   scene.source_path = "scene.glb";
 
-  // auto without scene cameras frames the bounds.
-  const Camera framed = prt::relight::parse_camera("auto", scene, 1.5f);
-  const Camera expected = prt::relight::frame_bounds(glm::vec3(-1.f), glm::vec3(2.f), 1.5f);
-  CHECK(glm::length(framed.eye - expected.eye) < 1e-6f);
+  // auto is not parsed here: the camera rule (relight/auto_camera.h choose_camera) resolves it,
+  // so no command can reach a second automatic camera.
+  CHECK_THROWS_AS(prt::relight::parse_camera("auto", scene, 1.5f), std::invalid_argument);
+  CHECK_THROWS_AS(prt::relight::parse_camera("", scene, 1.5f), std::invalid_argument);
 
-  // auto with cameras takes the first; NAME picks by name.
+  // NAME picks by name.
   prt::scene::SceneCamera first, second;
   first.eye = glm::vec3(0, 1, 5);
   first.name = "front";
@@ -103,7 +103,6 @@ TEST_CASE("parse_camera: auto, names, explicit numbers and clear errors") {
   second.name = "side";
   second.yfov_radians = 0.5f;
   scene.cameras = {first, second};
-  CHECK(prt::relight::parse_camera("auto", scene, 1.f).eye == first.eye);
   const Camera side = prt::relight::parse_camera("side", scene, 1.f);
   CHECK(side.eye == second.eye);
   CHECK(side.yfov_radians == 0.5f);

@@ -207,3 +207,37 @@ TEST_CASE("renderer: the rows_done callback counts every row once and changes no
   CHECK(calls.load() >= 1);
   CHECK(counted.rgb == plain.rgb);  // bit for bit
 }
+
+TEST_CASE("renderer: the back of a one-sided surface is black, never the front's light") {
+  // The triangle faces +z (counter-clockwise seen from +z). Its vertex radiance is the light
+  // leaving the front; seen from behind (from −z) it must show black, not that light, and not
+  // the background either (the surface is there, it hides the sky). Before, both sides showed
+  // the front's radiance, so a room seen from outside showed its walls' backs lit.
+  const prt::scene::Scene scene = make_triangle_scene();
+  const prt::scene::RayCaster caster(scene);
+  const std::vector<float> radiance(9, 2.f);
+  const prt::sh::EnvMap env = make_analytic_latlong(64, 32);  // at least 0.5 in every direction
+  prt::relight::RenderOptions options;
+  options.width = 16;
+  options.height = 12;
+  options.samples_per_axis = 1;
+  prt::relight::Camera camera;
+  camera.target = glm::vec3(0.3f, 0.f, 0.f);
+  camera.yfov_radians = static_cast<float>(90 * kPi / 180);  // the triangle in the middle
+  const auto centre_pixel = [&](const prt::relight::Image& image) {
+    const std::size_t at = 3 * (static_cast<std::size_t>(image.height / 2) * image.width +
+                                static_cast<std::size_t>(image.width / 2));
+    return glm::vec3(image.rgb[at], image.rgb[at + 1], image.rgb[at + 2]);
+  };
+  camera.eye = glm::vec3(0.3f, 0.f, 4.f);  // in front
+  const prt::relight::Image front = prt::relight::render(
+      scene, caster, radiance, &env, prt::relight::kIdentityRotation, camera, options);
+  CHECK(centre_pixel(front) == glm::vec3(2.f));
+  camera.eye = glm::vec3(0.3f, 0.f, -4.f);  // behind
+  const prt::relight::Image back = prt::relight::render(
+      scene, caster, radiance, &env, prt::relight::kIdentityRotation, camera, options);
+  CHECK(centre_pixel(back) == glm::vec3(0.f));
+  // The corner pixels miss the triangle and show the sky on both sides.
+  CHECK(back.rgb[0] > 0.4f);
+  CHECK(front.rgb[0] > 0.4f);
+}

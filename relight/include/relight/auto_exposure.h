@@ -1,4 +1,5 @@
-// relight/auto_exposure.h — the exposure `prt relight` and `prt demo` choose when none is given.
+// relight/auto_exposure.h — THE exposure rule: the exposure every command that tone-maps (prt
+// relight of every file kind, prt radiosity, prt demo) chooses when none is given.
 //
 // Rule: the median Rec. 709 luminance Y = 0.2126 R + 0.7152 G + 0.0722 B of the vertices' exit
 // radiance (linear, 3 floats per vertex) is brought to kAutoExposureKey before the filmic curve
@@ -10,6 +11,7 @@
 // the choice does not depend on the camera, the image size or the background.
 #pragma once
 
+#include <string>
 #include <vector>
 
 namespace prt::relight {
@@ -19,5 +21,8 @@ constexpr double kAutoExposureKey = 0.3;
 
 // Exposure in EV (a multiple of 0.25) for radiance_rgb (3 floats per vertex); see above.
 float choose_auto_exposure(const std::vector<float>& radiance_rgb);
+
+// For the user: "exposure +1.50 EV (automatic: …)" or "exposure +1.50 EV (--exposure)".
+std::string describe_exposure(float exposure_ev, bool automatic);
 
 }  // namespace prt::relight

@@ -37,12 +37,13 @@ Camera frame_bounds(glm::vec3 min, glm::vec3 max, float aspect);
 
 Camera from_scene_camera(const scene::SceneCamera& camera);
 
-// Parses `auto | NAME | ex,ey,ez,tx,ty,tz,ux,uy,uz,fov_deg`.
-//   auto: the scene's first camera if it has one, else frame_bounds(scene bounds, aspect);
+// Parses `NAME | ex,ey,ez,tx,ty,tz,ux,uy,uz,fov_deg` (`auto` is the camera rule's own,
+// choose_camera() in relight/auto_camera.h, which every command goes through):
 //   NAME: the scene camera with that name;
 //   ten numbers: eye, target, up and the vertical field of view in degrees (0 < fov < 180).
 // Throws std::runtime_error with a one-line message for an unknown name, a malformed list, or a
-// degenerate camera (eye = target, up parallel to the view direction, non-finite values).
+// degenerate camera (eye = target, up parallel to the view direction, non-finite values), and
+// std::invalid_argument for `auto` or an empty spec.
 Camera parse_camera(const std::string& spec, const scene::Scene& scene, float aspect);
 
 // Throws std::runtime_error (one line) when the camera cannot form a basis.

@@ -8,7 +8,9 @@
 // (relight/renderer.h), which interpolates the vertex values across each triangle: ωo is taken
 // PER VERTEX, not per pixel, so a highlight is as sharp as the mesh is fine.
 // Turntable (--turntable N): frame i turns the light by Ry(360°·i/N) (as for coefficient files)
-// AND orbits the camera by the same Ry about the vertical axis through its target — both by
+// AND orbits the camera (eye, target and up turned rigidly, so frame 0 is the camera itself) by
+// the same Ry about the vertical axis through the orbit centre — the centre of the scene's
+// bounding box, or GlossyRelightOptions::orbit_centre (--target) — both by
 // default, so the object is seen from every side under a light that keeps its place relative
 // to the camera; GlossyTurntable::kCamera orbits the camera under fixed light (the highlights
 // then slide over the surface), kLight turns the light only, as coefficient files do.
@@ -50,6 +52,7 @@ enum class GlossyTurntable { kBoth, kCamera, kLight };
 struct GlossyRelightOptions {
   std::optional<glm::vec3> eye;  // for the CSV and the vertex colours
   GlossyTurntable turntable = GlossyTurntable::kBoth;
+  std::optional<glm::vec3> orbit_centre;  // --target; default: the centre of the scene's bounds
   prt::BrdfProjectionOptions projection;
   // `--material` overrides of the file's BRDFs (relight/glossy_material_override.h).
   std::vector<scene::MaterialOverride> material_overrides;
@@ -76,9 +79,9 @@ LoadedGlossy load_glossy_any_for_scene(const std::string& path, const scene::Sce
 prt::GlossyRelighter make_glossy_relighter(LoadedGlossy&& loaded, const std::string& path,
                                            const prt::BrdfProjectionOptions& projection);
 
-// The camera of turntable frame i of N: eye and up turned by Ry(360°·i/N) about the vertical
-// line through the target.
-Camera orbit_camera(const Camera& camera, int frame, int frame_count);
+// The camera of turntable frame i of N: eye, target and up turned by Ry(360°·i/N) about the
+// vertical line through `centre`.
+Camera orbit_camera(const Camera& camera, const glm::vec3& centre, int frame, int frame_count);
 
 // Exit radiance of every vertex toward `eye`, 3 floats per vertex, shaded in parallel (TBB).
 std::vector<float> shade_glossy_vertices(const prt::GlossyRelighter& relighter,

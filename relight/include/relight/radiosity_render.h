@@ -4,8 +4,10 @@
 // per-vertex arrays in: relight does not depend on the radiosity library.
 //
 // Units: radiance in the units of the emission; glTF frame. PNG output is tone mapped
-// (relight/tone_map.h) with an automatic exposure unless one is given: the exposure that maps
-// the log-average luminance of the lit pixels to 0.18 (Reinhard et al.'s "key").
+// (relight/tone_map.h) with an automatic exposure unless one is given: choose_auto_exposure
+// (relight/auto_exposure.h) of the vertex radiance, the rule of every command, so prt relight
+// of the solution's responses (.prte) with the same emitter colours picks the same exposure.
+// The camera is choose_camera's (relight/auto_camera.h), the rule of every command.
 // Errors throw std::runtime_error with one line naming the file or option;
 // check_radiosity_outputs refuses bad outputs before any work, and each file is written
 // atomically.
@@ -15,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "relight/auto_camera.h"
 #include "relight/camera.h"
 #include "relight/renderer.h"
 #include "scene/scene.h"
@@ -26,7 +29,7 @@ struct RadiosityRenderRequest {
   std::string output_path;         // .exr, .hdr or .png; optional
   std::string vertex_colors_path;  // .glb, optional
   std::string csv_path;            // optional
-  std::string camera = "auto";     // relight/camera.h parse_camera()
+  std::string camera = "auto";     // relight/auto_camera.h choose_camera()
   RenderOptions render;
   std::optional<float> exposure_ev;  // PNG only; automatic when absent
 };
@@ -34,6 +37,7 @@ struct RadiosityRenderRequest {
 struct RadiosityRenderSummary {
   double render_seconds = 0;
   float exposure_ev = 0;
+  bool exposure_auto = false;  // true: chosen by choose_auto_exposure
   std::vector<std::string> files_written;
 };
 
@@ -41,12 +45,8 @@ struct RadiosityRenderSummary {
 // missing directory or one that is the scene file (scene/output_path.h).
 void check_radiosity_outputs(const RadiosityRenderRequest& request);
 
-// The request's camera for `scene` at the image's aspect ratio (parse_camera).
-Camera radiosity_camera(const RadiosityRenderRequest& request, const scene::Scene& scene);
-
-// The exposure (EV) mapping the log-average luminance of the pixels with luminance > 0 to 0.18;
-// 0 for an image with no such pixel.
-float automatic_exposure_ev(const Image& image);
+// The request's camera for `scene` at the image's aspect ratio (choose_camera).
+CameraChoice radiosity_camera(const RadiosityRenderRequest& request, const scene::Scene& scene);
 
 // Writes the request's outputs for `scene` with exit radiance `vertex_radiance` (3 floats per
 // vertex, e.g. radiosity::SceneSolution's), the image seen from `camera`; files_written in the

@@ -140,8 +140,9 @@ void check_relight_outputs(const RelightRequest& request);
 
 RelightSummary run_relight(const RelightRequest& request);
 
-// One line for the user: the exposure of PNG images and tone-mapped vertex colours (given or
-// automatic, and how the automatic one is chosen), and the camera (summary.camera_note).
+// For the user: a line on the exposure of PNG images and tone-mapped vertex colours (given or
+// automatic, and how the automatic one is chosen), and a line on the camera
+// (summary.camera_note, relight/auto_camera.h describe_camera).
 std::string describe_view(const RelightRequest& request, const RelightSummary& summary);
 
 }  // namespace prt::relight

@@ -4,7 +4,12 @@
 // Each pixel averages N×N stratified sub-samples at the centres of an N×N grid of cells
 // (deterministic, no randomness). A primary ray that hits triangle (v0, v1, v2) at Embree
 // barycentrics (u, v) takes the radiance (1−u−v)·B(v0) + u·B(v1) + v·B(v2) (Gouraud shading of
-// the relit vertex radiance, front and back faces alike). A ray that misses shows the
+// the relit vertex radiance) when it meets the triangle's front (counter-clockwise as seen by the
+// ray, glTF's winding, scene/ray_caster.h). The back of a surface is black: the vertex radiance
+// is the light leaving the front (a bake's hemisphere, a radiosity patch's lit side), and the
+// back of a one-sided surface has none — so a wall seen from outside a room is black, never
+// painted with the inside's light. Every image of prt (relight, radiosity, emitter responses,
+// the demo, the report) is drawn here. A ray that misses shows the
 // environment: when the lighting was rotated by M (row-major 3×3, so the rotated environment is
 // g(ω) = f(Mᵀω), the convention of sh/rotation.h), the background in direction d is the source
 // map bilinearly sampled at Mᵀd, so the visible sky turns with the light. Without a background

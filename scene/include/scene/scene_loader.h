@@ -13,8 +13,10 @@
 // is (the baker refuses albedo >= 1); a primitive with no material, or with neither a factor nor
 // a usable texture (factor left at 1), gets 0.8 grey instead of the spec's white, counted in
 // Scene::default_albedo_primitives (prt bake says so). Perspective cameras attached to nodes become
-// SceneCameras: eye = the node's world position, target = eye + the node's -Z, up = the node's +Y,
-// yfov. Textures: a material's baseColorTexture is read (scene/texture.h): its texCoord set
+// SceneCameras: eye = the node's world position, up = the node's +Y, yfov, and target the point
+// of the view axis (the node's -Z) nearest the centre of the scene's bounding box, at least 1% of
+// the box's diagonal ahead (glTF gives no target; a turntable orbits the scene, not a point a
+// unit in front of the eye). Textures: a material's baseColorTexture is read (scene/texture.h): its texCoord set
 // (TEXCOORD_n: float, or normalised unsigned byte/short), its texture's sampler (wrapS, wrapT,
 // magFilter, minFilter) and image, PNG or JPEG, from a file beside the .gltf (URI
 // percent-decoding), a data: URI or a buffer view (GLB), decoded through the OpenImageIO plugin
