@@ -88,8 +88,6 @@ radiosity::SceneSolveRequest make_solve_request(const RadiosityArguments& a) {
       throw UsageError("--adaptive-levels: must be in 1..16");
     o.max_levels = a.adaptive_levels;
     r.refinement = o;
-  } else if (a.max_patches != 0) {
-    throw UsageError("--max-patches: only with --adaptive");
   }
   if (a.form_factors == "analytic") {
     r.form_factors.method = radiosity::FormFactorMethod::Analytic;
@@ -172,6 +170,8 @@ void check_applicable(const RadiosityArguments& a, const CLI::App& cmd) {
       rays && (a.emitter_rows == "reciprocal" || (a.emitter_rows == "auto" && a.emitter_rays == 0));
   refuse_unless(cmd, a.form_factors == "analytic" || reciprocal_rows, {"--quadrature"},
                 "--form-factors analytic and the reciprocal emitter rows of --form-factors rays");
+  refuse_unless(cmd, a.adaptive.has_value(),
+                {"--max-patches", "--adaptive-passes", "--adaptive-levels"}, "--adaptive");
   refuse_unless(cmd, !a.output.empty(), {"--size", "--spp", "--camera", "--exposure"},
                 "an image (-o IMAGE)");
   refuse_unless(cmd, lower_extension(a.output) == ".png", {"--exposure"},
@@ -254,7 +254,7 @@ void warn_unconverged(const RadiosityArguments& args, const radiosity::SceneSolu
   if (!s.solution.converged)
     std::fprintf(stderr,
                  "prt radiosity: %s: warning: the solve stopped after %zu %s with %.3g of the "
-                 "emitted power unshot (--tolerance %g): raise --max-iterations\n",
+                 "emitted power unshot (--tolerance %g): raise --max-iterations to converge\n",
                  args.scene.c_str(), s.solution.iterations,
                  args.solver == "progressive" ? "shots" : "sweeps", s.solution.relative_unshot,
                  args.tolerance);
@@ -262,7 +262,7 @@ void warn_unconverged(const RadiosityArguments& args, const radiosity::SceneSolu
     if (!r.converged)
       std::fprintf(stderr,
                    "prt radiosity: %s: warning: the response of emitter %s stopped after %zu "
-                   "sweeps with %.3g unshot: raise --max-iterations\n",
+                   "sweeps with %.3g unshot: raise --max-iterations to converge\n",
                    args.scene.c_str(), r.name.c_str(), r.iterations, r.relative_unshot);
 }
 
@@ -345,18 +345,14 @@ Command register_radiosity(CLI::App& app) {
   cmd->add_option("--adaptive", args->adaptive,
                   "THRESHOLD: refine patches whose radiance differs from a neighbour's by more "
                   "than THRESHOLD x the brightest non-emitting radiance (start: --max-edge)");
-  CLI::Option* adaptive = cmd->get_option("--adaptive");
   cmd->add_option("--max-patches", args->max_patches,
-                  "Patch budget for --adaptive (default: 4x the starting patches)")
-      ->needs(adaptive);
+                  "Patch budget for --adaptive (default: 4x the starting patches)");
   cmd->add_option("--adaptive-passes", args->adaptive_passes,
                   "Refinement passes at most for --adaptive")
-      ->capture_default_str()
-      ->needs(adaptive);
+      ->capture_default_str();
   cmd->add_option("--adaptive-levels", args->adaptive_levels,
                   "For --adaptive: split a starting patch into at most 4^N (edges / 2^N)")
-      ->capture_default_str()
-      ->needs(adaptive);
+      ->capture_default_str();
   cmd->add_option("--form-factors", args->form_factors, "analytic|rays|hemicube")
       ->capture_default_str();
   cmd->add_option("--hemicube", args->hemicube,
