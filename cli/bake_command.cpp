@@ -118,7 +118,11 @@ scene::Scene load_bake_scene(const BakeArguments& args) {
   } catch (const std::invalid_argument& e) {
     throw UsageError(e.what());
   }
-  if (args.max_edge) scene = scene::subdivide_to_edge_length(scene, *args.max_edge);
+  try {  // an edge length far too small for the scene is the command line's fault
+    if (args.max_edge) scene = scene::subdivide_to_edge_length(scene, *args.max_edge);
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(e.what());
+  }
   return scene;
 }
 
@@ -202,17 +206,16 @@ void note_default_albedo(const scene::Scene& scene, bool quiet) {
                double(scene::kDefaultAlbedo));
 }
 
-// The output can be written, and is none of the files the bake reads.
-void check_files(const BakeArguments& a) {
+// What the bake reads and writes (checked by main before the run, command_registry.h).
+CommandFiles bake_files(const BakeArguments& a) {
   CommandFiles files;
   files.add_scene(a.scene);
   if (!a.env.empty()) files.add_environment(a.env);
-  files.add_output("-o", a.output);
-  files.check();
   if (a.glossy)
-    check_output_file("-o", a.output, {".prtg"}, "a glossy transfer file");
+    files.add_output_file("-o", a.output, {".prtg"}, "a glossy transfer file");
   else
-    check_output_file("-o", a.output, {".prt"}, "a coefficient file");
+    files.add_output_file("-o", a.output, {".prt"}, "a coefficient file");
+  return files;
 }
 
 // The scene as the bake reads it: --albedo and --max-edge applied, the default-albedo note.
@@ -223,9 +226,7 @@ scene::Scene load_for_bake(const BakeArguments& args) {
 }
 
 // `--glossy`: transfer matrices into a glossy transfer file (cli/glossy_cli.h).
-void run_glossy(const BakeArguments& args, const CLI::App& cmd) {
-  check_values(args, cmd);
-  check_glossy_applicable(cmd);
+GlossyBakeRequest glossy_request(const BakeArguments& args, const CLI::App& cmd) {
   GlossyBakeRequest r;
   r.scene = args.scene;
   r.output = args.output;
@@ -240,9 +241,22 @@ void run_glossy(const BakeArguments& args, const CLI::App& cmd) {
   r.threads = args.threads;
   r.precision = args.precision;
   r.quiet = args.quiet;
-  check_glossy_request(r);  // before any file is read
-  check_files(args);
-  run_glossy_bake(load_for_bake(args), r);
+  return r;
+}
+
+// The command line's own refusals, before any file is looked at.
+void check_usage(const BakeArguments& args, const CLI::App& cmd) {
+  check_values(args, cmd);
+  if (args.glossy) {
+    check_glossy_applicable(cmd);
+    check_glossy_request(glossy_request(args, cmd));
+  } else {
+    check_applicable(args, cmd, parse_kind(args.transfer));
+  }
+}
+
+void run_glossy(const BakeArguments& args, const CLI::App& cmd) {
+  run_glossy_bake(load_for_bake(args), glossy_request(args, cmd));
 }
 
 // `--auto`: --tolerance (default 0.01) becomes the accuracy target; without --transfer the
@@ -283,9 +297,6 @@ void run_auto(const BakeArguments& args, const scene::Scene& scene, const bake::
 
 void run(const BakeArguments& args, const CLI::App& cmd) {
   if (args.glossy) return run_glossy(args, cmd);
-  check_values(args, cmd);
-  check_applicable(args, cmd, parse_kind(args.transfer));
-  check_files(args);
   bake::BakeOptions options;
   options.kind = parse_kind(args.transfer);
   options.order = args.order;
@@ -343,7 +354,7 @@ void run(const BakeArguments& args, const CLI::App& cmd) {
               static_cast<unsigned long long>(st.skipped_triangles));
 }
 
-void register_bake(CLI::App& app) {
+Command register_bake(CLI::App& app) {
   auto args = std::make_shared<BakeArguments>();
   CLI::App* cmd = app.add_subcommand("bake", "Bake per-vertex SH transfer into a .prt file");
   cmd->add_option("scene", args->scene, "Scene (.glb, .gltf, .obj)")->required();
@@ -380,11 +391,12 @@ void register_bake(CLI::App& app) {
   cmd->add_option("--env", args->env, "--auto: lighting whose band energy picks the SH order");
   cmd->add_flag("--glossy", args->glossy,
                 "Bake glossy transfer matrices (order 1..10, default 5) into a .prtg file");
-  cmd->callback([args, cmd] {
+  const auto check = [args, cmd] {
     args->tolerance_given = cmd->count("--tolerance") > 0;
     args->transfer_given = cmd->count("--transfer") > 0;
-    run(*args, *cmd);
-  });
+    check_usage(*args, *cmd);
+  };
+  return {cmd, check, [args] { return bake_files(*args); }, [args, cmd] { run(*args, *cmd); }};
 }
 
 }  // namespace

@@ -18,7 +18,7 @@
 namespace prt::cli {
 namespace {
 
-void register_compress(CLI::App& app) {
+Command register_compress(CLI::App& app) {
   auto r = std::make_shared<GlossyCompressRequest>();
   CLI::App* cmd = app.add_subcommand(
       "compress",
@@ -48,10 +48,12 @@ void register_compress(CLI::App& app) {
   cmd->add_option("--seed", r->seed, "Seed of the cluster seeding (default 1)");
   cmd->add_option("--threads", r->threads, "Worker threads (default 0: every core)");
   cmd->add_flag("--quiet", r->quiet, "Print nothing on success");
-  cmd->callback([r, max_vectors] {
+  const auto check = [r, max_vectors, target] {
     r->max_vectors_given = max_vectors->count() > 0;
-    run_glossy_compress(*r);
-  });
+    r->target_error_given = target->count() > 0;
+    check_compress_request(*r);
+  };
+  return {cmd, check, [r] { return compress_files(*r); }, [r] { run_glossy_compress(*r); }};
 }
 
 }  // namespace

@@ -106,6 +106,18 @@ std::vector<float> shade(const prt::TransferData& data, const prt::ShLighting& l
   return relight::shade_all_vertices(*relighter, lighting, data.vertex_count);
 }
 
+// The bundled data read, the output folder and every file written in it.
+CommandFiles demo_files(const DemoArguments& args) {
+  const fs::path data_dir = find_data_dir(args.data_dir);
+  CommandFiles files;
+  if (fs::exists(data_dir / "demo.glb")) files.add_scene((data_dir / "demo.glb").string());
+  files.add_environment((data_dir / "sky.hdr").string());
+  files.add_output_directory("-o", args.output_dir);
+  for (const char* name : kOutputNames)
+    files.add_output("-o", (fs::path(args.output_dir) / name).string());
+  return files;
+}
+
 void run(const DemoArguments& args) {
   DemoSettings settings;
   if (args.quick) {
@@ -117,13 +129,6 @@ void run(const DemoArguments& args) {
   }
   const fs::path data_dir = find_data_dir(args.data_dir);
   const fs::path out_dir = args.output_dir;
-  CommandFiles files;
-  if (fs::exists(data_dir / "demo.glb")) files.add_scene((data_dir / "demo.glb").string());
-  files.add_environment((data_dir / "sky.hdr").string());
-  files.add_output("-o", args.output_dir);
-  for (const char* name : kOutputNames) files.add_output("-o", (out_dir / name).string());
-  files.check();
-  check_output_directory("-o", args.output_dir);
   std::error_code error;
   fs::create_directories(out_dir, error);
   if (!fs::is_directory(out_dir))
@@ -235,7 +240,7 @@ void run(const DemoArguments& args) {
   std::printf(".\n%s\n", relight::describe_camera(camera_choice).c_str());
 }
 
-void register_demo(CLI::App& app) {
+Command register_demo(CLI::App& app) {
   auto args = std::make_shared<DemoArguments>();
   CLI::App* cmd =
       app.add_subcommand("demo", "Bake and relight the bundled demo scene under the bundled sky");
@@ -244,7 +249,7 @@ void register_demo(CLI::App& app) {
                   "Directory holding demo.glb and sky.hdr (default: ./data, else the source tree)");
   cmd->add_flag("--quick", args->quick, "Fewer samples, lower order, smaller images");
   cmd->add_flag("--quiet", args->quiet, "No progress or summary (warnings still print)");
-  cmd->callback([args] { run(*args); });
+  return {cmd, {}, [args] { return demo_files(*args); }, [args] { run(*args); }};
 }
 
 }  // namespace

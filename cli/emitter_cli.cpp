@@ -1,8 +1,10 @@
 // cli/emitter_cli.cpp — see emitter_cli.h.
 #include "emitter_cli.h"
 
+#include <cctype>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <stdexcept>
 
 #include "command_registry.h"
@@ -54,6 +56,17 @@ void apply_emitter_options(const EmitterRelightArguments& a, relight::RelightReq
   request->max_edge = a.max_edge;
   request->emitters_path = a.emitters;
   request->emitter_colors = parse_colors(a);
+}
+
+void check_responses_file(const std::string& path) {
+  if (prt::is_emitter_responses_file(path)) return;  // read (and checked) by the run
+  std::string ext = std::filesystem::path(path).extension().string();
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  if (ext == ".obj" || ext == ".gltf" || ext == ".glb")
+    throw UsageError("expected SCENE FILE.prt ENVIRONMENT (or an emitter responses file alone)");
+  const prt::Result<prt::EmitterResponses> read = prt::read_emitter_responses(path);
+  throw CommandError(read.ok() ? path + ": not an emitter responses file"
+                               : read.status().message());
 }
 
 bool relight_if_emitter_responses(const relight::RelightRequest& request,

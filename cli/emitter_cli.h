@@ -38,10 +38,20 @@ bool relight_if_emitter_responses(const relight::RelightRequest& request,
 
 namespace prt::cli {
 
-// `prt info FILE.prte [--json | --csv]`: when FILE is a responses file, describes it (text:
+// True when `path` ends in .prte (any case): a file meant to hold emitter responses, read as one
+// (a missing, empty or corrupt one gets the reader's message naming it).
+bool has_responses_extension(const std::string& path);
+
+// `prt info FILE.prte [--json | --csv]`: when FILE is a responses file (by its magic, or by its
+// .prte name: then a corrupt file is reported as such), describes it (text:
 // vertices, triangles, fingerprint, each emitter's name and stored emission; --json the same as
 // one object; --csv one row per vertex: index,x,y,z,nx,ny,nz, then NAME_r,NAME_g,NAME_b per
 // emitter) and returns true; otherwise returns false. Throws CommandError for a corrupt file.
+//
+// `prt relight FILE -o OUT` with FILE alone: check_responses_file throws CommandError with the
+// reader's message ("FILE: truncated: ...") when FILE is not a readable responses file, and
+// UsageError "expected SCENE FILE.prt ENVIRONMENT ..." when FILE is a scene.
+void check_responses_file(const std::string& path);
 bool info_if_emitter_responses(const std::string& path, bool json, bool csv);
 
 }  // namespace prt::cli

@@ -1,5 +1,7 @@
 // cli/emitter_info.cpp — `prt info` for emitter-response files (emitter_cli.h).
+#include <cctype>
 #include <cstdio>
+#include <filesystem>
 
 #include <nlohmann/json.hpp>
 
@@ -35,8 +37,14 @@ void print_csv(const prt::EmitterResponses& d) {
 
 }  // namespace
 
+bool has_responses_extension(const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return ext == ".prte";
+}
+
 bool info_if_emitter_responses(const std::string& path, bool json, bool csv) {
-  if (!prt::is_emitter_responses_file(path)) return false;
+  if (!prt::is_emitter_responses_file(path) && !has_responses_extension(path)) return false;
   prt::Result<prt::EmitterResponses> read = prt::read_emitter_responses(path);
   if (!read.ok()) throw CommandError(read.status().message());
   const prt::EmitterResponses& d = *read;

@@ -236,9 +236,6 @@ FileResult process(const std::string& path, const EnvArguments& args, const Sett
 
 void run(const EnvArguments& args, const CLI::App& cmd) {
   const Settings settings = parse_settings(args, cmd);
-  CommandFiles files;  // no files are written: only stdout must not be an input
-  for (const std::string& file : args.files) files.add_environment(file);
-  files.check();
   std::vector<FileResult> results;
   ProgressReporter progress(args.quiet);
   for (const std::string& file : args.files)
@@ -257,7 +254,7 @@ void run(const EnvArguments& args, const CLI::App& cmd) {
     std::printf("%s%s", i ? "\n" : "", results[i].text.c_str());
 }
 
-void register_env(CLI::App& app) {
+Command register_env(CLI::App& app) {
   auto args = std::make_shared<EnvArguments>();
   CLI::App* cmd = app.add_subcommand(
       "env", "Project environment maps (.hdr, .exr, .pfm) onto spherical harmonics");
@@ -280,7 +277,13 @@ void register_env(CLI::App& app) {
   cmd->add_flag("--json", args->json, "Print JSON (an array when several files are given)");
   cmd->add_flag("--strict", args->strict, "Fail on NaN, Inf or negative texels");
   cmd->add_flag("--quiet", args->quiet, "No progress lines on stderr");
-  cmd->callback([args, cmd] { run(*args, *cmd); });
+  const auto files = [args] {
+    CommandFiles f;  // no files are written: only stdout must not be an input
+    for (const std::string& file : args->files) f.add_environment(file);
+    return f;
+  };
+  return {cmd, [args, cmd] { parse_settings(*args, *cmd); }, files,
+          [args, cmd] { run(*args, *cmd); }};
 }
 
 }  // namespace

@@ -102,8 +102,6 @@ bool is_glossy_file(const std::string& path) {
          (prt::is_glossy_transfer_file(magic, 4) || prt::is_cpca_transfer_file(magic, 4));
 }
 
-namespace {
-
 void check_compress_request(const GlossyCompressRequest& r) {
   if (r.clusters < 1 || r.clusters > 65535)
     throw UsageError("--clusters " + std::to_string(r.clusters) + ": must be in [1, 65535]");
@@ -111,25 +109,48 @@ void check_compress_request(const GlossyCompressRequest& r) {
     throw UsageError("--vectors " + std::to_string(r.vectors) + ": must be in [0, 4096]");
   if (r.max_vectors < 1 || r.max_vectors > 4096)
     throw UsageError("--max-vectors " + std::to_string(r.max_vectors) + ": must be in [1, 4096]");
-  if (!(r.target_error >= 0) || !(r.target_error < 1))
-    throw UsageError("--target-error " + std::to_string(r.target_error) +
+  if (r.target_error_given && !(r.target_error > 0 && r.target_error < 1)) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%g", r.target_error);
+    throw UsageError("--target-error " + std::string(text) +
                      ": must be a relative error in (0, 1)");
-  if (r.max_vectors_given && !(r.target_error > 0))
+  }
+  if (r.max_vectors_given && !r.target_error_given)
     throw UsageError("--max-vectors applies with --target-error only");
   if (r.iterations < 1 || r.iterations > 100)
     throw UsageError("--iterations " + std::to_string(r.iterations) + ": must be in [1, 100]");
   if (r.threads < 0) throw UsageError("--threads " + std::to_string(r.threads) + ": must be >= 0");
-  check_output_file("-o", r.output, {".prtq"}, "a CPCA file");
+}
+
+CommandFiles compress_files(const GlossyCompressRequest& r) {
   CommandFiles files;
   files.add_input("glossy transfer file", r.input);
-  files.add_output("-o", r.output);
-  files.check();
+  files.add_output_file("-o", r.output, {".prtq"}, "a CPCA file");
+  return files;
 }
+
+namespace {
 
 unsigned long long file_bytes(const std::string& path) {
   std::error_code ec;
   const auto bytes = std::filesystem::file_size(path, ec);
   return ec ? 0ull : static_cast<unsigned long long>(bytes);
+}
+
+// More principal vectors than a vertex's matrices have entries (D) cannot lower the error, only
+// grow the file: refused by name when asked for, the default --max-vectors capped at D.
+uint32_t check_vectors_fit(const GlossyCompressRequest& r, const prt::GlossyTransferData& data) {
+  const uint64_t d = uint64_t(data.channels) * data.order * data.order * data.order * data.order;
+  const std::string why = " for " + r.input + " (order " + std::to_string(data.order) + ", " +
+                          std::to_string(data.channels) + " channel(s): each vertex's matrices " +
+                          "have " + std::to_string(d) + " entries)";
+  if (!r.target_error_given && uint64_t(r.vectors) > d)
+    throw UsageError("--vectors " + std::to_string(r.vectors) + ": at most " + std::to_string(d) +
+                     why);
+  if (r.max_vectors_given && uint64_t(r.max_vectors) > d)
+    throw UsageError("--max-vectors " + std::to_string(r.max_vectors) + ": at most " +
+                     std::to_string(d) + why);
+  return static_cast<uint32_t>(std::min<uint64_t>(uint64_t(r.max_vectors), d));
 }
 
 }  // namespace
@@ -140,11 +161,12 @@ void run_glossy_compress(const GlossyCompressRequest& r) {
   prt::Result<prt::GlossyTransferData> read = prt::read_glossy_transfer_file(r.input);
   if (!read.ok()) throw CommandError(read.status().message());
   prt::GlossyTransferData data = std::move(read).value();
+  const uint32_t max_vectors = check_vectors_fit(r, data);
   prt::CpcaOptions o;
   o.clusters = static_cast<uint32_t>(r.clusters);
   o.vectors = static_cast<uint32_t>(r.vectors);
-  o.target_relative_rms = r.target_error;
-  o.max_vectors = static_cast<uint32_t>(r.max_vectors);
+  o.target_relative_rms = r.target_error_given ? r.target_error : 0.0;
+  o.max_vectors = max_vectors;
   o.iterations = static_cast<uint32_t>(r.iterations);
   o.seed = r.seed;
   o.threads =

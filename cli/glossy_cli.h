@@ -16,6 +16,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "output_safety.h"
 #include "scene/scene.h"
 
 namespace prt::cli {
@@ -40,18 +41,24 @@ struct GlossyCompressRequest {
   int vectors = 16;
   double target_error = 0;  // > 0: choose K (prt::CpcaOptions::target_relative_rms)
   int max_vectors = 32;
-  std::string metric = "relit";    // "relit" (bake/cpca/relit_metric.h) or "matrix" (plain)
-  bool max_vectors_given = false;  // refused without target_error
+  std::string metric = "relit";     // "relit" (bake/cpca/relit_metric.h) or "matrix" (plain)
+  bool max_vectors_given = false;   // refused without target_error
+  bool target_error_given = false;  // then target_error must be in (0, 1)
   int iterations = 6;
   uint64_t seed = 1;
   int threads = 0;  // 0: std::thread::hardware_concurrency()
   bool quiet = false;
 };
 
-// `prt compress`: checks the values and files (UsageError before anything is read), reads the
-// glossy file, compresses it, writes the .prtq atomically with a source section (geometry,
-// frames, materials) and reports sizes and the errors (plain matrix, and relit metric when
-// that was used). Throws UsageError / CommandError.
+// `prt compress`: check_compress_request refuses bad values (UsageError, before anything is
+// read); compress_files declares the input and the .prtq (checked by main). The run reads the
+// glossy file, refuses --vectors / --max-vectors beyond its matrices' dimension D =
+// channels·order⁴ (more vectors than that cannot lower the error, only grow the file), compresses
+// it, writes the .prtq atomically with a source section (geometry, frames, materials) and reports
+// sizes and the errors (plain matrix, and relit metric when that was used). Throws UsageError /
+// CommandError.
+void check_compress_request(const GlossyCompressRequest& request);
+CommandFiles compress_files(const GlossyCompressRequest& request);
 void run_glossy_compress(const GlossyCompressRequest& request);
 
 // Options of `prt bake` that do not apply with --glossy, refused by name (`cmd` counts them).

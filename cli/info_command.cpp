@@ -211,9 +211,6 @@ void print_csv(const prt::CoefficientFile& f) {
 void run(const InfoArguments& args) {
   if (is_scene_path(args.file)) return print_scene(args);
   if (!args.materials.empty()) throw UsageError("--material applies to scenes only");
-  CommandFiles files;  // no files are written: only stdout must not be the input
-  files.add_input("coefficient file", args.file);
-  files.check();
   if (is_glossy_file(args.file)) return describe_glossy_file(args.file, args.json, args.csv);
   if (info_if_emitter_responses(args.file, args.json, args.csv)) return;
   prt::Result<prt::CoefficientFile> read = prt::read_coefficient_file(args.file);
@@ -230,7 +227,7 @@ void run(const InfoArguments& args) {
     print_text(f, j);
 }
 
-void register_info(CLI::App& app) {
+Command register_info(CLI::App& app) {
   auto args = std::make_shared<InfoArguments>();
   CLI::App* cmd =
       app.add_subcommand("info", "Describe a coefficient (.prt) file, or a scene's materials");
@@ -241,7 +238,15 @@ void register_info(CLI::App& app) {
   add_material_option(*cmd, args->materials);
   CLI::Option* json = cmd->add_flag("--json", args->json, "Print the header and metadata as JSON");
   cmd->add_flag("--csv", args->csv, "Print one CSV row per vertex")->excludes(json);
-  cmd->callback([args] { run(*args); });
+  const auto files = [args] {
+    CommandFiles f;  // no files are written: only stdout must not be the input
+    if (is_scene_path(args->file))
+      f.add_scene(args->file);
+    else
+      f.add_input("coefficient file", args->file);
+    return f;
+  };
+  return {cmd, {}, files, [args] { run(*args); }};
 }
 
 }  // namespace

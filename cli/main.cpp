@@ -5,10 +5,12 @@
 // wrong: a parse error of CLI11 (unknown option, missing argument, a value of the wrong type),
 // an option value out of range, options that do not apply together, or an output that names
 // an input or another output (UsageError). Every failure prints one line on stderr:
-// "prt SUBCOMMAND: problem".
+// "prt SUBCOMMAND: problem". Every subcommand runs as command_registry.h says: its optional
+// check, then CommandFiles::check() of the files it declares, then its work.
 #include <algorithm>
 #include <cstdio>
 #include <exception>
+#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
@@ -48,6 +50,32 @@ bool register_command(int order, CommandRegistration registration) {
   registry().emplace_back(order, std::move(registration));
   return true;
 }
+
+// Adds every registered subcommand to `app`; a registration that does not declare its files
+// and its work is a programming error, refused before anything runs.
+std::vector<Command> add_commands(CLI::App& app) {
+  auto& commands = registry();
+  std::stable_sort(commands.begin(), commands.end(),
+                   [](const auto& a, const auto& b) { return a.first < b.first; });
+  std::vector<Command> added;
+  for (auto& [order, registration] : commands) {
+    Command command = registration(app);
+    if (command.app == nullptr || !command.files || !command.run)
+      throw std::logic_error("a subcommand was registered without its files or its work");
+    added.push_back(std::move(command));
+  }
+  return added;
+}
+
+// The chosen subcommand: its check, its files checked, then its work.
+void run_chosen(const std::vector<Command>& commands) {
+  for (const Command& command : commands) {
+    if (command.app->count() == 0) continue;
+    if (command.check) command.check();
+    command.files().check();
+    command.run();
+  }
+}
 }  // namespace prt::cli
 
 int main(int argc, char** argv) {
@@ -56,13 +84,11 @@ int main(int argc, char** argv) {
   CLI::App app{"prt — precomputed radiance transfer: bake, relight, report"};
   app.set_version_flag("--version", std::string("prt ") + PRT_VERSION);
   app.require_subcommand(1);
-  auto& commands = prt::cli::registry();
-  std::stable_sort(commands.begin(), commands.end(),
-                   [](const auto& a, const auto& b) { return a.first < b.first; });
-  for (auto& [order, registration] : commands) registration(app);
+  const std::vector<prt::cli::Command> commands = prt::cli::add_commands(app);
 
   try {
     app.parse(argc, argv);
+    prt::cli::run_chosen(commands);
   } catch (const CLI::ParseError& e) {
     if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
     const std::string name = command_name(app);

@@ -22,7 +22,7 @@
 namespace prt::cli {
 namespace {
 
-void register_make_scene(CLI::App& app) {
+Command register_make_scene(CLI::App& app) {
   CLI::App* command = app.add_subcommand(
       "make-scene",
       "Write the demo scene (ground, red and green walls, sphere, box, camera) as .glb");
@@ -34,8 +34,12 @@ void register_make_scene(CLI::App& app) {
                    "demo (diffuse) or glossy (glossy sphere, brushed-metal disc, rough gold box "
                    "on a diffuse floor; glTF PBR materials with anisotropy and tangents)")
       ->check(CLI::IsMember({"demo", "glossy"}));
-  command->callback([output, which] {
-    check_output_file("-o", *output, {".glb"}, "a binary glTF");
+  const auto files = [output] {
+    CommandFiles f;
+    f.add_output_file("-o", *output, {".glb"}, "a binary glTF");
+    return f;
+  };
+  const auto run = [output, which] {
     const bool glossy = *which == "glossy";
     const scene::Scene scene = glossy ? scene::make_glossy_scene() : scene::make_demo_scene();
     scene::write_glb(*output, scene);  // throws SceneError("PATH: problem")
@@ -45,7 +49,8 @@ void register_make_scene(CLI::App& app) {
     if (glossy)
       for (const std::string& line : scene::describe_materials(scene))
         std::printf("  %s\n", line.c_str());
-  });
+  };
+  return {command, {}, files, run};
 }
 
 }  // namespace

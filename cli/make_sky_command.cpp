@@ -54,7 +54,6 @@ void check_parameters(const MakeSkyArguments& args) {
 
 void run(const MakeSkyArguments& args) {
   check_parameters(args);
-  check_output_file("-o", args.output, {".hdr", ".exr"}, "an HDR image");
   const relight::SkyParams& p = args.params;
   const prt::sh::EnvMap sky = relight::make_procedural_sky(args.width, args.height, p);
   relight::write_image(args.output, sky.width, sky.height, 3, sky.rgb.data());
@@ -68,7 +67,7 @@ void run(const MakeSkyArguments& args) {
       sun[1], sun[2], L[0] * prt::sh::kY00, L[1] * prt::sh::kY00, L[2] * prt::sh::kY00);
 }
 
-void register_make_sky(CLI::App& app) {
+Command register_make_sky(CLI::App& app) {
   auto args = std::make_shared<MakeSkyArguments>();
   CLI::App* cmd = app.add_subcommand("make-sky", "Write the analytic HDR sky (lat-long map)");
   cmd->add_option("-o,--output", args->output, "Output image (.hdr or .exr)")->required();
@@ -90,7 +89,12 @@ void register_make_sky(CLI::App& app) {
       ->default_val(p.glow_width_deg);
   cmd->add_option("--supersampling", p.supersampling, "Sub-samples per texel along each axis")
       ->default_val(p.supersampling);
-  cmd->callback([args] { run(*args); });
+  const auto files = [args] {
+    CommandFiles f;
+    f.add_output_file("-o", args->output, {".hdr", ".exr"}, "an HDR image");
+    return f;
+  };
+  return {cmd, [args] { check_parameters(*args); }, files, [args] { run(*args); }};
 }
 
 }  // namespace

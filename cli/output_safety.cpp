@@ -80,7 +80,7 @@ bool same_file(const std::string& a, const std::string& b) {
 }
 
 void CommandFiles::add_input(const std::string& role, const std::string& path, bool required) {
-  if (!path.empty()) inputs_.push_back({role, path, required});
+  if (!path.empty()) inputs_.push_back({role, path, required, Named::Kind::Plain, {}, ""});
 }
 
 void CommandFiles::add_inputs(const std::string& role, const std::vector<std::string>& paths) {
@@ -99,7 +99,17 @@ void CommandFiles::add_environment(const std::string& environment_path) {
 }
 
 void CommandFiles::add_output(const std::string& option, const std::string& path) {
-  if (!path.empty()) outputs_.push_back({option, path, false});
+  if (!path.empty()) outputs_.push_back({option, path, false, Named::Kind::Plain, {}, ""});
+}
+
+void CommandFiles::add_output_file(const std::string& option, const std::string& path,
+                                   const std::vector<std::string>& extensions,
+                                   const std::string& what) {
+  if (!path.empty()) outputs_.push_back({option, path, false, Named::Kind::File, extensions, what});
+}
+
+void CommandFiles::add_output_directory(const std::string& option, const std::string& path) {
+  if (!path.empty()) outputs_.push_back({option, path, false, Named::Kind::Directory, {}, ""});
 }
 
 void CommandFiles::check() const {
@@ -134,6 +144,12 @@ void CommandFiles::check() const {
       if (inputs[i].exists && inputs[i].device == out.st_dev && inputs[i].inode == out.st_ino)
         throw UsageError("stdout is the same file as the " + inputs_[i].label + " " +
                          inputs_[i].path + " (an output never overwrites an input)");
+  for (const Named& output : outputs_) {
+    if (output.kind == Named::Kind::File)
+      check_output_file(output.label, output.path, output.extensions, output.what);
+    else if (output.kind == Named::Kind::Directory)
+      check_output_directory(output.label, output.path);
+  }
 }
 
 void check_output_file(const std::string& option, const std::string& path,

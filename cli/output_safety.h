@@ -34,6 +34,15 @@ class CommandFiles {
   void add_input(const std::string& role, const std::string& path, bool required = true);
   void add_inputs(const std::string& role, const std::vector<std::string>& paths);
   void add_output(const std::string& option, const std::string& path);
+  // (Nothing is declared for an empty path: an optional output not asked for.)
+  // An output file that check() also checks can be written (check_output_file: not a folder,
+  // its folder exists and is writable, its extension is one of `extensions` when given).
+  void add_output_file(const std::string& option, const std::string& path,
+                       const std::vector<std::string>& extensions = {},
+                       const std::string& what = "");
+  // An output folder, checked as check_output_directory does; the files the command writes in
+  // it are declared with add_output.
+  void add_output_directory(const std::string& option, const std::string& path);
   // A scene and every file it refers to (input_files.h): roles "scene" and "file read by the
   // scene SCENE".
   void add_scene(const std::string& scene_path);
@@ -43,13 +52,17 @@ class CommandFiles {
   // Throws CommandError "PATH: no such file" or "PATH: is a directory, not a file" for a
   // required input; then UsageError when an output is the same file as an input or as an
   // earlier output, or when stdout is redirected to one of the inputs
-  // (`prt info s.prt --csv >> s.prt`).
+  // (`prt info s.prt --csv >> s.prt`); then checks the outputs declared by add_output_file and
+  // add_output_directory. main runs it before every command's work (command_registry.h).
   void check() const;
 
  private:
   struct Named {
     std::string label, path;
     bool required = true;
+    enum class Kind { Plain, File, Directory } kind = Kind::Plain;
+    std::vector<std::string> extensions;
+    std::string what;
   };
   std::vector<Named> inputs_, outputs_;
 };

@@ -1,5 +1,10 @@
 // `prt radiosity SCENE -o OUT [...]`: light a scene by its own emitters (diffuse radiosity,
 // radiosity/scene_solve.h) and draw the solution (relight/radiosity_render.h).
+//
+// Every value and combination of the command line is checked before any file is read
+// (check_request: UsageError, exit 2), the files by main (radiosity_files, output_safety.h);
+// options that the run would ignore are refused by name (option_rules.h).
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <memory>
@@ -7,9 +12,13 @@
 #include <string>
 #include <vector>
 
+#include <filesystem>
+#include <stdexcept>
+
 #include <CLI/CLI.hpp>
 
 #include "command_registry.h"
+#include "option_rules.h"
 #include "radiosity/scene_solve.h"
 #include "relight/auto_exposure.h"
 #include "relight/radiosity_render.h"
@@ -38,7 +47,7 @@ struct RadiosityArguments {
   int quadrature = 3;
   int hemicube = 64;
   std::size_t max_iterations = 100000;
-  std::optional<float> exposure;
+  std::optional<double> exposure;
   std::string size = "960x540";
   int spp = 3;
   std::string camera = "auto";
@@ -50,7 +59,7 @@ void parse_size(const std::string& text, relight::RenderOptions* render) {
   char x = 0, extra = 0;
   if (std::sscanf(text.c_str(), "%d%c%d%c", &w, &x, &h, &extra) != 3 || (x != 'x' && x != 'X') ||
       w < 1 || h < 1 || w > 16384 || h > 16384)
-    throw CommandError("--size " + text + ": expected WIDTHxHEIGHT, each side in 1..16384");
+    throw UsageError("--size " + text + ": expected WIDTHxHEIGHT, each side in 1..16384");
   render->width = w;
   render->height = h;
 }
@@ -68,20 +77,18 @@ radiosity::SceneSolveRequest make_solve_request(const RadiosityArguments& a) {
   for (const std::string& m : a.moves) r.moves.push_back(radiosity::parse_object_move(m));
   if (a.adaptive) {  // --adaptive T: patch refinement
     if (!(*a.adaptive > 0.0) || !std::isfinite(*a.adaptive))
-      throw CommandError("--adaptive " + std::to_string(*a.adaptive) +
-                         ": the threshold must be a finite positive number");
+      throw UsageError("--adaptive " + std::to_string(*a.adaptive) +
+                       ": the threshold must be a finite positive number");
     if (a.adaptive_passes < 1 || a.adaptive_passes > 32)
-      throw CommandError("--adaptive-passes: must be in 1..32");
+      throw UsageError("--adaptive-passes: must be in 1..32");
     radiosity::PatchRefinementOptions o;
     o.threshold = *a.adaptive;
     o.max_patches = a.max_patches;
     o.max_passes = a.adaptive_passes;
     if (a.adaptive_levels < 1 || a.adaptive_levels > 16)
-      throw CommandError("--adaptive-levels: must be in 1..16");
+      throw UsageError("--adaptive-levels: must be in 1..16");
     o.max_levels = a.adaptive_levels;
     r.refinement = o;
-  } else if (a.max_patches != 0) {
-    throw CommandError("--max-patches: only with --adaptive");
   }
   if (a.form_factors == "auto") {
     r.choose_method = true;  // by the patch count (radiosity::choose_form_factors)
@@ -92,8 +99,8 @@ radiosity::SceneSolveRequest make_solve_request(const RadiosityArguments& a) {
   } else if (a.form_factors == "hemicube") {
     r.form_factors.method = radiosity::FormFactorMethod::Hemicube;
   } else {
-    throw CommandError("--form-factors " + a.form_factors +
-                       ": expected auto|analytic|rays|hemicube");
+    throw UsageError("--form-factors " + a.form_factors +
+                     ": expected auto|analytic|rays|hemicube");
   }
   if (a.solver == "gauss-seidel") {
     r.solve.solver = radiosity::SolverKind::GaussSeidel;
@@ -102,32 +109,32 @@ radiosity::SceneSolveRequest make_solve_request(const RadiosityArguments& a) {
   } else if (a.solver == "progressive") {
     r.solve.solver = radiosity::SolverKind::Progressive;
   } else {
-    throw CommandError("--solver " + a.solver + ": expected gauss-seidel|jacobi|progressive");
+    throw UsageError("--solver " + a.solver + ": expected gauss-seidel|jacobi|progressive");
   }
-  if (a.rays < 1 || a.rays > 1 << 24) throw CommandError("--rays: must be in 1..16777216");
-  if (a.quadrature != 1 && a.quadrature != 3) throw CommandError("--quadrature: must be 1 or 3");
+  if (a.rays < 1 || a.rays > 1 << 24) throw UsageError("--rays: must be in 1..16777216");
+  if (a.quadrature != 1 && a.quadrature != 3) throw UsageError("--quadrature: must be 1 or 3");
   if (a.hemicube < 2 || a.hemicube > 4096 || a.hemicube % 2 != 0)
-    throw CommandError("--hemicube: must be even, 2..4096");
+    throw UsageError("--hemicube: must be even, 2..4096");
   r.form_factors.rays_per_patch = a.rays;
   r.form_factors.seed = a.seed;
   if (a.emitter_rays < 0 || a.emitter_rays > 1 << 24)
-    throw CommandError("--emitter-rays: must be in 0..16777216");
+    throw UsageError("--emitter-rays: must be in 0..16777216");
   r.form_factors.emitter_rays_per_patch = a.emitter_rays;
   if (a.ray_sampling == "sobol") {
     r.form_factors.sampling = radiosity::RaySampling::Sobol;
   } else if (a.ray_sampling == "independent") {
     r.form_factors.sampling = radiosity::RaySampling::Independent;
   } else {
-    throw CommandError("--ray-sampling " + a.ray_sampling + ": expected sobol|independent");
+    throw UsageError("--ray-sampling " + a.ray_sampling + ": expected sobol|independent");
   }
   if (a.emitter_rows == "rays" || (a.emitter_rows == "auto" && a.emitter_rays > 0)) {
     r.form_factors.emitter_rows = radiosity::EmitterRows::Rays;
   } else if (a.emitter_rows == "reciprocal" || a.emitter_rows == "auto") {
     if (a.emitter_rays > 0)
-      throw CommandError("--emitter-rays: not with --emitter-rows reciprocal (no emitter rays)");
+      throw UsageError("--emitter-rays: not with --emitter-rows reciprocal (no emitter rays)");
     r.form_factors.emitter_rows = radiosity::EmitterRows::Reciprocal;
   } else {
-    throw CommandError("--emitter-rows " + a.emitter_rows + ": expected auto|rays|reciprocal");
+    throw UsageError("--emitter-rows " + a.emitter_rows + ": expected auto|rays|reciprocal");
   }
   r.form_factors.hemicube_resolution = a.hemicube;
   r.form_factors.quadrature_points = a.quadrature;
@@ -142,12 +149,82 @@ relight::RadiosityRenderRequest make_render_request(const RadiosityArguments& a)
   r.output_path = a.output;
   r.vertex_colors_path = a.vertex_colors;
   r.csv_path = a.csv;
-  r.exposure_ev = a.exposure;
+  if (a.exposure) r.exposure_ev = float(*a.exposure);
   parse_size(a.size, &r.render);
-  if (a.spp < 1 || a.spp > 16) throw CommandError("--spp: must be in 1..16 (N×N per pixel)");
+  if (a.spp < 1 || a.spp > 16) throw UsageError("--spp: must be in 1..16 (N×N per pixel)");
   r.render.samples_per_axis = a.spp;
   r.camera = a.camera;
   return r;
+}
+
+std::string lower_extension(const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return ext;
+}
+
+// Options that the run would ignore, refused by name (option_rules.h).
+void check_applicable(const RadiosityArguments& a, const CLI::App& cmd) {
+  const bool rays = a.form_factors == "rays";
+  refuse_unless(cmd, rays,
+                {"--rays", "--emitter-rays", "--ray-sampling", "--emitter-rows", "--seed"},
+                "--form-factors rays");
+  refuse_unless(cmd, a.form_factors == "hemicube", {"--hemicube"}, "--form-factors hemicube");
+  const bool reciprocal_rows =
+      rays && (a.emitter_rows == "reciprocal" || (a.emitter_rows == "auto" && a.emitter_rays == 0));
+  refuse_unless(cmd, a.form_factors == "analytic" || reciprocal_rows, {"--quadrature"},
+                "--form-factors analytic and the reciprocal emitter rows of --form-factors rays");
+  refuse_unless(cmd, a.adaptive.has_value(),
+                {"--max-patches", "--adaptive-passes", "--adaptive-levels"}, "--adaptive");
+  refuse_unless(cmd, !a.output.empty(), {"--size", "--spp", "--camera", "--exposure"},
+                "an image (-o IMAGE)");
+  refuse_unless(cmd, lower_extension(a.output) == ".png", {"--exposure"},
+                ".png output (.exr and .hdr are written linear)");
+}
+
+// Every value and combination of the command line, before any file is read. The solve's own
+// request checks (radiosity::check_scene_solve) report a wrong option as invalid_argument: a
+// UsageError here.
+void check_request(const RadiosityArguments& a, const CLI::App& cmd) {
+  check_applicable(a, cmd);
+  if (a.exposure) check_exposure(*a.exposure, cmd.get_option("--exposure")->as<std::string>());
+  if (a.max_iterations < 1)
+    throw UsageError("--max-iterations " + std::to_string(a.max_iterations) +
+                     ": must be at least 1");
+  if (!a.per_emitter.empty() && lower_extension(a.per_emitter) != ".prte")
+    throw UsageError("--per-emitter " + a.per_emitter +
+                     ": expected an emitter responses file (.prte)");
+  try {
+    const radiosity::SceneSolveRequest solve = make_solve_request(a);
+    for (const scene::MaterialColour& c : solve.albedo)
+      if (c.rgb[0] >= 1.f || c.rgb[1] >= 1.f || c.rgb[2] >= 1.f)
+        throw UsageError("--albedo " + c.name + "=" + c.value +
+                         ": every component must be below 1 (energy conservation)");
+    const relight::RadiosityRenderRequest draw = make_render_request(a);
+    if (draw.output_path.empty() && draw.vertex_colors_path.empty() && draw.csv_path.empty() &&
+        solve.per_emitter_path.empty())
+      throw UsageError("nothing to write: give -o IMAGE, --vertex-colors, --csv or --per-emitter");
+    radiosity::check_scene_solve(solve, {draw.output_path, draw.vertex_colors_path, draw.csv_path});
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(e.what());
+  }
+}
+
+// What the run reads and writes; the form-factor cache is an input when it exists (reused) and
+// an output when it does not (saved).
+CommandFiles radiosity_files(const RadiosityArguments& a) {
+  CommandFiles files;
+  files.add_scene(a.scene);
+  std::error_code ec;
+  if (!a.form_factor_cache.empty() && std::filesystem::exists(a.form_factor_cache, ec))
+    files.add_input("form-factor cache", a.form_factor_cache);
+  else
+    files.add_output_file("--form-factor-cache", a.form_factor_cache);
+  files.add_output_file("-o", a.output, {".exr", ".hdr", ".png"}, "an image");
+  files.add_output_file("--vertex-colors", a.vertex_colors, {".glb"}, "a binary glTF");
+  files.add_output_file("--csv", a.csv, {".csv"});
+  files.add_output_file("--per-emitter", a.per_emitter, {".prte"}, "emitter responses");
+  return files;
 }
 
 struct RadiosityRun {
@@ -156,27 +233,46 @@ struct RadiosityRun {
   relight::CameraChoice camera;
 };
 
-// Checks every output, solves (the camera resolved on the patch scene before the solve, so
-// that a bad one fails first), then draws the solution.
+// Solves (the camera resolved on the patch scene before the solve, so that a bad one fails
+// first), then draws the solution. A request that is wrong for this scene (a name it does not
+// have, a move far outside it, an edge length that makes too many patches) is the command
+// line's fault: UsageError.
 RadiosityRun solve_and_render(const RadiosityArguments& args) {
   const radiosity::SceneSolveRequest solve = make_solve_request(args);
   const relight::RadiosityRenderRequest draw = make_render_request(args);
-  if (draw.output_path.empty() && draw.vertex_colors_path.empty() && draw.csv_path.empty() &&
-      solve.per_emitter_path.empty())
-    throw CommandError("nothing to write: give -o IMAGE, --vertex-colors, --csv or --per-emitter");
-  radiosity::check_scene_solve(solve, {draw.output_path, draw.vertex_colors_path, draw.csv_path});
-  relight::check_radiosity_outputs(draw);
   RadiosityRun run;
-  run.solution = radiosity::solve_scene(solve, [&](const scene::Scene& patch_scene) {
-    run.camera = relight::radiosity_camera(draw, patch_scene);
-  });
+  try {
+    run.solution = radiosity::solve_scene(solve, [&](const scene::Scene& patch_scene) {
+      if (!draw.output_path.empty()) run.camera = relight::radiosity_camera(draw, patch_scene);
+    });
+  } catch (const radiosity::RequestError& e) {
+    throw UsageError(e.what());
+  }
   run.render = relight::render_radiosity(draw, run.solution.scene, run.solution.vertex_radiance,
                                          run.camera.camera);
   return run;
 }
 
+// An unconverged solve is a warning on stderr, which --quiet does not silence.
+void warn_unconverged(const RadiosityArguments& args, const radiosity::SceneSolution& s) {
+  if (!s.solution.converged)
+    std::fprintf(stderr,
+                 "prt radiosity: %s: warning: the solve stopped after %zu %s with %.3g of the "
+                 "emitted power unshot (--tolerance %g): raise --max-iterations to converge\n",
+                 args.scene.c_str(), s.solution.iterations,
+                 args.solver == "progressive" ? "shots" : "sweeps", s.solution.relative_unshot,
+                 args.tolerance);
+  for (const radiosity::EmitterSolveReport& r : s.emitter_reports)
+    if (!r.converged)
+      std::fprintf(stderr,
+                   "prt radiosity: %s: warning: the response of emitter %s stopped after %zu "
+                   "sweeps with %.3g unshot: raise --max-iterations to converge\n",
+                   args.scene.c_str(), r.name.c_str(), r.iterations, r.relative_unshot);
+}
+
 void run(const RadiosityArguments& args) {
   const RadiosityRun result = solve_and_render(args);
+  warn_unconverged(args, result.solution);
   if (args.quiet) return;
   const radiosity::SceneSolution& s = result.solution;
   const radiosity::Solution& solution = s.solution;
@@ -228,7 +324,7 @@ void run(const RadiosityArguments& args) {
   std::printf("\n");
 }
 
-void register_radiosity(CLI::App& app) {
+Command register_radiosity(CLI::App& app) {
   auto args = std::make_shared<RadiosityArguments>();
   CLI::App* cmd = app.add_subcommand(
       "radiosity", "Light a scene by its own emitters (diffuse radiosity) and render it");
@@ -307,7 +403,8 @@ void register_radiosity(CLI::App& app) {
   cmd->add_option("--camera", args->camera, "auto | NAME | ex,ey,ez,tx,ty,tz,ux,uy,uz,fov_deg")
       ->capture_default_str();
   cmd->add_flag("--quiet", args->quiet, "Print nothing on success");
-  cmd->callback([args] { run(*args); });
+  return {cmd, [args, cmd] { check_request(*args, *cmd); },
+          [args] { return radiosity_files(*args); }, [args] { run(*args); }};
 }
 
 }  // namespace

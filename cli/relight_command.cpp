@@ -164,8 +164,8 @@ void check_options(const RelightArguments& args, const CLI::App& cmd) {
                      " holds Haar wavelets");
 }
 
-// Every output can be written and none overwrites an input or another output.
-void check_files(const RelightArguments& args) {
+// What the run reads and writes (checked by main before the run, command_registry.h).
+CommandFiles relight_files(const RelightArguments& args) {
   CommandFiles files;
   if (args.transfer.empty()) {  // a responses file alone
     files.add_input("emitter responses", args.scene);
@@ -178,17 +178,14 @@ void check_files(const RelightArguments& args) {
   }
   if (args.turntable > 0) {
     for (int frame = 0; frame < args.turntable; ++frame)
-      files.add_output("--turntable frame", relight::turntable_frame_path(args.output, frame));
+      files.add_output_file("--turntable frame", relight::turntable_frame_path(args.output, frame),
+                            {".exr", ".hdr", ".png"}, "an image");
   } else {
-    files.add_output("-o", args.output);
+    files.add_output_file("-o", args.output, {".exr", ".hdr", ".png"}, "an image");
   }
-  files.add_output("--vertex-colors", args.vertex_colors);
-  files.add_output("--csv", args.csv);
-  files.check();
-  check_output_file("-o", args.output, {".exr", ".hdr", ".png"}, "an image");
-  if (!args.vertex_colors.empty())
-    check_output_file("--vertex-colors", args.vertex_colors, {".glb"}, "a binary glTF");
-  if (!args.csv.empty()) check_output_file("--csv", args.csv, {".csv"});
+  files.add_output_file("--vertex-colors", args.vertex_colors, {".glb"}, "a binary glTF");
+  files.add_output_file("--csv", args.csv, {".csv"});
+  return files;
 }
 
 // What to say about vertices with a negative channel (SH ringing), true for the window used.
@@ -204,16 +201,24 @@ void check_responses_alone(const RelightArguments& args, const CLI::App& cmd) {
     throw UsageError(args.scene + " holds emitter responses: give it alone (prt relight " +
                      "RESPONSES.prte -o OUT), or add it to an SH relight with --emitters");
   for (const char* option : {"--layout", "--rotate", "--window", "--window-strength", "--turntable",
-                             "--terms", "--approx", "--material"})
+                             "--terms", "--approx", "--material", "--eye", "--turntable-orbit"})
     if (cmd.count(option) > 0)
       throw UsageError(std::string(option) +
                        " does not apply to emitter responses (no "
                        "environment lighting)");
 }
 
-void run(const RelightArguments& args, const CLI::App& cmd) {
-  const bool responses = prt::is_emitter_responses_file(args.scene);
-  if (responses) {
+// The command line, before the files are checked: the mode (a responses file alone, or SCENE
+// FILE ENV) and the options that apply to it. A lone argument that is missing is left to the
+// file check ("no such file"); one that is not a readable responses file is named with its
+// problem (exit 1).
+void check_usage(const RelightArguments& args, const CLI::App& cmd) {
+  if (args.transfer.empty() && args.environment.empty()) {
+    std::error_code ec;
+    if (!std::filesystem::exists(args.scene, ec)) return;
+    check_responses_file(args.scene);
+    check_responses_alone(args, cmd);
+  } else if (prt::is_emitter_responses_file(args.scene)) {
     check_responses_alone(args, cmd);
   } else if (args.transfer.empty() || args.environment.empty()) {
     throw UsageError("expected SCENE FILE.prt ENVIRONMENT (or an emitter responses file alone)");
@@ -223,7 +228,10 @@ void run(const RelightArguments& args, const CLI::App& cmd) {
                      "or add it to an SH relight with --emitters");
   }
   check_options(args, cmd);
-  check_files(args);
+}
+
+void run(const RelightArguments& args) {
+  const bool responses = prt::is_emitter_responses_file(args.scene);
   const std::vector<scene::MaterialOverride> overrides = parse_material_options(args.materials);
   relight::RelightRequest request;
   request.scene_path = args.scene;
@@ -293,7 +301,7 @@ void run(const RelightArguments& args, const CLI::App& cmd) {
   std::printf("\n");
 }
 
-void register_relight(CLI::App& app) {
+Command register_relight(CLI::App& app) {
   auto args = std::make_shared<RelightArguments>();
   CLI::App* cmd =
       app.add_subcommand("relight", "Shade a baked scene under an environment map and render it");
@@ -361,10 +369,11 @@ void register_relight(CLI::App& app) {
   cmd->add_flag("--quiet", args->quiet, "No summary (warnings still go to stderr)");
   add_haar_relight_options(cmd, &args->haar);
   add_emitter_relight_options(cmd, &args->emitters);
-  cmd->callback([args, cmd] {
+  const auto check = [args, cmd] {
     args->exposure_given = cmd->count("--exposure") > 0;
-    run(*args, *cmd);
-  });
+    check_usage(*args, *cmd);
+  };
+  return {cmd, check, [args] { return relight_files(*args); }, [args] { run(*args); }};
 }
 
 }  // namespace

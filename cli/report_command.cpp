@@ -178,19 +178,19 @@ void check_options(const ReportArguments& a, const CLI::App& cmd) {
 }
 
 // The output folder, and every file the run would write there, against the inputs.
-void check_files(const ReportArguments& a) {
+CommandFiles report_files(const ReportArguments& a) {
+  if (a.sun.enabled) return sun_study_files(a.output);
   CommandFiles files;
   if (!a.scene.empty()) files.add_scene(a.scene);
   if (!a.environment.empty()) files.add_environment(a.environment);
-  files.add_output("-o", a.output);
+  files.add_output_directory("-o", a.output);
   const std::vector<std::string> names = a.glossy      ? prt::report::glossy_report_file_names()
                                          : a.stability ? prt::report::stability_file_names()
                                          : a.radiosity ? prt::report::radiosity_report_file_names()
                                                        : prt::report::report_file_names();
   for (const std::string& name : names)
     files.add_output("-o", (std::filesystem::path(a.output) / name).string());
-  files.check();
-  check_output_directory("-o", a.output);
+  return files;
 }
 
 std::optional<std::vector<double>> parse_max_edges(const std::string& text) {
@@ -272,14 +272,15 @@ std::string other_mode_argument(const ReportArguments& a, const CLI::App& cmd) {
   return "";
 }
 
-void run(const ReportArguments& a, const CLI::App& cmd) {
-  if (a.sun.enabled) {
-    run_sun_study_mode(a.sun, a.output, a.quick, a.quiet, other_mode_argument(a, cmd));
-    return;
-  }
+// The command line, before the files are checked.
+void check_usage(const ReportArguments& a, const CLI::App& cmd) {
+  if (a.sun.enabled) return check_sun_study_mode(a.sun, other_mode_argument(a, cmd));
   refuse_sun_study_options(cmd);
   check_options(a, cmd);
-  check_files(a);
+}
+
+void run(const ReportArguments& a) {
+  if (a.sun.enabled) return run_sun_study_mode(a.sun, a.output, a.quick, a.quiet);
   if (a.glossy) {
     run_glossy_report_command(glossy_request(a));
     return;
@@ -312,7 +313,7 @@ void run(const ReportArguments& a, const CLI::App& cmd) {
   for (const std::string& f : r.files_written) std::printf("wrote %s\n", f.c_str());
 }
 
-void register_report(CLI::App& app) {
+Command register_report(CLI::App& app) {
   auto args = std::make_shared<ReportArguments>();
   CLI::App* cmd = app.add_subcommand(
       "report",
@@ -366,7 +367,8 @@ void register_report(CLI::App& app) {
   CLI::Option* material = cmd->get_option("--material");
   material->description("--glossy: " + material->get_description());
   add_sun_study_options(cmd, &args->sun);
-  cmd->callback([args, cmd] { run(*args, *cmd); });
+  return {cmd, [args, cmd] { check_usage(*args, *cmd); }, [args] { return report_files(*args); },
+          [args] { run(*args); }};
 }
 
 }  // namespace

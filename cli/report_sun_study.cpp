@@ -74,27 +74,33 @@ void refuse_sun_study_options(const CLI::App& cmd) {
     if (cmd.count(option) > 0) throw UsageError(std::string(option) + " needs --sun-study");
 }
 
-void run_sun_study_mode(const SunStudyArguments& a, const std::string& output, bool quick,
-                        bool quiet, const std::string& given) {
+void check_sun_study_mode(const SunStudyArguments& a, const std::string& given) {
   if (!given.empty()) throw UsageError(given + " does not apply to --sun-study");
-  prt::report::SunStudyOptions o;
-  o.output_dir = output;
-  o.quick = quick;
-  o.ggx_alphas = parse_roughness(a.roughness);
+  parse_roughness(a.roughness);
   check_positive("--sky", a.sky, 0.0, 100.0);
   check_positive("--vertices", a.vertices, 1.0, 1e10);
   check_positive("--object-budget", a.object_budget, 1e-6, 1e6);
   check_positive("--machine-budget", a.machine_budget, 1e-6, 1e6);
+}
+
+CommandFiles sun_study_files(const std::string& output) {
+  CommandFiles files;
+  files.add_output_directory("-o", output);
+  for (const std::string& name : prt::report::sun_study_file_names())
+    files.add_output("-o", (std::filesystem::path(output) / name).string());
+  return files;
+}
+
+void run_sun_study_mode(const SunStudyArguments& a, const std::string& output, bool quick,
+                        bool quiet) {
+  prt::report::SunStudyOptions o;
+  o.output_dir = output;
+  o.quick = quick;
+  o.ggx_alphas = parse_roughness(a.roughness);
   o.sky_fraction = a.sky;
   o.vertices = a.vertices;
   o.object_budget_gib = a.object_budget;
   o.machine_budget_gib = a.machine_budget;
-  CommandFiles files;
-  files.add_output("-o", output);
-  for (const std::string& name : prt::report::sun_study_file_names())
-    files.add_output("-o", (std::filesystem::path(output) / name).string());
-  files.check();
-  check_output_directory("-o", output);
   ProgressReporter progress(quiet);
   o.log = [&progress](const std::string& line) { progress.message(line); };
   const prt::report::SunStudyResult r = prt::report::run_sun_study(o);

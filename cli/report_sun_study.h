@@ -8,6 +8,8 @@
 
 #include <CLI/CLI.hpp>
 
+#include "output_safety.h"
+
 namespace prt::cli {
 
 struct SunStudyArguments {
@@ -22,10 +24,15 @@ void add_sun_study_options(CLI::App* report, SunStudyArguments* arguments);
 // Throws UsageError naming the first --sun-study option given without --sun-study.
 void refuse_sun_study_options(const CLI::App& report);
 
-// Checks the mode's options (UsageError, before anything is written), then runs the study and
-// prints the files written. `given` names any positional argument or other mode's option the
-// caller saw ("" when none): it is refused.
+// Checks the mode's options (UsageError, before anything is written). `given` names any
+// positional argument or other mode's option the caller saw ("" when none): it is refused.
+void check_sun_study_mode(const SunStudyArguments& arguments, const std::string& given);
+
+// The output folder and every file the study writes there.
+CommandFiles sun_study_files(const std::string& output);
+
+// Runs the study (its options and files checked) and prints the files written.
 void run_sun_study_mode(const SunStudyArguments& arguments, const std::string& output, bool quick,
-                        bool quiet, const std::string& given);
+                        bool quiet);
 
 }  // namespace prt::cli

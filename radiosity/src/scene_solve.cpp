@@ -27,8 +27,37 @@ double since(Clock::time_point t) {
   return std::chrono::duration<double>(Clock::now() - t).count();
 }
 
+// The diagonal of the scene's bounding box (0 when it has no vertex).
+std::string format_number(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", value);
+  return text;
+}
+
+double scene_extent(const scene::Scene& scene) {
+  if (scene.positions.empty()) return 0.0;
+  glm::dvec3 lo(scene.positions.front()), hi(lo);
+  for (const glm::vec3& p : scene.positions) {
+    lo = glm::min(lo, glm::dvec3(p));
+    hi = glm::max(hi, glm::dvec3(p));
+  }
+  return glm::length(hi - lo);
+}
+
+void check_move_length(const ObjectMove& move, double extent) {
+  const double length = glm::length(move.offset);
+  if (length <= kMaxMoveInExtents * extent) return;
+  char text[160];
+  std::snprintf(text, sizeof text,
+                ": moves %.3g scene units, more than %g × the scene's extent (%.3g)", length,
+                kMaxMoveInExtents, extent);
+  throw RequestError("--move " + move.object + text);
+}
+
 void apply_moves(scene::Scene& scene, const SceneSolveRequest& r) {
+  const double extent = scene_extent(scene);
   for (const ObjectMove& move : r.moves) {
+    check_move_length(move, extent);
     bool found = false;
     std::string names;
     for (const scene::ScenePrimitive& p : scene.primitives) {
@@ -40,8 +69,8 @@ void apply_moves(scene::Scene& scene, const SceneSolveRequest& r) {
         scene.positions[p.first_vertex + v] += glm::vec3(move.offset);
     }
     if (!found)
-      throw std::invalid_argument("--move " + move.object + ": no object of " + r.scene_path +
-                                  " has this name (objects: " + names + ")");
+      throw RequestError("--move " + move.object + ": no object of " + r.scene_path +
+                         " has this name (objects: " + names + ")");
   }
 }
 
@@ -50,8 +79,12 @@ void apply_moves(scene::Scene& scene, const SceneSolveRequest& r) {
 scene::Scene prepare_scene(const SceneSolveRequest& r, bool moved) {
   scene::Scene scene = scene::load_scene(r.scene_path);
   if (moved) apply_moves(scene, r);
-  scene::apply_emission(scene, r.emission);
-  scene::apply_albedo(scene, r.albedo);
+  try {  // names the scene does not have
+    scene::apply_emission(scene, r.emission);
+    scene::apply_albedo(scene, r.albedo);
+  } catch (const std::invalid_argument& e) {
+    throw RequestError(e.what());
+  }
   check_materials(scene);
   bool emits = false;
   for (const scene::ScenePrimitive& p : scene.primitives)
@@ -61,7 +94,11 @@ scene::Scene prepare_scene(const SceneSolveRequest& r, bool moved) {
         r.scene_path +
         ": nothing emits light (give a material glTF emissiveFactor or OBJ Ke, "
         "or --emission MATERIAL=r,g,b)");
-  if (r.max_edge) scene = scene::subdivide_to_edge_length(scene, *r.max_edge);
+  try {  // an edge length far too small for the scene
+    if (r.max_edge) scene = scene::subdivide_to_edge_length(scene, *r.max_edge);
+  } catch (const std::invalid_argument& e) {
+    throw RequestError(e.what());
+  }
   return scene;
 }
 
@@ -141,9 +178,11 @@ void check_patch_count(const SceneSolveRequest& r, const scene::Scene& scene) {
   } else {
     advice = "the scene itself has that many triangles: simplify it (--max-edge only splits)";
   }
-  throw std::runtime_error(r.scene_path + ": " + std::to_string(n) + " patches, more than the " +
-                           std::to_string(kMaxPatches) +
-                           " that dense form-factor storage allows (8·N² bytes); " + advice);
+  const std::string message = r.scene_path + ": " + std::to_string(n) + " patches, more than the " +
+                              std::to_string(kMaxPatches) +
+                              " that dense form-factor storage allows (8·N² bytes); " + advice;
+  if (r.max_edge) throw RequestError(message);  // the edge length asked for
+  throw std::runtime_error(message);
 }
 
 void check_unit_albedo(const SceneSolveRequest& r, const scene::Scene& scene,
@@ -161,8 +200,13 @@ void check_unit_albedo(const SceneSolveRequest& r, const scene::Scene& scene,
 // Patch refinement: replaces `scene` with the refined one and returns its patches.
 std::vector<Patch> solve_refined(const SceneSolveRequest& r, scene::Scene* scene,
                                  SceneSolution* out) {
-  PatchRefinementResult result =
-      solve_with_refinement(std::move(*scene), r.form_factors, r.solve, *r.refinement);
+  PatchRefinementResult result = [&] {
+    try {  // a threshold, level or patch budget that does not fit the scene
+      return solve_with_refinement(std::move(*scene), r.form_factors, r.solve, *r.refinement);
+    } catch (const std::invalid_argument& e) {
+      throw RequestError(e.what());
+    }
+  }();
   *scene = std::move(result.scene);
   out->solution = std::move(result.solution);
   out->refinement_passes = result.passes;
@@ -220,7 +264,7 @@ void check_scene_solve(const SceneSolveRequest& r, const std::vector<std::string
     throw std::invalid_argument(
         "--per-emitter needs a full-matrix solver (--solver gauss-seidel or jacobi)");
   if (r.max_edge && !(*r.max_edge > 0.0 && std::isfinite(*r.max_edge)))
-    throw std::invalid_argument("--max-edge " + std::to_string(*r.max_edge) +
+    throw std::invalid_argument("--max-edge " + format_number(*r.max_edge) +
                                 ": the target edge length must be a finite positive number");
   if (!r.form_factor_cache.empty()) {
     scene::check_output_path(r.form_factor_cache, r.scene_path, {});

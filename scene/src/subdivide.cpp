@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <map>
 #include <stdexcept>
 #include <string>
@@ -14,16 +15,12 @@
 namespace prt::scene {
 namespace {
 
-// Segments of edge (u, w): ⌈length / max_edge⌉, at least 1 (the same from either side).
-int edge_segments(const Scene& scene, uint32_t u, uint32_t w, double max_edge) {
+// Segments of edge (u, w): ⌈length / max_edge⌉, at least 1 (the same from either side), in
+// double: it may be far beyond int when max_edge is tiny (refused by the caller's count).
+double edge_segments(const Scene& scene, uint32_t u, uint32_t w, double max_edge) {
   const double length =
       glm::length(glm::dvec3(scene.positions[w]) - glm::dvec3(scene.positions[u]));
-  return std::max(1, static_cast<int>(std::ceil(length / max_edge - 1e-9)));
-}
-
-std::array<int, 3> edge_segments(const Scene& scene, const glm::uvec3& t, double max_edge) {
-  return {edge_segments(scene, t.x, t.y, max_edge), edge_segments(scene, t.y, t.z, max_edge),
-          edge_segments(scene, t.z, t.x, max_edge)};
+  return std::max(1.0, std::ceil(length / max_edge - 1e-9));
 }
 
 // Builds the vertices and triangles of one primitive into `out`.
@@ -132,16 +129,23 @@ Scene subdivide_to_edge_length(const Scene& scene, double max_edge) {
     throw std::invalid_argument("--max-edge " + std::to_string(max_edge) +
                                 ": the target edge length must be a finite positive number");
   std::vector<std::array<int, 3>> splits(scene.triangles.size());
-  double total = 0.0;
+  double total = 0.0;  // counted in double, checked before any count becomes an int
   for (std::size_t t = 0; t < scene.triangles.size(); ++t) {
-    splits[t] = edge_segments(scene, scene.triangles[t], max_edge);
-    total += detail::tessellation_triangle_count(splits[t]);
+    const glm::uvec3& tri = scene.triangles[t];
+    const double k0 = edge_segments(scene, tri.x, tri.y, max_edge);
+    const double k1 = edge_segments(scene, tri.y, tri.z, max_edge);
+    const double k2 = edge_segments(scene, tri.z, tri.x, max_edge);
+    total += detail::tessellation_triangle_count({k0, k1, k2});
+    if (total <= double(kMaxSubdividedTriangles))
+      splits[t] = {static_cast<int>(k0), static_cast<int>(k1), static_cast<int>(k2)};
   }
-  if (total > double(kMaxSubdividedTriangles))
-    throw std::invalid_argument("--max-edge " + std::to_string(max_edge) + " would make " +
-                                std::to_string(static_cast<long long>(total)) +
-                                " triangles (at most " + std::to_string(kMaxSubdividedTriangles) +
-                                "): use a longer edge");
+  if (!(total <= double(kMaxSubdividedTriangles))) {
+    char text[160];
+    std::snprintf(text, sizeof text,
+                  "--max-edge %g would make %.3g triangles (at most %zu): use a longer edge",
+                  max_edge, total, kMaxSubdividedTriangles);
+    throw std::invalid_argument(text);
+  }
   Scene out;
   out.cameras = scene.cameras;
   out.source_path = scene.source_path;

@@ -28,7 +28,7 @@ int Tessellation::lattice_point(int i, int j) const {
   return first + before + (i - 1);
 }
 
-double tessellation_triangle_count(std::array<int, 3> k) {
+double tessellation_triangle_count(std::array<double, 3> k) {
   const double n = std::max({k[0], k[1], k[2]});
   return double(k[0]) + k[1] + k[2] + (n - 1.0) * (n - 2.0) - 2.0;
 }

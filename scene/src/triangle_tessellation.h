@@ -51,7 +51,7 @@ Tessellation tessellate_triangle(const glm::dvec3& a, const glm::dvec3& b, const
 
 // Triangles tessellate_triangle makes for these counts before any midpoint (each adds two):
 // Σk_e + (n − 1)(n − 2) − 2 (the triangulation of a convex polygon with Σk_e boundary and
-// (n − 1)(n − 2)/2 inner points).
-double tessellation_triangle_count(std::array<int, 3> k);
+// (n − 1)(n − 2)/2 inner points). In double, for counts of any size (a tiny max_edge).
+double tessellation_triangle_count(std::array<double, 3> k);
 
 }  // namespace prt::scene::detail

@@ -1,5 +1,6 @@
 // `prt radiosity` as a user runs it: bad emission, albedo and --max-edge refused with one line
-// on stderr, a non-zero exit and nothing written; a small lit room written and lit.
+// on stderr and nothing written (exit 2 for the command line, 1 for the scene file's own
+// problems, README "Exit status"); a small lit room written and lit.
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -49,10 +50,11 @@ fs::path write_room(const fs::path& dir, const std::string& lamp_ke, const std::
   return dir / "room.obj";
 }
 
-void check_refused(const fs::path& dir, const std::string& args, const std::string& expected) {
+void check_refused(const fs::path& dir, const std::string& args, const std::string& expected,
+                   int exit_code = 2) {
   const RunResult r = run(args);
   INFO(args << "\nstderr: " << r.err);
-  CHECK(r.exit_code == 1);
+  CHECK(r.exit_code == exit_code);
   CHECK(line_count(r.err) == 1);
   CHECK(r.err.find(expected) != std::string::npos);
   for (const char* name : {"out.png", "out.glb", "out.csv"}) CHECK_FALSE(fs::exists(dir / name));
@@ -85,11 +87,11 @@ TEST_CASE("prt radiosity refuses bad emission, albedo and --max-edge, nothing is
   check_refused(dir, room + outputs + " --max-edge 0.0001", "--max-edge");  // > 2e7 triangles
   check_refused(dir, room + outputs + " --max-edge 0.005", "patches");      // > 16384 patches
   room = write_room(dir, "-5 5 5", "0.7 0.7 0.7", false).string();
-  check_refused(dir, room + outputs, "emission");
+  check_refused(dir, room + outputs, "emission", 1);  // the file's own values: exit 1
   room = write_room(dir, "", "0.7 0.7 0.7", false).string();
-  check_refused(dir, room + outputs, "nothing emits light");
+  check_refused(dir, room + outputs, "nothing emits light", 1);
   room = write_room(dir, "5 5 5", "1 1 1", true).string();
-  check_refused(dir, room + outputs, "closed scene");
+  check_refused(dir, room + outputs, "closed scene", 1);
   // The same closed room with albedo below 1 is accepted.
   const RunResult ok = run(room + outputs + " --albedo white=0.9 --size 64x48 --spp 1");
   INFO(ok.err);
@@ -185,7 +187,7 @@ TEST_CASE("prt radiosity --form-factor-cache: saved, reused, refused for another
   CHECK_FALSE(fs::exists(dir / "out.csv"));
   // An unknown object to move.
   r = run(common + (dir / "out.csv").string() + " --move chair=1,0,0");
-  CHECK(r.exit_code == 1);
+  CHECK(r.exit_code == 2);
   CHECK(r.err.find("--move chair") != std::string::npos);
 }
 

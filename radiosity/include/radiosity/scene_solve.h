@@ -15,6 +15,7 @@
 #include <cstddef>
 #include <functional>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -30,6 +31,19 @@
 
 namespace prt::radiosity {
 
+// A request that is wrong for the scene it names, found once the scene is loaded: an
+// --emission, --albedo or --move name the scene does not have, a move beyond
+// kMaxMoveInExtents × the scene's extent, a --max-edge that makes too many patches. A caller
+// with a command line reports it as the command line's fault.
+struct RequestError : std::invalid_argument {
+  using std::invalid_argument::invalid_argument;
+};
+
+// The longest move, in units of the scene's extent (its bounding box's diagonal as loaded): far
+// enough to take an object out of any room, near enough that every coordinate stays a float
+// that ray tracing handles (Embree refuses non-finite and huge bounds).
+constexpr double kMaxMoveInExtents = 100.0;
+
 // Moves an object before solving: every primitive whose name is `object` (or whose glTF mesh
 // part, before the '/', is) is translated by `offset` (scene units) before subdivision.
 struct ObjectMove {
@@ -37,7 +51,8 @@ struct ObjectMove {
   glm::dvec3 offset{0.0};
 };
 
-// Parses "OBJECT=dx,dy,dz"; throws std::invalid_argument "--move TEXT: problem".
+// Parses "OBJECT=dx,dy,dz"; throws std::invalid_argument "--move TEXT: problem". The move's
+// length is checked against the scene when it is applied (RequestError).
 ObjectMove parse_object_move(const std::string& text);
 
 // The default form factors, by the patch count N (docs/RADIOSITY.md, "The default form
