@@ -337,3 +337,42 @@ TEST_CASE("a small lamp: area sampling cuts the gather's noise, both estimators 
   CHECK(mixed < 0.05);               // measured 1.5%: the area samples carry the lamp
   CHECK(mixed < 0.25 * hemisphere);  // measured 40%: a few hemisphere hits
 }
+
+TEST_CASE("glossy emitter radiance: validation and the per-vertex combination by hand",
+          "[glossy][emitters]") {
+  prt::GlossyEmitterRadiance g;
+  g.order = 2;
+  g.vertex_count = 2;
+  g.emitters = {{"a", {1, 1, 1}}, {"b", {1, 1, 1}}};
+  g.coefficients.resize(2 * 2 * 3 * 4);
+  for (std::size_t k = 0; k < g.coefficients.size(); ++k) g.coefficients[k] = float(k % 7) - 2.f;
+  g.emitter_of_vertex = {prt::kNotAnEmitter, 1};
+  REQUIRE(prt::validate_glossy_emitter_radiance(g).ok());
+  // Vertex 1, channel c, coefficient i: Σ_e colour_e,c · G[((1·2 + e)·3 + c)·4 + i].
+  const std::vector<float> colors = {0.5f, 1.f, 2.f, 3.f, 0.f, 0.25f};
+  float out[12];
+  REQUIRE(prt::combine_glossy_emitters(g, colors, 1, out).ok());
+  for (int c = 0; c < 3; ++c)
+    for (int i = 0; i < 4; ++i) {
+      double expected = 0;
+      for (int e = 0; e < 2; ++e)
+        expected += colors[3 * e + c] * g.coefficients[((2 + e) * 3 + c) * 4 + i];
+      CHECK(out[c * 4 + i] == Approx(expected).margin(1e-6));
+    }
+  CHECK_FALSE(prt::combine_glossy_emitters(g, colors, 2, out).ok());  // vertex out of range
+  prt::GlossyEmitterRadiance bad = g;
+  bad.coefficients.pop_back();
+  CHECK_FALSE(prt::validate_glossy_emitter_radiance(bad).ok());
+  bad = g;
+  bad.coefficients[5] = std::nanf("");
+  CHECK_FALSE(prt::validate_glossy_emitter_radiance(bad).ok());
+  bad = g;
+  bad.emitter_of_vertex[0] = 2;
+  CHECK_FALSE(prt::validate_glossy_emitter_radiance(bad).ok());
+  bad = g;
+  bad.order = 0;
+  CHECK_FALSE(prt::validate_glossy_emitter_radiance(bad).ok());
+  bad = g;
+  bad.emitters.clear();
+  CHECK_FALSE(prt::validate_glossy_emitter_radiance(bad).ok());
+}
