@@ -242,3 +242,43 @@ TEST_CASE("prt bake --albedo MATERIAL=value sets one material's albedo and refus
     CHECK_FALSE(fs::exists(d + "refused.prt"));
   }
 }
+
+TEST_CASE("prt radiosity and prt relight of its responses pick the same camera and exposure",
+          "[radiosity][emitters][cli]") {
+  // One camera rule and one exposure rule: the solve's PNG and the relight of its .prte with the
+  // stored colours show the same vertex radiance on the same mesh, so they must choose the same
+  // automatic camera (the room from inside or through its open side, never its wall backs) and
+  // the same exposure, a multiple of 1/4 EV. Before, prt radiosity framed the room from outside
+  // and exposed the log-average of its pixels (unrounded).
+  const fs::path dir = scratch("same_view");
+  const std::string room = write_room(dir).string();
+  const std::string d = dir.string() + "/";
+  const RunResult solve = prt_run("radiosity " + room + " --max-edge 0.25 --per-emitter " + d +
+                                  "room.prte -o " + d + "solve.png --size 64x48 --spp 1");
+  INFO(solve.out << solve.err);
+  REQUIRE(solve.exit_code == 0);
+  const RunResult relit =
+      prt_run("relight " + d + "room.prte -o " + d + "relit.png --size 64x48 --spp 1");
+  INFO(relit.out << relit.err);
+  REQUIRE(relit.exit_code == 0);
+  const auto line_with = [](const std::string& text, const std::string& start) {
+    const std::size_t at = text.find(start);
+    if (at == std::string::npos) return std::string();
+    return text.substr(at, text.find('\n', at) - at);
+  };
+  const std::string camera = line_with(solve.out, "camera: ");
+  CHECK_THAT(camera, Catch::Contains("automatic, a room"));
+  CHECK(camera == line_with(relit.out, "camera: "));
+  const std::string exposure = line_with(solve.out, "exposure ");
+  CHECK_THAT(exposure, Catch::Contains("(automatic"));
+  CHECK(exposure == line_with(relit.out, "exposure "));
+  const double ev = std::stod(exposure.substr(std::string("exposure ").size()));
+  CHECK(std::fmod(ev * 4.0, 1.0) == 0.0);  // printed with 2 decimals: exact for quarters
+  // The two images are the same picture.
+  CHECK(slurp(dir / "solve.png") == slurp(dir / "relit.png"));
+  // --quiet silences both lines.
+  const RunResult quiet =
+      prt_run("relight " + d + "room.prte -o " + d + "quiet.png --size 64x48 --spp 1 --quiet");
+  CHECK(quiet.exit_code == 0);
+  CHECK(quiet.out.find("camera: ") == std::string::npos);
+}
