@@ -181,7 +181,7 @@ AutoCamera choose_auto_camera(const scene::Scene& scene, const scene::RayCaster&
   char text[256];
   if (!out.probe.is_room) {
     out.camera = frame_bounds(lo, hi, aspect);
-    std::snprintf(text, sizeof text, "automatic, an object framed from outside");
+    std::snprintf(text, sizeof text, "automatic, an object seen from outside (its bounds fitted)");
     out.note = text;
     return out;
   }
@@ -238,8 +238,7 @@ std::string describe_camera(const CameraChoice& choice) {
   std::snprintf(text, sizeof text,
                 "camera: eye (%.4g, %.4g, %.4g), target (%.4g, %.4g, %.4g), vertical fov %.1f°; ",
                 double(c.eye.x), double(c.eye.y), double(c.eye.z), double(c.target.x),
-                double(c.target.y), double(c.target.z),
-                double(c.yfov_radians) * 180.0 / sh::kPi);
+                double(c.target.y), double(c.target.z), double(c.yfov_radians) * 180.0 / sh::kPi);
   return text + choice.origin;
 }
 

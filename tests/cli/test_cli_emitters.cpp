@@ -16,6 +16,7 @@
 #include <catch2/catch.hpp>
 
 #include "cli_test_support.h"
+#include "support/test_data.h"
 
 namespace fs = std::filesystem;
 
@@ -255,6 +256,38 @@ std::string write_black_map(const fs::path& dir) {
   return path.string();
 }
 
+// The line of `text` that starts with `start` ("" when none).
+std::string line_with(const std::string& text, const std::string& start) {
+  const std::size_t at = text.find(start);
+  if (at == std::string::npos) return std::string();
+  return text.substr(at, text.find('\n', at) - at);
+}
+
+// prt radiosity SCENE_ARGS --per-emitter, then prt relight of the responses with their stored
+// colours: the same camera line, the same exposure line (automatic, a multiple of 1/4 EV) and
+// the same PNG.
+void check_same_camera_and_exposure(const fs::path& dir, const std::string& scene_args) {
+  const std::string d = dir.string() + "/";
+  const RunResult solve = prt_run("radiosity " + scene_args + " --per-emitter " + d +
+                                  "room.prte -o " + d + "solve.png --size 64x48 --spp 1");
+  INFO(solve.out << solve.err);
+  REQUIRE(solve.exit_code == 0);
+  const RunResult relit =
+      prt_run("relight " + d + "room.prte -o " + d + "relit.png --size 64x48 --spp 1");
+  INFO(relit.out << relit.err);
+  REQUIRE(relit.exit_code == 0);
+  const std::string camera = line_with(solve.out, "camera: ");
+  CHECK_THAT(camera, Catch::Contains("automatic, a room"));
+  CHECK(camera == line_with(relit.out, "camera: "));
+  const std::string exposure = line_with(solve.out, "exposure ");
+  CHECK_THAT(exposure, Catch::Contains("(automatic"));
+  CHECK(exposure == line_with(relit.out, "exposure "));
+  const double ev = std::stod(line_with(exposure, "exposure ").substr(9));
+  CHECK(std::fmod(ev * 4.0, 1.0) == 0.0);  // printed with 2 decimals: exact for quarters
+  // The two images are the same picture.
+  CHECK(slurp(dir / "solve.png") == slurp(dir / "relit.png"));
+}
+
 }  // namespace
 
 TEST_CASE("glossy file + emitters: doubling an emitter adds its contribution, the sky adds",
@@ -337,4 +370,31 @@ TEST_CASE("glossy file + emitters: responses of another scene and bad names are 
       dir, relight + " --max-edge 0.5 --emitters " + d + "room.prte --emitter sun=1" + out, "sun");
   check_refused(dir, relight + " --emitters " + d + "room.prte" + out, "vertex count");
   check_refused(dir, relight + " --max-edge 0.5 --emitter lamp=1" + out, "--emitters");
+TEST_CASE("prt radiosity and prt relight of its responses pick the same camera and exposure",
+          "[radiosity][emitters][cli]") {
+  // One camera rule and one exposure rule: the solve's PNG and the relight of its .prte with the
+  // stored colours show the same vertex radiance on the same mesh, so they must choose the same
+  // automatic camera (the room from inside or through its open side, never its wall backs) and
+  // the same exposure, a multiple of 1/4 EV. Before, prt radiosity framed the room from outside
+  // and exposed the log-average of its pixels (unrounded).
+  const fs::path dir = scratch("same_view");
+  check_same_camera_and_exposure(dir, write_room(dir).string() + " --max-edge 0.25");
+  // --quiet silences the camera line.
+  const RunResult quiet = prt_run("relight " + (dir / "room.prte").string() + " -o " +
+                                  (dir / "quiet.png").string() + " --size 64x48 --spp 1 --quiet");
+  CHECK(quiet.exit_code == 0);
+  CHECK(quiet.out.find("camera: ") == std::string::npos);
+}
+
+TEST_CASE("the Cornell box: prt radiosity and the relight of its responses agree",
+          "[radiosity][emitters][cli]") {
+  const fs::path mesh = prt::test::shared_data("meshes/cornell_box.obj");
+  PRT_REQUIRE_SHARED_DATA(mesh);
+  // Its lamp has no Ke (Ka 20 in the file): --emission gives it one; its albedos of 1 are
+  // lowered so that the solve converges as in a real box.
+  check_same_camera_and_exposure(scratch("same_view_cornell"),
+                                 mesh.string() +
+                                     " --max-edge 100 --emission light=20,20,20 --albedo "
+                                     "white=0.73,0.73,0.73 --albedo red=0.63,0.065,0.05 --albedo "
+                                     "green=0.14,0.45,0.091 --albedo light=0.78,0.78,0.78");
 }

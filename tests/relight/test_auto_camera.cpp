@@ -96,7 +96,7 @@ void require_inside_view(const Scene& scene, bool closed = true) {
   // The view is filled by the room (through a square opening at 16:9: its height and a little
   // over half its width) ...
   CHECK(view.coverage > (closed ? 0.95 : 0.45));
-  CHECK(view.front > 0.95);     // ... seen from inside
+  CHECK(view.front > 0.95);  // ... seen from inside
   // The failure this replaces: from outside, the same room shows mostly wall backs.
   const View outside =
       look(caster, prt::relight::frame_bounds(scene.bounds_min(), scene.bounds_max(), kAspect));
@@ -131,8 +131,8 @@ TEST_CASE("auto camera: an open box facing away from the default view is looked 
   CHECK(forward.z == 1.f);
   CHECK(chosen.camera.eye.x == Approx(0.5f));
   CHECK(chosen.camera.eye.y == Approx(0.5f));
-  CHECK(chosen.camera.eye.z == Approx(-1.05 * 0.5 / std::tan(20.0 * 3.14159265358979 / 180.0))
-                                   .epsilon(1e-5));
+  CHECK(chosen.camera.eye.z ==
+        Approx(-1.05 * 0.5 / std::tan(20.0 * 3.14159265358979 / 180.0)).epsilon(1e-5));
   CHECK(chosen.camera.yfov_radians == Approx(40.0 * 3.14159265358979 / 180.0).epsilon(1e-6));
   CHECK(chosen.probe.open_fraction > 0.1);  // the missing wall subtends 1/6 of the sphere
 }

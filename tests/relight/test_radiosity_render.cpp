@@ -37,14 +37,14 @@ TEST_CASE("radiosity images take the one exposure rule: choose_auto_exposure, a 
   r.render.height = 12;
   r.render.samples_per_axis = 1;
   r.camera = "0,0,3,0,0,0,0,1,0,60";
-  const prt::relight::RadiosityRenderSummary s =
-      prt::relight::render_radiosity(r, quad, radiance, prt::relight::radiosity_camera(r, quad).camera);
+  const prt::relight::RadiosityRenderSummary s = prt::relight::render_radiosity(
+      r, quad, radiance, prt::relight::radiosity_camera(r, quad).camera);
   CHECK(s.exposure_auto);
   CHECK(s.exposure_ev == prt::relight::choose_auto_exposure(radiance));
   CHECK(std::fmod(double(s.exposure_ev) * 4.0, 1.0) == 0.0);  // a multiple of 1/4 EV, exactly
-  r.exposure_ev = 0.3f;  // a given one is kept as it is
-  const prt::relight::RadiosityRenderSummary given =
-      prt::relight::render_radiosity(r, quad, radiance, prt::relight::radiosity_camera(r, quad).camera);
+  r.exposure_ev = 0.3f;                                       // a given one is kept as it is
+  const prt::relight::RadiosityRenderSummary given = prt::relight::render_radiosity(
+      r, quad, radiance, prt::relight::radiosity_camera(r, quad).camera);
   CHECK_FALSE(given.exposure_auto);
   CHECK(given.exposure_ev == 0.3f);
 }
@@ -68,8 +68,8 @@ TEST_CASE("a radiosity solution is drawn from its vertex radiance: CSV, image, v
   r.render.samples_per_axis = 1;
   r.camera = "0,0,3,0,0,0,0,1,0,60";
   prt::relight::check_radiosity_outputs(r);
-  const prt::relight::RadiosityRenderSummary s =
-      prt::relight::render_radiosity(r, quad, radiance, prt::relight::radiosity_camera(r, quad).camera);
+  const prt::relight::RadiosityRenderSummary s = prt::relight::render_radiosity(
+      r, quad, radiance, prt::relight::radiosity_camera(r, quad).camera);
   CHECK(s.files_written ==
         std::vector<std::string>{r.output_path, r.vertex_colors_path, r.csv_path});
   for (const std::string& file : s.files_written) CHECK(fs::file_size(file) > 0);

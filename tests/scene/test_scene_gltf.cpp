@@ -378,6 +378,25 @@ TEST_CASE("glTF perspective camera on a node: eye, -Z view direction, +Y up, yfo
   CHECK(glm::distance(glm::normalize(cam.target - cam.eye), glm::vec3(-1, 0, 0)) < 1e-6f);
   CHECK(glm::distance(cam.up, glm::vec3(0, 1, 0)) < 1e-6f);
   CHECK(cam.yfov_radians == Approx(0.6f));
+  // glTF gives no target: it is the point of the view axis nearest the centre of the bounds
+  // (0.5, 0.5, 0), i.e. (0.5, 1, 2), so a turntable orbits the scene rather than a point a unit
+  // in front of the eye (4 units short of the scene).
+  CHECK(glm::distance(cam.target, glm::vec3(0.5f, 1.f, 2.f)) < 1e-5f);
+}
+
+TEST_CASE("glTF camera looking away from the scene: its target stays ahead of the eye") {
+  MiniGltf g;
+  g.add_mesh_node(kTriangle, {0, 1, 2});
+  g.doc["cameras"] = {{{"type", "perspective"}, {"perspective", {{"yfov", 0.6}, {"znear", 0.1}}}}};
+  g.doc["nodes"].push_back(
+      {{"camera", 0}, {"translation", {0.5, 0.5, 3}}, {"rotation", {0, 1, 0, 0}}});
+  g.doc["scenes"][0]["nodes"] = {0, 1};
+  const Scene s = prt::scene::load_scene(g.write("camera_away"));
+  REQUIRE(s.cameras.size() == 1);
+  // Turned 180° about Y: it looks toward +Z, away from the triangle. The target is 1% of the
+  // bounds' diagonal (√2) ahead, so the view direction is kept.
+  const auto& cam = s.cameras[0];
+  CHECK(glm::distance(cam.target, glm::vec3(0.5f, 0.5f, 3.f + 0.01f * std::sqrt(2.f))) < 1e-5f);
 }
 
 TEST_CASE("Real glTF: suzanne.gltf (embedded buffer, normals)") {

@@ -69,7 +69,7 @@ RoomProbe probe_room(const scene::Scene& scene, const scene::RayCaster& caster, 
 
 struct AutoCamera {
   Camera camera;
-  bool inside = false;  // true: a room, camera inside
+  bool inside = false;  // true: a room (seen from inside or through its open side)
   RoomProbe probe;
   std::string note;  // one line for the user: which camera and why
 };

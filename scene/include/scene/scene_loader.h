@@ -16,7 +16,8 @@
 // SceneCameras: eye = the node's world position, up = the node's +Y, yfov, and target the point
 // of the view axis (the node's -Z) nearest the centre of the scene's bounding box, at least 1% of
 // the box's diagonal ahead (glTF gives no target; a turntable orbits the scene, not a point a
-// unit in front of the eye). Textures: a material's baseColorTexture is read (scene/texture.h): its texCoord set
+// unit in front of the eye).
+// Textures: a material's baseColorTexture is read (scene/texture.h): its texCoord set
 // (TEXCOORD_n: float, or normalised unsigned byte/short), its texture's sampler (wrapS, wrapT,
 // magFilter, minFilter) and image, PNG or JPEG, from a file beside the .gltf (URI
 // percent-decoding), a data: URI or a buffer view (GLB), decoded through the OpenImageIO plugin
