@@ -50,7 +50,7 @@ std::vector<glm::dvec3> sample_points(const Patch& p, const FormFactorOptions& o
 }  // namespace
 
 bool point_enclosed(const scene::RayCaster& caster, uint32_t patch, const glm::dvec3& x,
-                    const glm::dvec3& n) {
+                    const glm::dvec3& n, const std::vector<Patch>& patches) {
   static const std::array<glm::dvec3, kEnclosureProbes> probes = local_probes();
   // An orthonormal frame around n (Duff et al. 2017).
   const double sign = std::copysign(1.0, n.z);
@@ -63,6 +63,19 @@ bool point_enclosed(const scene::RayCaster& caster, uint32_t patch, const glm::d
     const scene::RayCaster::Hit hit =
         caster.intersect(origin, d, 0.f, std::numeric_limits<float>::infinity());
     if (!hit.hit || hit.front_face) return false;
+  }
+  // Every probe met a back face. Inside a room whose walls are wound the wrong way that is
+  // also true, yet the lamps shine in: the point is enclosed only if no emitter's centroid is
+  // in view of it either.
+  for (uint32_t e = 0; e < patches.size(); ++e) {
+    const Patch& lamp = patches[e];
+    if (lamp.emission == glm::dvec3(0.0) || e == patch) continue;
+    const glm::dvec3 to = lamp.centroid - x;
+    const double distance = glm::length(to);
+    if (!(distance > 0.0) || glm::dot(to, n) <= 0.0 || glm::dot(to, lamp.normal) >= 0.0) continue;
+    const scene::RayCaster::Hit hit = caster.intersect(origin, glm::vec3(to / distance), 0.f,
+                                                       static_cast<float>(distance * (1.0 + 1e-4)));
+    if (hit.hit && hit.triangle == e && hit.front_face) return false;
   }
   return true;
 }
@@ -77,7 +90,7 @@ std::vector<double> visible_fractions(const std::vector<Patch>& patches,
     const std::vector<glm::dvec3> points = sample_points(p, options);
     int visible = 0;
     for (const glm::dvec3& x : points)
-      visible += point_enclosed(caster, static_cast<uint32_t>(i), x, p.normal) ? 0 : 1;
+      visible += point_enclosed(caster, static_cast<uint32_t>(i), x, p.normal, patches) ? 0 : 1;
     fraction[i] = double(visible) / double(points.size());
   });
   return fraction;

@@ -14,6 +14,7 @@
 #include "radiosity/hidden_patches.h"
 #include "radiosity/patches.h"
 #include "radiosity/solver.h"
+#include "scene/procedural_mesh.h"
 #include "scene/ray_caster.h"
 
 using namespace prt::radiosity;
@@ -123,4 +124,36 @@ TEST_CASE("floor vertices at a resting block's foot match a path tracer at the v
   CHECK(kept_out.rms < 0.12);
   CHECK(kept_out.over_20 <= std::size_t(count) / 8);
   CHECK(plain.rms > 0.18);  // the scene shows the contact error (the test can fail)
+}
+
+TEST_CASE("hidden patches: a lit floor inside walls that face away is not hidden",
+          "[radiosity][contacts]") {
+  // A closed box with outward faces around a floor and a lamp: every probe from the floor meets
+  // a back face, but the lamp is in view, so nothing is hidden (the solve lights the floor).
+  prt::scene::Scene s;
+  prt::test::append(s, prt::scene::make_box({0, 0, 0}, {1, 1, 1}, 1, false, glm::vec3(0.5f)),
+                    "walls");
+  prt::test::append(s,
+                    prt::scene::make_quad({0.1f, 0.01f, 0.1f}, {0, 0, 0.8f}, {0.8f, 0, 0}, 4, 4,
+                                          glm::vec3(0.5f), "floor"),
+                    "floor");
+  prt::test::append(s,
+                    prt::scene::make_quad({0.4f, 0.9f, 0.4f}, {0.2f, 0, 0}, {0, 0, 0.2f}, 1, 1,
+                                          glm::vec3(0.5f), "lamp"),
+                    "lamp", glm::vec3(5.f));
+  std::vector<Patch> patches = make_patches(s);
+  const prt::scene::RayCaster caster(s);
+  mark_hidden_parts(&patches, caster, FormFactorOptions{});
+  const prt::scene::ScenePrimitive& floor = s.primitives[s.primitives.size() - 2];
+  REQUIRE(floor.name == "floor");
+  std::vector<Patch> dark = patches;  // the same geometry with nothing emitting
+  for (Patch& p : dark) p.emission = glm::dvec3(0.0);
+  int probes_alone = 0;
+  for (uint32_t t = floor.first_triangle; t < floor.first_triangle + floor.triangle_count; ++t) {
+    CHECK(patches[t].visible == 1.0);
+    // Without the lamp's emission only the probes decide: all meet back faces except those
+    // that meet the lamp's front from below.
+    probes_alone += point_enclosed(caster, t, patches[t].centroid, patches[t].normal, dark);
+  }
+  CHECK(probes_alone >= 24);  // of the 32 floor triangles
 }

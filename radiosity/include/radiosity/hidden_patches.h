@@ -10,9 +10,11 @@
 // every patch (hidden ones absorb and emit nothing, so the energy account is unchanged).
 //
 // A point x of a patch is *enclosed* when every one of kEnclosureProbes fixed directions of the
-// hemisphere in front of it (the normal, and rings of six at 30°, 55°, 75° and 86° from it) meets a
-// back face: x lies inside closed geometry and no path from any emitter reaches it. A point from
-// which one probe escapes or meets a front face is visible.
+// hemisphere in front of it (the normal, and rings of six at 30°, 55°, 75° and 86° from it) meets
+// a back face — x lies inside closed geometry — and no emitting patch's centroid is in view of
+// it (the front of an emitter met first along the segment): inside a room whose walls face
+// outward every probe meets a back face too, yet its lamps light it. A point from which one probe
+// escapes or meets a front face, or that sees an emitter, is visible.
 //
 // The visible fraction of a patch is taken at the points where its form factors sample the
 // receiver's visibility, so that radiance / fraction is the radiance of the visible part as the
@@ -35,9 +37,10 @@ namespace prt::radiosity {
 
 constexpr int kEnclosureProbes = 25;
 
-// Whether the point x of triangle `patch` (unit front normal n) is enclosed (see above).
+// Whether the point x of triangle `patch` (unit front normal n) is enclosed (see above);
+// `patches` are the scene's (their emitters are looked for).
 bool point_enclosed(const scene::RayCaster& caster, uint32_t patch, const glm::dvec3& x,
-                    const glm::dvec3& n);
+                    const glm::dvec3& n, const std::vector<Patch>& patches);
 
 // The visible fraction of every patch (see above), in [0, 1]; rows in parallel (TBB),
 // deterministic. `caster` must be built on the scene whose triangles are `patches`.
