@@ -100,8 +100,10 @@ struct SceneSolution {
 
 // Checks the request before any file is read: the responses file (.prte, a full-matrix
 // solver), max_edge, the cache (a full-matrix solver; none of `other_outputs` — the caller's
-// own output files — may be it), refinement (not with a cache, moves or per-emitter responses)
-// and the tolerance. Outputs may not be the scene file (scene/output_path.h).
+// own output files — may be it), refinement (not with a cache, moves or per-emitter responses,
+// nor with hemicube form factors and the progressive solver, whose raw rows alias on refined
+// patches: radiosity/hemicube.h) and the tolerance. Outputs may not be the scene file
+// (scene/output_path.h).
 void check_scene_solve(const SceneSolveRequest& request,
                        const std::vector<std::string>& other_outputs);
 
