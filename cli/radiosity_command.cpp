@@ -276,7 +276,6 @@ void run(const RadiosityArguments& args) {
   if (args.quiet) return;
   const radiosity::SceneSolution& s = result.solution;
   const radiosity::Solution& solution = s.solution;
-  if (!s.form_factor_choice.empty()) std::printf("%s\n", s.form_factor_choice.c_str());
   for (std::size_t k = 0; k < s.refinement_passes.size(); ++k) {
     const radiosity::RefinementPass& p = s.refinement_passes[k];
     std::printf(
@@ -293,6 +292,7 @@ void run(const RadiosityArguments& args) {
       solution.iterations, args.solver == "progressive" ? "shots" : "sweeps",
       solution.converged ? "" : ", NOT converged: raise --max-iterations",
       result.render.render_seconds);
+  if (!s.form_factor_choice.empty()) std::printf("%s\n", s.form_factor_choice.c_str());
   if (s.cache == radiosity::SceneSolution::Cache::Loaded)
     std::printf("form factors loaded from %s (%.2f s)\n", args.form_factor_cache.c_str(),
                 s.cache_seconds);

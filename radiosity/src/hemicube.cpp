@@ -319,6 +319,12 @@ void combine_hemicube_estimates(const std::vector<Patch>& patches, std::vector<f
   constexpr std::size_t kTile = 64;  // pairs in 64 × 64 tiles: both entries stay in cache
   const std::size_t tiles = (n + kTile - 1) / kTile;
   float* m = f->data();
+  std::vector<char> closed(n, 0);  // the hemicube at i saw no escape: its sum, 1, is exact
+  tbb::parallel_for(std::size_t(0), n, [&](std::size_t i) {
+    double sum = 0.0;
+    for (std::size_t j = 0; j < n; ++j) sum += m[i * n + j];
+    closed[i] = sum >= 1.0 - 1e-6;
+  });
 
   // Task a handles every pair (i, j), i in tile a, j in a tile b ≥ a: the tasks write disjoint
   // entries, each from the same two raw values whatever the thread count.
@@ -345,7 +351,7 @@ void combine_hemicube_estimates(const std::vector<Patch>& patches, std::vector<f
     if (!(patches[i].area > 0.0)) std::fill(row, row + n, 0.f);
     double sum = 0.0;
     for (std::size_t j = 0; j < n; ++j) sum += row[j];
-    if (sum > 1.0)
+    if (sum > 0.0 && (sum > 1.0 || closed[i]))
       for (std::size_t j = 0; j < n; ++j) row[j] = static_cast<float>(row[j] / sum);
   });
 }

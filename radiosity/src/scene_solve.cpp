@@ -286,6 +286,11 @@ void check_scene_solve(const SceneSolveRequest& r, const std::vector<std::string
     if (other)
       throw std::invalid_argument(std::string("--adaptive: not with ") + other +
                                   " (the patches change from pass to pass)");
+    if (!r.choose_method && r.form_factors.method == FormFactorMethod::Hemicube &&
+        r.solve.solver == SolverKind::Progressive)
+      throw std::invalid_argument(
+          "--adaptive with --form-factors hemicube needs --solver gauss-seidel or jacobi "
+          "(progressive shoots raw hemicube rows, which alias on refined patches)");
   }
   if (!(r.solve.tolerance > 0.0 && r.solve.tolerance < 1.0))
     throw std::invalid_argument("--tolerance " + std::to_string(r.solve.tolerance) +

@@ -217,3 +217,31 @@ TEST_CASE("prt radiosity --adaptive: refines in passes to the budget, bad values
   CHECK(patches > first);
   CHECK(patches <= 300);
 }
+
+TEST_CASE("prt radiosity prints its choice of form factors in one line, --quiet silences it",
+          "[radiosity][cli]") {
+  const fs::path dir = scratch("choice");
+  const std::string room = write_room(dir, "5 5 5", "0.7 0.5 0.3", false).string();
+  const std::string csv = " --csv " + (dir / "out.csv").string();
+  const auto choice_lines = [](const std::string& out) {
+    std::size_t n = 0;
+    for (std::size_t at = out.find("form factors: "); at != std::string::npos;
+         at = out.find("form factors: ", at + 1))
+      ++n;
+    return n;
+  };
+  RunResult r = run(room + " --max-edge 0.2" + csv);  // 588 patches: analytic
+  INFO(r.out << r.err);
+  REQUIRE(r.exit_code == 0);
+  CHECK(choice_lines(r.out) == 1);
+  CHECK(r.out.find("form factors: analytic (") != std::string::npos);
+  r = run(room + " --max-edge 0.1" + csv);  // over 1500 patches: rays
+  REQUIRE(r.exit_code == 0);
+  CHECK(r.out.find("form factors: rays, 1024 per patch (") != std::string::npos);
+  r = run(room + " --max-edge 0.1 --quiet" + csv);
+  REQUIRE(r.exit_code == 0);
+  CHECK(r.out.empty());
+  r = run(room + " --max-edge 0.2 --form-factors analytic" + csv);  // forced: no choice
+  REQUIRE(r.exit_code == 0);
+  CHECK(choice_lines(r.out) == 0);
+}

@@ -111,6 +111,16 @@ TEST_CASE("solve_scene refuses before writing: a bad request, a caller's check, 
   bad = request;
   bad.refinement = PatchRefinementOptions{};
   CHECK_THROWS_WITH(solve_scene(bad), Catch::Contains("--adaptive: not with --form-factor-cache"));
+  bad = request;
+  bad.form_factor_cache.clear();
+  bad.per_emitter_path.clear();
+  bad.refinement = PatchRefinementOptions{};
+  bad.form_factors.method = FormFactorMethod::Hemicube;
+  bad.solve.solver = SolverKind::Progressive;
+  CHECK_THROWS_WITH(check_scene_solve(bad, {}),
+                    Catch::Contains("--adaptive with --form-factors hemicube needs --solver"));
+  bad.solve.solver = SolverKind::Jacobi;
+  CHECK_NOTHROW(check_scene_solve(bad, {}));
   CHECK_THROWS_WITH(check_scene_solve(request, {request.form_factor_cache}),
                     Catch::Contains("may not overwrite the form-factor cache"));
   bad = request;

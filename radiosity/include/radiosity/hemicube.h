@@ -46,11 +46,13 @@
 //     G_ij = A_i A_j / (A_i + A_j) · (F^(i)_ij + F^(j)_ji),
 // which weights each hemicube by the other patch's area: a small receiver's light comes from
 // its own hemicube (Cohen & Greenberg's gathering), equal patches average the two. G is
-// symmetric; rows F_ij = G_ij / A_i that sum above 1 are scaled to 1. A row no longer sums to
-// exactly its own hemicube's total: in a closed scene it sums to 1 up to the other patches'
-// centroid and cell errors (0.965..1 for the 3 × 3-per-face box of test_radiosity at R = 24).
-// Scaling rows to their raw sums instead was tried and is worse: a large sender's raw sum
-// carries the error of standing at its centroid only (+3.9% for the lamp of the test).
+// symmetric. Rows F_ij = G_ij / A_i that sum above 1 are scaled to 1, and so are the rows of
+// patches whose own hemicube saw nothing escape (raw sum ≥ 1 − 1e-6, exact there): rows sum to
+// 1 in a closed scene, as they must (the combination alone loses what both centroids
+// under-estimate of near neighbours: down to 0.93 on a box of 48 patches). Other rows keep
+// their combined sum: scaling them to their raw sums was tried and is worse, since a large
+// sender's raw sum carries the error of standing at its centroid only (+3.9% for the lamp of
+// test_radiosity's floor).
 // A row then depends on every other row: progressive refinement (rows on demand) and the
 // partial update after a move (radiosity/form_factor_update.h) recompute from raw rows.
 //
