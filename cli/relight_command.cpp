@@ -279,8 +279,8 @@ void run(const RelightArguments& args) {
                                                          : relight::GlossyTurntable::kBoth;
     glossy.material_overrides = overrides;
     glossy.gather_emitters = [](const scene::Scene& scene, const prt::GlossyTransferData& data,
-                                const prt::EmitterResponses& responses) {
-      return bake::gather_glossy_emitters(scene, data, responses);  // bake/glossy_emitter_gather.h
+                                const prt::EmitterResponses& emitters) {
+      return bake::gather_glossy_emitters(scene, data, emitters);  // bake/glossy_emitter_gather.h
     };
     summary = relight::run_glossy_relight(request, glossy);
   } else {
