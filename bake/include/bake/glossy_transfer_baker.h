@@ -99,7 +99,7 @@ void glossy_scene_materials(const scene::Scene& scene, std::vector<brdf::Materia
                             std::vector<uint32_t>& material_of_vertex);
 
 // Bakes the glossy transfer of every vertex. Throws BakeError (bad scene or options, a material
-// make_brdf refuses, bounces that diverge — a change that is not finite, or that exceeds max|S|
+// make_brdf refuses, bounces that diverge — a change that is not finite, or that exceeds 2 max|S|
 // and the change of the bounce before — a texture a material needs that could not be read:
 // ScenePrimitive::brdf_texture_problem) or std::runtime_error (Embree). `progress` may be null.
 GlossyBakeResult bake_glossy_transfer(const scene::Scene& scene, const GlossyBakeOptions& options,
