@@ -98,6 +98,7 @@ AlbedoPeak max_furnace_albedo(const Brdf& brdf, bool isotropic) {
 
 Status check_energy_conservation(const Material& material) {
   if (material.model == MaterialModel::kGltf) return Status::Ok();  // the standard's own model
+  if (material.lambertian()) return make_brdf(material).status();  // a = ρ ≤ 1 exactly
   static std::mutex mutex;
   static std::map<std::string, AlbedoPeak> merl_peaks;
   AlbedoPeak peak;
