@@ -75,8 +75,9 @@ struct GlossyBakeStatistics {
   uint64_t back_face_hits = 0;  // occlude only
   int samples_per_vertex = 0;
   int bounces = 0;  // bounces done
-  bool converged = true;  // interreflected: the last bounce changed ≤ bounce_tolerance (any
-                          // `bounces`); shadowed: true (nothing to solve)
+  // Interreflected: the last bounce changed no entry by more than bounce_tolerance × max|S|
+  // (counted or solved bounces alike); shadowed: true (nothing to solve).
+  bool converged = true;
   std::vector<double> bounce_change;  // per bounce: max |ΔM| / max |S|
   double seconds_total = 0;
   double seconds_rays = 0;  // sampling pass: rays + accumulation
