@@ -355,14 +355,15 @@ void lambert_exit(const GlossyJob& job, const std::vector<float>& M, std::vector
 }
 
 // Throws BakeError when the bounces diverge: a change that is not finite, or one that exceeds
-// the whole direct transfer (max |S|) and the bounce before it. A convergent solve's changes
-// shrink, and none exceeds the direct transfer: a bounce's incident radiance is at most the
-// brightest sky a vertex sees directly, times an albedo of at most 1.
+// twice the whole direct transfer (2 max |S|) and the bounce before it. With albedos ≤ 1 the
+// largest radiance of each bounce is at most that of the bounce before, so the changes shrink
+// but for the spread of a bounce's light over more of the hemisphere, which can raise an SH
+// coefficient of it above the direct one; the factor 2 leaves room for that.
 void check_divergence(const GlossyJob& job) {
   const std::vector<double>& c = job.st.bounce_change;
   const std::size_t k = c.size();
   const bool nonfinite = !std::isfinite(c.back());
-  const bool growing = k >= 2 && c[k - 1] > 1.0 && c[k - 1] > c[k - 2];
+  const bool growing = k >= 2 && c[k - 1] > 2.0 && c[k - 1] > c[k - 2];
   if (!nonfinite && !growing) return;
   char text[200];
   std::snprintf(text, sizeof text,

@@ -22,14 +22,16 @@
 // specularColorTexture RGB (sRGB-encoded, decoded to linear) × specularColorFactor, inside the
 // min(…, 1) above; anisotropyTexture B (linear) × anisotropyStrength. The anisotropyTexture's
 // direction (RG) is a rotation of the tangent frame, not a BRDF parameter (the loader's).
-// Departures from the spec, stated: specularFactor scales F0 but f90 stays 1; baseColor stays the primitive's (the
-// base-colour texture's mean), so a textured metal's F0 does not follow its base-colour texture.
+// Departures from the spec, stated: specularFactor scales F0 but f90 stays 1; baseColor stays
+// the primitive's (the base-colour texture's mean), so a textured metal's F0 does not follow its
+// base-colour texture.
 // Plain Lambert (no BRDF set) when metallic = 0 and either F0 = 0 (specularFactor 0: the spec's
 // pure diffuse) or roughness = 1 with no KHR_materials_specular (prt's convention for a matte
 // surface: what prt's own writer and most exporters write for a diffuse material).
 // Errors: SceneError "PATH: material 'NAME': FIELD V outside [lo, hi]" for factors outside
 // their ranges (NaN and infinities included), "… anisotropyRotation V is not finite".
-// Specs: [110] (KHR_materials_specular), [111] (KHR_materials_anisotropy) of docs/REFERENCES.md.
+// Specs: [112] (Appendix B), [110] (KHR_materials_specular), [111] (KHR_materials_anisotropy) of
+// docs/REFERENCES.md.
 #pragma once
 
 #include <optional>

@@ -203,7 +203,7 @@ TEST_CASE(
   CHECK(lambert.summary.find("`*=lambert:kd=0.5`") != std::string::npos);
   CHECK(lambert.summary.find("--material '*=lambert:kd=0.5'") != std::string::npos);
   CHECK(lambert.summary.find("lambert(0.5)") != std::string::npos);
-  CHECK(lambert.summary.find("ggx(") == std::string::npos);  // the gold ball is overridden
+  CHECK(lambert.summary.find("gltf(") == std::string::npos);  // the gold ball is overridden
   CHECK(ggx.summary.find("`ball=ggx:alpha=0.2,f0=0.9/0.6/0.3,kd=0`") != std::string::npos);
   CHECK(ggx.summary.find("ggx(alpha 0.3x0.3") != std::string::npos);  // the floor
   CHECK(ggx.summary.find("ggx(alpha 0.2x0.2") != std::string::npos);  // the ball

@@ -16,18 +16,18 @@ TEST_CASE("prt make-scene --scene glossy, then prt info lists its materials", "[
   const RunResult made = run(prt_cli() + " make-scene --scene glossy -o " + scene);
   INFO(made.err);
   REQUIRE(made.exit_code == 0);
-  CHECK(made.out.find("brushed_disc (material brushed_steel): ggx(alpha 0.684x0.122") !=
-        std::string::npos);
+  CHECK(made.out.find("brushed_disc (material brushed_steel): gltf(base 0.9,0.9,0.88, metallic 1, "
+                      "alpha 0.684x0.122") != std::string::npos);
 
   const RunResult info = run(prt_cli() + " info " + scene);
   INFO(info.err);
   REQUIRE(info.exit_code == 0);
   CHECK(info.out.find("tangents from the file") != std::string::npos);
   CHECK(info.out.find("floor/0 (material floor): lambert(0.6)") != std::string::npos);
-  CHECK(info.out.find("glossy_sphere/0 (material glossy_red): ggx(alpha 0.09x0.09, F0 0.04, "
-                      "diffuse 0.7,0.08,0.06)") != std::string::npos);
-  CHECK(info.out.find("gold_box/0 (material rough_gold): ggx(alpha 0.25x0.25, F0 0.95,0.74,0.33, "
-                      "diffuse 0)") != std::string::npos);
+  CHECK(info.out.find("glossy_sphere/0 (material glossy_red): gltf(base 0.7,0.08,0.06, metallic 0, "
+                      "alpha 0.09x0.09, F0 0.04)") != std::string::npos);
+  CHECK(info.out.find("gold_box/0 (material rough_gold): gltf(base 0.95,0.74,0.33, metallic 1, "
+                      "alpha 0.25x0.25, F0 0.04)") != std::string::npos);
 
   const RunResult overridden =
       run(prt_cli() + " info " + scene +

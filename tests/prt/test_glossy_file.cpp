@@ -265,3 +265,28 @@ TEST_CASE("glossy file: invalid data is refused and an existing file is kept", "
   REQUIRE_FALSE(r.ok());
   CHECK(r.status().message().find("PRTC") != std::string::npos);
 }
+
+// Material record offset 112 holds the glTF model's metallic (docs/FORMAT.md): it round-trips,
+// and a record of another model with a non-zero metallic is refused in one line.
+TEST_CASE("glossy file: a glTF material keeps its metallic", "[glossy_file]") {
+  GlossyTransferData d = make_glossy(6, 2, 3, Precision::F32);
+  prt::brdf::Material gltf;
+  gltf.model = prt::brdf::MaterialModel::kGltf;
+  gltf.diffuse = {0.2, 0.4, 0.8};
+  gltf.specular = prt::brdf::grey(0.04);
+  gltf.metallic = 0.3;
+  gltf.alpha_x = gltf.alpha_y = 0.16;
+  d.materials[1] = gltf;
+  const auto bytes = prt::encode_glossy_transfer_file(d, "g");
+  REQUIRE(bytes.ok());
+  const auto back = prt::read_glossy_transfer_data(bytes.value().data(), bytes.value().size(), "g");
+  INFO((back.ok() ? std::string() : back.status().message()));
+  REQUIRE(back.ok());
+  CHECK(back.value().materials[1].model == prt::brdf::MaterialModel::kGltf);
+  CHECK(back.value().materials[1].metallic == 0.3);
+  CHECK(back.value().materials[1].diffuse.b == 0.8);
+  d.materials[1].model = prt::brdf::MaterialModel::kMicrofacet;
+  const auto refused = prt::encode_glossy_transfer_file(d, "g");
+  REQUIRE_FALSE(refused.ok());
+  CHECK(refused.status().message().find("metallic") != std::string::npos);
+}

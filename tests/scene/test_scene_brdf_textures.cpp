@@ -28,14 +28,15 @@ namespace {
 // The glTF mapping (scene/src/gltf_materials.h) for base colour 0.5 grey, ior 1.5.
 void check_gltf_material(const Material& m, double roughness, double metalness) {
   INFO("roughness " << roughness << ", metalness " << metalness << ": " << prt::brdf::describe(m));
-  REQUIRE(m.model == MaterialModel::kMicrofacet);
+  REQUIRE(m.model == MaterialModel::kGltf);
   const double alpha = std::max(roughness * roughness, 1e-3);
   // The texels are stored as float (relative rounding 6e-8, squared in α): 1e-6 relative.
   CHECK(m.alpha_x == Approx(alpha).epsilon(1e-6));
   CHECK(m.alpha_y == Approx(alpha).epsilon(1e-6));
-  const double f0 = 0.04 * (1 - metalness) + 0.5 * metalness;
-  CHECK(m.specular.r == Approx(f0).epsilon(1e-6));
-  CHECK(m.diffuse.r == Approx(0.5 * (1 - metalness)).epsilon(1e-6));
+  // The spec's BRDF takes base colour, metallic and the dielectric F0 as they are.
+  CHECK(m.metallic == Approx(metalness).epsilon(1e-6).margin(1e-12));
+  CHECK(m.specular.r == Approx(0.04).epsilon(1e-6));
+  CHECK(m.diffuse.r == Approx(0.5).epsilon(1e-6));
 }
 
 }  // namespace

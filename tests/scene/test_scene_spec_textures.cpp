@@ -114,7 +114,7 @@ TEST_CASE(
     const std::vector<unsigned char>& t = kSpecularTexels[v % 4];
     const Material& got = materials[v];
     INFO("vertex " << v << ": " << prt::brdf::describe(got));
-    REQUIRE(got.model == prt::brdf::MaterialModel::kMicrofacet);
+    REQUIRE(got.model == prt::brdf::MaterialModel::kGltf);
     const double expected[3] = {
         std::min(0.04 * colour[0] * srgb_decode(t[0]), 1.0) * factor * t[3] / 255.0,
         std::min(0.04 * colour[1] * srgb_decode(t[1]), 1.0) * factor * t[3] / 255.0,
@@ -122,7 +122,7 @@ TEST_CASE(
     CHECK(got.specular.r == Approx(expected[0]).epsilon(1e-6));
     CHECK(got.specular.g == Approx(expected[1]).epsilon(1e-6));
     CHECK(got.specular.b == Approx(expected[2]).epsilon(1e-6).margin(1e-12));
-    CHECK(got.diffuse.r == Approx(0.5).epsilon(1e-6));  // dielectric: the Lambert layer is base
+    CHECK(got.diffuse.r == Approx(0.5).epsilon(1e-6));  // the base colour
     CHECK(got.alpha_x == Approx(0.25).epsilon(1e-6));
     CHECK(got.alpha_y == Approx(0.25).epsilon(1e-6));
     if (v < 4) {
@@ -177,7 +177,8 @@ TEST_CASE(
     const double sv = strength * t[2] / 255.0;
     CHECK(materials[v].alpha_x == Approx(0.16 + 0.84 * sv * sv).epsilon(1e-6));
     CHECK(materials[v].alpha_y == Approx(0.16).epsilon(1e-6));
-    CHECK(materials[v].specular.r == Approx(0.9).epsilon(1e-6));  // metal: F0 = base colour
+    CHECK(materials[v].metallic == 1.0);  // metal: F0 = base colour, inside the BRDF
+    CHECK(materials[v].diffuse.r == Approx(0.9).epsilon(1e-6));
   }
   CHECK(materials[3].isotropic());  // B = 0: no anisotropy
   const std::vector<std::string> lines = prt::scene::describe_materials(scene);

@@ -75,8 +75,9 @@ struct GlossyBakeStatistics {
   uint64_t back_face_hits = 0;  // occlude only
   int samples_per_vertex = 0;
   int bounces = 0;  // bounces done
-  bool converged = true;  // interreflected: the last bounce changed ≤ bounce_tolerance (any
-                          // `bounces`); shadowed: true (nothing to solve)
+  // Interreflected: the last bounce changed no entry by more than bounce_tolerance × max|S|
+  // (counted or solved bounces alike); shadowed: true (nothing to solve).
+  bool converged = true;
   std::vector<double> bounce_change;  // per bounce: max |ΔM| / max |S|
   double seconds_total = 0;
   double seconds_rays = 0;  // sampling pass: rays + accumulation
@@ -99,7 +100,7 @@ void glossy_scene_materials(const scene::Scene& scene, std::vector<brdf::Materia
                             std::vector<uint32_t>& material_of_vertex);
 
 // Bakes the glossy transfer of every vertex. Throws BakeError (bad scene or options, a material
-// make_brdf refuses, bounces that diverge — a change that is not finite, or that exceeds max|S|
+// make_brdf refuses, bounces that diverge — a change that is not finite, or that exceeds 2 max|S|
 // and the change of the bounce before — a texture a material needs that could not be read:
 // ScenePrimitive::brdf_texture_problem) or std::runtime_error (Embree). `progress` may be null.
 GlossyBakeResult bake_glossy_transfer(const scene::Scene& scene, const GlossyBakeOptions& options,

@@ -2,10 +2,10 @@
 #include "prt/brdf/energy_check.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstdio>
 #include <map>
-#include <mutex>
 #include <string>
 
 #include "brdf/lobe_mix.h"
@@ -48,6 +48,22 @@ void add(const Brdf& brdf, const Vec3& wo, const Vec3& wi, double sum[3]) {
   sum[1] += f.g * w;
   sum[2] += f.b * w;
 }
+
+// A spin lock on the MERL verdicts (the runtime has no <mutex>: it starts no threads, but a
+// caller may check materials from several).
+class SpinLock {
+ public:
+  explicit SpinLock(std::atomic_flag& flag) : flag_(flag) {
+    while (flag_.test_and_set(std::memory_order_acquire)) {
+    }
+  }
+  ~SpinLock() { flag_.clear(std::memory_order_release); }
+  SpinLock(const SpinLock&) = delete;
+  SpinLock& operator=(const SpinLock&) = delete;
+
+ private:
+  std::atomic_flag& flag_;
+};
 
 std::string angle_text(double degrees) {
   char text[32];
@@ -98,12 +114,13 @@ AlbedoPeak max_furnace_albedo(const Brdf& brdf, bool isotropic) {
 
 Status check_energy_conservation(const Material& material) {
   if (material.model == MaterialModel::kGltf) return Status::Ok();  // the standard's own model
-  static std::mutex mutex;
+  if (material.lambertian()) return make_brdf(material).status();   // a = ρ ≤ 1 exactly
+  static std::atomic_flag busy = ATOMIC_FLAG_INIT;
   static std::map<std::string, AlbedoPeak> merl_peaks;
   AlbedoPeak peak;
   bool cached = false;
   if (material.model == MaterialModel::kMerl) {
-    const std::lock_guard<std::mutex> lock(mutex);
+    const SpinLock lock(busy);
     const auto found = merl_peaks.find(material.merl_path);
     if (found != merl_peaks.end()) {
       peak = found->second;
@@ -115,7 +132,7 @@ Status check_energy_conservation(const Material& material) {
     if (!made) return made.status();
     peak = max_furnace_albedo(*made.value(), material.isotropic());
     if (material.model == MaterialModel::kMerl) {
-      const std::lock_guard<std::mutex> lock(mutex);
+      const SpinLock lock(busy);
       merl_peaks[material.merl_path] = peak;
     }
   }

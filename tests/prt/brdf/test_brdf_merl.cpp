@@ -1,5 +1,6 @@
 // The MERL reader against files this test writes itself from an analytic model (no measured
 // data is bundled): exact values at cell centres, albedo close to the model's, refused files.
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -12,7 +13,9 @@
 #include <catch2/catch.hpp>
 
 #include "brdf_test_support.h"
+#include "prt/brdf/energy_check.h"
 #include "prt/brdf/lambert.h"
+#include "prt/brdf/material.h"
 #include "prt/brdf/merl.h"
 #include "prt/brdf/microfacet.h"
 #include "sh/constants.h"
@@ -193,4 +196,32 @@ TEST_CASE("MERL: bad files are refused with a message naming the file", "[brdf][
   const prt::Result<MerlBrdf> missing = MerlBrdf::read(output_path("no_such_file.binary"));
   REQUIRE_FALSE(missing.ok());
   CHECK(missing.status().message().find("cannot open") != std::string::npos);
+}
+
+// The white-furnace check on measured data: a MERL table of a constant ρ/π (a Lambert surface)
+// passes at ρ = 0.9 and is refused at ρ = 1.3, naming the file; the verdict is kept per path,
+// so a second check of the same path does not read the file again (it is deleted in between).
+TEST_CASE("MERL: the white-furnace check reads the table once and refuses albedo above 1",
+          "[brdf][merl][energy_check]") {
+  const std::size_t cells = std::size_t{kH} * kD * kP;
+  for (double rho : {0.9, 1.3}) {
+    std::vector<double> t(3 * cells);
+    for (int c = 0; c < 3; ++c)
+      std::fill(t.begin() + c * cells, t.begin() + (c + 1) * cells, rho / kPi / kScale[c]);
+    const std::string path = output_path(rho < 1.0 ? "furnace_09.binary" : "furnace_13.binary");
+    write_file(path, kDims, t);
+    Material m;
+    m.model = MaterialModel::kMerl;
+    m.merl_path = path;
+    const prt::Status first = check_energy_conservation(m);
+    std::remove(path.c_str());
+    const prt::Status again = check_energy_conservation(m);
+    INFO(first.message());
+    CHECK(first.ok() == (rho < 1.0));
+    CHECK(again.ok() == first.ok());
+    CHECK(again.message() == first.message());
+    if (rho > 1.0) {
+      CHECK(first.message().find("merl(" + path + ") reflects 1.3") != std::string::npos);
+    }
+  }
 }

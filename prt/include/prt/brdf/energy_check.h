@@ -47,7 +47,8 @@ AlbedoPeak max_furnace_albedo(const Brdf& brdf, bool isotropic);
 // Ok when the material's BRDF reflects at most 1 + kAlbedoTolerance at every angle; otherwise
 // one line: "DESCRIPTION reflects 1.23x the light arriving at 75°: directional albedo must not
 // exceed 1" (DESCRIPTION: describe(material)). make_brdf()'s errors are returned as they are.
-// MaterialModel::kGltf is not refused: it is glTF 2.0's own BRDF, defined for every parameter
+// Lambert needs no quadrature (a = ρ, which make_brdf bounds by 1). MaterialModel::kGltf is
+// not refused: it is glTF 2.0's own BRDF, defined for every parameter
 // in range, and its (1 − F(ωo·h)) weighting lets it exceed 1 towards grazing angles (by up to
 // 1.71x at 89° for a white base colour and roughness 0.1; docs/BRDF.md measures it). The
 // glossy bake's divergence check is its guard. A MERL material's result is kept per path for the
