@@ -15,6 +15,7 @@
 #include "prt/formats/glossy_transfer_file.h"
 #include "relight/environment_input.h"
 #include "relight/glossy_material_override.h"
+#include "relight/shown_window.h"
 #include "relight_frames.h"
 #include "scene/scene_loader.h"
 #include "sh/rotation.h"
@@ -167,8 +168,11 @@ RelightSummary run_glossy_relight(const RelightRequest& request,
   summary.layout_note = input.layout_note;
   summary.vertex_count = scene.vertex_count();
   summary.order = static_cast<int>(data.order);
-  const prt::ShLighting base =
-      project_lighting(env, summary.order, request.lighting, &summary.window_note);
+  LightingOptions lighting_options = request.lighting;
+  const bool window_on_vertices = lighting_options.window == sh::Window::Auto;
+  if (window_on_vertices) lighting_options.window = sh::Window::None;
+  prt::ShLighting base =
+      project_lighting(env, summary.order, lighting_options, &summary.window_note);
   const prt::GlossyRelighter relighter =
       make_glossy_relighter(std::move(loaded), request.transfer_path, options.projection);
 
@@ -183,6 +187,22 @@ RelightSummary run_glossy_relight(const RelightRequest& request,
   const int frames = std::max(1, request.turntable_frames);
   const bool turn_light = options.turntable != GlossyTurntable::kCamera;
   const bool orbit = options.turntable != GlossyTurntable::kLight;
+  if (window_on_vertices) {  // chosen on every frame's view, and --eye's (relight/shown_window.h)
+    ShownWindowSearch search(base.order());
+    const auto add_view = [&](const std::array<double, 9>& m, const glm::vec3& eye) {
+      search.add_view(rotate_lighting(base, m), [&](const prt::ShLighting& lighting) {
+        return shade_glossy_vertices(relighter, lighting, eye);
+      });
+    };
+    for (int frame = 0; frame < frames; ++frame) {
+      const bool table = request.turntable_frames > 0;
+      add_view(table && turn_light ? turntable_rotation(rotation, frame, frames) : rotation,
+               table && orbit ? orbit_camera(camera, frame, frames).eye : camera.eye);
+    }
+    if (options.eye && (!request.csv_path.empty() || !request.vertex_colors_path.empty()))
+      add_view(rotation, *options.eye);
+    summary.window_note = apply_shown_window(search.choose(), &base);
+  }
   for (int frame = 0; frame < frames; ++frame) {
     const bool table = request.turntable_frames > 0;
     const std::array<double, 9> m =
