@@ -211,22 +211,22 @@ void print_csv(const prt::CoefficientFile& f) {
   }
 }
 
-// The method and the settings it uses, as `prt radiosity` options.
+// The method and the settings it uses (as `prt radiosity` names them).
 std::string describe_form_factor_method(const radiosity::FormFactorOptions& o) {
   switch (o.method) {
     case radiosity::FormFactorMethod::Analytic:
-      return "analytic (--quadrature " + std::to_string(o.quadrature_points) + ")";
+      return "analytic, quadrature " + std::to_string(o.quadrature_points);
     case radiosity::FormFactorMethod::Hemicube:
-      return "hemicube (--hemicube " + std::to_string(o.hemicube_resolution) + ")";
+      return "hemicube, resolution " + std::to_string(o.hemicube_resolution);
     case radiosity::FormFactorMethod::Rays:
       break;
   }
   const bool reciprocal = o.emitter_rows == radiosity::EmitterRows::Reciprocal;
-  return "rays (--rays " + std::to_string(o.rays_per_patch) + " --seed " + std::to_string(o.seed) +
-         " --emitter-rays " + std::to_string(o.emitter_rays_per_patch) + " --ray-sampling " +
-         (o.sampling == radiosity::RaySampling::Sobol ? "sobol" : "independent") +
-         " --emitter-rows " + (reciprocal ? "reciprocal" : "rays") +
-         (reciprocal ? " --quadrature " + std::to_string(o.quadrature_points) : "") + ")";
+  return "rays, " + std::to_string(o.rays_per_patch) + " per patch, seed " +
+         std::to_string(o.seed) + ", emitter rays " + std::to_string(o.emitter_rays_per_patch) +
+         ", sampling " + (o.sampling == radiosity::RaySampling::Sobol ? "sobol" : "independent") +
+         ", emitter rows " + (reciprocal ? "reciprocal" : "rays") +
+         (reciprocal ? ", quadrature " + std::to_string(o.quadrature_points) : "");
 }
 
 // `prt info` of a form-factor cache (radiosity/form_factor_cache.h): patches, method and
@@ -261,7 +261,7 @@ void print_form_factor_cache(const InfoArguments& args) {
   }
   std::printf("file          %s (%llu bytes)\n", args.file.c_str(),
               static_cast<unsigned long long>(info.file_size));
-  std::printf("kind          form-factor cache (prt radiosity --form-factor-cache), version %u\n",
+  std::printf("kind          form-factor cache (saved by prt radiosity), version %u\n",
               info.version);
   std::printf("patches       %llu (a %s matrix, row i = sender i)\n",
               static_cast<unsigned long long>(info.patches),
@@ -306,9 +306,8 @@ void register_info(CLI::App& app) {
   cmd->add_option("file", args->file,
                   "Coefficient file (.prt, SH or Haar wavelets), glossy transfer file (.prtg), "
                   "CPCA file (.prtq, prt compress: error, metric, the source bake's settings), "
-                  "emitter responses (.prte), form-factor cache (prt radiosity "
-                  "--form-factor-cache: patches, method, settings), or a scene (.glb, .gltf, "
-                  ".obj)")
+                  "emitter responses (.prte), form-factor cache (saved by prt radiosity: "
+                  "patches, method, settings), or a scene (.glb, .gltf, .obj)")
       ->required();
   add_material_option(*cmd, args->materials);
   CLI::Option* json = cmd->add_flag("--json", args->json, "Print the header and metadata as JSON");

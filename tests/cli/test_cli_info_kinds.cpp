@@ -62,11 +62,10 @@ TEST_CASE("cli info: a form-factor cache states its patches, method, settings an
   struct Case {
     std::string options, method;
   };
-  for (const Case& c :
-       {Case{"--form-factors rays --rays 64 --seed 5 --ray-sampling independent",
-             "rays (--rays 64 --seed 5 --emitter-rays 0 --ray-sampling independent"},
-        Case{"--form-factors hemicube --hemicube 16", "hemicube (--hemicube 16)"},
-        Case{"--form-factors analytic --quadrature 1", "analytic (--quadrature 1)"}}) {
+  for (const Case& c : {Case{"--form-factors rays --rays 64 --seed 5 --ray-sampling independent",
+                             "rays, 64 per patch, seed 5, emitter rays 0, sampling independent"},
+                        Case{"--form-factors hemicube --hemicube 16", "hemicube, resolution 16"},
+                        Case{"--form-factors analytic --quadrature 1", "analytic, quadrature 1"}}) {
     const fs::path cache = dir / "box.ffm";
     fs::remove(cache);
     const RunResult solved =
