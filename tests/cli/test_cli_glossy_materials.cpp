@@ -144,11 +144,14 @@ TEST_CASE("cli: glossy relight --material: a rougher lobe lowers the highlight p
   // D(0) = 1/(π α²) drops ~30-fold, the SH order 6 blurs the sharp one, but the highlight's
   // peak radiance must still fall clearly (by more than a third) while the reflected energy
   // spreads (the mean over the sphere stays within a factor 2). Both under the same lighting:
-  // --window auto would choose its window on each material's own shading.
-  const auto smooth =
-      relight_csv(f, a, dir, "s", "--window none --material '*=ggx:roughness=0.3,f0=0.9,kd=0.05'");
-  const auto rough =
-      relight_csv(f, a, dir, "r", "--window none --material '*=ggx:roughness=0.7,f0=0.9,kd=0.05'");
+  // the same fixed window, the Laplacian λ = 0.182 that --window auto chose from this map's
+  // irradiance before it chose on the vertices (now it picks one per material's shading).
+  const auto smooth = relight_csv(
+      f, a, dir, "s",
+      "--window laplacian --window-strength 0.182 --material '*=ggx:roughness=0.3,f0=0.9,kd=0.05'");
+  const auto rough = relight_csv(
+      f, a, dir, "r",
+      "--window laplacian --window-strength 0.182 --material '*=ggx:roughness=0.7,f0=0.9,kd=0.05'");
   const double peak_smooth = peak_luminance(smooth, 0, kSphereVertices);
   const double peak_rough = peak_luminance(rough, 0, kSphereVertices);
   double sum_smooth = 0, sum_rough = 0;
