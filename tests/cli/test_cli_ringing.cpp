@@ -107,7 +107,7 @@ TEST_CASE("cli ringing: Suzanne under a rotated probe has no negative vertex wit
 
 TEST_CASE("cli ringing: the brushed disc under a sun has no negative vertex, the rest is counted") {
   // The glossy test scene under an unclipped sun (peak ≈ 65,000): with the irradiance-only
-  // window 1,164 vertices shaded below zero, most of them dark blotches on the anisotropic disc
+  // window 862 vertices shaded below zero, 617 of them dark blotches on the anisotropic disc
   // (measured). The window chosen on the vertices leaves none on the disc; what it cannot remove
   // (the bottom of the sharp red sphere against the floor, negative under the lighting's mean
   // alone) is named and counted, and the count is the CSV's.
