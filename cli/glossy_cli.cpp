@@ -14,6 +14,7 @@
 #include "bake/cpca/relit_metric.h"
 #include "bake/glossy_transfer_baker.h"
 #include "command_registry.h"
+#include "cpca_info.h"
 #include "output_safety.h"
 #include "progress_reporter.h"
 #include "prt/formats/cpca_file.h"
@@ -181,7 +182,8 @@ void run_glossy_compress(const GlossyCompressRequest& r) {
   const double error = prt::cpca_relative_rms_error(*cpca, data.matrices.data());
   const double metric_error =
       prt::cpca_metric_relative_rms_error(*cpca, data.matrices.data(), o.row_metric);
-  const prt::Status written = prt::write_cpca_file(r.output, *cpca, data);
+  const prt::Status written = prt::write_cpca_file(
+      r.output, *cpca, data, make_cpca_record(r, data, *cpca, error, metric_error));
   if (!written.ok()) throw CommandError(written.message());
   if (r.quiet) return;
   const double seconds =
@@ -279,55 +281,6 @@ void print_csv(const prt::GlossyTransferData& d) {
     for (std::size_t e = 0; e < C * K * K; ++e) std::printf(",%.9g", static_cast<double>(m[e]));
     std::printf("\n");
   }
-}
-
-}  // namespace
-
-namespace {
-
-void describe_cpca_file(const std::string& path, bool json, bool csv) {
-  if (csv) throw UsageError("--csv: " + path + " is a CPCA file; prt info --csv reads .prtg files");
-  prt::Result<prt::CpcaFile> read = prt::read_cpca_file_with_source(path);
-  if (!read.ok()) throw CommandError(read.status().message());
-  const prt::CpcaTransfer& t = read->cpca;
-  nlohmann::json j;
-  j["file"] = path;
-  j["bytes"] = file_bytes(path);
-  j["kind"] = "glossy CPCA";
-  j["order"] = t.order;
-  j["channels"] = t.channels;
-  j["vertices"] = t.vertex_count;
-  j["clusters"] = t.cluster_count;
-  j["vectors"] = t.vector_count;
-  j["matrix_bytes"] = t.payload_bytes();
-  j["matrix_bytes_uncompressed"] = 4 * t.vertex_count * t.dimension();
-  char fp[32];
-  std::snprintf(fp, sizeof fp, "%016llx", static_cast<unsigned long long>(t.fingerprint));
-  j["fingerprint"] = fp;
-  j["source_section"] = read->has_source;
-  if (read->has_source) {
-    nlohmann::json mats = nlohmann::json::array();
-    for (const brdf::Material& m : read->source.materials) mats.push_back(brdf::describe(m));
-    j["materials"] = mats;
-  }
-  if (json) {
-    std::printf("%s\n", j.dump(2).c_str());
-    return;
-  }
-  std::printf("file          %s (%llu bytes)\n", path.c_str(), file_bytes(path));
-  std::printf("kind          glossy CPCA (clustered PCA of %ux%u transfer matrices)\n",
-              t.order * t.order, t.order * t.order);
-  std::printf("order         %u\nchannels      %u\nvertices      %llu\n", t.order, t.channels,
-              static_cast<unsigned long long>(t.vertex_count));
-  std::printf("clusters      %u\nvectors       %u\n", t.cluster_count, t.vector_count);
-  std::printf("matrices      %llu bytes (uncompressed %llu)\n",
-              static_cast<unsigned long long>(t.payload_bytes()),
-              static_cast<unsigned long long>(4 * t.vertex_count * t.dimension()));
-  std::printf("fingerprint   %s\n", fp);
-  std::printf("source        %s\n", read->has_source ? "geometry, frames and materials included"
-                                                     : "none (prt relight cannot read it)");
-  if (read->has_source)
-    for (const auto& m : j["materials"]) std::printf("  %s\n", m.get<std::string>().c_str());
 }
 
 }  // namespace

@@ -1,8 +1,10 @@
 // `prt info FILE.prt [--json | --csv]`: describe a coefficient file of any kind
-// (prt/formats/coefficient_file.h), or a glossy transfer file (cli/glossy_cli.h: matrices,
-// materials). `prt info SCENE (.glb, .gltf, .obj) [--material NAME=MODEL:...]`: the scene's size
-// and one line per primitive with its material (prt::brdf::describe; scene/material_override.h for
-// the overrides, applied as prt bake applies them).
+// (prt/formats/coefficient_file.h), a glossy transfer file or its CPCA compression
+// (cli/glossy_cli.h, cli/cpca_info.h), emitter responses (cli/emitter_cli.h), or a form-factor
+// cache (radiosity/form_factor_cache.h: patches, method and settings, key, size; no --csv).
+// `prt info SCENE (.glb, .gltf, .obj) [--material NAME=MODEL:...]`: the scene's size and one line
+// per primitive with its material (prt::brdf::describe; scene/material_override.h for the
+// overrides, applied as prt bake applies them).
 //   default  the header (kind, order or cube size, channels, precision, vertices, primitives,
 //            fingerprint, sections) and the metadata JSON, as text;
 //   --json   the same as one JSON object;
@@ -29,6 +31,7 @@
 #include "prt/formats/coefficient_file.h"
 #include "prt/formats/transfer_data.h"
 #include "prt/haar/transform.h"
+#include "radiosity/form_factor_cache.h"
 #include "scene/scene_loader.h"
 #include "sh/basis.h"
 
@@ -208,8 +211,71 @@ void print_csv(const prt::CoefficientFile& f) {
   }
 }
 
+// The method and the settings it uses (as `prt radiosity` names them).
+std::string describe_form_factor_method(const radiosity::FormFactorOptions& o) {
+  switch (o.method) {
+    case radiosity::FormFactorMethod::Analytic:
+      return "analytic, quadrature " + std::to_string(o.quadrature_points);
+    case radiosity::FormFactorMethod::Hemicube:
+      return "hemicube, resolution " + std::to_string(o.hemicube_resolution);
+    case radiosity::FormFactorMethod::Rays:
+      break;
+  }
+  const bool reciprocal = o.emitter_rows == radiosity::EmitterRows::Reciprocal;
+  return "rays, " + std::to_string(o.rays_per_patch) + " per patch, seed " +
+         std::to_string(o.seed) + ", emitter rays " + std::to_string(o.emitter_rays_per_patch) +
+         ", sampling " + (o.sampling == radiosity::RaySampling::Sobol ? "sobol" : "independent") +
+         ", emitter rows " + (reciprocal ? "reciprocal" : "rays") +
+         (reciprocal ? ", quadrature " + std::to_string(o.quadrature_points) : "");
+}
+
+// `prt info` of a form-factor cache (radiosity/form_factor_cache.h): patches, method and
+// settings (version 2), key and size.
+void print_form_factor_cache(const InfoArguments& args) {
+  if (args.csv)
+    throw UsageError("--csv: " + args.file +
+                     " is a form-factor cache; --csv prints the per-vertex rows of .prt, .prtg, "
+                     ".prtq and .prte files");
+  radiosity::FormFactorCacheInfo info;
+  try {
+    info = radiosity::read_form_factor_cache_info(args.file);
+  } catch (const std::runtime_error& e) {
+    throw CommandError(e.what());
+  }
+  char key[24];
+  std::snprintf(key, sizeof key, "%016llx", static_cast<unsigned long long>(info.key));
+  const std::string method = info.settings_recorded ? describe_form_factor_method(info.options)
+                                                    : "not recorded (a version-1 cache)";
+  nlohmann::json j;
+  j["file"] = args.file;
+  j["bytes"] = info.file_size;
+  j["kind"] = "form-factor cache";
+  j["version"] = info.version;
+  j["patches"] = info.patches;
+  j["matrix"] = std::to_string(info.patches) + "x" + std::to_string(info.patches) + " f32";
+  j["key"] = key;
+  j["method"] = info.settings_recorded ? nlohmann::json(method) : nlohmann::json(nullptr);
+  if (args.json) {
+    std::printf("%s\n", j.dump(2).c_str());
+    return;
+  }
+  std::printf("file          %s (%llu bytes)\n", args.file.c_str(),
+              static_cast<unsigned long long>(info.file_size));
+  std::printf("kind          form-factor cache (saved by prt radiosity), version %u\n",
+              info.version);
+  std::printf("patches       %llu (a %s matrix, row i = sender i)\n",
+              static_cast<unsigned long long>(info.patches),
+              j["matrix"].get<std::string>().c_str());
+  std::printf("method        %s\n", method.c_str());
+  std::printf("key           %s (patches' corners and the method's settings)\n", key);
+}
+
 void run(const InfoArguments& args) {
   if (is_scene_path(args.file)) return print_scene(args);
+  if (radiosity::is_form_factor_cache(args.file)) {
+    if (!args.materials.empty()) throw UsageError("--material applies to scenes only");
+    return print_form_factor_cache(args);
+  }
   if (!args.materials.empty()) throw UsageError("--material applies to scenes only");
   if (is_glossy_file(args.file)) return describe_glossy_file(args.file, args.json, args.csv);
   if (info_if_emitter_responses(args.file, args.json, args.csv)) return;
@@ -229,15 +295,22 @@ void run(const InfoArguments& args) {
 
 Command register_info(CLI::App& app) {
   auto args = std::make_shared<InfoArguments>();
-  CLI::App* cmd =
-      app.add_subcommand("info", "Describe a coefficient (.prt) file, or a scene's materials");
+  CLI::App* cmd = app.add_subcommand(
+      "info",
+      "Describe a coefficient file (.prt: SH or Haar), a glossy transfer file (.prtg), its CPCA "
+      "compression (.prtq), emitter responses (.prte), a form-factor cache, or a scene's "
+      "materials");
   cmd->add_option("file", args->file,
-                  "Coefficient file (.prt), glossy transfer file (.prtg), emitter responses "
-                  "(.prte), or a scene (.glb, .gltf, .obj)")
+                  "Coefficient file (.prt, SH or Haar wavelets), glossy transfer file (.prtg), "
+                  "CPCA file (.prtq, prt compress: error, metric, the source bake's settings), "
+                  "emitter responses (.prte), form-factor cache (saved by prt radiosity: "
+                  "patches, method, settings), or a scene (.glb, .gltf, .obj)")
       ->required();
   add_material_option(*cmd, args->materials);
   CLI::Option* json = cmd->add_flag("--json", args->json, "Print the header and metadata as JSON");
-  cmd->add_flag("--csv", args->csv, "Print one CSV row per vertex")->excludes(json);
+  cmd->add_flag("--csv", args->csv,
+                "Print one CSV row per vertex (.prt, .prtg, .prtq: matrices reconstructed, .prte)")
+      ->excludes(json);
   const auto files = [args] {
     CommandFiles f;  // no files are written: only stdout must not be the input
     if (is_scene_path(args->file))

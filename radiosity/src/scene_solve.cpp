@@ -133,7 +133,7 @@ FormFactorMatrix form_factors(const SceneSolveRequest& r, const scene::Scene& be
     }
     out->form_factor_seconds = since(t);
     t = Clock::now();
-    save_form_factors(r.form_factor_cache, f, key);
+    save_form_factors(r.form_factor_cache, f, key, &r.form_factors);
     out->cache_seconds = since(t);
     out->cache = SceneSolution::Cache::Saved;
     out->files_written.push_back(r.form_factor_cache);

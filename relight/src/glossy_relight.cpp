@@ -16,6 +16,7 @@
 #include "prt/formats/glossy_transfer_file.h"
 #include "relight/environment_input.h"
 #include "relight/glossy_material_override.h"
+#include "relight/shown_window.h"
 #include "relight_frames.h"
 #include "scene/scene_loader.h"
 #include "scene/subdivide.h"
@@ -174,15 +175,11 @@ RelightSummary run_glossy_relight(const RelightRequest& request,
   summary.layout_note = input.layout_note;
   summary.vertex_count = scene.vertex_count();
   summary.order = static_cast<int>(data.order);
-  const prt::ShLighting base =
-      project_lighting(env, summary.order, request.lighting, &summary.window_note);
-  if (emitters) {
-    const std::size_t count = emitters->radiance.emitter_count();
-    char note[96];
-    std::snprintf(note, sizeof note, "; %zu emitter%s gathered in %.2f s", count,
-                  count == 1 ? "" : "s", emitters->gather_seconds);
-    summary.window_note += note;
-  }
+  LightingOptions lighting_options = request.lighting;
+  const bool window_on_vertices = lighting_options.window == sh::Window::Auto;
+  if (window_on_vertices) lighting_options.window = sh::Window::None;
+  prt::ShLighting base =
+      project_lighting(env, summary.order, lighting_options, &summary.window_note);
   const prt::GlossyRelighter relighter =
       make_glossy_relighter(std::move(loaded), request.transfer_path, options.projection);
 
@@ -199,6 +196,30 @@ RelightSummary run_glossy_relight(const RelightRequest& request,
   const bool orbit = options.turntable != GlossyTurntable::kLight;
   const glm::vec3 orbit_centre =
       options.orbit_centre.value_or(0.5f * (scene.bounds_min() + scene.bounds_max()));
+  if (window_on_vertices) {  // chosen on every frame's view, and --eye's (relight/shown_window.h)
+    ShownWindowSearch search(base.order());
+    const auto add_view = [&](const std::array<double, 9>& m, const glm::vec3& eye) {
+      search.add_view(rotate_lighting(base, m), [&](const prt::ShLighting& lighting) {
+        return shade_glossy_vertices(relighter, lighting, eye);
+      });
+    };
+    for (int frame = 0; frame < frames; ++frame) {
+      const bool table = request.turntable_frames > 0;
+      add_view(table && turn_light ? turntable_rotation(rotation, frame, frames) : rotation,
+               table && orbit ? orbit_camera(camera, orbit_centre, frame, frames).eye
+                              : camera.eye);
+    }
+    if (options.eye && (!request.csv_path.empty() || !request.vertex_colors_path.empty()))
+      add_view(rotation, *options.eye);
+    summary.window_note = apply_shown_window(search.choose(), &base);
+  }
+  if (emitters) {
+    const std::size_t count = emitters->radiance.emitter_count();
+    char note[96];
+    std::snprintf(note, sizeof note, "; %zu emitter%s gathered in %.2f s", count,
+                  count == 1 ? "" : "s", emitters->gather_seconds);
+    summary.window_note += note;
+  }
   for (int frame = 0; frame < frames; ++frame) {
     const bool table = request.turntable_frames > 0;
     const std::array<double, 9> m =

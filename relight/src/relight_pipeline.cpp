@@ -19,6 +19,7 @@
 #include "relight/emitter_relight.h"
 #include "relight/environment_input.h"
 #include "relight/image_io.h"
+#include "relight/shown_window.h"
 #include "relight/tone_map.h"
 #include "relight_frames.h"
 #include "scene/scene_loader.h"
@@ -160,6 +161,14 @@ std::array<double, 9> turntable_rotation(const std::array<double, 9>& base, int 
   return multiply_rotations(sh::rotation_from_yaw_pitch_roll(yaw, 0.0, 0.0), base);
 }
 
+std::array<double, 9> frame_rotation(const RelightRequest& request, int frame) {
+  const std::array<double, 3>& ypr = request.lighting.yaw_pitch_roll_deg;
+  const std::array<double, 9> base = sh::rotation_from_yaw_pitch_roll(ypr[0], ypr[1], ypr[2]);
+  return request.turntable_frames > 0
+             ? turntable_rotation(base, frame, std::max(1, request.turntable_frames))
+             : base;
+}
+
 prt::ShLighting rotate_lighting(const prt::ShLighting& lighting, const std::array<double, 9>& m) {
   prt::ShLighting rotated = lighting;
   const prt::Status status = rotated.rotate(m);
@@ -191,7 +200,12 @@ void write_rendered_image(const std::string& path, const Image& image, float exp
     tone_map(image.rgb.data(), image.rgb.size(), exposure_ev, encoded.data());
     write_image(path, image.width, image.height, 3, encoded.data());
   } else if (ext == ".exr" || ext == ".hdr") {
-    write_image(path, image.width, image.height, 3, image.rgb.data());
+    // Negative radiance (SH ringing, counted per vertex by the caller) is clamped to 0 as the
+    // PNG's tone curve does; NaN stays NaN.
+    std::vector<float> clamped(image.rgb);
+    for (float& v : clamped)
+      if (v < 0.f) v = 0.f;
+    write_image(path, image.width, image.height, 3, clamped.data());
   } else {
     check_image_extension(path);
   }
@@ -249,11 +263,24 @@ RelightSummary run_relight(const RelightRequest& request) {
   summary.layout_note = input.layout_note;
   summary.vertex_count = scene.vertex_count();
   summary.order = static_cast<int>(data.order);
-  const prt::ShLighting base =
-      project_lighting(env, static_cast<int>(data.order), request.lighting, &summary.window_note);
+  // --window auto is chosen on the vertices as shaded in every frame (relight/shown_window.h).
+  LightingOptions lighting_options = request.lighting;
+  const bool window_on_vertices = lighting_options.window == sh::Window::Auto;
+  if (window_on_vertices) lighting_options.window = sh::Window::None;
+  prt::ShLighting base =
+      project_lighting(env, static_cast<int>(data.order), lighting_options, &summary.window_note);
   prt::Result<prt::Relighter> relighter = prt::Relighter::create(data);
   if (!relighter.ok())
     throw std::runtime_error(request.transfer_path + ": " + relighter.status().message());
+  if (window_on_vertices) {
+    ShownWindowSearch search(base.order());
+    const ShadeVertices shade = [&](const prt::ShLighting& lighting) {
+      return shade_all_vertices(*relighter, lighting, scene.vertex_count());
+    };
+    for (int frame = 0; frame < std::max(1, request.turntable_frames); ++frame)
+      search.add_view(rotate_lighting(base, frame_rotation(request, frame)), shade);
+    summary.window_note = apply_shown_window(search.choose(), &base);
+  }
   RelightRequest frames = request;
   frames.render.multiply_albedo = !data.albedo_folded;  // textures applied per pixel
 

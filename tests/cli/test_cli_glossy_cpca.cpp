@@ -1,6 +1,7 @@
 // `prt compress` (glossy transfer → CPCA file) and `prt relight` / `prt info` with the .prtq:
 // the compressed file relights like the file it came from (exactly at full rank), and bad input
 // is refused with one line and nothing written.
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -8,6 +9,7 @@
 #include <vector>
 
 #include <catch2/catch.hpp>
+#include <nlohmann/json.hpp>
 
 #include "bake/cpca/compressor.h"
 #include "bake/glossy_transfer_baker.h"
@@ -243,4 +245,84 @@ TEST_CASE("cli: prt compress and prt relight refuse bad CPCA input with one line
           " -o " + image.string() + " --csv " + (dir / "out" / "v.csv").string()),
       "--eye");
   nothing_written();
+}
+
+namespace {
+
+// The rows of a `prt info --csv` file, as numbers (the header row apart).
+std::vector<std::vector<double>> csv_rows(const std::string& text, std::string* header) {
+  std::stringstream in(text);
+  std::getline(in, *header);
+  std::vector<std::vector<double>> rows;
+  std::string line;
+  while (std::getline(in, line)) {
+    std::stringstream row(line);
+    std::string cell;
+    rows.emplace_back();
+    while (std::getline(row, cell, ',')) rows.back().push_back(std::stod(cell));
+  }
+  return rows;
+}
+
+}  // namespace
+
+TEST_CASE("cli: prt info of a .prtq states its error, metric and the source bake's settings") {
+  const fs::path dir = scratch("cpca_info");
+  const SphereFiles f = make_sphere(dir, 3);
+  const fs::path q = dir / "sphere.prtq";
+  RunResult c = run(prt_cli() + " compress " + f.glossy.string() + " -o " + q.string() +
+                    " --clusters 4 --vectors 3 --seed 7");
+  REQUIRE(c.exit_code == 0);
+  const std::string key = "relit-metric error ";
+  REQUIRE(c.out.find(key) != std::string::npos);
+  const double reported = std::stod(c.out.substr(c.out.find(key) + key.size()));
+  RunResult info = run(prt_cli() + " info " + q.string());
+  INFO(info.out << info.err);
+  REQUIRE(info.exit_code == 0);
+  CHECK(info.out.find("in the relit metric (what it minimised)") != std::string::npos);
+  CHECK(info.out.find("--clusters 4 --vectors 3") != std::string::npos);
+  CHECK(info.out.find("seed 7") != std::string::npos);
+  // The bake's settings (make_sphere bakes 32 samples per vertex at order 3, shadowed).
+  CHECK(info.out.find("glossy shadowed, order 3, 32 samples per vertex") != std::string::npos);
+  CHECK(info.out.find("(sphere.prtg)") != std::string::npos);
+  RunResult json = run(prt_cli() + " info " + q.string() + " --json");
+  REQUIRE(json.exit_code == 0);
+  const nlohmann::json j = nlohmann::json::parse(json.out);
+  CHECK(j["format_version"] == prt::kCpcaFileVersion);
+  CHECK(j["compression"]["metric"] == "relit");
+  // The stored error is the one compress printed (to its 4 printed digits).
+  CHECK(j["compression"]["metric_relative_rms_error"].get<double>() ==
+        Approx(reported).epsilon(1e-3));
+  CHECK(j["source_bake"]["samples_per_vertex"] == 32);
+}
+
+TEST_CASE("cli: prt info --csv reads a .prtq: the .prtg's rows with the matrices reconstructed") {
+  // Order 2 at full rank (D = 16, 16 vectors): the reconstructed matrices equal the .prtg's to
+  // float rounding (1e-5 absolute on entries of order 0.1-1); geometry and frames are copied.
+  const fs::path dir = scratch("cpca_info_csv");
+  const SphereFiles f = make_sphere(dir, 2);
+  const fs::path q = dir / "sphere.prtq";
+  REQUIRE(run(prt_cli() + " compress " + f.glossy.string() + " -o " + q.string() +
+              " --clusters 4 --vectors 16 --quiet")
+              .exit_code == 0);
+  RunResult g = run(prt_cli() + " info --csv " + f.glossy.string());
+  RunResult c = run(prt_cli() + " info --csv " + q.string());
+  INFO(c.err);
+  REQUIRE(g.exit_code == 0);
+  REQUIRE(c.exit_code == 0);
+  std::string gh, ch;
+  const auto gr = csv_rows(g.out, &gh), cr = csv_rows(c.out, &ch);
+  CHECK(ch.rfind("index,x,y,z,nx,ny,nz,tx,ty,tz,tw,material,cluster,m0_0_0,", 0) == 0);
+  REQUIRE(gr.size() == cr.size());
+  REQUIRE(gr.size() > 100);
+  double worst = 0;
+  for (std::size_t v = 0; v < gr.size(); ++v) {
+    REQUIRE(cr[v].size() == gr[v].size() + 1);  // + cluster
+    for (std::size_t k = 0; k < 12; ++k) CHECK(cr[v][k] == gr[v][k]);
+    CHECK(cr[v][12] >= 0);
+    CHECK(cr[v][12] < 4);
+    for (std::size_t k = 12; k < gr[v].size(); ++k)
+      worst = std::max(worst, std::fabs(cr[v][k + 1] - gr[v][k]));
+  }
+  CHECK(worst < 1e-5);
 }

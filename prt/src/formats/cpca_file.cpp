@@ -14,7 +14,8 @@ namespace prt {
 namespace {
 
 constexpr unsigned char kMagic[4] = {'P', 'R', 'C', 'P'};
-constexpr uint32_t kVersion = 1;
+constexpr uint32_t kVersion = kCpcaFileVersion;
+constexpr uint64_t kMaxRecordBytes = uint64_t(1) << 20;
 constexpr std::size_t kHeaderSize = 64;
 constexpr std::size_t kChecksumOffset = 56;
 
@@ -81,9 +82,12 @@ Result<std::vector<unsigned char>> encode_source(const CpcaTransfer& t,
 }
 
 Result<std::vector<unsigned char>> encode_impl(const CpcaTransfer& t,
-                                               const GlossyTransferData* source) {
+                                               const GlossyTransferData* source,
+                                               const std::string& record) {
   Status s = cpca_validate(t);
   if (!s.ok()) return s;
+  if (record.size() > kMaxRecordBytes)
+    return Status::Error("cpca file: the compression record exceeds 1 MiB");
   try {
     std::vector<unsigned char> section;
     if (source != nullptr) {
@@ -92,7 +96,9 @@ Result<std::vector<unsigned char>> encode_impl(const CpcaTransfer& t,
       section = std::move(bytes).value();
     }
     const std::size_t payload = static_cast<std::size_t>(t.payload_bytes());
-    std::vector<unsigned char> out(payload + (source ? 8 + section.size() : 0), 0);
+    const std::size_t sourced = source ? 8 + section.size() : 0;
+    const std::size_t recorded = record.empty() ? 0 : 8 + record.size();
+    std::vector<unsigned char> out(payload + sourced + recorded, 0);
     unsigned char* p = out.data();
     std::memcpy(p, kMagic, 4);
     store_u32(p + 4, kVersion);
@@ -101,7 +107,7 @@ Result<std::vector<unsigned char>> encode_impl(const CpcaTransfer& t,
     store_u32(p + 16, t.channels);
     store_u32(p + 20, t.cluster_count);
     store_u32(p + 24, t.vector_count);
-    store_u32(p + 28, source ? kCpcaFlagSource : 0);
+    store_u32(p + 28, (source ? kCpcaFlagSource : 0) | (record.empty() ? 0 : kCpcaFlagRecord));
     store_u64(p + 32, t.vertex_count);
     store_u64(p + 40, t.fingerprint);
     store_u64(p + 48, out.size());
@@ -121,6 +127,10 @@ Result<std::vector<unsigned char>> encode_impl(const CpcaTransfer& t,
       store_u64(p + payload, section.size());
       std::memcpy(p + payload + 8, section.data(), section.size());
     }
+    if (!record.empty()) {
+      store_u64(p + payload + sourced, record.size());
+      std::memcpy(p + payload + sourced + 8, record.data(), record.size());
+    }
     store_u32(p + kChecksumOffset, file_checksum(p, out.size()));
     return out;
   } catch (const std::bad_alloc&) {
@@ -131,12 +141,18 @@ Result<std::vector<unsigned char>> encode_impl(const CpcaTransfer& t,
 }  // namespace
 
 Result<std::vector<unsigned char>> encode_cpca_file(const CpcaTransfer& t) {
-  return encode_impl(t, nullptr);
+  return encode_impl(t, nullptr, {});
 }
 
 Result<std::vector<unsigned char>> encode_cpca_file(const CpcaTransfer& t,
                                                     const GlossyTransferData& source) {
-  return encode_impl(t, &source);
+  return encode_impl(t, &source, {});
+}
+
+Result<std::vector<unsigned char>> encode_cpca_file(const CpcaTransfer& t,
+                                                    const GlossyTransferData& source,
+                                                    const std::string& record_json) {
+  return encode_impl(t, &source, record_json);
 }
 
 namespace {
@@ -169,7 +185,8 @@ Result<CpcaFile> decode_impl(const void* data, std::size_t size, const std::stri
   if (size < kHeaderSize || std::memcmp(p, kMagic, 4) != 0) {
     return Status::Error(name + ": not a CPCA transfer file (no PRCP header)");
   }
-  if (load_u32(p + 4) != kVersion || load_u32(p + 8) != kHeaderSize) {
+  const uint32_t version = load_u32(p + 4);
+  if (version < 1 || version > kVersion || load_u32(p + 8) != kHeaderSize) {
     return Status::Error(name + ": unsupported CPCA file version " +
                          std::to_string(load_u32(p + 4)));
   }
@@ -192,13 +209,28 @@ Result<CpcaFile> decode_impl(const void* data, std::size_t size, const std::stri
     t.fingerprint = load_u64(p + 40);
     const uint32_t flags = load_u32(p + 28);
     const bool sourced = (flags & kCpcaFlagSource) != 0;
-    const uint64_t payload = t.order >= 1 && t.order <= 16 ? t.payload_bytes() : 0;
-    const bool sizes_agree = sourced ? payload <= size && size - payload >= 8 &&
-                                           load_u64(p + payload) == size - payload - 8
-                                     : payload == size;
-    if (t.order < 1 || t.order > 16 || (t.channels != 1 && t.channels != 3) ||
-        t.cluster_count < 1 || t.cluster_count > 65535 || t.vector_count > 4096 ||
-        t.vertex_count > (uint64_t(1) << 32) || (flags & ~kCpcaFlagSource) != 0 || !sizes_agree) {
+    const bool recorded = (flags & kCpcaFlagRecord) != 0;
+    const uint32_t known_flags = version >= 2 ? kCpcaFlagSource | kCpcaFlagRecord : kCpcaFlagSource;
+    const bool counts_ok = t.order >= 1 && t.order <= 16 && (t.channels == 1 || t.channels == 3) &&
+                           t.cluster_count >= 1 && t.cluster_count <= 65535 &&
+                           t.vector_count <= 4096 && t.vertex_count <= (uint64_t(1) << 32);
+    const uint64_t payload = counts_ok ? t.payload_bytes() : 0;
+    // The sections after the payload: [u64 size, source section], then [u64 size, record].
+    uint64_t at_section = payload, source_size = 0, record_size = 0;
+    bool sizes_agree = counts_ok && payload <= size;
+    if (sizes_agree && sourced) {
+      sizes_agree = size - at_section >= 8 && load_u64(p + at_section) <= size - at_section - 8;
+      if (sizes_agree) source_size = load_u64(p + at_section);
+      at_section += 8 + source_size;
+    }
+    if (sizes_agree && recorded) {
+      sizes_agree = size - at_section >= 8 && load_u64(p + at_section) <= kMaxRecordBytes &&
+                    load_u64(p + at_section) <= size - at_section - 8;
+      if (sizes_agree) record_size = load_u64(p + at_section);
+      at_section += 8 + record_size;
+    }
+    sizes_agree = sizes_agree && at_section == size;
+    if (!counts_ok || (flags & ~known_flags) != 0 || !sizes_agree) {
       return Status::Error(name + ": inconsistent CPCA header");
     }
     const std::size_t d = t.dimension(), q = t.cluster_count, k = t.vector_count;
@@ -215,9 +247,15 @@ Result<CpcaFile> decode_impl(const void* data, std::size_t size, const std::stri
     Status s = cpca_validate(t);
     if (!s.ok()) return Status::Error(name + ": " + s.message());
     if (sourced && want_source) {
-      s = decode_source(p + payload + 8, size - payload - 8, t, name, &file.source);
+      s = decode_source(p + payload + 8, static_cast<std::size_t>(source_size), t, name,
+                        &file.source);
       if (!s.ok()) return s;
       file.has_source = true;
+    }
+    if (recorded) {
+      const unsigned char* r = p + (size - record_size);
+      file.record_json.assign(reinterpret_cast<const char*>(r),
+                              static_cast<std::size_t>(record_size));
     }
     return file;
   } catch (const std::bad_alloc&) {
@@ -245,6 +283,13 @@ Result<CpcaFile> decode_cpca_file_with_source(const void* data, std::size_t size
 Status write_cpca_file(const std::string& path, const CpcaTransfer& t,
                        const GlossyTransferData& source) {
   auto bytes = encode_cpca_file(t, source);
+  if (!bytes.ok()) return Status::Error(path + ": " + bytes.status().message());
+  return write_file_atomically(path, bytes->data(), bytes->size());
+}
+
+Status write_cpca_file(const std::string& path, const CpcaTransfer& t,
+                       const GlossyTransferData& source, const std::string& record_json) {
+  auto bytes = encode_cpca_file(t, source, record_json);
   if (!bytes.ok()) return Status::Error(path + ": " + bytes.status().message());
   return write_file_atomically(path, bytes->data(), bytes->size());
 }

@@ -193,8 +193,27 @@ Status fill_isotropic_table(const brdf::Brdf& f, const BrdfProjectionOptions& o,
   return Status::Ok();
 }
 
+// The symmetry class of y_k under the reflections y → −y and x → −x of the local frame:
+// bit 0 set when y_k changes sign under y → −y (m < 0), bit 1 when it does under x → −x
+// ((−1)^m for m ≥ 0, −(−1)^|m| for m < 0; basis of sh/basis.h, no Condon–Shortley phase).
+int reflection_class(int k) {
+  int l = 0;
+  while ((l + 1) * (l + 1) <= k) ++l;
+  const int m = k - l * (l + 1), am = m < 0 ? -m : m;
+  const bool odd_y = m < 0;
+  const bool odd_x = m < 0 ? am % 2 == 0 : am % 2 == 1;
+  return (odd_y ? 1 : 0) | (odd_x ? 2 : 0);
+}
+
 // B_c,ij = 2 ∫_{H+} b_c,i(ωo) y_j(ωo) dωo for even j (the even extension across the horizon).
-void fill_matrix(const brdf::Brdf& f, const BrdfProjectionOptions& o, BrdfProjection::Impl* p) {
+// `orthotropic`: f is unchanged when ωi and ωo are both reflected by y → −y or by x → −x (every
+// analytic model of prt/brdf: α_x, α_y enter through h_x², h_y²). With both φ rules symmetric
+// under those reflections (node counts multiples of 4, offset by half a step), b at a reflected
+// view is b with the signs of its classes, so each view of the first φ quadrant stands for its
+// four images: the images' terms sum to 4× when y_i and y_j share a class and cancel otherwise
+// (the characters of the group {1, Y, X, XY}). Same sums, a quarter of the BRDF evaluations.
+void fill_matrix(const brdf::Brdf& f, const BrdfProjectionOptions& o, bool orthotropic,
+                 BrdfProjection::Impl* p) {
   const int n2 = p->order * p->order, m = p->view_order;
   for (int l = 0; l < m; ++l)
     for (int mm = -l; mm <= l; ++mm)
@@ -206,12 +225,18 @@ void fill_matrix(const brdf::Brdf& f, const BrdfProjectionOptions& o, BrdfProjec
   const int outer_phi = o.outer_phi > 0 ? o.outer_phi : 4 * m + 8;
   const std::vector<glossy::HemisphereNode> outer =
       glossy::product_hemisphere_rule(outer_theta, outer_phi);
+  const bool mirror = orthotropic && outer_phi % 4 == 0 && o.inner_phi % 4 == 0;
+  std::vector<int> class_i(static_cast<std::size_t>(n2)), class_e(e_count);
+  for (int i = 0; i < n2; ++i) class_i[std::size_t(i)] = reflection_class(i);
+  for (std::size_t e = 0; e < e_count; ++e) class_e[e] = reflection_class(p->even_j[e]);
   std::vector<double> y_in(inner.size() * std::size_t(n2));
   for (std::size_t k = 0; k < inner.size(); ++k)
     sh::evaluate(p->order, inner[k].w.x, inner[k].w.y, inner[k].w.z, &y_in[k * n2]);
   std::vector<double> y_out(std::size_t(m) * m), b(3 * std::size_t(n2));
   p->matrix.assign(3 * std::size_t(n2) * e_count, 0.0);
-  for (const glossy::HemisphereNode& view : outer) {
+  for (std::size_t v = 0; v < outer.size(); ++v) {
+    if (mirror && int(v % std::size_t(outer_phi)) >= outer_phi / 4) continue;
+    const glossy::HemisphereNode& view = outer[v];
     std::fill(b.begin(), b.end(), 0.0);
     for (std::size_t k = 0; k < inner.size(); ++k) {
       const Rgb value = f.eval(inner[k].w, view.w);
@@ -225,9 +250,16 @@ void fill_matrix(const brdf::Brdf& f, const BrdfProjectionOptions& o, BrdfProjec
     }
     sh::evaluate(m, view.w.x, view.w.y, view.w.z, y_out.data());
     for (std::size_t r = 0; r < b.size(); ++r) {
-      const double s = 2.0 * view.weight * b[r];
       double* row = &p->matrix[r * e_count];
-      for (std::size_t e = 0; e < e_count; ++e) row[e] += s * y_out[std::size_t(p->even_j[e])];
+      if (!mirror) {
+        const double s = 2.0 * view.weight * b[r];
+        for (std::size_t e = 0; e < e_count; ++e) row[e] += s * y_out[std::size_t(p->even_j[e])];
+        continue;
+      }
+      const double s = 8.0 * view.weight * b[r];  // 2 × the four images
+      const int ci = class_i[r % std::size_t(n2)];
+      for (std::size_t e = 0; e < e_count; ++e)
+        if (class_e[e] == ci) row[e] += s * y_out[std::size_t(p->even_j[e])];
     }
   }
 }
@@ -310,6 +342,13 @@ BrdfProjectionMethod BrdfProjection::method() const {
 Result<BrdfProjection> BrdfProjection::create(std::shared_ptr<const brdf::Brdf> f, int order,
                                               const Rgb& lambert_part,
                                               const BrdfProjectionOptions& options) {
+  return create_impl(std::move(f), order, lambert_part, options, /*orthotropic=*/false);
+}
+
+Result<BrdfProjection> BrdfProjection::create_impl(std::shared_ptr<const brdf::Brdf> f, int order,
+                                                   const Rgb& lambert_part,
+                                                   const BrdfProjectionOptions& options,
+                                                   bool orthotropic) {
   if (Status s = check_options(order, options); !s) return s;
   if (!f) return Status::Error("BRDF projection: null BRDF");
   BrdfProjection out;
@@ -321,7 +360,7 @@ Result<BrdfProjection> BrdfProjection::create(std::shared_ptr<const brdf::Brdf> 
     if (Status s = fill_isotropic_table(*f, options, p); !s) return s;
   } else if (p->method == BrdfProjectionMethod::kMatrix) {
     p->view_order = options.view_order > 0 ? options.view_order : std::min(order + 6, 32);
-    fill_matrix(*f, options, p);
+    fill_matrix(*f, options, orthotropic, p);
     p->matrix_f = to_float(p->matrix);
   } else {
     set_diffuse(lambert_part, p);
@@ -352,8 +391,11 @@ Result<BrdfProjection> BrdfProjection::create(const brdf::Material& material, in
                          brdf::describe(material));
   Result<std::shared_ptr<const brdf::Brdf>> f = brdf::make_brdf(material);
   if (!f) return f.status();
+  // Every analytic model is orthotropic in the local frame (fill_matrix); MERL is isotropic
+  // but not trusted to be tabulated symmetrically.
   if (o.method != BrdfProjectionMethod::kZonal)
-    return create(std::move(f).value(), order, brdf::grey(0.0), o);
+    return create_impl(std::move(f).value(), order, brdf::grey(0.0), o,
+                       material.model != brdf::MaterialModel::kMerl);
   if (material.lambertian()) {  // no glossy part: no table, b is the exact diffuse part
     BrdfProjection out;
     out.impl_->order = order;

@@ -26,11 +26,27 @@ namespace prt::radiosity {
 
 uint64_t form_factor_key(const std::vector<Patch>& patches, const FormFactorOptions& options);
 
-// Writes F with `key` to PATH (replacing it atomically).
-void save_form_factors(const std::string& path, const FormFactorMatrix& f, uint64_t key);
+// Writes F with `key` to PATH (replacing it atomically): with `options`, version 2, which also
+// records the method and the settings F was computed with (what `prt info` shows); without,
+// version 1 (docs/FORMAT.md).
+void save_form_factors(const std::string& path, const FormFactorMatrix& f, uint64_t key,
+                       const FormFactorOptions* options = nullptr);
 
 // Reads PATH, checking magic, version, size, checksum and that its key equals `key`:
 // "PATH: made for another scene or other form-factor options (key …, expected …)" otherwise.
+// Versions 1 and 2 load.
 FormFactorMatrix load_form_factors(const std::string& path, uint64_t key);
+
+// What a cache holds, for `prt info`: the checks of load_form_factors except the key.
+struct FormFactorCacheInfo {
+  uint32_t version = 0;
+  uint64_t patches = 0, key = 0, file_size = 0;
+  bool settings_recorded = false;  // version 2 written with options: `options` is valid
+  FormFactorOptions options;       // method and settings (only what the method uses matters)
+};
+FormFactorCacheInfo read_form_factor_cache_info(const std::string& path);
+
+// True when PATH starts with the cache's magic.
+bool is_form_factor_cache(const std::string& path);
 
 }  // namespace prt::radiosity

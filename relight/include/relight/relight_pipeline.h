@@ -68,6 +68,11 @@ std::array<double, 9> multiply_rotations(const std::array<double, 9>& a,
 std::array<double, 9> turntable_rotation(const std::array<double, 9>& base, int frame,
                                          int frame_count);
 
+struct RelightRequest;
+
+// The lighting rotation of frame i of the request (its --rotate, turned by the turntable).
+std::array<double, 9> frame_rotation(const RelightRequest& request, int frame);
+
 // A copy of `lighting` rotated by M (SH rotation of the coefficients).
 prt::ShLighting rotate_lighting(const prt::ShLighting& lighting, const std::array<double, 9>& m);
 
@@ -76,7 +81,9 @@ std::vector<float> shade_all_vertices(const prt::Relighter& relighter,
                                       const prt::ShLighting& lighting, std::size_t vertex_count);
 
 // Writes an image by extension: .exr and .hdr linear, .png tone mapped (tone_map.h with the
-// exposure). Throws for any other extension.
+// exposure). Negative values (SH ringing: the callers count the vertices that shade below zero
+// and say so) are written as 0 in every format, as the PNG's tone curve maps them. Throws for any
+// other extension.
 void write_rendered_image(const std::string& path, const Image& image, float exposure_ev);
 
 // One row per vertex: index,x,y,z,r,g,b (header row first; r,g,b the exit radiance at the

@@ -245,3 +245,39 @@ TEST_CASE("Float b of a grey material: three equal channels, as the double path"
     }
   }
 }
+
+TEST_CASE("Matrix of an anisotropic material: the quarter of the views by symmetry is exact",
+          "[glossy][projection]") {
+  // A Material (Ward or anisotropic GGX) is projected from the views of one φ quadrant and their
+  // mirror images (fill_matrix); the same BRDF as a plain Brdf object takes every view. The two
+  // are the same sums in another order: b must agree to rounding (1e-12 of |b|), at views off
+  // the symmetry axes where a wrong reflection sign would be of order |b|.
+  Material ggx;
+  ggx.model = MaterialModel::kMicrofacet;
+  ggx.diffuse = {0.2, 0.1, 0.05};
+  ggx.specular = {0.9, 0.8, 0.6};
+  ggx.alpha_x = 0.5;
+  ggx.alpha_y = 0.12;
+  for (const Material& m : {ward(0.3, 0.08), ggx}) {
+    BrdfProjectionOptions o;
+    o.method = BrdfProjectionMethod::kMatrix;
+    o.inner_theta = 32;
+    o.inner_phi = 64;
+    const int order = 4, n2 = order * order;
+    auto quarter = BrdfProjection::create(m, order, o);
+    auto f = prt::brdf::make_brdf(m);
+    REQUIRE(f.ok());
+    auto full = BrdfProjection::create(*f, order, prt::brdf::grey(0.0), o);
+    REQUIRE(quarter.ok());
+    REQUIRE(full.ok());
+    std::vector<double> a(3 * n2), b(3 * n2);
+    for (const Vec3& wo : {Vec3{0.3, 0.5, 0.81}, Vec3{-0.6, 0.2, 0.77}, Vec3{-0.1, -0.7, 0.7},
+                           Vec3{0.8, -0.3, 0.52}}) {
+      quarter->evaluate(wo, a.data());
+      full->evaluate(wo, b.data());
+      INFO(prt::brdf::describe(m) << " at (" << wo.x << ", " << wo.y << ", " << wo.z << ")");
+      CHECK(norm(b) > 0.1);
+      CHECK(distance(a, b) <= 1e-12 * norm(b));
+    }
+  }
+}

@@ -21,14 +21,21 @@
 namespace prt {
 
 inline constexpr uint32_t kCpcaFlagSource = 1;  // header flags: a source section follows
+inline constexpr uint32_t kCpcaFlagRecord = 2;  // header flags: a compression record follows
+// Version 2 added the compression record (flag bit 1); version 1 files (no record) still read.
+inline constexpr uint32_t kCpcaFileVersion = 2;
 
 // A `.prtq` with its optional source section. `source` (when has_source) has every field of
 // the glossy transfer the CPCA was made from except the matrices (empty); its order, channels,
 // vertex count and fingerprint equal the CPCA's.
+// `record_json` (version 2, empty when absent) is the compression record: a UTF-8 JSON object
+// that `prt compress` writes (its settings, the error it reached and in which metric, and the
+// source bake's settings); this layer stores it as text and does not parse it.
 struct CpcaFile {
   CpcaTransfer cpca;
   bool has_source = false;
   GlossyTransferData source;
+  std::string record_json;
 };
 
 // True when `bytes` start with the CPCA magic "PRCP" (size ≥ 4).
@@ -56,6 +63,13 @@ Result<CpcaFile> decode_cpca_file_with_source(const void* bytes, std::size_t siz
                                               const std::string& name_for_errors);
 Status write_cpca_file(const std::string& path, const CpcaTransfer& cpca,
                        const GlossyTransferData& source);
+// With the source section and a compression record (`record_json` non-empty, at most 1 MiB;
+// stored after the source section: u64 size, then the bytes).
+Result<std::vector<unsigned char>> encode_cpca_file(const CpcaTransfer& cpca,
+                                                    const GlossyTransferData& source,
+                                                    const std::string& record_json);
+Status write_cpca_file(const std::string& path, const CpcaTransfer& cpca,
+                       const GlossyTransferData& source, const std::string& record_json);
 Result<CpcaFile> read_cpca_file_with_source(const std::string& path);
 
 }  // namespace prt

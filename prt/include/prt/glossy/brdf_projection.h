@@ -136,6 +136,11 @@ class BrdfProjection {
   struct Impl;
 
  private:
+  // create() with `orthotropic`: f is unchanged when ωi and ωo are both reflected by y → −y or
+  // x → −x (the analytic models), which lets kMatrix evaluate a quarter of the views.
+  static Result<BrdfProjection> create_impl(std::shared_ptr<const brdf::Brdf> brdf, int order,
+                                            const brdf::Rgb& lambert_part,
+                                            const BrdfProjectionOptions& options, bool orthotropic);
   std::unique_ptr<Impl> impl_;
 };
 
