@@ -36,16 +36,18 @@ constexpr std::size_t kTableBytes = std::size_t{3} * prt::brdf::kMerlThetaH *
 std::vector<unsigned char> table_sized_file(const uint8_t* data, std::size_t size) {
   std::vector<unsigned char> file(12 + kTableBytes, 0);
   std::memcpy(file.data(), data, size < 12 ? size : 12);
-  const uint8_t* rest = size > 12 ? data + 12 : nullptr;
-  const std::size_t rest_size = size > 12 ? size - 12 : 0;
-  if (rest_size == 0) {
-    const double half = 0.5;
-    for (std::size_t at = 12; at < file.size(); at += 8) std::memcpy(&file[at], &half, 8);
-  } else {
-    for (std::size_t at = 12; at < file.size(); at += rest_size)
-      std::memcpy(&file[at], rest, std::min(rest_size, file.size() - at));
+  const double half = 0.5;
+  const uint8_t* rest = size > 12 ? data + 12 : reinterpret_cast<const uint8_t*>(&half);
+  const std::size_t rest_size = size > 12 ? std::min(size - 12, kTableBytes) : sizeof half;
+  // The pattern, then the filled part copied after itself (doubling): a few dozen copies.
+  unsigned char* table = file.data() + 12;
+  std::memcpy(table, rest, rest_size);
+  for (std::size_t filled = rest_size; filled < kTableBytes;) {
+    const std::size_t n = std::min(filled, kTableBytes - filled);
+    std::memcpy(table + filled, table, n);
+    filled += n;
   }
-  const int adjust = rest_size > 1 ? rest[1] % 3 : 0;
+  const int adjust = size > 13 ? rest[1] % 3 : 0;
   if (adjust == 1) file.pop_back();
   if (adjust == 2) file.push_back(0);
   return file;
