@@ -17,6 +17,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <string>
@@ -68,12 +69,22 @@ void check_brdf(const prt::brdf::MerlBrdf& brdf) {
   }
 }
 
+// How many executions took the table-sized path (printed at exit, for docs/FUZZING.md).
+std::size_t table_sized_runs = 0;
+
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   if (size < 1) return 0;
+  static const bool registered = [] {
+    std::atexit(
+        [] { std::fprintf(stderr, "fuzz_merl_brdf: %zu table-sized files\n", table_sized_runs); });
+    return true;
+  }();
+  (void)registered;
   std::string path;
   if (data[0] == 1) {
+    ++table_sized_runs;
     const std::vector<unsigned char> file = table_sized_file(data + 1, size - 1);
     path = prt::fuzz::write_scratch_file(".binary", file.data(), file.size());
   } else {
