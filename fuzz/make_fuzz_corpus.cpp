@@ -6,7 +6,8 @@
 //   corpus/fuzz_scene_gltf/     GLB files from scene::write_glb and a .gltf with a data URI;
 //   corpus/fuzz_env_map/        selector byte + small .hdr and .pfm maps of each layout;
 //   corpus/fuzz_env_map_exr/    selector byte + small .exr maps of each layout (its regression_*
-//                               files are kept findings of the target, not written here).
+//                               files are kept findings of the target, not written here);
+//   corpus/fuzz_glossy_file/ … fuzz_texture/: the binary formats and textures (format_seeds.h).
 // Usage: make_fuzz_corpus OUT_DIR   (scripts/fuzz.sh runs it when a corpus folder is empty).
 #include <cstdio>
 #include <cstring>
@@ -18,6 +19,7 @@
 #include <utility>
 #include <vector>
 
+#include "format_seeds.h"
 #include "prt/formats/transfer_file.h"
 #include "relight/image_io.h"
 #include "scene/glb_writer.h"
@@ -197,6 +199,7 @@ int main(int argc, char** argv) {
     write_obj_seeds(dirs[1]);
     write_gltf_seeds(dirs[2]);
     write_env_seeds(dirs[3], dirs[4]);
+    prt::fuzz::write_format_seeds(out);
   } catch (const std::exception& e) {
     std::cerr << e.what() << "\n";
     return 1;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cerrno>
 #include <cinttypes>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <limits>
@@ -231,6 +232,12 @@ FormFactorMatrix load_form_factors(const std::string& path, uint64_t key) {
     throw std::runtime_error(path + ": cannot read form-factor cache: " + std::strerror(errno));
   if (crc32c(m.f.data(), m.f.size() * sizeof(float), crc32c(header, h.header_size)) != h.checksum)
     throw std::runtime_error(path + ": corrupt form-factor cache (checksum mismatch)");
+  // A NaN or infinite factor would spread through every patch's radiosity in the solve.
+  for (std::size_t k = 0; k < m.f.size(); ++k)
+    if (!std::isfinite(m.f[k]))
+      throw std::runtime_error(
+          path + ": corrupt form-factor cache (non-finite form factor at row " +
+          std::to_string(k / m.size) + ", column " + std::to_string(k % m.size) + ")");
   return m;
 }
 

@@ -4,9 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <cstring>
 #include <fstream>
-#include <iterator>
 
 #include "prt/brdf/lambert.h"
 #include "sh/constants.h"
@@ -51,28 +49,33 @@ HalfDiffAngles half_diff_angles(const Vec3& wi, const Vec3& wo) {
 }
 
 Result<MerlBrdf> MerlBrdf::read(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
+  std::ifstream in(path, std::ios::binary | std::ios::ate);
   if (!in) return file_error(path, "cannot open MERL BRDF file");
-  std::vector<char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (bytes.size() < 12) {
-    return file_error(path, "truncated MERL file: " + std::to_string(bytes.size()) +
-                                " bytes, the header alone needs 12");
+  // The size first, so that nothing is allocated for a file of the wrong size.
+  const std::streamoff end = in.tellg();
+  if (end < 0 || !in.seekg(0)) return file_error(path, "cannot read MERL BRDF file");
+  const auto size = static_cast<std::size_t>(end);
+  if (size < 12) {
+    return file_error(
+        path, "truncated MERL file: " + std::to_string(size) + " bytes, the header alone needs 12");
   }
   int32_t dims[3];
-  std::memcpy(dims, bytes.data(), 12);
+  if (!in.read(reinterpret_cast<char*>(dims), 12))
+    return file_error(path, "cannot read MERL BRDF file");
   if (dims[0] != kMerlThetaH || dims[1] != kMerlThetaD || dims[2] != kMerlPhiD) {
     return file_error(path, "MERL dimensions are " + std::to_string(dims[0]) + "x" +
                                 std::to_string(dims[1]) + "x" + std::to_string(dims[2]) +
                                 ", expected 90x90x180");
   }
   const std::size_t want = 12 + 3 * kCells * sizeof(double);
-  if (bytes.size() != want) {
-    return file_error(path, std::string(bytes.size() < want ? "truncated" : "oversized") +
-                                " MERL file: " + std::to_string(bytes.size()) +
-                                " bytes, expected " + std::to_string(want));
+  if (size != want) {
+    return file_error(path, std::string(size < want ? "truncated" : "oversized") + " MERL file: " +
+                                std::to_string(size) + " bytes, expected " + std::to_string(want));
   }
   std::vector<double> table(3 * kCells);
-  std::memcpy(table.data(), bytes.data() + 12, table.size() * sizeof(double));
+  if (!in.read(reinterpret_cast<char*>(table.data()),
+               static_cast<std::streamsize>(table.size() * sizeof(double))))
+    return file_error(path, "cannot read MERL BRDF file");
   for (std::size_t i = 0; i < table.size(); ++i) {
     if (!std::isfinite(table[i])) {
       return file_error(path, "non-finite MERL value at index " + std::to_string(i));

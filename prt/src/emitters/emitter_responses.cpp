@@ -31,6 +31,23 @@ using detail::load_u64;
 using detail::store_u32;
 using detail::store_u64;
 
+// An emitter name as messages show it: control characters (a file may hold any bytes) as \xNN,
+// so that every message stays on one line.
+std::string shown(const std::string& name) {
+  std::string out;
+  for (const char ch : name) {
+    const auto u = static_cast<unsigned char>(ch);
+    if (u >= 0x20 && u != 0x7f) {
+      out += ch;
+      continue;
+    }
+    char escaped[5];
+    std::snprintf(escaped, sizeof escaped, "\\x%02x", u);
+    out += escaped;
+  }
+  return out;
+}
+
 uint64_t pad4(uint64_t n) {
   return (n + 3) & ~uint64_t{3};
 }
@@ -56,7 +73,7 @@ Status check_values(const EmitterResponses& d, const std::string& name) {
   for (std::size_t i = 0; i < d.responses.size(); ++i)
     if (!finite_non_negative(d.responses[i])) {
       const std::size_t e = i / 3 / (v_count ? v_count : 1), v = (i / 3) % (v_count ? v_count : 1);
-      return fail(name, "emitter " + d.emitters[e].name + ", vertex " + std::to_string(v) +
+      return fail(name, "emitter " + shown(d.emitters[e].name) + ", vertex " + std::to_string(v) +
                             ": response " + std::to_string(d.responses[i]) +
                             " is negative, NaN or infinite");
     }
@@ -74,10 +91,11 @@ Status validate_emitter_responses(const EmitterResponses& d, const std::string& 
     if (e.name.empty() || e.name.size() > kMaxEmitterNameBytes)
       return fail(name, "emitter name of " + std::to_string(e.name.size()) + " bytes (must be 1.." +
                             std::to_string(kMaxEmitterNameBytes) + ")");
-    if (!names.insert(e.name).second) return fail(name, "emitter " + e.name + " appears twice");
+    if (!names.insert(e.name).second)
+      return fail(name, "emitter " + shown(e.name) + " appears twice");
     for (float c : e.emission)
       if (!finite_non_negative(c))
-        return fail(name, "emitter " + e.name + ": emission " + std::to_string(c) +
+        return fail(name, "emitter " + shown(e.name) + ": emission " + std::to_string(c) +
                               " is negative, NaN or infinite");
   }
   if (d.positions.size() % 3 != 0 || d.triangles.size() % 3 != 0)
@@ -249,12 +267,13 @@ Result<std::vector<float>> emitter_colors(const EmitterResponses& data,
     if (e == data.emitters.size()) {
       std::string known;
       for (const EmitterInfo& info : data.emitters)
-        known += (known.empty() ? "" : ", ") + info.name;
-      return Status::Error("emitter " + color.name + ": no such emitter (emitters: " + known + ")");
+        known += (known.empty() ? "" : ", ") + shown(info.name);
+      return Status::Error("emitter " + shown(color.name) +
+                           ": no such emitter (emitters: " + known + ")");
     }
     for (int c = 0; c < 3; ++c) {
       if (!finite_non_negative(color.rgb[c]))
-        return Status::Error("emitter " + color.name + ": colour component " +
+        return Status::Error("emitter " + shown(color.name) + ": colour component " +
                              std::to_string(color.rgb[c]) + " is negative, NaN or infinite");
       out[3 * e + c] = color.rgb[c];
     }

@@ -249,9 +249,9 @@ void HaarRelighter::shade_blocks(const std::vector<T>& values, const SparseLight
     const int64_t length = std::min(block, t.vertex_count - first);
     const Slot* slot = &slots_[static_cast<size_t>(b) * (index_count + 1)];
     float* acc = out_rgb + 3 * first;
-    float* r = planar.data();
-    float* g = r + block;
-    float* bl = g + block;
+    float* r = planar.data();  // the planar sums exist only for grey transfer
+    float* g = grey ? r + block : nullptr;
+    float* bl = grey ? g + block : nullptr;
     if (grey) {
       std::fill(r, r + length, 0.0f);
       std::fill(g, g + length, 0.0f);

@@ -10,7 +10,8 @@
 // that count and the indices of the emitting patches; the sampling unless Independent; the emitter
 // rows and quadrature points unless Rays; hemicube: resolution) with the method's number. Emission
 // values do not enter it. A loaded file must carry the key of the caller's patches and options, its
-// size must match N, and its CRC-32C (prt/formats/crc32c.h) must hold. Errors throw
+// size must match N, its CRC-32C (prt/formats/crc32c.h) must hold and every factor must be
+// finite. Errors throw
 // std::runtime_error with one line that names the file; saving is atomic (prt/core/atomic_file.h),
 // so a failed save leaves no file behind.
 #pragma once
