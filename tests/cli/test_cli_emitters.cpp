@@ -370,6 +370,8 @@ TEST_CASE("glossy file + emitters: responses of another scene and bad names are 
       dir, relight + " --max-edge 0.5 --emitters " + d + "room.prte --emitter sun=1" + out, "sun");
   check_refused(dir, relight + " --emitters " + d + "room.prte" + out, "vertex count");
   check_refused(dir, relight + " --max-edge 0.5 --emitter lamp=1" + out, "--emitters");
+}
+
 TEST_CASE("prt radiosity and prt relight of its responses pick the same camera and exposure",
           "[radiosity][emitters][cli]") {
   // One camera rule and one exposure rule: the solve's PNG and the relight of its .prte with the
