@@ -173,14 +173,14 @@ EOF
 room=room.obj
 radiosity() {  # label, extra radiosity arguments
   local label="$1"; shift
-  "$prt" radiosity "$room" --max-edge "$edge" --seed 7 --size "$size" -o "$label.exr" \
+  "$prt" radiosity "$room" --max-edge "$edge" --size "$size" -o "$label.exr" \
     --csv "$label.csv" --quiet "$@" >/dev/null
   hash_file "$label csv" "$label.csv"
   hash_image "$label image" "$label.exr"
 }
 for method in analytic rays hemicube; do
   case $method in
-    rays) options=(--form-factors rays --rays "$rays") ;;
+    rays) options=(--form-factors rays --rays "$rays" --seed 7) ;;
     hemicube) options=(--form-factors hemicube --hemicube "$hemicube") ;;
     *) options=(--form-factors analytic) ;;
   esac
@@ -195,7 +195,7 @@ for method in analytic rays hemicube; do
   done
 done
 radiosity radiosity-analytic-progressive --solver progressive
-radiosity radiosity-rays-independent --form-factors rays --rays "$rays" \
+radiosity radiosity-rays-independent --form-factors rays --rays "$rays" --seed 7 \
   --emitter-rays "$emitter_rays" --ray-sampling independent
 radiosity radiosity-adaptive --adaptive 0.05 --max-patches "$max_patches"
 radiosity radiosity-cache --form-factor-cache room.ffc
@@ -261,9 +261,16 @@ def content(path):
         h.update(data[:48] + bytes(12) + data[60:end])
         if flags & 1:
             size, = struct.unpack_from("<Q", data, end)
-            if end + 8 + size != len(data):
-                sys.exit(f"{path}: the source section does not end the file")
-            container(data[end + 8:], 208, 80, 8, 7, [(64, 76)], h)
+            container(data[end + 8:end + 8 + size], 208, 80, 8, 7, [(64, 76)], h)
+            end += 8 + size
+        if flags & 2:  # the compression record (version 2): JSON without paths and run data
+            size, = struct.unpack_from("<Q", data, end)
+            record = json.loads(data[end + 8:end + 8 + size])
+            record = without(record, lambda k: run_dependent(k) or k == "source_file")
+            h.update(json.dumps(record, sort_keys=True).encode())
+            end += 8 + size
+        if end != len(data):
+            sys.exit(f"{path}: the sections do not end the file")
     elif magic == b"PRTE":  # .prte: no metadata
         h.update(data)
     else:
