@@ -338,8 +338,11 @@ Command register_radiosity(CLI::App& app) {
                   "Also write OUT.prte: each emitting material's response to unit white "
                   "emission, for prt relight --emitter NAME=r,g,b");
   cmd->add_option("--emission", args->emission,
-                  "MATERIAL=r,g,b: emitted radiance of a material (repeatable)");
-  cmd->add_option("--albedo", args->albedo, "MATERIAL=r,g,b: albedo of a material (repeatable)");
+                  "NAME=r,g,b: emitted radiance of a material, a primitive (glTF mesh, OBJ "
+                  "object) or * for all (repeatable)");
+  cmd->add_option("--albedo", args->albedo,
+                  "NAME=r,g,b: albedo of a material, a primitive (glTF mesh, OBJ object) or * for "
+                  "all, each below 1 (repeatable)");
   cmd->add_option("--form-factor-cache", args->form_factor_cache,
                   "Form factors of the scene as loaded: saved here when absent, reused when "
                   "present (refused if made for another scene or other options)");
