@@ -99,8 +99,7 @@ radiosity::SceneSolveRequest make_solve_request(const RadiosityArguments& a) {
   } else if (a.form_factors == "hemicube") {
     r.form_factors.method = radiosity::FormFactorMethod::Hemicube;
   } else {
-    throw UsageError("--form-factors " + a.form_factors +
-                     ": expected auto|analytic|rays|hemicube");
+    throw UsageError("--form-factors " + a.form_factors + ": expected auto|analytic|rays|hemicube");
   }
   if (a.solver == "gauss-seidel") {
     r.solve.solver = radiosity::SolverKind::GaussSeidel;

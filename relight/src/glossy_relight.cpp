@@ -206,8 +206,7 @@ RelightSummary run_glossy_relight(const RelightRequest& request,
     for (int frame = 0; frame < frames; ++frame) {
       const bool table = request.turntable_frames > 0;
       add_view(table && turn_light ? turntable_rotation(rotation, frame, frames) : rotation,
-               table && orbit ? orbit_camera(camera, orbit_centre, frame, frames).eye
-                              : camera.eye);
+               table && orbit ? orbit_camera(camera, orbit_centre, frame, frames).eye : camera.eye);
     }
     if (options.eye && (!request.csv_path.empty() || !request.vertex_colors_path.empty()))
       add_view(rotation, *options.eye);

@@ -26,12 +26,12 @@
 // (metallicRoughnessTexture, KHR_materials_specular's specularTexture and specularColorTexture,
 // KHR_materials_anisotropy's anisotropyTexture, for per-vertex BRDF variants and tangent
 // rotations: scene/brdf_variants.h; one that cannot be used is recorded in
-// ScenePrimitive::brdf_texture_problem, not warned about); normal and other maps are never read. A texture that cannot be used — its file missing (real assets are often
-// shipped geometry-only), not PNG/JPEG, corrupt, over kMaxTextureTexels, or the primitive lacks
-// its TEXCOORD_n — is NOT an error: one warning line on stderr ("PATH: warning: ..." naming the
-// image file or index) and the material falls back to its baseColorFactor (0.8 grey when that is
-// the default white). Alpha is ignored; KHR_texture_transform is not applied.
-// Missing buffers (.bin) ARE an error.
+// ScenePrimitive::brdf_texture_problem, not warned about); normal and other maps are never read. A
+// texture that cannot be used — its file missing (real assets are often shipped geometry-only), not
+// PNG/JPEG, corrupt, over kMaxTextureTexels, or the primitive lacks its TEXCOORD_n — is NOT an
+// error: one warning line on stderr ("PATH: warning: ..." naming the image file or index) and the
+// material falls back to its baseColorFactor (0.8 grey when that is the default white). Alpha is
+// ignored; KHR_texture_transform is not applied. Missing buffers (.bin) ARE an error.
 //
 // OBJ (through tinyobjloader): shapes in order; quads and polygons are triangulated; negative
 // indices and CRLF line endings are handled. Albedo = the MTL's Kd (0.8 grey when a face has
