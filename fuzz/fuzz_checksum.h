@@ -27,4 +27,14 @@ inline std::vector<unsigned char> resealed(const uint8_t* bytes, std::size_t siz
   return out;
 }
 
+// The body of a checksummed reader's target: `check(bytes, size)` on the input as it is (the
+// checksum check itself) and on its resealed copy (everything behind the checksum).
+template <class Check>
+inline void check_as_given_and_resealed(const uint8_t* bytes, std::size_t size, std::size_t offset,
+                                        Check check) {
+  check(bytes, size);
+  const std::vector<unsigned char> sealed = resealed(bytes, size, offset);
+  check(sealed.data(), sealed.size());
+}
+
 }  // namespace prt::fuzz

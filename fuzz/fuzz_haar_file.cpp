@@ -79,8 +79,6 @@ void check(const unsigned char* bytes, std::size_t size) {
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
-  check(data, size);
-  const std::vector<unsigned char> sealed = prt::fuzz::resealed(data, size, kChecksumOffset);
-  check(sealed.data(), sealed.size());
+  prt::fuzz::check_as_given_and_resealed(data, size, kChecksumOffset, check);
   return 0;
 }
