@@ -22,6 +22,7 @@
 #include "glossy_cli.h"
 #include "haar_cli.h"
 #include "material_option.h"
+#include "option_rules.h"
 #include "output_safety.h"
 #include "progress_reporter.h"
 #include "prt/emitters/emitter_responses.h"
@@ -103,9 +104,7 @@ void parse_size(const std::string& text, int* width, int* height) {
 // Options that do not apply to this run are refused by name (`given` = on the command line).
 void check_options(const RelightArguments& args, const CLI::App& cmd) {
   const auto given = [&cmd](const char* option) { return cmd.count(option) > 0; };
-  if (!std::isfinite(args.exposure) || std::fabs(args.exposure) > 64.f)
-    throw UsageError("--exposure " + cmd.get_option("--exposure")->as<std::string>() +
-                     ": must be a number of EV in [-64, 64]");
+  check_exposure(args.exposure, cmd.get_option("--exposure")->as<std::string>());
   const std::string ext = lower_extension(args.output);
   if (given("--exposure") && ext != ".png")
     throw UsageError("--exposure applies to .png output; " + args.output +
