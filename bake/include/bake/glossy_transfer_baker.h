@@ -62,7 +62,8 @@ struct GlossyBakeOptions {
   int bounces = 0;    // 0: shadowed; k > 0: k Jacobi bounces; −1: until converged
   double bounce_tolerance = 1e-4;
   uint64_t seed = 1;
-  int threads = 0;                        // 0 = all hardware threads
+  int threads = 0;            // 0 = all hardware threads
+  uint64_t memory_limit = 0;  // bytes the bake may hold (prt/core/memory_budget.h); 0: none
   prt::BrdfProjectionOptions projection;  // b(ω_o) for the bounces (prt/glossy/brdf_projection.h)
   prt::Precision precision = prt::Precision::F32;
 };

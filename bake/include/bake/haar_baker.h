@@ -60,8 +60,9 @@ struct HaarBakeOptions {
   int bounces = -1;                      // interreflected: as BakeOptions::bounces
   double bounce_tolerance = 1e-4;
   int max_solver_iterations = 2000;
-  uint64_t seed = 1;  // jitter of the supersampling
-  int threads = 0;    // 0 = all hardware threads
+  uint64_t seed = 1;          // jitter of the supersampling
+  int threads = 0;            // 0 = all hardware threads
+  uint64_t memory_limit = 0;  // bytes the bake may hold (prt/core/memory_budget.h); 0: none
 };
 
 struct HaarBakeStatistics {

@@ -142,7 +142,8 @@ struct BakeOptions {
   double bounce_tolerance = 1e-4;  // relative residual target of the Krylov solve
   int max_solver_iterations = 2000;
   uint64_t seed = 1;
-  int threads = 0;  // 0 = all hardware threads
+  int threads = 0;            // 0 = all hardware threads
+  uint64_t memory_limit = 0;  // bytes the bake may hold (prt/core/memory_budget.h); 0: none
   bool ao = false;
   bool bent_normals = false;
   prt::Precision precision = prt::Precision::F32;

@@ -95,6 +95,8 @@ struct SceneSolveRequest {
   // Keep the hidden parts of patches (the floor under a block resting on it) out of the vertex
   // radiance (radiosity/hidden_patches.h); false: plain area-weighted patch means.
   bool hide_enclosed = true;
+  // Bytes the solve may hold (prt/core/memory_budget.h); 0: none.
+  uint64_t memory_limit = 0;
 };
 
 struct SceneSolution {

@@ -39,7 +39,8 @@ struct CpcaOptions {
   uint32_t candidates = 8;        // clusters tried per vertex at reassignment (nearest means)
   uint32_t power_iterations = 2;  // subspace iterations per round (4 more in the first)
   uint64_t seed = 1;
-  unsigned threads = 1;  // worker threads (std::thread); 0 or 1 = the calling thread only
+  unsigned threads = 1;       // worker threads (std::thread); 0 or 1 = the calling thread only
+  uint64_t memory_limit = 0;  // bytes it may hold (prt/core/memory_budget.h); 0: none
   // The metric, optional (empty: the plain squared error): per channel c a symmetric positive
   // definite n²×n² matrix G_c on the ROWS of the transfer matrices, channels · n⁴ values,
   // row_metric[(c·n² + i)·n² + k] = G_c,ik. The compressor then minimises the squared error
