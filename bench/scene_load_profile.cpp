@@ -66,8 +66,7 @@ int main(int argc, char** argv) {
     t = Clock::now();
     scene = prt::scene::subdivide_to_edge_length(scene, std::atof(argv[2]));
     report("subdivide_to_edge_length", t, scene_mb(scene));
-    std::printf("  %zu vertices, %zu triangles\n", scene.positions.size(),
-                scene.triangles.size());
+    std::printf("  %zu vertices, %zu triangles\n", scene.positions.size(), scene.triangles.size());
   }
   t = Clock::now();
   const std::vector<prt::radiosity::Patch> patches = prt::radiosity::make_patches(scene);
