@@ -402,12 +402,13 @@ LevelLayout make_level_layout(const LevelOptions& options) {
   for (std::size_t c = 0; c < corridors.size(); ++c)
     add_corridor(layout, rooms[corridors[c].first], rooms[corridors[c].second], int(c), rng);
 
-  // The camera: a corner of room 0 at eye height, looking at the far corner, kept clear.
+  // The camera: a corner of room 0 at eye height, looking at the middle of the far
+  // wall (past the pillars, which stand on the quarters), kept clear.
   Room& first = rooms[0];
   SceneCamera camera;
   camera.name = "camera";
   camera.eye = glm::vec3(float(first.x0 + 0.7), 1.7f, float(first.z1 - 0.7));
-  camera.target = glm::vec3(float(first.x1 - 1.0), 0.8f, float(first.z0 + 1.0));
+  camera.target = glm::vec3(float(first.x1 - 1.0), 1.0f, float(0.5 * (first.z0 + first.z1)));
   camera.yfov_radians = 1.1f;
   layout.cameras.push_back(camera);
   first.taken.push_back({first.x0, first.x0 + 1.6, first.z1 - 1.6, first.z1});

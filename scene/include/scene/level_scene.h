@@ -17,7 +17,8 @@
 // lamp_corridor (kLampRadiance and kCorridorLampRadiance times their colour).
 // Objects rest on the floor (or on a crate or table top), so boxes have no bottom face; lamps
 // are thin boxes 2 cm under the ceiling, emitting from every face.
-// The camera ("camera") stands in a corner of room 0 at eye height, looking across the room.
+// The camera ("camera") stands in a corner of room 0 at eye height, looking at the middle of the
+// far wall.
 #pragma once
 
 #include <cstdint>
