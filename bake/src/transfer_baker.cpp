@@ -345,7 +345,8 @@ nlohmann::json adaptive_metadata(const BakeJob& job) {
   return a;
 }
 
-// The file's metadata: what was baked, how, and what it cost.
+// The file's metadata: what was baked and how. Nothing that changes from run to run (wall
+// times, the thread count): the CLI records those beside the file (OUT.run.json).
 std::string bake_metadata(const BakeJob& job) {
   const BakeOptions& options = job.options;
   const BakeStatistics& st = job.result.stats;
@@ -365,7 +366,6 @@ std::string bake_metadata(const BakeJob& job) {
   meta["samples_per_vertex"] = st.samples_per_vertex;
   meta["sampling"] = "Owen-scrambled Sobol (0,2)-sequence, cosine-weighted (concentric)";
   meta["seed"] = options.seed;
-  meta["threads"] = options.threads;
   meta["precision"] = options.precision == prt::Precision::F16 ? "f16" : "f32";
   meta["ao"] = options.ao;
   meta["bent_normals"] = options.bent_normals;
@@ -374,8 +374,6 @@ std::string bake_metadata(const BakeJob& job) {
   meta["skipped_triangles"] = st.skipped_triangles;
   meta["rays"] = st.rays;
   meta["ray_offset_max"] = job.ray_offset_max;  // largest ε_v (scene/ray_offset.h)
-  meta["seconds"] = st.seconds_total;
-  meta["seconds_rays"] = st.seconds_rays;
   if (job.adaptive) meta["adaptive"] = adaptive_metadata(job);
   if (job.interreflect && (!job.adaptive || st.interreflection_solved)) {
     nlohmann::json s;
@@ -388,7 +386,6 @@ std::string bake_metadata(const BakeJob& job) {
     s["bounce_energy"] = st.bounce_energy;
     s["matrix_entries"] = st.matrix_entries;
     s["back_face_hits"] = st.back_face_hits;
-    s["seconds"] = st.seconds_solve;
     meta["interreflection"] = s;
   }
   return meta.dump();
