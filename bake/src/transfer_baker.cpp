@@ -40,6 +40,7 @@
 #include "bake/interreflection_solver.h"
 #include "bake/progress.h"
 #include "bake/sampling.h"
+#include "prt/core/memory_budget.h"
 #include "scene/ray_caster.h"
 #include "scene/scene_label.h"
 #include "sh/basis.h"
@@ -476,7 +477,12 @@ BakeResult bake_transfer(const scene::Scene& scene, const BakeOptions& options,
       3 * scene.positions.size() > 0xffffffffull)
     throw BakeError(scene::scene_label(scene) +
                     ": too many vertices for interreflection with the albedo kept apart");
-  BakeJob job(scene, options, progress, result, channel_count(scene, options, apart), apart);
+  const int channels = channel_count(scene, options, apart);
+  prt::MemoryBudget budget(options.memory_limit, scene::scene_label(scene));
+  budget.charge(uint64_t(scene.positions.size()) * uint64_t(channels) * uint64_t(options.order) *
+                    uint64_t(options.order) * sizeof(float),
+                "the transfer coefficients");
+  BakeJob job(scene, options, progress, result, channels, apart);
   const std::size_t V = job.V;
   BakeStatistics& st = result.stats;
   st.vertices = V;
