@@ -2,7 +2,8 @@
 # Every file kind prt writes is the same, byte for byte, whether it was made with one thread or
 # two: SH bakes (shadowed with AO and bent normals, interreflected, interreflected with a texture
 # kept apart, --auto), Haar, glossy shadowed and interreflected (.prtg), CPCA (.prtq), radiosity
-# (.prte with --per-emitter, the form-factor cache, --csv, --vertex-colors .glb) and make-scene.
+# (.prte with --per-emitter, the form-factor cache, --csv, --vertex-colors .glb, the EXR image;
+# Gauss-Seidel, Jacobi and progressive), make-scene and make-sky.
 # Nothing that changes from run to run (wall times, thread counts, the host) may be in them: that
 # goes to the OUT.run.json beside each output, which is checked to exist and is not compared.
 # Each pair is made in its own folder with the same relative paths, so a path recorded as given
@@ -120,11 +121,17 @@ same "radiosity --per-emitter" room.prte
 same "radiosity form-factor cache" room.ffc no
 same "radiosity --csv" room.csv no
 same "radiosity --vertex-colors" room.glb no
+same "radiosity image (.exr)" room.exr no
 both yes radiosity --quiet "$room" --max-edge 0.25 --form-factors hemicube --hemicube 8 \
   --solver jacobi --per-emitter hemicube.prte --size 16x12 -o hemicube.exr
 same "radiosity hemicube, Jacobi" hemicube.prte
+both yes radiosity --quiet "$room" --max-edge 0.25 --form-factors analytic --solver progressive \
+  --csv progressive.csv
+same "radiosity analytic, progressive" progressive.csv
 both no make-scene -o scene.glb
 same "make-scene" scene.glb no
+both no make-sky -o sky.hdr --width 64 --height 32
+same "make-sky" sky.hdr no
 
 if ((failures)); then
   echo "$failures output(s) depend on the thread count or the run"
