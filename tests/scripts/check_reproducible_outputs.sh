@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
 # Every file kind prt writes is the same, byte for byte, whether it was made with one thread or
 # two: SH bakes (shadowed with AO and bent normals, interreflected, interreflected with a texture
-# kept apart, --auto), Haar, glossy shadowed and interreflected (.prtg), CPCA (.prtq), radiosity
+# kept apart, --auto with and without --env), Haar (shadowed, interreflected textured), glossy shadowed and interreflected (.prtg), CPCA (.prtq), radiosity
 # (.prte with --per-emitter, the form-factor cache, --csv, --vertex-colors .glb, the EXR image;
-# Gauss-Seidel, Jacobi and progressive), make-scene and make-sky.
+# Gauss-Seidel, Jacobi, progressive, --adaptive), make-scene and make-sky.
 # Nothing that changes from run to run (wall times, thread counts, the host) may be in them: that
 # goes to the OUT.run.json beside each output, which is checked to exist and is not compared.
 # Each pair is made in its own folder with the same relative paths, so a path recorded as given
@@ -19,7 +19,7 @@ failures=0
 # Inputs shared by both runs, in scratch/in (relative paths from each run folder: ../in/...).
 mkdir -p "$scratch/in" "$scratch/t1" "$scratch/t2"
 cd "$scratch/in"
-cp "$source_dir/data/demo.glb" .
+cp "$source_dir/data/demo.glb" "$source_dir/data/sky.hdr" .
 "$prt" make-scene --scene glossy -o glossy.glb >/dev/null
 python3 "$source_dir/scripts/textured-example.py" tex >/dev/null
 cat > room.mtl <<'EOF'
@@ -105,8 +105,12 @@ both yes bake --quiet "$tex" -o textured.prt --transfer interreflected --order 2
 same "interreflected, textured (albedo kept apart)" textured.prt
 both yes bake --quiet "$demo" -o auto.prt --auto --tolerance 0.3
 same "--auto" auto.prt
+both yes bake --quiet "$demo" -o auto-env.prt --auto --tolerance 0.3 --env ../in/sky.hdr
+same "--auto --env" auto-env.prt
 both yes bake --quiet "$demo" -o haar.prt --basis haar --cube 8
 same "Haar" haar.prt
+both yes bake --quiet "$tex" -o haar-ir.prt --basis haar --cube 8 --transfer interreflected
+same "Haar interreflected, textured" haar-ir.prt
 both yes bake --quiet "$glossy" --glossy -o glossy.prtg --order 2 --samples 16
 same "glossy shadowed" glossy.prtg
 both yes bake --quiet "$glossy" --glossy -o glossy-ir.prtg --order 2 --samples 16 --transfer \
@@ -128,6 +132,9 @@ same "radiosity hemicube, Jacobi" hemicube.prte
 both yes radiosity --quiet "$room" --max-edge 0.25 --form-factors analytic --solver progressive \
   --csv progressive.csv
 same "radiosity analytic, progressive" progressive.csv
+both yes radiosity --quiet "$room" --max-edge 0.5 --adaptive 0.05 --max-patches 300 \
+  --csv adaptive.csv
+same "radiosity --adaptive" adaptive.csv
 both no make-scene -o scene.glb
 same "make-scene" scene.glb no
 both no make-sky -o sky.hdr --width 64 --height 32
