@@ -23,19 +23,19 @@ void check_exposure(double ev, const std::string& text) {
 }
 
 void add_memory_limit_option(CLI::App& cmd, uint64_t* bytes) {
+  // Parsed when CLI11 sets the option; a bad size is the command line's fault (UsageError, which
+  // CLI11 lets through to main), like every other value prt checks.
   cmd.add_option_function<std::string>(
-         "--memory-limit",
-         [bytes](const std::string& text) { *bytes = prt::parse_memory_size(text); },
-         "Memory the large buffers may take (8G, 512M, bytes; default 85% of the available "
-         "memory): a run that needs more stops at once, with one line")
-      ->check([](const std::string& text) -> std::string {
+      "--memory-limit",
+      [bytes](const std::string& text) {
         try {
-          prt::parse_memory_size(text);
-          return "";
+          *bytes = prt::parse_memory_size(text);
         } catch (const std::invalid_argument& e) {
-          return e.what();
+          throw UsageError(std::string("--memory-limit: ") + e.what());
         }
-      });
+      },
+      "Memory the large buffers may take (8G, 512M, bytes; default 85% of the available "
+      "memory): a run that needs more stops at once, with one line");
 }
 
 uint64_t memory_limit_or_default(uint64_t given) {

@@ -26,7 +26,7 @@ void check_exposure(double ev, const std::string& text);
 
 // `--memory-limit SIZE`, the one declaration of every command that bakes, solves or compresses:
 // the memory its large buffers may take (prt/core/memory_budget.h; "8G", "512M", "1.5GB", bytes).
-// A value parse_memory_size refuses is a parse error (exit 2, one line). `*bytes` keeps 0 when
+// A value parse_memory_size refuses is a UsageError (exit 2, one line). `*bytes` keeps 0 when
 // the option is not given; memory_limit_or_default turns that into the default.
 void add_memory_limit_option(CLI::App& cmd, uint64_t* bytes);
 // `given`, or prt::MemoryBudget::default_limit() when it is 0: what goes in the options'

@@ -66,7 +66,10 @@ void write_run_record(const std::string& output, const std::string& command_line
   const std::string text = j.dump(2) + "\n";
   const std::string path = run_record_path(output);
   const prt::Status written = prt::write_file_atomically(path, text.data(), text.size());
-  if (!written.ok()) throw CommandError(written.message());
+  if (!written.ok()) {
+    std::remove(path.c_str());  // an older record would describe another run of OUT
+    throw CommandError(written.message());
+  }
 }
 
 // FILE.run.json parsed as Json (ordered or not), null when absent.

@@ -41,8 +41,9 @@ int resolved_threads(int requested);
 // OUT.run.json.
 std::string run_record_path(const std::string& output);
 
-// Writes OUT.run.json for `output` with run_record()'s threads and phases. Throws CommandError
-// "OUT.run.json: cannot write ...: <reason>" (the message of the atomic write) on failure.
+// Writes OUT.run.json for `output` with run_record()'s threads and phases. On failure removes an
+// older OUT.run.json (it would describe another run) and throws CommandError
+// "OUT.run.json: cannot write ...: <reason>" (the message of the atomic write).
 void write_run_record(const std::string& output, const std::string& command_line,
                       const std::string& version, double seconds);
 
