@@ -42,9 +42,9 @@ TEST_CASE("cli run record: times and threads beside the bake, not in it; prt inf
   const fs::path dir = scratch("run_record_bake");
   const fs::path box = write_box(dir), out = dir / "box.prt";
   const std::string record = out.string() + ".run.json";
-  const RunResult baked = run(prt_cli() + " bake " + box.string() + " -o " + out.string() +
-                              " --transfer interreflected --order 2 --samples 16 --threads 1 " +
-                              "--quiet");
+  const RunResult baked =
+      run(prt_cli() + " bake " + box.string() + " -o " + out.string() +
+          " --transfer interreflected --order 2 --samples 16 --threads 1 --quiet");
   INFO(baked.err);
   REQUIRE(baked.exit_code == 0);
   REQUIRE(fs::exists(record));
@@ -86,12 +86,13 @@ TEST_CASE("cli run record: times and threads beside the bake, not in it; prt inf
   CHECK_FALSE(nlohmann::json::parse(bare_json.out).contains("run"));
 }
 
-TEST_CASE("cli run record: radiosity writes it beside --per-emitter, prt info of the .prte reads it") {
+TEST_CASE(
+    "cli run record: radiosity writes it beside --per-emitter, prt info of the .prte reads it") {
   const fs::path dir = scratch("run_record_radiosity");
   const fs::path box = write_box(dir), prte = dir / "box.prte";
-  const RunResult solved = run(prt_cli() + " radiosity " + box.string() + " --per-emitter " +
-                               prte.string() + " --csv " + (dir / "box.csv").string() +
-                               " --max-edge 0.5 --threads 2 --quiet");
+  const RunResult solved =
+      run(prt_cli() + " radiosity " + box.string() + " --per-emitter " + prte.string() + " --csv " +
+          (dir / "box.csv").string() + " --max-edge 0.5 --threads 2 --quiet");
   INFO(solved.err);
   REQUIRE(solved.exit_code == 0);
   REQUIRE(fs::exists(prte.string() + ".run.json"));
