@@ -23,11 +23,13 @@
 #include "glossy_cli.h"
 #include "haar_cli.h"
 #include "material_option.h"
+#include "option_rules.h"
 #include "output_safety.h"
 #include "progress_reporter.h"
 #include "prt/formats/transfer_file.h"
 #include "prt/haar/cube_map.h"
 #include "relight/environment_input.h"
+#include "run_record.h"
 #include "scene/material_assignment.h"
 #include "scene/scene_loader.h"
 #include "scene/subdivide.h"
@@ -49,6 +51,7 @@ struct BakeArguments {
   bool ao = false, bent_normals = false;
   uint64_t seed = 1;
   int threads = 0;
+  uint64_t memory_limit = 0;  // --memory-limit (option_rules.h); 0: not given
   std::string precision = "f32";
   bool quiet = false;
   HaarBakeArguments haar;  // --basis haar and its options (haar_cli.h)
@@ -215,6 +218,7 @@ CommandFiles bake_files(const BakeArguments& a) {
     files.add_output_file("-o", a.output, {".prtg"}, "a glossy transfer file");
   else
     files.add_output_file("-o", a.output, {".prt"}, "a coefficient file");
+  files.add_run_record(a.output);
   return files;
 }
 
@@ -239,6 +243,7 @@ GlossyBakeRequest glossy_request(const BakeArguments& args, const CLI::App& cmd)
   r.tolerance_given = args.tolerance_given;
   r.seed = args.seed;
   r.threads = args.threads;
+  r.memory_limit = memory_limit_or_default(args.memory_limit);
   r.precision = args.precision;
   r.quiet = args.quiet;
   return r;
@@ -257,6 +262,13 @@ void check_usage(const BakeArguments& args, const CLI::App& cmd) {
 
 void run_glossy(const BakeArguments& args, const CLI::App& cmd) {
   run_glossy_bake(load_for_bake(args), glossy_request(args, cmd));
+}
+
+// The bake's phases for the run record (run_record.h).
+void record_bake(const bake::BakeStatistics& st) {
+  run_record().phase("rays", st.seconds_rays);
+  if (st.seconds_solve > 0) run_record().phase("interreflection solve", st.seconds_solve);
+  run_record().phase("bake", st.seconds_total);
 }
 
 // `--auto`: --tolerance (default 0.01) becomes the accuracy target; without --transfer the
@@ -278,6 +290,9 @@ void run_auto(const BakeArguments& args, const scene::Scene& scene, const bake::
   const bake::AutoBakeResult result = bake::bake_transfer_auto(scene, o, &progress);
   const prt::Status written = prt::write_transfer_file(args.output, result.bake.data);
   if (!written.ok()) throw CommandError(written.message());
+  run_record().phase("analysis", result.report.analysis_seconds);
+  run_record().phase("pilot", result.report.pilot_seconds);
+  record_bake(result.bake.stats);
   if (args.quiet) return;
   const bake::AutoBakeReport& r = result.report;
   const bake::BakeStatistics& st = result.bake.stats;
@@ -296,6 +311,7 @@ void run_auto(const BakeArguments& args, const scene::Scene& scene, const bake::
 }
 
 void run(const BakeArguments& args, const CLI::App& cmd) {
+  run_record().threads = resolved_threads(args.threads);
   if (args.glossy) return run_glossy(args, cmd);
   bake::BakeOptions options;
   options.kind = parse_kind(args.transfer);
@@ -305,6 +321,7 @@ void run(const BakeArguments& args, const CLI::App& cmd) {
   options.bounce_tolerance = args.tolerance;
   options.seed = args.seed;
   options.threads = args.threads;
+  options.memory_limit = memory_limit_or_default(args.memory_limit);
   options.ao = args.ao;
   options.bent_normals = args.bent_normals;
   options.precision = args.precision == "f16" ? prt::Precision::F16 : prt::Precision::F32;
@@ -312,7 +329,7 @@ void run(const BakeArguments& args, const CLI::App& cmd) {
   const scene::Scene scene = load_for_bake(args);
   if (args.haar.basis == "haar") {
     run_haar_bake(scene, args.output, options.kind, args.haar, args.seed, args.threads,
-                  args.bounces, args.tolerance, args.quiet);
+                  args.bounces, args.tolerance, args.quiet, options.memory_limit);
     return;
   }
 
@@ -321,6 +338,7 @@ void run(const BakeArguments& args, const CLI::App& cmd) {
   const bake::BakeResult result = bake::bake_transfer(scene, options, &progress);
   const prt::Status written = prt::write_transfer_file(args.output, result.data);
   if (!written.ok()) throw CommandError(written.message());
+  record_bake(result.stats);
 
   const bake::BakeStatistics& st = result.stats;
   if (options.kind == prt::TransferKind::Interreflected && !st.solver_converged)
@@ -382,6 +400,7 @@ Command register_bake(CLI::App& app) {
   cmd->add_flag("--bent-normals", args->bent_normals, "Also store bent normals per vertex");
   cmd->add_option("--seed", args->seed, "Sampling seed")->capture_default_str();
   cmd->add_option("--threads", args->threads, "Worker threads (0 = all)")->capture_default_str();
+  add_memory_limit_option(*cmd, &args->memory_limit);
   cmd->add_option("--precision", args->precision, "Coefficient storage: f32 | f16")
       ->capture_default_str();
   cmd->add_flag("--quiet", args->quiet, "No progress, summary or notes (warnings still print)");

@@ -8,7 +8,9 @@
 // (output_safety.h: required inputs exist, no output is an input or another output, stdout is
 // not an input, each declared output file can be written) before `run`, so no command can skip
 // it; a command declares every file it writes there, and tests/cli/test_cli_outputs.cpp gives
-// every registered subcommand's outputs one path to prove it.
+// every registered subcommand's outputs one path to prove it. When `files()` declares a run
+// record (CommandFiles::add_run_record), main writes OUT.run.json after `run` succeeds: the
+// run's times, threads and host, which no output file holds (run_record.h).
 //
 // Callbacks report failure by throwing; main prints "prt <subcommand>: <message>" on one line
 // and exits with status 2 for a UsageError (the command line is wrong: a bad option value,

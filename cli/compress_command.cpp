@@ -4,7 +4,7 @@
 //
 //   prt compress IN.prtg -o OUT.prtq [--clusters Q] [--vectors K]
 //                [--target-error E [--max-vectors K]] [--metric relit|matrix]
-//                [--iterations n] [--seed s] [--threads t] [--quiet]
+//                [--iterations n] [--seed s] [--threads t] [--memory-limit SIZE] [--quiet]
 //
 // Argument mapping only; the work is run_glossy_compress (cli/glossy_cli.h).
 #include <memory>
@@ -14,6 +14,7 @@
 
 #include "command_registry.h"
 #include "glossy_cli.h"
+#include "option_rules.h"
 
 namespace prt::cli {
 namespace {
@@ -47,6 +48,7 @@ Command register_compress(CLI::App& app) {
                   "Rounds of PCA and reassignment (default 6; stops early when stable)");
   cmd->add_option("--seed", r->seed, "Seed of the cluster seeding (default 1)");
   cmd->add_option("--threads", r->threads, "Worker threads (default 0: every core)");
+  add_memory_limit_option(*cmd, &r->memory_limit);
   cmd->add_flag("--quiet", r->quiet, "Print nothing on success");
   const auto check = [r, max_vectors, target] {
     r->max_vectors_given = max_vectors->count() > 0;

@@ -10,6 +10,7 @@
 #include "command_registry.h"
 #include "prt/brdf/material.h"
 #include "prt/formats/cpca_file.h"
+#include "run_record.h"
 
 namespace prt::cli {
 namespace {
@@ -159,6 +160,7 @@ void describe_cpca_file(const std::string& path, bool json, bool csv) {
     j["materials"] = mats;
   }
   if (json) {
+    add_run_record_json(j, path);
     std::printf("%s\n", j.dump(2).c_str());
     return;
   }

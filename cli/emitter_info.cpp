@@ -8,6 +8,7 @@
 #include "command_registry.h"
 #include "emitter_cli.h"
 #include "prt/emitters/emitter_responses.h"
+#include "run_record.h"
 
 namespace prt::cli {
 namespace {
@@ -62,6 +63,7 @@ bool info_if_emitter_responses(const std::string& path, bool json, bool csv) {
   for (const prt::EmitterInfo& e : d.emitters)
     j["emitters"].push_back({{"name", e.name}, {"emission", e.emission}});
   if (json) {
+    add_run_record_json(j, path);
     std::printf("%s\n", j.dump(2).c_str());
     return true;
   }

@@ -15,10 +15,12 @@
 #include "bake/glossy_transfer_baker.h"
 #include "command_registry.h"
 #include "cpca_info.h"
+#include "option_rules.h"
 #include "output_safety.h"
 #include "progress_reporter.h"
 #include "prt/formats/cpca_file.h"
 #include "prt/formats/glossy_transfer_file.h"
+#include "run_record.h"
 #include "sh/basis.h"
 
 namespace prt::cli {
@@ -66,12 +68,19 @@ void run_glossy_bake(const scene::Scene& scene, const GlossyBakeRequest& r) {
   o.bounce_tolerance = r.tolerance;
   o.seed = r.seed;
   o.threads = r.threads;
+  o.memory_limit = r.memory_limit;
   o.precision = r.precision == "f16" ? prt::Precision::F16 : prt::Precision::F32;
   ProgressReporter progress(r.quiet);
   const bake::GlossyBakeResult result = bake::bake_glossy_transfer(scene, o, &progress);
   const prt::Status written = prt::write_glossy_transfer_file(r.output, result.data);
   if (!written.ok()) throw CommandError(written.message());
   const bake::GlossyBakeStatistics& st = result.stats;
+  run_record().phase("rays", st.seconds_rays);
+  if (result.data.interreflected) {
+    run_record().phase("BRDF projections", st.seconds_projection);
+    run_record().phase("bounces", st.seconds_bounces);
+  }
+  run_record().phase("bake", st.seconds_total);
   if (o.bounces < 0 && !st.converged)
     std::fprintf(stderr, "prt bake: %s: warning: glossy bounces stopped after %d (change %.3g)\n",
                  r.scene.c_str(), st.bounces,
@@ -127,6 +136,7 @@ CommandFiles compress_files(const GlossyCompressRequest& r) {
   CommandFiles files;
   files.add_input("glossy transfer file", r.input);
   files.add_output_file("-o", r.output, {".prtq"}, "a CPCA file");
+  files.add_run_record(r.output);
   return files;
 }
 
@@ -170,8 +180,9 @@ void run_glossy_compress(const GlossyCompressRequest& r) {
   o.max_vectors = max_vectors;
   o.iterations = static_cast<uint32_t>(r.iterations);
   o.seed = r.seed;
-  o.threads =
-      r.threads > 0 ? unsigned(r.threads) : std::max(1u, std::thread::hardware_concurrency());
+  o.threads = static_cast<unsigned>(resolved_threads(r.threads));
+  o.memory_limit = memory_limit_or_default(r.memory_limit);
+  run_record().threads = static_cast<int>(o.threads);
   if (r.metric == "relit") {
     prt::Result<std::vector<double>> metric = prt::cpca_relit_metric(data);
     if (!metric.ok()) throw CommandError(r.input + ": " + metric.status().message());
@@ -179,6 +190,9 @@ void run_glossy_compress(const GlossyCompressRequest& r) {
   }
   prt::Result<prt::CpcaTransfer> cpca = prt::cpca_compress(data, o);
   if (!cpca.ok()) throw CommandError(r.input + ": " + cpca.status().message());
+  run_record().phase(
+      "compression",
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
   const double error = prt::cpca_relative_rms_error(*cpca, data.matrices.data());
   const double metric_error =
       prt::cpca_metric_relative_rms_error(*cpca, data.matrices.data(), o.row_metric);
@@ -296,11 +310,13 @@ void describe_glossy_file(const std::string& path, bool json, bool csv) {
   if (!read.ok()) throw CommandError(read.status().message());
   const prt::GlossyTransferData& d = read.value();
   if (csv) return print_csv(d);
-  const nlohmann::json j = describe(d, path);
-  if (json)
+  nlohmann::json j = describe(d, path);
+  if (json) {
+    add_run_record_json(j, path);
     std::printf("%s\n", j.dump(2).c_str());
-  else
+  } else {
     print_text(d, j);
+  }
 }
 
 }  // namespace prt::cli

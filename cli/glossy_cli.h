@@ -31,6 +31,7 @@ struct GlossyBakeRequest {
   double tolerance = 1e-4;
   uint64_t seed = 1;
   int threads = 0;
+  uint64_t memory_limit = 0;  // GlossyBakeOptions::memory_limit
   std::string precision = "f32";
   bool quiet = false;
 };
@@ -47,6 +48,7 @@ struct GlossyCompressRequest {
   int iterations = 6;
   uint64_t seed = 1;
   int threads = 0;  // 0: std::thread::hardware_concurrency()
+  uint64_t memory_limit = 0;  // --memory-limit as given (0: not given, the default applies)
   bool quiet = false;
 };
 

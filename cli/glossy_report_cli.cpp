@@ -29,6 +29,7 @@ void run_glossy_report_command(const GlossyReportRequest& r) {
   o.quick = r.quick;
   o.seed = r.seed;
   o.material_overrides = parse_material_options(r.materials);
+  o.memory_limit = r.memory_limit;
   ProgressReporter progress(r.quiet);
   o.log = [&progress](const std::string& line) { progress.message(line); };
   o.progress = &progress;

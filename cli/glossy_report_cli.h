@@ -20,6 +20,7 @@ struct GlossyReportRequest {
   bool quick = false, quiet = false, stability = false, radiosity = false;
   uint64_t seed = 1;
   std::vector<std::string> materials;  // --material values as given
+  uint64_t memory_limit = 0;           // GlossyReportOptions::memory_limit
 };
 
 // Refuses what does not apply to --glossy, by name (`cmd` counts the options), and a

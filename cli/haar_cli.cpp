@@ -9,6 +9,7 @@
 #include "progress_reporter.h"
 #include "prt/formats/haar_transfer_file.h"
 #include "relight/haar_relight.h"
+#include "run_record.h"
 
 namespace prt::cli {
 
@@ -31,7 +32,7 @@ void add_haar_bake_options(CLI::App* cmd, HaarBakeArguments* a) {
 
 void run_haar_bake(const scene::Scene& scene, const std::string& output, prt::TransferKind kind,
                    const HaarBakeArguments& a, uint64_t seed, int threads, int bounces,
-                   double tolerance, bool quiet) {
+                   double tolerance, bool quiet, uint64_t memory_limit) {
   bake::HaarBakeOptions o;
   o.transport = kind;
   o.cube_size = a.cube;
@@ -45,12 +46,16 @@ void run_haar_bake(const scene::Scene& scene, const std::string& output, prt::Tr
   o.threads = threads;
   o.bounces = bounces;
   o.bounce_tolerance = tolerance;
+  o.memory_limit = memory_limit;
   ProgressReporter progress(quiet);
   const bake::HaarBakeResult r = bake::bake_haar_transfer(scene, o, &progress);
   const prt::Status written = prt::write_haar_transfer_file(output, r.file);
   if (!written.ok()) throw CommandError(written.message());
-  if (quiet) return;
   const bake::HaarBakeStatistics& st = r.stats;
+  run_record().phase("rays", st.seconds_rays);
+  if (st.seconds_solve > 0) run_record().phase("interreflection solve", st.seconds_solve);
+  run_record().phase("bake", st.seconds_total);
+  if (quiet) return;
   std::printf(
       "baked %s Haar transfer of %s: %llu vertices, cube %d (%d coefficients), %u channel%s; "
       "%llu rays in %.2f s (%.2f Mrays/s)",

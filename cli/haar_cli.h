@@ -27,10 +27,11 @@ struct HaarBakeArguments {
 
 void add_haar_bake_options(CLI::App* command, HaarBakeArguments* args);
 
-// Bakes, writes and reports (stored vs dense size). Throws CommandError / BakeError.
+// Bakes, writes and reports (stored vs dense size); the phases go to the run record
+// (run_record.h). `memory_limit`: HaarBakeOptions::memory_limit. Throws CommandError / BakeError.
 void run_haar_bake(const scene::Scene& scene, const std::string& output, prt::TransferKind kind,
                    const HaarBakeArguments& args, uint64_t seed, int threads, int bounces,
-                   double tolerance, bool quiet);
+                   double tolerance, bool quiet, uint64_t memory_limit);
 
 struct HaarRelightArguments {
   int64_t terms = 200;

@@ -32,6 +32,7 @@
 #include "prt/formats/transfer_data.h"
 #include "prt/haar/transform.h"
 #include "radiosity/form_factor_cache.h"
+#include "run_record.h"
 #include "scene/scene_loader.h"
 #include "sh/basis.h"
 
@@ -256,6 +257,7 @@ void print_form_factor_cache(const InfoArguments& args) {
   j["key"] = key;
   j["method"] = info.settings_recorded ? nlohmann::json(method) : nlohmann::json(nullptr);
   if (args.json) {
+    add_run_record_json(j, args.file);
     std::printf("%s\n", j.dump(2).c_str());
     return;
   }
@@ -270,8 +272,8 @@ void print_form_factor_cache(const InfoArguments& args) {
   std::printf("key           %s (patches' corners and the method's settings)\n", key);
 }
 
-void run(const InfoArguments& args) {
-  if (is_scene_path(args.file)) return print_scene(args);
+// A file of any kind but a scene, as its kind's printer describes it.
+void describe_file(const InfoArguments& args) {
   if (radiosity::is_form_factor_cache(args.file)) {
     if (!args.materials.empty()) throw UsageError("--material applies to scenes only");
     return print_form_factor_cache(args);
@@ -286,11 +288,21 @@ void run(const InfoArguments& args) {
     print_csv(f);
     return;
   }
-  const nlohmann::json j = describe(f, args.file);
-  if (args.json)
+  nlohmann::json j = describe(f, args.file);
+  if (args.json) {
+    add_run_record_json(j, args.file);
     std::printf("%s\n", j.dump(2).c_str());
-  else
+  } else {
     print_text(f, j);
+  }
+}
+
+// The file, then (as text) its run's times and threads from FILE.run.json (run_record.h); --json
+// has them under "run".
+void run(const InfoArguments& args) {
+  if (is_scene_path(args.file)) return print_scene(args);
+  describe_file(args);
+  if (!args.json && !args.csv) print_run_record(args.file);
 }
 
 Command register_info(CLI::App& app) {

@@ -8,6 +8,7 @@
 // "prt SUBCOMMAND: problem". Every subcommand runs as command_registry.h says: its optional
 // check, then CommandFiles::check() of the files it declares, then its work.
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <exception>
 #include <stdexcept>
@@ -18,6 +19,7 @@
 #include <CLI/CLI.hpp>
 
 #include "command_registry.h"
+#include "run_record.h"
 
 #ifndef PRT_VERSION
 #define PRT_VERSION "unknown"
@@ -67,13 +69,26 @@ std::vector<Command> add_commands(CLI::App& app) {
   return added;
 }
 
-// The chosen subcommand: its check, its files checked, then its work.
-void run_chosen(const std::vector<Command>& commands) {
+// "prt" and the arguments as given, for the run record.
+std::string command_line(int argc, char** argv) {
+  std::string line = "prt";
+  for (int i = 1; i < argc; ++i) line += std::string(" ") + argv[i];
+  return line;
+}
+
+// The chosen subcommand: its check, its files checked, then its work, then its run record
+// (OUT.run.json, run_record.h) when it declares one.
+void run_chosen(const std::vector<Command>& commands, const std::string& line) {
   for (const Command& command : commands) {
     if (command.app->count() == 0) continue;
+    const auto start = std::chrono::steady_clock::now();
     if (command.check) command.check();
-    command.files().check();
+    const CommandFiles files = command.files();
+    files.check();
     command.run();
+    if (files.run_record_output().empty()) continue;
+    const std::chrono::duration<double> seconds = std::chrono::steady_clock::now() - start;
+    write_run_record(files.run_record_output(), line, PRT_VERSION, seconds.count());
   }
 }
 }  // namespace prt::cli
@@ -88,7 +103,7 @@ int main(int argc, char** argv) {
 
   try {
     app.parse(argc, argv);
-    prt::cli::run_chosen(commands);
+    prt::cli::run_chosen(commands, prt::cli::command_line(argc, argv));
   } catch (const CLI::ParseError& e) {
     if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
     const std::string name = command_name(app);

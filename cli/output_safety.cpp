@@ -10,6 +10,7 @@
 
 #include "command_registry.h"
 #include "input_files.h"
+#include "run_record.h"
 
 namespace prt::cli {
 namespace {
@@ -106,6 +107,12 @@ void CommandFiles::add_output_file(const std::string& option, const std::string&
                                    const std::vector<std::string>& extensions,
                                    const std::string& what) {
   if (!path.empty()) outputs_.push_back({option, path, false, Named::Kind::File, extensions, what});
+}
+
+void CommandFiles::add_run_record(const std::string& output) {
+  if (output.empty()) return;
+  run_record_output_ = output;
+  add_output_file("run record", run_record_path(output));
 }
 
 void CommandFiles::add_output_directory(const std::string& option, const std::string& path) {

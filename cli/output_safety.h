@@ -48,6 +48,11 @@ class CommandFiles {
   void add_scene(const std::string& scene_path);
   // An environment map, or the six faces of a %s pattern: role "environment map".
   void add_environment(const std::string& environment_path);
+  // The run record of the command's main output (run_record.h): OUTPUT.run.json, declared and
+  // checked as an output ("run record"); main writes it after the work. At most one per command.
+  void add_run_record(const std::string& output);
+  // The output whose run record main writes; empty when none is declared.
+  const std::string& run_record_output() const { return run_record_output_; }
 
   // Throws CommandError "PATH: no such file" or "PATH: is a directory, not a file" for a
   // required input; then UsageError when an output is the same file as an input or as an
@@ -65,6 +70,7 @@ class CommandFiles {
     std::string what;
   };
   std::vector<Named> inputs_, outputs_;
+  std::string run_record_output_;
 };
 
 // True when the two paths name the same file (see the header comment).

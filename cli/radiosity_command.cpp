@@ -15,6 +15,7 @@
 #include <filesystem>
 #include <stdexcept>
 
+#include <tbb/global_control.h>
 #include <CLI/CLI.hpp>
 
 #include "command_registry.h"
@@ -22,6 +23,7 @@
 #include "radiosity/scene_solve.h"
 #include "relight/auto_exposure.h"
 #include "relight/radiosity_render.h"
+#include "run_record.h"
 #include "scene/material_assignment.h"
 
 namespace prt::cli {
@@ -52,6 +54,8 @@ struct RadiosityArguments {
   int spp = 3;
   std::string camera = "auto";
   bool quiet = false;
+  int threads = 0;            // --threads (0: every core)
+  uint64_t memory_limit = 0;  // --memory-limit (option_rules.h); 0: not given
 };
 
 void parse_size(const std::string& text, relight::RenderOptions* render) {
@@ -139,6 +143,8 @@ radiosity::SceneSolveRequest make_solve_request(const RadiosityArguments& a) {
   r.form_factors.quadrature_points = a.quadrature;
   r.solve.tolerance = a.tolerance;
   r.solve.max_iterations = a.max_iterations;
+  if (a.threads < 0) throw UsageError("--threads " + std::to_string(a.threads) + ": must be >= 0");
+  r.memory_limit = memory_limit_or_default(a.memory_limit);
   return r;
 }
 
@@ -223,6 +229,11 @@ CommandFiles radiosity_files(const RadiosityArguments& a) {
   files.add_output_file("--vertex-colors", a.vertex_colors, {".glb"}, "a binary glTF");
   files.add_output_file("--csv", a.csv, {".csv"});
   files.add_output_file("--per-emitter", a.per_emitter, {".prte"}, "emitter responses");
+  for (const std::string* main_output : {&a.per_emitter, &a.output, &a.csv, &a.vertex_colors})
+    if (!main_output->empty()) {
+      files.add_run_record(*main_output);
+      break;
+    }
   return files;
 }
 
@@ -269,8 +280,27 @@ void warn_unconverged(const RadiosityArguments& args, const radiosity::SceneSolu
                    args.scene.c_str(), r.name.c_str(), r.iterations, r.relative_unshot);
 }
 
+// The phases for the run record (run_record.h).
+void record_phases(const RadiosityRun& result) {
+  const radiosity::SceneSolution& s = result.solution;
+  RunRecord& record = run_record();
+  record.phase("form factors", s.form_factor_seconds);
+  if (s.cache != radiosity::SceneSolution::Cache::None)
+    record.phase("form-factor cache", s.cache_seconds);
+  if (s.update_seconds > 0) record.phase("form-factor update", s.update_seconds);
+  record.phase("solve", s.solve_seconds);
+  if (!s.emitter_reports.empty()) record.phase("per-emitter solves", s.per_emitter_seconds);
+  record.phase("render", result.render.render_seconds);
+}
+
 void run(const RadiosityArguments& args) {
+  std::optional<tbb::global_control> thread_limit;
+  if (args.threads > 0)
+    thread_limit.emplace(tbb::global_control::max_allowed_parallelism,
+                         static_cast<std::size_t>(args.threads));
+  run_record().threads = resolved_threads(args.threads);
   const RadiosityRun result = solve_and_render(args);
+  record_phases(result);
   warn_unconverged(args, result.solution);
   if (args.quiet) return;
   const radiosity::SceneSolution& s = result.solution;
@@ -404,6 +434,8 @@ Command register_radiosity(CLI::App& app) {
   cmd->add_option("--spp", args->spp, "N: N×N stratified samples per pixel")->capture_default_str();
   cmd->add_option("--camera", args->camera, "auto | NAME | ex,ey,ez,tx,ty,tz,ux,uy,uz,fov_deg")
       ->capture_default_str();
+  cmd->add_option("--threads", args->threads, "Worker threads (0 = all)")->capture_default_str();
+  add_memory_limit_option(*cmd, &args->memory_limit);
   cmd->add_flag("--quiet", args->quiet, "Print nothing on success");
   return {cmd, [args, cmd] { check_request(*args, *cmd); },
           [args] { return radiosity_files(*args); }, [args] { run(*args); }};

@@ -31,6 +31,7 @@
 #include "command_registry.h"
 #include "glossy_report_cli.h"
 #include "material_option.h"
+#include "option_rules.h"
 #include "output_safety.h"
 #include "progress_reporter.h"
 #include "radiosity/form_factors.h"
@@ -55,6 +56,7 @@ struct ReportArguments {
   std::string max_edges, methods, solvers;
   int ground_truth_patches = 0, ground_truth_samples = 0, rays = 1024, hemicube = 64;
   SunStudyArguments sun;
+  uint64_t memory_limit = 0;  // --memory-limit (option_rules.h): the SH and glossy sweeps' bakes
 };
 
 // Options of one mode only, refused by name in the others.
@@ -127,8 +129,9 @@ std::optional<std::vector<double>> parse_auto_tolerances(const std::string& text
 }
 
 GlossyReportRequest glossy_request(const ReportArguments& a) {
-  return {a.scene,     a.environment, a.output, a.quick,    a.quiet,
-          a.stability, a.radiosity,   a.seed,   a.materials};
+  return {
+      a.scene,     a.environment, a.output, a.quick,     a.quiet,
+      a.stability, a.radiosity,   a.seed,   a.materials, memory_limit_or_default(a.memory_limit)};
 }
 
 // Options that do not apply are refused by name; values out of range too.
@@ -136,6 +139,10 @@ void check_options(const ReportArguments& a, const CLI::App& cmd) {
   if (!a.radiosity)
     for (const char* option : kRadiosityOnly)
       if (cmd.count(option) > 0) throw UsageError(std::string(option) + " needs --radiosity");
+  if ((a.radiosity || a.stability) && cmd.count("--memory-limit") > 0)
+    throw UsageError(std::string("--memory-limit does not apply to ") +
+                     (a.radiosity ? "--radiosity" : "--stability") +
+                     " (it limits the bakes of the SH and glossy sweeps)");
   if (!a.glossy && cmd.count("--material") > 0)
     throw UsageError(
         "--material needs --glossy (the other report modes use the scene's materials)");
@@ -268,6 +275,7 @@ std::string other_mode_argument(const ReportArguments& a, const CLI::App& cmd) {
   for (const char* option : kEnvironmentOnly)
     if (cmd.count(option) > 0) return option;
   if (cmd.count("--seed") > 0) return "--seed";
+  if (cmd.count("--memory-limit") > 0) return "--memory-limit";
   if (cmd.count("--material") > 0) return "--material";
   return "";
 }
@@ -306,6 +314,7 @@ void run(const ReportArguments& a) {
   o.layout = parse_layout_option(a.layout);
   o.haar_cubes = parse_haar_cubes(a.haar_cubes);
   o.auto_tolerances = parse_auto_tolerances(a.auto_tolerances);
+  o.memory_limit = memory_limit_or_default(a.memory_limit);
   ProgressReporter progress(a.quiet);
   o.log = [&progress](const std::string& line) { progress.message(line); };
   o.progress = &progress;
@@ -363,6 +372,7 @@ Command register_report(CLI::App& app) {
   cmd->add_option("--ground-truth-budget", args->budget,
                   "Seconds the ground-truth refinement may take (--quick: at most 15)")
       ->capture_default_str();
+  add_memory_limit_option(*cmd, &args->memory_limit);
   add_material_option(*cmd, args->materials);
   CLI::Option* material = cmd->get_option("--material");
   material->description("--glossy: " + material->get_description());

@@ -12,8 +12,10 @@
 #   from run to run: the header's file size and checksum and the metadata's wall times
 #   ("seconds*", "*_seconds") and thread count ("threads"), which are dropped from the JSON
 #   before hashing (a .prtq's embedded source section likewise); .prte files hold no metadata
-#   and are hashed whole. SH files also by `prt info --csv` (coefficients to 9 significant
-#   digits) and "metadata": `prt info --json` without times, file name, size and SH convention.
+#   and are hashed whole. (prt now keeps those out of its files, in OUT.run.json beside them;
+#   they are still dropped so that an older binary hashes alike.) SH files also by `prt info
+#   --csv` (coefficients to 9 significant digits) and "metadata": `prt info --json` without
+#   times, the run record ("run"), file name, size and SH convention.
 #   Every path is relative to a scratch directory, since bake metadata records the scene's path
 #   as it was given.
 # * Relit vertex colours: `prt relight --csv`, glossy files toward a fixed --eye, emitter
@@ -230,7 +232,7 @@ def run_dependent(key):  # changes from run to run
     return key.startswith("seconds") or key.endswith("_seconds") or key == "threads"
 
 def not_computed(key):  # `prt info --json` keys that are not prt's computation
-    return run_dependent(key) or key in ("file", "bytes", "sh_basis")
+    return run_dependent(key) or key in ("file", "bytes", "sh_basis", "run")
 
 def container(data, header_size, table, sections, metadata, zeroed, h):
     """A PRTC or PRTG file: header, then each section; the metadata without run data."""
@@ -264,9 +266,10 @@ def content(path):
             container(data[end + 8:end + 8 + size], 208, 80, 8, 7, [(64, 76)], h)
             end += 8 + size
         if flags & 2:  # the compression record (version 2): JSON without paths and run data
-            size, = struct.unpack_from("<Q", data, end)
-            record = json.loads(data[end + 8:end + 8 + size])
-            record = without(record, lambda k: run_dependent(k) or k == "source_file")
+            size, = struct.unpack_from("<Q", data, end)     # (nor the source's size: its
+            record = json.loads(data[end + 8:end + 8 + size])  # metadata once held run data)
+            record = without(record, lambda k: run_dependent(k) or k in ("source_file",
+                                                                          "source_bytes"))
             h.update(json.dumps(record, sort_keys=True).encode())
             end += 8 + size
         if end != len(data):

@@ -460,7 +460,6 @@ std::string glossy_metadata(const GlossyJob& job, const prt::GlossyTransferData&
   meta["samples_per_vertex"] = job.N;
   meta["sampling"] = "Owen-scrambled Sobol (0,2)-sequence, uniform on the hemisphere";
   meta["seed"] = job.o.seed;
-  meta["threads"] = job.o.threads;
   meta["precision"] = d.storage == prt::Precision::F16 ? "f16" : "f32";
   nlohmann::json mats = nlohmann::json::array();
   for (const brdf::Material& m : job.materials) mats.push_back(brdf::describe(m));
@@ -468,8 +467,6 @@ std::string glossy_metadata(const GlossyJob& job, const prt::GlossyTransferData&
   meta["vertices"] = job.V;
   meta["triangles"] = st.triangles;
   meta["rays"] = st.rays;
-  meta["seconds"] = st.seconds_total;
-  meta["seconds_rays"] = st.seconds_rays;
   if (job.interreflect) {
     nlohmann::json b;
     b["bounces_requested"] = job.o.bounces;
@@ -482,7 +479,6 @@ std::string glossy_metadata(const GlossyJob& job, const prt::GlossyTransferData&
     nlohmann::json methods = nlohmann::json::array();
     for (const prt::BrdfProjection& p : job.projections) methods.push_back(method_name(p.method()));
     b["brdf_projection"] = methods;
-    b["seconds"] = st.seconds_bounces;
     meta["interreflection"] = b;
   }
   return meta.dump();

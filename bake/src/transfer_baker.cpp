@@ -40,6 +40,7 @@
 #include "bake/interreflection_solver.h"
 #include "bake/progress.h"
 #include "bake/sampling.h"
+#include "prt/core/memory_budget.h"
 #include "scene/ray_caster.h"
 #include "scene/scene_label.h"
 #include "sh/basis.h"
@@ -345,7 +346,8 @@ nlohmann::json adaptive_metadata(const BakeJob& job) {
   return a;
 }
 
-// The file's metadata: what was baked, how, and what it cost.
+// The file's metadata: what was baked and how. Nothing that changes from run to run (wall
+// times, the thread count): the CLI records those beside the file (OUT.run.json).
 std::string bake_metadata(const BakeJob& job) {
   const BakeOptions& options = job.options;
   const BakeStatistics& st = job.result.stats;
@@ -365,7 +367,6 @@ std::string bake_metadata(const BakeJob& job) {
   meta["samples_per_vertex"] = st.samples_per_vertex;
   meta["sampling"] = "Owen-scrambled Sobol (0,2)-sequence, cosine-weighted (concentric)";
   meta["seed"] = options.seed;
-  meta["threads"] = options.threads;
   meta["precision"] = options.precision == prt::Precision::F16 ? "f16" : "f32";
   meta["ao"] = options.ao;
   meta["bent_normals"] = options.bent_normals;
@@ -374,8 +375,6 @@ std::string bake_metadata(const BakeJob& job) {
   meta["skipped_triangles"] = st.skipped_triangles;
   meta["rays"] = st.rays;
   meta["ray_offset_max"] = job.ray_offset_max;  // largest ε_v (scene/ray_offset.h)
-  meta["seconds"] = st.seconds_total;
-  meta["seconds_rays"] = st.seconds_rays;
   if (job.adaptive) meta["adaptive"] = adaptive_metadata(job);
   if (job.interreflect && (!job.adaptive || st.interreflection_solved)) {
     nlohmann::json s;
@@ -388,7 +387,6 @@ std::string bake_metadata(const BakeJob& job) {
     s["bounce_energy"] = st.bounce_energy;
     s["matrix_entries"] = st.matrix_entries;
     s["back_face_hits"] = st.back_face_hits;
-    s["seconds"] = st.seconds_solve;
     meta["interreflection"] = s;
   }
   return meta.dump();
@@ -479,7 +477,12 @@ BakeResult bake_transfer(const scene::Scene& scene, const BakeOptions& options,
       3 * scene.positions.size() > 0xffffffffull)
     throw BakeError(scene::scene_label(scene) +
                     ": too many vertices for interreflection with the albedo kept apart");
-  BakeJob job(scene, options, progress, result, channel_count(scene, options, apart), apart);
+  const int channels = channel_count(scene, options, apart);
+  prt::MemoryBudget budget(options.memory_limit, scene::scene_label(scene));
+  budget.charge(uint64_t(scene.positions.size()) * uint64_t(channels) * uint64_t(options.order) *
+                    uint64_t(options.order) * sizeof(float),
+                "the transfer coefficients");
+  BakeJob job(scene, options, progress, result, channels, apart);
   const std::size_t V = job.V;
   BakeStatistics& st = result.stats;
   st.vertices = V;

@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <stdexcept>
@@ -235,8 +237,11 @@ void write_vertex_csv(const std::string& path, const scene::Scene& scene,
       }
       ok = ok && std::fputc('\n', file) != EOF;
     }
-    ok = (std::fclose(file) == 0) && ok;
-    return ok ? prt::Status::Ok() : prt::Status::Error(path + ": write failed");
+    const int error = ok ? 0 : errno;  // the first failed write's reason
+    const bool closed = std::fclose(file) == 0;
+    if (ok && closed) return prt::Status::Ok();
+    return prt::Status::Error(path + ": cannot write " + temporary + ": " +
+                              std::strerror(ok ? errno : error));
   });
   if (!written.ok()) throw std::runtime_error(written.message());
 }

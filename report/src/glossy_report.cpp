@@ -290,6 +290,7 @@ void sweep_cpca(const GlossyReportOptions& o, const GlossyTransferData& base,
   for (const CpcaSize& size : glossy_cpca_sizes(o.quick)) {
     CpcaOptions co;
     co.clusters = size.clusters, co.vectors = size.vectors, co.seed = o.seed;
+    co.memory_limit = o.memory_limit;
     co.threads = std::max(1u, std::thread::hardware_concurrency());
     const Clock::time_point t0 = Clock::now();
     // As prt compress does by default: minimise the expected relit error
@@ -364,6 +365,7 @@ GlossyReportResult run_glossy_report(const GlossyReportOptions& o) {
   for (const Setting& s : glossy_sweep(o.quick)) {
     bake::GlossyBakeOptions bo;
     bo.order = s.order, bo.samples = s.samples, bo.bounces = s.bounces, bo.seed = o.seed;
+    bo.memory_limit = o.memory_limit;
     bake::GlossyBakeResult baked = bake::bake_glossy_transfer(scene, bo);
     GlossyReportRow row;
     row.axis = s.axis, row.order = s.order, row.samples = s.samples, row.bounces = s.bounces;

@@ -113,6 +113,7 @@ struct ReportState {
       bake::BakeOptions bo;
       bo.kind = prt::TransferKind::Interreflected;
       bo.order = s.order, bo.samples = s.samples, bo.bounces = s.bounces, bo.seed = opt.seed;
+      bo.memory_limit = opt.memory_limit;
       it = bakes.emplace(key, bake::bake_transfer(in.scene, bo)).first;
     }
     return it->second;

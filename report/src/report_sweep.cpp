@@ -110,6 +110,7 @@ HaarBake& haar_bake_for(ReportState& st, std::map<int, HaarBake>& haar_bakes,
   ho.compression.quantization = kHaarQuantization;
   ho.bounces = s.bounces;
   ho.seed = st.opt.seed;
+  ho.memory_limit = st.opt.memory_limit;
   st.log("Haar bake, cube " + std::to_string(s.cube) + " (" +
          std::to_string(haar_coefficient_count(s.cube)) + " directions per vertex)");
   try {
@@ -332,6 +333,7 @@ void measure_auto_bakes(ReportState& st) {
   if (auto_tolerances.empty()) return;
   bake::AutoBakeOptions ao;
   ao.bake.seed = st.opt.seed;
+  ao.bake.memory_limit = st.opt.memory_limit;
   ao.lighting_order = bake::auto_lighting_order(st.in.env);  // as `prt bake --auto --env`
   ao.lighting = sh::project(st.in.env, ao.lighting_order);
   for (double tolerance : auto_tolerances) {

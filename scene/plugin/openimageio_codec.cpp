@@ -125,6 +125,9 @@ int write_image(const char* name_for_format, const char* file, int width, int he
   if (!out) return report(OIIO::geterror(), error, error_size, PRT_CODEC_NO_WRITER);
   OIIO::ImageSpec spec(width, height, channels, type_of(file_type));
   if (channels == 1 && name_y != 0) spec.channelnames = {"Y"};
+  // No time stamp: the same pixels give the same file (OpenEXR's writer adds the current
+  // DateTime unless one is given; an empty one is left out).
+  spec.attribute("DateTime", "");
   if (!out->open(file, spec)) return report(out->geterror(), error, error_size, PRT_CODEC_FAILED);
   if (!out->write_image(type_of(buffer_type), pixels)) {
     const std::string why = out->geterror();

@@ -4,8 +4,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
-#include <filesystem>
 #include <limits>
+#include <sstream>
 
 #include <tiny_gltf.h>
 #include <glm/gtc/quaternion.hpp>
@@ -281,16 +281,14 @@ void write_glb(const std::string& path, const Scene& scene,
                    std::to_string(scene.positions.size()) + " vertices");
   }
   const tinygltf::Model model = build_model(path, scene, vertex_colors);
-  const Status written = replace_file_atomically(path, [&](const std::string& temporary) {
-    tinygltf::TinyGLTF writer;
-    const bool ok = writer.WriteGltfSceneToFile(&model, temporary, /*embedImages=*/true,
-                                                /*embedBuffers=*/true, /*prettyPrint=*/false,
-                                                /*writeBinary=*/true);
-    std::error_code ec;
-    if (!ok || !std::filesystem::is_regular_file(temporary, ec))
-      return Status::Error(path + ": cannot write the file");
-    return Status::Ok();
-  });
+  // Into memory first, then one checked atomic write: tinygltf's own file writer does not check
+  // the stream, so a full disk would leave a truncated file behind a success.
+  std::ostringstream bytes;
+  tinygltf::TinyGLTF writer;
+  if (!writer.WriteGltfSceneToStream(&model, bytes, /*prettyPrint=*/false, /*writeBinary=*/true))
+    fail(path, "cannot encode the binary glTF");
+  const std::string data = bytes.str();
+  const Status written = write_file_atomically(path, data.data(), data.size());
   if (!written.ok()) throw SceneError(written.message());
 }
 

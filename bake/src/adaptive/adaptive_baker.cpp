@@ -206,8 +206,6 @@ std::string AutoBakeReport::json() const {
   nlohmann::json j;
   j["vertices"] = vertices;
   j["open_vertices"] = open_vertices;
-  j["analysis_seconds"] = analysis_seconds;
-  j["pilot_seconds"] = pilot_seconds;
   j["pilot_samples"] = pilot_samples;
   j["grey"] = grey;
   j["stored_transfer"] = transfer_kind_name(stored_kind);

@@ -56,6 +56,7 @@ struct GlossyReportOptions {
   uint64_t seed = 1;
   // Applied in order (a later one wins) when the scene is loaded; empty: the scene's own.
   std::vector<scene::MaterialOverride> material_overrides;
+  uint64_t memory_limit = 0;  // every bake's and compression's memory_limit; 0: none
   // One line per step to `log` when set; the ground truth's passes to `progress` when not null.
   std::function<void(const std::string&)> log;
   bake::ProgressSink* progress = nullptr;

@@ -83,6 +83,7 @@ struct ReportOptions {
   // Tolerances of the `prt bake --auto` rows (bake/adaptive/adaptive_baker.h): nullopt = the
   // default of the mode (quick {0.05}; full {0.01, 0.05, 0.1}); an empty list leaves them out.
   std::optional<std::vector<double>> auto_tolerances;
+  uint64_t memory_limit = 0;  // every bake's memory_limit (prt/core/memory_budget.h); 0: none
 };
 
 // `prt bake --auto --env` at one tolerance, baked as the CLI does it (the map projected at

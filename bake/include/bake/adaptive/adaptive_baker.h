@@ -117,7 +117,7 @@ struct AutoBakeReport {
   double predicted_error = 0;         // [(truncation + skip)² + sampling²]^½
   double mean_samples = 0;            // over sampled vertices
   std::vector<std::string> left_out;  // "what: why", one line each
-  std::string json() const;           // the "auto" object of the metadata
+  std::string json() const;           // the "auto" object of the metadata (no wall times)
 };
 
 struct AutoBakeResult {

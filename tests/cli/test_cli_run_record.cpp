@@ -1,0 +1,123 @@
+// tests/cli/test_cli_run_record.cpp — what changes from run to run (wall times, the thread count,
+// the host) is kept out of the files prt writes and recorded beside the main output in
+// OUT.run.json (cli/run_record.h); `prt info` prints it from there, says when it is absent, and
+// `--json` gives it under "run". The sidecar is an output like any other: it cannot be an input.
+// (tests/scripts/check_reproducible_outputs.sh compares every file kind's bytes across thread
+// counts.)
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include <catch2/catch.hpp>
+#include <nlohmann/json.hpp>
+
+#include "cli_run.h"
+
+namespace fs = std::filesystem;
+using namespace prt::test::cli;
+
+namespace {
+
+// A lit open box (OBJ with Ke): a scene for bake and radiosity alike.
+fs::path write_box(const fs::path& dir) {
+  std::ofstream(dir / "box.mtl") << "newmtl white\nKd 0.7 0.7 0.7\nnewmtl lamp\nKd 0.5 0.5 0.5\n"
+                                    "Ke 4 4 4\n";
+  std::ofstream(dir / "box.obj")
+      << "mtllib box.mtl\n"
+         "v 0 0 0\nv 1 0 0\nv 1 0 1\nv 0 0 1\nv 0 1 0\nv 1 1 0\nv 1 1 1\nv 0 1 1\n"
+         "v 0.4 0.99 0.4\nv 0.6 0.99 0.4\nv 0.6 0.99 0.6\nv 0.4 0.99 0.6\n"
+         "o walls\nusemtl white\nf 1 4 3 2\nf 5 6 7 8\nf 1 5 8 4\nf 2 3 7 6\nf 4 8 7 3\n"
+         "o lamp\nusemtl lamp\nf 9 10 11 12\n";
+  return dir / "box.obj";
+}
+
+nlohmann::json read_json(const fs::path& path) {
+  std::ifstream in(path);
+  return nlohmann::json::parse(in);
+}
+
+}  // namespace
+
+TEST_CASE("cli run record: times and threads beside the bake, not in it; prt info reads them") {
+  const fs::path dir = scratch("run_record_bake");
+  const fs::path box = write_box(dir), out = dir / "box.prt";
+  const std::string record = out.string() + ".run.json";
+  const RunResult baked =
+      run(prt_cli() + " bake " + box.string() + " -o " + out.string() +
+          " --transfer interreflected --order 2 --samples 16 --threads 1 --quiet");
+  INFO(baked.err);
+  REQUIRE(baked.exit_code == 0);
+  REQUIRE(fs::exists(record));
+  const nlohmann::json r = read_json(record);
+  CHECK(r["threads"] == 1);
+  CHECK(r["seconds"].get<double>() > 0.0);
+  CHECK(r["phase_seconds"].contains("rays"));
+  CHECK(r["phase_seconds"].contains("interreflection solve"));
+  CHECK(r["peak_resident_bytes"].get<double>() > 1e6);  // any process holds more than 1 MB
+  CHECK(r["output"] == out.string());
+  CHECK(r["command"].get<std::string>().find(" bake " + box.string()) != std::string::npos);
+  CHECK(r.contains("host"));
+
+  // The file's metadata keeps what the result is (samples, seed, the solve's residual, the
+  // scene path as given) and nothing of the run.
+  const RunResult json = run(prt_cli() + " info --json " + out.string());
+  REQUIRE(json.exit_code == 0);
+  const nlohmann::json j = nlohmann::json::parse(json.out);
+  const nlohmann::json& meta = j["metadata"];
+  CHECK(meta["scene"] == box.string());
+  CHECK(meta["seed"] == 1);
+  CHECK(meta["interreflection"].contains("relative_residual"));
+  for (const char* key : {"seconds", "seconds_rays", "threads"}) CHECK_FALSE(meta.contains(key));
+  CHECK_FALSE(meta["interreflection"].contains("seconds"));
+  REQUIRE(j.contains("run"));
+  CHECK(j["run"]["threads"] == 1);
+
+  const RunResult text = run(prt_cli() + " info " + out.string());
+  INFO(text.out);
+  CHECK(text.out.find("on 1 thread(s)") != std::string::npos);
+  CHECK(text.out.find("interreflection solve") != std::string::npos);
+
+  // Without the sidecar prt info says so, and --json has no "run".
+  fs::remove(record);
+  const RunResult bare = run(prt_cli() + " info " + out.string());
+  CHECK(bare.exit_code == 0);
+  CHECK(bare.out.find("not recorded (" + record + " is absent)") != std::string::npos);
+  const RunResult bare_json = run(prt_cli() + " info --json " + out.string());
+  CHECK_FALSE(nlohmann::json::parse(bare_json.out).contains("run"));
+}
+
+TEST_CASE(
+    "cli run record: radiosity writes it beside --per-emitter, prt info of the .prte reads it") {
+  const fs::path dir = scratch("run_record_radiosity");
+  const fs::path box = write_box(dir), prte = dir / "box.prte";
+  const RunResult solved =
+      run(prt_cli() + " radiosity " + box.string() + " --per-emitter " + prte.string() + " --csv " +
+          (dir / "box.csv").string() + " --max-edge 0.5 --threads 2 --quiet");
+  INFO(solved.err);
+  REQUIRE(solved.exit_code == 0);
+  REQUIRE(fs::exists(prte.string() + ".run.json"));
+  CHECK_FALSE(fs::exists(dir / "box.csv.run.json"));  // one record per run, beside the main output
+  const nlohmann::json r = read_json(prte.string() + ".run.json");
+  CHECK(r["threads"] == 2);
+  CHECK(r["phase_seconds"].contains("per-emitter solves"));
+  const RunResult json = run(prt_cli() + " info --json " + prte.string());
+  REQUIRE(json.exit_code == 0);
+  CHECK(nlohmann::json::parse(json.out)["run"]["threads"] == 2);
+}
+
+TEST_CASE("cli run record: OUT.run.json is checked like any output, never an input") {
+  const fs::path dir = scratch("run_record_input");
+  const fs::path box = write_box(dir);
+  // compress IN -o OUT where IN is OUT.run.json: the record would overwrite the input.
+  const RunResult glossy = run(prt_cli() + " bake " + box.string() + " --glossy --order 2 " +
+                               "--samples 16 -o " + (dir / "g.prtg").string() + " --quiet");
+  REQUIRE(glossy.exit_code == 0);
+  fs::copy_file(dir / "g.prtg", dir / "c.prtq.run.json", fs::copy_options::overwrite_existing);
+  const RunResult clash = run(prt_cli() + " compress " + (dir / "c.prtq.run.json").string() +
+                              " -o " + (dir / "c.prtq").string() + " --quiet");
+  INFO(clash.err);
+  CHECK(clash.exit_code == 2);
+  CHECK(line_count(clash.err) == 1);
+  CHECK(clash.err.find("run record") != std::string::npos);
+  CHECK_FALSE(fs::exists(dir / "c.prtq"));
+}

@@ -1,0 +1,101 @@
+#!/usr/bin/env bash
+# A write that fails leaves nothing behind: each command below runs with its file size limited
+# (ulimit -f, SIGXFSZ ignored, so a write past the limit fails with EFBIG as on a full disk) and
+# must exit with status 1, print one line naming the file and the problem ("File too large"), and
+# leave neither the output, nor its temporary (OUT.tmp-*), nor its run record (OUT.run.json).
+# The same for `--memory-limit 1K`: the bake stops before anything is written (status 1, one
+# line naming the scene and the limit), and a value that is not a size is a usage error (status 2).
+# Covers bake (SH), bake --glossy, compress, radiosity --per-emitter / --csv / --vertex-colors /
+# --form-factor-cache and make-scene. A few seconds.
+# Usage: check_write_failures.sh PRT_BINARY
+set -euo pipefail
+prt="$(realpath "$1")"
+scratch="$(mktemp -d)"
+trap 'rm -rf "$scratch"' EXIT
+cd "$scratch"
+failures=0
+fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
+
+# Inputs, made without a limit.
+"$prt" make-scene --scene glossy -o glossy.glb >/dev/null
+"$prt" bake glossy.glb --glossy -o glossy.prtg --order 2 --samples 16 --quiet
+printf 'newmtl white\nKd 0.7 0.6 0.5\nnewmtl lamp\nKd 0.5 0.5 0.5\nKe 5 5 5\n' > room.mtl
+cat > room.obj <<'EOF'
+mtllib room.mtl
+v 0 0 0
+v 1 0 0
+v 1 0 1
+v 0 0 1
+v 0 1 0
+v 1 1 0
+v 1 1 1
+v 0 1 1
+v 0.4 0.99 0.4
+v 0.6 0.99 0.4
+v 0.6 0.99 0.6
+v 0.4 0.99 0.6
+o walls
+usemtl white
+f 1 4 3 2
+f 5 6 7 8
+f 1 5 8 4
+f 2 3 7 6
+f 4 8 7 3
+o lamp
+usemtl lamp
+f 9 10 11 12
+EOF
+
+# Runs prt with files limited to KB kilobytes; OUTPUT is the file that cannot be written.
+limited() {  # kilobytes output args...
+  local kilobytes="$1" output="$2"; shift 2
+  local status=0
+  (trap '' XFSZ; ulimit -f "$kilobytes"; exec "$prt" "$@") >/dev/null 2>err.txt || status=$?
+  expect_refusal "prt $* (files limited to ${kilobytes} KB)" 1 "$output" "File too large"
+  [[ $status == 1 ]] || fail "prt $*: exit status $status, expected 1"
+}
+
+# After a refused run: one line on stderr naming OUTPUT and containing PROBLEM, and no OUTPUT,
+# OUTPUT.tmp-* or OUTPUT.run.json.
+expect_refusal() {  # label status output problem [name in the message, default output]
+  local label="$1" output="$3" problem="$4" named="${5:-$3}" before=$failures
+  local lines
+  lines=$(wc -l < err.txt)
+  [[ $lines == 1 ]] || fail "$label: $lines lines on stderr: $(cat err.txt)"
+  grep -q -- "$named" err.txt || fail "$label: the message does not name $named: $(cat err.txt)"
+  grep -q -- "$problem" err.txt || fail "$label: the message does not say '$problem': $(cat err.txt)"
+  local left
+  left=$(ls -d "$output" "$output".tmp-* "$output".run.json 2>/dev/null || true)
+  [[ -z "$left" ]] || fail "$label: left behind: $left"
+  ((failures > before)) || echo "ok: $label: $(cat err.txt)"
+}
+
+limited 64 shadowed.prt bake glossy.glb -o shadowed.prt --order 3 --samples 16 --quiet
+limited 64 glossy-out.prtg bake glossy.glb --glossy -o glossy-out.prtg --order 2 --samples 16 \
+  --quiet
+limited 16 glossy.prtq compress glossy.prtg -o glossy.prtq --clusters 2 --vectors 2 --quiet
+limited 4 room.prte radiosity room.obj --max-edge 0.25 --per-emitter room.prte --quiet
+limited 4 room.csv radiosity room.obj --max-edge 0.25 --csv room.csv --quiet
+limited 4 room.glb radiosity room.obj --max-edge 0.25 --vertex-colors room.glb --quiet
+# The cache is written before the image, which fits.
+limited 64 room.ffc radiosity room.obj --max-edge 0.1 --form-factor-cache room.ffc \
+  -o room.png --size 8x6 --quiet
+rm -f room.png room.png.run.json
+limited 64 scene.glb make-scene -o scene.glb
+
+# --memory-limit: too small for the coefficients (V × channels × order² × 4 bytes).
+status=0
+"$prt" bake glossy.glb -o small.prt --order 3 --samples 16 --memory-limit 1K --quiet \
+  >/dev/null 2>err.txt || status=$?
+[[ $status == 1 ]] || fail "bake --memory-limit 1K: exit status $status, expected 1"
+expect_refusal "bake --memory-limit 1K" 1 small.prt "memory limit is 1.0 KB" glossy.glb
+status=0
+"$prt" bake glossy.glb -o small.prt --memory-limit 8Q --quiet >/dev/null 2>err.txt || status=$?
+[[ $status == 2 ]] || fail "bake --memory-limit 8Q: exit status $status, expected 2"
+expect_refusal "bake --memory-limit 8Q" 2 "--memory-limit" "not a memory size"
+
+if ((failures)); then
+  echo "$failures failure(s)"
+  exit 1
+fi
+echo "every failed write left nothing behind"
