@@ -38,7 +38,7 @@ nlohmann::json read_json(const fs::path& path) {
 
 }  // namespace
 
-TEST_CASE("cli run record: times and threads beside the bake, not in it; prt info reads them") {
+TEST_CASE("cli run record: times and threads beside the bake, not in it, and prt info reads them") {
   const fs::path dir = scratch("run_record_bake");
   const fs::path box = write_box(dir), out = dir / "box.prt";
   const std::string record = out.string() + ".run.json";
