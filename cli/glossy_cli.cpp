@@ -68,9 +68,9 @@ void run_glossy_bake(const scene::Scene& scene, const GlossyBakeRequest& r) {
   o.threads = r.threads;
   o.precision = r.precision == "f16" ? prt::Precision::F16 : prt::Precision::F32;
   ProgressReporter progress(r.quiet);
-  const bake::GlossyBakeResult result = bake::bake_glossy_transfer(scene, o, &progress);
-  const prt::Status written = prt::write_glossy_transfer_file(r.output, result.data);
-  if (!written.ok()) throw CommandError(written.message());
+  // Streamed: the matrices go to the file as they are finished (result.data holds none).
+  const bake::GlossyBakeResult result =
+      bake::bake_glossy_transfer_to_file(scene, o, r.output, &progress);
   const bake::GlossyBakeStatistics& st = result.stats;
   if (o.bounces < 0 && !st.converged)
     std::fprintf(stderr, "prt bake: %s: warning: glossy bounces stopped after %d (change %.3g)\n",

@@ -8,18 +8,22 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <functional>
 #include <limits>
 #include <memory>
 #include <optional>
 
 #include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
 #include <nlohmann/json.hpp>
 
 #include "bake/progress.h"
 #include "bake/sampling.h"
 #include "hit_side.h"
+#include "prt/core/memory_budget.h"
 #include "prt/formats/geometry_check.h"
+#include "prt/formats/glossy_transfer_writer.h"
 #include "prt/glossy/brdf_projection.h"
 #include "scene/ray_caster.h"
 #include "scene/scene_label.h"
@@ -102,8 +106,12 @@ struct GlossyJob {
   std::vector<brdf::Material> materials;
   std::vector<uint32_t> material_of_vertex;
   std::vector<prt::BrdfProjection> projections;  // per material (bounces only)
-  std::vector<float>* matrices = nullptr;        // the output, V · C · K², filled by the pass
-  std::vector<float> S;                          // V · K², grey direct transfer (bounces only)
+  // Interreflected: every vertex's matrices, V · C · K², filled by the pass. Shadowed: null, and
+  // each block of vertices goes to `sink` as it is finished.
+  std::vector<float>* matrices = nullptr;
+  std::function<void(std::size_t first, std::size_t count, const float* m)> sink;
+  prt::MemoryBudget* budget = nullptr;
+  std::vector<float> S;  // V · K², grey direct transfer (bounces only)
   std::vector<BlockHits> block_hits;
   std::vector<uint64_t> hit_offset;  // V + 1
   std::vector<GlossyHit> hits;
@@ -178,7 +186,8 @@ struct VertexSampler {
         packet(std::size_t(j.K) * padded(j.K)),
         acc(j.KK()) {}
 
-  uint64_t sample(std::size_t v, BlockHits& out, uint64_t& back_hits) {
+  // S_v (C · K², the channels equal) into `s`.
+  uint64_t sample(std::size_t v, float* s, BlockHits& out, uint64_t& back_hits) {
     const int K = job.K, Kp = padded(K);
     const uint64_t seed = hash_seed(job.o.seed, v);
     const glm::vec3 origin = caster.vertex_origin(static_cast<uint32_t>(v));
@@ -211,7 +220,6 @@ struct VertexSampler {
     }
     const double w = 2.0 * sh::kPi / job.N;
     const std::size_t KK = job.KK();
-    float* s = &(*job.matrices)[v * job.C * KK];
     for (std::size_t e = 0; e < KK; ++e) s[e] = static_cast<float>(acc[e] * w);
     for (int c = 1; c < job.C; ++c) std::copy_n(s, KK, s + c * KK);
     out.counts.push_back(kept);
@@ -225,15 +233,26 @@ void run_sampling_pass(GlossyJob& job) {
   job.block_hits.assign(job.blocks(), BlockHits{});
   std::vector<uint64_t> rays(job.blocks(), 0), back(job.blocks(), 0);
   if (job.progress) job.progress->start("glossy bake", job.V);
+  const std::size_t per_vertex = std::size_t(job.C) * job.KK();
   tbb::parallel_for(std::size_t(0), job.blocks(), [&](std::size_t blk) {
     VertexSampler sampler(job, caster);
-    const std::size_t end = std::min(job.V, (blk + 1) * kBlock);
-    for (std::size_t v = blk * kBlock; v < end; ++v)
-      rays[blk] += sampler.sample(v, job.block_hits[blk], back[blk]);
-    if (job.progress) job.progress->advance(end - blk * kBlock, rays[blk]);
+    const std::size_t first = blk * kBlock, end = std::min(job.V, (blk + 1) * kBlock);
+    std::vector<float> block(job.matrices ? 0 : (end - first) * per_vertex);
+    for (std::size_t v = first; v < end; ++v) {
+      float* s = job.matrices ? &(*job.matrices)[v * per_vertex] : &block[(v - first) * per_vertex];
+      rays[blk] += sampler.sample(v, s, job.block_hits[blk], back[blk]);
+    }
+    if (!job.matrices) job.sink(first, end - first, block.data());
+    if (job.progress) job.progress->advance(end - first, rays[blk]);
   });
   if (job.progress) job.progress->finish();
   job.hit_offset.assign(1, 0);
+  uint64_t hit_count = 0;
+  for (const BlockHits& b : job.block_hits) hit_count += b.hits.size();
+  if (job.budget && job.interreflect)
+    job.budget->charge(hit_count * sizeof(GlossyHit) + 8 * (job.V + 1),
+                       "the glossy bounces' ray hits");
+  job.hits.reserve(hit_count);
   for (std::size_t blk = 0; blk < job.blocks(); ++blk) {
     job.st.rays += rays[blk];
     job.st.back_face_hits += back[blk];
@@ -516,15 +535,61 @@ void glossy_scene_materials(const scene::Scene& scene, std::vector<brdf::Materia
   scene::vertex_materials(scene, materials, material_of_vertex);
 }
 
-GlossyBakeResult bake_glossy_transfer(const scene::Scene& scene, const GlossyBakeOptions& o,
-                                      ProgressSink* progress) {
+namespace {
+
+// Where the bake's matrices go: into result.data.matrices, or (writer set) into a file.
+struct GlossyOutput {
+  GlossyBakeResult& result;
+  prt::GlossyTransferFileWriter* writer = nullptr;
+  std::string path;  // the writer's, for messages
+};
+
+void put_matrices(const GlossyOutput& out, const GlossyJob& job, std::size_t first,
+                  std::size_t count, const float* m) {
+  const std::size_t per_vertex = std::size_t(job.C) * job.KK();
+  if (out.writer == nullptr) {
+    std::copy_n(m, count * per_vertex, &out.result.data.matrices[first * per_vertex]);
+    return;
+  }
+  const prt::Status s = out.writer->write(first, count, m);
+  if (!s.ok()) throw BakeError(s.message());
+}
+
+unsigned worker_threads(const GlossyBakeOptions& o) {
+  return o.threads > 0
+             ? unsigned(o.threads)
+             : std::max(1u, static_cast<unsigned>(tbb::this_task_arena::max_concurrency()));
+}
+
+// Charges what the bake will hold before it holds it: frames and the file's geometry sections;
+// shadowed, the matrices of the blocks in flight (streamed) or of every vertex (in memory);
+// interreflected, M, the next bounce, S and the Lambert exit rows (the hits when they are known).
+void charge_bake(prt::MemoryBudget& budget, const GlossyJob& job, const GlossyBakeOptions& o,
+                 bool streamed) {
+  const uint64_t V = job.V, KK = job.KK(), C = job.C;
+  budget.charge(V * (sizeof(Frame) + 16 + 44 + 4), "the vertex frames and geometry");
+  const uint64_t all = V * C * KK * 4;
+  if (!job.interreflect) {
+    if (streamed)
+      budget.charge(uint64_t(worker_threads(o)) * kBlock * KK * 4 * 2,
+                    "the glossy matrices of the vertex blocks in flight");
+    else
+      budget.charge(all, "the glossy transfer matrices");
+    return;
+  }
+  budget.charge(2 * all, "the glossy matrices of two bounces");
+  budget.charge(V * KK * 4 + V * C * job.K * 4, "the direct transfer and Lambert exit rows");
+}
+
+void bake_glossy(const scene::Scene& scene, const GlossyBakeOptions& o, ProgressSink* progress,
+                 GlossyOutput& out) {
   const Clock::time_point t_start = Clock::now();
   validate_glossy_options(scene, o);
   std::optional<tbb::global_control> thread_limit;
   if (o.threads > 0)
     thread_limit.emplace(tbb::global_control::max_allowed_parallelism,
                          static_cast<std::size_t>(o.threads));
-  GlossyBakeResult result;
+  GlossyBakeResult& result = out.result;
   GlossyBakeStatistics& st = result.stats;
   GlossyJob job{scene,
                 o,
@@ -539,15 +604,20 @@ GlossyBakeResult bake_glossy_transfer(const scene::Scene& scene, const GlossyBak
                 {},
                 {},
                 {},
+                nullptr,
                 {},
+                nullptr,
                 {},
                 {},
                 {},
                 {},
                 {},
                 st};
+  prt::MemoryBudget budget(o.memory_limit, scene::scene_label(scene));
+  job.budget = &budget;
   glossy_scene_materials(scene, job.materials, job.material_of_vertex);
   job.C = glossy_channels(scene, job.materials, job.interreflect);
+  charge_bake(budget, job, o, out.writer != nullptr || !out.path.empty());
   const std::vector<glm::vec4> tangents = scene::tangent_frames(scene);
   job.frames.resize(job.V);
   for (std::size_t v = 0; v < job.V; ++v) {
@@ -569,10 +639,6 @@ GlossyBakeResult bake_glossy_transfer(const scene::Scene& scene, const GlossyBak
     st.seconds_projection = seconds_since(t0);
   }
   prt::GlossyTransferData& d = result.data;
-  d.matrices.resize(job.V * job.C * job.KK());
-  job.matrices = &d.matrices;
-  run_sampling_pass(job);
-
   d.order = static_cast<uint32_t>(job.order);
   d.channels = static_cast<uint32_t>(job.C);
   d.storage = o.precision;
@@ -580,14 +646,65 @@ GlossyBakeResult bake_glossy_transfer(const scene::Scene& scene, const GlossyBak
   store_geometry(scene, job, d);
   d.materials = job.materials;
   d.material_of_vertex = job.material_of_vertex;
-  if (job.interreflect && !job.hits.empty()) {
-    job.S.resize(job.V * job.KK());
-    for (std::size_t v = 0; v < job.V; ++v)
-      std::copy_n(&d.matrices[v * job.C * job.KK()], job.KK(), &job.S[v * job.KK()]);
-    run_bounces(job, d.matrices);
+  std::unique_ptr<prt::GlossyTransferFileWriter> writer;
+  if (!out.path.empty()) {  // opened before the work: an unwritable path fails at once
+    auto made = prt::GlossyTransferFileWriter::create(out.path, d);
+    if (!made.ok()) throw BakeError(made.status().message());
+    writer = std::move(made).value();
+    out.writer = writer.get();
+  }
+  std::vector<float> M;  // interreflected: every vertex's matrices
+  if (job.interreflect) {
+    M.resize(job.V * job.C * job.KK());
+    job.matrices = &M;
+  } else {
+    if (!out.writer) d.matrices.resize(job.V * job.C * job.KK());
+    job.sink = [&](std::size_t first, std::size_t count, const float* m) {
+      put_matrices(out, job, first, count, m);
+    };
+  }
+  run_sampling_pass(job);
+  if (job.interreflect) {
+    if (!job.hits.empty()) {
+      job.S.resize(job.V * job.KK());
+      for (std::size_t v = 0; v < job.V; ++v)
+        std::copy_n(&M[v * job.C * job.KK()], job.KK(), &job.S[v * job.KK()]);
+      run_bounces(job, M);
+    }
+    if (!out.writer) {
+      d.matrices.swap(M);
+    } else {  // in blocks, so that binary16 conversion holds one block
+      for (std::size_t first = 0; first < job.V; first += 16 * kBlock) {
+        const std::size_t count = std::min(job.V - first, 16 * kBlock);
+        put_matrices(out, job, first, count, &M[first * job.C * job.KK()]);
+      }
+    }
   }
   st.seconds_total = seconds_since(t_start);
   d.metadata_json = glossy_metadata(job, d);
+  if (out.writer) {
+    const prt::Status s = out.writer->finish(d.metadata_json);
+    if (!s.ok()) throw BakeError(s.message());
+  }
+  st.peak_charged_bytes = budget.peak();
+}
+
+}  // namespace
+
+GlossyBakeResult bake_glossy_transfer(const scene::Scene& scene, const GlossyBakeOptions& o,
+                                      ProgressSink* progress) {
+  GlossyBakeResult result;
+  GlossyOutput out{result, nullptr, {}};
+  bake_glossy(scene, o, progress, out);
+  return result;
+}
+
+GlossyBakeResult bake_glossy_transfer_to_file(const scene::Scene& scene, const GlossyBakeOptions& o,
+                                              const std::string& path, ProgressSink* progress) {
+  if (path.empty()) throw BakeError(scene::scene_label(scene) + ": no output path");
+  GlossyBakeResult result;
+  GlossyOutput out{result, nullptr, path};
+  bake_glossy(scene, o, progress, out);
   return result;
 }
 
