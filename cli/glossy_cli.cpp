@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "bake/cpca/compressor.h"
+#include "bake/cpca/matrix_source.h"
 #include "bake/cpca/relit_metric.h"
 #include "bake/glossy_transfer_baker.h"
 #include "command_registry.h"
@@ -159,29 +160,36 @@ uint32_t check_vectors_fit(const GlossyCompressRequest& r, const prt::GlossyTran
 void run_glossy_compress(const GlossyCompressRequest& r) {
   check_compress_request(r);
   const auto start = std::chrono::steady_clock::now();
-  prt::Result<prt::GlossyTransferData> read = prt::read_glossy_transfer_file(r.input);
-  if (!read.ok()) throw CommandError(read.status().message());
-  prt::GlossyTransferData data = std::move(read).value();
-  const uint32_t max_vectors = check_vectors_fit(r, data);
   prt::CpcaOptions o;
   o.clusters = static_cast<uint32_t>(r.clusters);
   o.vectors = static_cast<uint32_t>(r.vectors);
   o.target_relative_rms = r.target_error_given ? r.target_error : 0.0;
-  o.max_vectors = max_vectors;
   o.iterations = static_cast<uint32_t>(r.iterations);
   o.seed = r.seed;
   o.threads =
       r.threads > 0 ? unsigned(r.threads) : std::max(1u, std::thread::hardware_concurrency());
+  // The matrices are mapped from the file (or expanded, for binary16, where the limit allows),
+  // not loaded: a file larger than memory compresses out of core (bake/cpca/matrix_source.h).
+  prt::MemoryBudget budget(o.memory_limit, r.input);
+  prt::Result<std::unique_ptr<prt::GlossyMatrixSource>> opened =
+      prt::GlossyMatrixSource::open(r.input, budget);
+  if (!opened.ok()) throw CommandError(opened.status().message());
+  const prt::GlossyMatrixSource& source = **opened;
+  const prt::GlossyTransferData& data = source.data();
+  const float* matrices = source.matrices();
+  const uint64_t matrix_floats = data.vertex_count * data.channels * data.matrix_floats();
+  o.max_vectors = check_vectors_fit(r, data);
   if (r.metric == "relit") {
     prt::Result<std::vector<double>> metric = prt::cpca_relit_metric(data);
     if (!metric.ok()) throw CommandError(r.input + ": " + metric.status().message());
     o.row_metric = std::move(metric).value();
   }
-  prt::Result<prt::CpcaTransfer> cpca = prt::cpca_compress(data, o);
+  prt::Result<prt::CpcaTransfer> cpca =
+      prt::cpca_compress(data.order, data.channels, data.vertex_count, matrices, o);
   if (!cpca.ok()) throw CommandError(r.input + ": " + cpca.status().message());
-  const double error = prt::cpca_relative_rms_error(*cpca, data.matrices.data());
-  const double metric_error =
-      prt::cpca_metric_relative_rms_error(*cpca, data.matrices.data(), o.row_metric);
+  cpca->fingerprint = data.fingerprint;
+  const double error = prt::cpca_relative_rms_error(*cpca, matrices);
+  const double metric_error = prt::cpca_metric_relative_rms_error(*cpca, matrices, o.row_metric);
   const prt::Status written = prt::write_cpca_file(
       r.output, *cpca, data, make_cpca_record(r, data, *cpca, error, metric_error));
   if (!written.ok()) throw CommandError(written.message());
@@ -198,8 +206,8 @@ void run_glossy_compress(const GlossyCompressRequest& r) {
       data.channels, data.channels == 1 ? "" : "s", cpca->cluster_count, cpca->vector_count, error,
       r.metric == "relit" ? "relit-metric" : "matrix", metric_error,
       double(cpca->payload_bytes()) / v,
-      100.0 * double(cpca->payload_bytes()) / (4.0 * double(data.matrices.size())),
-      4.0 * double(data.matrices.size()) / v, r.output.c_str(), out_bytes,
+      100.0 * double(cpca->payload_bytes()) / (4.0 * double(matrix_floats)),
+      4.0 * double(matrix_floats) / v, r.output.c_str(), out_bytes,
       in_bytes ? 100.0 * double(out_bytes) / double(in_bytes) : 0.0, in_bytes, seconds);
 }
 
