@@ -25,8 +25,7 @@ void MemoryBudget::charge(uint64_t bytes, const std::string& what) {
       const std::string prefix = owner_.empty() ? std::string() : owner_ + ": ";
       throw MemoryBudgetExceeded(prefix + what + " needs " + format_memory_size(bytes) +
                                  ", which would make " + format_memory_size(total) +
-                                 " in all; the memory limit is " + format_memory_size(limit_) +
-                                 " (--memory-limit)");
+                                 " in all; the memory limit is " + format_memory_size(limit_));
     }
     if (used_.compare_exchange_weak(current, total)) break;
   }

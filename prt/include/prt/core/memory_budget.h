@@ -32,7 +32,7 @@ class MemoryBudget {
 
   // Adds `bytes` for `what` ("the gather matrix"); throws MemoryBudgetExceeded when the total
   // would exceed the limit: "OWNER: WHAT needs 3.2 GB, which would make 17.9 GB in all; the
-  // memory limit is 16.0 GB (--memory-limit)". Nothing is added when it throws.
+  // memory limit is 16.0 GB". Nothing is added when it throws.
   void charge(uint64_t bytes, const std::string& what);
   // Takes back bytes charged earlier (clamped at zero).
   void release(uint64_t bytes);
