@@ -11,6 +11,7 @@
 #include <functional>
 #include <limits>
 #include <memory>
+#include <mutex>
 #include <optional>
 
 #include <tbb/global_control.h>
@@ -541,7 +542,8 @@ namespace {
 struct GlossyOutput {
   GlossyBakeResult& result;
   prt::GlossyTransferFileWriter* writer = nullptr;
-  std::string path;  // the writer's, for messages
+  std::string path;            // the writer's, for messages
+  std::mutex* lock = nullptr;  // the writer is called from the blocks' tasks one at a time
 };
 
 void put_matrices(const GlossyOutput& out, const GlossyJob& job, std::size_t first,
@@ -551,7 +553,11 @@ void put_matrices(const GlossyOutput& out, const GlossyJob& job, std::size_t fir
     std::copy_n(m, count * per_vertex, &out.result.data.matrices[first * per_vertex]);
     return;
   }
-  const prt::Status s = out.writer->write(first, count, m);
+  prt::Status s = prt::Status::Ok();
+  {
+    std::lock_guard<std::mutex> guard(*out.lock);
+    s = out.writer->write(first, count, m);
+  }
   if (!s.ok()) throw BakeError(s.message());
 }
 
@@ -694,7 +700,7 @@ void bake_glossy(const scene::Scene& scene, const GlossyBakeOptions& o, Progress
 GlossyBakeResult bake_glossy_transfer(const scene::Scene& scene, const GlossyBakeOptions& o,
                                       ProgressSink* progress) {
   GlossyBakeResult result;
-  GlossyOutput out{result, nullptr, {}};
+  GlossyOutput out{result, nullptr, {}, nullptr};
   bake_glossy(scene, o, progress, out);
   return result;
 }
@@ -703,7 +709,8 @@ GlossyBakeResult bake_glossy_transfer_to_file(const scene::Scene& scene, const G
                                               const std::string& path, ProgressSink* progress) {
   if (path.empty()) throw BakeError(scene::scene_label(scene) + ": no output path");
   GlossyBakeResult result;
-  GlossyOutput out{result, nullptr, path};
+  std::mutex lock;
+  GlossyOutput out{result, nullptr, path, &lock};
   bake_glossy(scene, o, progress, out);
   return result;
 }

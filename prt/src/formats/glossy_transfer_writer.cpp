@@ -93,11 +93,9 @@ Status GlossyTransferFileWriter::write(uint64_t first, uint64_t count, const flo
       bytes = halves.data();
     }
   } catch (const std::bad_alloc&) {
-    std::lock_guard<std::mutex> lock(mutex_);
     return fail_and_close("out of memory");
   }
   block.crc = crc32c(bytes, static_cast<std::size_t>(block.bytes));
-  std::lock_guard<std::mutex> lock(mutex_);
   if (failed_ || file_ == nullptr) return detail::fail(path_, "the file was abandoned");
   if (!write_at(file_, matrix_offset_ + first * bytes_per_vertex_, bytes,
                 static_cast<std::size_t>(block.bytes)))
@@ -111,7 +109,6 @@ Status GlossyTransferFileWriter::write(uint64_t first, uint64_t count, const flo
 }
 
 Status GlossyTransferFileWriter::finish(const std::string& metadata_json) {
-  std::lock_guard<std::mutex> lock(mutex_);
   if (failed_ || file_ == nullptr) return detail::fail(path_, "the file was abandoned");
   try {
     std::sort(blocks_.begin(), blocks_.end(),

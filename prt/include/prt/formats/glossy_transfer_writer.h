@@ -13,14 +13,14 @@
 // as it was (prt/core/atomic_file.h's contract).
 //
 // Memory: the sections before the matrices (44 bytes a vertex plus the tables) and one CRC per
-// block. write() may be called from several threads at once (one lock around the file).
+// block. Like the rest of the runtime it uses no threads and no locks: callers writing from
+// several threads serialise their calls.
 // Nothing here throws; errors are one-line Status messages "PATH: problem". Compiles as C++17.
 #pragma once
 
 #include <cstdint>
 #include <cstdio>
 #include <memory>
-#include <mutex>
 #include <string>
 #include <vector>
 
@@ -43,7 +43,7 @@ class GlossyTransferFileWriter {
 
   // Writes the matrices of vertices [first_vertex, first_vertex + vertex_count):
   // vertex_count · channels · order⁴ floats in GlossyTransferData::matrices' order. Blocks may
-  // come in any order, from any thread; each vertex exactly once. Checks finiteness (and, for
+  // come in any order; each vertex exactly once. Checks finiteness (and, for
   // F16, the binary16 range) like validate_glossy_transfer_data.
   Status write(uint64_t first_vertex, uint64_t vertex_count, const float* matrices);
 
@@ -65,7 +65,6 @@ class GlossyTransferFileWriter {
   GlossyTransferData skeleton_;
   uint64_t matrix_offset_ = 0, bytes_per_vertex_ = 0;
   std::FILE* file_ = nullptr;
-  std::mutex mutex_;
   std::vector<Block> blocks_;
   bool failed_ = false, finished_ = false;
 };
