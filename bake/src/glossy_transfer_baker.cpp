@@ -19,6 +19,7 @@
 #include <tbb/task_arena.h>
 #include <nlohmann/json.hpp>
 
+#include "bake/cpca/compressor.h"
 #include "bake/progress.h"
 #include "bake/sampling.h"
 #include "hit_side.h"
@@ -393,6 +394,27 @@ void check_divergence(const GlossyJob& job) {
   throw BakeError(scene::scene_label(job.scene) + text);
 }
 
+// out = the CPCA reconstruction of M (GlossyBakeOptions::bounce_cpca_clusters): what a bounce
+// that reads compressed transfer sees.
+void compressed_transfer(GlossyJob& job, const std::vector<float>& M, std::vector<float>& out) {
+  prt::CpcaOptions co;
+  co.clusters = job.o.bounce_cpca_clusters;
+  co.vectors = job.o.bounce_cpca_vectors;
+  co.threads = job.o.threads > 0 ? unsigned(job.o.threads)
+                                 : unsigned(tbb::this_task_arena::max_concurrency());
+  prt::Result<prt::CpcaTransfer> t =
+      prt::cpca_compress(uint32_t(job.order), uint32_t(job.C), job.V, M.data(), co);
+  if (!t.ok()) throw BakeError(scene::scene_label(job.scene) + ": " + t.status().message());
+  job.st.bounce_cpca_bytes = t->payload_bytes();
+  out.resize(M.size());
+  const std::size_t per_vertex = std::size_t(job.C) * job.KK();
+  tbb::parallel_for(std::size_t(0), job.V, [&](std::size_t v) {
+    std::vector<double> r(per_vertex);
+    prt::cpca_reconstruct(*t, v, r.data());
+    for (std::size_t e = 0; e < per_vertex; ++e) out[v * per_vertex + e] = float(r[e]);
+  });
+}
+
 // Jacobi bounces: data.matrices holds M⁽ᵏ⁾; returns when done. Converged means the last bounce
 // changed no entry by more than bounce_tolerance × max|S|, whether the bounces were counted or
 // solved for.
@@ -406,11 +428,16 @@ void run_bounces(GlossyJob& job, std::vector<float>& M) {
   if (job.progress) job.progress->start("glossy bounces", job.o.bounces < 0 ? 0 : max_bounces);
   job.st.converged = false;
   std::vector<float> exit(job.V * job.C * std::size_t(job.K));
+  std::vector<float> compressed;  // bounce_cpca_clusters > 0: what the gather reads
+  if (job.o.bounce_cpca_clusters > 0 && job.budget)
+    job.budget->charge(M.size() * 4, "the compressed bounce's reconstruction");
   for (int k = 0; k < max_bounces; ++k) {
-    lambert_exit(job, M, exit);
+    if (job.o.bounce_cpca_clusters > 0) compressed_transfer(job, M, compressed);
+    const std::vector<float>& read = job.o.bounce_cpca_clusters > 0 ? compressed : M;
+    lambert_exit(job, read, exit);
     std::vector<float> block_change(job.blocks(), 0.f);
     tbb::parallel_for(std::size_t(0), job.blocks(), [&](std::size_t blk) {
-      BounceGatherer g(job, M, exit);
+      BounceGatherer g(job, read, exit);
       const std::size_t end = std::min(job.V, (blk + 1) * kBlock);
       for (std::size_t p = blk * kBlock; p < end; ++p) {
         g.gather(p, &next[p * per_vertex]);

@@ -439,3 +439,40 @@ TEST_CASE("glossy bake: a too-small memory limit is refused in one line with no 
   CHECK(std::filesystem::file_size(path) > 9 * 1000 * 1000);
   CHECK(prt::read_glossy_transfer_file(path).ok());
 }
+
+// Bounces that read a CPCA compression of the previous bounce: with one cluster and as many
+// vectors as a vertex's matrices have entries (243) the compression spans everything, so the
+// result equals the plain bounces to float rounding (1e-5 of the largest entry: the
+// reconstruction's rounding is ~1e-7 relative, and two bounces add it twice); with one vector it
+// must differ by more (the compressed transfer is really what the gather reads).
+TEST_CASE("glossy bake: bounces over compressed transfer converge to the plain ones at full rank",
+          "[glossy_bake]") {
+  prt::scene::Scene s = floor_and_box(glm::vec3(0.7f, 0.5f, 0.3f));
+  prt::brdf::Material phong;
+  phong.model = prt::brdf::MaterialModel::kBlinnPhong;
+  phong.diffuse = prt::brdf::grey(0.3);
+  phong.specular = prt::brdf::grey(0.4);
+  phong.exponent = 20;
+  s.primitives[1].brdf = phong;
+  GlossyBakeOptions o;
+  o.order = 3;
+  o.samples = 64;
+  o.bounces = 2;
+  const auto plain = bake_glossy_transfer(s, o);
+  REQUIRE(plain.data.channels == 3);
+  const auto max_difference = [&](const prt::GlossyTransferData& d) {
+    double worst = 0, scale = 0;
+    for (std::size_t i = 0; i < d.matrices.size(); ++i) {
+      worst = std::max(worst, double(std::fabs(d.matrices[i] - plain.data.matrices[i])));
+      scale = std::max(scale, double(std::fabs(plain.data.matrices[i])));
+    }
+    return worst / scale;
+  };
+  o.bounce_cpca_clusters = 1;
+  o.bounce_cpca_vectors = 243;
+  const auto full = bake_glossy_transfer(s, o);
+  CHECK(max_difference(full.data) < 1e-5);
+  CHECK(full.stats.bounce_cpca_bytes > 0);
+  o.bounce_cpca_vectors = 1;
+  CHECK(max_difference(bake_glossy_transfer(s, o).data) > 1e-4);
+}

@@ -73,6 +73,14 @@ struct GlossyBakeOptions {
   uint64_t memory_limit = 0;  // bytes the bake may hold (prt/core/memory_budget.h); 0: none
   prt::BrdfProjectionOptions projection;  // b(ω_o) for the bounces (prt/glossy/brdf_projection.h)
   prt::Precision precision = prt::Precision::F32;
+  // > 0: every bounce gathers from a CPCA compression (bake/cpca/compressor.h, plain metric) of
+  // the previous bounce's matrices, bounce_cpca_clusters × bounce_cpca_vectors, instead of from
+  // the matrices themselves: the error of bounces that read compressed transfer, the design
+  // for bakes whose matrices do not fit in memory (docs/GLOSSY.md, "Glossy bakes at scale").
+  // The output is still S + G(compressed M). This bake holds the reconstruction too (it
+  // measures the error, it does not save the memory). 0: off.
+  uint32_t bounce_cpca_clusters = 0;
+  uint32_t bounce_cpca_vectors = 8;
 };
 
 struct GlossyBakeStatistics {
@@ -92,6 +100,7 @@ struct GlossyBakeStatistics {
   double seconds_projection = 0;
   double seconds_bounces = 0;
   uint64_t peak_charged_bytes = 0;  // the most the bake held at once of what it charged
+  uint64_t bounce_cpca_bytes = 0;   // bounce_cpca_clusters > 0: the compressed transfer's payload
 
   double mrays_per_second() const {
     return seconds_rays > 0 ? static_cast<double>(rays) / seconds_rays * 1e-6 : 0.0;
