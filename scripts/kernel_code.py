@@ -179,7 +179,10 @@ def nm_index(build):
     """{object path: set of defined function symbols (mangled)} of every object in a build."""
     objects = []
     for root, dirs, files in os.walk(build):
-        dirs[:] = [d for d in dirs if d not in ("CompilerIdCXX", "CompilerIdC")]
+        # Nested build trees (the fuzz smoke test's, inside the build folder) hold second copies
+        # of the same objects: only the build's own objects count.
+        dirs[:] = [d for d in dirs if d not in ("CompilerIdCXX", "CompilerIdC") and
+                   not os.path.exists(os.path.join(root, d, "CMakeCache.txt"))]
         objects += [os.path.join(root, f) for f in files if f.endswith(".o")]
     index = {}
     for start in range(0, len(objects), 200):

@@ -57,6 +57,7 @@ int add_vec3_accessor(tinygltf::Model& model, const glm::vec3* values, std::size
 constexpr const char* kUnlitExtension = "KHR_materials_unlit";
 constexpr const char* kSpecularExtension = "KHR_materials_specular";
 constexpr const char* kAnisotropyExtension = "KHR_materials_anisotropy";
+constexpr const char* kEmissiveStrengthExtension = "KHR_materials_emissive_strength";
 
 void use_extension(tinygltf::Model& model, const char* name) {
   if (std::find(model.extensionsUsed.begin(), model.extensionsUsed.end(), name) ==
@@ -107,6 +108,21 @@ void write_microfacet(tinygltf::Model& model, tinygltf::Material& material, cons
   }
 }
 
+// Emission as glTF holds it: emissiveFactor in [0, 1], times KHR_materials_emissive_strength
+// when a channel exceeds 1 (the factor is then the colour over its largest channel).
+void write_emission(tinygltf::Model& model, tinygltf::Material& material, glm::vec3 emission) {
+  const double largest = std::max({emission.x, emission.y, emission.z});
+  if (!(largest > 0.0)) return;
+  const double scale = largest > 1.0 ? largest : 1.0;
+  material.emissiveFactor = {emission.x / scale, emission.y / scale, emission.z / scale};
+  if (scale > 1.0) {
+    tinygltf::Value::Object strength;
+    strength["emissiveStrength"] = number(scale);
+    material.extensions[kEmissiveStrengthExtension] = tinygltf::Value(strength);
+    use_extension(model, kEmissiveStrengthExtension);
+  }
+}
+
 // A diffuse material of the primitive's albedo; with baked colours, an unlit white one, so that
 // a viewer shows COLOR_0 as it is instead of lighting it (and multiplying by the albedo) again.
 tinygltf::Material make_material(tinygltf::Model& model, const ScenePrimitive& primitive,
@@ -121,6 +137,7 @@ tinygltf::Material make_material(tinygltf::Model& model, const ScenePrimitive& p
   } else {
     material.pbrMetallicRoughness.baseColorFactor = {primitive.albedo.x, primitive.albedo.y,
                                                      primitive.albedo.z, 1.0};
+    write_emission(model, material, primitive.emission);
     const std::optional<brdf::Material>& b = primitive.brdf;
     if (b && (b->model == brdf::MaterialModel::kGltf ||
               (b->model == brdf::MaterialModel::kMicrofacet &&

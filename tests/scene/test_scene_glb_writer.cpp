@@ -169,3 +169,29 @@ TEST_CASE("data/demo.glb is the current make_demo_scene") {
   CHECK(loaded.albedo == demo.albedo);
   CHECK(loaded.cameras.size() == 1);
 }
+
+// Emission: glTF's emissiveFactor is limited to [0, 1], so a brighter colour is written as the
+// colour over its largest channel times KHR_materials_emissive_strength; the loader's product
+// gives it back (float rounding: 1e-6 relative).
+TEST_CASE("write_glb keeps emission, through KHR_materials_emissive_strength above 1") {
+  Scene s = make_test_scene();
+  s.primitives[0].emission = glm::vec3(0.5f, 0.25f, 0.f);  // within [0, 1]: the factor alone
+  s.primitives[1].emission = glm::vec3(12.f, 9.36f, 6.f);
+  const std::string path = prt::test::output_path("emission.glb").string();
+  prt::scene::write_glb(path, s);
+  const Scene loaded = prt::scene::load_scene(path);
+  REQUIRE(loaded.primitives.size() == 2);
+  for (int p = 0; p < 2; ++p)
+    for (int c = 0; c < 3; ++c)
+      CHECK(loaded.primitives[p].emission[c] ==
+            Approx(s.primitives[p].emission[c]).epsilon(1e-6).margin(1e-7));
+  tinygltf::TinyGLTF loader;
+  tinygltf::Model model;
+  std::string error, warning;
+  REQUIRE(loader.LoadBinaryFromFile(&model, &error, &warning, path));
+  CHECK(model.materials.at(0).extensions.count("KHR_materials_emissive_strength") == 0);
+  CHECK(model.materials.at(1).extensions.count("KHR_materials_emissive_strength") == 1);
+  CHECK(model.materials.at(1).emissiveFactor.at(0) == 1.0);
+  CHECK(std::count(model.extensionsUsed.begin(), model.extensionsUsed.end(),
+                   "KHR_materials_emissive_strength") == 1);
+}

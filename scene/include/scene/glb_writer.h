@@ -8,8 +8,10 @@
 // (alpha 1, metallic 0, roughness 1: a diffuse surface) — or, for a primitive whose BRDF is
 // GGX with Schlick's Fresnel, the metallic-roughness material (+ KHR_materials_specular,
 // KHR_materials_anisotropy) that the loader reads back as that BRDF (other models are written
-// as their albedo only). Primitives whose Scene::tangents are all valid (unit xyz, w = ±1) get
-// TANGENT (float VEC4). With vertex_colors (one linear RGB
+// as their albedo only). A primitive's emission becomes the material's emissiveFactor (divided
+// by its largest channel when that exceeds 1, which then goes to KHR_materials_emissive_strength,
+// listed in extensionsUsed), as the loader reads it back. Primitives whose Scene::tangents
+// are all valid (unit xyz, w = ±1) get TANGENT (float VEC4). With vertex_colors (one linear RGB
 // float triple per scene vertex, e.g. baked exit radiance) each primitive also gets COLOR_0
 // (float VEC3, linear as glTF requires) and the material becomes unlit (KHR_materials_unlit,
 // listed in extensionsUsed) with a white baseColorFactor: a viewer then shows COLOR_0 as it is,
