@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "bake/cpca/compressor.h"
+#include "bake/cpca/matrix_source.h"
 #include "bake/cpca/relit_metric.h"
 #include "bake/glossy_transfer_baker.h"
 #include "command_registry.h"
@@ -71,9 +72,9 @@ void run_glossy_bake(const scene::Scene& scene, const GlossyBakeRequest& r) {
   o.memory_limit = r.memory_limit;
   o.precision = r.precision == "f16" ? prt::Precision::F16 : prt::Precision::F32;
   ProgressReporter progress(r.quiet);
-  const bake::GlossyBakeResult result = bake::bake_glossy_transfer(scene, o, &progress);
-  const prt::Status written = prt::write_glossy_transfer_file(r.output, result.data);
-  if (!written.ok()) throw CommandError(written.message());
+  // Streamed: the matrices go to the file as they are finished (result.data holds none).
+  const bake::GlossyBakeResult result =
+      bake::bake_glossy_transfer_to_file(scene, o, r.output, &progress);
   const bake::GlossyBakeStatistics& st = result.stats;
   run_record().phase("rays", st.seconds_rays);
   if (result.data.interreflected) {
@@ -169,33 +170,40 @@ uint32_t check_vectors_fit(const GlossyCompressRequest& r, const prt::GlossyTran
 void run_glossy_compress(const GlossyCompressRequest& r) {
   check_compress_request(r);
   const auto start = std::chrono::steady_clock::now();
-  prt::Result<prt::GlossyTransferData> read = prt::read_glossy_transfer_file(r.input);
-  if (!read.ok()) throw CommandError(read.status().message());
-  prt::GlossyTransferData data = std::move(read).value();
-  const uint32_t max_vectors = check_vectors_fit(r, data);
   prt::CpcaOptions o;
   o.clusters = static_cast<uint32_t>(r.clusters);
   o.vectors = static_cast<uint32_t>(r.vectors);
   o.target_relative_rms = r.target_error_given ? r.target_error : 0.0;
-  o.max_vectors = max_vectors;
   o.iterations = static_cast<uint32_t>(r.iterations);
   o.seed = r.seed;
   o.threads = static_cast<unsigned>(resolved_threads(r.threads));
   o.memory_limit = memory_limit_or_default(r.memory_limit);
   run_record().threads = static_cast<int>(o.threads);
+  // The matrices are mapped from the file (or expanded, for binary16, where the limit allows),
+  // not loaded: a file larger than memory compresses out of core (bake/cpca/matrix_source.h).
+  prt::MemoryBudget budget(o.memory_limit, r.input);
+  prt::Result<std::unique_ptr<prt::GlossyMatrixSource>> opened =
+      prt::GlossyMatrixSource::open(r.input, budget);
+  if (!opened.ok()) throw CommandError(opened.status().message());
+  const prt::GlossyMatrixSource& source = **opened;
+  const prt::GlossyTransferData& data = source.data();
+  const float* matrices = source.matrices();
+  const uint64_t matrix_floats = data.vertex_count * data.channels * data.matrix_floats();
+  o.max_vectors = check_vectors_fit(r, data);
   if (r.metric == "relit") {
     prt::Result<std::vector<double>> metric = prt::cpca_relit_metric(data);
     if (!metric.ok()) throw CommandError(r.input + ": " + metric.status().message());
     o.row_metric = std::move(metric).value();
   }
-  prt::Result<prt::CpcaTransfer> cpca = prt::cpca_compress(data, o);
+  prt::Result<prt::CpcaTransfer> cpca =
+      prt::cpca_compress(data.order, data.channels, data.vertex_count, matrices, o);
   if (!cpca.ok()) throw CommandError(r.input + ": " + cpca.status().message());
   run_record().phase(
       "compression",
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
-  const double error = prt::cpca_relative_rms_error(*cpca, data.matrices.data());
-  const double metric_error =
-      prt::cpca_metric_relative_rms_error(*cpca, data.matrices.data(), o.row_metric);
+  cpca->fingerprint = data.fingerprint;
+  const double error = prt::cpca_relative_rms_error(*cpca, matrices);
+  const double metric_error = prt::cpca_metric_relative_rms_error(*cpca, matrices, o.row_metric);
   const prt::Status written = prt::write_cpca_file(
       r.output, *cpca, data, make_cpca_record(r, data, *cpca, error, metric_error));
   if (!written.ok()) throw CommandError(written.message());
@@ -212,8 +220,8 @@ void run_glossy_compress(const GlossyCompressRequest& r) {
       data.channels, data.channels == 1 ? "" : "s", cpca->cluster_count, cpca->vector_count, error,
       r.metric == "relit" ? "relit-metric" : "matrix", metric_error,
       double(cpca->payload_bytes()) / v,
-      100.0 * double(cpca->payload_bytes()) / (4.0 * double(data.matrices.size())),
-      4.0 * double(data.matrices.size()) / v, r.output.c_str(), out_bytes,
+      100.0 * double(cpca->payload_bytes()) / (4.0 * double(matrix_floats)),
+      4.0 * double(matrix_floats) / v, r.output.c_str(), out_bytes,
       in_bytes ? 100.0 * double(out_bytes) / double(in_bytes) : 0.0, in_bytes, seconds);
 }
 

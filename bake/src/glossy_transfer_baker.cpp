@@ -8,18 +8,24 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <functional>
 #include <limits>
 #include <memory>
+#include <mutex>
 #include <optional>
 
 #include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
 #include <nlohmann/json.hpp>
 
+#include "bake/cpca/compressor.h"
 #include "bake/progress.h"
 #include "bake/sampling.h"
 #include "hit_side.h"
+#include "prt/core/memory_budget.h"
 #include "prt/formats/geometry_check.h"
+#include "prt/formats/glossy_transfer_writer.h"
 #include "prt/glossy/brdf_projection.h"
 #include "scene/ray_caster.h"
 #include "scene/scene_label.h"
@@ -102,8 +108,12 @@ struct GlossyJob {
   std::vector<brdf::Material> materials;
   std::vector<uint32_t> material_of_vertex;
   std::vector<prt::BrdfProjection> projections;  // per material (bounces only)
-  std::vector<float>* matrices = nullptr;        // the output, V · C · K², filled by the pass
-  std::vector<float> S;                          // V · K², grey direct transfer (bounces only)
+  // Interreflected: every vertex's matrices, V · C · K², filled by the pass. Shadowed: null, and
+  // each block of vertices goes to `sink` as it is finished.
+  std::vector<float>* matrices = nullptr;
+  std::function<void(std::size_t first, std::size_t count, const float* m)> sink;
+  prt::MemoryBudget* budget = nullptr;
+  std::vector<float> S;  // V · K², grey direct transfer (bounces only)
   std::vector<BlockHits> block_hits;
   std::vector<uint64_t> hit_offset;  // V + 1
   std::vector<GlossyHit> hits;
@@ -178,7 +188,8 @@ struct VertexSampler {
         packet(std::size_t(j.K) * padded(j.K)),
         acc(j.KK()) {}
 
-  uint64_t sample(std::size_t v, BlockHits& out, uint64_t& back_hits) {
+  // S_v (C · K², the channels equal) into `s`.
+  uint64_t sample(std::size_t v, float* s, BlockHits& out, uint64_t& back_hits) {
     const int K = job.K, Kp = padded(K);
     const uint64_t seed = hash_seed(job.o.seed, v);
     const glm::vec3 origin = caster.vertex_origin(static_cast<uint32_t>(v));
@@ -211,7 +222,6 @@ struct VertexSampler {
     }
     const double w = 2.0 * sh::kPi / job.N;
     const std::size_t KK = job.KK();
-    float* s = &(*job.matrices)[v * job.C * KK];
     for (std::size_t e = 0; e < KK; ++e) s[e] = static_cast<float>(acc[e] * w);
     for (int c = 1; c < job.C; ++c) std::copy_n(s, KK, s + c * KK);
     out.counts.push_back(kept);
@@ -225,15 +235,26 @@ void run_sampling_pass(GlossyJob& job) {
   job.block_hits.assign(job.blocks(), BlockHits{});
   std::vector<uint64_t> rays(job.blocks(), 0), back(job.blocks(), 0);
   if (job.progress) job.progress->start("glossy bake", job.V);
+  const std::size_t per_vertex = std::size_t(job.C) * job.KK();
   tbb::parallel_for(std::size_t(0), job.blocks(), [&](std::size_t blk) {
     VertexSampler sampler(job, caster);
-    const std::size_t end = std::min(job.V, (blk + 1) * kBlock);
-    for (std::size_t v = blk * kBlock; v < end; ++v)
-      rays[blk] += sampler.sample(v, job.block_hits[blk], back[blk]);
-    if (job.progress) job.progress->advance(end - blk * kBlock, rays[blk]);
+    const std::size_t first = blk * kBlock, end = std::min(job.V, (blk + 1) * kBlock);
+    std::vector<float> block(job.matrices ? 0 : (end - first) * per_vertex);
+    for (std::size_t v = first; v < end; ++v) {
+      float* s = job.matrices ? &(*job.matrices)[v * per_vertex] : &block[(v - first) * per_vertex];
+      rays[blk] += sampler.sample(v, s, job.block_hits[blk], back[blk]);
+    }
+    if (!job.matrices) job.sink(first, end - first, block.data());
+    if (job.progress) job.progress->advance(end - first, rays[blk]);
   });
   if (job.progress) job.progress->finish();
   job.hit_offset.assign(1, 0);
+  uint64_t hit_count = 0;
+  for (const BlockHits& b : job.block_hits) hit_count += b.hits.size();
+  if (job.budget && job.interreflect)
+    job.budget->charge(hit_count * sizeof(GlossyHit) + 8 * (job.V + 1),
+                       "the glossy bounces' ray hits");
+  job.hits.reserve(hit_count);
   for (std::size_t blk = 0; blk < job.blocks(); ++blk) {
     job.st.rays += rays[blk];
     job.st.back_face_hits += back[blk];
@@ -373,6 +394,27 @@ void check_divergence(const GlossyJob& job) {
   throw BakeError(scene::scene_label(job.scene) + text);
 }
 
+// out = the CPCA reconstruction of M (GlossyBakeOptions::bounce_cpca_clusters): what a bounce
+// that reads compressed transfer sees.
+void compressed_transfer(GlossyJob& job, const std::vector<float>& M, std::vector<float>& out) {
+  prt::CpcaOptions co;
+  co.clusters = job.o.bounce_cpca_clusters;
+  co.vectors = job.o.bounce_cpca_vectors;
+  co.threads = job.o.threads > 0 ? unsigned(job.o.threads)
+                                 : unsigned(tbb::this_task_arena::max_concurrency());
+  prt::Result<prt::CpcaTransfer> t =
+      prt::cpca_compress(uint32_t(job.order), uint32_t(job.C), job.V, M.data(), co);
+  if (!t.ok()) throw BakeError(scene::scene_label(job.scene) + ": " + t.status().message());
+  job.st.bounce_cpca_bytes = t->payload_bytes();
+  out.resize(M.size());
+  const std::size_t per_vertex = std::size_t(job.C) * job.KK();
+  tbb::parallel_for(std::size_t(0), job.V, [&](std::size_t v) {
+    std::vector<double> r(per_vertex);
+    prt::cpca_reconstruct(*t, v, r.data());
+    for (std::size_t e = 0; e < per_vertex; ++e) out[v * per_vertex + e] = float(r[e]);
+  });
+}
+
 // Jacobi bounces: data.matrices holds M⁽ᵏ⁾; returns when done. Converged means the last bounce
 // changed no entry by more than bounce_tolerance × max|S|, whether the bounces were counted or
 // solved for.
@@ -386,11 +428,16 @@ void run_bounces(GlossyJob& job, std::vector<float>& M) {
   if (job.progress) job.progress->start("glossy bounces", job.o.bounces < 0 ? 0 : max_bounces);
   job.st.converged = false;
   std::vector<float> exit(job.V * job.C * std::size_t(job.K));
+  std::vector<float> compressed;  // bounce_cpca_clusters > 0: what the gather reads
+  if (job.o.bounce_cpca_clusters > 0 && job.budget)
+    job.budget->charge(M.size() * 4, "the compressed bounce's reconstruction");
   for (int k = 0; k < max_bounces; ++k) {
-    lambert_exit(job, M, exit);
+    if (job.o.bounce_cpca_clusters > 0) compressed_transfer(job, M, compressed);
+    const std::vector<float>& read = job.o.bounce_cpca_clusters > 0 ? compressed : M;
+    lambert_exit(job, read, exit);
     std::vector<float> block_change(job.blocks(), 0.f);
     tbb::parallel_for(std::size_t(0), job.blocks(), [&](std::size_t blk) {
-      BounceGatherer g(job, M, exit);
+      BounceGatherer g(job, read, exit);
       const std::size_t end = std::min(job.V, (blk + 1) * kBlock);
       for (std::size_t p = blk * kBlock; p < end; ++p) {
         g.gather(p, &next[p * per_vertex]);
@@ -512,15 +559,66 @@ void glossy_scene_materials(const scene::Scene& scene, std::vector<brdf::Materia
   scene::vertex_materials(scene, materials, material_of_vertex);
 }
 
-GlossyBakeResult bake_glossy_transfer(const scene::Scene& scene, const GlossyBakeOptions& o,
-                                      ProgressSink* progress) {
+namespace {
+
+// Where the bake's matrices go: into result.data.matrices, or (writer set) into a file.
+struct GlossyOutput {
+  GlossyBakeResult& result;
+  prt::GlossyTransferFileWriter* writer = nullptr;
+  std::string path;            // the writer's, for messages
+  std::mutex* lock = nullptr;  // the writer is called from the blocks' tasks one at a time
+};
+
+void put_matrices(const GlossyOutput& out, const GlossyJob& job, std::size_t first,
+                  std::size_t count, const float* m) {
+  const std::size_t per_vertex = std::size_t(job.C) * job.KK();
+  if (out.writer == nullptr) {
+    std::copy_n(m, count * per_vertex, &out.result.data.matrices[first * per_vertex]);
+    return;
+  }
+  prt::Status s = prt::Status::Ok();
+  {
+    std::lock_guard<std::mutex> guard(*out.lock);
+    s = out.writer->write(first, count, m);
+  }
+  if (!s.ok()) throw BakeError(s.message());
+}
+
+unsigned worker_threads(const GlossyBakeOptions& o) {
+  return o.threads > 0
+             ? unsigned(o.threads)
+             : std::max(1u, static_cast<unsigned>(tbb::this_task_arena::max_concurrency()));
+}
+
+// Charges what the bake will hold before it holds it: frames and the file's geometry sections;
+// shadowed, the matrices of the blocks in flight (streamed) or of every vertex (in memory);
+// interreflected, M, the next bounce, S and the Lambert exit rows (the hits when they are known).
+void charge_bake(prt::MemoryBudget& budget, const GlossyJob& job, const GlossyBakeOptions& o,
+                 bool streamed) {
+  const uint64_t V = job.V, KK = job.KK(), C = job.C;
+  budget.charge(V * (sizeof(Frame) + 16 + 44 + 4), "the vertex frames and geometry");
+  const uint64_t all = V * C * KK * 4;
+  if (!job.interreflect) {
+    if (streamed)
+      budget.charge(uint64_t(worker_threads(o)) * kBlock * KK * 4 * 2,
+                    "the glossy matrices of the vertex blocks in flight");
+    else
+      budget.charge(all, "the glossy transfer matrices");
+    return;
+  }
+  budget.charge(2 * all, "the glossy matrices of two bounces");
+  budget.charge(V * KK * 4 + V * C * job.K * 4, "the direct transfer and Lambert exit rows");
+}
+
+void bake_glossy(const scene::Scene& scene, const GlossyBakeOptions& o, ProgressSink* progress,
+                 GlossyOutput& out) {
   const Clock::time_point t_start = Clock::now();
   validate_glossy_options(scene, o);
   std::optional<tbb::global_control> thread_limit;
   if (o.threads > 0)
     thread_limit.emplace(tbb::global_control::max_allowed_parallelism,
                          static_cast<std::size_t>(o.threads));
-  GlossyBakeResult result;
+  GlossyBakeResult& result = out.result;
   GlossyBakeStatistics& st = result.stats;
   GlossyJob job{scene,
                 o,
@@ -535,15 +633,20 @@ GlossyBakeResult bake_glossy_transfer(const scene::Scene& scene, const GlossyBak
                 {},
                 {},
                 {},
+                nullptr,
                 {},
+                nullptr,
                 {},
                 {},
                 {},
                 {},
                 {},
                 st};
+  prt::MemoryBudget budget(o.memory_limit, scene::scene_label(scene));
+  job.budget = &budget;
   glossy_scene_materials(scene, job.materials, job.material_of_vertex);
   job.C = glossy_channels(scene, job.materials, job.interreflect);
+  charge_bake(budget, job, o, out.writer != nullptr || !out.path.empty());
   const std::vector<glm::vec4> tangents = scene::tangent_frames(scene);
   job.frames.resize(job.V);
   for (std::size_t v = 0; v < job.V; ++v) {
@@ -565,10 +668,6 @@ GlossyBakeResult bake_glossy_transfer(const scene::Scene& scene, const GlossyBak
     st.seconds_projection = seconds_since(t0);
   }
   prt::GlossyTransferData& d = result.data;
-  d.matrices.resize(job.V * job.C * job.KK());
-  job.matrices = &d.matrices;
-  run_sampling_pass(job);
-
   d.order = static_cast<uint32_t>(job.order);
   d.channels = static_cast<uint32_t>(job.C);
   d.storage = o.precision;
@@ -576,14 +675,66 @@ GlossyBakeResult bake_glossy_transfer(const scene::Scene& scene, const GlossyBak
   store_geometry(scene, job, d);
   d.materials = job.materials;
   d.material_of_vertex = job.material_of_vertex;
-  if (job.interreflect && !job.hits.empty()) {
-    job.S.resize(job.V * job.KK());
-    for (std::size_t v = 0; v < job.V; ++v)
-      std::copy_n(&d.matrices[v * job.C * job.KK()], job.KK(), &job.S[v * job.KK()]);
-    run_bounces(job, d.matrices);
+  std::unique_ptr<prt::GlossyTransferFileWriter> writer;
+  if (!out.path.empty()) {  // opened before the work: an unwritable path fails at once
+    auto made = prt::GlossyTransferFileWriter::create(out.path, d);
+    if (!made.ok()) throw BakeError(made.status().message());
+    writer = std::move(made).value();
+    out.writer = writer.get();
+  }
+  std::vector<float> M;  // interreflected: every vertex's matrices
+  if (job.interreflect) {
+    M.resize(job.V * job.C * job.KK());
+    job.matrices = &M;
+  } else {
+    if (!out.writer) d.matrices.resize(job.V * job.C * job.KK());
+    job.sink = [&](std::size_t first, std::size_t count, const float* m) {
+      put_matrices(out, job, first, count, m);
+    };
+  }
+  run_sampling_pass(job);
+  if (job.interreflect) {
+    if (!job.hits.empty()) {
+      job.S.resize(job.V * job.KK());
+      for (std::size_t v = 0; v < job.V; ++v)
+        std::copy_n(&M[v * job.C * job.KK()], job.KK(), &job.S[v * job.KK()]);
+      run_bounces(job, M);
+    }
+    if (!out.writer) {
+      d.matrices.swap(M);
+    } else {  // in blocks, so that binary16 conversion holds one block
+      for (std::size_t first = 0; first < job.V; first += 16 * kBlock) {
+        const std::size_t count = std::min(job.V - first, 16 * kBlock);
+        put_matrices(out, job, first, count, &M[first * job.C * job.KK()]);
+      }
+    }
   }
   st.seconds_total = seconds_since(t_start);
   d.metadata_json = glossy_metadata(job, d);
+  if (out.writer) {
+    const prt::Status s = out.writer->finish(d.metadata_json);
+    if (!s.ok()) throw BakeError(s.message());
+  }
+  st.peak_charged_bytes = budget.peak();
+}
+
+}  // namespace
+
+GlossyBakeResult bake_glossy_transfer(const scene::Scene& scene, const GlossyBakeOptions& o,
+                                      ProgressSink* progress) {
+  GlossyBakeResult result;
+  GlossyOutput out{result, nullptr, {}, nullptr};
+  bake_glossy(scene, o, progress, out);
+  return result;
+}
+
+GlossyBakeResult bake_glossy_transfer_to_file(const scene::Scene& scene, const GlossyBakeOptions& o,
+                                              const std::string& path, ProgressSink* progress) {
+  if (path.empty()) throw BakeError(scene::scene_label(scene) + ": no output path");
+  GlossyBakeResult result;
+  std::mutex lock;
+  GlossyOutput out{result, nullptr, path, &lock};
+  bake_glossy(scene, o, progress, out);
   return result;
 }
 

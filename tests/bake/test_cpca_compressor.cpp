@@ -8,9 +8,12 @@
 #include <catch2/catch.hpp>
 
 #include "bake/cpca/compressor.h"
+#include "bake/cpca/matrix_source.h"
+#include "bake/cpca/relit_metric.h"
 #include "fixtures/synthetic_glossy.h"
 #include "prt/formats/cpca_file.h"
 #include "prt/formats/geometry_check.h"
+#include "prt/formats/glossy_transfer_file.h"
 #include "support/test_data.h"
 
 using prt::CpcaOptions;
@@ -293,4 +296,74 @@ TEST_CASE("CPCA file with a source section: geometry and materials round trip", 
   REQUIRE(read.ok());
   CHECK(read->has_source);
   CHECK(read->source.positions == d.positions);
+}
+
+namespace {
+
+void require_identical(const CpcaTransfer& a, const CpcaTransfer& b) {
+  CHECK(a.cluster_count == b.cluster_count);
+  CHECK(a.vector_count == b.vector_count);
+  CHECK(a.cluster_of_vertex == b.cluster_of_vertex);
+  CHECK(a.means == b.means);
+  CHECK(a.basis == b.basis);
+  CHECK(a.weights == b.weights);
+}
+
+}  // namespace
+
+// Out of core: the file's matrices mapped (binary32) or expanded into a mapped scratch file
+// (binary16: the expansion does not fit the limit), and a metric's scaled copy in a scratch
+// file too, under a memory limit below the matrices' size: the clustering reads the same floats
+// in the same order, so the result is bit-identical to the in-memory compression.
+TEST_CASE("CPCA of a file under a memory limit below its matrices equals the in-memory one",
+          "[cpca]") {
+  GlossyTransferData d = prt::fixtures::synthetic_glossy(3000, 4, 3, 256);
+  const uint64_t matrix_bytes = 4 * d.matrices.size();  // 9.2 MB
+  const uint64_t limit = 6u << 20;
+  REQUIRE(limit < matrix_bytes);
+  for (const prt::Precision storage : {prt::Precision::F32, prt::Precision::F16}) {
+    d.storage = storage;
+    const std::string path = prt::test::output_path("cpca_out_of_core.prtg").string();
+    REQUIRE(prt::write_glossy_transfer_file(path, d).ok());
+    const auto whole = prt::read_glossy_transfer_file(path);
+    REQUIRE(whole.ok());
+    for (const bool metric : {false, true}) {
+      CpcaOptions o;
+      o.clusters = 12;
+      o.vectors = 6;
+      o.threads = 1;
+      if (metric) {
+        auto g = prt::cpca_relit_metric(whole.value());
+        REQUIRE(g.ok());
+        o.row_metric = std::move(g).value();
+      }
+      const CpcaTransfer in_memory = compress(whole.value(), o);
+      o.memory_limit = limit;
+      prt::MemoryBudget budget(limit, path);
+      auto source = prt::GlossyMatrixSource::open(path, budget);
+      INFO((source.ok() ? std::string() : source.status().message()));
+      REQUIRE(source.ok());
+      CHECK((*source)->data().matrices.empty());
+      CHECK((*source)->mapped() == (storage == prt::Precision::F32));
+      CHECK(budget.used() == 0);  // nothing of the matrices is held in memory
+      auto out = prt::cpca_compress(d.order, d.channels, d.vertex_count, (*source)->matrices(), o);
+      INFO((out.ok() ? std::string() : out.status().message()));
+      REQUIRE(out.ok());
+      INFO("storage " << int(storage) << ", metric " << metric);
+      require_identical(out.value(), in_memory);
+    }
+  }
+}
+
+TEST_CASE("CPCA refuses a memory limit below its own buffers in one line", "[cpca]") {
+  const GlossyTransferData& d = data_order5();
+  CpcaOptions o;
+  o.clusters = 8;
+  o.vectors = 4;
+  o.memory_limit = 16 * 1024;
+  const auto r = prt::cpca_compress(d, o);
+  REQUIRE_FALSE(r.ok());
+  INFO(r.status().message());
+  CHECK(r.status().message().find("the memory limit is 16.0 KB") != std::string::npos);
+  CHECK(r.status().message().find('\n') == std::string::npos);
 }

@@ -50,3 +50,16 @@ TEST_CASE("crc32c implementations agree at every length and alignment", "[crc32c
     }
   }
 }
+
+TEST_CASE("crc32c_combine joins the CRCs of two pieces into the CRC of the whole", "[crc32c]") {
+  std::mt19937 rng(7);
+  std::vector<unsigned char> bytes(5000);
+  for (auto& b : bytes) b = static_cast<unsigned char>(rng());
+  for (std::size_t split : {std::size_t(0), std::size_t(1), std::size_t(7), std::size_t(64),
+                            std::size_t(2999), std::size_t(5000)}) {
+    const uint32_t a = prt::crc32c(bytes.data(), split);
+    const uint32_t b = prt::crc32c(bytes.data() + split, bytes.size() - split);
+    CHECK(prt::crc32c_combine(a, b, bytes.size() - split) ==
+          crc32c_bitwise(bytes.data(), bytes.size()));
+  }
+}

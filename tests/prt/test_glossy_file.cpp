@@ -14,6 +14,7 @@
 #include "prt/core/half.h"
 #include "prt/formats/crc32c.h"
 #include "prt/formats/glossy_transfer_file.h"
+#include "prt/formats/glossy_transfer_writer.h"
 #include "support/test_data.h"
 
 namespace fs = std::filesystem;
@@ -289,4 +290,108 @@ TEST_CASE("glossy file: a glTF material keeps its metallic", "[glossy_file]") {
   const auto refused = prt::encode_glossy_transfer_file(d, "g");
   REQUIRE_FALSE(refused.ok());
   CHECK(refused.status().message().find("metallic") != std::string::npos);
+}
+
+namespace {
+
+// Everything of `d` but its matrices and metadata: what a streaming writer is created with.
+GlossyTransferData skeleton_of(const GlossyTransferData& d) {
+  GlossyTransferData s = d;
+  s.matrices.clear();
+  s.metadata_json.clear();
+  return s;
+}
+
+bool no_temporaries(const fs::path& path) {
+  for (const auto& e : fs::directory_iterator(path.parent_path()))
+    if (e.path().filename().string().rfind(path.filename().string() + ".tmp-", 0) == 0)
+      return false;
+  return true;
+}
+
+}  // namespace
+
+TEST_CASE("glossy file: streamed blocks in any order give the in-memory writer's bytes",
+          "[glossy_file]") {
+  for (const Precision storage : {Precision::F32, Precision::F16}) {
+    for (const uint32_t order : {1u, 5u}) {
+      const uint32_t channels = order == 5 ? 3 : 1;
+      const GlossyTransferData d = make_glossy(101, order, channels, storage);
+      const fs::path whole = prt::test::output_path("glossy_whole.prtg");
+      const fs::path streamed = prt::test::output_path("glossy_streamed.prtg");
+      REQUIRE(prt::write_glossy_transfer_file(whole.string(), d).ok());
+      auto w = prt::GlossyTransferFileWriter::create(streamed.string(), skeleton_of(d));
+      INFO(w.status().message());
+      REQUIRE(w.ok());
+      // Uneven blocks, last first: the file order is rebuilt from the offsets.
+      const std::size_t per = channels * d.matrix_floats();
+      const uint64_t cuts[] = {0, 1, 17, 64, 100, 101};
+      for (int b = 4; b >= 0; --b) {
+        const prt::Status s =
+            (*w)->write(cuts[b], cuts[b + 1] - cuts[b], &d.matrices[cuts[b] * per]);
+        REQUIRE(s.ok());
+      }
+      REQUIRE((*w)->finish(d.metadata_json).ok());
+      CHECK(read_bytes(streamed) == read_bytes(whole));
+      CHECK(no_temporaries(streamed));
+      // The layout reader streams through the matrices and gives everything else.
+      auto layout = prt::read_glossy_transfer_layout(streamed.string());
+      INFO(layout.status().message());
+      REQUIRE(layout.ok());
+      CHECK(layout->data.matrices.empty());
+      CHECK(layout->data.positions == d.positions);
+      CHECK(layout->data.metadata_json == d.metadata_json);
+      CHECK(layout->data.material_of_vertex == d.material_of_vertex);
+      const auto full = prt::read_glossy_transfer_file(whole.string());
+      REQUIRE(full.ok());
+      std::vector<float> part(40 * per);
+      REQUIRE(prt::read_glossy_matrices(streamed.string(), *layout, 30, 40, part.data()).ok());
+      CHECK(std::equal(part.begin(), part.end(), full->matrices.begin() + 30 * per));
+    }
+  }
+}
+
+TEST_CASE("glossy file: a stream with a missing block or a bad entry leaves no file",
+          "[glossy_file]") {
+  const GlossyTransferData d = make_glossy(50, 3, 1, Precision::F16);
+  const std::size_t per = d.matrix_floats();
+  const fs::path path = prt::test::output_path("glossy_stream_refused.prtg");
+  fs::remove(path);
+  {
+    auto w = prt::GlossyTransferFileWriter::create(path.string(), skeleton_of(d));
+    REQUIRE(w.ok());
+    REQUIRE((*w)->write(0, 20, d.matrices.data()).ok());
+    REQUIRE((*w)->write(30, 20, &d.matrices[30 * per]).ok());
+    const prt::Status s = (*w)->finish("");
+    REQUIRE_FALSE(s.ok());
+    CHECK(s.message().find("vertex 20 were not written") != std::string::npos);
+  }
+  CHECK_FALSE(fs::exists(path));
+  CHECK(no_temporaries(path));
+  {
+    std::vector<float> bad(d.matrices.begin(), d.matrices.begin() + 10 * per);
+    bad[3 * per + 4] = 1e6f;  // beyond binary16
+    auto w = prt::GlossyTransferFileWriter::create(path.string(), skeleton_of(d));
+    REQUIRE(w.ok());
+    const prt::Status s = (*w)->write(0, 10, bad.data());
+    REQUIRE_FALSE(s.ok());
+    CHECK(s.message().find("vertex 3, channel 0, row 0, column 4") != std::string::npos);
+  }  // abandoned without finish()
+  CHECK_FALSE(fs::exists(path));
+  CHECK(no_temporaries(path));
+}
+
+TEST_CASE("glossy file: the streaming reader refuses a corrupted matrix byte", "[glossy_file]") {
+  const GlossyTransferData d = make_glossy(40, 5, 1, Precision::F32);
+  const fs::path path = prt::test::output_path("glossy_layout_corrupt.prtg");
+  REQUIRE(prt::write_glossy_transfer_file(path.string(), d).ok());
+  auto bytes = read_bytes(path);
+  auto layout = prt::read_glossy_transfer_layout(path.string());
+  REQUIRE(layout.ok());
+  bytes[static_cast<std::size_t>(layout->matrix_offset + 1000)] ^= 0x10;
+  write_bytes(path, bytes);
+  const auto again = prt::read_glossy_transfer_layout(path.string());
+  REQUIRE_FALSE(again.ok());
+  CHECK(again.status().message().find("checksum mismatch") != std::string::npos);
+  CHECK_FALSE(prt::read_glossy_transfer_file(path.string()).ok());
 }

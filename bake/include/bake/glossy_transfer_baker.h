@@ -39,11 +39,18 @@
 // albedo or some material is coloured (MERL counts as coloured), else 1.
 // Materials: ScenePrimitive::brdf, or Lambert with the primitive's albedo; equal materials are
 // stored once.
+// Memory (GlossyBakeOptions::memory_limit, prt/core/memory_budget.h): before it allocates them
+// the bake charges its large buffers — shadowed and streamed to a file, the frames and geometry
+// (about 100 bytes a vertex) and the matrices of the blocks in flight; shadowed in memory, every
+// vertex's matrices; interreflected, the matrices of two bounces, the direct transfer, the
+// Lambert exit rows and the hits — and stops with MemoryBudgetExceeded (one line) when they would
+// exceed the limit. docs/GLOSSY.md ("Glossy bakes at scale") gives the figures.
 // Determinism: vertices in blocks, each vertex from its own samples and the previous bounce's
 // matrices in a fixed order: bit-identical for any thread count.
 #pragma once
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "bake/transfer_baker.h"
@@ -66,6 +73,14 @@ struct GlossyBakeOptions {
   uint64_t memory_limit = 0;  // bytes the bake may hold (prt/core/memory_budget.h); 0: none
   prt::BrdfProjectionOptions projection;  // b(ω_o) for the bounces (prt/glossy/brdf_projection.h)
   prt::Precision precision = prt::Precision::F32;
+  // > 0: every bounce gathers from a CPCA compression (bake/cpca/compressor.h, plain metric) of
+  // the previous bounce's matrices, bounce_cpca_clusters × bounce_cpca_vectors, instead of from
+  // the matrices themselves: the error of bounces that read compressed transfer, the design
+  // for bakes whose matrices do not fit in memory (docs/GLOSSY.md, "Glossy bakes at scale").
+  // The output is still S + G(compressed M). This bake holds the reconstruction too (it
+  // measures the error, it does not save the memory). 0: off.
+  uint32_t bounce_cpca_clusters = 0;
+  uint32_t bounce_cpca_vectors = 8;
 };
 
 struct GlossyBakeStatistics {
@@ -84,6 +99,8 @@ struct GlossyBakeStatistics {
   double seconds_rays = 0;  // sampling pass: rays + accumulation
   double seconds_projection = 0;
   double seconds_bounces = 0;
+  uint64_t peak_charged_bytes = 0;  // the most the bake held at once of what it charged
+  uint64_t bounce_cpca_bytes = 0;   // bounce_cpca_clusters > 0: the compressed transfer's payload
 
   double mrays_per_second() const {
     return seconds_rays > 0 ? static_cast<double>(rays) / seconds_rays * 1e-6 : 0.0;
@@ -106,5 +123,18 @@ void glossy_scene_materials(const scene::Scene& scene, std::vector<brdf::Materia
 // ScenePrimitive::brdf_texture_problem) or std::runtime_error (Embree). `progress` may be null.
 GlossyBakeResult bake_glossy_transfer(const scene::Scene& scene, const GlossyBakeOptions& options,
                                       ProgressSink* progress = nullptr);
+
+// The same bake written to PATH as it goes (prt/formats/glossy_transfer_writer.h): a shadowed
+// bake hands each block of vertices' matrices to the file when it is finished and never holds
+// more than the blocks in flight; an interreflected one writes its last bounce block by block.
+// The file is byte for byte write_glossy_transfer_file(PATH, bake_glossy_transfer(...).data)
+// (same options, same seed, any thread count). Returns everything but the matrices
+// (result.data.matrices is empty). On any error — those of bake_glossy_transfer, a file that
+// cannot be written (BakeError, "PATH: problem"), MemoryBudgetExceeded — PATH is left as it was
+// and no temporary remains.
+GlossyBakeResult bake_glossy_transfer_to_file(const scene::Scene& scene,
+                                              const GlossyBakeOptions& options,
+                                              const std::string& path,
+                                              ProgressSink* progress = nullptr);
 
 }  // namespace prt::bake

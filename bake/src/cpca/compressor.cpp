@@ -10,8 +10,10 @@
 #include <sstream>
 #include <thread>
 
+#include "bake/cpca/matrix_source.h"
 #include "numerics/rng.h"
 #include "pca.h"
+#include "prt/core/memory_budget.h"
 #include "row_metric.h"
 
 namespace prt {
@@ -278,6 +280,18 @@ CpcaTransfer run_cpca(const Problem& pb, std::size_t k, uint32_t order, uint32_t
   return to_transfer(pb, m, order, channels);
 }
 
+// What a run holds besides the vectors themselves, charged before it is allocated: per vertex
+// the cluster state (assignment, error, seeding distances, the next assignment, the order by
+// error, the members lists: 40 bytes) and the weights; per cluster the double model twice (the
+// warm start keeps the previous one) and the float result; the PCA's z (members · p doubles,
+// at most n · p over the clusters in flight) and each thread's block of centred members.
+uint64_t run_bytes(std::size_t n, std::size_t d, std::size_t k, std::size_t clusters,
+                   unsigned threads) {
+  const uint64_t p = std::min<uint64_t>(k + 8, d);
+  return uint64_t(n) * (40 + 4 * k + 8 * p) + uint64_t(clusters) * (k + 1) * d * (16 + 4) +
+         uint64_t(std::max(1u, threads)) * (256 + 4 * p) * d * 8;
+}
+
 Status check_input(uint32_t order, uint32_t channels, uint64_t n, const float* x,
                    const CpcaOptions& o) {
   if (order < 1 || order > kMaxCpcaOrder) {
@@ -342,21 +356,32 @@ Result<CpcaTransfer> cpca_compress(uint32_t order, uint32_t channels, uint64_t v
   try {
     const std::size_t n = static_cast<std::size_t>(vertex_count);
     const std::size_t d = std::size_t(channels) * order * order * order * order;
+    MemoryBudget budget(options.memory_limit, "cpca");
+    const bool target = options.target_relative_rms > 0.0;
+    const std::size_t k_max = target ? options.max_vectors : options.vectors;
+    const std::size_t clusters = std::min<std::size_t>(options.clusters, n);
+    // A targeted run keeps the largest run, its truncation and its own run: three results.
+    budget.charge(run_bytes(n, d, k_max, clusters, options.threads) +
+                      (target ? 2 * (uint64_t(n) * k_max * 4 + clusters * (k_max + 1) * d * 4) : 0),
+                  "the clustering state and results");
     detail::RowMetric metric;
     const detail::RowMetric* w = nullptr;
-    std::vector<float> scaled;  // W x under a metric
+    std::unique_ptr<FloatScratch> scaled;  // W x under a metric: in memory, or a mapped file
     if (!options.row_metric.empty()) {
       const std::string problem = metric.build(options.row_metric, channels, order * order);
       if (!problem.empty()) return Status::Error("cpca: " + problem);
       w = &metric;
-      scaled.resize(n * d);
+      auto made = FloatScratch::create(n * d, budget, "the metric's scaled matrices");
+      if (!made.ok()) return Status::Error("cpca: " + made.status().message());
+      scaled = std::move(made).value();
+      float* out = scaled->data();
       parallel_for(n, options.threads, [&](std::size_t v) {
         std::vector<double> y(d);
         metric.apply(metric.w, matrices + v * d, y.data());
-        for (std::size_t e = 0; e < d; ++e) scaled[v * d + e] = static_cast<float>(y[e]);
+        for (std::size_t e = 0; e < d; ++e) out[v * d + e] = static_cast<float>(y[e]);
       });
     }
-    const Problem pb{w == nullptr ? matrices : scaled.data(), n, d, &options, matrices, w};
+    const Problem pb{w == nullptr ? matrices : scaled->data(), n, d, &options, matrices, w};
     if (options.target_relative_rms <= 0.0) {
       return run_cpca(pb, options.vectors, order, channels);
     }
@@ -379,6 +404,8 @@ Result<CpcaTransfer> cpca_compress(uint32_t order, uint32_t channels, uint64_t v
     CpcaTransfer own = run_cpca(pb, k, order, channels);
     if (weighted_error(own, matrices, w) <= options.target_relative_rms) return own;
     return cpca_truncate(full, k);
+  } catch (const MemoryBudgetExceeded& e) {
+    return Status::Error(e.what());
   } catch (const std::bad_alloc&) {
     return Status::Error("cpca: out of memory");
   }

@@ -20,25 +20,47 @@ double hash_uniform(uint64_t seed, std::size_t row, std::size_t col) {
   return 2.0 * numerics::unit_double_from_bits(h) - 1.0;
 }
 
-// z[m·p + j] = y_m · q_j.
-void times_rows(const std::vector<double>& y, std::size_t m, std::size_t d, const double* q,
-                std::size_t p, std::vector<double>& z) {
-  z.assign(m * p, 0.0);
-  for (std::size_t i = 0; i < m; ++i) {
-    for (std::size_t j = 0; j < p; ++j) z[i * p + j] = dot(&y[i * d], q + j * d, d);
-  }
-}
+// The centred members y_i = x_i − μ, made a block of kRows at a time (never all m × d), so that a
+// cluster's PCA holds O(kRows · d) however many members it has.
+constexpr std::size_t kRows = 256;
 
-// w_j = Σ_m z[m·p + j] · y_m (rows of w are vectors in R^d), members in order.
-void times_columns(const std::vector<double>& y, std::size_t m, std::size_t d,
-                   const std::vector<double>& z, std::size_t p, std::vector<double>& w) {
-  w.assign(p * d, 0.0);
-  for (std::size_t i = 0; i < m; ++i) {
-    const double* yi = &y[i * d];
-    for (std::size_t j = 0; j < p; ++j) {
-      const double s = z[i * p + j];
-      double* wj = &w[j * d];
-      for (std::size_t e = 0; e < d; ++e) wj[e] += s * yi[e];
+struct CentredRows {
+  const PcaInput& in;
+  const std::vector<double>& mean;
+  std::vector<double> y;  // kRows · d
+
+  // Rows [i0, i1) into y (row i at y[(i − i0)·d]).
+  void fill(std::size_t i0, std::size_t i1) {
+    const std::size_t d = in.d;
+    y.resize(kRows * d);
+    for (std::size_t i = i0; i < i1; ++i) {
+      const float* x = in.x + static_cast<std::size_t>(in.members[i]) * d;
+      double* yi = &y[(i - i0) * d];
+      for (std::size_t e = 0; e < d; ++e) yi[e] = x[e] - mean[e];
+    }
+  }
+};
+
+// z[i·p + j] = y_i · q_j for every member; and, when w is given, w_j = Σ_i z[i·p + j] · y_i
+// (rows of w are vectors in R^d), members in order: the sums run in the order of the whole-matrix
+// products, so blocking changes no bit.
+void times_rows_and_columns(CentredRows& rows, std::size_t m, const double* q, std::size_t p,
+                            std::vector<double>& z, std::vector<double>* w) {
+  const std::size_t d = rows.in.d;
+  z.assign(m * p, 0.0);
+  if (w != nullptr) w->assign(p * d, 0.0);
+  for (std::size_t i0 = 0; i0 < m; i0 += kRows) {
+    const std::size_t i1 = std::min(m, i0 + kRows);
+    rows.fill(i0, i1);
+    for (std::size_t i = i0; i < i1; ++i) {
+      const double* yi = &rows.y[(i - i0) * d];
+      for (std::size_t j = 0; j < p; ++j) z[i * p + j] = dot(yi, q + j * d, d);
+      if (w == nullptr) continue;
+      for (std::size_t j = 0; j < p; ++j) {
+        const double s = z[i * p + j];
+        double* wj = &(*w)[j * d];
+        for (std::size_t e = 0; e < d; ++e) wj[e] += s * yi[e];
+      }
     }
   }
 }
@@ -144,11 +166,7 @@ void cluster_pca(const PcaInput& in, std::vector<double>* mean, std::vector<doub
   }
   for (std::size_t e = 0; e < d; ++e) (*mean)[e] /= static_cast<double>(m);
   if (k == 0) return;
-  std::vector<double> y(m * d);
-  for (std::size_t i = 0; i < m; ++i) {
-    const float* x = in.x + static_cast<std::size_t>(in.members[i]) * d;
-    for (std::size_t e = 0; e < d; ++e) y[i * d + e] = x[e] - (*mean)[e];
-  }
+  CentredRows rows{in, *mean, {}};
   const std::size_t p = std::min({k + kOversample, d, m});
   // Start: the previous round's vectors, then pseudo-random rows.
   std::vector<double> q(p * d);
@@ -165,14 +183,13 @@ void cluster_pca(const PcaInput& in, std::vector<double>* mean, std::vector<doub
     orthonormalize_rows(p, d, q.data());  // a basis of all of R^d: exact already
   } else {
     for (unsigned it = 0; it < std::max(1u, iterations); ++it) {
-      times_rows(y, m, d, q.data(), p, z);
-      times_columns(y, m, d, z, p, w);
+      times_rows_and_columns(rows, m, q.data(), p, z, &w);
       q.swap(w);
       orthonormalize_rows(p, d, q.data());
     }
   }
   // Rayleigh–Ritz: the eigenvectors of B = (Y Qᵀ)ᵀ(Y Qᵀ) rotate Q into principal vectors.
-  times_rows(y, m, d, q.data(), p, z);
+  times_rows_and_columns(rows, m, q.data(), p, z, nullptr);
   std::vector<double> b(p * p, 0.0), values, vectors;
   for (std::size_t i = 0; i < m; ++i) {
     for (std::size_t r = 0; r < p; ++r) {

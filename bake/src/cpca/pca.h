@@ -36,7 +36,8 @@ struct PcaInput {
 
 // mean[d] and basis[k·d] (orthonormal rows sorted by decreasing variance; zero rows when the
 // members span fewer than k dimensions). When k ≥ min(members, d) the rows span every
-// centred member exactly (to rounding). Throws std::bad_alloc only.
+// centred member exactly (to rounding). Holds O(256·d + members·(k + 8)) doubles: the centred
+// members are made 256 at a time, never all at once. Throws std::bad_alloc only.
 void cluster_pca(const PcaInput& in, std::vector<double>* mean, std::vector<double>* basis);
 
 }  // namespace prt::detail

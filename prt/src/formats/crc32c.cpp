@@ -65,7 +65,37 @@ __attribute__((target("sse4.2"))) uint32_t update_sse42(const unsigned char* p, 
 }
 #endif
 
+// a · b modulo the polynomial, both reflected (bit 31 is x⁰); a ≠ 0.
+uint32_t multiply_mod_p(uint32_t a, uint32_t b) {
+  uint32_t m = 1u << 31, p = 0;
+  for (;;) {
+    if (a & m) {
+      p ^= b;
+      if ((a & (m - 1)) == 0) break;
+    }
+    m >>= 1;
+    b = (b & 1u) ? (b >> 1) ^ kReflectedPolynomial : b >> 1;
+  }
+  return p;
+}
+
+// x^(8·n) modulo the polynomial, by squaring.
+uint32_t x_to_8n_mod_p(uint64_t n) {
+  uint32_t result = 1u << 31;  // x⁰
+  uint32_t power = 1u << 23;   // x⁸
+  while (n != 0) {
+    if (n & 1u) result = multiply_mod_p(power, result);
+    power = multiply_mod_p(power, power);
+    n >>= 1;
+  }
+  return result;
+}
+
 }  // namespace
+
+uint32_t crc32c_combine(uint32_t crc_a, uint32_t crc_b, uint64_t size_b) noexcept {
+  return multiply_mod_p(x_to_8n_mod_p(size_b), crc_a) ^ crc_b;
+}
 
 uint32_t crc32c_portable(const void* data, std::size_t size, uint32_t crc) noexcept {
   return ~update_portable(static_cast<const unsigned char*>(data), size, ~crc);

@@ -4,16 +4,20 @@
 
 #include <algorithm>
 #include <array>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <limits>
+#include <memory>
 #include <new>
 #include <sstream>
 
 #include "formats/binary_layout.h"
+#include "formats/glossy_file_plan.h"
 #include "prt/core/atomic_file.h"
 #include "prt/core/half.h"
+#include "prt/formats/crc32c.h"
 #include "prt/formats/geometry_check.h"
 
 #if defined(__BYTE_ORDER__) && __BYTE_ORDER__ != __ORDER_LITTLE_ENDIAN__
@@ -42,6 +46,11 @@ constexpr std::size_t kOffMagic = 0, kOffVersion = 4, kOffHeaderSize = 8, kOffOr
                       kOffFingerprint = 56, kOffFileSize = 64, kOffChecksum = 72,
                       kOffReserved2 = 76, kOffSections = 80;
 constexpr uint32_t kFlagInterreflected = 1u;
+}  // namespace
+// (Named apart from detail::kOffChecksum, the coefficient files' field.)
+constexpr std::size_t kOffGlossyChecksum = 72;
+static_assert(kOffGlossyChecksum == kOffChecksum);
+namespace {
 
 enum GSection : int {
   kPrims = 0,
@@ -147,7 +156,7 @@ Status load_material(const unsigned char* section, uint64_t section_size, uint64
 
 // --- validation of the in-memory data ---
 
-Status check_sizes(const GlossyTransferData& d, const std::string& name) {
+Status check_sizes(const GlossyTransferData& d, const std::string& name, bool with_matrices) {
   const uint64_t v = d.vertex_count;
   const auto size_error = [&](const char* what, std::size_t have, uint64_t want) {
     std::ostringstream os;
@@ -161,7 +170,8 @@ Status check_sizes(const GlossyTransferData& d, const std::string& name) {
     return size_error("material_of_vertex", d.material_of_vertex.size(), v);
   }
   const uint64_t want = v * d.channels * d.matrix_floats();
-  if (d.matrices.size() != want) return size_error("matrices", d.matrices.size(), want);
+  if (with_matrices && d.matrices.size() != want)
+    return size_error("matrices", d.matrices.size(), want);
   for (std::size_t i = 0; i < d.primitives.size(); ++i) {
     const PrimitiveRange& p = d.primitives[i];
     if (p.first_vertex > v || p.vertex_count > v - p.first_vertex) {
@@ -217,13 +227,18 @@ Status check_materials(const GlossyTransferData& d, const std::string& name) {
   return Status::Ok();
 }
 
-Status check_matrices(const GlossyTransferData& d, const std::string& name) {
-  const std::size_t k = d.coefficients(), per_vertex = d.channels * k * k;
-  for (std::size_t at = 0; at < d.matrices.size(); ++at) {
-    const float x = d.matrices[at];
-    const bool bad = !std::isfinite(x) || (d.storage == Precision::F16 && would_overflow_half(x));
+// Every entry of `count` floats of matrices that start at vertex `first_vertex` finite (and, for
+// F16 storage, within binary16); the error names the vertex, channel, row and column.
+Status check_matrix_entries(const float* m, std::size_t count, uint64_t first_vertex,
+                            std::size_t channels, std::size_t k, Precision storage,
+                            const std::string& name) {
+  const std::size_t per_vertex = channels * k * k;
+  for (std::size_t at = 0; at < count; ++at) {
+    const float x = m[at];
+    const bool bad = !std::isfinite(x) || (storage == Precision::F16 && would_overflow_half(x));
     if (!bad) continue;
-    const std::size_t v = at / per_vertex, rest = at % per_vertex;
+    const uint64_t v = first_vertex + at / per_vertex;
+    const std::size_t rest = at % per_vertex;
     std::ostringstream os;
     os << "matrix entry (vertex " << v << ", channel " << rest / (k * k) << ", row "
        << rest % (k * k) / k << ", column " << rest % k << ") = " << x
@@ -233,8 +248,15 @@ Status check_matrices(const GlossyTransferData& d, const std::string& name) {
   return Status::Ok();
 }
 
-// Everything but the matrices' finiteness (the reader checks those in the stored precision).
-Status validate_except_matrices(const GlossyTransferData& d, const std::string& name) {
+Status check_matrices(const GlossyTransferData& d, const std::string& name) {
+  return check_matrix_entries(d.matrices.data(), d.matrices.size(), 0, d.channels, d.coefficients(),
+                              d.storage, name);
+}
+
+// Everything but the matrices' finiteness (the reader checks those in the stored precision);
+// with_matrices false: not their count either (a streamed file's data holds none).
+Status validate_except_matrices(const GlossyTransferData& d, const std::string& name,
+                                bool with_matrices = true) {
   if (d.order < 1 || d.order > kMaxGlossyOrder) {
     return fail(name, "SH order " + std::to_string(d.order) + " is outside [1, " +
                           std::to_string(kMaxGlossyOrder) + "]");
@@ -246,7 +268,7 @@ Status validate_except_matrices(const GlossyTransferData& d, const std::string& 
     return fail(name, "unknown storage precision");
   }
   if (d.vertex_count > 0xffffffffull) return fail(name, "more than 2^32 - 1 vertices");
-  if (Status s = check_sizes(d, name); !s.ok()) return s;
+  if (Status s = check_sizes(d, name, with_matrices); !s.ok()) return s;
   if (Status s = check_finite(name, "position", d.positions.data(), d.positions.size(), 3); !s)
     return s;
   if (Status s = check_finite(name, "normal", d.normals.data(), d.normals.size(), 3); !s) return s;
@@ -448,7 +470,7 @@ Status read_matrices(const unsigned char* b, const std::string& name, const Head
 }
 
 Status read_contents(const unsigned char* b, const std::string& name, const Header& h,
-                     GlossyTransferData& d) {
+                     GlossyTransferData& d, bool with_matrices = true) {
   d.order = h.order;
   d.channels = h.channels;
   d.storage = static_cast<Precision>(h.storage);
@@ -477,11 +499,109 @@ Status read_contents(const unsigned char* b, const std::string& name, const Head
   }
   d.metadata_json.assign(reinterpret_cast<const char*>(b + h.layout.offsets[kMeta]),
                          static_cast<std::size_t>(h.layout.sizes[kMeta]));
-  if (Status s = read_matrices(b, name, h, d); !s.ok()) return s;
-  if (Status s = validate_except_matrices(d, name); !s.ok()) return s;
+  if (with_matrices) {
+    if (Status s = read_matrices(b, name, h, d); !s.ok()) return s;
+  }
+  if (Status s = validate_except_matrices(d, name, with_matrices); !s.ok()) return s;
   if (d.fingerprint != geometry_fingerprint(d.positions.data(), static_cast<std::size_t>(h.v))) {
     return fail(name, "stored fingerprint does not match the stored positions");
   }
+  return Status::Ok();
+}
+
+// Streams the matrix section of an open file: checksum and finiteness, a few MiB at a time.
+Status scan_matrices(std::FILE* f, const std::string& name, const Header& h, uint32_t* crc) {
+  const uint64_t bytes = h.layout.sizes[kMatrices], per = h.storage == 1 ? 2 : 4;
+  const uint64_t per_vertex = uint64_t{h.channels} * h.order * h.order * h.order * h.order;
+  const uint64_t chunk_vertices = std::max<uint64_t>(1, (4u << 20) / (per_vertex * per));
+  std::vector<unsigned char> chunk(static_cast<std::size_t>(chunk_vertices * per_vertex * per));
+  std::vector<float> floats(h.storage == 1 ? 0
+                                           : static_cast<std::size_t>(chunk_vertices * per_vertex));
+  for (uint64_t v = 0; v < h.v; v += chunk_vertices) {
+    const uint64_t n = std::min(chunk_vertices, h.v - v), size = n * per_vertex * per;
+    if (std::fread(chunk.data(), 1, static_cast<std::size_t>(size), f) != size)
+      return fail(name, "cannot read the matrices");
+    *crc = crc32c(chunk.data(), static_cast<std::size_t>(size), *crc);
+    if (h.storage == 1) {
+      for (uint64_t i = 0; i < size; i += 2)
+        if ((chunk[i + 1] & 0x7cu) == 0x7cu)
+          return fail(name, "a float16 matrix entry is Inf or NaN");
+      continue;
+    }
+    std::memcpy(floats.data(), chunk.data(), static_cast<std::size_t>(size));
+    if (Status s =
+            check_matrix_entries(floats.data(), static_cast<std::size_t>(n * per_vertex), v,
+                                 h.channels, std::size_t{h.order} * h.order, Precision::F32, name);
+        !s.ok())
+      return s;
+  }
+  (void)bytes;
+  return Status::Ok();
+}
+
+// Reads `size` bytes at `offset` of an open file.
+Status read_at(std::FILE* f, uint64_t offset, unsigned char* out, uint64_t size,
+               const std::string& name) {
+  if (size == 0) return Status::Ok();
+  if (std::fseek(f, static_cast<long>(offset), SEEK_SET) != 0 ||
+      std::fread(out, 1, static_cast<std::size_t>(size), f) != size)
+    return fail(
+        name, "cannot read " + std::to_string(size) + " bytes at offset " + std::to_string(offset));
+  return Status::Ok();
+}
+
+struct FileCloser {
+  void operator()(std::FILE* f) const {
+    if (f != nullptr) std::fclose(f);
+  }
+};
+
+// read_glossy_transfer_layout's body: the file `f` of `size` bytes.
+Status read_layout(std::FILE* f, uint64_t size, const std::string& name, GlossyFileLayout* out) {
+  unsigned char head[kGHeaderSize] = {};
+  const std::size_t got = std::fread(head, 1, kGHeaderSize, f);
+  if (got >= 4 && std::memcmp(head, "PRTC", 4) == 0)
+    return fail(name, "is a diffuse coefficient file (PRTC), not a glossy transfer file");
+  if (got < kGHeaderSize) return check_container(head, got, name);
+  if (std::memcmp(head, "PRTG", 4) != 0)
+    return fail(name, "not a glossy transfer file (bad magic)");
+  if (load_u32(head + kOffVersion) != kGlossyFileVersion)
+    return fail(
+        name, "unsupported glossy format version " + std::to_string(load_u32(head + kOffVersion)));
+  if (load_u32(head + kOffHeaderSize) != kGHeaderSize) return fail(name, "bad header size");
+  if (Status s = detail::check_recorded_size(name, load_u64(head + kOffFileSize),
+                                             static_cast<std::size_t>(size));
+      !s.ok())
+    return s;
+  Header h;
+  if (Status s = read_header(head, static_cast<std::size_t>(size), name, &h); !s.ok()) return s;
+  if (Status s = check_sections(name, h); !s.ok()) return s;
+  // The file without its matrices: [0, m) ++ [m + bytes, size); later sections shift down.
+  const uint64_t m = h.layout.sizes[kMatrices] ? h.layout.offsets[kMatrices] : size;
+  const uint64_t m_bytes = h.layout.sizes[kMatrices], m_end = std::min(size, m + m_bytes);
+  std::vector<unsigned char> image(static_cast<std::size_t>(m + (size - m_end)));
+  if (Status s = read_at(f, 0, image.data(), m, name); !s.ok()) return s;
+  uint32_t crc = detail::file_checksum(image.data(), static_cast<std::size_t>(m), kOffChecksum);
+  if (m_bytes != 0) {
+    if (std::fseek(f, static_cast<long>(m), SEEK_SET) != 0) return fail(name, "cannot seek");
+    if (Status s = scan_matrices(f, name, h, &crc); !s.ok()) return s;
+  }
+  if (Status s = read_at(f, m_end, image.data() + m, size - m_end, name); !s.ok()) return s;
+  crc = crc32c(image.data() + m, static_cast<std::size_t>(size - m_end), crc);
+  const uint32_t stored = load_u32(image.data() + kOffChecksum);
+  if (stored != crc) {
+    char text[96];
+    std::snprintf(text, sizeof text, "checksum mismatch (stored 0x%08x, computed 0x%08x)", stored,
+                  crc);
+    return fail(name, text);
+  }
+  Header shifted = h;
+  for (int s = 0; s < kGSectionCount; ++s)
+    if (s != kMatrices && shifted.layout.offsets[s] > m) shifted.layout.offsets[s] -= m_bytes;
+  out->data = GlossyTransferData{};
+  if (Status s = read_contents(image.data(), name, shifted, out->data, false); !s.ok()) return s;
+  out->matrix_offset = m;
+  out->matrix_bytes = m_bytes;
   return Status::Ok();
 }
 
@@ -551,4 +671,103 @@ Result<GlossyTransferData> read_glossy_transfer_file(const std::string& path) {
   return read_glossy_transfer_data(bytes.data(), bytes.size(), path);
 }
 
+}  // namespace prt
+
+namespace prt {
+
+Result<GlossyFileLayout> read_glossy_transfer_layout(const std::string& path) {
+  std::unique_ptr<std::FILE, FileCloser> f(std::fopen(path.c_str(), "rb"));
+  if (!f) return fail(path, std::string("cannot open: ") + std::strerror(errno));
+  if (std::fseek(f.get(), 0, SEEK_END) != 0) return fail(path, "cannot seek");
+  const long end = std::ftell(f.get());
+  if (end < 0 || std::fseek(f.get(), 0, SEEK_SET) != 0) return fail(path, "cannot seek");
+  try {
+    GlossyFileLayout layout;
+    if (Status s = read_layout(f.get(), static_cast<uint64_t>(end), path, &layout); !s.ok())
+      return s;
+    return layout;
+  } catch (const std::bad_alloc&) {
+    return fail(path, "out of memory while reading");
+  } catch (const std::length_error&) {
+    return fail(path, "out of memory while reading");
+  }
+}
+
+Status read_glossy_matrices(const std::string& path, const GlossyFileLayout& layout,
+                            uint64_t first_vertex, uint64_t count, float* out) {
+  const GlossyTransferData& d = layout.data;
+  if (first_vertex > d.vertex_count || count > d.vertex_count - first_vertex)
+    return fail(path, "vertices " + std::to_string(first_vertex) + " + " + std::to_string(count) +
+                          " lie beyond the " + std::to_string(d.vertex_count) + " vertices");
+  std::unique_ptr<std::FILE, FileCloser> f(std::fopen(path.c_str(), "rb"));
+  if (!f) return fail(path, std::string("cannot open: ") + std::strerror(errno));
+  const uint64_t floats = count * d.channels * d.matrix_floats();
+  const uint64_t per = d.storage == Precision::F16 ? 2 : 4;
+  const uint64_t at = layout.matrix_offset + first_vertex * d.channels * d.matrix_floats() * per;
+  if (d.storage == Precision::F32)
+    return read_at(f.get(), at, reinterpret_cast<unsigned char*>(out), 4 * floats, path);
+  try {
+    std::vector<uint16_t> halves(static_cast<std::size_t>(floats));
+    if (Status s =
+            read_at(f.get(), at, reinterpret_cast<unsigned char*>(halves.data()), 2 * floats, path);
+        !s.ok())
+      return s;
+    convert_halves_to_floats(halves.data(), halves.size(), out);
+    return Status::Ok();
+  } catch (const std::bad_alloc&) {
+    return fail(path, "out of memory while reading");
+  }
+}
+
+namespace detail {
+
+uint64_t glossy_checksum_offset() {
+  return prt::kOffGlossyChecksum;
+}
+
+Status check_glossy_matrix_entries(const float* m, std::size_t count, uint64_t first_vertex,
+                                   uint32_t channels, uint32_t order, Precision storage,
+                                   const std::string& name) {
+  return check_matrix_entries(m, count, first_vertex, channels, std::size_t{order} * order, storage,
+                              name);
+}
+
+Result<GlossyFilePlan> plan_glossy_file(const GlossyTransferData& d, const std::string& name) {
+  if (Status s = validate_except_matrices(d, name, false); !s.ok()) return s;
+  if (d.fingerprint != 0 &&
+      d.fingerprint !=
+          geometry_fingerprint(d.positions.data(), static_cast<std::size_t>(d.vertex_count)))
+    return fail(name, "fingerprint does not match the positions (leave it 0 to have it computed)");
+  try {
+    const Layout l = plan_layout(d);
+    // Where the matrices start: their offset, or (none) where they would.
+    uint64_t m = kGHeaderSize;
+    for (int s = 0; s < kMatrices; ++s)
+      if (l.sizes[s] != 0) m = align_up(l.offsets[s] + l.sizes[s]);
+    GlossyFilePlan plan;
+    plan.matrix_offset = m;
+    plan.matrix_bytes = l.sizes[kMatrices];
+    std::vector<unsigned char> head(static_cast<std::size_t>(m), 0);
+    write_header(head.data(), d, l);
+    write_tables(head.data(), d, l);
+    const auto copy = [&](int s, const void* src, std::size_t bytes) {
+      if (bytes != 0) std::memcpy(head.data() + l.offsets[s], src, bytes);
+    };
+    copy(kPos, d.positions.data(), 4 * d.positions.size());
+    copy(kNrm, d.normals.data(), 4 * d.normals.size());
+    copy(kTan, d.tangents.data(), 4 * d.tangents.size());
+    copy(kMatOfVertex, d.material_of_vertex.data(), 4 * d.material_of_vertex.size());
+    plan.prefix = std::move(head);
+    const uint64_t m_end = m + plan.matrix_bytes;
+    plan.tail.assign(static_cast<std::size_t>(l.file_size - m_end), 0);
+    if (!d.metadata_json.empty())
+      std::memcpy(plan.tail.data() + (l.offsets[kMeta] - m_end), d.metadata_json.data(),
+                  d.metadata_json.size());
+    return plan;
+  } catch (const std::bad_alloc&) {
+    return fail(name, "out of memory while encoding");
+  }
+}
+
+}  // namespace detail
 }  // namespace prt

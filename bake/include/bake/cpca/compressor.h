@@ -13,6 +13,11 @@
 // exactly. The weights are computed against the float-rounded mean and vectors, so
 // reconstruction is exact to float rounding at full rank.
 //
+// Memory: `matrices` is only read (it may be a mapping of the file, bake/cpca/matrix_source.h);
+// the run's own buffers — per-vertex state and weights, the cluster models, each thread's
+// block of 256 centred members — are charged to a MemoryBudget of options.memory_limit first,
+// and a metric's scaled copy is held in memory when it fits the limit, else in a mapped
+// temporary file. A limit below the run's own buffers is refused with one line (a Status).
 // Determinism: the result depends only on the data and the options, not on `threads`
 // (threads work on disjoint vertices or clusters; every sum runs in a fixed order).
 // Nothing here throws; failures return prt::Status.

@@ -60,6 +60,24 @@ Result<GlossyTransferData> read_glossy_transfer_file(const std::string& path);
 Result<GlossyTransferData> read_glossy_transfer_data(const void* bytes, std::size_t size,
                                                      const std::string& name_for_errors);
 
+// A file read without its matrices, for tools that read them in blocks (out of core): `data`
+// holds everything else (data.matrices is empty); the matrices start at byte matrix_offset
+// (matrix_bytes of them, in the stored precision).
+struct GlossyFileLayout {
+  GlossyTransferData data;
+  uint64_t matrix_offset = 0;
+  uint64_t matrix_bytes = 0;
+};
+
+// Reads PATH and validates all of it as read_glossy_transfer_file does (checksum, finiteness,
+// every field), streaming through the matrices a few MiB at a time: it never holds them.
+Result<GlossyFileLayout> read_glossy_transfer_layout(const std::string& path);
+
+// The matrices of vertices [first_vertex, first_vertex + count) as floats (binary16 expanded),
+// count · channels · order⁴ of them into `out`, read from PATH at the layout's offsets.
+Status read_glossy_matrices(const std::string& path, const GlossyFileLayout& layout,
+                            uint64_t first_vertex, uint64_t count, float* out);
+
 // Index of M_v,c,i,j in GlossyTransferData::matrices (and in the file's matrix section).
 inline std::size_t glossy_matrix_index(std::size_t v, std::size_t c, std::size_t i, std::size_t j,
                                        std::size_t channels, std::size_t k_count) {
