@@ -32,7 +32,7 @@ struct RadiosityArguments {
   std::string scene, output, vertex_colors, csv, per_emitter;
   std::string form_factors = "auto";
   std::string solver = "auto";
-  double link_epsilon = 2e-4;
+  double link_epsilon = 3e-5;
   int link_rays = 4;
   int link_passes = 4;
   std::vector<std::string> emission, albedo, moves;

@@ -62,7 +62,8 @@ class LinkSolver {
   // Iterates until the unshot power is at most options.tolerance of the emitted power.
   void iterate(const SolveOptions& options, Solution* out) {
     glm::dvec3 emitted(0.0);
-    for (const Patch& p : patches_) emitted += p.area * p.emission;
+    for (std::size_t p = 0; p < patches_.size(); ++p)
+      emitted += double(h_.nodes[h_.leaf_of[p]].area) * patches_[p].emission;
     const double total = emitted.x + emitted.y + emitted.z;
     if (!(total > 0.0)) throw std::invalid_argument("hierarchical radiosity: nothing emits");
     out->energy.emitted = emitted;
@@ -81,8 +82,8 @@ class LinkSolver {
 
   void radiance_out(Solution* out) const {
     out->radiance.resize(patches_.size());
-    for (std::size_t p = 0; p < patches_.size(); ++p)
-      out->radiance[p] = radiance_[h_.leaf_of[p]];
+    for (std::size_t p = 0; p < patches_.size(); ++p)  // area means, as radiosity/patches.h
+      out->radiance[p] = radiance_[h_.leaf_of[p]] * std::clamp(patches_[p].visible, 0.0, 1.0);
     out->display_radiance = out->radiance;
   }
 
@@ -95,12 +96,13 @@ class LinkSolver {
     for (std::size_t p = 0; p < patches_.size(); ++p) {
       const Patch& patch = patches_[p];
       const uint32_t leaf = h_.leaf_of[p];
+      const double area = h_.nodes[leaf].area;  // visible area
       const glm::dvec3 h = irradiance_[leaf];
       const glm::dvec3 next = patch.emission + patch.albedo * h;
-      unshot += patch.area * glm::abs(next - radiance_[leaf]);
-      leaving += patch.area * radiance_[leaf];
-      arrived += patch.area * h;
-      absorbed += patch.area * (glm::dvec3(1.0) - patch.albedo) * h;
+      unshot += area * glm::abs(next - radiance_[leaf]);
+      leaving += area * radiance_[leaf];
+      arrived += area * h;
+      absorbed += area * (glm::dvec3(1.0) - patch.albedo) * h;
       radiance_[leaf] = next;
     }
     pull();
@@ -163,7 +165,7 @@ class LinkSolver {
       for (uint32_t c : {n.left, n.right}) {
         const HierarchyNode& child = nodes[c];
         if (n.planar) {
-          irradiance_[c] += irradiance_[i];
+          if (child.area > 0.f) irradiance_[c] += irradiance_[i];
           continue;
         }
         const Buckets& from = received_[slot_[i]];

@@ -62,12 +62,13 @@ class Builder {
     node.hi = glm::vec3(hi);
     node.radius = float(0.5 * glm::length(hi - lo));
     node.centroid = glm::vec3(p.centroid);
-    node.area = float(p.area);
+    const double area = p.area * std::clamp(p.visible, 0.0, 1.0);  // the visible part
+    node.area = float(area);
     node.normal = glm::vec3(p.normal);
     node.planar = true;
     for (int k = 0; k < 3; ++k) {
-      node.axis_area[2 * k] = float(p.area * std::max(0.0, p.normal[k]));
-      node.axis_area[2 * k + 1] = float(p.area * std::max(0.0, -p.normal[k]));
+      node.axis_area[2 * k] = float(area * std::max(0.0, p.normal[k]));
+      node.axis_area[2 * k + 1] = float(area * std::max(0.0, -p.normal[k]));
     }
     h_->leaf_of[patch] = index;
   }

@@ -167,6 +167,32 @@ struct LinkRefiner::Work {
     return static_cast<float>(s.area * sum / 3.0);
   }
 
+  // A patch of the sending node, drawn in proportion to its largest radiance channel (by
+  // rejection against the node's bound, at most 16 tries; uniformly when the node is dark), so
+  // that visibility is sampled where the light leaves: a lamp clustered with the ceiling behind it
+  // is not judged by the ceiling's rays.
+  uint32_t source_sample(const HierarchyNode& ns, Random& random) const {
+    uint32_t patch = self.h_.order[ns.first + random.below(ns.count)];
+    const float bound = bmax[&ns - self.h_.nodes.data()];
+    if (!(bound > 0.f) || ns.count == 1) return patch;
+    for (int k = 0; k < 16; ++k) {
+      if (random.uniform() * bound <= bmax[self.h_.leaf_of[patch]]) return patch;
+      patch = self.h_.order[ns.first + random.below(ns.count)];
+    }
+    return patch;
+  }
+
+  // A patch of the receiving node, drawn in proportion to its visible fraction (by rejection, at
+  // most 16 tries).
+  uint32_t receiver_sample(const HierarchyNode& nr, Random& random) const {
+    uint32_t patch = self.h_.order[nr.first + random.below(nr.count)];
+    for (int k = 0; k < 16 && nr.count > 1; ++k) {
+      if (random.uniform() <= self.patches_[patch].visible) return patch;
+      patch = self.h_.order[nr.first + random.below(nr.count)];
+    }
+    return patch;
+  }
+
   // The fraction of facing sample pairs of r and s that see each other; −1 if no sample pair
   // faces.
   double visibility(uint32_t r, uint32_t s, Local& local) {
@@ -175,8 +201,8 @@ struct LinkRefiner::Work {
     const int wanted = std::max(1, self.options_.visibility_rays);
     int facing = 0, visible = 0;
     for (int tries = 0; tries < 8 * wanted && facing < wanted; ++tries) {
-      const uint32_t a = self.h_.order[nr.first + random.below(nr.count)];
-      const uint32_t b = self.h_.order[ns.first + random.below(ns.count)];
+      const uint32_t a = receiver_sample(nr, random);
+      const uint32_t b = source_sample(ns, random);
       const Patch &pa = self.patches_[a], &pb = self.patches_[b];
       double u = random.uniform(), v = random.uniform();
       if (u + v > 1.0) u = 1.0 - u, v = 1.0 - v;

@@ -8,8 +8,9 @@
 //     entry, radiosity/form_factors.h); power = g·L_s.
 //   point (at least one end a cluster or surface node): g = V / (π r² + max(A_r, A_s)), r the
 //     distance between the centroids, V the fraction of `visibility_rays` segments between
-//     random points of random patches of r and s (pairs that face each other) that nothing
-//     blocks; power = g·P_r(d)·S_s(−d), d the unit direction from r to s, P_r the projected area
+//     random points of random patches of r and s (pairs that face each other; the patches of s
+//     drawn in proportion to their radiance, so that a lamp clustered with a dark ceiling is
+//     judged by its own rays) that nothing blocks; power = g·P_r(d)·S_s(−d), d the unit direction from r to s, P_r the projected area
 //     of r (radiosity/hierarchy.h) and S_s the radiance-weighted projected area of s. The
 //     max(A) term is the point-to-disc regularisation (Wallace, Elmquist & Haines 1989).
 // Oracle ("BF refinement" with an error factor): the estimated error of a point link in the
@@ -45,7 +46,7 @@ struct Link {
 };
 
 struct LinkOptions {
-  double epsilon = 2e-4;  // error bound, relative to the largest emitted radiance (channel)
+  double epsilon = 3e-5;  // error bound, relative to the largest emitted radiance (channel)
   int visibility_rays = 4;
   uint64_t seed = 1;
 };
