@@ -90,7 +90,8 @@ TEST_CASE("hierarchical: closed box with uniform emission, L = E / (1 - rho)",
   // the links of every patch (its own and its ancestors') must carry exactly the enclosure's
   // light. The area mean is held to 1e-3 (energy: no link loses or invents light on the whole);
   // single patches near the box's edges, where point links between nearby nodes approximate
-  // the kernel, err more: measured 0.78% worst at ε = 2e-4 (default 3e-5: below), so 1e-2.
+  // the kernel, err more: measured 0.76% worst at ε = 3e-5 (768 patches, 491,520 links; the
+  // area mean exact to 1e-6), so 1e-2.
   const double rho = 0.5;
   const prt::scene::Scene box = prt::scene::make_box({0, 0, 0}, {1, 1, 1}, 8,
                                                      /*normals_inward=*/true, glm::vec3(float(rho)));
@@ -119,10 +120,11 @@ TEST_CASE("hierarchical: closed box with uniform emission, L = E / (1 - rho)",
 TEST_CASE("hierarchical: agrees with the dense analytic solve, closer as epsilon falls, with "
           "far fewer links than N^2",
           "[radiosity][hierarchical]") {
-  // The open room of the solver tests (coloured walls, a block on the floor, a lamp) at ~3000
+  // The open room of the solver tests (coloured walls, a block on the floor, a lamp) at 3,488
   // patches. Measured (docs/RADIOSITY.md, "Hierarchical radiosity"): relative RMS of patch
-  // radiance against dense analytic 2.4% at ε = 1e-4, 1.8% at 3e-5 (the default); the bound
-  // checked is the default's with a margin, and that 10× smaller ε brings it closer.
+  // radiance against dense analytic 5.4% at ε = 3e-4 (92,012 links), 1.5% at 3e-5 (the default,
+  // 607,011 links; N² = 12.2 M); the bound checked is the default's with a margin, and that
+  // 10× smaller ε brings it closer.
   const prt::scene::Scene room =
       prt::scene::subdivide_to_edge_length(prt::test::open_room("lamp"), 0.08);
   const prt::scene::RayCaster caster(room);
@@ -149,8 +151,8 @@ TEST_CASE("hierarchical: agrees with the dense analytic solve, closer as epsilon
 TEST_CASE("hierarchical: links grow far slower than the patches squared",
           "[radiosity][hierarchical]") {
   // Clustering: at a fixed ε the links stop refining where the light is accurate enough, so four
-  // times the patches (half the edge) add much fewer than 16× the links. Measured: 0.06 → 0.03,
-  // 5,328 → 21,364 patches, links × 2.4.
+  // times the patches (half the edge) add much fewer than 16× the links. Measured: 1,416 →
+  // 5,328 patches (× 3.8), links 280,095 → 967,110 (× 3.5); 5,328 → 21,364: links × 2.4.
   std::size_t links[2], count[2];
   const double edges[2] = {0.12, 0.06};
   for (int k = 0; k < 2; ++k) {
