@@ -245,3 +245,31 @@ TEST_CASE("prt radiosity prints its choice of form factors in one line, --quiet 
   REQUIRE(r.exit_code == 0);
   CHECK(choice_lines(r.out) == 0);
 }
+
+TEST_CASE("prt radiosity --solver hierarchical: links, passes and memory printed; the cache and "
+          "dense-only options refused",
+          "[radiosity][cli][hierarchical]") {
+  const fs::path dir = scratch("hierarchical");
+  const std::string room = write_room(dir, "5 5 5", "0.7 0.5 0.3", false).string();
+  const RunResult r = run(room + " --solver hierarchical --max-edge 0.1 --csv " +
+                          (dir / "out.csv").string() + " --per-emitter " +
+                          (dir / "out.prte").string());
+  INFO(r.out << r.err);
+  REQUIRE(r.exit_code == 0);
+  CHECK(r.out.find("hierarchical: ") != std::string::npos);
+  CHECK(r.out.find(" links (") != std::string::npos);
+  CHECK(r.out.find("hierarchical pass 2: ") != std::string::npos);
+  CHECK(r.out.find("charged at the peak") != std::string::npos);
+  CHECK(r.out.find("per-emitter responses: 1 emitter") != std::string::npos);
+  CHECK(fs::exists(dir / "out.prte"));
+  check_refused(dir, room + " --solver hierarchical --form-factor-cache " +
+                         (dir / "ff.bin").string() + " --csv " + (dir / "out.csv").string(),
+                "not with the hierarchical solver");
+  CHECK_FALSE(fs::exists(dir / "ff.bin"));
+  check_refused(dir, room + " --solver hierarchical --form-factors rays --csv " +
+                         (dir / "out.csv").string(),
+                "--form-factors: not with --solver hierarchical");
+  check_refused(dir, room + " --solver jacobi --link-epsilon 1e-4 --csv " +
+                         (dir / "out.csv").string(),
+                "--link-epsilon");
+}
