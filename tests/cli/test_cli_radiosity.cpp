@@ -262,14 +262,16 @@ TEST_CASE("prt radiosity --solver hierarchical: links, passes and memory printed
   CHECK(r.out.find("charged at the peak") != std::string::npos);
   CHECK(r.out.find("per-emitter responses: 1 emitter") != std::string::npos);
   CHECK(fs::exists(dir / "out.prte"));
-  check_refused(dir, room + " --solver hierarchical --form-factor-cache " +
-                         (dir / "ff.bin").string() + " --csv " + (dir / "out.csv").string(),
+  const fs::path refused = scratch("hierarchical_refused");
+  check_refused(refused, room + " --solver hierarchical --form-factor-cache " +
+                         (refused / "ff.bin").string() + " --csv " +
+                         (refused / "out.csv").string(),
                 "not with the hierarchical solver");
-  CHECK_FALSE(fs::exists(dir / "ff.bin"));
-  check_refused(dir, room + " --solver hierarchical --form-factors rays --csv " +
-                         (dir / "out.csv").string(),
+  CHECK_FALSE(fs::exists(refused / "ff.bin"));
+  check_refused(refused, room + " --solver hierarchical --form-factors rays --csv " +
+                             (refused / "out.csv").string(),
                 "--form-factors: not with --solver hierarchical");
-  check_refused(dir, room + " --solver jacobi --link-epsilon 1e-4 --csv " +
-                         (dir / "out.csv").string(),
+  check_refused(refused, room + " --solver jacobi --link-epsilon 1e-4 --csv " +
+                             (refused / "out.csv").string(),
                 "--link-epsilon");
 }
