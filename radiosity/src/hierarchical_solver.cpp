@@ -82,8 +82,8 @@ class LinkSolver {
 
   void radiance_out(Solution* out) const {
     out->radiance.resize(patches_.size());
-    for (std::size_t p = 0; p < patches_.size(); ++p)
-      out->radiance[p] = radiance_[h_.leaf_of[p]];
+    for (std::size_t p = 0; p < patches_.size(); ++p)  // area means, as radiosity/patches.h
+      out->radiance[p] = radiance_[h_.leaf_of[p]] * std::clamp(patches_[p].visible, 0.0, 1.0);
     out->display_radiance = out->radiance;
   }
 
@@ -96,7 +96,7 @@ class LinkSolver {
     for (std::size_t p = 0; p < patches_.size(); ++p) {
       const Patch& patch = patches_[p];
       const uint32_t leaf = h_.leaf_of[p];
-      const double area = h_.nodes[leaf].area;
+      const double area = h_.nodes[leaf].area;  // visible area
       const glm::dvec3 h = irradiance_[leaf];
       const glm::dvec3 next = patch.emission + patch.albedo * h;
       unshot += area * glm::abs(next - radiance_[leaf]);

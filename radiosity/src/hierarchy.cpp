@@ -62,7 +62,7 @@ class Builder {
     node.hi = glm::vec3(hi);
     node.radius = float(0.5 * glm::length(hi - lo));
     node.centroid = glm::vec3(p.centroid);
-    const double area = p.area;
+    const double area = p.area * std::clamp(p.visible, 0.0, 1.0);  // the visible part
     node.area = float(area);
     node.normal = glm::vec3(p.normal);
     node.planar = true;

@@ -182,6 +182,17 @@ struct LinkRefiner::Work {
     return patch;
   }
 
+  // A patch of the receiving node, drawn in proportion to its visible fraction (by rejection, at
+  // most 16 tries).
+  uint32_t receiver_sample(const HierarchyNode& nr, Random& random) const {
+    uint32_t patch = self.h_.order[nr.first + random.below(nr.count)];
+    for (int k = 0; k < 16 && nr.count > 1; ++k) {
+      if (random.uniform() <= self.patches_[patch].visible) return patch;
+      patch = self.h_.order[nr.first + random.below(nr.count)];
+    }
+    return patch;
+  }
+
   // The fraction of facing sample pairs of r and s that see each other; −1 if no sample pair
   // faces.
   double visibility(uint32_t r, uint32_t s, Local& local) {
@@ -190,7 +201,7 @@ struct LinkRefiner::Work {
     const int wanted = std::max(1, self.options_.visibility_rays);
     int facing = 0, visible = 0;
     for (int tries = 0; tries < 8 * wanted && facing < wanted; ++tries) {
-      const uint32_t a = self.h_.order[nr.first + random.below(nr.count)];
+      const uint32_t a = receiver_sample(nr, random);
       const uint32_t b = source_sample(ns, random);
       const Patch &pa = self.patches_[a], &pb = self.patches_[b];
       double u = random.uniform(), v = random.uniform();

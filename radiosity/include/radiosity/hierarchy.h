@@ -12,8 +12,9 @@
 // Arvo & Greenberg 1994; Sillion 1995): its projected area toward d is approximated from its six
 // axis areas, P(d) = Σ_k |d_k|·A_{k,sign d_k} with A_{k,±} = Σ_i A_i max(0, ±n_i,k) — exact for
 // patches whose normals are axis-aligned (rooms, boxes), an overestimate bounded by √3 otherwise.
-// Directions are unit vectors from the node's area-weighted centroid. Areas are whole patch
-// areas, as in the dense solvers (hidden parts are left to vertex_radiance, radiosity/patches.h).
+// Directions are unit vectors from the node's area-weighted centroid. Areas are visible areas,
+// A·Patch::visible (radiosity/hidden_patches.h; 1 unless marked): the floor under a block takes
+// no part in the exchange, and a patch's radiance in the solve is that of its visible part.
 //
 // Node indices: the root is 0, a node's children come after it (left = node + 1, right = node +
 // 2·(leaves of left) ), so a forward sweep visits parents first. Built in parallel (TBB),
@@ -34,7 +35,7 @@ struct HierarchyNode {
   glm::vec3 centroid{0.f};  // area-weighted centroid of its patches
   float radius = 0.f;       // half the diagonal of its patches' bounding box
   glm::vec3 lo{0.f}, hi{0.f};
-  float area = 0.f;
+  float area = 0.f;  // visible area (see above)
   glm::vec3 normal{0.f};  // planar nodes: the common unit normal; clusters: 0
   bool planar = false;
   uint32_t first = 0, count = 0;  // its patches: order[first, first + count)
