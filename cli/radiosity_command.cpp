@@ -301,9 +301,10 @@ void print_hierarchy(const radiosity::HierarchicalStats& h) {
       h.hierarchy_seconds, h.link_seconds, h.solve_seconds);
   for (std::size_t k = 0; k < h.passes.size(); ++k) {
     const radiosity::HierarchicalPass& p = h.passes[k];
-    std::printf("hierarchical pass %zu: %zu links, %zu refined, %zu rays, %zu iterations; links "
-                "%.2f s, solve %.2f s\n",
-                k + 1, p.links, p.refined, p.rays, p.iterations, p.link_seconds, p.solve_seconds);
+    std::printf(
+        "hierarchical pass %zu: %zu links, %zu refined, %zu rays, %zu iterations; links "
+        "%.2f s, solve %.2f s\n",
+        k + 1, p.links, p.refined, p.rays, p.iterations, p.link_seconds, p.solve_seconds);
   }
   std::printf("hierarchical memory: %s charged at the peak\n",
               prt::format_memory_size(h.budget_peak).c_str());

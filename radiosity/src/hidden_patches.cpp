@@ -108,7 +108,8 @@ std::vector<double> visible_fractions(const std::vector<Patch>& patches,
     const std::vector<glm::dvec3> points = sample_points(p, options);
     int visible = 0;
     for (const glm::dvec3& x : points)
-      visible += enclosed(caster, static_cast<uint32_t>(i), x, p.normal, patches, &emitters) ? 0 : 1;
+      visible +=
+          enclosed(caster, static_cast<uint32_t>(i), x, p.normal, patches, &emitters) ? 0 : 1;
     fraction[i] = double(visible) / double(points.size());
   });
   return fraction;

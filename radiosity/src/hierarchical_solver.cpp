@@ -20,7 +20,9 @@ double since(Clock::time_point t) {
 constexpr uint32_t kNoSlot = 0xFFFFFFFFu;
 using Buckets = std::array<glm::dvec3, 6>;
 
-double max_channel(const glm::dvec3& v) { return std::max(v.x, std::max(v.y, v.z)); }
+double max_channel(const glm::dvec3& v) {
+  return std::max(v.x, std::max(v.y, v.z));
+}
 
 // The state of the gather / push–pull iterations on one hierarchy and one set of links.
 class LinkSolver {
@@ -40,8 +42,7 @@ class LinkSolver {
     bmax_.assign(n, 0.f);
     sent_.assign(clusters, Buckets{});
     received_.assign(clusters, Buckets{});
-    for (std::size_t p = 0; p < patches.size(); ++p)
-      radiance_[h.leaf_of[p]] = patches[p].emission;
+    for (std::size_t p = 0; p < patches.size(); ++p) radiance_[h.leaf_of[p]] = patches[p].emission;
     pull();
   }
   ~LinkSolver() {
@@ -135,7 +136,8 @@ class LinkSolver {
       const glm::dvec3 d = delta / glm::length(delta);
       glm::dvec3 sent(0.0);
       if (ns.planar) {
-        sent = radiance_[s] * (double(ns.area) * std::max(0.0, -glm::dot(glm::dvec3(ns.normal), d)));
+        sent =
+            radiance_[s] * (double(ns.area) * std::max(0.0, -glm::dot(glm::dvec3(ns.normal), d)));
       } else {
         const Buckets& q = sent_[slot_[s]];
         for (int a = 0; a < 3; ++a) sent += std::abs(d[a]) * q[2 * a + (d[a] > 0.0)];
@@ -196,10 +198,11 @@ class LinkSolver {
       const HierarchyNode &a = nodes[n.left], &b = nodes[n.right];
       bmax_[k] = std::max(bmax_[n.left], bmax_[n.right]);
       if (n.planar) {
-        radiance_[k] = n.area > 0.f ? (double(a.area) * radiance_[n.left] +
-                                       double(b.area) * radiance_[n.right]) /
-                                          double(n.area)
-                                    : glm::dvec3(0.0);
+        radiance_[k] =
+            n.area > 0.f
+                ? (double(a.area) * radiance_[n.left] + double(b.area) * radiance_[n.right]) /
+                      double(n.area)
+                : glm::dvec3(0.0);
         continue;
       }
       Buckets& q = sent_[slot_[k]];

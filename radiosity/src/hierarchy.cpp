@@ -31,7 +31,9 @@ class Builder {
       hi = glm::max(hi, patches_[h_->order[k]].centroid);
     }
     const glm::dvec3 extent = hi - lo;
-    const int axis = extent.x >= extent.y && extent.x >= extent.z ? 0 : extent.y >= extent.z ? 1 : 2;
+    const int axis = extent.x >= extent.y && extent.x >= extent.z ? 0
+                     : extent.y >= extent.z                       ? 1
+                                                                  : 2;
     const uint32_t half = count / 2;
     uint32_t* begin = h_->order.data() + first;
     std::nth_element(begin, begin + half, begin + count, [&](uint32_t a, uint32_t b) {
@@ -87,9 +89,9 @@ class Builder {
                                            area)
                                : 0.5f * (a.centroid + b.centroid);
     // One plane: the same normal and the same offset along it.
-    node.planar = a.planar && b.planar && glm::dot(a.normal, b.normal) >= kSameNormal &&
-                  std::abs(glm::dot(a.normal, b.centroid - a.centroid)) <=
-                      1e-5f * (a.radius + b.radius);
+    node.planar =
+        a.planar && b.planar && glm::dot(a.normal, b.normal) >= kSameNormal &&
+        std::abs(glm::dot(a.normal, b.centroid - a.centroid)) <= 1e-5f * (a.radius + b.radius);
     node.normal = node.planar ? a.normal : glm::vec3(0.f);
     for (int k = 0; k < 6; ++k) node.axis_area[k] = a.axis_area[k] + b.axis_area[k];
   }

@@ -307,7 +307,8 @@ struct LinkRefiner::Work {
       stats->exact_links += local.exact;
       stats->refined += local.refined;
     }
-    if (self.budget_) self.budget_->charge(total * sizeof(Link), "the hierarchical radiosity links");
+    if (self.budget_)
+      self.budget_->charge(total * sizeof(Link), "the hierarchical radiosity links");
     std::vector<Link> links;
     links.reserve(total);
     for (Local& local : locals) {

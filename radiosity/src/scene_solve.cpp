@@ -181,7 +181,8 @@ void check_patch_count(const SceneSolveRequest& r, const scene::Scene& scene) {
   }
   const std::string message = r.scene_path + ": " + std::to_string(n) + " patches, more than the " +
                               std::to_string(kMaxPatches) +
-                              " that dense form-factor storage allows (8·N² bytes); " + advice;
+                              " that dense form-factor storage allows (8·N² bytes); " + advice +
+                              ", or --solver hierarchical";
   if (r.max_edge) throw RequestError(message);  // the edge length asked for
   throw std::runtime_error(message);
 }
@@ -342,8 +343,7 @@ SceneSolution solve_scene(const SceneSolveRequest& request,
   const scene::Scene before = prepare_scene(r, false);
   scene::Scene scene = r.moves.empty() ? before : prepare_scene(r, true);
   SceneSolution out;
-  if (!r.hierarchical && r.choose_solver && !r.refinement &&
-      scene.triangles.size() > kMaxPatches) {
+  if (!r.hierarchical && r.choose_solver && !r.refinement && scene.triangles.size() > kMaxPatches) {
     if (!r.form_factor_cache.empty())
       throw RequestError("--form-factor-cache " + r.form_factor_cache + kHierarchicalNoCache +
                          "; the dense solvers take at most " + std::to_string(kMaxPatches) +

@@ -67,8 +67,9 @@ std::string write_room(const fs::path& dir, float lift = 0.f) {
                                      "newmtl panel\nKd 0.3 0.3 0.3\nKe 0.5 1 2\n";
   char panel[256];
   const float y0 = 0.1f + lift, y1 = 0.3f + lift;
-  std::snprintf(panel, sizeof panel, "v 0.2 %.9g 0.99\nv 0.2 %.9g 0.99\nv 0.6 %.9g 0.99\nv 0.6 %.9g 0.99\n",
-                y0, y1, y1, y0);
+  std::snprintf(panel, sizeof panel,
+                "v 0.2 %.9g 0.99\nv 0.2 %.9g 0.99\nv 0.6 %.9g 0.99\nv 0.6 %.9g 0.99\n", y0, y1, y1,
+                y0);
   std::ofstream(dir / "room.obj")
       << "mtllib room.mtl\n"
          "v 0 0 0\nv 1 0 0\nv 1 0 1\nv 0 0 1\nv 0 1 0\nv 1 1 0\nv 1 1 1\nv 0 1 1\n"
@@ -93,8 +94,9 @@ TEST_CASE("hierarchical: closed box with uniform emission, L = E / (1 - rho)",
   // the kernel, err more: measured 0.76% worst at ε = 3e-5 (768 patches, 491,520 links; the
   // area mean exact to 1e-6), so 1e-2.
   const double rho = 0.5;
-  const prt::scene::Scene box = prt::scene::make_box({0, 0, 0}, {1, 1, 1}, 8,
-                                                     /*normals_inward=*/true, glm::vec3(float(rho)));
+  const prt::scene::Scene box =
+      prt::scene::make_box({0, 0, 0}, {1, 1, 1}, 8,
+                           /*normals_inward=*/true, glm::vec3(float(rho)));
   const prt::scene::RayCaster caster(box);
   std::vector<Patch> patches = make_patches(box);
   for (Patch& p : patches) p.emission = glm::dvec3(1.0);
@@ -117,9 +119,10 @@ TEST_CASE("hierarchical: closed box with uniform emission, L = E / (1 - rho)",
   CHECK(std::abs(e.escaped.x) / e.emitted.x < 2e-3);
 }
 
-TEST_CASE("hierarchical: agrees with the dense analytic solve, closer as epsilon falls, with "
-          "far fewer links than N^2",
-          "[radiosity][hierarchical]") {
+TEST_CASE(
+    "hierarchical: agrees with the dense analytic solve, closer as epsilon falls, with "
+    "far fewer links than N^2",
+    "[radiosity][hierarchical]") {
   // The open room of the solver tests (coloured walls, a block on the floor, a lamp) at 3,488
   // patches. Measured (docs/RADIOSITY.md, "Hierarchical radiosity"): relative RMS of patch
   // radiance against dense analytic 5.4% at ε = 3e-4 (92,012 links), 1.5% at 3e-5 (the default,
@@ -165,7 +168,8 @@ TEST_CASE("hierarchical: links grow far slower than the patches squared",
     count[k] = patches.size();
   }
   const double patch_ratio = double(count[1]) / count[0], link_ratio = double(links[1]) / links[0];
-  INFO("patches " << count[0] << " -> " << count[1] << ", links " << links[0] << " -> " << links[1]);
+  INFO("patches " << count[0] << " -> " << count[1] << ", links " << links[0] << " -> "
+                  << links[1]);
   CHECK(patch_ratio > 3.0);
   CHECK(link_ratio < 0.35 * patch_ratio * patch_ratio);
 }
@@ -193,7 +197,8 @@ TEST_CASE("hierarchical: per-emitter responses on the same links recombine to th
   double worst = 0.0, peak = 0.0;
   for (std::size_t k = 0; k < values; ++k) {
     double sum = 0.0;
-    for (std::size_t e = 0; e < 2; ++e) sum += r.emitters[e].emission[k % 3] * r.responses[e * values + k];
+    for (std::size_t e = 0; e < 2; ++e)
+      sum += r.emitters[e].emission[k % 3] * r.responses[e * values + k];
     worst = std::max(worst, std::abs(sum - direct[k]));
     peak = std::max(peak, double(direct[k]));
   }

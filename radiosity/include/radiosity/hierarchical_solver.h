@@ -58,9 +58,9 @@ struct HierarchicalStats {
   std::vector<HierarchicalPass> passes;
   std::size_t links = 0, exact_links = 0, rays = 0;  // links of the last pass; rays of all
   double hierarchy_seconds = 0, link_seconds = 0, solve_seconds = 0;
-  uint64_t link_bytes = 0;     // the final links
-  uint64_t budget_peak = 0;    // the largest total charged to the budget by the solve
-  double epsilon_absolute = 0; // the oracle's ε in radiance units
+  uint64_t link_bytes = 0;      // the final links
+  uint64_t budget_peak = 0;     // the largest total charged to the budget by the solve
+  double epsilon_absolute = 0;  // the oracle's ε in radiance units
 };
 
 struct HierarchicalSolution {

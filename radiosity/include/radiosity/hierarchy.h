@@ -35,11 +35,11 @@ struct HierarchyNode {
   glm::vec3 centroid{0.f};  // area-weighted centroid of its patches
   float radius = 0.f;       // half the diagonal of its patches' bounding box
   glm::vec3 lo{0.f}, hi{0.f};
-  float area = 0.f;  // visible area (see above)
+  float area = 0.f;       // visible area (see above)
   glm::vec3 normal{0.f};  // planar nodes: the common unit normal; clusters: 0
   bool planar = false;
-  uint32_t first = 0, count = 0;  // its patches: order[first, first + count)
-  uint32_t left = 0, right = 0;   // children; 0 for a leaf
+  uint32_t first = 0, count = 0;     // its patches: order[first, first + count)
+  uint32_t left = 0, right = 0;      // children; 0 for a leaf
   std::array<float, 6> axis_area{};  // A_{x,+}, A_{x,−}, A_{y,+}, … (see above)
   bool leaf() const { return count == 1; }
 };

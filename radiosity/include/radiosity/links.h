@@ -10,9 +10,10 @@
 //     distance between the centroids, V the fraction of `visibility_rays` segments between
 //     random points of random patches of r and s (pairs that face each other; the patches of s
 //     drawn in proportion to their radiance, so that a lamp clustered with a dark ceiling is
-//     judged by its own rays) that nothing blocks; power = g·P_r(d)·S_s(−d), d the unit direction from r to s, P_r the projected area
-//     of r (radiosity/hierarchy.h) and S_s the radiance-weighted projected area of s. The
-//     max(A) term is the point-to-disc regularisation (Wallace, Elmquist & Haines 1989).
+//     judged by its own rays) that nothing blocks; power = g·P_r(d)·S_s(−d), d the unit direction
+//     from r to s, P_r the projected area of r (radiosity/hierarchy.h) and S_s the
+//     radiance-weighted projected area of s. The max(A) term is the point-to-disc regularisation
+//     (Wallace, Elmquist & Haines 1989).
 // Oracle ("BF refinement" with an error factor): the estimated error of a point link in the
 // receiver's irradiance is  B_s · F̂ · min(1, (R_r + R_s) / r),  F̂ = P_r P_s / ((π r² + max A)
 // A_r) without visibility, B_s the largest radiance (channel) of any patch in s, R the nodes'

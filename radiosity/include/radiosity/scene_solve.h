@@ -122,7 +122,7 @@ struct SceneSolution {
   double per_emitter_seconds = 0;                   // the per-emitter solves
   std::vector<EmitterSolveReport> emitter_reports;  // one per emitter
   std::vector<std::string> files_written;           // the cache when saved, the responses
-  std::string form_factor_choice;  // with choose_method: choose_form_factors' reason
+  std::string form_factor_choice;                 // with choose_method: choose_form_factors' reason
   std::optional<HierarchicalStats> hierarchical;  // set when the hierarchical solver ran
   std::string solver_choice;  // with choose_solver: which solver and why (one line)
 };
