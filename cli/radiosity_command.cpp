@@ -20,6 +20,7 @@
 
 #include "command_registry.h"
 #include "option_rules.h"
+#include "prt/core/memory_budget.h"
 #include "radiosity/scene_solve.h"
 #include "relight/auto_exposure.h"
 #include "relight/radiosity_render.h"
@@ -32,7 +33,10 @@ namespace {
 struct RadiosityArguments {
   std::string scene, output, vertex_colors, csv, per_emitter;
   std::string form_factors = "auto";
-  std::string solver = "gauss-seidel";
+  std::string solver = "auto";
+  double link_epsilon = 3e-5;
+  int link_rays = 4;
+  int link_passes = 4;
   std::vector<std::string> emission, albedo, moves;
   std::string form_factor_cache;
   std::optional<double> max_edge;
@@ -105,15 +109,25 @@ radiosity::SceneSolveRequest make_solve_request(const RadiosityArguments& a) {
   } else {
     throw UsageError("--form-factors " + a.form_factors + ": expected auto|analytic|rays|hemicube");
   }
-  if (a.solver == "gauss-seidel") {
+  if (a.solver == "gauss-seidel" || a.solver == "auto" || a.solver == "hierarchical") {
     r.solve.solver = radiosity::SolverKind::GaussSeidel;
+    r.hierarchical = a.solver == "hierarchical";
+    r.choose_solver = a.solver == "auto";
   } else if (a.solver == "jacobi") {
     r.solve.solver = radiosity::SolverKind::Jacobi;
   } else if (a.solver == "progressive") {
     r.solve.solver = radiosity::SolverKind::Progressive;
   } else {
-    throw UsageError("--solver " + a.solver + ": expected gauss-seidel|jacobi|progressive");
+    throw UsageError("--solver " + a.solver +
+                     ": expected auto|gauss-seidel|jacobi|progressive|hierarchical");
   }
+  if (!(a.link_epsilon > 0.0 && a.link_epsilon < 1.0))
+    throw UsageError("--link-epsilon: must be in (0, 1)");
+  if (a.link_rays < 1 || a.link_rays > 256) throw UsageError("--link-rays: must be in 1..256");
+  if (a.link_passes < 1 || a.link_passes > 16) throw UsageError("--link-passes: must be in 1..16");
+  r.hierarchy.links.epsilon = a.link_epsilon;
+  r.hierarchy.links.visibility_rays = a.link_rays;
+  r.hierarchy.max_passes = a.link_passes;
   if (a.rays < 1 || a.rays > 1 << 24) throw UsageError("--rays: must be in 1..16777216");
   if (a.quadrature != 1 && a.quadrature != 3) throw UsageError("--quadrature: must be 1 or 3");
   if (a.hemicube < 2 || a.hemicube > 4096 || a.hemicube % 2 != 0)
@@ -181,6 +195,14 @@ void check_applicable(const RadiosityArguments& a, const CLI::App& cmd) {
                 "--form-factors analytic and the reciprocal emitter rows of --form-factors rays");
   refuse_unless(cmd, a.adaptive.has_value(),
                 {"--max-patches", "--adaptive-passes", "--adaptive-levels"}, "--adaptive");
+  refuse_unless(cmd, a.solver == "hierarchical" || a.solver == "auto",
+                {"--link-epsilon", "--link-rays", "--link-passes"}, "--solver hierarchical|auto");
+  if (a.solver == "hierarchical")
+    for (const char* name : {"--form-factors", "--rays", "--emitter-rays", "--ray-sampling",
+                             "--emitter-rows", "--seed", "--quadrature", "--hemicube"})
+      if (cmd.count(name) > 0)
+        throw UsageError(std::string(name) +
+                         ": not with --solver hierarchical (it makes its own links)");
   refuse_unless(cmd, !a.output.empty(), {"--size", "--spp", "--camera", "--exposure"},
                 "an image (-o IMAGE)");
   refuse_unless(cmd, lower_extension(a.output) == ".png", {"--exposure"},
@@ -293,6 +315,25 @@ void record_phases(const RadiosityRun& result) {
   record.phase("render", result.render.render_seconds);
 }
 
+// The hierarchical solve's statistics: nodes, links (form factors) per pass, rays, times.
+void print_hierarchy(const radiosity::HierarchicalStats& h) {
+  std::printf(
+      "hierarchical: %zu patches, %zu nodes (%zu planar, %zu clusters); %zu links (%zu exact "
+      "patch-patch), %s; %zu rays; epsilon %.3g; hierarchy %.2f s, links %.2f s, solve %.2f s\n",
+      h.patches, h.nodes, h.planar_nodes, h.clusters, h.links, h.exact_links,
+      prt::format_memory_size(h.link_bytes).c_str(), h.rays, h.epsilon_absolute,
+      h.hierarchy_seconds, h.link_seconds, h.solve_seconds);
+  for (std::size_t k = 0; k < h.passes.size(); ++k) {
+    const radiosity::HierarchicalPass& p = h.passes[k];
+    std::printf(
+        "hierarchical pass %zu: %zu links, %zu refined, %zu rays, %zu iterations; links "
+        "%.2f s, solve %.2f s\n",
+        k + 1, p.links, p.refined, p.rays, p.iterations, p.link_seconds, p.solve_seconds);
+  }
+  std::printf("hierarchical memory: %s charged at the peak\n",
+              prt::format_memory_size(h.budget_peak).c_str());
+}
+
 void run(const RadiosityArguments& args) {
   std::optional<tbb::global_control> thread_limit;
   if (args.threads > 0)
@@ -321,6 +362,8 @@ void run(const RadiosityArguments& args) {
       solution.iterations, args.solver == "progressive" ? "shots" : "sweeps",
       solution.converged ? "" : ", NOT converged: raise --max-iterations",
       result.render.render_seconds);
+  if (!s.solver_choice.empty()) std::printf("%s\n", s.solver_choice.c_str());
+  if (s.hierarchical) print_hierarchy(*s.hierarchical);
   if (!s.form_factor_choice.empty()) std::printf("%s\n", s.form_factor_choice.c_str());
   if (s.cache == radiosity::SceneSolution::Cache::Loaded)
     std::printf("form factors loaded from %s (%.2f s)\n", args.form_factor_cache.c_str(),
@@ -398,7 +441,19 @@ Command register_radiosity(CLI::App& app) {
   cmd->add_option("--hemicube", args->hemicube,
                   "Cells across the hemicube's top face for --form-factors hemicube")
       ->capture_default_str();
-  cmd->add_option("--solver", args->solver, "gauss-seidel|jacobi|progressive")
+  cmd->add_option("--solver", args->solver,
+                  "auto|gauss-seidel|jacobi|progressive|hierarchical; auto: gauss-seidel up to "
+                  "16384 patches (dense form factors), hierarchical above")
+      ->capture_default_str();
+  cmd->add_option("--link-epsilon", args->link_epsilon,
+                  "Hierarchical: refine a link when its estimated error exceeds this fraction of "
+                  "the largest emitted radiance")
+      ->capture_default_str();
+  cmd->add_option("--link-rays", args->link_rays,
+                  "Hierarchical: visibility rays per link between clusters or surfaces")
+      ->capture_default_str();
+  cmd->add_option("--link-passes", args->link_passes,
+                  "Hierarchical: refinement passes at most (each followed by a solve)")
       ->capture_default_str();
   cmd->add_option("--tolerance", args->tolerance,
                   "Stop when the unshot power is this fraction of the emitted power")

@@ -47,10 +47,10 @@ std::vector<glm::dvec3> sample_points(const Patch& p, const FormFactorOptions& o
   return points;
 }
 
-}  // namespace
-
-bool point_enclosed(const scene::RayCaster& caster, uint32_t patch, const glm::dvec3& x,
-                    const glm::dvec3& n, const std::vector<Patch>& patches) {
+// point_enclosed, with the emitting patches listed by the caller (null: scanned here).
+bool enclosed(const scene::RayCaster& caster, uint32_t patch, const glm::dvec3& x,
+              const glm::dvec3& n, const std::vector<Patch>& patches,
+              const std::vector<uint32_t>* emitters) {
   static const std::array<glm::dvec3, kEnclosureProbes> probes = local_probes();
   // An orthonormal frame around n (Duff et al. 2017).
   const double sign = std::copysign(1.0, n.z);
@@ -67,30 +67,49 @@ bool point_enclosed(const scene::RayCaster& caster, uint32_t patch, const glm::d
   // Every probe met a back face. Inside a room whose walls are wound the wrong way that is
   // also true, yet the lamps shine in: the point is enclosed only if no emitter's centroid is
   // in view of it either.
-  for (uint32_t e = 0; e < patches.size(); ++e) {
+  const auto sees = [&](uint32_t e) {
     const Patch& lamp = patches[e];
-    if (lamp.emission == glm::dvec3(0.0) || e == patch) continue;
+    if (lamp.emission == glm::dvec3(0.0) || e == patch) return false;
     const glm::dvec3 to = lamp.centroid - x;
     const double distance = glm::length(to);
-    if (!(distance > 0.0) || glm::dot(to, n) <= 0.0 || glm::dot(to, lamp.normal) >= 0.0) continue;
+    if (!(distance > 0.0) || glm::dot(to, n) <= 0.0 || glm::dot(to, lamp.normal) >= 0.0)
+      return false;
     const scene::RayCaster::Hit hit = caster.intersect(origin, glm::vec3(to / distance), 0.f,
                                                        static_cast<float>(distance * (1.0 + 1e-4)));
-    if (hit.hit && hit.triangle == e && hit.front_face) return false;
+    return hit.hit && hit.triangle == e && hit.front_face;
+  };
+  if (emitters) {  // the emitting patches, listed once by the caller
+    for (uint32_t e : *emitters)
+      if (sees(e)) return false;
+    return true;
   }
+  for (uint32_t e = 0; e < patches.size(); ++e)
+    if (sees(e)) return false;
   return true;
+}
+
+}  // namespace
+
+bool point_enclosed(const scene::RayCaster& caster, uint32_t patch, const glm::dvec3& x,
+                    const glm::dvec3& n, const std::vector<Patch>& patches) {
+  return enclosed(caster, patch, x, n, patches, nullptr);
 }
 
 std::vector<double> visible_fractions(const std::vector<Patch>& patches,
                                       const scene::RayCaster& caster,
                                       const FormFactorOptions& options) {
   std::vector<double> fraction(patches.size(), 1.0);
+  std::vector<uint32_t> emitters;  // so that an enclosed point does not scan every patch
+  for (uint32_t e = 0; e < patches.size(); ++e)
+    if (patches[e].emission != glm::dvec3(0.0)) emitters.push_back(e);
   tbb::parallel_for(std::size_t(0), patches.size(), [&](std::size_t i) {
     const Patch& p = patches[i];
     if (p.emission != glm::dvec3(0.0) || !(p.area > 0.0)) return;
     const std::vector<glm::dvec3> points = sample_points(p, options);
     int visible = 0;
     for (const glm::dvec3& x : points)
-      visible += point_enclosed(caster, static_cast<uint32_t>(i), x, p.normal, patches) ? 0 : 1;
+      visible +=
+          enclosed(caster, static_cast<uint32_t>(i), x, p.normal, patches, &emitters) ? 0 : 1;
     fraction[i] = double(visible) / double(points.size());
   });
   return fraction;

@@ -9,6 +9,7 @@
 #include <stdexcept>
 #include <system_error>
 
+#include "prt/core/memory_budget.h"
 #include "prt/emitters/emitter_responses.h"
 #include "radiosity/form_factor_cache.h"
 #include "radiosity/hidden_patches.h"
@@ -180,10 +181,40 @@ void check_patch_count(const SceneSolveRequest& r, const scene::Scene& scene) {
   }
   const std::string message = r.scene_path + ": " + std::to_string(n) + " patches, more than the " +
                               std::to_string(kMaxPatches) +
-                              " that dense form-factor storage allows (8·N² bytes); " + advice;
+                              " that dense form-factor storage allows (8·N² bytes); " + advice +
+                              ", or --solver hierarchical";
   if (r.max_edge) throw RequestError(message);  // the edge length asked for
   throw std::runtime_error(message);
 }
+
+// The hierarchical solve, and with per_emitter_path one gather solve per emitter on its links.
+void solve_hierarchy(const SceneSolveRequest& r, const scene::Scene& scene,
+                     std::vector<Patch>* patches, SceneSolution* out) {
+  const scene::RayCaster caster(scene);
+  if (r.hide_enclosed) mark_hidden_parts(patches, caster, r.form_factors);
+  MemoryBudget budget(r.memory_limit, r.scene_path);
+  HierarchicalOptions options = r.hierarchy;
+  options.solve.tolerance = r.solve.tolerance;
+  options.solve.max_iterations = r.solve.max_iterations;
+  const HierarchicalSolution solved = solve_hierarchical(*patches, caster, options, &budget);
+  out->solution = solved.solution;
+  out->hierarchical = solved.stats;
+  out->form_factor_seconds = solved.stats.hierarchy_seconds + solved.stats.link_seconds;
+  out->solve_seconds = solved.stats.solve_seconds;
+  if (r.per_emitter_path.empty()) return;
+  const Clock::time_point t = Clock::now();
+  const prt::EmitterResponses responses =
+      hierarchical_emitter_responses(scene, *patches, solved, r.solve, &out->emitter_reports);
+  out->per_emitter_seconds = since(t);
+  const prt::Status written = prt::write_emitter_responses(r.per_emitter_path, responses);
+  if (!written.ok()) throw std::runtime_error(written.message());
+  out->files_written.push_back(r.per_emitter_path);
+}
+
+constexpr const char* kHierarchicalNoCache =
+    ": not with the hierarchical solver (its links are refined against the solved radiosity, "
+    "so they depend on emission and albedo as well as geometry; it computes no dense form "
+    "factors to cache)";
 
 void check_unit_albedo(const SceneSolveRequest& r, const scene::Scene& scene,
                        const std::vector<Patch>& patches, SceneSolution* out) {
@@ -292,6 +323,14 @@ void check_scene_solve(const SceneSolveRequest& r, const std::vector<std::string
           "--adaptive with --form-factors hemicube needs --solver gauss-seidel or jacobi "
           "(progressive shoots raw hemicube rows, which alias on refined patches)");
   }
+  if (r.hierarchical) {
+    if (!r.form_factor_cache.empty())
+      throw std::invalid_argument("--form-factor-cache " + r.form_factor_cache +
+                                  kHierarchicalNoCache);
+    if (r.refinement)
+      throw std::invalid_argument(
+          "--adaptive: not with the hierarchical solver (it refines its own links)");
+  }
   if (!(r.solve.tolerance > 0.0 && r.solve.tolerance < 1.0))
     throw std::invalid_argument("--tolerance " + std::to_string(r.solve.tolerance) +
                                 ": must be in (0, 1)");
@@ -303,10 +342,26 @@ SceneSolution solve_scene(const SceneSolveRequest& request,
   SceneSolveRequest r = request;
   const scene::Scene before = prepare_scene(r, false);
   scene::Scene scene = r.moves.empty() ? before : prepare_scene(r, true);
-  check_patch_count(r, scene);
+  SceneSolution out;
+  if (!r.hierarchical && r.choose_solver && !r.refinement && scene.triangles.size() > kMaxPatches) {
+    if (!r.form_factor_cache.empty())
+      throw RequestError("--form-factor-cache " + r.form_factor_cache + kHierarchicalNoCache +
+                         "; the dense solvers take at most " + std::to_string(kMaxPatches) +
+                         " patches");
+    r.hierarchical = true;
+    out.solver_choice = "solver: hierarchical (" + std::to_string(scene.triangles.size()) +
+                        " patches, more than the " + std::to_string(kMaxPatches) +
+                        " of dense form factors)";
+  }
+  if (r.hierarchical) {
+    r.choose_method = false;  // no dense form factors; hidden parts at 3 quadrature points
+    r.form_factors.method = FormFactorMethod::Analytic;
+    r.form_factors.quadrature_points = 3;
+  } else {
+    check_patch_count(r, scene);
+  }
   if (!r.per_emitter_path.empty()) emitter_groups(scene);  // refused before solving
   if (before_solve) before_solve(scene);
-  SceneSolution out;
   if (r.choose_method) {
     std::size_t count = scene.triangles.size();
     if (r.refinement)
@@ -318,7 +373,9 @@ SceneSolution solve_scene(const SceneSolveRequest& request,
   }
   std::vector<Patch> patches = make_patches(scene);
   check_unit_albedo(r, scene, patches, &out);
-  if (r.refinement) {
+  if (r.hierarchical) {
+    solve_hierarchy(r, scene, &patches, &out);
+  } else if (r.refinement) {
     patches = solve_refined(r, &scene, &out);  // pass by pass
     if (r.hide_enclosed) mark_hidden_parts(&patches, scene::RayCaster(scene), r.form_factors);
   } else if (r.solve.solver == SolverKind::Progressive) {

@@ -85,7 +85,8 @@ TEST_CASE("prt radiosity refuses bad emission, albedo and --max-edge, nothing is
                     "--emitter-rays 4096",
                 "--emitter-rays");
   check_refused(dir, room + outputs + " --max-edge 0.0001", "--max-edge");  // > 2e7 triangles
-  check_refused(dir, room + outputs + " --max-edge 0.005", "patches");      // > 16384 patches
+  check_refused(dir, room + outputs + " --max-edge 0.005 --solver gauss-seidel",
+                "or --solver hierarchical");  // > 16384 patches: dense only (auto: hierarchical)
   room = write_room(dir, "-5 5 5", "0.7 0.7 0.7", false).string();
   check_refused(dir, room + outputs, "emission", 1);  // the file's own values: exit 1
   room = write_room(dir, "", "0.7 0.7 0.7", false).string();
@@ -244,4 +245,37 @@ TEST_CASE("prt radiosity prints its choice of form factors in one line, --quiet 
   r = run(room + " --max-edge 0.2 --form-factors analytic" + csv);  // forced: no choice
   REQUIRE(r.exit_code == 0);
   CHECK(choice_lines(r.out) == 0);
+}
+
+TEST_CASE(
+    "prt radiosity --solver hierarchical: links, passes and memory printed; the cache and "
+    "dense-only options refused",
+    "[radiosity][cli][hierarchical]") {
+  const fs::path dir = scratch("hierarchical");
+  const std::string room = write_room(dir, "5 5 5", "0.7 0.5 0.3", false).string();
+  const RunResult r =
+      run(room + " --solver hierarchical --max-edge 0.1 --csv " + (dir / "out.csv").string() +
+          " --per-emitter " + (dir / "out.prte").string());
+  INFO(r.out << r.err);
+  REQUIRE(r.exit_code == 0);
+  CHECK(r.out.find("hierarchical: ") != std::string::npos);
+  CHECK(r.out.find(" links (") != std::string::npos);
+  CHECK(r.out.find("hierarchical pass 2: ") != std::string::npos);
+  CHECK(r.out.find("charged at the peak") != std::string::npos);
+  CHECK(r.out.find("per-emitter responses: 1 emitter") != std::string::npos);
+  CHECK(fs::exists(dir / "out.prte"));
+  const fs::path refused = scratch("hierarchical_refused");
+  check_refused(refused,
+                room + " --solver hierarchical --form-factor-cache " +
+                    (refused / "ff.bin").string() + " --csv " + (refused / "out.csv").string(),
+                "not with the hierarchical solver");
+  CHECK_FALSE(fs::exists(refused / "ff.bin"));
+  check_refused(
+      refused,
+      room + " --solver hierarchical --form-factors rays --csv " + (refused / "out.csv").string(),
+      "--form-factors: not with --solver hierarchical");
+  check_refused(
+      refused,
+      room + " --solver jacobi --link-epsilon 1e-4 --csv " + (refused / "out.csv").string(),
+      "--link-epsilon");
 }

@@ -24,6 +24,7 @@
 #include "radiosity/emitter_solve.h"
 #include "radiosity/form_factor_update.h"
 #include "radiosity/form_factors.h"
+#include "radiosity/hierarchical_solver.h"
 #include "radiosity/patch_refinement.h"
 #include "radiosity/solver.h"
 #include "scene/material_assignment.h"
@@ -97,6 +98,12 @@ struct SceneSolveRequest {
   bool hide_enclosed = true;
   // Bytes the solve may hold (prt/core/memory_budget.h); 0: none.
   uint64_t memory_limit = 0;
+  // Hierarchical radiosity (hierarchical_solver.h) in place of dense form factors and `solve`'s
+  // solver (its tolerance and max_iterations apply); not with a cache or refinement. With
+  // choose_solver it is chosen when the patches exceed kMaxPatches (dense below).
+  bool hierarchical = false;
+  bool choose_solver = false;
+  HierarchicalOptions hierarchy;
 };
 
 struct SceneSolution {
@@ -115,7 +122,9 @@ struct SceneSolution {
   double per_emitter_seconds = 0;                   // the per-emitter solves
   std::vector<EmitterSolveReport> emitter_reports;  // one per emitter
   std::vector<std::string> files_written;           // the cache when saved, the responses
-  std::string form_factor_choice;  // with choose_method: choose_form_factors' reason
+  std::string form_factor_choice;                 // with choose_method: choose_form_factors' reason
+  std::optional<HierarchicalStats> hierarchical;  // set when the hierarchical solver ran
+  std::string solver_choice;  // with choose_solver: which solver and why (one line)
 };
 
 // Checks the request before any file is read: the responses file (.prte, a full-matrix

@@ -1,0 +1,95 @@
+// radiosity/hierarchical_solver.h — hierarchical radiosity: the radiosity equation of
+// radiosity/solver.h solved on links between the nodes of an element hierarchy instead of a dense
+// N × N form-factor matrix (Hanrahan, Salzman & Aupperle 1991, "A rapid hierarchical radiosity
+// algorithm", SIGGRAPH '91; clusters: Smits, Arvo & Greenberg 1994, "A clustering algorithm for
+// radiosity in complex environments", SIGGRAPH '94; Sillion 1995, "A unified hierarchical
+// algorithm for global illumination with scattering volumes and object clusters", IEEE TVCG 1(3)).
+//
+// Steps: the hierarchy (radiosity/hierarchy.h); pass 0 refines the links from the root's link to
+// itself against the emission (radiosity/links.h); then gather / push–pull iterations until the
+// unshot power is at most `solve.tolerance` of the emitted power; each further pass re-checks
+// every link against the radiosity just solved (the "BF" refinement: reflectors now carry light)
+// and solves again from the current solution, until a pass splits no link or `max_passes`.
+//
+// One iteration (Jacobi): every node gathers over its links (planar nodes into irradiance H,
+// clusters into six axis buckets of power); push: a planar node hands its H to its children, a
+// cluster hands each bucket to its children in proportion to their axis areas (a planar child
+// turns its share into irradiance); at the patches L = E + ρ·H; pull: a planar node's radiance is
+// the area-weighted mean of its children's, a cluster's six radiance-weighted axis areas
+// Q_{k,±} = Σ_i L_i A_{i,k,±} are summed (a cluster sends Σ_k |d_k| Q_{k,sign d_k} toward d).
+// The unshot power of an iteration is Σ_i A_i Σ_c |L_i,c − L'_i,c| over the patches, the change it
+// made (the residual of the previous iterate, as radiosity/solver.h defines it).
+// Energy account (per channel): emitted Σ A E; absorbed Σ A (1 − ρ) H; escaped Σ A L − Σ A H
+// (what left the patches and arrived nowhere, measured by the links: negative if the
+// approximations send more than a patch has); unshot as above; the balance holds exactly.
+// Memory: the hierarchy, the per-node state and the links are charged to `budget`.
+// Results do not depend on the thread count. Frame and units: the Scene's.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "prt/core/memory_budget.h"
+#include "prt/emitters/emitter_responses.h"
+#include "radiosity/emitter_solve.h"
+#include "radiosity/hierarchy.h"
+#include "radiosity/links.h"
+#include "radiosity/patches.h"
+#include "radiosity/solver.h"
+#include "scene/ray_caster.h"
+#include "scene/scene.h"
+
+namespace prt::radiosity {
+
+struct HierarchicalOptions {
+  LinkOptions links;
+  int max_passes = 4;  // refinement passes (each followed by a solve), at least 1
+  SolveOptions solve;  // tolerance and max_iterations; the solver kind is ignored
+};
+
+struct HierarchicalPass {
+  std::size_t links = 0, exact_links = 0, rays = 0, refined = 0, iterations = 0;
+  double link_seconds = 0, solve_seconds = 0;
+};
+
+struct HierarchicalStats {
+  std::size_t patches = 0, nodes = 0, planar_nodes = 0, clusters = 0;
+  std::vector<HierarchicalPass> passes;
+  std::size_t links = 0, exact_links = 0, rays = 0;  // links of the last pass; rays of all
+  double hierarchy_seconds = 0, link_seconds = 0, solve_seconds = 0;
+  uint64_t link_bytes = 0;      // the final links
+  uint64_t budget_peak = 0;     // the largest total charged to the budget by the solve
+  double epsilon_absolute = 0;  // the oracle's ε in radiance units
+};
+
+struct HierarchicalSolution {
+  Hierarchy hierarchy;
+  std::vector<Link> links;
+  Solution solution;  // per patch; display_radiance = radiance
+  HierarchicalStats stats;
+};
+
+// Solves for `patches` (the triangles of the scene `caster` was built on). Throws
+// std::invalid_argument for options out of range (epsilon ≤ 0, max_passes < 1, visibility_rays <
+// 1) and MemoryBudgetExceeded when the budget is too small.
+HierarchicalSolution solve_hierarchical(const std::vector<Patch>& patches,
+                                        const scene::RayCaster& caster,
+                                        const HierarchicalOptions& options,
+                                        MemoryBudget* budget = nullptr);
+
+// Gather / push–pull iterations on given links (any emission and albedo of the same patches),
+// from L = E.
+Solution solve_on_links(const std::vector<Patch>& patches, const Hierarchy& hierarchy,
+                        const std::vector<Link>& links, const SolveOptions& options,
+                        MemoryBudget* budget = nullptr);
+
+// One solve per emitter of `scene` on the same hierarchy and links (radiosity/emitter_solve.h's
+// responses: unit white emission on that emitter, every other patch dark).
+prt::EmitterResponses hierarchical_emitter_responses(const scene::Scene& scene,
+                                                     const std::vector<Patch>& patches,
+                                                     const HierarchicalSolution& solved,
+                                                     const SolveOptions& options,
+                                                     std::vector<EmitterSolveReport>* reports);
+
+}  // namespace prt::radiosity

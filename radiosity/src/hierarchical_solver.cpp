@@ -1,0 +1,343 @@
+// radiosity/src/hierarchical_solver.cpp — see radiosity/hierarchical_solver.h.
+#include "radiosity/hierarchical_solver.h"
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <stdexcept>
+
+#include <tbb/parallel_for.h>
+
+namespace prt::radiosity {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double since(Clock::time_point t) {
+  return std::chrono::duration<double>(Clock::now() - t).count();
+}
+
+constexpr uint32_t kNoSlot = 0xFFFFFFFFu;
+using Buckets = std::array<glm::dvec3, 6>;
+
+double max_channel(const glm::dvec3& v) {
+  return std::max(v.x, std::max(v.y, v.z));
+}
+
+// The state of the gather / push–pull iterations on one hierarchy and one set of links.
+class LinkSolver {
+ public:
+  LinkSolver(const std::vector<Patch>& patches, const Hierarchy& h, MemoryBudget* budget)
+      : patches_(patches), h_(h), budget_(budget) {
+    const std::size_t n = h.nodes.size();
+    std::size_t clusters = 0;
+    slot_.assign(n, kNoSlot);
+    for (std::size_t i = 0; i < n; ++i)
+      if (!h.nodes[i].planar) slot_[i] = static_cast<uint32_t>(clusters++);
+    charged_ = n * (2 * sizeof(glm::dvec3) + sizeof(float) + sizeof(uint32_t) + sizeof(uint64_t)) +
+               clusters * 2 * sizeof(Buckets);
+    if (budget_) budget_->charge(charged_, "the hierarchical radiosity node state");
+    radiance_.assign(n, glm::dvec3(0.0));
+    irradiance_.assign(n, glm::dvec3(0.0));
+    bmax_.assign(n, 0.f);
+    sent_.assign(clusters, Buckets{});
+    received_.assign(clusters, Buckets{});
+    for (std::size_t p = 0; p < patches.size(); ++p) radiance_[h.leaf_of[p]] = patches[p].emission;
+    pull();
+  }
+  ~LinkSolver() {
+    if (budget_) budget_->release(charged_);
+  }
+  LinkSolver(const LinkSolver&) = delete;
+  LinkSolver& operator=(const LinkSolver&) = delete;
+
+  void set_links(const std::vector<Link>* links) {
+    links_ = links;
+    offsets_.assign(h_.nodes.size() + 1, 0);
+    for (const Link& l : *links) ++offsets_[l.receiver + 1];
+    for (std::size_t i = 0; i < h_.nodes.size(); ++i) offsets_[i + 1] += offsets_[i];
+  }
+
+  const std::vector<float>& bmax() const { return bmax_; }
+
+  // Iterates until the unshot power is at most options.tolerance of the emitted power.
+  void iterate(const SolveOptions& options, Solution* out) {
+    glm::dvec3 emitted(0.0);
+    for (std::size_t p = 0; p < patches_.size(); ++p)
+      emitted += double(h_.nodes[h_.leaf_of[p]].area) * patches_[p].emission;
+    const double total = emitted.x + emitted.y + emitted.z;
+    if (!(total > 0.0)) throw std::invalid_argument("hierarchical radiosity: nothing emits");
+    out->energy.emitted = emitted;
+    for (std::size_t k = 0; k < options.max_iterations; ++k) {
+      const glm::dvec3 unshot = step(&out->energy);
+      ++out->iterations;
+      out->energy.unshot = unshot;
+      out->relative_unshot = (unshot.x + unshot.y + unshot.z) / total;
+      out->unshot_history.push_back(out->relative_unshot);
+      if (out->relative_unshot <= options.tolerance) {
+        out->converged = true;
+        break;
+      }
+    }
+  }
+
+  void radiance_out(Solution* out) const {
+    out->radiance.resize(patches_.size());
+    for (std::size_t p = 0; p < patches_.size(); ++p)  // area means, as radiosity/patches.h
+      out->radiance[p] = radiance_[h_.leaf_of[p]] * std::clamp(patches_[p].visible, 0.0, 1.0);
+    out->display_radiance = out->radiance;
+  }
+
+ private:
+  // One Jacobi iteration; returns the unshot power per channel and sets the energy account.
+  glm::dvec3 step(EnergyAccount* energy) {
+    gather();
+    push();
+    glm::dvec3 unshot(0.0), leaving(0.0), arrived(0.0), absorbed(0.0);
+    for (std::size_t p = 0; p < patches_.size(); ++p) {
+      const Patch& patch = patches_[p];
+      const uint32_t leaf = h_.leaf_of[p];
+      const double area = h_.nodes[leaf].area;  // visible area
+      const glm::dvec3 h = irradiance_[leaf];
+      const glm::dvec3 next = patch.emission + patch.albedo * h;
+      unshot += area * glm::abs(next - radiance_[leaf]);
+      leaving += area * radiance_[leaf];
+      arrived += area * h;
+      absorbed += area * (glm::dvec3(1.0) - patch.albedo) * h;
+      radiance_[leaf] = next;
+    }
+    pull();
+    energy->absorbed = absorbed;
+    energy->escaped = leaving - arrived;
+    return unshot;
+  }
+
+  void gather() {
+    const std::vector<HierarchyNode>& nodes = h_.nodes;
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nodes.size(), 1024),
+                      [&](const tbb::blocked_range<std::size_t>& range) {
+                        for (std::size_t r = range.begin(); r != range.end(); ++r) gather_at(r);
+                      });
+  }
+
+  void gather_at(std::size_t r) {
+    const HierarchyNode& nr = h_.nodes[r];
+    glm::dvec3 power(0.0);
+    Buckets buckets{};
+    for (uint64_t k = offsets_[r]; k < offsets_[r + 1]; ++k) {
+      const Link& link = (*links_)[k];
+      const uint32_t s = link.source_node();
+      if (link.exact()) {
+        power += double(link.g) * radiance_[s];
+        continue;
+      }
+      const HierarchyNode& ns = h_.nodes[s];
+      const glm::dvec3 delta = glm::dvec3(ns.centroid) - glm::dvec3(nr.centroid);
+      const glm::dvec3 d = delta / glm::length(delta);
+      glm::dvec3 sent(0.0);
+      if (ns.planar) {
+        sent =
+            radiance_[s] * (double(ns.area) * std::max(0.0, -glm::dot(glm::dvec3(ns.normal), d)));
+      } else {
+        const Buckets& q = sent_[slot_[s]];
+        for (int a = 0; a < 3; ++a) sent += std::abs(d[a]) * q[2 * a + (d[a] > 0.0)];
+      }
+      sent *= double(link.g);
+      if (nr.planar) {
+        power += sent * (double(nr.area) * std::max(0.0, glm::dot(glm::dvec3(nr.normal), d)));
+      } else {
+        for (int a = 0; a < 3; ++a) {
+          const int b = 2 * a + (d[a] < 0.0);
+          buckets[b] += sent * (std::abs(d[a]) * double(nr.axis_area[b]));
+        }
+      }
+    }
+    if (nr.planar)
+      irradiance_[r] = nr.area > 0.f ? power / double(nr.area) : glm::dvec3(0.0);
+    else
+      received_[slot_[r]] = buckets;
+  }
+
+  // Parents before children: hand down irradiance (planar) or bucket power (clusters).
+  void push() {
+    const std::vector<HierarchyNode>& nodes = h_.nodes;
+    for (std::size_t i = 0; i < nodes.size(); ++i) {
+      const HierarchyNode& n = nodes[i];
+      if (n.leaf()) continue;
+      for (uint32_t c : {n.left, n.right}) {
+        const HierarchyNode& child = nodes[c];
+        if (n.planar) {
+          if (child.area > 0.f) irradiance_[c] += irradiance_[i];
+          continue;
+        }
+        const Buckets& from = received_[slot_[i]];
+        glm::dvec3 power(0.0);
+        for (int b = 0; b < 6; ++b) {
+          if (!(n.axis_area[b] > 0.f)) continue;
+          const glm::dvec3 share = from[b] * (double(child.axis_area[b]) / double(n.axis_area[b]));
+          if (child.planar)
+            power += share;
+          else
+            received_[slot_[c]][b] += share;
+        }
+        if (child.planar && child.area > 0.f) irradiance_[c] += power / double(child.area);
+      }
+    }
+  }
+
+  // Children before parents: area-weighted radiance (planar), radiance-weighted axis areas
+  // (clusters), and the largest radiance channel below each node.
+  void pull() {
+    const std::vector<HierarchyNode>& nodes = h_.nodes;
+    for (std::size_t k = nodes.size(); k-- > 0;) {
+      const HierarchyNode& n = nodes[k];
+      if (n.leaf()) {
+        bmax_[k] = float(max_channel(radiance_[k]));
+        continue;
+      }
+      const HierarchyNode &a = nodes[n.left], &b = nodes[n.right];
+      bmax_[k] = std::max(bmax_[n.left], bmax_[n.right]);
+      if (n.planar) {
+        radiance_[k] =
+            n.area > 0.f
+                ? (double(a.area) * radiance_[n.left] + double(b.area) * radiance_[n.right]) /
+                      double(n.area)
+                : glm::dvec3(0.0);
+        continue;
+      }
+      Buckets& q = sent_[slot_[k]];
+      for (int i = 0; i < 6; ++i) q[i] = glm::dvec3(0.0);
+      for (uint32_t c : {n.left, n.right}) {
+        const HierarchyNode& child = nodes[c];
+        for (int i = 0; i < 6; ++i)
+          q[i] += child.planar ? radiance_[c] * double(child.axis_area[i]) : sent_[slot_[c]][i];
+      }
+    }
+  }
+
+  const std::vector<Patch>& patches_;
+  const Hierarchy& h_;
+  MemoryBudget* budget_;
+  uint64_t charged_ = 0;
+  const std::vector<Link>* links_ = nullptr;
+  std::vector<uint64_t> offsets_;
+  std::vector<uint32_t> slot_;
+  std::vector<glm::dvec3> radiance_, irradiance_;
+  std::vector<float> bmax_;
+  std::vector<Buckets> sent_, received_;
+};
+
+void check_options(const HierarchicalOptions& o) {
+  if (!(o.links.epsilon > 0.0) || !std::isfinite(o.links.epsilon))
+    throw std::invalid_argument("hierarchical radiosity: epsilon must be a finite positive number");
+  if (o.max_passes < 1) throw std::invalid_argument("hierarchical radiosity: max_passes < 1");
+  if (o.links.visibility_rays < 1)
+    throw std::invalid_argument("hierarchical radiosity: visibility_rays < 1");
+}
+
+}  // namespace
+
+HierarchicalSolution solve_hierarchical(const std::vector<Patch>& patches,
+                                        const scene::RayCaster& caster,
+                                        const HierarchicalOptions& options, MemoryBudget* budget) {
+  check_options(options);
+  MemoryBudget unlimited;
+  MemoryBudget* b = budget ? budget : &unlimited;
+  const uint64_t used_before = b->used();
+  HierarchicalSolution out;
+  HierarchicalStats& st = out.stats;
+  Clock::time_point t = Clock::now();
+  b->charge(hierarchy_bytes(patches.size()), "the radiosity hierarchy");
+  out.hierarchy = build_hierarchy(patches);
+  st.hierarchy_seconds = since(t);
+  st.patches = patches.size();
+  st.nodes = out.hierarchy.nodes.size();
+  st.planar_nodes = out.hierarchy.planar_nodes;
+  st.clusters = out.hierarchy.clusters;
+  double emission_max = 0.0;
+  for (const Patch& p : patches) emission_max = std::max(emission_max, max_channel(p.emission));
+  if (!(emission_max > 0.0)) throw std::invalid_argument("hierarchical radiosity: nothing emits");
+  st.epsilon_absolute = options.links.epsilon * emission_max;
+
+  LinkSolver solver(patches, out.hierarchy, b);
+  const LinkRefiner refiner(patches, out.hierarchy, caster, options.links, b);
+  for (int pass = 0; pass < options.max_passes; ++pass) {
+    HierarchicalPass record;
+    t = Clock::now();
+    LinkStats ls;
+    std::vector<Link> links =
+        pass == 0 ? refiner.initial(solver.bmax(), st.epsilon_absolute, &ls)
+                  : refiner.refine(out.links, solver.bmax(), st.epsilon_absolute, &ls);
+    if (pass > 0 && ls.refined == 0) {
+      if (b) b->release(links.size() * sizeof(Link));
+      break;
+    }
+    if (pass > 0) b->release(out.links.size() * sizeof(Link));
+    out.links = std::move(links);
+    record.link_seconds = since(t);
+    record.links = ls.links, record.exact_links = ls.exact_links, record.rays = ls.rays;
+    record.refined = ls.refined;
+    t = Clock::now();
+    solver.set_links(&out.links);
+    Solution solution;
+    solver.iterate(options.solve, &solution);
+    record.solve_seconds = since(t);
+    record.iterations = solution.iterations;
+    solution.iterations += out.solution.iterations;
+    out.solution = std::move(solution);
+    st.passes.push_back(record);
+    st.link_seconds += record.link_seconds;
+    st.solve_seconds += record.solve_seconds;
+    st.rays += record.rays;
+  }
+  solver.radiance_out(&out.solution);
+  st.links = out.links.size();
+  st.exact_links = st.passes.back().exact_links;
+  st.link_bytes = out.links.size() * sizeof(Link);
+  st.budget_peak = b->peak() > used_before ? b->peak() - used_before : 0;
+  return out;
+}
+
+Solution solve_on_links(const std::vector<Patch>& patches, const Hierarchy& hierarchy,
+                        const std::vector<Link>& links, const SolveOptions& options,
+                        MemoryBudget* budget) {
+  LinkSolver solver(patches, hierarchy, budget);
+  solver.set_links(&links);
+  Solution out;
+  solver.iterate(options, &out);
+  solver.radiance_out(&out);
+  return out;
+}
+
+prt::EmitterResponses hierarchical_emitter_responses(const scene::Scene& scene,
+                                                     const std::vector<Patch>& patches,
+                                                     const HierarchicalSolution& solved,
+                                                     const SolveOptions& options,
+                                                     std::vector<EmitterSolveReport>* reports) {
+  const std::vector<EmitterGroup> groups = emitter_groups(scene);
+  if (groups.empty()) throw std::invalid_argument(scene.source_path + ": nothing emits light");
+  prt::EmitterResponses out;
+  const std::size_t v_count = scene.vertex_count();
+  for (std::size_t v = 0; v < v_count; ++v)
+    for (int c = 0; c < 3; ++c) {
+      out.positions.push_back(scene.positions[v][c]);
+      out.normals.push_back(scene.normals[v][c]);
+    }
+  for (const glm::uvec3& t : scene.triangles)
+    for (int c = 0; c < 3; ++c) out.triangles.push_back(t[c]);
+  std::vector<Patch> lit = patches;
+  for (const EmitterGroup& group : groups) {
+    for (Patch& p : lit) p.emission = glm::dvec3(0.0);
+    for (uint32_t t : group.triangles) lit[t].emission = glm::dvec3(1.0);
+    const Solution solution = solve_on_links(lit, solved.hierarchy, solved.links, options);
+    const std::vector<float> vertex = vertex_radiance(scene, lit, solution.radiance);
+    out.responses.insert(out.responses.end(), vertex.begin(), vertex.end());
+    out.emitters.push_back({group.name, {group.emission.x, group.emission.y, group.emission.z}});
+    if (reports)
+      reports->push_back(
+          {group.name, solution.iterations, solution.converged, solution.relative_unshot});
+  }
+  return out;
+}
+
+}  // namespace prt::radiosity

@@ -1,0 +1,353 @@
+// radiosity/src/links.cpp — see radiosity/links.h.
+#include "radiosity/links.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_sort.h>
+#include <tbb/task_group.h>
+
+#include "numerics/constants.h"
+#include "radiosity/form_factors.h"
+
+namespace prt::radiosity {
+namespace {
+
+constexpr float kSameNormal = 1.f - 1e-6f;
+constexpr uint32_t kSpawnPatches = 20000;  // spawn a task for pairs holding more patches
+
+uint64_t mix(uint64_t x) {
+  x += 0x9E3779B97F4A7C15ull;
+  x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ull;
+  x = (x ^ (x >> 27)) * 0x94D049BB133111EBull;
+  return x ^ (x >> 31);
+}
+
+struct Random {
+  uint64_t state;
+  double uniform() { return double(mix(state++) >> 11) * 0x1.0p-53; }
+  uint32_t below(uint32_t n) { return static_cast<uint32_t>(uniform() * n) % n; }
+};
+
+// Is the bounding box of `box` wholly on or behind the plane of planar node `plane`?
+bool behind(const HierarchyNode& plane, const HierarchyNode& box) {
+  const float tolerance = 1e-6f * (plane.radius + box.radius);
+  for (int c = 0; c < 8; ++c) {
+    const glm::vec3 q((c & 1) ? box.hi.x : box.lo.x, (c & 2) ? box.hi.y : box.lo.y,
+                      (c & 4) ? box.hi.z : box.lo.z);
+    if (glm::dot(plane.normal, q - plane.centroid) > tolerance) return false;
+  }
+  return true;
+}
+
+glm::dvec3 barycentric_point(const Patch& p, double a, double b) {
+  return p.corners[0] * a + p.corners[1] * b + p.corners[2] * (1.0 - a - b);
+}
+
+struct Local {
+  std::vector<Link> links;
+  uint64_t charged = 0;
+  std::size_t rays = 0, exact = 0, refined = 0;
+};
+
+// What the oracle sees of a pair, before visibility.
+struct PairGeometry {
+  bool cull = false, both_leaves = false, must_split = false;
+  double distance = 0, denominator = 0;  // π r² + max(A_r, A_s)
+  double fhat = 0;                       // F̂ (see links.h)
+  double error = 0;                      // B_s · F̂ · min(1, (R_r + R_s)/r)
+};
+
+}  // namespace
+
+struct LinkRefiner::Work {
+  const LinkRefiner& self;
+  const std::vector<float>& bmax;
+  double epsilon;
+  tbb::enumerable_thread_specific<Local> locals;
+
+  const HierarchyNode& node(uint32_t i) const { return self.h_.nodes[i]; }
+  const Patch& patch_of(const HierarchyNode& n) const {
+    return self.patches_[self.h_.order[n.first]];
+  }
+
+  void emit(const Link& link) {
+    Local& local = locals.local();
+    if (local.links.size() == local.links.capacity()) {
+      const std::size_t cap = local.links.capacity(), grown = std::max<std::size_t>(4096, 2 * cap);
+      if (self.budget_)
+        self.budget_->charge((grown - cap) * sizeof(Link), "the hierarchical radiosity links");
+      local.charged += (grown - cap) * sizeof(Link);
+      local.links.reserve(grown);
+    }
+    local.links.push_back(link);
+  }
+
+  // The point form factor from x (receiving as node r) to y (sending as node s).
+  static double kernel(const HierarchyNode& nr, const glm::vec3& x, const HierarchyNode& ns,
+                       const glm::vec3& y) {
+    const glm::vec3 delta = y - x;
+    const float d2 = glm::dot(delta, delta);
+    if (!(d2 > 0.f)) return 0.0;
+    const glm::vec3 d = delta / std::sqrt(d2);
+    return double(projected_area(nr, d)) * double(projected_area(ns, -d)) /
+           (double(nr.area) * numerics::kPi * double(d2));
+  }
+
+  // How much the point form factor changes over the receiver's and the sender's boxes: its
+  // largest minus its smallest value at the centroids and at the eight corners of either box
+  // (the other end at its centroid).
+  static double kernel_spread(const HierarchyNode& nr, const HierarchyNode& ns) {
+    const double centre = kernel(nr, nr.centroid, ns, ns.centroid);
+    double lo = centre, hi = centre;
+    for (int c = 0; c < 8; ++c) {
+      const glm::vec3 pick(c & 1 ? 1.f : 0.f, c & 2 ? 1.f : 0.f, c & 4 ? 1.f : 0.f);
+      const glm::vec3 xr = nr.lo + pick * (nr.hi - nr.lo), ys = ns.lo + pick * (ns.hi - ns.lo);
+      const double a = kernel(nr, xr, ns, ns.centroid), b = kernel(nr, nr.centroid, ns, ys);
+      lo = std::min(lo, std::min(a, b));
+      hi = std::max(hi, std::max(a, b));
+    }
+    return hi - lo;
+  }
+
+  PairGeometry geometry(uint32_t r, uint32_t s) const {
+    const double epsilon = this->epsilon;
+    PairGeometry g;
+    const HierarchyNode &nr = node(r), &ns = node(s);
+    if (!(nr.area > 0.f) || !(ns.area > 0.f)) return g.cull = true, g;
+    if (nr.planar && ns.planar &&
+        (glm::dot(nr.normal, ns.normal) >= kSameNormal || behind(nr, ns) || behind(ns, nr)))
+      return g.cull = true, g;
+    if (nr.planar && !ns.planar && behind(nr, ns)) return g.cull = true, g;
+    if (ns.planar && !nr.planar && behind(ns, nr)) return g.cull = true, g;
+    g.both_leaves = nr.leaf() && ns.leaf();
+    if (g.both_leaves) return g;
+    const glm::vec3 delta = ns.centroid - nr.centroid;
+    g.distance = glm::length(glm::dvec3(delta));
+    const double reach = double(nr.radius) + double(ns.radius);
+    if (!(g.distance > reach)) return g.must_split = true, g;
+    const glm::vec3 d = glm::vec3(glm::dvec3(delta) / g.distance);
+    const double pr = projected_area(nr, d), ps = projected_area(ns, -d);
+    g.denominator = numerics::kPi * g.distance * g.distance;
+    g.fhat = pr * ps / (g.denominator * nr.area);
+    if (g.fhat <= 0.0) {
+      // Facing away at the centroids, yet parts may face each other: refine unless even the
+      // bound F ≤ A_s / (π (r − R_r − R_s)²) makes the light negligible.
+      const double gap = g.distance - reach;
+      const double bound = std::min(1.0, double(ns.area) / (numerics::kPi * gap * gap));
+      if (double(bmax[s]) * bound * (reach / g.distance) > epsilon) return g.must_split = true, g;
+      return g.cull = true, g;
+    }
+    g.error = double(bmax[s]) * kernel_spread(nr, ns);
+    return g;
+  }
+
+  // A_s·F_sr of two patches (links.h, exact).
+  float exact_g(const Patch& r, uint32_t r_index, const Patch& s, uint32_t s_index, Local& local) {
+    static constexpr double kW[3][3] = {
+        {2.0 / 3, 1.0 / 6, 1.0 / 6}, {1.0 / 6, 2.0 / 3, 1.0 / 6}, {1.0 / 6, 1.0 / 6, 2.0 / 3}};
+    std::vector<glm::dvec3> polygon(r.corners.begin(), r.corners.end());
+    double sum = 0.0;
+    for (int k = 0; k < 3; ++k) {
+      const glm::dvec3 x = barycentric_point(s, kW[k][0], kW[k][1]);
+      if (glm::dot(r.normal, x - r.centroid) <= 0.0) continue;
+      const double f = point_polygon_form_factor(x, s.normal, polygon);
+      if (f <= 0.0) continue;
+      const glm::dvec3 y = barycentric_point(r, kW[k][0], kW[k][1]);
+      const glm::vec3 o = self.caster_.surface_origin(s_index, glm::vec3(x), glm::vec3(s.normal));
+      const glm::vec3 t = self.caster_.surface_origin(r_index, glm::vec3(y), glm::vec3(r.normal));
+      const glm::vec3 d = t - o;
+      const float length = glm::length(d);
+      ++local.rays;
+      if (!(length > 0.f) || !self.caster_.occluded(o, d / length, 0.f, length)) sum += f;
+    }
+    return static_cast<float>(s.area * sum / 3.0);
+  }
+
+  // A patch of the sending node, drawn in proportion to its largest radiance channel (by
+  // rejection against the node's bound, at most 16 tries; uniformly when the node is dark), so
+  // that visibility is sampled where the light leaves: a lamp clustered with the ceiling behind it
+  // is not judged by the ceiling's rays.
+  uint32_t source_sample(const HierarchyNode& ns, Random& random) const {
+    uint32_t patch = self.h_.order[ns.first + random.below(ns.count)];
+    const float bound = bmax[&ns - self.h_.nodes.data()];
+    if (!(bound > 0.f) || ns.count == 1) return patch;
+    for (int k = 0; k < 16; ++k) {
+      if (random.uniform() * bound <= bmax[self.h_.leaf_of[patch]]) return patch;
+      patch = self.h_.order[ns.first + random.below(ns.count)];
+    }
+    return patch;
+  }
+
+  // A patch of the receiving node, drawn in proportion to its visible fraction (by rejection, at
+  // most 16 tries).
+  uint32_t receiver_sample(const HierarchyNode& nr, Random& random) const {
+    uint32_t patch = self.h_.order[nr.first + random.below(nr.count)];
+    for (int k = 0; k < 16 && nr.count > 1; ++k) {
+      if (random.uniform() <= self.patches_[patch].visible) return patch;
+      patch = self.h_.order[nr.first + random.below(nr.count)];
+    }
+    return patch;
+  }
+
+  // The fraction of facing sample pairs of r and s that see each other; −1 if no sample pair
+  // faces.
+  double visibility(uint32_t r, uint32_t s, Local& local) {
+    const HierarchyNode &nr = node(r), &ns = node(s);
+    Random random{mix(self.options_.seed ^ mix((uint64_t(r) << 32) | s))};
+    const int wanted = std::max(1, self.options_.visibility_rays);
+    int facing = 0, visible = 0;
+    for (int tries = 0; tries < 8 * wanted && facing < wanted; ++tries) {
+      const uint32_t a = receiver_sample(nr, random);
+      const uint32_t b = source_sample(ns, random);
+      const Patch &pa = self.patches_[a], &pb = self.patches_[b];
+      double u = random.uniform(), v = random.uniform();
+      if (u + v > 1.0) u = 1.0 - u, v = 1.0 - v;
+      const glm::dvec3 x = barycentric_point(pa, u, v);
+      u = random.uniform(), v = random.uniform();
+      if (u + v > 1.0) u = 1.0 - u, v = 1.0 - v;
+      const glm::dvec3 y = barycentric_point(pb, u, v);
+      if (glm::dot(pa.normal, y - x) <= 0.0 || glm::dot(pb.normal, x - y) <= 0.0) continue;
+      ++facing;
+      const glm::vec3 o = self.caster_.surface_origin(a, glm::vec3(x), glm::vec3(pa.normal));
+      const glm::vec3 t = self.caster_.surface_origin(b, glm::vec3(y), glm::vec3(pb.normal));
+      const glm::vec3 d = t - o;
+      const float length = glm::length(d);
+      ++local.rays;
+      if (!(length > 0.f) || !self.caster_.occluded(o, d / length, 0.f, length)) ++visible;
+    }
+    return facing == 0 ? -1.0 : double(visible) / facing;
+  }
+
+  void split(uint32_t r, uint32_t s) {
+    const HierarchyNode &nr = node(r), &ns = node(s);
+    const bool split_source = nr.leaf() || (!ns.leaf() && ns.radius > nr.radius);
+    const auto run = [&](uint32_t a0, uint32_t b0, uint32_t a1, uint32_t b1) {
+      if (nr.count + ns.count > kSpawnPatches) {
+        tbb::task_group group;
+        group.run([&] { pair(a0, b0); });
+        pair(a1, b1);
+        group.wait();
+      } else {
+        pair(a0, b0);
+        pair(a1, b1);
+      }
+    };
+    if (split_source)
+      run(r, ns.left, r, ns.right);
+    else
+      run(nr.left, s, nr.right, s);
+  }
+
+  // Refines the link r ← s from scratch.
+  void pair(uint32_t r, uint32_t s) {
+    const PairGeometry g = geometry(r, s);
+    if (g.cull) return;
+    if (g.both_leaves) {
+      const HierarchyNode &nr = node(r), &ns = node(s);
+      Local& local = locals.local();
+      const float value = exact_g(patch_of(nr), self.h_.order[nr.first], patch_of(ns),
+                                  self.h_.order[ns.first], local);
+      if (value > 0.f) {
+        ++local.exact;
+        emit({r, s | Link::kExact, value});
+      }
+      return;
+    }
+    if (g.must_split || g.error > epsilon) return split(r, s);
+    const double v = visibility(r, s, locals.local());
+    if (v < 0.0 && double(bmax[s]) * g.fhat > epsilon) return split(r, s);  // facing parts rare
+    if (v <= 0.0) return;
+    if (v < 1.0 && 0.5 * double(bmax[s]) * g.fhat > epsilon) return split(r, s);
+    emit({r, s, static_cast<float>(v / g.denominator)});
+  }
+
+  // Refines the root's (or any node's) interaction with itself.
+  void self_pair(uint32_t n) {
+    const HierarchyNode& nn = node(n);
+    if (nn.leaf() || nn.planar) return;  // a plane does not see itself
+    if (nn.count > kSpawnPatches) {
+      tbb::task_group group;
+      group.run([&] { self_pair(nn.left); });
+      group.run([&] { self_pair(nn.right); });
+      group.run([&] { pair(nn.left, nn.right); });
+      pair(nn.right, nn.left);
+      group.wait();
+    } else {
+      self_pair(nn.left);
+      self_pair(nn.right);
+      pair(nn.left, nn.right);
+      pair(nn.right, nn.left);
+    }
+  }
+
+  // An existing link against the new bound: kept or refined.
+  void recheck(const Link& link) {
+    if (link.exact()) return emit(link);
+    const uint32_t r = link.receiver, s = link.source_node();
+    const PairGeometry g = geometry(r, s);
+    const double v = double(link.g) * g.denominator;
+    const bool partial = v < 0.999 && 0.5 * double(bmax[s]) * g.fhat > epsilon;
+    if (!g.cull && !g.must_split && g.error <= epsilon && !partial) return emit(link);
+    ++locals.local().refined;
+    split(r, s);
+  }
+
+  std::vector<Link> collect(LinkStats* stats) {
+    std::size_t total = 0;
+    uint64_t charged = 0;
+    *stats = LinkStats{};
+    for (const Local& local : locals) {
+      total += local.links.size();
+      charged += local.charged;
+      stats->rays += local.rays;
+      stats->exact_links += local.exact;
+      stats->refined += local.refined;
+    }
+    if (self.budget_)
+      self.budget_->charge(total * sizeof(Link), "the hierarchical radiosity links");
+    std::vector<Link> links;
+    links.reserve(total);
+    for (Local& local : locals) {
+      links.insert(links.end(), local.links.begin(), local.links.end());
+      std::vector<Link>().swap(local.links);
+    }
+    if (self.budget_) self.budget_->release(charged);
+    tbb::parallel_sort(links.begin(), links.end(), [](const Link& a, const Link& b) {
+      return a.receiver != b.receiver ? a.receiver < b.receiver : a.source < b.source;
+    });
+    stats->links = links.size();
+    stats->exact_links = 0;
+    for (const Link& l : links) stats->exact_links += l.exact();
+    return links;
+  }
+};
+
+LinkRefiner::LinkRefiner(const std::vector<Patch>& patches, const Hierarchy& hierarchy,
+                         const scene::RayCaster& caster, const LinkOptions& options,
+                         MemoryBudget* budget)
+    : patches_(patches), h_(hierarchy), caster_(caster), options_(options), budget_(budget) {}
+
+std::vector<Link> LinkRefiner::initial(const std::vector<float>& bmax, double epsilon,
+                                       LinkStats* stats) const {
+  Work work{*this, bmax, epsilon, {}};
+  work.self_pair(0);
+  return work.collect(stats);
+}
+
+std::vector<Link> LinkRefiner::refine(const std::vector<Link>& links,
+                                      const std::vector<float>& bmax, double epsilon,
+                                      LinkStats* stats) const {
+  Work work{*this, bmax, epsilon, {}};
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, links.size(), 4096),
+                    [&](const tbb::blocked_range<std::size_t>& range) {
+                      for (std::size_t k = range.begin(); k != range.end(); ++k)
+                        work.recheck(links[k]);
+                    });
+  return work.collect(stats);
+}
+
+}  // namespace prt::radiosity
