@@ -248,7 +248,7 @@ TEST_CASE("prt radiosity prints its choice of form factors in one line, --quiet 
 }
 
 TEST_CASE(
-    "prt radiosity --solver hierarchical: links, passes and memory printed; the cache and "
+    "prt radiosity --solver hierarchical: links, passes and memory printed, the cache and "
     "dense-only options refused",
     "[radiosity][cli][hierarchical]") {
   const fs::path dir = scratch("hierarchical");
