@@ -84,6 +84,19 @@ TEST_CASE("cli run record: times and threads beside the bake, not in it, and prt
   CHECK(bare.out.find("not recorded (" + record + " is absent)") != std::string::npos);
   const RunResult bare_json = run(prt_cli() + " info --json " + out.string());
   CHECK_FALSE(nlohmann::json::parse(bare_json.out).contains("run"));
+
+  // A damaged record is reported as it is, never trusted: not JSON, or numbers out of any range
+  // (printed as given, never converted to a narrower type).
+  std::ofstream(record) << "{bad";
+  const RunResult damaged = run(prt_cli() + " info " + out.string());
+  CHECK(damaged.exit_code == 0);
+  CHECK(damaged.out.find(record + " is not a JSON object") != std::string::npos);
+  std::ofstream(record) << R"({"threads": 1e30, "peak_resident_bytes": -5})";
+  const RunResult absurd = run(prt_cli() + " info " + out.string());
+  INFO(absurd.out);
+  CHECK(absurd.exit_code == 0);
+  CHECK(absurd.out.find("on 1000000000000000019884624838656 thread(s)") != std::string::npos);
+  CHECK(absurd.out.find("peak resident 0 B") != std::string::npos);
 }
 
 TEST_CASE(
