@@ -59,12 +59,8 @@ ShapeLayout make_field_layout(bool glossy) {
   ShapeLayout layout;
   layout.source_path = glossy ? "procedural:field-glossy" : "procedural:field";
   LayoutPart ground = field_part(glossy, "ground", "ground");
-  PanelShape plane;  // facing +Y: cross(+Z, +X)
-  plane.corner = {-12.0, 0.0, -12.0};
-  plane.u = {0, 0, 1};
-  plane.v = {1, 0, 0};
-  plane.length_u = plane.length_v = 24.0;
-  ground.panels.push_back(plane);
+  // facing +Y: cross(+Z, +X)
+  ground.panels.push_back(make_panel({-12.0, 0.0, -12.0}, {0, 0, 1}, 24.0, {1, 0, 0}, 24.0));
   layout.parts.push_back(std::move(ground));
   const auto sphere = [&](const char* name, const char* role, glm::dvec3 c, double r) {
     LayoutPart p = field_part(glossy, name, role);
