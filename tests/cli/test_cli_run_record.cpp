@@ -103,9 +103,11 @@ TEST_CASE(
     "cli run record: radiosity writes it beside --per-emitter, prt info of the .prte reads it") {
   const fs::path dir = scratch("run_record_radiosity");
   const fs::path box = write_box(dir), prte = dir / "box.prte";
+  const fs::path cache = dir / "box.ffc";
   const RunResult solved =
       run(prt_cli() + " radiosity " + box.string() + " --per-emitter " + prte.string() + " --csv " +
-          (dir / "box.csv").string() + " --max-edge 0.5 --threads 2 --quiet");
+          (dir / "box.csv").string() + " --form-factor-cache " + cache.string() +
+          " --max-edge 0.5 --threads 2 --quiet");
   INFO(solved.err);
   REQUIRE(solved.exit_code == 0);
   REQUIRE(fs::exists(prte.string() + ".run.json"));
@@ -113,9 +115,15 @@ TEST_CASE(
   const nlohmann::json r = read_json(prte.string() + ".run.json");
   CHECK(r["threads"] == 2);
   CHECK(r["phase_seconds"].contains("per-emitter solves"));
+  CHECK_FALSE(r["phase_seconds"].contains("render"));  // no image was asked for
   const RunResult json = run(prt_cli() + " info --json " + prte.string());
   REQUIRE(json.exit_code == 0);
   CHECK(nlohmann::json::parse(json.out)["run"]["threads"] == 2);
+  // The cache never has a record of its own: prt info does not call it missing.
+  const RunResult ffc = run(prt_cli() + " info " + cache.string());
+  INFO(ffc.out);
+  REQUIRE(ffc.exit_code == 0);
+  CHECK(ffc.out.find("not recorded") == std::string::npos);
 }
 
 TEST_CASE("cli run record: OUT.run.json is checked like any output, never an input") {
