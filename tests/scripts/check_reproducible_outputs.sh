@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
 # Every file kind prt writes is the same, byte for byte, whether it was made with one thread or
 # two: SH bakes (shadowed with AO and bent normals, interreflected, interreflected with a texture
-# kept apart, --auto with and without --env), Haar (shadowed, interreflected textured), glossy shadowed and interreflected (.prtg), CPCA (.prtq), radiosity
-# (.prte with --per-emitter, the form-factor cache, --csv, --vertex-colors .glb, the EXR image;
-# Gauss-Seidel, Jacobi, progressive, --adaptive), make-scene and make-sky.
+# kept apart, --auto with and without --env), Haar (shadowed, interreflected textured), glossy
+# shadowed and interreflected (.prtg), CPCA (.prtq), radiosity (.prte with --per-emitter, the
+# form-factor cache, --csv, --vertex-colors .glb, the EXR image; Gauss-Seidel, Jacobi,
+# progressive, --adaptive), make-scene and make-sky.
 # Nothing that changes from run to run (wall times, thread counts, the host) may be in them: that
 # goes to the OUT.run.json beside each output, which is checked to exist and is not compared.
 # Each pair is made in its own folder with the same relative paths, so a path recorded as given
