@@ -5,21 +5,15 @@
 #include <string>
 #include <utility>
 
+#include "scene/procedural_mesh.h"
+
 namespace prt::scene {
 namespace {
 
-// glTF's metallic-roughness BRDF as the glTF loader reads it: base colour, metallic, the
-// dielectric F0 0.04, α = roughness².
+// glTF's metallic-roughness BRDF (procedural_mesh.h's gltf_brdf) with α = roughness².
 brdf::Material metallic_roughness(glm::vec3 base, double metallic, double roughness) {
-  brdf::Material m;
-  m.model = brdf::MaterialModel::kGltf;
-  m.distribution = brdf::NormalDistribution::kGgx;
-  m.fresnel = brdf::FresnelMode::kSchlick;
-  m.specular = brdf::grey(0.04);
-  m.diffuse = brdf::Rgb{base.x, base.y, base.z};
-  m.metallic = metallic;
-  m.alpha_x = m.alpha_y = roughness * roughness;
-  return m;
+  return gltf_brdf(brdf::Rgb{base.x, base.y, base.z}, metallic, roughness * roughness,
+                   roughness * roughness);
 }
 
 struct Look {
