@@ -11,25 +11,12 @@
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>
 
-#include "cli_run.h"
+#include "cli_test_support.h"
 
 namespace fs = std::filesystem;
 using namespace prt::test::cli;
 
 namespace {
-
-// A lit open box (OBJ with Ke): a scene for bake and radiosity alike.
-fs::path write_box(const fs::path& dir) {
-  std::ofstream(dir / "box.mtl") << "newmtl white\nKd 0.7 0.7 0.7\nnewmtl lamp\nKd 0.5 0.5 0.5\n"
-                                    "Ke 4 4 4\n";
-  std::ofstream(dir / "box.obj")
-      << "mtllib box.mtl\n"
-         "v 0 0 0\nv 1 0 0\nv 1 0 1\nv 0 0 1\nv 0 1 0\nv 1 1 0\nv 1 1 1\nv 0 1 1\n"
-         "v 0.4 0.99 0.4\nv 0.6 0.99 0.4\nv 0.6 0.99 0.6\nv 0.4 0.99 0.6\n"
-         "o walls\nusemtl white\nf 1 4 3 2\nf 5 6 7 8\nf 1 5 8 4\nf 2 3 7 6\nf 4 8 7 3\n"
-         "o lamp\nusemtl lamp\nf 9 10 11 12\n";
-  return dir / "box.obj";
-}
 
 nlohmann::json read_json(const fs::path& path) {
   std::ifstream in(path);
@@ -40,7 +27,7 @@ nlohmann::json read_json(const fs::path& path) {
 
 TEST_CASE("cli run record: times and threads beside the bake, not in it, and prt info reads them") {
   const fs::path dir = scratch("run_record_bake");
-  const fs::path box = write_box(dir), out = dir / "box.prt";
+  const fs::path box = write_lit_box(dir), out = dir / "box.prt";
   const std::string record = out.string() + ".run.json";
   const RunResult baked =
       run(prt_cli() + " bake " + box.string() + " -o " + out.string() +
@@ -102,7 +89,7 @@ TEST_CASE("cli run record: times and threads beside the bake, not in it, and prt
 TEST_CASE(
     "cli run record: radiosity writes it beside --per-emitter, prt info of the .prte reads it") {
   const fs::path dir = scratch("run_record_radiosity");
-  const fs::path box = write_box(dir), prte = dir / "box.prte";
+  const fs::path box = write_lit_box(dir), prte = dir / "box.prte";
   const fs::path cache = dir / "box.ffc";
   const RunResult solved =
       run(prt_cli() + " radiosity " + box.string() + " --per-emitter " + prte.string() + " --csv " +
@@ -128,7 +115,7 @@ TEST_CASE(
 
 TEST_CASE("cli run record: OUT.run.json is checked like any output, never an input") {
   const fs::path dir = scratch("run_record_input");
-  const fs::path box = write_box(dir);
+  const fs::path box = write_lit_box(dir);
   // compress IN -o OUT where IN is OUT.run.json: the record would overwrite the input.
   const RunResult glossy = run(prt_cli() + " bake " + box.string() + " --glossy --order 2 " +
                                "--samples 16 -o " + (dir / "g.prtg").string() + " --quiet");
