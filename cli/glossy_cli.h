@@ -47,7 +47,7 @@ struct GlossyCompressRequest {
   bool target_error_given = false;  // then target_error must be in (0, 1)
   int iterations = 6;
   uint64_t seed = 1;
-  int threads = 0;  // 0: std::thread::hardware_concurrency()
+  int threads = 0;            // 0: std::thread::hardware_concurrency()
   uint64_t memory_limit = 0;  // --memory-limit as given (0: not given, the default applies)
   bool quiet = false;
 };

@@ -298,11 +298,13 @@ void describe_file(const InfoArguments& args) {
 }
 
 // The file, then (as text) its run's times and threads from FILE.run.json (run_record.h); --json
-// has them under "run".
+// has them under "run". A form-factor cache has no record of its own (its run's record is beside
+// that run's main output), so nothing is said of one.
 void run(const InfoArguments& args) {
   if (is_scene_path(args.file)) return print_scene(args);
   describe_file(args);
-  if (!args.json && !args.csv) print_run_record(args.file);
+  if (!args.json && !args.csv && !radiosity::is_form_factor_cache(args.file))
+    print_run_record(args.file);
 }
 
 Command register_info(CLI::App& app) {

@@ -14,6 +14,7 @@
 // count comes within kCountTolerance of --triangles / --vertices.
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -36,14 +37,14 @@ namespace {
 
 // A size target is met when the count lands within this fraction of it.
 constexpr double kCountTolerance = 0.05;
-constexpr std::size_t kMaxTriangles = 20'000'000, kMaxVertices = 10'000'000;
+constexpr int64_t kMaxTriangles = 20'000'000, kMaxVertices = 10'000'000;
 constexpr std::size_t kFieldDefaultVertices = 500'000;
 
 struct MakeSceneArgs {
   std::string output, which = "demo";
   uint64_t seed = 1;
   int rooms = scene::LevelOptions{}.rooms, objects = scene::LevelOptions{}.objects;
-  std::size_t triangles = 0, vertices = 0;
+  int64_t triangles = 0, vertices = 0;  // signed: "-5" is refused as itself, not wrapped
   bool seed_given = false, rooms_given = false, objects_given = false;
   bool triangles_given = false, vertices_given = false;
 };
@@ -106,10 +107,11 @@ void make_layout_scene(const MakeSceneArgs& a) {
   const scene::ShapeLayout& layout = made.layout;
   double cell = scene::kLevelDefaultCell;
   if (a.triangles_given)
-    cell = cell_for_target(layout, a.triangles, false, a.which);
+    cell = cell_for_target(layout, static_cast<std::size_t>(a.triangles), false, a.which);
   else if (a.vertices_given || !level)
-    cell = cell_for_target(layout, a.vertices_given ? a.vertices : kFieldDefaultVertices, true,
-                           a.which);
+    cell = cell_for_target(
+        layout, a.vertices_given ? static_cast<std::size_t>(a.vertices) : kFieldDefaultVertices,
+        true, a.which);
   const scene::Scene scene = scene::tessellate_layout(layout, cell);
   const double generate_seconds = seconds_since(start);
   const auto write_start = std::chrono::steady_clock::now();

@@ -302,8 +302,8 @@ void warn_unconverged(const RadiosityArguments& args, const radiosity::SceneSolu
                    args.scene.c_str(), r.name.c_str(), r.iterations, r.relative_unshot);
 }
 
-// The phases for the run record (run_record.h).
-void record_phases(const RadiosityRun& result) {
+// The phases for the run record (run_record.h); "render" only when an image was rendered.
+void record_phases(const RadiosityArguments& args, const RadiosityRun& result) {
   const radiosity::SceneSolution& s = result.solution;
   RunRecord& record = run_record();
   record.phase("form factors", s.form_factor_seconds);
@@ -312,7 +312,7 @@ void record_phases(const RadiosityRun& result) {
   if (s.update_seconds > 0) record.phase("form-factor update", s.update_seconds);
   record.phase("solve", s.solve_seconds);
   if (!s.emitter_reports.empty()) record.phase("per-emitter solves", s.per_emitter_seconds);
-  record.phase("render", result.render.render_seconds);
+  if (!args.output.empty()) record.phase("render", result.render.render_seconds);
 }
 
 // The hierarchical solve's statistics: nodes, links (form factors) per pass, rays, times.
@@ -341,7 +341,7 @@ void run(const RadiosityArguments& args) {
                          static_cast<std::size_t>(args.threads));
   run_record().threads = resolved_threads(args.threads);
   const RadiosityRun result = solve_and_render(args);
-  record_phases(result);
+  record_phases(args, result);
   warn_unconverged(args, result.solution);
   if (args.quiet) return;
   const radiosity::SceneSolution& s = result.solution;

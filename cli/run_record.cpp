@@ -110,11 +110,13 @@ void print_run_record(const std::string& file) {
   const auto text = [&j](const char* key) {
     return j.contains(key) && j[key].is_string() ? j[key].get<std::string>() : std::string("?");
   };
+  // Numbers printed as doubles or range-checked first: a hand-edited record may hold any value.
   std::printf("run           %.2f s", number("seconds"));
-  if (j.contains("threads")) std::printf(" on %d thread(s)", static_cast<int>(number("threads")));
+  if (j.contains("threads")) std::printf(" on %.0f thread(s)", number("threads"));
+  const double peak = number("peak_resident_bytes");
+  const uint64_t peak_bytes = peak > 0 && peak < 1e18 ? static_cast<uint64_t>(peak) : 0;
   std::printf(", host %s, %s, peak resident %s (from %s)\n", text("host").c_str(),
-              text("finished_utc").c_str(),
-              prt::format_memory_size(static_cast<uint64_t>(number("peak_resident_bytes"))).c_str(),
+              text("finished_utc").c_str(), prt::format_memory_size(peak_bytes).c_str(),
               run_record_path(file).c_str());
   if (j.contains("phase_seconds") && j["phase_seconds"].is_object())
     for (const auto& [name, s] : j["phase_seconds"].items())

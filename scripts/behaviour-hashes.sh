@@ -130,48 +130,7 @@ hash_content "glossy-shadowed-cpca-matrix content" matrix.prtq
 hash_file "glossy-shadowed --material relit" material.csv
 
 # ---- Radiosity: a room open at the front, a lamp and a panel (two emitting materials) ---------
-cat > room.mtl <<'EOF'
-newmtl white
-Kd 0.7 0.6 0.5
-newmtl lamp
-Kd 0.5 0.5 0.5
-Ke 5 5 5
-newmtl panel
-Kd 0.3 0.3 0.3
-Ke 0.5 1 2
-EOF
-cat > room.obj <<'EOF'
-mtllib room.mtl
-v 0 0 0
-v 1 0 0
-v 1 0 1
-v 0 0 1
-v 0 1 0
-v 1 1 0
-v 1 1 1
-v 0 1 1
-v 0.4 0.99 0.4
-v 0.6 0.99 0.4
-v 0.6 0.99 0.6
-v 0.4 0.99 0.6
-v 0.2 0.1 0.99
-v 0.2 0.3 0.99
-v 0.6 0.3 0.99
-v 0.6 0.1 0.99
-o walls
-usemtl white
-f 1 4 3 2
-f 5 6 7 8
-f 1 5 8 4
-f 2 3 7 6
-f 4 8 7 3
-o lamp
-usemtl lamp
-f 9 10 11 12
-o panel
-usemtl panel
-f 13 14 15 16
-EOF
+cp "$root"/tests/scripts/fixtures/room.{obj,mtl} .
 room=room.obj
 radiosity() {  # label, extra radiosity arguments
   local label="$1"; shift

@@ -5,21 +5,15 @@
 #include <string>
 #include <utility>
 
+#include "scene/procedural_mesh.h"
+
 namespace prt::scene {
 namespace {
 
-// glTF's metallic-roughness BRDF as the glTF loader reads it: base colour, metallic, the
-// dielectric F0 0.04, α = roughness².
+// glTF's metallic-roughness BRDF (procedural_mesh.h's gltf_brdf) with α = roughness².
 brdf::Material metallic_roughness(glm::vec3 base, double metallic, double roughness) {
-  brdf::Material m;
-  m.model = brdf::MaterialModel::kGltf;
-  m.distribution = brdf::NormalDistribution::kGgx;
-  m.fresnel = brdf::FresnelMode::kSchlick;
-  m.specular = brdf::grey(0.04);
-  m.diffuse = brdf::Rgb{base.x, base.y, base.z};
-  m.metallic = metallic;
-  m.alpha_x = m.alpha_y = roughness * roughness;
-  return m;
+  return gltf_brdf(brdf::Rgb{base.x, base.y, base.z}, metallic, roughness * roughness,
+                   roughness * roughness);
 }
 
 struct Look {
@@ -59,12 +53,8 @@ ShapeLayout make_field_layout(bool glossy) {
   ShapeLayout layout;
   layout.source_path = glossy ? "procedural:field-glossy" : "procedural:field";
   LayoutPart ground = field_part(glossy, "ground", "ground");
-  PanelShape plane;  // facing +Y: cross(+Z, +X)
-  plane.corner = {-12.0, 0.0, -12.0};
-  plane.u = {0, 0, 1};
-  plane.v = {1, 0, 0};
-  plane.length_u = plane.length_v = 24.0;
-  ground.panels.push_back(plane);
+  // facing +Y: cross(+Z, +X)
+  ground.panels.push_back(make_panel({-12.0, 0.0, -12.0}, {0, 0, 1}, 24.0, {1, 0, 0}, 24.0));
   layout.parts.push_back(std::move(ground));
   const auto sphere = [&](const char* name, const char* role, glm::dvec3 c, double r) {
     LayoutPart p = field_part(glossy, name, role);

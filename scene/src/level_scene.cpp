@@ -49,19 +49,9 @@ struct Room {
   double area() const { return (x1 - x0) * (z1 - z0); }
 };
 
-PanelShape panel(glm::dvec3 corner, glm::dvec3 u, double lu, glm::dvec3 v, double lv) {
-  PanelShape p;
-  p.corner = corner;
-  p.u = u;
-  p.v = v;
-  p.length_u = lu;
-  p.length_v = lv;
-  return p;
-}
-
 // A horizontal rectangle [x0, x0+wx] × [z0, z0+wz] at height y, facing up or down.
 PanelShape horizontal(double x0, double z0, double wx, double wz, double y, bool up) {
-  return up ? panel({x0, y, z0}, kZ, wz, kX, wx) : panel({x0, y, z0}, kX, wx, kZ, wz);
+  return up ? make_panel({x0, y, z0}, kZ, wz, kX, wx) : make_panel({x0, y, z0}, kX, wx, kZ, wz);
 }
 
 // A vertical wall from `corner` along `along` (kX or kZ) for `length`, `height` high, facing
@@ -69,8 +59,8 @@ PanelShape horizontal(double x0, double z0, double wx, double wz, double y, bool
 PanelShape wall(glm::dvec3 corner, glm::dvec3 along, double length, double height,
                 glm::dvec3 facing, const std::vector<std::pair<double, double>>& doors) {
   const bool along_first = glm::dot(glm::cross(along, kY), facing) > 0.0;
-  PanelShape p = along_first ? panel(corner, along, length, kY, height)
-                             : panel(corner, kY, height, along, length);
+  PanelShape p = along_first ? make_panel(corner, along, length, kY, height)
+                             : make_panel(corner, kY, height, along, length);
   for (const auto& [a, b] : doors) {
     PanelShape::Hole h;
     if (along_first)

@@ -314,11 +314,7 @@ Scene make_disc(glm::vec3 center, glm::vec3 axis_u, glm::vec3 axis_v, float radi
   return scene;
 }
 
-namespace {
-
-// glTF's metallic-roughness BRDF as the glTF loader makes it: base colour, metallic, the
-// dielectric F0 0.04, α = roughness².
-brdf::Material ggx(brdf::Rgb base, double metallic, double alpha_x, double alpha_y) {
+brdf::Material gltf_brdf(brdf::Rgb base, double metallic, double alpha_x, double alpha_y) {
   brdf::Material m;
   m.model = brdf::MaterialModel::kGltf;
   m.distribution = brdf::NormalDistribution::kGgx;
@@ -330,6 +326,8 @@ brdf::Material ggx(brdf::Rgb base, double metallic, double alpha_x, double alpha
   m.alpha_y = alpha_y;
   return m;
 }
+
+namespace {
 
 void name_material(Scene& part, const std::string& material, std::optional<brdf::Material> b) {
   for (ScenePrimitive& p : part.primitives) {
@@ -350,7 +348,7 @@ Scene make_glossy_scene() {
   // A glossy red dielectric sphere: roughness 0.3 (α 0.09), F0 0.04 over a red diffuse layer.
   const glm::vec3 red(0.7f, 0.08f, 0.06f);
   Scene sphere = make_uv_sphere({-1.3f, 0.6f, 0.2f}, 0.6f, 32, 64, false, red, "glossy_sphere");
-  name_material(sphere, "glossy_red", ggx(brdf::Rgb{red.x, red.y, red.z}, 0.0, 0.09, 0.09));
+  name_material(sphere, "glossy_red", gltf_brdf(brdf::Rgb{red.x, red.y, red.z}, 0.0, 0.09, 0.09));
   append_scene(scene, sphere);
   // A brushed-metal disc standing on its rim, facing +Z: tangents along concentric circles,
   // roughness 0.35 (α 0.1225) and anisotropy strength 0.8: α_x = 0.1225 + 0.8775 × 0.64 along
@@ -358,13 +356,14 @@ Scene make_glossy_scene() {
   const glm::vec3 steel(0.9f, 0.9f, 0.88f);
   Scene disc =
       make_disc({0.2f, 0.75f, -1.0f}, {1, 0, 0}, {0, 1, 0}, 0.7f, 16, 96, steel, "brushed_disc");
-  name_material(disc, "brushed_steel",
-                ggx(brdf::Rgb{steel.x, steel.y, steel.z}, 1.0, 0.1225 + 0.8775 * 0.64, 0.1225));
+  name_material(
+      disc, "brushed_steel",
+      gltf_brdf(brdf::Rgb{steel.x, steel.y, steel.z}, 1.0, 0.1225 + 0.8775 * 0.64, 0.1225));
   append_scene(scene, disc);
   // A rough gold box: metallic, roughness 0.5 (α 0.25).
   const glm::vec3 gold(0.95f, 0.74f, 0.33f);
   Scene box = make_box({1.0f, 0.f, -0.3f}, {1.8f, 0.8f, 0.5f}, 8, false, gold, "gold_box");
-  name_material(box, "rough_gold", ggx(brdf::Rgb{gold.x, gold.y, gold.z}, 1.0, 0.25, 0.25));
+  name_material(box, "rough_gold", gltf_brdf(brdf::Rgb{gold.x, gold.y, gold.z}, 1.0, 0.25, 0.25));
   append_scene(scene, box);
   scene.tangents = tangent_frames(scene);  // the disc's own, the others from UVs or normals
 

@@ -137,19 +137,10 @@ void add_panel(Scene& scene, const PanelShape& panel, double cell) {
 std::vector<PanelShape> box_faces(const BoxShape& box) {
   const glm::dvec3 lo = box.min, hi = box.max, d = hi - lo;
   const glm::dvec3 x(1, 0, 0), y(0, 1, 0), z(0, 0, 1);
-  const auto face = [](glm::dvec3 corner, glm::dvec3 u, double lu, glm::dvec3 v, double lv) {
-    PanelShape p;
-    p.corner = corner;
-    p.u = u;
-    p.v = v;
-    p.length_u = lu;
-    p.length_v = lv;
-    return p;
-  };
   std::vector<PanelShape> faces = {
-      face({hi.x, lo.y, lo.z}, y, d.y, z, d.z), face(lo, z, d.z, y, d.y),
-      face({lo.x, hi.y, lo.z}, z, d.z, x, d.x), face(lo, x, d.x, z, d.z),
-      face({lo.x, lo.y, hi.z}, x, d.x, y, d.y), face(lo, y, d.y, x, d.x)};
+      make_panel({hi.x, lo.y, lo.z}, y, d.y, z, d.z), make_panel(lo, z, d.z, y, d.y),
+      make_panel({lo.x, hi.y, lo.z}, z, d.z, x, d.x), make_panel(lo, x, d.x, z, d.z),
+      make_panel({lo.x, lo.y, hi.z}, x, d.x, y, d.y), make_panel(lo, y, d.y, x, d.x)};
   if (!box.bottom) faces.erase(faces.begin() + 3);
   return faces;
 }
@@ -275,6 +266,17 @@ double layout_extent(const ShapeLayout& layout) {
 }
 
 }  // namespace
+
+PanelShape make_panel(glm::dvec3 corner, glm::dvec3 u, double length_u, glm::dvec3 v,
+                      double length_v) {
+  PanelShape p;
+  p.corner = corner;
+  p.u = u;
+  p.v = v;
+  p.length_u = length_u;
+  p.length_v = length_v;
+  return p;
+}
 
 int segments_for(double length, double cell) {
   const double n = std::ceil(length / cell * (1.0 - 1e-9));

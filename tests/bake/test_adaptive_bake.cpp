@@ -137,6 +137,19 @@ TEST_CASE("a convex mesh under --auto casts no rays and equals the unshadowed ba
   }
 }
 
+// --auto honours the caller's memory limit as a fixed bake does: the coefficients (V × order² ×
+// 4 bytes, about 30 KB here) are charged before they are allocated, so a 1 KB limit stops the
+// bake with MemoryBudgetExceeded, and a generous one changes nothing.
+TEST_CASE("bake_transfer_auto charges its bake to BakeOptions::memory_limit") {
+  const Scene scene = make_uv_sphere({0.f, 0.f, 0.f}, 1.f, 20, 40, false, glm::vec3(0.6f));
+  AutoBakeOptions o = quick_auto(0.01);
+  o.bake.order = 4;
+  o.bake.memory_limit = 1024;
+  CHECK_THROWS_WITH(bake_transfer_auto(scene, o), Catch::Contains("the memory limit is 1.0 KB"));
+  o.bake.memory_limit = uint64_t(1) << 30;
+  CHECK(bake_transfer_auto(scene, o).bake.data.order == 4);
+}
+
 TEST_CASE("grey albedo gives one channel and coloured albedo gives three") {
   const Scene grey = make_plane_with_sphere(glm::vec3(0.5f));
   const glm::vec3 rgb(0.2f, 0.5f, 0.8f);

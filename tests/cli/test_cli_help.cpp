@@ -170,6 +170,19 @@ TEST_CASE("cli help: every option a subcommand's --help lists is accepted by its
   CHECK(files_in(dir).empty());
 }
 
+// A subcommand that runs worker threads does large work, so it also takes --memory-limit
+// (cli/option_rules.h): a new threaded command that leaves it out fails here.
+TEST_CASE("cli help: every subcommand with --threads also takes --memory-limit") {
+  int threaded = 0;
+  for (const auto& [sub, names] : options_by_subcommand()) {
+    if (names.count("--threads") == 0) continue;
+    ++threaded;
+    INFO(sub);
+    CHECK(names.count("--memory-limit") == 1);
+  }
+  CHECK(threaded >= 3);  // bake, compress, radiosity
+}
+
 TEST_CASE("cli help: every option that a message suggests exists") {
   const std::map<std::string, std::set<std::string>> options = options_by_subcommand();
   std::set<std::string> any = {"--help", "--version"};

@@ -11,28 +11,13 @@
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>
 
-#include "cli_run.h"
+#include "cli_test_support.h"
 #include "prt/formats/crc32c.h"
 
 namespace fs = std::filesystem;
 using namespace prt::test::cli;
 
 namespace {
-
-// An open box 1 unit wide with a lamp under the ceiling (OBJ with Ke).
-fs::path write_box(const fs::path& dir) {
-  std::ofstream(dir / "box.mtl") << "newmtl white\nKd 0.7 0.7 0.7\nnewmtl lamp\nKd 0.5 0.5 0.5\n"
-                                    "Ke 4 4 4\n";
-  std::ofstream(dir / "box.obj")
-      << "mtllib box.mtl\n"
-         "v 0 0 0\nv 1 0 0\nv 1 0 1\nv 0 0 1\nv 0 1 0\nv 1 1 0\n"
-         "v 1 1 1\nv 0 1 1\n"
-         "v 0.4 0.99 0.4\nv 0.6 0.99 0.4\nv 0.6 0.99 0.6\nv 0.4 0.99 0.6\n"
-         "o walls\nusemtl white\nf 1 4 3 2\nf 5 6 7 8\nf 1 5 8 4\n"
-         "f 2 3 7 6\nf 4 8 7 3\n"
-         "o lamp\nusemtl lamp\nf 9 10 11 12\n";
-  return dir / "box.obj";
-}
 
 // A version-1 cache as the first format wrote it: 64-byte header, method 0, N = 2.
 void write_version1(const fs::path& path) {
@@ -58,7 +43,7 @@ void write_version1(const fs::path& path) {
 
 TEST_CASE("cli info: a form-factor cache states its patches, method, settings and size") {
   const fs::path dir = scratch("info_form_factors");
-  const fs::path box = write_box(dir);
+  const fs::path box = write_lit_box(dir);
   struct Case {
     std::string options, method;
   };

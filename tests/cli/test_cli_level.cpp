@@ -45,6 +45,7 @@ TEST_CASE("prt make-scene --scene level refuses bad values with one line, nothin
       {"--scene level --rooms 65", "--rooms 65"},
       {"--scene level --objects 20001", "--objects 20001"},
       {"--scene level --triangles 0", "--triangles 0"},
+      {"--scene level --triangles -5", "--triangles -5: expected 1 to"},
       {"--scene level --triangles 100", "--triangles 100: the level comes no closer"},
       {"--scene field --vertices 20000000", "--vertices 20000000"},
       {"--scene field --seed 3", "--seed: only for --scene level"},

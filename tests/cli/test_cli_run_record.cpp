@@ -11,25 +11,12 @@
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>
 
-#include "cli_run.h"
+#include "cli_test_support.h"
 
 namespace fs = std::filesystem;
 using namespace prt::test::cli;
 
 namespace {
-
-// A lit open box (OBJ with Ke): a scene for bake and radiosity alike.
-fs::path write_box(const fs::path& dir) {
-  std::ofstream(dir / "box.mtl") << "newmtl white\nKd 0.7 0.7 0.7\nnewmtl lamp\nKd 0.5 0.5 0.5\n"
-                                    "Ke 4 4 4\n";
-  std::ofstream(dir / "box.obj")
-      << "mtllib box.mtl\n"
-         "v 0 0 0\nv 1 0 0\nv 1 0 1\nv 0 0 1\nv 0 1 0\nv 1 1 0\nv 1 1 1\nv 0 1 1\n"
-         "v 0.4 0.99 0.4\nv 0.6 0.99 0.4\nv 0.6 0.99 0.6\nv 0.4 0.99 0.6\n"
-         "o walls\nusemtl white\nf 1 4 3 2\nf 5 6 7 8\nf 1 5 8 4\nf 2 3 7 6\nf 4 8 7 3\n"
-         "o lamp\nusemtl lamp\nf 9 10 11 12\n";
-  return dir / "box.obj";
-}
 
 nlohmann::json read_json(const fs::path& path) {
   std::ifstream in(path);
@@ -40,7 +27,7 @@ nlohmann::json read_json(const fs::path& path) {
 
 TEST_CASE("cli run record: times and threads beside the bake, not in it, and prt info reads them") {
   const fs::path dir = scratch("run_record_bake");
-  const fs::path box = write_box(dir), out = dir / "box.prt";
+  const fs::path box = write_lit_box(dir), out = dir / "box.prt";
   const std::string record = out.string() + ".run.json";
   const RunResult baked =
       run(prt_cli() + " bake " + box.string() + " -o " + out.string() +
@@ -84,15 +71,30 @@ TEST_CASE("cli run record: times and threads beside the bake, not in it, and prt
   CHECK(bare.out.find("not recorded (" + record + " is absent)") != std::string::npos);
   const RunResult bare_json = run(prt_cli() + " info --json " + out.string());
   CHECK_FALSE(nlohmann::json::parse(bare_json.out).contains("run"));
+
+  // A damaged record is reported as it is, never trusted: not JSON, or numbers out of any range
+  // (printed as given, never converted to a narrower type).
+  std::ofstream(record) << "{bad";
+  const RunResult damaged = run(prt_cli() + " info " + out.string());
+  CHECK(damaged.exit_code == 0);
+  CHECK(damaged.out.find(record + " is not a JSON object") != std::string::npos);
+  std::ofstream(record) << R"({"threads": 1e30, "peak_resident_bytes": -5})";
+  const RunResult absurd = run(prt_cli() + " info " + out.string());
+  INFO(absurd.out);
+  CHECK(absurd.exit_code == 0);
+  CHECK(absurd.out.find("on 1000000000000000019884624838656 thread(s)") != std::string::npos);
+  CHECK(absurd.out.find("peak resident 0 B") != std::string::npos);
 }
 
 TEST_CASE(
     "cli run record: radiosity writes it beside --per-emitter, prt info of the .prte reads it") {
   const fs::path dir = scratch("run_record_radiosity");
-  const fs::path box = write_box(dir), prte = dir / "box.prte";
+  const fs::path box = write_lit_box(dir), prte = dir / "box.prte";
+  const fs::path cache = dir / "box.ffc";
   const RunResult solved =
       run(prt_cli() + " radiosity " + box.string() + " --per-emitter " + prte.string() + " --csv " +
-          (dir / "box.csv").string() + " --max-edge 0.5 --threads 2 --quiet");
+          (dir / "box.csv").string() + " --form-factor-cache " + cache.string() +
+          " --max-edge 0.5 --threads 2 --quiet");
   INFO(solved.err);
   REQUIRE(solved.exit_code == 0);
   REQUIRE(fs::exists(prte.string() + ".run.json"));
@@ -100,14 +102,20 @@ TEST_CASE(
   const nlohmann::json r = read_json(prte.string() + ".run.json");
   CHECK(r["threads"] == 2);
   CHECK(r["phase_seconds"].contains("per-emitter solves"));
+  CHECK_FALSE(r["phase_seconds"].contains("render"));  // no image was asked for
   const RunResult json = run(prt_cli() + " info --json " + prte.string());
   REQUIRE(json.exit_code == 0);
   CHECK(nlohmann::json::parse(json.out)["run"]["threads"] == 2);
+  // The cache never has a record of its own: prt info does not call it missing.
+  const RunResult ffc = run(prt_cli() + " info " + cache.string());
+  INFO(ffc.out);
+  REQUIRE(ffc.exit_code == 0);
+  CHECK(ffc.out.find("not recorded") == std::string::npos);
 }
 
 TEST_CASE("cli run record: OUT.run.json is checked like any output, never an input") {
   const fs::path dir = scratch("run_record_input");
-  const fs::path box = write_box(dir);
+  const fs::path box = write_lit_box(dir);
   // compress IN -o OUT where IN is OUT.run.json: the record would overwrite the input.
   const RunResult glossy = run(prt_cli() + " bake " + box.string() + " --glossy --order 2 " +
                                "--samples 16 -o " + (dir / "g.prtg").string() + " --quiet");

@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
 # Every file kind prt writes is the same, byte for byte, whether it was made with one thread or
 # two: SH bakes (shadowed with AO and bent normals, interreflected, interreflected with a texture
-# kept apart, --auto with and without --env), Haar (shadowed, interreflected textured), glossy shadowed and interreflected (.prtg), CPCA (.prtq), radiosity
-# (.prte with --per-emitter, the form-factor cache, --csv, --vertex-colors .glb, the EXR image;
-# Gauss-Seidel, Jacobi, progressive, --adaptive), make-scene and make-sky.
+# kept apart, --auto with and without --env), Haar (shadowed, interreflected textured), glossy
+# shadowed and interreflected (.prtg), CPCA (.prtq), radiosity (.prte with --per-emitter, the
+# form-factor cache, --csv, --vertex-colors .glb, the EXR image; Gauss-Seidel, Jacobi,
+# progressive, --adaptive), make-scene and make-sky.
 # Nothing that changes from run to run (wall times, thread counts, the host) may be in them: that
 # goes to the OUT.run.json beside each output, which is checked to exist and is not compared.
 # Each pair is made in its own folder with the same relative paths, so a path recorded as given
@@ -22,48 +23,8 @@ cd "$scratch/in"
 cp "$source_dir/data/demo.glb" "$source_dir/data/sky.hdr" .
 "$prt" make-scene --scene glossy -o glossy.glb >/dev/null
 python3 "$source_dir/scripts/textured-example.py" tex >/dev/null
-cat > room.mtl <<'EOF'
-newmtl white
-Kd 0.7 0.6 0.5
-newmtl lamp
-Kd 0.5 0.5 0.5
-Ke 5 5 5
-newmtl panel
-Kd 0.3 0.3 0.3
-Ke 0.5 1 2
-EOF
-cat > room.obj <<'EOF'
-mtllib room.mtl
-v 0 0 0
-v 1 0 0
-v 1 0 1
-v 0 0 1
-v 0 1 0
-v 1 1 0
-v 1 1 1
-v 0 1 1
-v 0.4 0.99 0.4
-v 0.6 0.99 0.4
-v 0.6 0.99 0.6
-v 0.4 0.99 0.6
-v 0.2 0.1 0.99
-v 0.2 0.3 0.99
-v 0.6 0.3 0.99
-v 0.6 0.1 0.99
-o walls
-usemtl white
-f 1 4 3 2
-f 5 6 7 8
-f 1 5 8 4
-f 2 3 7 6
-f 4 8 7 3
-o lamp
-usemtl lamp
-f 9 10 11 12
-o panel
-usemtl panel
-f 13 14 15 16
-EOF
+# A unit room open at the front, a lamp and a panel (two emitting materials).
+cp "$source_dir"/tests/scripts/fixtures/room.{obj,mtl} .
 
 # Runs `prt ARGS... --threads N` in scratch/tN for N = 1, 2 (make-scene has no --threads:
 # the first argument says whether to pass it).

@@ -10,6 +10,7 @@
 # Usage: check_write_failures.sh PRT_BINARY
 set -euo pipefail
 prt="$(realpath "$1")"
+fixtures="$(cd "$(dirname "$0")" && pwd)/fixtures"  # room.obj: a lit room, two emitters
 scratch="$(mktemp -d)"
 trap 'rm -rf "$scratch"' EXIT
 cd "$scratch"
@@ -19,32 +20,7 @@ fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
 # Inputs, made without a limit.
 "$prt" make-scene --scene glossy -o glossy.glb >/dev/null
 "$prt" bake glossy.glb --glossy -o glossy.prtg --order 2 --samples 16 --quiet
-printf 'newmtl white\nKd 0.7 0.6 0.5\nnewmtl lamp\nKd 0.5 0.5 0.5\nKe 5 5 5\n' > room.mtl
-cat > room.obj <<'EOF'
-mtllib room.mtl
-v 0 0 0
-v 1 0 0
-v 1 0 1
-v 0 0 1
-v 0 1 0
-v 1 1 0
-v 1 1 1
-v 0 1 1
-v 0.4 0.99 0.4
-v 0.6 0.99 0.4
-v 0.6 0.99 0.6
-v 0.4 0.99 0.6
-o walls
-usemtl white
-f 1 4 3 2
-f 5 6 7 8
-f 1 5 8 4
-f 2 3 7 6
-f 4 8 7 3
-o lamp
-usemtl lamp
-f 9 10 11 12
-EOF
+cp "$fixtures/room.obj" "$fixtures/room.mtl" .
 
 # Runs prt with files limited to KB kilobytes; OUTPUT is the file that cannot be written.
 limited() {  # kilobytes output args...

@@ -62,6 +62,7 @@ std::vector<double> bake_pilot(const scene::Scene& scene, const scene::Scene& gr
   b.order = pilot_order;
   b.seed = o.bake.seed;
   b.threads = o.bake.threads;
+  b.memory_limit = o.bake.memory_limit;
   b.adaptive.enabled = true;
   b.adaptive.min_samples = b.adaptive.max_samples = samples;
   b.adaptive.cap_sampling = false;   // 256 vertices: not worth the caps' hierarchy
@@ -435,6 +436,7 @@ BakeOptions adaptive_bake_options(const AutoBakeOptions& o, prt::TransferKind ki
   b.order = rep.order;
   b.seed = o.bake.seed;
   b.threads = o.bake.threads;
+  b.memory_limit = o.bake.memory_limit;
   b.ao = o.bake.ao;
   b.bent_normals = o.bake.bent_normals;
   b.precision = o.bake.precision;

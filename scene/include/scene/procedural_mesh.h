@@ -90,4 +90,9 @@ Scene make_demo_scene();
 // KHR_materials_anisotropy) expresses, so write_glb + load_scene gives it back.
 Scene make_glossy_scene();
 
+// glTF's metallic-roughness BRDF as the glTF loader makes it (MaterialModel::kGltf): GGX with
+// widths alpha_x, alpha_y (α = roughness², wider along the tangent with anisotropy), Schlick's
+// Fresnel with the dielectric F0 0.04, base colour and metallic as given.
+brdf::Material gltf_brdf(brdf::Rgb base, double metallic, double alpha_x, double alpha_y);
+
 }  // namespace prt::scene

@@ -45,6 +45,10 @@ struct PanelShape {
   std::vector<Hole> holes;
 };
 
+// The panel corner + s·u + t·v, s ∈ [0, length_u], t ∈ [0, length_v], without holes.
+PanelShape make_panel(glm::dvec3 corner, glm::dvec3 u, double length_u, glm::dvec3 v,
+                      double length_v);
+
 // An axis-aligned box with outward faces, +X, −X, +Y, −Y, +Z, −Z; `bottom` false leaves out the
 // −Y face (an object resting on a floor: that face would be hidden).
 struct BoxShape {
