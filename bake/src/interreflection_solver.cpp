@@ -364,6 +364,13 @@ SolveReport solve_interreflection(const GatherOperator& a, const double* d, int 
   return report;
 }
 
+void GatherOperator::apply_float(const float* x, int columns, float* y) const {
+  const std::size_t n = rows() * static_cast<std::size_t>(columns);
+  std::vector<double> xd(x, x + n), yd(n);
+  apply(xd.data(), columns, yd.data());
+  for (std::size_t i = 0; i < n; ++i) y[i] = static_cast<float>(yd[i]);
+}
+
 SolveReport solve_by_bounces(const GatherOperator& a, double q,
                              const std::function<void(double*)>& fill_direct, int columns,
                              double* t, const SolveOptions& options, int max_bounces,
@@ -379,16 +386,17 @@ SolveReport solve_by_bounces(const GatherOperator& a, double q,
   const int limit = fixed ? options.bounces : max_bounces;
   double bound = 0.0;  // e_n·q: bounds the max-norm residual of T_n
   {
-    Block term(t, t + n), next(n);
+    std::vector<float> term(t, t + n), next(n);
     double e = d_max;
     bound = e * q;
     if (progress && fixed) progress->start("bounces", limit);
     for (int i = 0; i < limit; ++i) {
       if (!fixed && e * q <= options.tolerance * d_max) break;
-      a.apply(term.data(), k, next.data());
+      a.apply_float(term.data(), k, next.data());
       term.swap(next);
-      e = max_abs(term);
-      for_each_entry(rows, k, [&](std::size_t x, int) { t[x] += term[x]; });
+      e = 0.0;
+      for (float x : term) e = std::max(e, static_cast<double>(std::fabs(x)));
+      for_each_entry(rows, k, [&](std::size_t x, int) { t[x] += static_cast<double>(term[x]); });
       report.bounce_energy.push_back(e);
       ++report.jacobi_bounces;
       bound = e * q;

@@ -54,7 +54,6 @@ namespace {
 constexpr int kMaxAdaptiveBounces = 200;  // then BiCGSTAB finishes the solve
 constexpr int kMaxCompactBounces = 200;   // the compact path's bounces before BiCGSTAB
 constexpr int kDenseSolverBlocks = 10;    // direct, solved, BiCGSTAB's 7 and the best iterate
-constexpr int kCompactSolverBlocks = 3;   // T, the current bounce, the next (+ a float copy)
 
 using Clock = std::chrono::steady_clock;
 using detail::BlockRows;
@@ -314,9 +313,11 @@ void charge_bake_buffers(const scene::Scene& scene, const BakeOptions& o, int ch
     budget.charge(V * (interreflect ? K * sizeof(double) : 0) + V * 4 * sizeof(float),
                   "the visibility sums");
   if (!interreflect) return;
-  const int blocks = compact ? kCompactSolverBlocks : kDenseSolverBlocks;
-  budget.charge(static_cast<uint64_t>(blocks) * V * K * sizeof(double) + V * sizeof(double) +
-                    (compact ? V * K * sizeof(float) : 0),
+  // Compact: every channel at once, T in double and two bounces in float (16 bytes per
+  // coefficient) and ρ per row and channel; dense: per channel, kDenseSolverBlocks V × K blocks.
+  const uint64_t C = static_cast<uint64_t>(channels);
+  budget.charge(compact ? V * C * (K * (sizeof(double) + 2 * sizeof(float)) + sizeof(double))
+                        : kDenseSolverBlocks * V * K * sizeof(double) + V * sizeof(double),
                 "the interreflection solver's blocks");
   if (compact)
     budget.charge(V * 2 * sizeof(uint32_t) + T * (sizeof(uint32_t) + sizeof(glm::uvec3)),
@@ -338,38 +339,39 @@ void add_solve_report(const SolveReport& rep, BakeStatistics& st) {
     st.bounce_energy[i] = std::max(st.bounce_energy[i], rep.bounce_energy[i]);
 }
 
-// The compact path: per channel, Neumann bounces over the compact gather in its row (Morton)
-// order, D_r = ρ_c(v)·S_v for v = the vertex of row r; the solution goes back to vertex order.
+// The compact path: every channel in one solve (C × K columns, one pass over the hits per
+// bounce), rows in the gather's (Morton) order, D_r,c = ρ_c(v)·S_v for v = the vertex of row r.
+// A row's C × K columns are the output's layout, so the solution is copied back row by row.
 void solve_compact_channels(BakeJob& job) {
   BakeStatistics& st = job.st();
   const CompactGather& g = *job.gather;
   const std::size_t V = job.V, K = static_cast<std::size_t>(job.K);
-  const std::size_t C = static_cast<std::size_t>(job.C);
-  std::vector<double> solved(V * K), rho(V);
-  prt::TransferData& data = job.result.data;
+  const std::size_t C = static_cast<std::size_t>(job.C), CK = C * K;
+  std::vector<double> solved(V * CK), rho(V * C);
+  for (std::size_t r = 0; r < V; ++r)
+    for (std::size_t c = 0; c < C; ++c)
+      rho[r * C + c] = job.scene.albedo[g.vertex_of_row(r)][static_cast<int>(c)];
+  const auto fill_direct = [&](double* d) {
+    tbb::parallel_for(std::size_t(0), V, [&](std::size_t r) {
+      const double* s = &job.sums.visibility_sh[g.vertex_of_row(r) * K];
+      for (std::size_t c = 0; c < C; ++c)
+        for (std::size_t k = 0; k < K; ++k) d[r * CK + c * K + k] = rho[r * C + c] * s[k];
+    });
+  };
   SolveOptions so;
   so.bounces = job.options.bounces;
   so.tolerance = job.options.bounce_tolerance;
   so.max_iterations = job.options.max_solver_iterations;
-  for (std::size_t c = 0; c < C; ++c) {
-    for (std::size_t r = 0; r < V; ++r) rho[r] = job.scene.albedo[g.vertex_of_row(r)][int(c)];
-    const auto fill_direct = [&](double* d) {
-      tbb::parallel_for(std::size_t(0), V, [&](std::size_t r) {
-        const double* s = &job.sums.visibility_sh[g.vertex_of_row(r) * K];
-        for (std::size_t k = 0; k < K; ++k) d[r * K + k] = rho[r] * s[k];
-      });
-    };
-    const CompactGatherOperator a(g, rho);
-    const SolveReport rep =
-        solve_by_bounces(a, g.max_weighted_row_sum(rho), fill_direct, job.K, solved.data(), so,
-                         kMaxCompactBounces, &job.budget, job.progress);
-    add_solve_report(rep, st);
-    tbb::parallel_for(std::size_t(0), V, [&](std::size_t v) {
-      const double* t = &solved[g.row_of_vertex(v) * K];
-      for (std::size_t k = 0; k < K; ++k)
-        data.coefficients[(v * C + c) * K + k] = static_cast<float>(t[k]);
-    });
-  }
+  const CompactGatherOperator a(g, rho, job.C);
+  const SolveReport rep =
+      solve_by_bounces(a, g.max_weighted_row_sum(rho, job.C), fill_direct, static_cast<int>(CK),
+                       solved.data(), so, kMaxCompactBounces, &job.budget, job.progress);
+  add_solve_report(rep, st);
+  prt::TransferData& data = job.result.data;
+  tbb::parallel_for(std::size_t(0), V, [&](std::size_t v) {
+    const double* t = &solved[g.row_of_vertex(v) * CK];
+    for (std::size_t i = 0; i < CK; ++i) data.coefficients[v * CK + i] = static_cast<float>(t[i]);
+  });
 }
 
 void solve_interreflection_channels(BakeJob& job) {

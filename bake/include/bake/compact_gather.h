@@ -79,14 +79,24 @@ class CompactGather {
 
   uint64_t hits() const;
   uint64_t bytes() const;  // everything held, as counted in the header
-  // max over rows r of rho[r] · (hits of r) · row_scale: a bound on ‖diag(ρ)H‖_max.
-  double max_weighted_row_sum(const std::vector<double>& rho) const;
+  // max over rows r and channels c of rho[r·C + c] · (hits of r) · row_scale: a bound on
+  // ‖diag(ρ)H‖_max (rho: rows() × C).
+  double max_weighted_row_sum(const std::vector<double>& rho, int channels) const;
 
-  // y = diag(rho)·H·x for blocks of `k` columns in row order (x, y: rows() × k; rho: rows()).
-  // x is read in float (half the bytes of the scattered reads); the sums are double.
-  void multiply(const std::vector<double>& rho, const float* x, int k, double* y) const;
+  // y = diag(ρ)·H·x for blocks of `columns` = C × K columns in row order (x, y: rows() × C·K,
+  // channel-major within a row; rho: rows() × C, channel c's ρ scaling columns [cK, (c+1)K)).
+  // All channels share one pass over the hits and one scattered read per hit vertex. x is read
+  // in float (half the bytes of the scattered reads); each row's sums are double, then stored.
+  void multiply(const std::vector<double>& rho, int channels, const float* x, int columns,
+                double* y) const;
+  void multiply(const std::vector<double>& rho, int channels, const float* x, int columns,
+                float* y) const;
 
  private:
+  template <class Out>
+  void multiply_into(const std::vector<double>& rho, int channels, const float* x, int k,
+                     Out* y) const;
+
   std::vector<uint32_t> order_, rank_;
   std::vector<uint32_t> triangle_rank_;
   std::vector<glm::uvec3> triangle_rows_;  // renumbered triangle → the rows of its vertices
@@ -95,20 +105,24 @@ class CompactGather {
   std::vector<Block> blocks_;
 };
 
-// diag(ρ)·H of a compact gather as the solver's operator (ρ per row, in row order). apply()
-// rounds x to float once (a V × K float block it keeps: 4 bytes per coefficient), then gathers:
-// a relative change of ≤ 2^-24 of each bounce, far below the quantisation's. Not for use by two
-// threads at once.
+// diag(ρ)·H of a compact gather as the solver's operator (ρ: rows() × C, in row order; columns
+// C × K). apply() rounds x to float once (a V × C·K float block it keeps), then gathers;
+// apply_float() gathers float to float with no copy. Either way a bounce changes by ≤ 2^-24
+// relative, far below the quantisation's 3.1e-5. Not for use by two threads at once.
 class CompactGatherOperator final : public GatherOperator {
  public:
-  CompactGatherOperator(const CompactGather& h, const std::vector<double>& rho)
-      : h_(h), rho_(rho) {}
+  CompactGatherOperator(const CompactGather& h, const std::vector<double>& rho, int channels)
+      : h_(h), rho_(rho), channels_(channels) {}
   std::size_t rows() const override { return h_.rows(); }
   void apply(const double* x, int columns, double* y) const override;
+  void apply_float(const float* x, int columns, float* y) const override {
+    h_.multiply(rho_, channels_, x, columns, y);
+  }
 
  private:
   const CompactGather& h_;
   const std::vector<double>& rho_;
+  int channels_;
   mutable std::vector<float> x_float_;
 };
 

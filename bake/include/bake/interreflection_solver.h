@@ -79,6 +79,8 @@ class GatherOperator {
   virtual ~GatherOperator() = default;
   virtual std::size_t rows() const = 0;
   virtual void apply(const double* x, int columns, double* y) const = 0;
+  // The same with x and y in float (sums still in double); by default through apply().
+  virtual void apply_float(const float* x, int columns, float* y) const;
 };
 
 // The CSR matrix with its row albedo (multiply_gather).
@@ -109,8 +111,9 @@ SolveReport solve_interreflection(const GatherOperator& a, const double* d, int 
 // solve's relative residual): at most log(tol)/log q bounces whatever V is, one pass over H
 // each. Stiff systems (more than max_bounces bounces) finish with BiCGSTAB from the bounce
 // iterate (its 9 V × K blocks charged to `budget` first when it is not null). fill_direct(block)
-// writes D (V × K) into a block; `t` receives the solution. Holds 3 V × K double blocks (T, the
-// current bounce, the next) besides the operator's. The report's relative_residual is the bound
+// writes D (V × K) into a block; `t` receives the solution. Holds T (double) and the current and
+// next bounce in float (apply_float: each bounce rounded to float, 2^-24 relative; T sums them
+// in double): 16 bytes per coefficient. The report's relative_residual is the bound
 // e_n·q/‖D‖_max (after BiCGSTAB: its own 2-norm residual).
 SolveReport solve_by_bounces(const GatherOperator& a, double q,
                              const std::function<void(double*)>& fill_direct, int columns,
