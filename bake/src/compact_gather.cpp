@@ -1,15 +1,13 @@
 // bake/src/compact_gather.cpp — the per-hit gather matrix in Morton order (compact_gather.h).
 #include "bake/compact_gather.h"
 
+#include "huge_pages.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <limits>
 #include <numeric>
-
-#if defined(__linux__)
-#include <sys/mman.h>
-#endif
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -17,6 +15,8 @@
 
 namespace prt::bake {
 namespace {
+
+using detail::resize_huge;
 
 constexpr double kQuantum = 65535.0;
 
@@ -29,33 +29,6 @@ uint64_t spread_bits(uint64_t x) {
   x = (x | x << 4) & 0x10c30c30c30c30c3ull;
   x = (x | x << 2) & 0x1249249249249249ull;
   return x;
-}
-
-// Asks for 2 MB pages over the 2 MB-aligned interior of a fresh (untouched) allocation: the
-// gather reads x and the triangle table at random over hundreds of MB, where 4 KB pages would
-// miss the TLB on almost every read. A hint only (Linux transparent huge pages in madvise mode).
-void advise_huge_pages(const void* data, std::size_t bytes) {
-#if defined(__linux__) && defined(MADV_HUGEPAGE)
-  constexpr std::uintptr_t kHuge = std::uintptr_t(1) << 21;
-  const auto begin = reinterpret_cast<std::uintptr_t>(data);
-  const std::uintptr_t first = (begin + kHuge - 1) & ~(kHuge - 1);
-  const std::uintptr_t last = (begin + bytes) & ~(kHuge - 1);
-  if (last > first) madvise(reinterpret_cast<void*>(first), last - first, MADV_HUGEPAGE);
-#else
-  (void)data;
-  (void)bytes;
-#endif
-}
-
-// Sizes a vector for n elements, hinting huge pages before its memory is first touched.
-template <class T>
-void resize_huge(std::vector<T>& v, std::size_t n) {
-  if (v.capacity() < n) {
-    std::vector<T>().swap(v);
-    v.reserve(n);
-    advise_huge_pages(v.data(), n * sizeof(T));
-  }
-  v.resize(n);
 }
 
 bool hit_less(const CompactHit& a, const CompactHit& b) {

@@ -16,6 +16,7 @@
 #include <tbb/parallel_for.h>
 
 #include "bake/progress.h"
+#include "huge_pages.h"
 #include "prt/core/memory_budget.h"
 
 namespace prt::bake {
@@ -386,7 +387,10 @@ SolveReport solve_by_bounces(const GatherOperator& a, double q,
   const int limit = fixed ? options.bounces : max_bounces;
   double bound = 0.0;  // e_n·q: bounds the max-norm residual of T_n
   {
-    std::vector<float> term(t, t + n), next(n);
+    std::vector<float> term, next;  // read at random by the gather: 2 MB pages asked for
+    detail::resize_huge(term, n);
+    detail::resize_huge(next, n);
+    std::copy(t, t + n, term.begin());
     double e = d_max;
     bound = e * q;
     if (progress && fixed) progress->start("bounces", limit);
