@@ -6,6 +6,7 @@
 #include <tbb/parallel_for.h>
 
 #include "bake/sampling.h"
+#include "prt/core/memory_budget.h"
 #include "sh/basis.h"
 #include "transfer_pass.h"
 
@@ -22,6 +23,7 @@ struct FixedVertexSampler {
   std::vector<float> y, packet_sum;
   std::vector<double> acc;
   std::vector<std::pair<uint32_t, float>> gathered;
+  CompactGather::Block compact;  // the block's rows of a compact gather
 
   FixedVertexSampler(SamplingPass& p, std::size_t blk)
       : pass(p),
@@ -40,6 +42,7 @@ struct FixedVertexSampler {
     const glm::vec3 origin = pass.caster.vertex_origin(static_cast<uint32_t>(v));
     std::fill(acc.begin(), acc.end(), 0.0);
     gathered.clear();
+    const std::size_t hits_before = compact.hits.size();
     uint32_t visible = 0;
     glm::dvec3 bent(0.0);
     uint64_t rays = 0;
@@ -66,8 +69,10 @@ struct FixedVertexSampler {
         for (int k = 0; k < K; ++k) acc[k] += static_cast<double>(packet_sum[k]);
       if (interreflect)
         for (int i = 0; i < kPacketSize; ++i)
-          if (hits[i].hit &&
-              !gather_front_hit(pass.scene, hits[i], dirs[i], 1.f, pass.gather_channels, gathered))
+          if (hits[i].hit && !(pass.compact ? gather_front_hit_compact(pass.scene, hits[i], dirs[i],
+                                                                       *pass.compact, compact.hits)
+                                            : gather_front_hit(pass.scene, hits[i], dirs[i], 1.f,
+                                                               pass.gather_channels, gathered)))
             ++pass.block_back_hits[block];
     }
     if (need_sh)
@@ -79,19 +84,32 @@ struct FixedVertexSampler {
     pass.sums.bent[3 * v + 0] = bn.x;
     pass.sums.bent[3 * v + 1] = bn.y;
     pass.sums.bent[3 * v + 2] = bn.z;
-    if (interreflect) append_row(gathered, inv_n, pass.rows[block]);
+    if (interreflect && !pass.compact) append_row(gathered, inv_n, pass.rows[block]);
+    if (interreflect && pass.compact)
+      compact.lengths.push_back(static_cast<uint32_t>(compact.hits.size() - hits_before));
     return rays;
   }
 };
 
 }  // namespace
 
+// Block blk covers rows [blk·64, ...): the vertices themselves, or the compact gather's rows
+// (its Morton order), whose block is charged and stored at the end.
 void sample_fixed(SamplingPass& pass) {
   tbb::parallel_for(std::size_t(0), pass.blocks(), [&](std::size_t blk) {
     FixedVertexSampler sampler(pass, blk);
     const std::size_t v_end = std::min(pass.V, (blk + 1) * kVertexBlock);
     uint64_t rays = 0;
-    for (std::size_t v = blk * kVertexBlock; v < v_end; ++v) rays += sampler.sample(v);
+    for (std::size_t r = blk * kVertexBlock; r < v_end; ++r)
+      rays += sampler.sample(pass.compact ? pass.compact->vertex_of_row(r) : r);
+    if (pass.compact) {
+      CompactGather::Block& b = sampler.compact;
+      if (pass.budget)
+        pass.budget->charge(CompactGather::block_bytes(b.lengths.size(), b.hits.size()),
+                            "the gather matrix");
+      b.hits.shrink_to_fit();
+      pass.compact->set_block(blk, std::move(b));
+    }
     pass.block_rays[blk] = rays;
     if (pass.progress) pass.progress->advance(v_end - blk * kVertexBlock, rays);
   });

@@ -16,6 +16,8 @@
 #include <tbb/parallel_for.h>
 
 #include "bake/progress.h"
+#include "huge_pages.h"
+#include "prt/core/memory_budget.h"
 
 namespace prt::bake {
 namespace {
@@ -41,20 +43,23 @@ std::vector<double> dot_columns(const double* a, const double* b, std::size_t ro
 }
 
 // y = x − diag(rho) H x.
-void apply_system(const SparseTransferMatrix& h, const std::vector<double>& rho, const double* x,
-                  int k, double* y) {
-  multiply_gather(h, rho, x, k, y);
-  const std::size_t n = h.rows() * static_cast<std::size_t>(k);
+void apply_system(const GatherOperator& a, const double* x, int k, double* y) {
+  a.apply(x, k, y);
+  const std::size_t n = a.rows() * static_cast<std::size_t>(k);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096),
                     [&](const tbb::blocked_range<std::size_t>& r) {
                       for (std::size_t i = r.begin(); i != r.end(); ++i) y[i] = x[i] - y[i];
                     });
 }
 
-double max_abs(const Block& v) {
+double max_abs_of(const double* v, std::size_t n) {
   double m = 0.0;
-  for (double x : v) m = std::max(m, std::fabs(x));
+  for (std::size_t i = 0; i < n; ++i) m = std::max(m, std::fabs(v[i]));
   return m;
+}
+
+double max_abs(const Block& v) {
+  return max_abs_of(v.data(), v.size());
 }
 
 // Row-parallel elementwise update: f(row, column) over all entries.
@@ -126,15 +131,14 @@ namespace {
 
 // Jacobi bounces: T = Σ_i (ρH)^i D, each term from the previous one (t holds D on entry).
 // Progress is shown when the bounces are the whole solve (options.bounces ≥ 0).
-void add_jacobi_bounces(const SparseTransferMatrix& h, const std::vector<double>& rho,
-                        const double* d, int k, int jacobi, double* t, const SolveOptions& options,
-                        ProgressSink* progress, SolveReport& report) {
-  const std::size_t rows = h.rows();
+void add_jacobi_bounces(const GatherOperator& a, const double* d, int k, int jacobi, double* t,
+                        const SolveOptions& options, ProgressSink* progress, SolveReport& report) {
+  const std::size_t rows = a.rows();
   const std::size_t n = rows * static_cast<std::size_t>(k);
   Block term(d, d + n), next(n);
   if (progress && options.bounces >= 0) progress->start("bounces", jacobi);
   for (int i = 0; i < jacobi; ++i) {
-    multiply_gather(h, rho, term.data(), k, next.data());
+    a.apply(term.data(), k, next.data());
     term.swap(next);
     for_each_entry(rows, k, [&](std::size_t e, int) { t[e] += term[e]; });
     report.bounce_energy.push_back(max_abs(term));
@@ -146,13 +150,12 @@ void add_jacobi_bounces(const SparseTransferMatrix& h, const std::vector<double>
 
 // After a fixed number of bounces: the largest relative residual over the columns, each against
 // max(‖D_c‖, 1e-3·max‖D‖), and whether it meets the tolerance.
-void report_bounce_residual(const SparseTransferMatrix& h, const std::vector<double>& rho,
-                            const double* d, int k, const double* t, double tolerance,
-                            SolveReport& report) {
-  const std::size_t rows = h.rows();
+void report_bounce_residual(const GatherOperator& a, const double* d, int k, const double* t,
+                            double tolerance, SolveReport& report) {
+  const std::size_t rows = a.rows();
   const std::size_t n = rows * static_cast<std::size_t>(k);
   Block r(n);
-  apply_system(h, rho, t, k, r.data());
+  apply_system(a, t, k, r.data());
   for (std::size_t e = 0; e < n; ++e) r[e] = d[e] - r[e];
   const std::vector<double> rr = dot_columns(r.data(), r.data(), rows, k);
   const std::vector<double> bb = dot_columns(d, d, rows, k);
@@ -170,14 +173,13 @@ void report_bounce_residual(const SparseTransferMatrix& h, const std::vector<dou
 // residual is measured against scale[c]; a column stops updating once it meets tol.
 class ColumnBiCgStab {
  public:
-  ColumnBiCgStab(const SparseTransferMatrix& h, const std::vector<double>& rho, const double* d,
-                 int k, double* t, std::vector<double> scale, double tol)
-      : h_(h),
-        rho_(rho),
+  ColumnBiCgStab(const GatherOperator& a, const double* d, int k, double* t,
+                 std::vector<double> scale, double tol)
+      : a_(a),
         d_(d),
         k_(k),
         t_(t),
-        rows_(h.rows()),
+        rows_(a.rows()),
         n_(rows_ * static_cast<std::size_t>(k)),
         scale_(std::move(scale)),
         tol_(tol),
@@ -195,7 +197,7 @@ class ColumnBiCgStab {
   bool true_residual() {
     const std::size_t rows = rows_;
     const int k = k_;
-    apply_system(h_, rho_, t_, k, r_.data());
+    apply_system(a_, t_, k, r_.data());
     for_each_entry(rows, k, [&](std::size_t e, int) { r_[e] = d_[e] - r_[e]; });
     const std::vector<double> rr = dot_columns(r_.data(), r_.data(), rows, k);
     bool all = true;
@@ -238,8 +240,7 @@ class ColumnBiCgStab {
   void run(int max_iterations, int* iterations, ProgressSink* progress);
 
  private:
-  const SparseTransferMatrix& h_;
-  const std::vector<double>& rho_;
+  const GatherOperator& a_;
   const double* const d_;
   const int k_;
   double* const t_;
@@ -281,7 +282,7 @@ void ColumnBiCgStab::run(int max_iterations, int* iterations, ProgressSink* prog
     for_each_entry(rows, k, [&](std::size_t e, int c) {
       if (active[c]) p[e] = r[e] + beta[c] * (p[e] - omega[c] * v[e]);
     });
-    apply_system(h_, rho_, p.data(), k, v.data());
+    apply_system(a_, p.data(), k, v.data());
     const std::vector<double> rv = dot_columns(rhat.data(), v.data(), rows, k);
     for (int c = 0; c < k; ++c) {
       if (!active[c]) continue;
@@ -291,7 +292,7 @@ void ColumnBiCgStab::run(int max_iterations, int* iterations, ProgressSink* prog
     for_each_entry(rows, k, [&](std::size_t e, int c) {
       if (active[c]) s[e] = r[e] - alpha[c] * v[e];
     });
-    apply_system(h_, rho_, s.data(), k, tt.data());
+    apply_system(a_, s.data(), k, tt.data());
     const std::vector<double> ts = dot_columns(tt.data(), s.data(), rows, k);
     const std::vector<double> t2 = dot_columns(tt.data(), tt.data(), rows, k);
     for (int c = 0; c < k; ++c) {
@@ -319,20 +320,21 @@ void ColumnBiCgStab::run(int max_iterations, int* iterations, ProgressSink* prog
 
 }  // namespace
 
-SolveReport solve_interreflection(const SparseTransferMatrix& h, const std::vector<double>& rho,
-                                  const double* d, int columns, double* t,
+SolveReport solve_interreflection(const GatherOperator& a, const double* d, int columns, double* t,
                                   const SolveOptions& options, ProgressSink* progress) {
   SolveReport report;
-  const std::size_t rows = h.rows();
+  const std::size_t rows = a.rows();
   const int k = columns;
   const std::size_t n = rows * static_cast<std::size_t>(k);
-  std::copy(d, d + n, t);
+  if (!options.start_from_t) std::copy(d, d + n, t);
   if (n == 0) return report;
 
-  const int jacobi = options.bounces >= 0 ? options.bounces : std::max(0, options.warmup_bounces);
-  add_jacobi_bounces(h, rho, d, k, jacobi, t, options, progress, report);
+  if (!options.start_from_t) {
+    const int jacobi = options.bounces >= 0 ? options.bounces : std::max(0, options.warmup_bounces);
+    add_jacobi_bounces(a, d, k, jacobi, t, options, progress, report);
+  }
   if (options.bounces >= 0) {
-    report_bounce_residual(h, rho, d, k, t, options.tolerance, report);
+    report_bounce_residual(a, d, k, t, options.tolerance, report);
     return report;
   }
 
@@ -345,7 +347,7 @@ SolveReport solve_interreflection(const SparseTransferMatrix& h, const std::vect
   for (int c = 0; c < k; ++c) scale[c] = std::max(std::sqrt(bb[c]), 1e-3 * bmax);
   if (bmax == 0) return report;
 
-  ColumnBiCgStab solver(h, rho, d, k, t, std::move(scale), options.tolerance);
+  ColumnBiCgStab solver(a, d, k, t, std::move(scale), options.tolerance);
   int iterations = 0;
   if (progress) progress->start("solve iterations", 0);
   bool done = solver.true_residual();
@@ -361,6 +363,74 @@ SolveReport solve_interreflection(const SparseTransferMatrix& h, const std::vect
   report.relative_residual = solver.max_relative_residual();
   report.converged = report.relative_residual <= options.tolerance;
   return report;
+}
+
+void GatherOperator::apply_float(const float* x, int columns, float* y) const {
+  const std::size_t n = rows() * static_cast<std::size_t>(columns);
+  std::vector<double> xd(x, x + n), yd(n);
+  apply(xd.data(), columns, yd.data());
+  for (std::size_t i = 0; i < n; ++i) y[i] = static_cast<float>(yd[i]);
+}
+
+SolveReport solve_by_bounces(const GatherOperator& a, double q,
+                             const std::function<void(double*)>& fill_direct, int columns,
+                             double* t, const SolveOptions& options, int max_bounces,
+                             MemoryBudget* budget, ProgressSink* progress) {
+  SolveReport report;
+  const std::size_t rows = a.rows();
+  const int k = columns;
+  const std::size_t n = rows * static_cast<std::size_t>(k);
+  fill_direct(t);
+  const double d_max = max_abs_of(t, n);
+  if (n == 0 || d_max == 0.0) return report;
+  const bool fixed = options.bounces >= 0;
+  const int limit = fixed ? options.bounces : max_bounces;
+  double bound = 0.0;  // e_n·q: bounds the max-norm residual of T_n
+  {
+    std::vector<float> term, next;  // read at random by the gather: 2 MB pages asked for
+    detail::resize_huge(term, n);
+    detail::resize_huge(next, n);
+    std::copy(t, t + n, term.begin());
+    double e = d_max;
+    bound = e * q;
+    if (progress && fixed) progress->start("bounces", limit);
+    for (int i = 0; i < limit; ++i) {
+      if (!fixed && e * q <= options.tolerance * d_max) break;
+      a.apply_float(term.data(), k, next.data());
+      term.swap(next);
+      e = 0.0;
+      for (float x : term) e = std::max(e, static_cast<double>(std::fabs(x)));
+      for_each_entry(rows, k, [&](std::size_t x, int) { t[x] += static_cast<double>(term[x]); });
+      report.bounce_energy.push_back(e);
+      ++report.jacobi_bounces;
+      bound = e * q;
+      if (progress && fixed) progress->advance(1, 0);
+    }
+    if (progress && fixed) progress->finish();
+  }
+  report.relative_residual = bound / d_max;
+  report.converged = report.relative_residual <= options.tolerance;
+  if (fixed || report.converged) return report;
+  // Stiff: BiCGSTAB from the bounce iterate.
+  const uint64_t krylov_bytes = 9ull * n * sizeof(double);
+  if (budget) budget->charge(krylov_bytes, "the Krylov solve's blocks");
+  Block d(n);
+  fill_direct(d.data());
+  SolveOptions krylov = options;
+  krylov.start_from_t = true;
+  const SolveReport k_report = solve_interreflection(a, d.data(), k, t, krylov, progress);
+  if (budget) budget->release(krylov_bytes);
+  report.krylov_iterations = k_report.krylov_iterations;
+  report.relative_residual = k_report.relative_residual;
+  report.converged = k_report.converged;
+  return report;
+}
+
+SolveReport solve_interreflection(const SparseTransferMatrix& h, const std::vector<double>& rho,
+                                  const double* d, int columns, double* t,
+                                  const SolveOptions& options, ProgressSink* progress) {
+  const CsrGatherOperator a(h, rho);
+  return solve_interreflection(a, d, columns, t, options, progress);
 }
 
 }  // namespace prt::bake

@@ -37,6 +37,7 @@
 #include <nlohmann/json.hpp>
 
 #include "bake/adaptive/occluder_caps.h"
+#include "bake/compact_gather.h"
 #include "bake/interreflection_solver.h"
 #include "bake/progress.h"
 #include "bake/sampling.h"
@@ -51,6 +52,8 @@ namespace prt::bake {
 namespace {
 
 constexpr int kMaxAdaptiveBounces = 200;  // then BiCGSTAB finishes the solve
+constexpr int kMaxCompactBounces = 200;   // the compact path's bounces before BiCGSTAB
+constexpr int kDenseSolverBlocks = 10;    // direct, solved, BiCGSTAB's 7 and the best iterate
 
 using Clock = std::chrono::steady_clock;
 using detail::BlockRows;
@@ -138,17 +141,20 @@ struct BakeJob {
   std::size_t V;
   int order, K, C, N;
   bool need_sh_rays, interreflect, need_rays, adaptive;
-  bool apart;  // the albedo is kept apart (transfer_baker.h)
+  bool apart;    // the albedo is kept apart (transfer_baker.h)
+  bool compact;  // interreflected through the compact gather (transfer_baker.h)
   BakeResult& result;
+  MemoryBudget& budget;
   VertexSums sums;
   DirectTransfer direct;
-  std::vector<uint8_t> modes;  // adaptive: per-vertex treatment
-  OccluderCaps caps;           // adaptive: where capped vertices draw their rays
-  SparseTransferMatrix h;      // interreflected: the gather matrix
+  std::vector<uint8_t> modes;             // adaptive: per-vertex treatment
+  OccluderCaps caps;                      // adaptive: where capped vertices draw their rays
+  SparseTransferMatrix h;                 // interreflected: the gather matrix (reference path)
+  std::unique_ptr<CompactGather> gather;  // interreflected: the compact gather
   double ray_offset_max = 0.0;
 
   BakeJob(const scene::Scene& s, const BakeOptions& o, ProgressSink* p, BakeResult& r, int channels,
-          bool albedo_apart)
+          bool albedo_apart, MemoryBudget& b)
       : scene(s),
         options(o),
         progress(p),
@@ -162,7 +168,9 @@ struct BakeJob {
         need_rays(need_sh_rays || o.ao || o.bent_normals),
         adaptive(o.adaptive.enabled && need_rays),
         apart(albedo_apart),
+        compact(interreflect && !adaptive && !apart && !o.dense_gather),
         result(r),
+        budget(b),
         direct(s, o, channels, albedo_apart, r.data, sums) {}
 
   BakeStatistics& st() { return result.stats; }
@@ -230,6 +238,10 @@ void run_sampling_pass(BakeJob& job) {
   for (const float eps : caster.vertex_ray_starts().offset)
     job.ray_offset_max = std::max(job.ray_offset_max, static_cast<double>(eps));
   const int gather_channels = job.apart && job.interreflect ? job.C : 0;
+  if (job.compact)
+    job.gather =
+        std::make_unique<CompactGather>(make_morton_order(job.scene.positions), job.scene.triangles,
+                                        detail::kVertexBlock, 1.0 / job.N);
   SamplingPass pass{job.scene,
                     job.options,
                     caster,
@@ -249,8 +261,10 @@ void run_sampling_pass(BakeJob& job) {
                     {},
                     {},
                     {}};
+  pass.compact = job.gather.get();
+  pass.budget = &job.budget;
   const std::size_t blocks = pass.blocks();
-  pass.rows.resize(job.interreflect ? blocks : 0);
+  pass.rows.resize(job.interreflect && !job.compact ? blocks : 0);
   pass.block_rays.assign(blocks, 0);
   pass.block_back_hits.assign(blocks, 0);
   if (job.progress) job.progress->start("bake", job.V);
@@ -263,17 +277,108 @@ void run_sampling_pass(BakeJob& job) {
   for (uint64_t b : pass.block_back_hits) st.back_face_hits += b;
   st.seconds_rays = seconds_since(t_rays);
   st.bvh_bytes = caster.embree_peak_bytes();
-  if (job.interreflect) {
+  if (job.interreflect && job.compact) {
+    st.matrix_entries = job.gather->hits();
+    st.matrix_bytes = job.gather->bytes();
+  } else if (job.interreflect) {
+    // The blocks' rows and the assembled matrix coexist while it is assembled.
+    uint64_t entries = 0;
+    for (const BlockRows& br : pass.rows) entries += br.columns.size();
+    job.budget.charge(2 * entries * (sizeof(uint32_t) + sizeof(float)) + 12 * (job.V + 1),
+                      "the gather matrix");
     detail::assemble_gather_matrix(pass.rows, job.V, job.h);
+    job.budget.release(entries * (sizeof(uint32_t) + sizeof(float)) + 4 * (job.V + 1));
     st.matrix_entries = job.h.entries();
     st.matrix_bytes = job.h.bytes();
   }
 }
 
+// The buffers every bake holds, charged before BakeJob allocates them (transfer_baker.h): the
+// coefficients, the sampling pass's sums, the solver's blocks and the compact gather's tables.
+// The gather's rows are charged as the sampling pass fills them.
+void charge_bake_buffers(const scene::Scene& scene, const BakeOptions& o, int channels,
+                         bool compact, MemoryBudget& budget) {
+  const uint64_t V = scene.positions.size(), T = scene.triangles.size();
+  const uint64_t K = static_cast<uint64_t>(o.order) * o.order;
+  const bool interreflect = o.kind == prt::TransferKind::Interreflected;
+  const bool need_rays = o.kind != prt::TransferKind::Unshadowed || o.ao || o.bent_normals;
+  uint64_t rows_out = V;
+  if (o.adaptive.enabled && o.adaptive.compact_output && !o.adaptive.vertex_mode.empty())
+    rows_out = static_cast<uint64_t>(std::count_if(o.adaptive.vertex_mode.begin(),
+                                                   o.adaptive.vertex_mode.end(),
+                                                   [](uint8_t m) { return m != kSkipVertex; }));
+  budget.charge(rows_out * static_cast<uint64_t>(channels) * K * sizeof(float),
+                "the transfer coefficients");
+  if (need_rays)
+    budget.charge(V * (interreflect ? K * sizeof(double) : 0) + V * 4 * sizeof(float),
+                  "the visibility sums");
+  if (!interreflect) return;
+  // Compact: every channel at once, T in double and two bounces in float (16 bytes per
+  // coefficient) and ρ per row and channel; dense: per channel, kDenseSolverBlocks V × K blocks.
+  const uint64_t C = static_cast<uint64_t>(channels);
+  budget.charge(compact ? V * C * (K * (sizeof(double) + 2 * sizeof(float)) + sizeof(double))
+                        : kDenseSolverBlocks * V * K * sizeof(double) + V * sizeof(double),
+                "the interreflection solver's blocks");
+  if (compact)
+    budget.charge(V * 2 * sizeof(uint32_t) + T * (sizeof(uint32_t) + sizeof(glm::uvec3)),
+                  "the gather matrix's tables");
+}
+
 // T_c = D_c + diag(ρ_c) H T_c per colour channel, into the output's float coefficients. With the
 // albedo kept apart: G_c = S + H_c G_c, H_c the channel's block (the hit albedo inside, no
 // receiver albedo: ρ = 1 in the solver).
+// Folds one channel's solver report into the statistics.
+void add_solve_report(const SolveReport& rep, BakeStatistics& st) {
+  st.jacobi_bounces = std::max(st.jacobi_bounces, rep.jacobi_bounces);
+  st.solver_iterations += rep.krylov_iterations;
+  st.solver_residual = std::max(st.solver_residual, rep.relative_residual);
+  st.solver_converged = st.solver_converged && rep.converged;
+  if (st.bounce_energy.size() < rep.bounce_energy.size())
+    st.bounce_energy.resize(rep.bounce_energy.size(), 0.0);
+  for (std::size_t i = 0; i < rep.bounce_energy.size(); ++i)
+    st.bounce_energy[i] = std::max(st.bounce_energy[i], rep.bounce_energy[i]);
+}
+
+// The compact path: every channel in one solve (C × K columns, one pass over the hits per
+// bounce), rows in the gather's (Morton) order, D_r,c = ρ_c(v)·S_v for v = the vertex of row r.
+// A row's C × K columns are the output's layout, so the solution is copied back row by row.
+void solve_compact_channels(BakeJob& job) {
+  BakeStatistics& st = job.st();
+  const CompactGather& g = *job.gather;
+  const std::size_t V = job.V, K = static_cast<std::size_t>(job.K);
+  const std::size_t C = static_cast<std::size_t>(job.C), CK = C * K;
+  std::vector<double> solved(V * CK), rho(V * C);
+  for (std::size_t r = 0; r < V; ++r)
+    for (std::size_t c = 0; c < C; ++c)
+      rho[r * C + c] = job.scene.albedo[g.vertex_of_row(r)][static_cast<int>(c)];
+  const auto fill_direct = [&](double* d) {
+    tbb::parallel_for(std::size_t(0), V, [&](std::size_t r) {
+      const double* s = &job.sums.visibility_sh[g.vertex_of_row(r) * K];
+      for (std::size_t c = 0; c < C; ++c)
+        for (std::size_t k = 0; k < K; ++k) d[r * CK + c * K + k] = rho[r * C + c] * s[k];
+    });
+  };
+  SolveOptions so;
+  so.bounces = job.options.bounces;
+  so.tolerance = job.options.bounce_tolerance;
+  so.max_iterations = job.options.max_solver_iterations;
+  const CompactGatherOperator a(g, rho, job.C);
+  const SolveReport rep =
+      solve_by_bounces(a, g.max_weighted_row_sum(rho, job.C), fill_direct, static_cast<int>(CK),
+                       solved.data(), so, kMaxCompactBounces, &job.budget, job.progress);
+  add_solve_report(rep, st);
+  prt::TransferData& data = job.result.data;
+  tbb::parallel_for(std::size_t(0), V, [&](std::size_t v) {
+    const double* t = &solved[g.row_of_vertex(v) * CK];
+    for (std::size_t i = 0; i < CK; ++i) data.coefficients[v * CK + i] = static_cast<float>(t[i]);
+  });
+}
+
 void solve_interreflection_channels(BakeJob& job) {
+  if (job.compact) {
+    solve_compact_channels(job);
+    return;
+  }
   BakeStatistics& st = job.st();
   const std::size_t V = job.V, K = static_cast<std::size_t>(job.K);
   const std::size_t C = static_cast<std::size_t>(job.C);
@@ -298,14 +403,7 @@ void solve_interreflection_channels(BakeJob& job) {
       so.max_iterations = job.options.max_solver_iterations;
       const SolveReport rep =
           solve_interreflection(h, rho, direct.data(), job.K, solved.data(), so, job.progress);
-      st.jacobi_bounces = rep.jacobi_bounces;
-      st.solver_iterations += rep.krylov_iterations;
-      st.solver_residual = std::max(st.solver_residual, rep.relative_residual);
-      st.solver_converged = st.solver_converged && rep.converged;
-      if (st.bounce_energy.size() < rep.bounce_energy.size())
-        st.bounce_energy.resize(rep.bounce_energy.size(), 0.0);
-      for (std::size_t i = 0; i < rep.bounce_energy.size(); ++i)
-        st.bounce_energy[i] = std::max(st.bounce_energy[i], rep.bounce_energy[i]);
+      add_solve_report(rep, st);
     }
     for (std::size_t v = 0; v < V; ++v)
       for (std::size_t k = 0; k < K; ++k)
@@ -386,6 +484,9 @@ std::string bake_metadata(const BakeJob& job) {
     s["converged"] = st.solver_converged;
     s["bounce_energy"] = st.bounce_energy;
     s["matrix_entries"] = st.matrix_entries;
+    s["gather"] = st.compact_gather ? "compact: 8 bytes per hit, Morton order, Neumann bounces"
+                                    : "dense: merged CSR entries, BiCGSTAB";
+    s["gather_bytes"] = st.matrix_bytes;
     s["back_face_hits"] = st.back_face_hits;
     meta["interreflection"] = s;
   }
@@ -478,11 +579,12 @@ BakeResult bake_transfer(const scene::Scene& scene, const BakeOptions& options,
     throw BakeError(scene::scene_label(scene) +
                     ": too many vertices for interreflection with the albedo kept apart");
   const int channels = channel_count(scene, options, apart);
-  prt::MemoryBudget budget(options.memory_limit, scene::scene_label(scene));
-  budget.charge(uint64_t(scene.positions.size()) * uint64_t(channels) * uint64_t(options.order) *
-                    uint64_t(options.order) * sizeof(float),
-                "the transfer coefficients");
-  BakeJob job(scene, options, progress, result, channels, apart);
+  MemoryBudget budget(options.memory_limit, scene::scene_label(scene));
+  const bool compact = options.kind == prt::TransferKind::Interreflected &&
+                       !(options.adaptive.enabled) && !apart && !options.dense_gather;
+  charge_bake_buffers(scene, options, channels, compact, budget);
+  BakeJob job(scene, options, progress, result, channels, apart, budget);
+  result.stats.compact_gather = job.compact;
   const std::size_t V = job.V;
   BakeStatistics& st = result.stats;
   st.vertices = V;
@@ -542,6 +644,7 @@ BakeResult bake_transfer(const scene::Scene& scene, const BakeOptions& options,
   data.kind = st.stored_kind;
   if (options.ao) data.ao = std::move(job.sums.ao);
   if (options.bent_normals) data.bent_normals = std::move(job.sums.bent);
+  st.budget_peak_bytes = budget.peak();
   st.seconds_total = seconds_since(t_start);
   data.metadata_json = bake_metadata(job);
   return result;

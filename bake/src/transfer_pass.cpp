@@ -98,6 +98,14 @@ bool gather_front_hit(const scene::Scene& scene, const scene::RayCaster::Hit& hi
   return true;
 }
 
+bool gather_front_hit_compact(const scene::Scene& scene, const scene::RayCaster::Hit& hit,
+                              const glm::vec3& dir, const CompactGather& gather,
+                              std::vector<CompactHit>& hits) {
+  if (!ray_hits_front_side(scene, hit.triangle, dir)) return false;
+  hits.push_back(quantise_hit(gather.triangle_index(hit.triangle), hit.u, hit.v));
+  return true;
+}
+
 void append_row(std::vector<std::pair<uint32_t, float>>& gathered, double row_scale,
                 BlockRows& br) {
   std::sort(gathered.begin(), gathered.end(),

@@ -19,10 +19,15 @@
 #include <glm/glm.hpp>
 
 #include "bake/adaptive/occluder_caps.h"
+#include "bake/compact_gather.h"
 #include "bake/interreflection_solver.h"
 #include "bake/progress.h"
 #include "bake/transfer_baker.h"
 #include "scene/ray_caster.h"
+
+namespace prt {
+class MemoryBudget;
+}  // namespace prt
 
 namespace prt::bake::detail {
 
@@ -89,6 +94,11 @@ struct SamplingPass {
   // Outputs per block of kVertexBlock vertices.
   std::vector<BlockRows> rows;  // interreflected only
   std::vector<uint64_t> block_rays, block_back_hits;
+  // Interreflected with the compact gather (fixed recipe only): block b of the pass is block b of
+  // the gather, rows in its (Morton) order; each block's bytes are charged to `budget` (when not
+  // null) before the block is stored.
+  CompactGather* compact = nullptr;
+  MemoryBudget* budget = nullptr;
 
   std::size_t blocks() const { return (V + kVertexBlock - 1) / kVertexBlock; }
   uint8_t mode_of(std::size_t v) const { return modes.empty() ? kSampleVertex : modes[v]; }
@@ -117,6 +127,12 @@ void cast_packet(const scene::RayCaster& caster, const glm::vec3& origin, const 
 bool gather_front_hit(const scene::Scene& scene, const scene::RayCaster::Hit& hit,
                       const glm::vec3& dir, float weight, int gather_channels,
                       std::vector<std::pair<uint32_t, float>>& gathered);
+
+// The compact gather's form of gather_front_hit (geometric weights only): appends the hit as a
+// CompactHit (renumbered triangle, quantised barycentrics); false for a back face.
+bool gather_front_hit_compact(const scene::Scene& scene, const scene::RayCaster::Hit& hit,
+                              const glm::vec3& dir, const CompactGather& gather,
+                              std::vector<CompactHit>& hits);
 
 // Merges duplicate columns of the gathered entries into one row of H, scaled by row_scale.
 void append_row(std::vector<std::pair<uint32_t, float>>& gathered, double row_scale,

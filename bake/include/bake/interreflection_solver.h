@@ -21,7 +21,12 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <vector>
+
+namespace prt {
+class MemoryBudget;
+}  // namespace prt
 
 namespace prt::bake {
 
@@ -46,6 +51,9 @@ struct SolveOptions {
   double tolerance = 1e-4;    // relative residual target of the Krylov solve
   int warmup_bounces = 3;     // Jacobi bounces that seed the Krylov solve
   int max_iterations = 2000;  // BiCGSTAB iteration cap (per channel)
+  // `t` already holds an iterate (for example the end of a bounce loop): no copy of D, no
+  // warm-up; BiCGSTAB starts from it.
+  bool start_from_t = false;
 };
 
 struct SolveReport {
@@ -64,6 +72,53 @@ SparseTransferMatrix column_block(const SparseTransferMatrix& h, uint64_t first,
 // y = diag(rho) · H · x for V × K blocks (rho has V entries).
 void multiply_gather(const SparseTransferMatrix& h, const std::vector<double>& rho, const double* x,
                      int columns, double* y);
+
+// y = diag(ρ)·H·x for V × K blocks, whatever stores H (CSR here, bake/compact_gather.h).
+class GatherOperator {
+ public:
+  virtual ~GatherOperator() = default;
+  virtual std::size_t rows() const = 0;
+  virtual void apply(const double* x, int columns, double* y) const = 0;
+  // The same with x and y in float (sums still in double); by default through apply().
+  virtual void apply_float(const float* x, int columns, float* y) const;
+};
+
+// The CSR matrix with its row albedo (multiply_gather).
+class CsrGatherOperator final : public GatherOperator {
+ public:
+  CsrGatherOperator(const SparseTransferMatrix& h, const std::vector<double>& rho)
+      : h_(h), rho_(rho) {}
+  std::size_t rows() const override { return h_.rows(); }
+  void apply(const double* x, int columns, double* y) const override {
+    multiply_gather(h_, rho_, x, columns, y);
+  }
+
+ private:
+  const SparseTransferMatrix& h_;
+  const std::vector<double>& rho_;
+};
+
+// Solves (I − A) T = D for one channel, A = diag(ρ)H given as an operator; `t` (V × K)
+// receives the solution (and holds the starting iterate with SolveOptions::start_from_t).
+SolveReport solve_interreflection(const GatherOperator& a, const double* d, int columns, double* t,
+                                  const SolveOptions& options, ProgressSink* progress = nullptr);
+
+// Neumann bounces in bounded memory: T = Σ_{i ≤ n} A^i D, A = diag(ρ)H with ‖A‖_max ≤ q < 1
+// (q: the largest ρ_p·(row sum of H)_p, CompactGather::max_weighted_row_sum). The residual
+// D − (I − A)T_n is A^{n+1}D, so its max-norm is ≤ e_n·q, e_n = ‖A^n D‖_max, and the error
+// ‖T_n − T‖_max ≤ e_n·q/(1 − q). options.bounces ≥ 0 runs exactly that many bounces; −1 bounces
+// until the residual bound e_n·q ≤ options.tolerance·‖D‖_max (the max-norm form of the Krylov
+// solve's relative residual): at most log(tol)/log q bounces whatever V is, one pass over H
+// each. Stiff systems (more than max_bounces bounces) finish with BiCGSTAB from the bounce
+// iterate (its 9 V × K blocks charged to `budget` first when it is not null). fill_direct(block)
+// writes D (V × K) into a block; `t` receives the solution. Holds T (double) and the current and
+// next bounce in float (apply_float: each bounce rounded to float, 2^-24 relative; T sums them
+// in double): 16 bytes per coefficient. The report's relative_residual is the bound
+// e_n·q/‖D‖_max (after BiCGSTAB: its own 2-norm residual).
+SolveReport solve_by_bounces(const GatherOperator& a, double q,
+                             const std::function<void(double*)>& fill_direct, int columns,
+                             double* t, const SolveOptions& options, int max_bounces,
+                             MemoryBudget* budget, ProgressSink* progress = nullptr);
 
 // Solves (I − diag(rho) H) T = D for one channel; `t` (V × K) receives the solution.
 SolveReport solve_interreflection(const SparseTransferMatrix& h, const std::vector<double>& rho,

@@ -21,7 +21,17 @@
 //   shadowed        N cosine-weighted directions ω_s (pdf cos/π) per vertex;
 //                   T_k = (ρ/N) Σ_s V(ω_s) Y_k(ω_s)   [= (ρ/π)·(π/N)·Σ V Y_k cos / cos].
 //   interreflected  T = D + diag(ρ) H T, D the shadowed transfer and H the gather matrix of
-//                   bake/interreflection_solver.h (derivation in transfer_baker.cpp).
+//                   bake/interreflection_solver.h (derivation in transfer_baker.cpp). The fixed
+//                   recipe with the albedo folded stores H per hit ray (bake/compact_gather.h: 8
+//                   bytes a hit, barycentrics quantised to 16 bits, unknowns in Morton order) and
+//                   solves by Neumann bounces to a max-norm error bound of bounce_tolerance·‖D‖
+//                   (BiCGSTAB finishes stiff systems); BakeOptions::dense_gather and the other
+//                   bakes use merged CSR entries and BiCGSTAB.
+// Memory: the large buffers (coefficients, visibility sums, gather, solver blocks) are charged
+// to a prt::MemoryBudget of BakeOptions::memory_limit before they are allocated; the gather block
+// by block as the sampling pass fills it. A bake over the limit throws MemoryBudgetExceeded
+// (one line) before the buffer that would exceed it exists. docs/BENCHMARKS.md has bytes per
+// vertex.
 // Ambient occlusion k_A = (1/N) Σ_s V(ω_s): the cosine-weighted visible fraction. Bent normal:
 // the normalised mean of the visible sample directions (cosine-weighted by the sampling); when
 // no sample is visible it falls back to the vertex normal.
@@ -150,6 +160,11 @@ struct BakeOptions {
   AdaptiveSampling adaptive;  // off by default
   // Keep the albedo apart (above) although the scene is not textured (textured scenes always do).
   bool keep_albedo_apart = false;
+  // Interreflected, fixed recipe, albedo folded: the reference path (H as merged CSR entries,
+  // Jacobi warm-up + BiCGSTAB, interreflection_solver.h) instead of the compact gather with
+  // Neumann bounces (compact_gather.h, solve_by_bounces). Adaptive bakes and bakes with the albedo
+  // kept apart always take the reference path.
+  bool dense_gather = false;
 };
 
 struct BakeStatistics {
@@ -167,10 +182,12 @@ struct BakeStatistics {
   bool solver_converged = true;
   std::vector<double> bounce_energy;  // per Jacobi bounce, max over channels
   uint64_t back_face_hits = 0;        // interreflected: rays that hit a back face (occlude only)
-  uint64_t matrix_entries = 0;        // stored entries of H
+  uint64_t matrix_entries = 0;        // stored entries of H (compact gather: hits)
   uint64_t matrix_bytes = 0;
   uint64_t skipped_triangles = 0;  // degenerate triangles the loader removed
   uint64_t bvh_bytes = 0;          // Embree's peak memory
+  uint64_t budget_peak_bytes = 0;  // the largest total charged to the memory budget
+  bool compact_gather = false;     // the interreflection used the compact gather
   // Adaptive sampling only:
   std::vector<uint32_t> vertex_samples;      // rays cast per vertex (0: analytic or skipped)
   std::vector<float> vertex_standard_error;  // calibrated SE of the mean of x (see above)

@@ -1,0 +1,200 @@
+// The compact gather (bake/compact_gather.h) against the reference path (merged CSR + BiCGSTAB):
+// quantisation bounds, the Morton order, the same solution on a small scene within the bound
+// the quantisation implies, bit-identical output for any thread count, and the memory budget's
+// refusal before the buffers exist.
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <catch2/catch.hpp>
+
+#include "bake/compact_gather.h"
+#include "bake/transfer_baker.h"
+#include "numerics/rng.h"
+#include "prt/core/memory_budget.h"
+#include "scene/procedural_mesh.h"
+
+using prt::bake::bake_transfer;
+using prt::bake::BakeOptions;
+using prt::bake::CompactHit;
+
+namespace {
+
+// A grey ground with a sphere and a box standing on it: rays from each hit the others.
+prt::scene::Scene small_scene() {
+  prt::scene::Scene s = prt::scene::make_quad({-3.f, 0.f, 3.f}, {6.f, 0.f, 0.f}, {0.f, 0.f, -6.f},
+                                              16, 16, glm::vec3(0.7f), "ground");
+  prt::scene::append_scene(s, prt::scene::make_uv_sphere({-0.8f, 0.8f, 0.f}, 0.8f, 10, 20, false,
+                                                         glm::vec3(0.8f, 0.5f, 0.3f), "sphere"));
+  prt::scene::append_scene(s, prt::scene::make_box({0.5f, 0.f, -0.6f}, {1.7f, 1.2f, 0.6f}, 4, false,
+                                                   glm::vec3(0.9f), "box"));
+  return s;
+}
+
+double max_abs(const std::vector<float>& x) {
+  double m = 0.0;
+  for (float e : x) m = std::max(m, static_cast<double>(std::fabs(e)));
+  return m;
+}
+
+double max_diff(const std::vector<float>& a, const std::vector<float>& b) {
+  double m = 0.0;
+  for (std::size_t i = 0; i < a.size(); ++i)
+    m = std::max(m, static_cast<double>(std::fabs(a[i] - b[i])));
+  return m;
+}
+
+}  // namespace
+
+TEST_CASE("quantised barycentrics: weights sum to 65535 and err by at most half a step") {
+  prt::numerics::SplitMix64 rng{7};
+  double worst = 0.0;
+  for (int i = 0; i < 100000; ++i) {
+    float u = static_cast<float>(rng.uniform()), v = static_cast<float>(rng.uniform());
+    if (u + v > 1.f) u = 1.f - u, v = 1.f - v;
+    if (i < 4) u = i & 1 ? 1.f : 0.f, v = i & 2 ? 1.f - u : 0.f;  // corners and an edge
+    const CompactHit h = prt::bake::quantise_hit(42, u, v);
+    REQUIRE(h.triangle == 42);
+    REQUIRE(static_cast<int>(h.u) + static_cast<int>(h.v) <= 65535);
+    worst = std::max({worst, std::fabs(h.u / 65535.0 - u), std::fabs(h.v / 65535.0 - v)});
+  }
+  // Half a quantum, plus float's rounding of u and v near 1 (2^-24).
+  CHECK(worst <= 0.5 / 65535.0 + 1e-7);
+  // u + v rounded above 1 loses the excess from the larger one.
+  const CompactHit e = prt::bake::quantise_hit(0, 0.6f, 0.4000001f);
+  CHECK(static_cast<int>(e.u) + static_cast<int>(e.v) == 65535);
+}
+
+TEST_CASE("Morton order is a permutation that keeps neighbours together") {
+  const prt::scene::Scene s = prt::scene::make_quad({0.f, 0.f, 0.f}, {1.f, 0.f, 0.f},
+                                                    {0.f, 0.f, 1.f}, 63, 63, glm::vec3(0.5f));
+  const std::vector<uint32_t> order = prt::bake::make_morton_order(s.positions);
+  std::vector<uint32_t> sorted = order;
+  std::sort(sorted.begin(), sorted.end());
+  for (std::size_t i = 0; i < sorted.size(); ++i) REQUIRE(sorted[i] == i);
+  // On a 64 × 64 grid Morton order visits 2 × 2, 4 × 4, ... tiles: consecutive rows are at most
+  // a few cells apart on average (row-major order jumps 63 cells at every row end; Morton's
+  // mean step is < 2 cells).
+  double step = 0.0;
+  for (std::size_t r = 1; r < order.size(); ++r)
+    step += glm::length(s.positions[order[r]] - s.positions[order[r - 1]]) * 63.0;
+  step /= static_cast<double>(order.size() - 1);
+  INFO("mean step " << step << " cells");
+  CHECK(step < 2.0);
+}
+
+TEST_CASE("compact gather: the reference path's solution within the quantisation bound") {
+  const prt::scene::Scene s = small_scene();
+  BakeOptions o;
+  o.kind = prt::TransferKind::Interreflected;
+  o.order = 3;
+  o.samples = 128;
+  o.bounce_tolerance = 1e-10;
+  const auto compact = bake_transfer(s, o);
+  o.dense_gather = true;
+  const auto dense = bake_transfer(s, o);
+  REQUIRE(compact.stats.compact_gather);
+  REQUIRE_FALSE(dense.stats.compact_gather);
+  REQUIRE(compact.stats.solver_converged);
+  REQUIRE(dense.stats.solver_converged);
+  REQUIRE(compact.data.coefficients.size() == dense.data.coefficients.size());
+  // The same rays: the hits the compact gather stores are the dense matrix's entries before
+  // merging (3 per hit, as one 8-byte hit each).
+  CHECK(compact.stats.rays == dense.stats.rays);
+  CHECK(compact.stats.back_face_hits == dense.stats.back_face_hits);
+  CHECK(3 * compact.stats.matrix_entries >= dense.stats.matrix_entries);
+  // Quantisation moves the solution by ≤ 3.1e-5·q/(1 − q)·‖T‖ (compact_gather.h); q ≤ 0.9 here
+  // (albedo ≤ 0.9, row sums ≤ 1), so 2.8e-4·‖T‖. Both solves stop at 1e-10 and both store float
+  // (2^-24 relative).
+  const double t_max = max_abs(dense.data.coefficients);
+  const double diff = max_diff(compact.data.coefficients, dense.data.coefficients);
+  INFO("max |T| " << t_max << ", max difference " << diff << " (" << diff / t_max
+                  << " relative); bounces " << compact.stats.jacobi_bounces);
+  CHECK(diff <= (3.1e-5 * 0.9 / 0.1 + 1e-6) * t_max);
+  CHECK(diff > 0.0);  // the quantisation is real: the paths differ
+  // With no bounce both are the shadowed transfer: bit-identical.
+  o.bounces = 0;
+  const auto dense0 = bake_transfer(s, o);
+  o.dense_gather = false;
+  const auto compact0 = bake_transfer(s, o);
+  CHECK(dense0.data.coefficients == compact0.data.coefficients);
+}
+
+TEST_CASE("compact gather: bit-identical for any thread count") {
+  const prt::scene::Scene s = small_scene();
+  BakeOptions o;
+  o.kind = prt::TransferKind::Interreflected;
+  o.order = 2;
+  o.samples = 64;
+  o.threads = 1;
+  const auto one = bake_transfer(s, o);
+  o.threads = 2;
+  const auto two = bake_transfer(s, o);
+  REQUIRE(one.stats.compact_gather);
+  CHECK(one.data.coefficients == two.data.coefficients);
+  CHECK(one.stats.jacobi_bounces == two.stats.jacobi_bounces);
+}
+
+TEST_CASE("compact gather: the bounce count is bounded independently of the mesh") {
+  // Neumann bounces stop once the residual bound e_n·q ≤ tol·‖D‖; e_n ≤ q^n‖D‖, so at most
+  // ⌈log(tol)/log q⌉ bounces (q ≤ ρ_max = 0.8 here: 42 at tol 1e-4), whatever V is. Refining the
+  // mesh 4× changes the count only by what the geometry at the contact does (a few bounces).
+  std::vector<int> bounces;
+  for (int seg : {8, 16, 32}) {
+    prt::scene::Scene s = prt::scene::make_quad({-3.f, 0.f, 3.f}, {6.f, 0.f, 0.f}, {0.f, 0.f, -6.f},
+                                                2 * seg, 2 * seg, glm::vec3(0.7f), "ground");
+    prt::scene::append_scene(s, prt::scene::make_uv_sphere({0.f, 1.f, 0.f}, 1.f, seg, 2 * seg,
+                                                           false, glm::vec3(0.8f), "sphere"));
+    BakeOptions o;
+    o.kind = prt::TransferKind::Interreflected;
+    o.order = 2;
+    o.samples = 64;
+    const auto r = bake_transfer(s, o);
+    REQUIRE(r.stats.solver_converged);
+    REQUIRE(r.stats.solver_iterations == 0);  // no Krylov fallback
+    bounces.push_back(r.stats.jacobi_bounces);
+  }
+  INFO("bounces " << bounces[0] << ", " << bounces[1] << ", " << bounces[2]);
+  const int bound = static_cast<int>(std::ceil(std::log(1e-4) / std::log(0.8)));
+  for (int b : bounces) CHECK(b <= bound);
+  CHECK(std::abs(bounces[2] - bounces[0]) <= 8);
+}
+
+TEST_CASE("a bake over its memory limit stops before it allocates, with one line") {
+  prt::scene::Scene s = small_scene();
+  s.source_path = "small.glb";
+  BakeOptions o;
+  o.kind = prt::TransferKind::Interreflected;
+  o.order = 5;
+  o.samples = 64;
+  // The coefficients alone: V × 3 channels × 25 × 4 bytes; a limit below that fails first.
+  const uint64_t coefficients = s.positions.size() * 3 * 25 * 4;
+  o.memory_limit = coefficients / 2;
+  try {
+    (void)bake_transfer(s, o);
+    FAIL("no MemoryBudgetExceeded");
+  } catch (const prt::MemoryBudgetExceeded& e) {
+    const std::string what = e.what();
+    INFO(what);
+    CHECK(what.rfind("small.glb: the transfer coefficients", 0) == 0);
+    CHECK(what.find('\n') == std::string::npos);
+  }
+  // Unlimited, the bake records the largest total it charged; one byte less fails at the last
+  // charge, a block of the gather matrix in the sampling pass.
+  o.memory_limit = 0;
+  const auto r = bake_transfer(s, o);
+  const uint64_t peak = r.stats.budget_peak_bytes;
+  CHECK(peak > coefficients);
+  o.memory_limit = peak - 1;
+  try {
+    (void)bake_transfer(s, o);
+    FAIL("no MemoryBudgetExceeded");
+  } catch (const prt::MemoryBudgetExceeded& e) {
+    INFO(e.what());
+    CHECK(std::string(e.what()).find("the gather matrix") != std::string::npos);
+  }
+  o.memory_limit = peak;
+  CHECK(bake_transfer(s, o).data.coefficients == r.data.coefficients);
+}
