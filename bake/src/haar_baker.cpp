@@ -18,6 +18,7 @@
 #include "bake/progress.h"
 #include "bake/sampling.h"
 #include "bake/transfer_baker.h"
+#include "prt/core/memory_budget.h"
 #include "prt/haar/cube_map.h"
 #include "prt/haar/transform.h"
 #include "scene/ray_caster.h"
@@ -431,6 +432,17 @@ HaarBakeResult bake_haar_transfer(const scene::Scene& scene, const HaarBakeOptio
                       progress,
                       {}};
 
+  // The memory known before the rays: interreflection holds every vertex's dense wavelet
+  // vector (6N² × channels floats) and the Krylov solve's blocks (d, t and BiCGSTAB's seven, of
+  // kSolveColumns doubles per vertex). The gather rows and the truncated output grow with what
+  // the rays see and are not charged.
+  MemoryBudget budget(options.memory_limit, scene.source_path);
+  if (interreflect) {
+    budget.charge(uint64_t(V) * ctx.W * uint64_t(C) * sizeof(float),
+                  "the dense wavelet coefficients of the interreflection");
+    budget.charge(uint64_t(V) * 9 * kSolveColumns * sizeof(double),
+                  "the interreflection solve's blocks");
+  }
   const Clock::time_point t_rays = Clock::now();
   ctx.task_rays.assign((V + kVerticesPerTask - 1) / kVerticesPerTask, 0);
   if (progress) progress->start("bake haar", V);

@@ -373,6 +373,18 @@ SceneSolution solve_scene(const SceneSolveRequest& request,
   }
   std::vector<Patch> patches = make_patches(scene);
   check_unit_albedo(r, scene, patches, &out);
+  if (!r.hierarchical) {
+    // Dense storage (solver.h) for the largest pass: F and K, 8·N² bytes; progressive at most
+    // every row of F, 4·N².
+    const uint64_t n = !r.refinement               ? patches.size()
+                       : r.refinement->max_patches ? r.refinement->max_patches
+                                                   : std::min(4 * patches.size(), kMaxPatches);
+    const bool progressive = !r.refinement && r.solve.solver == SolverKind::Progressive;
+    MemoryBudget budget(r.memory_limit, r.scene_path);
+    budget.charge((progressive ? 4 : 8) * n * n, progressive
+                                                     ? "the form-factor rows"
+                                                     : "the dense form factors and gather matrix");
+  }
   if (r.hierarchical) {
     solve_hierarchy(r, scene, &patches, &out);
   } else if (r.refinement) {

@@ -16,7 +16,7 @@ TEST_CASE("memory budget refuses a charge over its limit and keeps its total", "
     FAIL("a charge over the limit was accepted");
   } catch (const prt::MemoryBudgetExceeded& e) {
     const std::string m = e.what();
-    CHECK(m.find("scene.glb: the solver's blocks needs 500 B") == 0);
+    CHECK(m.find("scene.glb: the solver's blocks would take 500 B, 1.1 KB in all") == 0);
     CHECK(m.find("1.1 KB in all") != std::string::npos);
     CHECK(m.find('\n') == std::string::npos);
   }

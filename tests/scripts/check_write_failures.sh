@@ -65,6 +65,28 @@ status=0
   >/dev/null 2>err.txt || status=$?
 [[ $status == 1 ]] || fail "bake --memory-limit 1K: exit status $status, expected 1"
 expect_refusal "bake --memory-limit 1K" 1 small.prt "memory limit is 1.0 KB" glossy.glb
+# Every kind of work that takes --memory-limit charges its large buffers before allocating them.
+over_limit() {  # label output named args...
+  local label="$1" output="$2" named="$3"
+  shift 3
+  status=0
+  "$prt" "$@" --memory-limit 1K --quiet >/dev/null 2>err.txt || status=$?
+  [[ $status == 1 ]] || fail "$label --memory-limit 1K: exit status $status, expected 1"
+  expect_refusal "$label --memory-limit 1K" 1 "$output" "memory limit is 1.0 KB" "$named"
+}
+over_limit "bake --transfer interreflected" small.prt glossy.glb \
+  bake glossy.glb -o small.prt --transfer interreflected --order 3 --samples 16
+over_limit "bake --auto" small.prt glossy.glb bake glossy.glb -o small.prt --auto
+over_limit "bake --glossy" small.prtg glossy.glb bake glossy.glb --glossy -o small.prtg --order 2
+over_limit "bake --basis haar --transfer interreflected" small.prt glossy.glb \
+  bake glossy.glb --basis haar --transfer interreflected -o small.prt --cube 8
+over_limit "compress" small.prtq glossy.prtg compress glossy.prtg -o small.prtq --clusters 2 \
+  --vectors 2
+for solver in gauss-seidel progressive hierarchical; do
+  over_limit "radiosity --solver $solver" room.csv room.obj radiosity room.obj --solver $solver \
+    --max-edge 0.25 \
+    --csv room.csv
+done
 status=0
 "$prt" bake glossy.glb -o small.prt --memory-limit 8Q --quiet >/dev/null 2>err.txt || status=$?
 [[ $status == 2 ]] || fail "bake --memory-limit 8Q: exit status $status, expected 2"

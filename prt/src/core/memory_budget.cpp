@@ -23,9 +23,9 @@ void MemoryBudget::charge(uint64_t bytes, const std::string& what) {
     const uint64_t total = current + bytes;
     if (limit_ > 0 && (total > limit_ || total < current)) {
       const std::string prefix = owner_.empty() ? std::string() : owner_ + ": ";
-      throw MemoryBudgetExceeded(prefix + what + " needs " + format_memory_size(bytes) +
-                                 ", which would make " + format_memory_size(total) +
-                                 " in all; the memory limit is " + format_memory_size(limit_));
+      throw MemoryBudgetExceeded(prefix + what + " would take " + format_memory_size(bytes) + ", " +
+                                 format_memory_size(total) + " in all; the memory limit is " +
+                                 format_memory_size(limit_));
     }
     if (used_.compare_exchange_weak(current, total)) break;
   }

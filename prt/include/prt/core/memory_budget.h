@@ -31,7 +31,7 @@ class MemoryBudget {
   explicit MemoryBudget(uint64_t limit_bytes = 0, std::string owner = {});
 
   // Adds `bytes` for `what` ("the gather matrix"); throws MemoryBudgetExceeded when the total
-  // would exceed the limit: "OWNER: WHAT needs 3.2 GB, which would make 17.9 GB in all; the
+  // would exceed the limit: "OWNER: WHAT would take 3.2 GB, 17.9 GB in all; the
   // memory limit is 16.0 GB". Nothing is added when it throws.
   void charge(uint64_t bytes, const std::string& what);
   // Takes back bytes charged earlier (clamped at zero).
