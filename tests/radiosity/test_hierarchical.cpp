@@ -89,10 +89,12 @@ TEST_CASE("hierarchical: closed box with uniform emission, L = E / (1 - rho)",
   // Every patch of a closed box sees the whole enclosure (Σ_j F_ij = 1), so with E and ρ the
   // same everywhere L = E + ρL, L = E/(1 − ρ) exactly, whatever the form factors' distribution:
   // the links of every patch (its own and its ancestors') must carry exactly the enclosure's
-  // light. The area mean is held to 1e-3 (energy: no link loses or invents light on the whole);
-  // single patches near the box's edges, where point links between nearby nodes approximate
-  // the kernel, err more: measured 0.76% worst at ε = 3e-5 (768 patches, 491,520 links; the
-  // area mean exact to 1e-6), so 1e-2.
+  // light. At ε = 3e-5 every link here is an exact patch–patch one (768 patches, 491,520 links),
+  // so this checks their sums per receiver: with the dense entry's three-point rule the patches
+  // along the box's edges (perpendicular neighbours, where the kernel varies over the sender)
+  // erred by up to 0.76%; with the sender's quadrature refined for nearby pairs (links.h)
+  // measured 0.045% worst, area mean 1.2e-5. Held to 1e-3 per patch (the target) and 1e-4 on the
+  // mean (energy: no link loses or invents light on the whole).
   const double rho = 0.5;
   const prt::scene::Scene box =
       prt::scene::make_box({0, 0, 0}, {1, 1, 1}, 8,
@@ -112,8 +114,8 @@ TEST_CASE("hierarchical: closed box with uniform emission, L = E / (1 - rho)",
   mean /= area;
   INFO("patches " << patches.size() << ", links " << s.stats.links << ", worst " << worst
                   << ", mean " << mean);
-  CHECK(std::abs(mean - 2.0) / 2.0 < 1e-3);
-  CHECK(worst < 1e-2);
+  CHECK(std::abs(mean - 2.0) / 2.0 < 1e-4);
+  CHECK(worst < 1e-3);
   // Every link moves light inside the box: nothing escapes beyond the solve's tolerance.
   const EnergyAccount& e = s.solution.energy;
   CHECK(std::abs(e.escaped.x) / e.emitted.x < 2e-3);
