@@ -127,9 +127,11 @@ TEST_CASE(
     "[radiosity][hierarchical]") {
   // The open room of the solver tests (coloured walls, a block on the floor, a lamp) at 3,488
   // patches. Measured (docs/RADIOSITY.md, "Hierarchical radiosity"): relative RMS of patch
-  // radiance against dense analytic 5.4% at ε = 3e-4 (92,012 links), 1.5% at 3e-5 (the default,
-  // 607,011 links; N² = 12.2 M); the bound checked is the default's with a margin, and that
-  // 10× smaller ε brings it closer.
+  // radiance against dense analytic 5.0% at ε = 3e-4 (91,890 links), 1.37% at 3e-5 (the
+  // default, 606,782 links; N² = 12.2 M; 1.52% before surface nodes gathered at their children's
+  // centroids); the bound checked is the default's with a margin of about 1.5× (the solve is
+  // deterministic, but the links' random visibility samples move with any change to the
+  // refinement), and that 10× smaller ε brings it closer.
   const prt::scene::Scene room =
       prt::scene::subdivide_to_edge_length(prt::test::open_room("lamp"), 0.08);
   const prt::scene::RayCaster caster(room);
@@ -145,7 +147,7 @@ TEST_CASE(
   const double n2 = double(patches.size()) * double(patches.size());
   INFO("patches " << patches.size() << "; epsilon 3e-4: links " << coarse.stats.links << ", rms "
                   << rms_coarse << "; 3e-5: links " << fine.stats.links << ", rms " << rms_fine);
-  CHECK(rms_fine < 0.025);
+  CHECK(rms_fine < 0.02);
   CHECK(rms_fine < 0.7 * rms_coarse);
   CHECK(double(fine.stats.links) < 0.25 * n2);
   CHECK(fine.stats.passes.size() >= 2);  // the reflectors' light refined the links again
