@@ -34,11 +34,12 @@ class LinkSolver {
     slot_.assign(n, kNoSlot);
     for (std::size_t i = 0; i < n; ++i)
       if (!h.nodes[i].planar) slot_[i] = static_cast<uint32_t>(clusters++);
-    charged_ = n * (2 * sizeof(glm::dvec3) + sizeof(float) + sizeof(uint32_t) + sizeof(uint64_t)) +
+    charged_ = n * (3 * sizeof(glm::dvec3) + sizeof(float) + sizeof(uint32_t) + sizeof(uint64_t)) +
                clusters * 2 * sizeof(Buckets);
     if (budget_) budget_->charge(charged_, "the hierarchical radiosity node state");
     radiance_.assign(n, glm::dvec3(0.0));
     irradiance_.assign(n, glm::dvec3(0.0));
+    from_parent_.assign(n, glm::dvec3(0.0));
     bmax_.assign(n, 0.f);
     sent_.assign(clusters, Buckets{});
     received_.assign(clusters, Buckets{});
@@ -120,10 +121,34 @@ class LinkSolver {
                       });
   }
 
+  // What a point link r ← s sends toward a receiving point at `x` (direction d to s's centroid):
+  // the sender's radiance-weighted projected area toward −d times the link's g at distance
+  // |x − c_s| (g holds V / (π r²) at the centroids).
+  glm::dvec3 sent_toward(const Link& link, const HierarchyNode& nr, const glm::dvec3& x,
+                         glm::dvec3* d_out) const {
+    const HierarchyNode& ns = h_.nodes[link.source_node()];
+    const glm::dvec3 delta = glm::dvec3(ns.centroid) - x;
+    const double r2 = glm::dot(delta, delta);
+    const glm::dvec3 d = delta / std::sqrt(r2);
+    *d_out = d;
+    glm::dvec3 sent(0.0);
+    if (ns.planar) {
+      sent = radiance_[link.source_node()] *
+             (double(ns.area) * std::max(0.0, -glm::dot(glm::dvec3(ns.normal), d)));
+    } else {
+      const Buckets& q = sent_[slot_[link.source_node()]];
+      for (int a = 0; a < 3; ++a) sent += std::abs(d[a]) * q[2 * a + (d[a] > 0.0)];
+    }
+    const glm::dvec3 c = glm::dvec3(ns.centroid) - glm::dvec3(nr.centroid);
+    return sent * (double(link.g) * glm::dot(c, c) / r2);
+  }
+
   void gather_at(std::size_t r) {
     const HierarchyNode& nr = h_.nodes[r];
     glm::dvec3 power(0.0);
     Buckets buckets{};
+    const bool split = nr.planar && !nr.leaf();
+    glm::dvec3 child_h[2] = {glm::dvec3(0.0), glm::dvec3(0.0)};
     for (uint64_t k = offsets_[r]; k < offsets_[r + 1]; ++k) {
       const Link& link = (*links_)[k];
       const uint32_t s = link.source_node();
@@ -131,18 +156,17 @@ class LinkSolver {
         power += double(link.g) * radiance_[s];
         continue;
       }
-      const HierarchyNode& ns = h_.nodes[s];
-      const glm::dvec3 delta = glm::dvec3(ns.centroid) - glm::dvec3(nr.centroid);
-      const glm::dvec3 d = delta / glm::length(delta);
-      glm::dvec3 sent(0.0);
-      if (ns.planar) {
-        sent =
-            radiance_[s] * (double(ns.area) * std::max(0.0, -glm::dot(glm::dvec3(ns.normal), d)));
-      } else {
-        const Buckets& q = sent_[slot_[s]];
-        for (int a = 0; a < 3; ++a) sent += std::abs(d[a]) * q[2 * a + (d[a] > 0.0)];
+      glm::dvec3 d;
+      if (split) {
+        const uint32_t kids[2] = {nr.left, nr.right};
+        for (int c = 0; c < 2; ++c) {
+          const HierarchyNode& child = h_.nodes[kids[c]];
+          const glm::dvec3 sent = sent_toward(link, nr, glm::dvec3(child.centroid), &d);
+          child_h[c] += sent * std::max(0.0, glm::dot(glm::dvec3(nr.normal), d));
+        }
+        continue;
       }
-      sent *= double(link.g);
+      const glm::dvec3 sent = sent_toward(link, nr, glm::dvec3(nr.centroid), &d);
       if (nr.planar) {
         power += sent * (double(nr.area) * std::max(0.0, glm::dot(glm::dvec3(nr.normal), d)));
       } else {
@@ -151,6 +175,10 @@ class LinkSolver {
           buckets[b] += sent * (std::abs(d[a]) * double(nr.axis_area[b]));
         }
       }
+    }
+    if (split) {
+      from_parent_[nr.left] = child_h[0];
+      from_parent_[nr.right] = child_h[1];
     }
     if (nr.planar)
       irradiance_[r] = nr.area > 0.f ? power / double(nr.area) : glm::dvec3(0.0);
@@ -167,7 +195,7 @@ class LinkSolver {
       for (uint32_t c : {n.left, n.right}) {
         const HierarchyNode& child = nodes[c];
         if (n.planar) {
-          if (child.area > 0.f) irradiance_[c] += irradiance_[i];
+          if (child.area > 0.f) irradiance_[c] += irradiance_[i] + from_parent_[c];
           continue;
         }
         const Buckets& from = received_[slot_[i]];
@@ -223,6 +251,9 @@ class LinkSolver {
   std::vector<uint64_t> offsets_;
   std::vector<uint32_t> slot_;
   std::vector<glm::dvec3> radiance_, irradiance_;
+  // A planar node's point links evaluated at its children's centroids: their irradiance, each
+  // child's own (push hands it down with the rest instead of the node's centroid value).
+  std::vector<glm::dvec3> from_parent_;
   std::vector<float> bmax_;
   std::vector<Buckets> sent_, received_;
 };

@@ -18,6 +18,13 @@ namespace {
 
 constexpr float kSameNormal = 1.f - 1e-6f;
 constexpr uint32_t kSpawnPatches = 20000;  // spawn a task for pairs holding more patches
+// Exact links: nearby patches (centroids nearer than kExactNear × the sum of two corner distances
+// each) have the sender's quadrature refined, up to 4^kExactLevels sub-triangles, until a finer
+// level changes F_rs by at most kExactTolerance (exact_g). Measured on the closed box (768
+// patches): worst patch 0.76% → 0.045%; on a 13k-triangle level, links 1.4–2× the time.
+constexpr int kExactLevels = 2;
+constexpr double kExactNear = 1.0;
+constexpr double kExactTolerance = 1e-4;
 
 uint64_t mix(uint64_t x) {
   x += 0x9E3779B97F4A7C15ull;
@@ -45,6 +52,23 @@ bool behind(const HierarchyNode& plane, const HierarchyNode& box) {
 
 glm::dvec3 barycentric_point(const Patch& p, double a, double b) {
   return p.corners[0] * a + p.corners[1] * b + p.corners[2] * (1.0 - a - b);
+}
+
+// point_polygon_form_factor for a triangle, without its allocations when the whole triangle is in
+// front of x (the same terms in the same order; clipped triangles go to it).
+double triangle_form_factor(const glm::dvec3& x, const glm::dvec3& n,
+                            const std::vector<glm::dvec3>& t) {
+  for (const glm::dvec3& c : t)
+    if (glm::dot(n, c - x) < 0.0) return point_polygon_form_factor(x, n, t);
+  double sum = 0.0;
+  for (std::size_t k = 0; k < 3; ++k) {
+    const glm::dvec3 a = t[k] - x, b = t[(k + 1) % 3] - x;
+    const glm::dvec3 c = glm::cross(a, b);
+    const double length = glm::length(c);
+    if (!(length > 0.0)) continue;
+    sum += std::atan2(length, glm::dot(a, b)) * glm::dot(n, c) / length;
+  }
+  return std::clamp(std::abs(sum) / numerics::kTwoPi, 0.0, 1.0);
 }
 
 struct Local {
@@ -145,26 +169,95 @@ struct LinkRefiner::Work {
     return g;
   }
 
-  // A_s·F_sr of two patches (links.h, exact).
-  float exact_g(const Patch& r, uint32_t r_index, const Patch& s, uint32_t s_index, Local& local) {
+  // Calls visit(q) for the quadrature points of s's midpoint subdivision into 4^level
+  // sub-triangles, the degree-2 three-point rule on each; q holds barycentric weights of the first
+  // two corners. Level 0 is the dense analytic entry's rule.
+  template <class Visit>
+  static void for_each_point(int level, Visit&& visit) {
     static constexpr double kW[3][3] = {
         {2.0 / 3, 1.0 / 6, 1.0 / 6}, {1.0 / 6, 2.0 / 3, 1.0 / 6}, {1.0 / 6, 1.0 / 6, 2.0 / 3}};
-    std::vector<glm::dvec3> polygon(r.corners.begin(), r.corners.end());
+    const int n = 1 << level;
+    const auto rule = [&](const glm::dvec2& a, const glm::dvec2& b, const glm::dvec2& c) {
+      for (int k = 0; k < 3; ++k) visit(a * kW[k][0] + b * kW[k][1] + c * kW[k][2]);
+    };
+    for (int i = 0; i < n; ++i)
+      for (int j = 0; i + j < n; ++j) {
+        const glm::dvec2 a(double(n - i - j) / n, double(i) / n),
+            b(double(n - i - j - 1) / n, double(i + 1) / n),
+            c(double(n - i - j - 1) / n, double(i) / n);
+        rule(a, b, c);
+        if (i + j + 1 < n) rule(b, glm::dvec2(double(n - i - j - 2) / n, double(i + 1) / n), c);
+      }
+  }
+
+  // The mean over the points of `level` of Lambert's formula from s to r, unoccluded.
+  static double unoccluded(const Patch& r, const Patch& s, const std::vector<glm::dvec3>& polygon,
+                           int level) {
     double sum = 0.0;
-    for (int k = 0; k < 3; ++k) {
-      const glm::dvec3 x = barycentric_point(s, kW[k][0], kW[k][1]);
-      if (glm::dot(r.normal, x - r.centroid) <= 0.0) continue;
-      const double f = point_polygon_form_factor(x, s.normal, polygon);
-      if (f <= 0.0) continue;
-      const glm::dvec3 y = barycentric_point(r, kW[k][0], kW[k][1]);
+    int points = 0;
+    for_each_point(level, [&](const glm::dvec2& q) {
+      ++points;
+      const glm::dvec3 x = barycentric_point(s, q.x, q.y);
+      if (glm::dot(r.normal, x - r.centroid) > 0.0)
+        sum += triangle_form_factor(x, s.normal, polygon);
+    });
+    return sum / points;
+  }
+
+  // The mean over the points of `level` of Lambert's formula from s to r with one visibility ray
+  // from each point to the point with the same barycentric weights on r; *open gets it unoccluded.
+  double occluded_mean(const Patch& r, uint32_t r_index, const Patch& s, uint32_t s_index,
+                       const std::vector<glm::dvec3>& polygon, int level, double* open,
+                       Local& local) const {
+    double sum = 0.0, unblocked = 0.0;
+    int points = 0;
+    for_each_point(level, [&](const glm::dvec2& q) {
+      ++points;
+      const glm::dvec3 x = barycentric_point(s, q.x, q.y);
+      if (glm::dot(r.normal, x - r.centroid) <= 0.0) return;
+      const double f = triangle_form_factor(x, s.normal, polygon);
+      if (f <= 0.0) return;
+      unblocked += f;
+      const glm::dvec3 y = barycentric_point(r, q.x, q.y);
       const glm::vec3 o = self.caster_.surface_origin(s_index, glm::vec3(x), glm::vec3(s.normal));
       const glm::vec3 t = self.caster_.surface_origin(r_index, glm::vec3(y), glm::vec3(r.normal));
       const glm::vec3 d = t - o;
       const float length = glm::length(d);
       ++local.rays;
       if (!(length > 0.f) || !self.caster_.occluded(o, d / length, 0.f, length)) sum += f;
+    });
+    *open = unblocked / points;
+    return sum / points;
+  }
+
+  // A_s·F_sr of two patches (links.h, exact): Lambert's formula (exact over r) at the three
+  // points of s with a visibility ray each — the dense analytic entry. Where the kernel varies
+  // over s (nearby patches) that rule errs: the unoccluded value is refined on sub-triangles
+  // (for_each_point) to the coarsest level that the next changes by at most kExactTolerance in
+  // F_rs (at most kExactLevels), and scaled by the three points' visible fraction (weighted by
+  // the kernel), so that no rays are added.
+  float exact_g(const Patch& r, uint32_t r_index, const Patch& s, uint32_t s_index,
+                Local& local) const {
+    std::vector<glm::dvec3> polygon(r.corners.begin(), r.corners.end());
+    double open = 0.0;
+    const double seen = occluded_mean(r, r_index, s, s_index, polygon, 0, &open, local);
+    double f = open;
+    const double reach =
+        kExactNear *
+        (glm::length(r.corners[0] - r.centroid) + glm::length(s.corners[0] - s.centroid) +
+         glm::length(r.corners[1] - r.centroid) + glm::length(s.corners[1] - s.centroid));
+    const bool near = glm::length(s.centroid - r.centroid) < reach;
+    for (int level = 0; near && level < kExactLevels; ++level) {
+      const double finer = unoccluded(r, s, polygon, level + 1);
+      const bool converged = std::abs(finer - f) * s.area <= kExactTolerance * r.area;
+      f = finer;
+      if (converged) break;
     }
-    return static_cast<float>(s.area * sum / 3.0);
+    if (f == open) return static_cast<float>(s.area * seen);
+    if (open > 0.0) return static_cast<float>(s.area * f * (seen / open));
+    // No point of the three-point rule faces r: visibility from the level-1 points.
+    const double seen1 = occluded_mean(r, r_index, s, s_index, polygon, 1, &open, local);
+    return open > 0.0 ? static_cast<float>(s.area * f * (seen1 / open)) : 0.f;
   }
 
   // A patch of the sending node, drawn in proportion to its largest radiance channel (by

@@ -89,10 +89,12 @@ TEST_CASE("hierarchical: closed box with uniform emission, L = E / (1 - rho)",
   // Every patch of a closed box sees the whole enclosure (Σ_j F_ij = 1), so with E and ρ the
   // same everywhere L = E + ρL, L = E/(1 − ρ) exactly, whatever the form factors' distribution:
   // the links of every patch (its own and its ancestors') must carry exactly the enclosure's
-  // light. The area mean is held to 1e-3 (energy: no link loses or invents light on the whole);
-  // single patches near the box's edges, where point links between nearby nodes approximate
-  // the kernel, err more: measured 0.76% worst at ε = 3e-5 (768 patches, 491,520 links; the
-  // area mean exact to 1e-6), so 1e-2.
+  // light. At ε = 3e-5 every link here is an exact patch–patch one (768 patches, 491,520 links),
+  // so this checks their sums per receiver: with the dense entry's three-point rule the patches
+  // along the box's edges (perpendicular neighbours, where the kernel varies over the sender)
+  // erred by up to 0.76%; with the sender's quadrature refined for nearby pairs (links.h)
+  // measured 0.045% worst, area mean 1.2e-5. Held to 1e-3 per patch (the target) and 1e-4 on the
+  // mean (energy: no link loses or invents light on the whole).
   const double rho = 0.5;
   const prt::scene::Scene box =
       prt::scene::make_box({0, 0, 0}, {1, 1, 1}, 8,
@@ -112,8 +114,8 @@ TEST_CASE("hierarchical: closed box with uniform emission, L = E / (1 - rho)",
   mean /= area;
   INFO("patches " << patches.size() << ", links " << s.stats.links << ", worst " << worst
                   << ", mean " << mean);
-  CHECK(std::abs(mean - 2.0) / 2.0 < 1e-3);
-  CHECK(worst < 1e-2);
+  CHECK(std::abs(mean - 2.0) / 2.0 < 1e-4);
+  CHECK(worst < 1e-3);
   // Every link moves light inside the box: nothing escapes beyond the solve's tolerance.
   const EnergyAccount& e = s.solution.energy;
   CHECK(std::abs(e.escaped.x) / e.emitted.x < 2e-3);
@@ -125,9 +127,11 @@ TEST_CASE(
     "[radiosity][hierarchical]") {
   // The open room of the solver tests (coloured walls, a block on the floor, a lamp) at 3,488
   // patches. Measured (docs/RADIOSITY.md, "Hierarchical radiosity"): relative RMS of patch
-  // radiance against dense analytic 5.4% at ε = 3e-4 (92,012 links), 1.5% at 3e-5 (the default,
-  // 607,011 links; N² = 12.2 M); the bound checked is the default's with a margin, and that
-  // 10× smaller ε brings it closer.
+  // radiance against dense analytic 5.0% at ε = 3e-4 (91,890 links), 1.37% at 3e-5 (the
+  // default, 606,782 links; N² = 12.2 M; 1.52% before surface nodes gathered at their children's
+  // centroids); the bound checked is the default's with a margin of about 1.5× (the solve is
+  // deterministic, but the links' random visibility samples move with any change to the
+  // refinement), and that 10× smaller ε brings it closer.
   const prt::scene::Scene room =
       prt::scene::subdivide_to_edge_length(prt::test::open_room("lamp"), 0.08);
   const prt::scene::RayCaster caster(room);
@@ -143,7 +147,7 @@ TEST_CASE(
   const double n2 = double(patches.size()) * double(patches.size());
   INFO("patches " << patches.size() << "; epsilon 3e-4: links " << coarse.stats.links << ", rms "
                   << rms_coarse << "; 3e-5: links " << fine.stats.links << ", rms " << rms_fine);
-  CHECK(rms_fine < 0.025);
+  CHECK(rms_fine < 0.02);
   CHECK(rms_fine < 0.7 * rms_coarse);
   CHECK(double(fine.stats.links) < 0.25 * n2);
   CHECK(fine.stats.passes.size() >= 2);  // the reflectors' light refined the links again

@@ -12,7 +12,9 @@
 // and solves again from the current solution, until a pass splits no link or `max_passes`.
 //
 // One iteration (Jacobi): every node gathers over its links (planar nodes into irradiance H,
-// clusters into six axis buckets of power); push: a planar node hands its H to its children, a
+// clusters into six axis buckets of power; a planar node that has children evaluates its point
+// links at their two centroids instead of its own, a piecewise-constant rather than constant
+// irradiance over it); push: a planar node hands its H (and each child its own part) down, a
 // cluster hands each bucket to its children in proportion to their axis areas (a planar child
 // turns its share into irradiance); at the patches L = E + ρ·H; pull: a planar node's radiance is
 // the area-weighted mean of its children's, a cluster's six radiance-weighted axis areas

@@ -5,7 +5,9 @@
 // A link r ← s carries the power from node s to node r. Two kinds:
 //   exact (both ends are patches): g = A_s·F_sr, F_sr by Lambert's point-to-polygon formula at the
 //     three quadrature points of s with one visibility ray each (the dense analytic method's
-//     entry, radiosity/form_factors.h); power = g·L_s.
+//     entry, radiosity/form_factors.h); for nearby patches the unoccluded value is integrated on
+//     sub-triangles of s until it changes by at most 1e-4 (a closed scene's F_rs then sum to 1
+//     per receiver within 1e-3) and scaled by the three points' visible fraction; power = g·L_s.
 //   point (at least one end a cluster or surface node): g = V / (π r² + max(A_r, A_s)), r the
 //     distance between the centroids, V the fraction of `visibility_rays` segments between
 //     random points of random patches of r and s (pairs that face each other; the patches of s
