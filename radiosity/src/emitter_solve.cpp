@@ -31,15 +31,10 @@ std::vector<EmitterGroup> emitter_groups(const scene::Scene& scene) {
   return groups;
 }
 
-prt::EmitterResponses solve_emitter_responses(const scene::Scene& scene,
-                                              const std::vector<Patch>& patches,
-                                              const FormFactorMatrix& f,
-                                              const SolveOptions& options,
-                                              std::vector<EmitterSolveReport>* reports) {
-  if (options.solver == SolverKind::Progressive)
-    throw std::invalid_argument(
-        "per-emitter responses need a full-matrix solver (gauss-seidel or jacobi), not "
-        "progressive");
+prt::EmitterResponses emitter_responses(
+    const scene::Scene& scene, const std::vector<Patch>& patches,
+    const std::function<Solution(const std::vector<Patch>& lit)>& solve,
+    std::vector<EmitterSolveReport>* reports) {
   const std::vector<EmitterGroup> groups = emitter_groups(scene);
   if (groups.empty()) throw std::invalid_argument(scene.source_path + ": nothing emits light");
   prt::EmitterResponses out;
@@ -54,13 +49,11 @@ prt::EmitterResponses solve_emitter_responses(const scene::Scene& scene,
   for (const glm::uvec3& t : scene.triangles)
     for (int c = 0; c < 3; ++c) out.triangles.push_back(t[c]);
   out.responses.reserve(3 * v_count * groups.size());
-  // K depends on the geometry only (not on emission or albedo): one for every emitter's solve.
-  const GatherMatrix k = make_gather_matrix(patches, f);
   std::vector<Patch> lit = patches;
   for (const EmitterGroup& group : groups) {
     for (Patch& p : lit) p.emission = glm::dvec3(0.0);
     for (uint32_t t : group.triangles) lit[t].emission = glm::dvec3(1.0);
-    const Solution solution = solve_matrix(lit, k, options);
+    const Solution solution = solve(lit);
     const std::vector<float> vertex = vertex_radiance(scene, lit, solution.radiance);
     out.responses.insert(out.responses.end(), vertex.begin(), vertex.end());
     out.emitters.push_back({group.name, {group.emission.x, group.emission.y, group.emission.z}});
@@ -69,6 +62,24 @@ prt::EmitterResponses solve_emitter_responses(const scene::Scene& scene,
           {group.name, solution.iterations, solution.converged, solution.relative_unshot});
   }
   return out;
+}
+
+prt::EmitterResponses solve_emitter_responses(const scene::Scene& scene,
+                                              const std::vector<Patch>& patches,
+                                              const FormFactorMatrix& f,
+                                              const SolveOptions& options,
+                                              std::vector<EmitterSolveReport>* reports) {
+  if (options.solver == SolverKind::Progressive)
+    throw std::invalid_argument(
+        "per-emitter responses need a full-matrix solver (gauss-seidel or jacobi), not "
+        "progressive");
+  if (emitter_groups(scene).empty())
+    throw std::invalid_argument(scene.source_path + ": nothing emits light");
+  // K depends on the geometry only (not on emission or albedo): one for every emitter's solve.
+  const GatherMatrix k = make_gather_matrix(patches, f);
+  return emitter_responses(
+      scene, patches, [&](const std::vector<Patch>& lit) { return solve_matrix(lit, k, options); },
+      reports);
 }
 
 }  // namespace prt::radiosity

@@ -345,30 +345,12 @@ prt::EmitterResponses hierarchical_emitter_responses(const scene::Scene& scene,
                                                      const HierarchicalSolution& solved,
                                                      const SolveOptions& options,
                                                      std::vector<EmitterSolveReport>* reports) {
-  const std::vector<EmitterGroup> groups = emitter_groups(scene);
-  if (groups.empty()) throw std::invalid_argument(scene.source_path + ": nothing emits light");
-  prt::EmitterResponses out;
-  const std::size_t v_count = scene.vertex_count();
-  for (std::size_t v = 0; v < v_count; ++v)
-    for (int c = 0; c < 3; ++c) {
-      out.positions.push_back(scene.positions[v][c]);
-      out.normals.push_back(scene.normals[v][c]);
-    }
-  for (const glm::uvec3& t : scene.triangles)
-    for (int c = 0; c < 3; ++c) out.triangles.push_back(t[c]);
-  std::vector<Patch> lit = patches;
-  for (const EmitterGroup& group : groups) {
-    for (Patch& p : lit) p.emission = glm::dvec3(0.0);
-    for (uint32_t t : group.triangles) lit[t].emission = glm::dvec3(1.0);
-    const Solution solution = solve_on_links(lit, solved.hierarchy, solved.links, options);
-    const std::vector<float> vertex = vertex_radiance(scene, lit, solution.radiance);
-    out.responses.insert(out.responses.end(), vertex.begin(), vertex.end());
-    out.emitters.push_back({group.name, {group.emission.x, group.emission.y, group.emission.z}});
-    if (reports)
-      reports->push_back(
-          {group.name, solution.iterations, solution.converged, solution.relative_unshot});
-  }
-  return out;
+  return emitter_responses(
+      scene, patches,
+      [&](const std::vector<Patch>& lit) {
+        return solve_on_links(lit, solved.hierarchy, solved.links, options);
+      },
+      reports);
 }
 
 }  // namespace prt::radiosity

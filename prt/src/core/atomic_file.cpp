@@ -39,11 +39,15 @@ class TemporaryFile {
 
 }  // namespace
 
+std::string temporary_path_for(const std::string& path) {
+  return path + ".tmp-" + std::to_string(PRT_GETPID());
+}
+
 Status replace_file_atomically(const std::string& path,
                                const std::function<Status(const std::string& temporary)>& write) {
   std::string temporary;
   try {
-    temporary = path + ".tmp-" + std::to_string(PRT_GETPID());
+    temporary = temporary_path_for(path);
   } catch (const std::bad_alloc&) {
     return fail(path, "out of memory");
   }

@@ -9,16 +9,9 @@
 
 #include "formats/binary_layout.h"
 #include "formats/glossy_file_plan.h"
+#include "prt/core/atomic_file.h"
 #include "prt/core/half.h"
 #include "prt/formats/crc32c.h"
-
-#if defined(_WIN32)
-#include <process.h>
-#define PRT_GETPID _getpid
-#else
-#include <unistd.h>
-#define PRT_GETPID getpid
-#endif
 
 namespace prt {
 namespace {
@@ -42,7 +35,7 @@ Result<std::unique_ptr<GlossyTransferFileWriter>> GlossyTransferFileWriter::crea
   try {
     std::unique_ptr<GlossyTransferFileWriter> w(new GlossyTransferFileWriter());
     w->path_ = path;
-    w->temporary_ = path + ".tmp-" + std::to_string(PRT_GETPID());
+    w->temporary_ = temporary_path_for(path);
     w->matrix_offset_ = plan->matrix_offset;
     w->bytes_per_vertex_ = uint64_t{skeleton.channels} * skeleton.matrix_floats() *
                            (skeleton.storage == Precision::F16 ? 2 : 4);

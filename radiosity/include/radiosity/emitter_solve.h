@@ -14,6 +14,7 @@
 // Frame and units: the Scene's.
 #pragma once
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -43,6 +44,16 @@ struct EmitterSolveReport {
   bool converged = false;
   double relative_unshot = 0;
 };
+
+// One response per emitter of `scene` (whose triangles are `patches`, make_patches): each
+// emitter's triangles emit unit white, every other patch nothing, and `solve` returns the
+// patches' radiance under that emission; the responses are its vertex radiance. The loop shared
+// by the dense and the hierarchical solvers. `reports` (optional) receives one entry per
+// emitter. Throws std::invalid_argument when nothing emits.
+prt::EmitterResponses emitter_responses(
+    const scene::Scene& scene, const std::vector<Patch>& patches,
+    const std::function<Solution(const std::vector<Patch>& lit)>& solve,
+    std::vector<EmitterSolveReport>* reports = nullptr);
 
 // The responses of every emitter of `scene` (whose triangles are `patches`, make_patches) under
 // the form factors `f`, solved with options.solver (GaussSeidel or Jacobi). `reports`

@@ -20,6 +20,10 @@
 
 namespace prt {
 
+// PATH.tmp-<process id>: the temporary both functions below write, for writers that stream
+// to it themselves and rename it when complete (may throw std::bad_alloc).
+std::string temporary_path_for(const std::string& path);
+
 // Replaces PATH with the file that `write` creates. `write` is given the temporary's name and
 // must create that file, fill it and close it, then return Status::Ok() or an error naming PATH
 // (returned unchanged). Then the temporary is renamed over PATH; if that fails the error is
