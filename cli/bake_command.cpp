@@ -34,6 +34,7 @@
 #include "scene/scene_loader.h"
 #include "scene/subdivide.h"
 #include "sh/projection.h"
+#include "subsurface_cli.h"
 
 namespace prt::cli {
 namespace {
@@ -58,6 +59,7 @@ struct BakeArguments {
   bool automatic = false;  // --auto (bake/adaptive/adaptive_baker.h)
   bool glossy = false;     // --glossy: transfer matrices (cli/glossy_cli.h)
   std::string env;         // --env: lighting that --auto chooses the SH order for
+  SubsurfaceArguments subsurface;  // --subsurface and its options (subsurface_cli.h)
   bool tolerance_given = false, transfer_given = false;
 };
 
@@ -252,6 +254,12 @@ GlossyBakeRequest glossy_request(const BakeArguments& args, const CLI::App& cmd)
 // The command line's own refusals, before any file is looked at.
 void check_usage(const BakeArguments& args, const CLI::App& cmd) {
   check_values(args, cmd);
+  check_subsurface_usage(args.subsurface, cmd,
+                         args.glossy                  ? "--glossy"
+                         : args.haar.basis == "haar"  ? "--basis haar"
+                         : args.automatic             ? "--auto"
+                         : args.transfer == "unshadowed" ? "--transfer unshadowed"
+                                                         : "");
   if (args.glossy) {
     check_glossy_applicable(cmd);
     check_glossy_request(glossy_request(args, cmd));
@@ -333,6 +341,8 @@ void run(const BakeArguments& args, const CLI::App& cmd) {
     return;
   }
 
+  if (args.subsurface.given())
+    return run_subsurface_bake(scene, args.output, options, args.subsurface, args.quiet);
   ProgressReporter progress(args.quiet);
   if (args.automatic) return run_auto(args, scene, options, progress);
   const bake::BakeResult result = bake::bake_transfer(scene, options, &progress);
@@ -405,6 +415,7 @@ Command register_bake(CLI::App& app) {
       ->capture_default_str();
   cmd->add_flag("--quiet", args->quiet, "No progress, summary or notes (warnings still print)");
   add_haar_bake_options(cmd, &args->haar);
+  add_subsurface_options(cmd, &args->subsurface);
   cmd->add_flag("--auto", args->automatic,
                 "Analyse the scene and bake only what it needs for --tolerance (default 0.01)");
   cmd->add_option("--env", args->env, "--auto: lighting whose band energy picks the SH order");

@@ -82,11 +82,11 @@ TEST_CASE("subsurface slab under uniform light exits R_total times E over pi awa
     }
     CAPTURE(reference, interior, worst);
     REQUIRE(interior > 1000);  // 3,249 of 10,201
-    // 0.1% of the profile lies beyond the edge margin; the sum over 1 mm cells (the receiver's
+    // 0.1% of the profile lies beyond the edge margin; the sum over 2 mm cells (the receiver's
     // own cell and the near ones integrated as discs, docs/SUBSURFACE.md) adds its quadrature
-    // error, measured +0.6% (red) to +0.7% (blue) here: 1% in all. Without the disc integration
-    // of near cells the sum was 4% low, so the bound can fail.
-    REQUIRE(worst < 0.01);
+    // error, measured −1.6% (red) to −1.9% (blue) at 1–4 mm cells: 2.5% in all. With point
+    // samples for the near cells the sum was 4–5.5% low, so the bound can fail.
+    REQUIRE(worst < 0.025);
   }
 }
 

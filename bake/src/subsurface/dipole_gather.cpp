@@ -154,23 +154,31 @@ class Gatherer {
 
   uint64_t nodes() const { return nodes_; }
 
-  // A_i × the mean of R_d over a disc of area A_i centred at distance r from the receiver, in
-  // the receiver's plane: ∫ R_d(s) L(s) ds over s ∈ [r − ρ, r + ρ], L(s) = 2s·acos((s² + r² −
-  // ρ²)/(2sr)) the arc of the circle of radius s inside the disc, with s = r + ρ sin t so that the
-  // square-root ends of L become smooth (docs/SUBSURFACE.md).
-  std::array<double, 3> disc_weights(const subsurface::DipoleMaterial& mat, double area,
-                                     double r) const {
+  // A_i × the mean of R_d over the part of a disc of area A_i, centred at distance r from the
+  // receiver in the receiver's plane, that lies outside the receiver's own disc (radius rho_o,
+  // whose profile the self term already holds): ∫ R_d(s) L(s) ds / ∫ L(s) ds over s from
+  // max(r − ρ, rho_o) to r + ρ, L(s) = 2s·acos((s² + r² − ρ²)/(2sr)) the arc of the circle of
+  // radius s about the receiver inside the disc (2πs when the disc holds that whole circle), with
+  // s = c + h sin t so that the square-root ends of L become smooth (docs/SUBSURFACE.md).
+  std::array<double, 3> disc_weights(const subsurface::DipoleMaterial& mat, double area, double r,
+                                     double rho_o) const {
     const double rho = std::sqrt(area * numerics::kInvPi);
+    const double lower = std::max(r - rho, rho_o), upper = r + rho;
+    if (!(upper > lower)) return weights(mat, area, std::max(r, rho_o));
+    const double mid = 0.5 * (lower + upper), half = 0.5 * (upper - lower);
     std::array<double, 3> w{};
+    double measure = 0;
     for (std::size_t q = 0; q < disc_t_.size(); ++q) {
       const double t = disc_t_[q];
-      const double s = r + rho * std::sin(t);
-      if (s <= 0) continue;
+      const double s = mid + half * std::sin(t);
       const double c = std::clamp((s * s + r * r - rho * rho) / (2 * s * r), -1.0, 1.0);
-      const double arc = (s < rho - r) ? numerics::kTwoPi * s : 2 * s * std::acos(c);
-      const double jac = disc_w_[q] * rho * std::cos(t) * arc;
+      const double arc = (s <= rho - r) ? numerics::kTwoPi * s : 2 * s * std::acos(c);
+      const double jac = disc_w_[q] * half * std::cos(t) * arc;
+      measure += jac;
       for (int ch = 0; ch < 3; ++ch) w[ch] += jac * mat.channels[ch].profile(s);
     }
+    if (!(measure > 0)) return weights(mat, area, std::max(r, rho_o));
+    for (int ch = 0; ch < 3; ++ch) w[ch] *= area / measure;
     return w;
   }
 
@@ -189,8 +197,8 @@ class Gatherer {
     }
     const double r = glm::distance(s_.positions[o], s_.positions[i]);
     const double area = s_.areas[i];
-    if (r * r < kNearFactor * kNearFactor * area * numerics::kInvPi)
-      acc.add(disc_weights(mat, area, r), si);
+    if (r * r < kNearFactor * kNearFactor * std::max(area, s_.areas[o]) * numerics::kInvPi)
+      acc.add(disc_weights(mat, area, r, std::sqrt(s_.areas[o] * numerics::kInvPi)), si);
     else
       acc.add(weights(mat, area, r), si);
   }
@@ -254,6 +262,7 @@ std::vector<double> gather_subsurface(const SubsurfaceSamples& samples,
   std::vector<double> out(n * 3 * static_cast<std::size_t>(K), 0.0);
   const Gatherer g(samples, materials, options);
   std::atomic<uint64_t> nodes_used{0}, samples_used{0}, clamped{0};
+  std::vector<double> response(n, 0.0);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 64),
                     [&](const tbb::blocked_range<std::size_t>& range) {
                       uint64_t nu = 0, su = 0, cl = 0;
@@ -266,6 +275,7 @@ std::vector<double> gather_subsurface(const SubsurfaceSamples& samples,
                         for (int c = 0; c < 3; ++c) {
                           double scale = 1.0;
                           const double total = mat.channels[c].total();
+                          response[o] = std::max(response[o], acc.w[c] / total);
                           if (options.energy_clamp && acc.w[c] > total) {
                             scale = total / acc.w[c];
                             was_clamped = true;
@@ -284,6 +294,7 @@ std::vector<double> gather_subsurface(const SubsurfaceSamples& samples,
     stats->node_evaluations = nodes_used;
     stats->sample_evaluations = samples_used;
     stats->clamped_receivers = clamped;
+    stats->largest_response = *std::max_element(response.begin(), response.end());
   }
   return out;
 }

@@ -87,6 +87,10 @@ void add_metadata(prt::TransferData& data, const SubsurfaceBakeOptions& ss,
                             ? nlohmann::json::object()
                             : nlohmann::json::parse(data.metadata_json, nullptr, false);
   if (meta.is_discarded()) meta = nlohmann::json::object();
+  // The file holds 3-channel transfer with the albedo folded, whatever the inner bake said.
+  meta["channels"] = 3;
+  meta["albedo_folded"] = true;
+  meta.erase("albedo_kept_apart");
   nlohmann::json sub;
   sub["model"] = "dipole (Jensen et al. 2001), straight-line distances";
   sub["mm_per_unit"] = st.mm_per_unit;
@@ -136,6 +140,7 @@ SubsurfaceBakeResult bake_subsurface_transfer(const scene::Scene& scene, const B
                                               const SubsurfaceBakeOptions& ss,
                                               ProgressSink* progress) {
   validate_subsurface(scene, options, ss);
+  const Clock::time_point t_start = Clock::now();
   SubsurfaceBakeResult result;
   SubsurfaceBakeStatistics& st = result.subsurface;
   st.mm_per_unit = ss.mm_per_unit > 0 ? ss.mm_per_unit : default_mm_per_unit(scene);
@@ -180,6 +185,7 @@ SubsurfaceBakeResult bake_subsurface_transfer(const scene::Scene& scene, const B
     result.bake = bake_transfer(solve_scene, o, progress);
   }
   add_metadata(result.bake.data, ss, st);
+  result.bake.stats.seconds_total = std::chrono::duration<double>(Clock::now() - t_start).count();
   return result;
 }
 

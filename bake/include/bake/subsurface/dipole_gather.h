@@ -57,6 +57,7 @@ struct SubsurfaceGatherStats {
   uint64_t node_evaluations = 0;  // aggregates used
   uint64_t sample_evaluations = 0;
   uint64_t clamped_receivers = 0;  // receivers scaled by the energy clamp in any channel
+  double largest_response = 0;     // max over receivers and channels of W_c(o)/R_total,c
 };
 
 // X: samples × 3 × K (channel-major within a sample, the .prt layout); zero rows for samples
