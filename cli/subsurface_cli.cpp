@@ -95,7 +95,7 @@ void add_subsurface_options(CLI::App* cmd, SubsurfaceArguments* a) {
                   "--subsurface: millimetres per scene unit (default: bounding-box diagonal = "
                   "100 mm)");
   cmd->add_option("--subsurface-epsilon", a->epsilon,
-                  "--subsurface: solid-angle criterion of the hierarchical sum (0.05)");
+                  "--subsurface: solid-angle criterion of the hierarchical sum (0.2)");
   cmd->add_flag("--subsurface-reference", a->reference,
                 "--subsurface: the direct O(n^2) sum instead of the hierarchy (slow)");
 }

@@ -81,12 +81,13 @@ TEST_CASE("subsurface slab under uniform light exits R_total times E over pi awa
       }
     }
     CAPTURE(reference, interior, worst);
-    REQUIRE(interior > 1000);  // 3,249 of 10,201
+    REQUIRE(interior > 1000);  // 4,489 of 10,201
     // 0.1% of the profile lies beyond the edge margin; the sum over 2 mm cells (the receiver's
     // own cell and the near ones integrated as discs, docs/SUBSURFACE.md) adds its quadrature
-    // error, measured −1.6% (red) to −1.9% (blue) at 1–4 mm cells: 2.5% in all. With point
+    // error, measured −1.6% (red) to −1.9% (blue) at 1–4 mm cells by the direct sum, and the
+    // hierarchy at the default ε = 0.2 adds up to 1% (2.7% in all, measured): 3%. With point
     // samples for the near cells the sum was 4–5.5% low, so the bound can fail.
-    REQUIRE(worst < 0.025);
+    REQUIRE(worst < 0.03);
   }
 }
 
@@ -136,7 +137,7 @@ TEST_CASE("subsurface hierarchical sum matches the direct sum within 1 percent a
         *subsurface::make_dipole(subsurface::find_subsurface_preset(name)->coefficients)};
     SubsurfaceGatherOptions direct;
     direct.reference = true;
-    SubsurfaceGatherOptions tree;  // ε = 0.05, the default
+    SubsurfaceGatherOptions tree;  // ε = 0.2, the default
     const auto t0 = std::chrono::steady_clock::now();
     const std::vector<double> d = gather_subsurface(f.samples, mats, direct);
     const double t_direct = seconds_since(t0);
@@ -151,7 +152,7 @@ TEST_CASE("subsurface hierarchical sum matches the direct sum within 1 percent a
     }
     const double rel_rms = std::sqrt(num / den);
     std::printf(
-        "subsurface %s: 10k vertices, direct %.2f s, hierarchical %.2f s (eps 0.05), "
+        "subsurface %s: 10k vertices, direct %.2f s, hierarchical %.2f s (eps 0.2), "
         "relative RMS %.2e, nodes used %llu, samples %llu\n",
         name, t_direct, t_tree, rel_rms, static_cast<unsigned long long>(st.node_evaluations),
         static_cast<unsigned long long>(st.sample_evaluations));

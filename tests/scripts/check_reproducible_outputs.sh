@@ -62,6 +62,9 @@ both yes bake --quiet "$demo" -o shadowed.prt --order 3 --samples 32 --ao --bent
 same "shadowed, --ao --bent-normals" shadowed.prt
 both yes bake --quiet "$demo" -o interreflected.prt --transfer interreflected --order 3 --samples 16
 same "interreflected" interreflected.prt
+both yes bake --quiet "$demo" -o subsurface.prt --transfer interreflected --order 3 --samples 16 \
+  --subsurface marble
+same "interreflected, --subsurface marble" subsurface.prt
 both yes bake --quiet "$tex" -o textured.prt --transfer interreflected --order 2 --samples 16
 same "interreflected, textured (albedo kept apart)" textured.prt
 both yes bake --quiet "$demo" -o auto.prt --auto --tolerance 0.3

@@ -103,6 +103,33 @@ class OctreeBuilder {
   Octree& t_;
 };
 
+// R_d of three channels tabulated against t = r/(r + L) on [0, 1), L the largest z_v, linear
+// interpolation: exact at t = 0, relative error below 1e-5 where the profile matters (measured
+// against the closed form in the 10k test), and no exp() per evaluation.
+class ProfileTable {
+ public:
+  static constexpr int kSize = 8192;
+  explicit ProfileTable(const subsurface::DipoleMaterial& m) : values_(3 * (kSize + 1), 0.0) {
+    for (const subsurface::DipoleProfile& p : m.channels) scale_ = std::max(scale_, p.z_v());
+    for (int i = 0; i < kSize; ++i) {
+      const double t = static_cast<double>(i) / kSize;
+      const double r = scale_ * t / (1.0 - t);
+      for (int c = 0; c < 3; ++c) values_[3 * i + c] = m.channels[c].profile(r);
+    }  // t = 1 (r = ∞): 0
+  }
+  std::array<double, 3> operator()(double r) const {
+    const double x = r / (r + scale_) * kSize;
+    const int i = std::min(static_cast<int>(x), kSize - 1);
+    const double f = x - i;
+    const double* a = &values_[3 * i];
+    return {a[0] + f * (a[3] - a[0]), a[1] + f * (a[4] - a[1]), a[2] + f * (a[5] - a[2])};
+  }
+
+ private:
+  std::vector<double> values_;
+  double scale_ = 0;
+};
+
 // Per receiver: the weighted sums for three channels.
 struct Accumulator {
   std::vector<double> x;  // 3 × K
@@ -141,6 +168,8 @@ class Gatherer {
       }
     }
     if (!o.reference)
+      for (const subsurface::DipoleMaterial& mat : m) tables_.emplace_back(mat);
+    if (!o.reference)
       for (std::size_t m_i = 0; m_i < m.size(); ++m_i) {
         if (members_[m_i].empty()) continue;
         Octree& t = trees_[m_i];
@@ -175,17 +204,24 @@ class Gatherer {
       const double arc = (s <= rho - r) ? numerics::kTwoPi * s : 2 * s * std::acos(c);
       const double jac = disc_w_[q] * half * std::cos(t) * arc;
       measure += jac;
-      for (int ch = 0; ch < 3; ++ch) w[ch] += jac * mat.channels[ch].profile(s);
+      const std::array<double, 3> p = profile3(mat, s);
+      for (int ch = 0; ch < 3; ++ch) w[ch] += jac * p[ch];
     }
     if (!(measure > 0)) return weights(mat, area, std::max(r, rho_o));
     for (int ch = 0; ch < 3; ++ch) w[ch] *= area / measure;
     return w;
   }
 
+  // R_d of the three channels: the closed form (reference) or the table (hierarchical).
+  std::array<double, 3> profile3(const subsurface::DipoleMaterial& mat, double r) const {
+    if (!tables_.empty()) return tables_[static_cast<std::size_t>(&mat - materials_.data())](r);
+    return {mat.channels[0].profile(r), mat.channels[1].profile(r), mat.channels[2].profile(r)};
+  }
+
   std::array<double, 3> weights(const subsurface::DipoleMaterial& mat, double area,
                                 double r) const {
-    return {area * mat.channels[0].profile(r), area * mat.channels[1].profile(r),
-            area * mat.channels[2].profile(r)};
+    const std::array<double, 3> p = profile3(mat, r);
+    return {area * p[0], area * p[1], area * p[2]};
   }
 
   void add_sample(std::size_t o, uint32_t i, const subsurface::DipoleMaterial& mat,
@@ -248,6 +284,7 @@ class Gatherer {
   std::vector<std::vector<uint32_t>> members_;
   std::vector<double> self_;
   std::vector<double> disc_t_, disc_w_;  // Gauss–Legendre on [−π/2, π/2]
+  std::vector<ProfileTable> tables_;     // hierarchical path only; the reference is exact
   uint64_t nodes_ = 0;
 };
 

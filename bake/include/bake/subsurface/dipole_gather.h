@@ -47,7 +47,7 @@ struct SubsurfaceSamples {
 };
 
 struct SubsurfaceGatherOptions {
-  double epsilon = 0.05;   // solid-angle criterion of the hierarchy (ignored by the reference)
+  double epsilon = 0.2;    // solid-angle criterion of the hierarchy (ignored by the reference)
   bool reference = false;  // the direct O(n²) sum
   bool energy_clamp = true;
 };
