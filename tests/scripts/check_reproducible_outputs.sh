@@ -10,6 +10,7 @@
 # Each pair is made in its own folder with the same relative paths, so a path recorded as given
 # is the same in both. Small settings: about 20 s on the shared 2-core machine.
 # Usage: check_reproducible_outputs.sh PRT_BINARY SOURCE_DIR
+# The shadowed AO bake is checked with obscurance (--ao-distance) too.
 set -euo pipefail
 prt="$(realpath "$1")"
 source_dir="$(realpath "$2")"
@@ -60,6 +61,9 @@ same() {  # label file [run-record: yes|no]
 demo=../in/demo.glb glossy=../in/glossy.glb tex=../in/tex/corner.gltf room=../in/room.obj
 both yes bake --quiet "$demo" -o shadowed.prt --order 3 --samples 32 --ao --bent-normals --seed 3
 same "shadowed, --ao --bent-normals" shadowed.prt
+both yes bake --quiet "$demo" -o obscurance.prt --order 2 --samples 32 --ao --bent-normals \
+  --ao-distance 0.3 --ao-falloff smoothstep
+same "shadowed, obscurance (--ao-distance)" obscurance.prt
 both yes bake --quiet "$demo" -o interreflected.prt --transfer interreflected --order 3 --samples 16
 same "interreflected" interreflected.prt
 both yes bake --quiet "$tex" -o textured.prt --transfer interreflected --order 2 --samples 16
