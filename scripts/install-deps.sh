@@ -44,6 +44,7 @@ TEST_PACKAGES=(
                                        # report tests exercise (without it: SVG only, tests pass)
   clang libclang-rt-14-dev             # scripts/fuzz.sh (libFuzzer)
   chromium                             # tests/viewer: the real-browser test of `prt view`, headless
+  curl                                 # tests/viewer: the requests `prt view`'s server refuses
 )
 # Not needed by either side: pkg-config (no find module calls it) and libopenexr-dev (OpenImageIO
 # 2.4 takes half and Imath from libimath-dev; prt includes no OpenEXR header).
