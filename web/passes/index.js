@@ -3,4 +3,6 @@
 //   { name, label, init(context), render(context) }
 // and listed below; the viewer adds `label` to the display switch and, while it is chosen,
 // calls render(context) instead of its own draw (context: viewer.js makePassContext()).
-export const passes = [];
+import { ssaoPass, gtaoPass } from './ao_passes.js';
+
+export const passes = [ssaoPass, gtaoPass];
