@@ -173,8 +173,8 @@ std::vector<std::string> write_ssao_tables(const std::string& dir,
 }
 
 void write_ssao_picture(const std::string& path, const AoCapture& c, const PixelTruth& truth) {
-  const int W = c.width, H = c.height;
-  std::vector<float> rgb(static_cast<std::size_t>(3 * W) * 2 * 3 * H, 0.f);
+  const int W = c.width, H = c.height, rows = truth.obscurance.empty() ? 2 : 3;
+  std::vector<float> rgb(static_cast<std::size_t>(3 * W) * rows * H * 3, 0.f);
   const auto put = [&](int tile, int x, int y, float r, float g, float b) {
     const int col = tile % 3, row = tile / 3;
     // capture rows run bottom to top; the picture's top to bottom
@@ -189,11 +189,16 @@ void write_ssao_picture(const std::string& path, const AoCapture& c, const Pixel
       if (c.estimate_names[k] == name) return c.estimates[k][4 * px];
     return 1.f;
   };
+  // red: the estimate is brighter than the truth, blue: darker; full colour at ±0.5
+  const auto difference = [&](int tile, int x, int y, float e, float t) {
+    const float d = std::clamp((e - t) * 2.f, -1.f, 1.f);
+    put(tile, x, y, 1.f - std::max(0.f, -d), 1.f - std::fabs(d), 1.f - std::max(0.f, d));
+  };
   for (int y = 0; y < H; ++y)
     for (int x = 0; x < W; ++x) {
       const std::size_t px = static_cast<std::size_t>(y) * W + x;
       if (!c.front(px) || truth.ao[px] < 0.f) {
-        for (int t = 0; t < 6; ++t) put(t, x, y, 0.1f, 0.1f, 0.12f);
+        for (int t = 0; t < 3 * rows; ++t) put(t, x, y, 0.1f, 0.1f, 0.12f);
         continue;
       }
       const float t = truth.ao[px], s = estimate("ssao", px), g = estimate("gtao", px);
@@ -202,12 +207,15 @@ void write_ssao_picture(const std::string& path, const AoCapture& c, const Pixel
       put(1, x, y, s, s, s);
       put(2, x, y, g, g, g);
       put(3, x, y, b, b, b);
-      for (int k = 0; k < 2; ++k) {
-        const float d = std::clamp(((k == 0 ? s : g) - t) * 2.f, -1.f, 1.f);
-        put(4 + k, x, y, 1.f - std::max(0.f, -d), 1.f - std::fabs(d), 1.f - std::max(0.f, d));
-      }
+      difference(4, x, y, s, t);
+      difference(5, x, y, g, t);
+      if (rows < 3) continue;
+      const float o = truth.obscurance[px];
+      put(6, x, y, o, o, o);
+      difference(7, x, y, s, o);
+      difference(8, x, y, g, o);
     }
-  relight::write_image(path, 3 * W, 2 * H, 3, rgb.data());
+  relight::write_image(path, 3 * W, rows * H, 3, rgb.data());
 }
 
 }  // namespace prt::report

@@ -26,9 +26,11 @@ struct SsaoResult {
   RegionErrors errors;
 };
 
-// A camera's picture: top row truth AO | classic SSAO | GTAO; bottom row baked AO (the file's
-// per-vertex values) | SSAO − truth | GTAO − truth (red: brighter than the truth, blue: darker;
-// full colour at ±0.5). Grey values are AO itself, no tone mapping.
+// A camera's picture, three images across: truth AO | classic SSAO | GTAO; then baked AO (the
+// file's per-vertex values) | SSAO − AO | GTAO − AO; then, when the truth has obscurance, the
+// obscurance | SSAO − obscurance | GTAO − obscurance. Differences: red where the estimate is
+// brighter than the truth, blue where darker, full colour at ±0.5. Grey values are AO itself, no
+// tone mapping.
 void write_ssao_picture(const std::string& path, const AoCapture& capture, const PixelTruth& truth);
 
 // ssao_errors.csv, ssao_errors.json and summary.md in `dir`; returns the paths written.
