@@ -91,15 +91,15 @@ BrowserTools find_browser_tools() {
   if (t.chromium.empty())
     throw CommandError(
         "prt report --ssao: Chromium was not found (install Debian's chromium with "
-        "scripts/install-deps.sh --for test, or set PRT_CHROMIUM)");
+        "the test dependencies of scripts/install-deps.sh, or set PRT_CHROMIUM)");
   t.node = on_path("node");
   if (t.node.empty())
     throw CommandError(
-        "prt report --ssao: node was not found (scripts/install-deps.sh --for test)");
+        "prt report --ssao: node was not found (the test dependencies of scripts/install-deps.sh)");
   t.modules = PRT_SSAO_NODE_MODULES;
   if (!fs::exists(fs::path(t.modules) / "puppeteer-core" / "package.json"))
     throw CommandError("prt report --ssao: puppeteer-core is not installed in " + t.modules +
-                       " (scripts/install-deps.sh --for test)");
+                       " (the test dependencies of scripts/install-deps.sh)");
   t.script = PRT_SSAO_CAPTURE_SCRIPT;
   if (!fs::exists(t.script)) throw CommandError("prt report --ssao: " + t.script + " is missing");
   return t;
