@@ -11,6 +11,7 @@
 //                                              (auto: the manifest's choice for the unrotated light)
 //   mode=transfer|unshadowed|ao|bent|ao-only|PASS  background=0|1   ui=0 (no panel)
 //   emitter=NAME=r,g,b (repeatable)             as prt relight --emitter (prt view --emitters)
+//   antialias=0                                 one sample a pixel (as prt relight --spp 1)
 // window.prtViewer exposes the state for tests: ready, firstFrameMs, render(), measureFrames(n).
 import * as THREE from 'three';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
@@ -113,7 +114,7 @@ async function main() {
   const background = createBackground(new Uint16Array(environmentBuffer), b.width, b.height);
 
   const canvas = document.getElementById('view');
-  const renderer = new THREE.WebGLRenderer({ canvas, antialias: true, preserveDrawingBuffer: true });
+  const renderer = new THREE.WebGLRenderer({ canvas, antialias: params.get('antialias') !== '0', preserveDrawingBuffer: true });
   renderer.outputColorSpace = THREE.LinearSRGBColorSpace; // the shaders write sRGB-encoded values
   renderer.toneMapping = THREE.NoToneMapping;
   renderer.autoClear = false;
