@@ -5,7 +5,9 @@
 // by reading a pixel back (viewer.js waitForGpu) and with the light turned by 1° (new SH rotation, new uniforms), first with
 // the mesh and then with the mesh hidden (the background alone): the difference over the vertex
 // count is the cost of the relit mesh per vertex (vertex shader, rasterisation of its
-// triangles). Prints one JSON line.
+// triangles), and the difference with the 'ao-only' display (the same mesh, the vertex shader
+// without the transfer sum) over the vertex count is the cost of the sum itself (its texel
+// fetches and multiply-adds). Prints one JSON line.
 // Usage: node measure_viewer.mjs URL FRAMES [ROOT]   (ROOT: the repository, for puppeteer-core)
 import { mkdtempSync } from 'node:fs';
 import { createRequire } from 'node:module';
@@ -35,16 +37,21 @@ try {
     const v = window.prtViewer;
     if (!v.ready) return { error: v.error };
     const withMesh = v.measureFrames(n);
+    v.state.mode = 'ao-only';  // the vertex shader without the transfer sum
+    const plain = v.measureFrames(n);
+    v.state.mode = 'transfer';
     v.context.mesh.visible = false;
     const background = v.measureFrames(n);
     return { vertices: v.manifest.vertex_count, triangles: v.manifest.triangle_count, order: v.manifest.order, channels: v.manifest.channels,
-      firstFrameMs: v.firstFrameSinceNavigationMs, withMesh, background };
+      firstFrameMs: v.firstFrameSinceNavigationMs, withMesh, plain, background };
   }, frames);
   if (result.error) throw new Error(result.error);
-  const frame = median(result.withMesh), empty = median(result.background);
+  const frame = median(result.withMesh), plain = median(result.plain), empty = median(result.background);
   console.log(JSON.stringify({ vertices: result.vertices, triangles: result.triangles, order: result.order, channels: result.channels,
     first_frame_ms: Math.round(result.firstFrameMs), frame_ms_median: +frame.toFixed(1), background_only_ms_median: +empty.toFixed(1),
-    mesh_ns_per_vertex: +((1e6 * (frame - empty)) / result.vertices).toFixed(1), frames }));
+    ao_only_ms_median: +plain.toFixed(1),
+    mesh_ns_per_vertex: +((1e6 * (frame - empty)) / result.vertices).toFixed(1),
+    transfer_sum_ns_per_vertex: +((1e6 * (frame - plain)) / result.vertices).toFixed(1), frames }));
 } finally {
   await browser.close();
 }
