@@ -4,6 +4,7 @@
 #include <pthread.h>
 #include <csignal>
 #include <cstdio>
+#include <cstdlib>
 #include <memory>
 #include <optional>
 #include <string>
@@ -52,8 +53,11 @@ void run(const ViewArguments& args) {
 #else
   if (is_glossy_file(args.transfer))
     throw CommandError(args.transfer + ": is a glossy file; prt view shows SH files (.prt)");
-  // The assets first: without them there is nothing to serve, whatever the inputs.
-  std::map<std::string, view::Route> routes = view::asset_routes(PRT_VIEW_WEB_DIR);
+  // The assets first: without them there is nothing to serve, whatever the inputs. The build
+  // tree's copy, unless PRT_VIEW_WEB_DIR names another (an installed or a test copy).
+  const char* web_dir = std::getenv("PRT_VIEW_WEB_DIR");
+  std::map<std::string, view::Route> routes =
+      view::asset_routes(web_dir && *web_dir ? web_dir : PRT_VIEW_WEB_DIR);
   view::ViewInputs inputs;
   inputs.scene_path = args.scene;
   inputs.transfer_path = args.transfer;
