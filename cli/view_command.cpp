@@ -4,7 +4,9 @@
 #include <pthread.h>
 #include <csignal>
 #include <cstdio>
+#include <cstdlib>
 #include <memory>
+#include <optional>
 #include <string>
 #include <thread>
 
@@ -23,6 +25,8 @@ struct ViewArguments {
   std::string scene, transfer, environment;
   int port = 8765;
   std::string listen = "127.0.0.1";
+  std::string emitters;            // --emitters R.prte
+  std::optional<double> max_edge;  // --max-edge L
   bool quiet = false;
 };
 
@@ -49,19 +53,26 @@ void run(const ViewArguments& args) {
 #else
   if (is_glossy_file(args.transfer))
     throw CommandError(args.transfer + ": is a glossy file; prt view shows SH files (.prt)");
-  // The assets first: without them there is nothing to serve, whatever the inputs.
-  std::map<std::string, view::Route> routes = view::asset_routes(PRT_VIEW_WEB_DIR);
+  // The assets first: without them there is nothing to serve, whatever the inputs. The build
+  // tree's copy, unless PRT_VIEW_WEB_DIR names another (an installed or a test copy).
+  const char* web_dir = std::getenv("PRT_VIEW_WEB_DIR");
+  std::map<std::string, view::Route> routes =
+      view::asset_routes(web_dir && *web_dir ? web_dir : PRT_VIEW_WEB_DIR);
   view::ViewInputs inputs;
   inputs.scene_path = args.scene;
   inputs.transfer_path = args.transfer;
   inputs.environment_path = args.environment;
+  inputs.emitters_path = args.emitters;
+  inputs.max_edge = args.max_edge;
+  if (args.max_edge && !(*args.max_edge > 0))
+    throw UsageError("--max-edge: must be a positive length");
   view::ViewPayload payload = view::build_view_payload(inputs);
   const std::string summary = payload.summary;
   view::add_payload_routes(std::move(payload), &routes);
   view::ViewServer server(std::move(routes));
   const int port = server.bind(args.listen, args.port);
-  const std::string host =
-      args.listen.find(':') != std::string::npos ? "[" + args.listen + "]" : args.listen;
+  std::string host = args.listen;  // an IPv6 address goes in brackets in a URL
+  if (host.find(':') != std::string::npos) host = std::string("[").append(host).append("]");
   if (!args.quiet) std::printf("%s\n", summary.c_str());
   std::printf("serving http://%s:%d/ (Ctrl-C stops)\n", host.c_str(), port);
   std::fflush(stdout);
@@ -89,12 +100,18 @@ Command register_view(CLI::App& app) {
                   "Address to listen on (default loopback only; another address exposes the "
                   "scene to the network)")
       ->capture_default_str();
+  cmd->add_option("--emitters", args->emitters,
+                  "Per-emitter radiosity responses (.prte) added to the environment light, with "
+                  "a colour and intensity slider per emitter (as prt relight --emitters)");
+  cmd->add_option("--max-edge", args->max_edge,
+                  "Subdivide the scene as prt bake --max-edge did (the vertices of --emitters)");
   cmd->add_flag("--quiet", args->quiet, "Print the URL only");
   const auto files = [args] {
     CommandFiles f;
     f.add_scene(args->scene);
     f.add_input("coefficient file", args->transfer);
     if (!args->environment.empty()) f.add_environment(args->environment);
+    if (!args->emitters.empty()) f.add_input("emitter responses", args->emitters);
     return f;
   };
   return {cmd, {}, files, [args] { run(*args); }};

@@ -18,6 +18,7 @@
 //       lighting in uniforms, then exposure, Narkowicz's ACES fit and the sRGB OETF per pixel
 //       (relight/tone_map.h), backs of surfaces black (relight/renderer.h).
 //   setLighting(material, lighting), setExposure(material, ev), setMode(material, name)
+//   setEmitterLight(geometry, responses, colors)   radiosity emitters added to the light
 // Modes: 'transfer' (the file), 'unshadowed' (albedo/π · irradiance at the normal, from the
 // lighting alone), 'ao' (AO × unshadowed), 'bent' (AO × unshadowed at the bent normal) and
 // 'ao-only' (the AO value itself, grey, no exposure or curve). 'ao' and 'bent' need the
@@ -53,8 +54,9 @@ export function relightVertex(transfer, channels, order, lighting, albedo = [1, 
 
 // The texture of prt's layout from a geometry whose attributes `_prt_sh0` … (GLTFLoader's names
 // for _PRT_SH0 …, VEC4) hold the transfer. `prt` is the mesh's extras.prt (export-gltf).
-export function transferTextureFromGeometry(geometry, prt, width = 4096) {
+export function transferTextureFromGeometry(geometry, prt, maxWidth = 4096) {
   const texelsPerVertex = prt.attribute_count;
+  const width = texelsPerVertex * Math.floor(maxWidth / texelsPerVertex);
   const count = geometry.getAttribute('position').count;
   const height = Math.max(1, Math.ceil((count * texelsPerVertex) / width));
   const data = new Uint16Array(width * height * 4);
@@ -91,7 +93,34 @@ function basisNormalisation() {
   return out;
 }
 
-const VERTEX_SHADER = /* glsl */ `
+// The transfer sum written out for one file's order and channel count: one texelFetch per texel
+// of the vertex, one multiply-add per coefficient, no loops, divisions or branches (a software
+// rasteriser such as SwiftShader runs it several times faster than the loop it replaces). The
+// texture is a whole number of vertices wide, so a vertex's texels share a row.
+function transferSumGlsl(order, channels, texelsPerVertex) {
+  const n = order * order, count = channels * n;
+  const lines = [
+    'vec3 transferRadiance() {',
+    '  int v = int(prtVertex + 0.5);',
+    `  ivec2 at = ivec2((v % uVerticesPerRow) * ${texelsPerVertex}, v / uVerticesPerRow);`,
+    '  vec3 sum = vec3(0.0);',
+    '  vec4 t;',
+  ];
+  const component = 'xyzw';
+  for (let j = 0; j < texelsPerVertex; ++j) {
+    lines.push(`  t = texelFetch(uTransfer, at + ivec2(${j}, 0), 0);`);
+    for (let e = 0; e < 4 && 4 * j + e < count; ++e) {
+      const i = 4 * j + e;
+      if (channels === 1) lines.push(`  sum += t.${component[e]} * uLight[${i}];`);
+      else lines.push(`  sum.${'rgb'[Math.floor(i / n)]} += t.${component[e]} * uLight[${i % n}].${'rgb'[Math.floor(i / n)]};`);
+    }
+  }
+  lines.push('  return uAlbedoFolded == 1 ? sum : sum * albedo;', '}');
+  return lines.join('\n');
+}
+
+function vertexShader(order, channels, texelsPerVertex) {
+  return /* glsl */ `
 precision highp float;
 precision highp int;
 precision highp sampler2D;
@@ -101,36 +130,17 @@ in vec3 albedo;
 in float ao;
 in vec3 bentNormal;
 in float prtVertex;
+in vec3 emitted;
 uniform mat4 modelViewMatrix;
 uniform mat4 projectionMatrix;
 uniform sampler2D uTransfer;
-uniform int uTexelsPerVertex, uTexWidth, uCount, uK, uChannels, uOrder, uMode, uAlbedoFolded;
+uniform int uVerticesPerRow, uOrder, uMode, uAlbedoFolded;
 uniform vec3 uLight[${MAX_ORDER * MAX_ORDER}];
 uniform float uBasisK[${MAX_ORDER * MAX_ORDER}];
 uniform float uCosine[${MAX_ORDER}];
 out vec3 vRadiance;
 
-vec3 transferRadiance() {
-  vec3 sum = vec3(0.0);
-  int base = int(prtVertex + 0.5) * uTexelsPerVertex;
-  for (int j = 0; j < ${(3 * MAX_ORDER * MAX_ORDER) / 4}; ++j) {
-    if (j >= uTexelsPerVertex) break;
-    int t = base + j;
-    vec4 v = texelFetch(uTransfer, ivec2(t % uTexWidth, t / uTexWidth), 0);
-    for (int e = 0; e < 4; ++e) {
-      int i = 4 * j + e;
-      if (i >= uCount) break;
-      if (uChannels == 1) {
-        sum += v[e] * uLight[i];
-      } else {
-        int c = i / uK;
-        vec3 channel = c == 0 ? vec3(1.0, 0.0, 0.0) : (c == 1 ? vec3(0.0, 1.0, 0.0) : vec3(0.0, 0.0, 1.0));
-        sum += channel * (v[e] * uLight[i - c * uK]);
-      }
-    }
-  }
-  return uAlbedoFolded == 1 ? sum : sum * albedo;
-}
+${transferSumGlsl(order, channels, texelsPerVertex)}
 
 // E(n) = Σ_l A_l Σ_m L_lm Y_lm(n), Y by the recurrence of web/sh.js (no Condon–Shortley phase).
 vec3 irradiance(vec3 n) {
@@ -168,9 +178,11 @@ void main() {
   else if (uMode == 2) vRadiance = ao * albedo * invPi * irradiance(normalize(normal));
   else if (uMode == 3) vRadiance = ao * albedo * invPi * irradiance(normalize(bentNormal));
   else vRadiance = vec3(ao);
+  if (uMode != 4) vRadiance += emitted;
   gl_Position = projectionMatrix * modelViewMatrix * vec4(position, 1.0);
 }
 `;
+}
 
 export const TONE_MAP_GLSL = /* glsl */ `
 float prtAces(float x) {
@@ -203,22 +215,21 @@ void main() {
 `;
 
 // options: { order, channels, albedoFolded, transfer: { texture, width, texelsPerVertex } }
+// (width a multiple of texelsPerVertex).
 export function createRelightMaterial({ order, channels, albedoFolded, transfer }) {
   if (order > MAX_ORDER) throw new Error(`order ${order}: the shader shades up to order ${MAX_ORDER}`);
+  if (transfer.width % transfer.texelsPerVertex !== 0)
+    throw new Error(`a transfer texture ${transfer.width} wide does not hold whole vertices of ${transfer.texelsPerVertex} texels`);
   const cosine = new Float32Array(MAX_ORDER);
   cosine.set(clampedCosineFactors(order));
   return new THREE.RawShaderMaterial({
     glslVersion: THREE.GLSL3,
-    vertexShader: VERTEX_SHADER,
+    vertexShader: vertexShader(order, channels, transfer.texelsPerVertex),
     fragmentShader: FRAGMENT_SHADER,
     side: THREE.DoubleSide,
     uniforms: {
       uTransfer: { value: transfer.texture },
-      uTexelsPerVertex: { value: transfer.texelsPerVertex },
-      uTexWidth: { value: transfer.width },
-      uCount: { value: channels * order * order },
-      uK: { value: order * order },
-      uChannels: { value: channels },
+      uVerticesPerRow: { value: transfer.width / transfer.texelsPerVertex },
       uOrder: { value: order },
       uMode: { value: 0 },
       uAlbedoFolded: { value: albedoFolded ? 1 : 0 },
@@ -262,4 +273,26 @@ export function addDefaultAttributes(geometry) {
   if (!geometry.getAttribute('ao'))
     geometry.setAttribute('ao', new THREE.BufferAttribute(new Float32Array(count).fill(1), 1));
   if (!geometry.getAttribute('bentNormal')) geometry.setAttribute('bentNormal', geometry.getAttribute('normal'));
+  if (!geometry.getAttribute('emitted'))
+    geometry.setAttribute('emitted', new THREE.BufferAttribute(new Float32Array(3 * count), 3));
+}
+
+// Emitter light (prt relight --emitters): emitted_v = Σ_e c_e ⊙ R_e,v, with responses R laid out
+// (e·V + v)·3 + c per unit emission and colours c (3 per emitter), into the geometry's
+// `emitted` attribute, which every display but 'ao-only' adds to the radiance.
+export function setEmitterLight(geometry, responses, colors) {
+  const attribute = geometry.getAttribute('emitted');
+  const out = attribute.array, count = out.length / 3, emitters = colors.length / 3;
+  out.fill(0);
+  for (let e = 0; e < emitters; ++e) {
+    const r = colors[3 * e], g = colors[3 * e + 1], b = colors[3 * e + 2];
+    if (r === 0 && g === 0 && b === 0) continue;
+    const base = 3 * e * count;
+    for (let i = 0; i < count; ++i) {
+      out[3 * i] += r * responses[base + 3 * i];
+      out[3 * i + 1] += g * responses[base + 3 * i + 1];
+      out[3 * i + 2] += b * responses[base + 3 * i + 2];
+    }
+  }
+  attribute.needsUpdate = true;
 }

@@ -10,11 +10,13 @@
 //   window=none|hanning|lanczos|laplacian|auto  and window_strength=S, as prt relight --window
 //                                              (auto: the manifest's choice for the unrotated light)
 //   mode=transfer|unshadowed|ao|bent|ao-only|PASS  background=0|1   ui=0 (no panel)
+//   emitter=NAME=r,g,b (repeatable)             as prt relight --emitter (prt view --emitters)
+//   antialias=0                                 one sample a pixel (as prt relight --spp 1)
 // window.prtViewer exposes the state for tests: ready, firstFrameMs, render(), measureFrames(n).
 import * as THREE from 'three';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
 import { createBackground } from './background.js';
-import { addDefaultAttributes, createRelightMaterial, halfTexture, MODES, prepareLighting, setExposure, setLighting, setMode } from './prt-relight.js';
+import { addDefaultAttributes, createRelightMaterial, halfTexture, MODES, prepareLighting, setEmitterLight, setExposure, setLighting, setMode } from './prt-relight.js';
 import { rotationFromYawPitchRoll } from './sh.js';
 import { passes } from './passes/index.js';
 
@@ -92,8 +94,9 @@ function makeCamera(manifest, aspect) {
 
 async function main() {
   const manifest = await (await fetch('/api/manifest.json')).json();
-  const [meshBuffer, transferBuffer, environmentBuffer] = await Promise.all(
-    [manifest.mesh.url, manifest.transfer.url, manifest.background.url].map(fetchBytes));
+  const urls = [manifest.mesh.url, manifest.transfer.url, manifest.background.url];
+  if (manifest.emitters) urls.push(manifest.emitters.url);
+  const [meshBuffer, transferBuffer, environmentBuffer, emittersBuffer] = await Promise.all(urls.map(fetchBytes));
   const geometry = buildGeometry(manifest, meshBuffer);
   manifest.radius = geometry.boundingSphere.radius;
   const t = manifest.transfer;
@@ -111,7 +114,7 @@ async function main() {
   const background = createBackground(new Uint16Array(environmentBuffer), b.width, b.height);
 
   const canvas = document.getElementById('view');
-  const renderer = new THREE.WebGLRenderer({ canvas, antialias: true, preserveDrawingBuffer: true });
+  const renderer = new THREE.WebGLRenderer({ canvas, antialias: params.get('antialias') !== '0', preserveDrawingBuffer: true });
   renderer.outputColorSpace = THREE.LinearSRGBColorSpace; // the shaders write sRGB-encoded values
   renderer.toneMapping = THREE.NoToneMapping;
   renderer.autoClear = false;
@@ -124,6 +127,11 @@ async function main() {
   controls.update();
 
   const state = initialState(manifest);
+  const emitters = manifest.emitters ? { responses: new Float32Array(emittersBuffer), list: manifest.emitters.emitters } : null;
+  if (emitters) {
+    state.emitterColors = emitterColors(emitters.list);
+    setEmitterLight(geometry, emitters.responses, state.emitterColors);
+  }
   const context = { THREE, renderer, scene, camera, mesh, geometry, material, manifest, state, background };
 
   function render() {
@@ -147,6 +155,7 @@ async function main() {
   for (const pass of passes) pass.init?.(context);
 
   const ui = setUpControls(manifest, state, render, canvas);
+  if (emitters) setUpEmitterControls(emitters, state, geometry, render);
   if (params.get('ui') === '0') document.getElementById('panel').style.display = 'none';
   controls.addEventListener('change', render);
   window.addEventListener('resize', () => {
@@ -156,18 +165,20 @@ async function main() {
     render();
   });
   render();
-  renderer.getContext().finish();
+  waitForGpu(renderer.getContext());
   const firstFrameMs = performance.now() - started;
+  const firstFrameSinceNavigationMs = performance.now();
   status.textContent = `${manifest.vertex_count.toLocaleString()} vertices, ${manifest.kind} SH order ${manifest.order}; first frame ${firstFrameMs.toFixed(0)} ms`;
   window.prtViewer = {
     ready: true,
     context,
     firstFrameMs,
+    firstFrameSinceNavigationMs,
     manifest,
     state,
     render,
     ui,
-    // Renders n frames, each waited for (gl.finish), and returns their times in ms.
+    // Renders n frames, each waited for (waitForGpu), and returns their times in ms.
     measureFrames(n) {
       const times = [];
       const gl = renderer.getContext();
@@ -175,12 +186,60 @@ async function main() {
         state.rotation[0] += 1;
         const t0 = performance.now();
         render();
-        gl.finish();
+        waitForGpu(gl);
         times.push(performance.now() - t0);
       }
       return times;
     },
   };
+}
+
+// The emitters' colours: the stored emission, or emitter=NAME=r,g,b (or NAME=v) from the URL.
+function emitterColors(list) {
+  const colors = new Float64Array(3 * list.length);
+  list.forEach((e, i) => colors.set(e.emission, 3 * i));
+  for (const spec of params.getAll('emitter')) {
+    const at = spec.lastIndexOf('=');
+    const i = list.findIndex((e) => e.name === spec.slice(0, at));
+    if (at < 0 || i < 0) throw new Error(`emitter=${spec}: no such emitter`);
+    const v = spec.slice(at + 1).split(',').map(Number);
+    if (!(v.length === 1 || v.length === 3) || v.some((x) => !(x >= 0))) throw new Error(`emitter=${spec}: expected r,g,b ≥ 0`);
+    colors.set(v.length === 1 ? [v[0], v[0], v[0]] : v, 3 * i);
+  }
+  return colors;
+}
+
+// One row per emitter: an intensity slider (× the colour, 0..4) and a tint (sRGB picker,
+// linearised), over the colour it started with.
+function setUpEmitterControls(emitters, state, geometry, render) {
+  const panel = document.getElementById('emitters');
+  const base = Float64Array.from(state.emitterColors);
+  emitters.list.forEach((e, i) => {
+    const row = document.createElement('label');
+    row.textContent = `${e.name} `;
+    const intensity = Object.assign(document.createElement('input'), { type: 'range', min: 0, max: 4, step: 0.05, value: 1 });
+    const tint = Object.assign(document.createElement('input'), { type: 'color', value: '#ffffff' });
+    const update = () => {
+      const hex = tint.value;
+      const linear = [1, 3, 5].map((k) => {
+        const c = parseInt(hex.slice(k, k + 2), 16) / 255;
+        return c <= 0.04045 ? c / 12.92 : ((c + 0.055) / 1.055) ** 2.4;
+      });
+      for (let c = 0; c < 3; ++c) state.emitterColors[3 * i + c] = base[3 * i + c] * Number(intensity.value) * linear[c];
+      setEmitterLight(geometry, emitters.responses, state.emitterColors);
+      render();
+    };
+    intensity.addEventListener('input', update);
+    tint.addEventListener('input', update);
+    row.append(intensity, tint);
+    panel.append(row);
+  });
+}
+
+// Blocks until the GPU has drawn the frame: reading one pixel back waits for it (Chromium's
+// gl.finish() returns at once, its GPU process runs on).
+function waitForGpu(gl) {
+  gl.readPixels(0, 0, 1, 1, gl.RGBA, gl.UNSIGNED_BYTE, new Uint8Array(4));
 }
 
 function setUpControls(manifest, state, render, canvas) {

@@ -15,12 +15,14 @@
 #include "prt/formats/transfer_data.h"
 #include "relight/auto_camera.h"
 #include "relight/auto_exposure.h"
+#include "relight/emitter_relight.h"
 #include "relight/environment_input.h"
 #include "relight/relight_pipeline.h"
 #include "relight/renderer.h"
 #include "relight/shown_window.h"
 #include "scene/ray_caster.h"
 #include "scene/scene_loader.h"
+#include "scene/subdivide.h"
 #include "sh/window.h"
 
 namespace prt::cli::view {
@@ -64,20 +66,23 @@ std::vector<std::uint8_t> transfer_bytes(const prt::TransferData& data, nlohmann
   const std::size_t per_vertex = std::size_t(data.channels) * data.coefficients_per_channel();
   const std::size_t texels_per_vertex = (per_vertex + 3) / 4;
   const std::size_t texels = texels_per_vertex * data.vertex_count;
-  int width = kTransferWidth;
-  if ((texels + width - 1) / width > std::size_t(kMaxTextureSide)) width = kMaxTextureSide;
+  // A whole number of vertices per row (the shader finds a vertex's row with one division).
+  std::size_t width = texels_per_vertex * (kTransferWidth / texels_per_vertex);
+  if ((texels + width - 1) / width > std::size_t(kMaxTextureSide))
+    width = texels_per_vertex * (kMaxTextureSide / texels_per_vertex);
   const std::size_t rows = std::max<std::size_t>(1, (texels + width - 1) / width);
   if (rows > std::size_t(kMaxTextureSide))
     throw std::runtime_error("the transfer takes " + std::to_string(texels) +
                              " texels, more than a " + std::to_string(kMaxTextureSide) +
                              "² texture");
-  std::vector<std::uint16_t> halves(rows * std::size_t(width) * 4, 0);
+  std::vector<std::uint16_t> halves(rows * width * 4, 0);
   for (std::size_t v = 0; v < data.vertex_count; ++v)
     convert_floats_to_halves(&data.coefficients[v * per_vertex], per_vertex,
                              &halves[v * texels_per_vertex * 4]);
   *layout = {{"width", width},
              {"height", rows},
              {"texels_per_vertex", texels_per_vertex},
+             {"vertices_per_row", width / texels_per_vertex},
              {"type", "float16 RGBA"}};
   std::vector<std::uint8_t> out;
   append(&out, halves.data(), halves.size());
@@ -141,11 +146,35 @@ nlohmann::json camera_json(const relight::CameraChoice& choice, float aspect) {
           {"origin", choice.origin}};
 }
 
+// The responses of inputs.emitters_path, checked against the scene (empty without one).
+prt::EmitterResponses load_emitters(const ViewInputs& inputs, const scene::Scene& scene,
+                                    const prt::TransferData& data) {
+  if (inputs.emitters_path.empty()) return {};
+  if (!data.albedo_folded)
+    throw std::runtime_error(inputs.transfer_path +
+                             ": keeps the albedo apart (textures); emitter responses are exit "
+                             "radiance and cannot be added to it");
+  prt::EmitterResponses responses = relight::load_emitter_responses(inputs.emitters_path);
+  relight::check_responses_match_scene(responses, inputs.emitters_path, scene);
+  return responses;
+}
+
+nlohmann::json emitters_json(const prt::EmitterResponses& responses) {
+  nlohmann::json list = nlohmann::json::array();
+  for (const prt::EmitterInfo& e : responses.emitters)
+    list.push_back({{"name", e.name}, {"emission", e.emission}});
+  return {{"url", "/api/emitters.bin"},
+          {"emitters", list},
+          {"layout", "float32 (e*V + v)*3 + c, per unit emission"}};
+}
+
 }  // namespace
 
 ViewPayload build_view_payload(const ViewInputs& inputs) {
-  const scene::Scene scene = scene::load_scene(inputs.scene_path);
+  scene::Scene scene = scene::load_scene(inputs.scene_path);
+  if (inputs.max_edge) scene = scene::subdivide_to_edge_length(scene, *inputs.max_edge);
   const prt::TransferData data = relight::load_transfer_for_scene(inputs.transfer_path, scene);
+  const prt::EmitterResponses responses = load_emitters(inputs, scene, data);
   if (data.kind == prt::TransferKind::Haar)
     throw std::runtime_error(inputs.transfer_path +
                              ": holds Haar wavelets; prt view shows SH files");
@@ -169,7 +198,13 @@ ViewPayload build_view_payload(const ViewInputs& inputs) {
   const relight::ShownWindowChoice choice = search.choose();
   prt::ShLighting windowed = unwindowed;
   const std::string window_note = relight::apply_shown_window(choice, &windowed);
-  const float exposure = automatic_exposure(shade(windowed), scene, data.albedo_folded);
+  std::vector<float> radiance = shade(windowed);
+  if (!responses.emitters.empty()) {  // the first frame of prt relight --emitters adds them
+    const std::vector<float> emitted =
+        relight::emitter_radiance(responses, inputs.emitters_path, {});
+    for (std::size_t i = 0; i < radiance.size(); ++i) radiance[i] += emitted[i];
+  }
+  const float exposure = automatic_exposure(std::move(radiance), scene, data.albedo_folded);
   const scene::RayCaster caster(scene);
   const relight::CameraChoice camera = relight::choose_camera("auto", scene, caster, inputs.aspect);
 
@@ -211,6 +246,10 @@ ViewPayload build_view_payload(const ViewInputs& inputs) {
                             {"width", inputs.background_width},
                             {"height", inputs.background_width / 2},
                             {"type", "float16 RGBA lat-long"}};
+  if (!responses.emitters.empty()) {
+    manifest["emitters"] = emitters_json(responses);
+    append(&payload.emitters, responses.responses.data(), responses.responses.size());
+  }
   payload.manifest_json = manifest.dump(1);
   payload.summary = std::to_string(scene.vertex_count()) + " vertices, " +
                     prt::transfer_kind_name(data.kind) + " SH order " + std::to_string(order) +

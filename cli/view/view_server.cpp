@@ -41,9 +41,10 @@ std::shared_ptr<const std::vector<std::uint8_t>> share(std::vector<std::uint8_t>
 // Host header check for a loopback server: "127.0.0.1:PORT", "localhost:PORT", "[::1]:PORT".
 bool host_allowed(const std::string& bound, int port, const std::string& host_header) {
   if (bound != "127.0.0.1" && bound != "localhost" && bound != "::1") return true;
-  const std::string p = ":" + std::to_string(port);
-  return host_header == "127.0.0.1" + p || host_header == "localhost" + p ||
-         host_header == "[::1]" + p;
+  const std::string p = std::to_string(port);
+  for (const char* name : {"127.0.0.1", "localhost", "[::1]"})
+    if (host_header == std::string(name).append(":").append(p)) return true;
+  return false;
 }
 
 }  // namespace
@@ -74,6 +75,9 @@ void add_payload_routes(ViewPayload payload, std::map<std::string, Route>* route
   (*routes)["/api/transfer.bin"] = {"application/octet-stream", share(std::move(payload.transfer))};
   (*routes)["/api/environment.bin"] = {"application/octet-stream",
                                        share(std::move(payload.environment))};
+  if (!payload.emitters.empty())
+    (*routes)["/api/emitters.bin"] = {"application/octet-stream",
+                                      share(std::move(payload.emitters))};
 }
 
 struct ViewServer::Impl {

@@ -11,6 +11,14 @@ command -v curl >/dev/null 2>&1 || { echo "skipping: curl is not installed"; exi
 [ -f "$web/index.html" ] || { echo "skipping: the viewer's page was not built ($web)"; exit 77; }
 rm -rf "$out" && mkdir -p "$out"
 "$prt" bake "$root/data/demo.glb" -o "$out/demo.prt" --order 2 --samples 16 --quiet
+# Without the page's build (a build without node): one line, status 1, nothing served.
+status=0
+PRT_VIEW_WEB_DIR="$out/no-web" "$prt" view "$root/data/demo.glb" "$out/demo.prt" --port 0 \
+  >"$out/noweb.out" 2>"$out/noweb.err" || status=$?
+if [ "$status" != 1 ] || [ "$(wc -l <"$out/noweb.err")" != 1 ] || ! grep -q "web assets were not built" "$out/noweb.err" || [ -s "$out/noweb.out" ]; then
+  echo "FAIL: without the page: status $status, stderr: $(cat "$out/noweb.err"), stdout: $(cat "$out/noweb.out")"; exit 1
+fi
+echo "ok   without the page: $(cat "$out/noweb.err")"
 "$prt" view "$root/data/demo.glb" "$out/demo.prt" --port 0 --quiet >"$out/view.out" 2>"$out/view.err" &
 server=$!
 trap 'kill $server 2>/dev/null || true' EXIT

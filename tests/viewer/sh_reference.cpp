@@ -81,9 +81,9 @@ int main() {
   std::printf("],\"windows\":[");
   first = true;
   const std::pair<prt::sh::Window, double> windows[] = {
-      {prt::sh::Window::None, 0},       {prt::sh::Window::Hanning, 0},
-      {prt::sh::Window::Hanning, 5.5},  {prt::sh::Window::Lanczos, 0},
-      {prt::sh::Window::Lanczos, 2},    {prt::sh::Window::Laplacian, 0},
+      {prt::sh::Window::None, 0},          {prt::sh::Window::Hanning, 0},
+      {prt::sh::Window::Hanning, 5.5},     {prt::sh::Window::Lanczos, 0},
+      {prt::sh::Window::Lanczos, 2},       {prt::sh::Window::Laplacian, 0},
       {prt::sh::Window::Laplacian, 0.0126}};
   for (const auto& [w, strength] : windows) {
     const std::vector<double> h = prt::sh::window_band_factors(w, kOrder, strength);
