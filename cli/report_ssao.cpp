@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <limits>
 #include <thread>
@@ -116,7 +117,10 @@ std::vector<report::AoCapture> render_in_browser(const BrowserTools& tools,
                                                  const std::string& scene_path,
                                                  const std::string& ao_file, CaptureJob job,
                                                  bool quick) {
-  std::map<std::string, view::Route> routes = view::asset_routes(PRT_VIEW_WEB_DIR);
+  // The build tree's page, unless PRT_VIEW_WEB_DIR names another copy (as for prt view).
+  const char* web_dir = std::getenv("PRT_VIEW_WEB_DIR");
+  std::map<std::string, view::Route> routes =
+      view::asset_routes(web_dir && *web_dir ? web_dir : PRT_VIEW_WEB_DIR);
   view::ViewInputs inputs;
   inputs.scene_path = scene_path;
   inputs.transfer_path = ao_file;
