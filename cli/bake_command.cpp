@@ -16,6 +16,7 @@
 
 #include "bake/adaptive/adaptive_baker.h"
 #include "bake/haar_baker.h"
+#include "bake/obscurance_falloff.h"
 #include "bake/progress.h"
 #include "bake/transfer_baker.h"
 #include "cli_parsing.h"
@@ -50,6 +51,8 @@ struct BakeArguments {
   std::optional<double> max_edge;      // subdivide (scene/subdivide.h) before baking
   std::vector<std::string> materials;  // --material overrides (cli/material_option.h)
   bool ao = false, bent_normals = false;
+  std::optional<double> ao_distance;  // --ao-distance: obscurance (bake/obscurance_falloff.h)
+  std::string ao_falloff = "linear";
   uint64_t seed = 1;
   int threads = 0;
   uint64_t memory_limit = 0;  // --memory-limit (option_rules.h); 0: not given
@@ -169,6 +172,19 @@ void check_applicable(const BakeArguments& a, const CLI::App& cmd, prt::Transfer
   }
 }
 
+// --ao-distance D [--ao-falloff F]: obscurance in the AO (and bent normals), fixed recipe only.
+void check_obscurance(const BakeArguments& a, const CLI::App& cmd) {
+  refuse_unless(cmd, a.ao, {"--ao-distance", "--ao-falloff"}, "--ao");
+  refuse_unless(cmd, a.ao_distance.has_value(), {"--ao-falloff"}, "--ao-distance");
+  if (!a.ao_distance) return;
+  if (!(*a.ao_distance > 0.0 && std::isfinite(*a.ao_distance)))
+    throw UsageError("--ao-distance: must be a finite length > 0 (scene units)");
+  if (!bake::parse_obscurance_falloff(a.ao_falloff))
+    throw UsageError("--ao-falloff " + a.ao_falloff +
+                     ": expected linear, exponential, smoothstep or constant");
+  if (a.automatic) throw UsageError("--ao-distance does not apply to --auto (fixed recipe only)");
+}
+
 // Values out of range, refused before any file is read.
 void check_values(const BakeArguments& a, const CLI::App& cmd) {
   if (a.order < 1 || a.order > bake::kMaxBakeOrder)
@@ -184,6 +200,7 @@ void check_values(const BakeArguments& a, const CLI::App& cmd) {
   if (a.max_edge && !(*a.max_edge > 0.0 && std::isfinite(*a.max_edge)))
     throw UsageError("--max-edge: must be a finite positive length");
   if (a.threads < 0) throw UsageError("--threads " + std::to_string(a.threads) + ": must be >= 0");
+  check_obscurance(a, cmd);
   if (a.precision != "f32" && a.precision != "f16")
     throw UsageError("--precision " + a.precision + ": expected f32 or f16");
   const HaarBakeArguments& h = a.haar;
@@ -332,6 +349,10 @@ void run(const BakeArguments& args, const CLI::App& cmd) {
   options.memory_limit = memory_limit_or_default(args.memory_limit);
   options.ao = args.ao;
   options.bent_normals = args.bent_normals;
+  if (args.ao_distance) {
+    options.obscurance.distance = *args.ao_distance;
+    options.obscurance.falloff = *bake::parse_obscurance_falloff(args.ao_falloff);
+  }
   options.precision = args.precision == "f16" ? prt::Precision::F16 : prt::Precision::F32;
 
   const scene::Scene scene = load_for_bake(args);
@@ -408,6 +429,12 @@ Command register_bake(CLI::App& app) {
                   "prt radiosity --max-edge does: the same vertices");
   cmd->add_flag("--ao", args->ao, "Also store ambient occlusion per vertex");
   cmd->add_flag("--bent-normals", args->bent_normals, "Also store bent normals per vertex");
+  cmd->add_option("--ao-distance", args->ao_distance,
+                  "With --ao: obscurance instead of AO, hits weighted by a falloff of their "
+                  "distance that reaches 1 at D (scene units); bent normals weighted alike");
+  cmd->add_option("--ao-falloff", args->ao_falloff,
+                  "With --ao-distance: linear | exponential | smoothstep | constant")
+      ->capture_default_str();
   cmd->add_option("--seed", args->seed, "Sampling seed")->capture_default_str();
   cmd->add_option("--threads", args->threads, "Worker threads (0 = all)")->capture_default_str();
   add_memory_limit_option(*cmd, &args->memory_limit);

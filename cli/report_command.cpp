@@ -40,6 +40,7 @@
 #include "report/radiosity_report.h"
 #include "report/report.h"
 #include "report/stability_report.h"
+#include "report_ssao.h"
 #include "report_sun_study.h"
 
 namespace prt::cli {
@@ -56,6 +57,7 @@ struct ReportArguments {
   std::string max_edges, methods, solvers;
   int ground_truth_patches = 0, ground_truth_samples = 0, rays = 1024, hemicube = 64;
   SunStudyArguments sun;
+  SsaoReportArguments ssao;   // --ssao (report_ssao.h)
   uint64_t memory_limit = 0;  // --memory-limit (option_rules.h): the SH and glossy sweeps' bakes
 };
 
@@ -187,6 +189,7 @@ void check_options(const ReportArguments& a, const CLI::App& cmd) {
 // The output folder, and every file the run would write there, against the inputs.
 CommandFiles report_files(const ReportArguments& a) {
   if (a.sun.enabled) return sun_study_files(a.output);
+  if (a.ssao.enabled) return ssao_report_files(a.ssao, a.scene, a.output, a.quick);
   CommandFiles files;
   if (!a.scene.empty()) files.add_scene(a.scene);
   if (!a.environment.empty()) files.add_environment(a.environment);
@@ -282,13 +285,23 @@ std::string other_mode_argument(const ReportArguments& a, const CLI::App& cmd) {
 
 // The command line, before the files are checked.
 void check_usage(const ReportArguments& a, const CLI::App& cmd) {
+  if (a.sun.enabled && a.ssao.enabled)
+    throw UsageError("--ssao and --sun-study exclude each other");
+  if (a.sun.enabled) refuse_ssao_options(cmd);
   if (a.sun.enabled) return check_sun_study_mode(a.sun, other_mode_argument(a, cmd));
   refuse_sun_study_options(cmd);
+  if (a.ssao.enabled) {
+    ReportArguments others = a;  // SCENE is the mode's own
+    others.scene.clear();
+    return check_ssao_mode(a.ssao, a.scene, other_mode_argument(others, cmd));
+  }
+  refuse_ssao_options(cmd);
   check_options(a, cmd);
 }
 
 void run(const ReportArguments& a) {
   if (a.sun.enabled) return run_sun_study_mode(a.sun, a.output, a.quick, a.quiet);
+  if (a.ssao.enabled) return run_ssao_mode(a.ssao, a.scene, a.output, a.quick, a.quiet);
   if (a.glossy) {
     run_glossy_report_command(glossy_request(a));
     return;
@@ -377,6 +390,7 @@ Command register_report(CLI::App& app) {
   CLI::Option* material = cmd->get_option("--material");
   material->description("--glossy: " + material->get_description());
   add_sun_study_options(cmd, &args->sun);
+  add_ssao_report_options(cmd, &args->ssao);
   return {cmd, [args, cmd] { check_usage(*args, *cmd); }, [args] { return report_files(*args); },
           [args] { run(*args); }};
 }

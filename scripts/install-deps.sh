@@ -34,6 +34,7 @@ DEMO_PACKAGES=(
                                        # exist
   libtinygltf-dev libtinyobjloader-dev nlohmann-json3-dev  # scene loaders, JSON output
   libcli11-dev                         # the command line (cli/)
+  libcpp-httplib-dev                   # the HTTP server of `prt view` (cli/view/)
 )
 # Only the tests, benchmarks and fuzzers.
 TEST_PACKAGES=(
@@ -42,6 +43,8 @@ TEST_PACKAGES=(
   librsvg2-bin                         # rsvg-convert: the PNG plots of `prt report`, which the
                                        # report tests exercise (without it: SVG only, tests pass)
   clang libclang-rt-14-dev             # scripts/fuzz.sh (libFuzzer)
+  chromium                             # tests/viewer: the real-browser test of `prt view`, headless
+  curl                                 # tests/viewer: the requests `prt view`'s server refuses
 )
 # Not needed by either side: pkg-config (no find module calls it) and libopenexr-dev (OpenImageIO
 # 2.4 takes half and Imath from libimath-dev; prt includes no OpenEXR header).
@@ -72,12 +75,16 @@ if [ ${#missing[@]} -gt 0 ]; then
 fi
 
 if [ "$side" = test ]; then
-  # three.js for the viewer check, at the version package-lock.json pins.
+  # three.js for the viewer check and `prt view`'s page, puppeteer-core for the real-browser test
+  # (it drives Debian's chromium; it downloads no browser), at the versions package-lock.json pins.
   viewer="$root/tests/viewer"
-  wanted="$(cd "$viewer" && node -p "require('./package-lock.json').packages['node_modules/three'].version")"
-  have="$(cd "$viewer" && node -p "try { require('./node_modules/three/package.json').version } catch (e) { '' }")"
-  if [ "$have" != "$wanted" ]; then
-    echo "install-deps: installing three@$wanted into tests/viewer/node_modules (npm ci)" >&2
-    (cd "$viewer" && npm ci --no-audit --no-fund --ignore-scripts --loglevel=error >/dev/null)
-  fi
+  for package in three puppeteer-core; do
+    wanted="$(cd "$viewer" && node -p "require('./package-lock.json').packages['node_modules/$package'].version")"
+    have="$(cd "$viewer" && node -p "try { require('./node_modules/$package/package.json').version } catch (e) { '' }")"
+    if [ "$have" != "$wanted" ]; then
+      echo "install-deps: installing the packages of tests/viewer/package-lock.json (npm ci)" >&2
+      (cd "$viewer" && npm ci --no-audit --no-fund --ignore-scripts --loglevel=error >/dev/null)
+      break
+    fi
+  done
 fi

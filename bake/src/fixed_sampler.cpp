@@ -5,6 +5,7 @@
 
 #include <tbb/parallel_for.h>
 
+#include "bake/obscurance_falloff.h"
 #include "bake/sampling.h"
 #include "prt/core/memory_budget.h"
 #include "sh/basis.h"
@@ -43,13 +44,16 @@ struct FixedVertexSampler {
     std::fill(acc.begin(), acc.end(), 0.0);
     gathered.clear();
     const std::size_t hits_before = compact.hits.size();
-    uint32_t visible = 0;
+    // Obscurance (obscurance_falloff.h) needs every hit's distance; plain AO weighs by visibility.
+    const ObscuranceOptions& obscurance = pass.options.obscurance;
+    const bool want_hits = interreflect || obscurance.enabled();
+    double open_sum = 0.0;  // Σ ρ(d_s), ρ = V(ω_s) for plain AO
     glm::dvec3 bent(0.0);
     uint64_t rays = 0;
     for (int first = 0; first < N; first += kPacketSize) {
       generate_cosine_directions(n, pass.options.seed, v, static_cast<uint32_t>(first), kPacketSize,
                                  dirs);
-      cast_packet(pass.caster, origin, dirs, kPacketSize, tfar, interreflect ? hits : nullptr,
+      cast_packet(pass.caster, origin, dirs, kPacketSize, tfar, want_hits ? hits : nullptr,
                   occluded);
       rays += kPacketSize;
       // SH of the visible directions: summed in float over the 16 rays of a packet (at most 16
@@ -57,10 +61,13 @@ struct FixedVertexSampler {
       bool any = false;
       if (need_sh) std::fill(packet_sum.begin(), packet_sum.end(), 0.f);
       for (int i = 0; i < kPacketSize; ++i) {
-        if (occluded[i]) continue;
-        ++visible;
-        bent += glm::dvec3(dirs[i]);
-        if (!need_sh) continue;
+        const double open =
+            !obscurance.enabled() ? (occluded[i] ? 0.0 : 1.0)
+            : hits[i].hit ? obscurance_weight(obscurance.falloff, hits[i].t, obscurance.distance)
+                          : 1.0;
+        open_sum += open;
+        bent += open * glm::dvec3(dirs[i]);
+        if (occluded[i] || !need_sh) continue;
         any = true;
         sh::evaluate(pass.order, dirs[i].x, dirs[i].y, dirs[i].z, y.data());
         for (int k = 0; k < K; ++k) packet_sum[k] += y[k];
@@ -78,7 +85,7 @@ struct FixedVertexSampler {
     if (need_sh)
       for (int k = 0; k < K; ++k) acc[k] *= inv_n;
     if (need_sh) pass.direct.store(v, acc.data());
-    pass.sums.ao[v] = static_cast<float>(visible * inv_n);
+    pass.sums.ao[v] = static_cast<float>(open_sum * inv_n);
     const double bl = glm::length(bent);
     const glm::vec3 bn = bl > 0 ? glm::vec3(bent / bl) : n;
     pass.sums.bent[3 * v + 0] = bn.x;

@@ -478,6 +478,15 @@ std::string bake_metadata(const BakeJob& job) {
   meta["precision"] = options.precision == prt::Precision::F16 ? "f16" : "f32";
   meta["ao"] = options.ao;
   meta["bent_normals"] = options.bent_normals;
+  if (options.obscurance.enabled()) {
+    nlohmann::json ob;
+    ob["distance"] = options.obscurance.distance;
+    ob["falloff"] = obscurance_falloff_name(options.obscurance.falloff);
+    ob["definition"] =
+        "ao holds W = (1/pi) int rho(d) cos dw (obscurance), bent normals weighted "
+        "by rho(d); d the hit distance in scene units, rho(d >= distance) = 1";
+    meta["obscurance"] = ob;
+  }
   meta["vertices"] = job.V;
   meta["triangles"] = st.triangles;
   meta["skipped_triangles"] = st.skipped_triangles;
@@ -526,6 +535,11 @@ void validate_bake_inputs(const scene::Scene& scene, const BakeOptions& o) {
                             o.keep_albedo_apart || scene.textured()))
     throw BakeError(name + ": a direct term of the caller's is for interreflected, fixed-recipe "
                            "bakes with the albedo folded");
+  if (o.obscurance.distance != 0.0 &&
+      !(o.obscurance.distance > 0.0 && std::isfinite(o.obscurance.distance)))
+    throw BakeError(name + ": obscurance distance must be a finite length > 0");
+  if (o.obscurance.enabled() && o.adaptive.enabled)
+    throw BakeError(name + ": obscurance is baked by the fixed recipe only, not adaptive sampling");
   if (o.adaptive.enabled) {
     const AdaptiveSampling& a = o.adaptive;
     if (a.min_samples < 1 || a.max_samples < a.min_samples || a.max_samples > kMaxBakeSamples)

@@ -9,6 +9,7 @@
 
 #include <tiny_gltf.h>
 #include <glm/gtc/quaternion.hpp>
+#include <nlohmann/json.hpp>
 
 #include "prt/core/atomic_file.h"
 #include "scene_file_errors.h"
@@ -172,8 +173,62 @@ bool has_tangents(const Scene& scene, const ScenePrimitive& primitive) {
   return true;
 }
 
+// A JSON value as tinygltf's Value (for extras).
+tinygltf::Value to_value(const nlohmann::json& j) {
+  if (j.is_object()) {
+    tinygltf::Value::Object object;
+    for (auto it = j.begin(); it != j.end(); ++it) object[it.key()] = to_value(it.value());
+    return tinygltf::Value(std::move(object));
+  }
+  if (j.is_array()) {
+    tinygltf::Value::Array array;
+    for (const nlohmann::json& item : j) array.push_back(to_value(item));
+    return tinygltf::Value(std::move(array));
+  }
+  if (j.is_boolean()) return tinygltf::Value(j.get<bool>());
+  if (j.is_number_integer() && j.get<double>() == double(int(j.get<double>())))
+    return tinygltf::Value(j.get<int>());
+  if (j.is_number()) return tinygltf::Value(j.get<double>());
+  if (j.is_string()) return tinygltf::Value(j.get<std::string>());
+  return tinygltf::Value();
+}
+
+tinygltf::Value parse_extras(const std::string& path, const std::string& text) {
+  const nlohmann::json j = nlohmann::json::parse(text, nullptr, false);
+  if (!j.is_object()) fail(path, "extras must be a JSON object");
+  return to_value(j);
+}
+
+void check_custom(const std::string& path, const Scene& scene, const GlbCustomData& custom) {
+  for (const GlbCustomAttribute& a : custom.attributes) {
+    if (a.name.size() < 2 || a.name[0] != '_')
+      fail(path, "attribute '" + a.name + "': application-specific names begin with '_'");
+    if (a.components < 1 || a.components > 4 ||
+        a.values.size() != std::size_t(a.components) * scene.vertex_count())
+      fail(path, "attribute '" + a.name + "' does not hold " + std::to_string(a.components) +
+                     " floats per vertex");
+  }
+}
+
+int add_custom_accessor(tinygltf::Model& model, const GlbCustomAttribute& a,
+                        const ScenePrimitive& primitive) {
+  tinygltf::Accessor accessor;
+  const std::size_t n = std::size_t(a.components);
+  accessor.bufferView =
+      add_buffer_view(model, a.values.data() + n * primitive.first_vertex,
+                      n * primitive.vertex_count * sizeof(float), TINYGLTF_TARGET_ARRAY_BUFFER);
+  accessor.componentType = TINYGLTF_COMPONENT_TYPE_FLOAT;
+  static constexpr int kTypes[] = {TINYGLTF_TYPE_SCALAR, TINYGLTF_TYPE_VEC2, TINYGLTF_TYPE_VEC3,
+                                   TINYGLTF_TYPE_VEC4};
+  accessor.type = kTypes[a.components - 1];
+  accessor.count = primitive.vertex_count;
+  model.accessors.push_back(accessor);
+  return static_cast<int>(model.accessors.size() - 1);
+}
+
 tinygltf::Model build_model(const std::string& path, const Scene& scene,
-                            const std::vector<glm::vec3>* vertex_colors) {
+                            const std::vector<glm::vec3>* vertex_colors,
+                            const GlbCustomData* custom) {
   tinygltf::Model model;
   model.asset.version = "2.0";
   model.asset.generator = "prt make-scene / write_glb";
@@ -221,6 +276,9 @@ tinygltf::Model build_model(const std::string& path, const Scene& scene,
       gltf_primitive.attributes["COLOR_0"] = add_vec3_accessor(
           model, vertex_colors->data() + primitive.first_vertex, primitive.vertex_count, false);
     }
+    if (custom)
+      for (const GlbCustomAttribute& a : custom->attributes)
+        gltf_primitive.attributes[a.name] = add_custom_accessor(model, a, primitive);
     tinygltf::Accessor index_accessor;
     index_accessor.bufferView = add_buffer_view(model, indices.data(), indices.size() * 4,
                                                 TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
@@ -236,6 +294,8 @@ tinygltf::Model build_model(const std::string& path, const Scene& scene,
     tinygltf::Mesh mesh;
     mesh.name = primitive.name;
     mesh.primitives.push_back(gltf_primitive);
+    if (custom && !custom->mesh_extras_json.empty())
+      mesh.extras = parse_extras(path, custom->mesh_extras_json);
     model.meshes.push_back(mesh);
     tinygltf::Node node;
     node.name = primitive.name;
@@ -262,6 +322,8 @@ tinygltf::Model build_model(const std::string& path, const Scene& scene,
     model.nodes.push_back(node);
     gltf_scene.nodes.push_back(static_cast<int>(model.nodes.size() - 1));
   }
+  if (custom && !custom->scene_extras_json.empty())
+    gltf_scene.extras = parse_extras(path, custom->scene_extras_json);
   model.scenes.push_back(gltf_scene);
   model.defaultScene = 0;
   if (vertex_colors) use_extension(model, kUnlitExtension);
@@ -271,7 +333,7 @@ tinygltf::Model build_model(const std::string& path, const Scene& scene,
 }  // namespace
 
 void write_glb(const std::string& path, const Scene& scene,
-               const std::vector<glm::vec3>* vertex_colors) {
+               const std::vector<glm::vec3>* vertex_colors, const GlbCustomData* custom) {
   if (scene.normals.size() != scene.positions.size()) {
     fail(path, "the scene has " + std::to_string(scene.normals.size()) + " normals for " +
                    std::to_string(scene.positions.size()) + " vertices");
@@ -280,7 +342,8 @@ void write_glb(const std::string& path, const Scene& scene,
     fail(path, "got " + std::to_string(vertex_colors->size()) + " vertex colours for " +
                    std::to_string(scene.positions.size()) + " vertices");
   }
-  const tinygltf::Model model = build_model(path, scene, vertex_colors);
+  if (custom) check_custom(path, scene, *custom);
+  const tinygltf::Model model = build_model(path, scene, vertex_colors, custom);
   // Into memory first, then one checked atomic write: tinygltf's own file writer does not check
   // the stream, so a full disk would leave a truncated file behind a success.
   std::ostringstream bytes;

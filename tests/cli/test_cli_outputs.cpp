@@ -155,6 +155,16 @@ TEST_CASE("cli outputs: every registered subcommand refuses outputs that share a
                     "stdout is the same file",
                     {}}};
   cases["env"] = {{"env " + env + " >> " + env + ")", 2, "stdout is the same file", {}}};
+  cases["view"] = {
+      {"view " + scene + " " + f.prtg.string() + " " + env + " --port 0 >> " + env + ")",
+       2,
+       "stdout is the same file",
+       {}}};
+  cases["export-gltf"] = {{"export-gltf " + scene + " " + f.prtg.string() + " -o " + dir +
+                               "e.glb --quiet >> " + f.prtg.string() + ")",
+                           2,
+                           "stdout is the same file",
+                           {dir + "e.glb"}}};
   cases["report"] = {
       {"report " + scene + " " + env + " -o " + env + " --quick", 2, same, {}},
       {"report --sun-study --quick -o " + scene, 1, "is a file, not a directory", {}}};

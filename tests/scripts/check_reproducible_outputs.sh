@@ -4,12 +4,13 @@
 # kept apart, --auto with and without --env), Haar (shadowed, interreflected textured), glossy
 # shadowed and interreflected (.prtg), CPCA (.prtq), radiosity (.prte with --per-emitter, the
 # form-factor cache, --csv, --vertex-colors .glb, the EXR image; Gauss-Seidel, Jacobi,
-# progressive, --adaptive), make-scene and make-sky.
+# progressive, --adaptive), export-gltf, make-scene and make-sky.
 # Nothing that changes from run to run (wall times, thread counts, the host) may be in them: that
 # goes to the OUT.run.json beside each output, which is checked to exist and is not compared.
 # Each pair is made in its own folder with the same relative paths, so a path recorded as given
 # is the same in both. Small settings: about 20 s on the shared 2-core machine.
 # Usage: check_reproducible_outputs.sh PRT_BINARY SOURCE_DIR
+# The shadowed AO bake is checked with obscurance (--ao-distance) too.
 set -euo pipefail
 prt="$(realpath "$1")"
 source_dir="$(realpath "$2")"
@@ -60,6 +61,9 @@ same() {  # label file [run-record: yes|no]
 demo=../in/demo.glb glossy=../in/glossy.glb tex=../in/tex/corner.gltf room=../in/room.obj
 both yes bake --quiet "$demo" -o shadowed.prt --order 3 --samples 32 --ao --bent-normals --seed 3
 same "shadowed, --ao --bent-normals" shadowed.prt
+both yes bake --quiet "$demo" -o obscurance.prt --order 2 --samples 32 --ao --bent-normals \
+  --ao-distance 0.3 --ao-falloff smoothstep
+same "shadowed, obscurance (--ao-distance)" obscurance.prt
 both yes bake --quiet "$demo" -o interreflected.prt --transfer interreflected --order 3 --samples 16
 same "interreflected" interreflected.prt
 both yes bake --quiet "$demo" -o subsurface.prt --transfer interreflected --order 3 --samples 16 \
@@ -99,6 +103,8 @@ same "radiosity analytic, progressive" progressive.csv
 both yes radiosity --quiet "$room" --max-edge 0.5 --adaptive 0.05 --max-patches 300 \
   --csv adaptive.csv
 same "radiosity --adaptive" adaptive.csv
+both no export-gltf --quiet "$demo" shadowed.prt ../in/sky.hdr -o export.glb
+same "export-gltf" export.glb no
 both no make-scene -o scene.glb
 same "make-scene" scene.glb no
 both no make-sky -o sky.hdr --width 64 --height 32

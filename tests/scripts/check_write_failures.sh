@@ -6,7 +6,7 @@
 # The same for `--memory-limit 1K`: the bake stops before anything is written (status 1, one
 # line naming the scene and the limit), and a value that is not a size is a usage error (status 2).
 # Covers bake (SH), bake --glossy, compress, radiosity --per-emitter / --csv / --vertex-colors /
-# --form-factor-cache and make-scene. A few seconds.
+# --form-factor-cache, make-scene and export-gltf. A few seconds.
 # Usage: check_write_failures.sh PRT_BINARY
 set -euo pipefail
 prt="$(realpath "$1")"
@@ -58,6 +58,8 @@ limited 64 room.ffc radiosity room.obj --max-edge 0.1 --form-factor-cache room.f
   -o room.png --size 8x6 --quiet
 rm -f room.png room.png.run.json
 limited 64 scene.glb make-scene -o scene.glb
+"$prt" bake glossy.glb -o sh.prt --order 3 --samples 16 --quiet
+limited 16 export.glb export-gltf glossy.glb sh.prt -o export.glb --quiet
 
 # --memory-limit: too small for the coefficients (V × channels × order² × 4 bytes).
 status=0

@@ -35,6 +35,10 @@
 // Ambient occlusion k_A = (1/N) Σ_s V(ω_s): the cosine-weighted visible fraction. Bent normal:
 // the normalised mean of the visible sample directions (cosine-weighted by the sampling); when
 // no sample is visible it falls back to the vertex normal.
+// Obscurance (BakeOptions::obscurance enabled, bake/obscurance_falloff.h): the AO section holds
+// W = (1/N) Σ_s ρ(d_s) instead, d_s the distance to the sample's first hit (∞ when it escapes),
+// and the bent normal is the normalised Σ_s ρ(d_s) ω_s; the transfer is unchanged. Fixed recipe
+// only (BakeError with adaptive sampling).
 // Channels: 1 when every vertex albedo is grey (r = g = b), else 3 (RGB); with the albedo kept
 // apart, 1 for unshadowed and shadowed transfer, and for interreflected 1 when every albedo and
 // texture is grey, else 3. Albedo must lie in
@@ -91,6 +95,7 @@
 #include <vector>
 
 #include "bake/adaptive/triangle_hierarchy.h"
+#include "bake/obscurance_falloff.h"
 #include "prt/formats/transfer_data.h"
 #include "scene/scene.h"
 #include "sh/constants.h"
@@ -157,6 +162,7 @@ struct BakeOptions {
   uint64_t memory_limit = 0;  // bytes the bake may hold (prt/core/memory_budget.h); 0: none
   bool ao = false;
   bool bent_normals = false;
+  ObscuranceOptions obscurance;  // distance > 0: AO and bent normals as obscurance (above)
   prt::Precision precision = prt::Precision::F32;
   AdaptiveSampling adaptive;  // off by default
   // Keep the albedo apart (above) although the scene is not textured (textured scenes always do).

@@ -19,6 +19,10 @@
 // is for display: loading it back gives an albedo of 1 (which the baker refuses); bake the
 // original scene. Each SceneCamera becomes a perspective camera on its own node, rotated so
 // that its -Z looks at the target with +Y as close to `up` as possible.
+// Application-specific data (GlbCustomData, optional): per-vertex float attributes whose names
+// begin with an underscore, as glTF 2.0 requires of application-specific attributes (§3.7.2.1),
+// written on every primitive (its range of the values), and JSON objects written as every
+// mesh's `extras` and as the scene's `extras` (glTF's place for application data).
 // The file is written atomically: PATH.tmp-<pid> then rename; nothing is left on failure.
 // Errors throw SceneError("PATH: problem").
 #pragma once
@@ -32,7 +36,22 @@
 
 namespace prt::scene {
 
+struct GlbCustomAttribute {
+  std::string name;           // "_NAME": must begin with '_'
+  int components = 4;         // 1 (SCALAR) .. 4 (VEC4), float
+  std::vector<float> values;  // components · vertex_count, scene vertex order
+};
+
+struct GlbCustomData {
+  std::vector<GlbCustomAttribute> attributes;
+  std::string mesh_extras_json;   // a JSON object, or empty
+  std::string scene_extras_json;  // a JSON object, or empty
+};
+
+// Throws SceneError("PATH: problem") also for custom data that breaks the rules above (a name
+// without '_', a size that does not match, JSON that is not an object).
 void write_glb(const std::string& path, const Scene& scene,
-               const std::vector<glm::vec3>* vertex_colors = nullptr);
+               const std::vector<glm::vec3>* vertex_colors = nullptr,
+               const GlbCustomData* custom = nullptr);
 
 }  // namespace prt::scene

@@ -1,0 +1,57 @@
+// Frame time of `prt view`'s page in headless Chromium (software WebGL: SwiftShader through
+// ANGLE, no GPU on this machine), for docs/BENCHMARKS.md. Loads the page at 960×540, reads the
+// time of the first frame (since navigation start: page, three.js, the payloads over HTTP, the
+// texture upload, the shader compile and one frame), then renders N frames, each waited for
+// by reading a pixel back (viewer.js waitForGpu) and with the light turned by 1° (new SH rotation, new uniforms), first with
+// the mesh and then with the mesh hidden (the background alone): the difference over the vertex
+// count is the cost of the relit mesh per vertex (vertex shader, rasterisation of its
+// triangles), and the difference with the 'ao-only' display (the same mesh, the vertex shader
+// without the transfer sum) over the vertex count is the cost of the sum itself (its texel
+// fetches and multiply-adds). Prints one JSON line.
+// Usage: node measure_viewer.mjs URL FRAMES [ROOT]   (ROOT: the repository, for puppeteer-core)
+import { mkdtempSync } from 'node:fs';
+import { createRequire } from 'node:module';
+import { tmpdir } from 'node:os';
+import { pathToFileURL } from 'node:url';
+
+const [url, framesText, root = process.cwd()] = process.argv.slice(2);
+const require = createRequire(`${root}/tests/viewer/package.json`);
+const puppeteer = (await import(pathToFileURL(require.resolve('puppeteer-core')).href)).default;
+const frames = Number(framesText);
+const browser = await puppeteer.launch({
+  executablePath: process.env.CHROMIUM ?? '/usr/bin/chromium',
+  headless: true,
+  protocolTimeout: 600000,
+  args: ['--no-sandbox', '--disable-gpu', '--disable-quic', '--no-first-run',
+    '--disable-background-networking', '--disable-component-update', '--disable-sync',
+    '--use-gl=angle', '--use-angle=swiftshader', '--enable-unsafe-swiftshader',
+    `--user-data-dir=${mkdtempSync(`${tmpdir()}/prt-chromium-`)}`],
+});
+const median = (v) => [...v].sort((a, b) => a - b)[Math.floor(v.length / 2)];
+try {
+  const page = await browser.newPage();
+  await page.setViewport({ width: 960, height: 540 });
+  await page.goto(`${url}?ui=0`, { timeout: 600000 });
+  await page.waitForFunction('window.prtViewer !== undefined', { timeout: 600000 });
+  const result = await page.evaluate((n) => {
+    const v = window.prtViewer;
+    if (!v.ready) return { error: v.error };
+    const withMesh = v.measureFrames(n);
+    v.state.mode = 'ao-only';  // the vertex shader without the transfer sum
+    const plain = v.measureFrames(n);
+    v.state.mode = 'transfer';
+    v.context.mesh.visible = false;
+    const background = v.measureFrames(n);
+    return { vertices: v.manifest.vertex_count, triangles: v.manifest.triangle_count, order: v.manifest.order, channels: v.manifest.channels,
+      firstFrameMs: v.firstFrameSinceNavigationMs, withMesh, plain, background };
+  }, frames);
+  if (result.error) throw new Error(result.error);
+  const frame = median(result.withMesh), plain = median(result.plain), empty = median(result.background);
+  console.log(JSON.stringify({ vertices: result.vertices, triangles: result.triangles, order: result.order, channels: result.channels,
+    first_frame_ms: Math.round(result.firstFrameMs), frame_ms_median: +frame.toFixed(1), background_only_ms_median: +empty.toFixed(1),
+    ao_only_ms_median: +plain.toFixed(1),
+    mesh_ns_per_vertex: +((1e6 * (frame - empty)) / result.vertices).toFixed(1),
+    transfer_sum_ns_per_vertex: +((1e6 * (frame - plain)) / result.vertices).toFixed(1), frames }));
+} finally {
+  await browser.close();
+}

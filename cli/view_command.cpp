@@ -1,0 +1,124 @@
+// `prt view SCENE FILE.prt [ENV] [--port N] [--listen ADDR]`: serve a browser page that relights
+// the scene on the GPU (web/, docs/VIEWER.md). The page, the payloads and the server's refusals
+// are cli/view/ (view_payload.h, view_server.h, request_target.h); this file maps the arguments.
+#include <pthread.h>
+#include <csignal>
+#include <cstdio>
+#include <cstdlib>
+#include <memory>
+#include <optional>
+#include <string>
+#include <thread>
+
+#include <CLI/CLI.hpp>
+
+#include "command_registry.h"
+#include "glossy_cli.h"
+#include "output_safety.h"
+#include "view/view_payload.h"
+#include "view/view_server.h"
+
+namespace prt::cli {
+namespace {
+
+struct ViewArguments {
+  std::string scene, transfer, environment;
+  int port = 8765;
+  std::string listen = "127.0.0.1";
+  std::string emitters;            // --emitters R.prte
+  std::optional<double> max_edge;  // --max-edge L
+  bool quiet = false;
+};
+
+#ifdef PRT_VIEW_WEB_DIR
+// Blocks SIGINT and SIGTERM in every thread and stops the server from a thread that waits for
+// them, so Ctrl-C ends `prt view` with status 0 after the server has closed its socket.
+std::thread stop_on_signal(view::ViewServer* server) {
+  sigset_t set;
+  sigemptyset(&set);
+  sigaddset(&set, SIGINT);
+  sigaddset(&set, SIGTERM);
+  pthread_sigmask(SIG_BLOCK, &set, nullptr);
+  return std::thread([server, set] {
+    int signal = 0;
+    sigwait(&set, &signal);
+    server->stop();
+  });
+}
+#endif
+
+void run(const ViewArguments& args) {
+#ifndef PRT_VIEW_WEB_DIR
+  throw CommandError("this prt was built without the viewer (cpp-httplib was not found)");
+#else
+  if (is_glossy_file(args.transfer))
+    throw CommandError(args.transfer + ": is a glossy file; prt view shows SH files (.prt)");
+  // The assets first: without them there is nothing to serve, whatever the inputs. The build
+  // tree's copy, unless PRT_VIEW_WEB_DIR names another (an installed or a test copy).
+  const char* web_dir = std::getenv("PRT_VIEW_WEB_DIR");
+  std::map<std::string, view::Route> routes =
+      view::asset_routes(web_dir && *web_dir ? web_dir : PRT_VIEW_WEB_DIR);
+  view::ViewInputs inputs;
+  inputs.scene_path = args.scene;
+  inputs.transfer_path = args.transfer;
+  inputs.environment_path = args.environment;
+  inputs.emitters_path = args.emitters;
+  inputs.max_edge = args.max_edge;
+  if (args.max_edge && !(*args.max_edge > 0))
+    throw UsageError("--max-edge: must be a positive length");
+  view::ViewPayload payload = view::build_view_payload(inputs);
+  const std::string summary = payload.summary;
+  view::add_payload_routes(std::move(payload), &routes);
+  view::ViewServer server(std::move(routes));
+  const int port = server.bind(args.listen, args.port);
+  std::string host = args.listen;  // an IPv6 address goes in brackets in a URL
+  if (host.find(':') != std::string::npos) host = std::string("[").append(host).append("]");
+  if (!args.quiet) std::printf("%s\n", summary.c_str());
+  std::printf("serving http://%s:%d/ (Ctrl-C stops)\n", host.c_str(), port);
+  std::fflush(stdout);
+  std::thread waiter = stop_on_signal(&server);
+  server.serve([&args](const std::string& line) {
+    if (!args.quiet) std::fprintf(stderr, "prt view: refused %s\n", line.c_str());
+  });
+  waiter.join();
+#endif
+}
+
+Command register_view(CLI::App& app) {
+  auto args = std::make_shared<ViewArguments>();
+  CLI::App* cmd = app.add_subcommand(
+      "view", "Serve a browser page that relights the scene on the GPU (drag to turn the light)");
+  cmd->add_option("scene", args->scene, "Scene (.glb, .gltf, .obj) the file was baked from")
+      ->required();
+  cmd->add_option("transfer", args->transfer, "Coefficient file (.prt, SH)")->required();
+  cmd->add_option("environment", args->environment,
+                  "Environment map (.hdr, .exr, .pfm; default: uniform radiance 1)");
+  cmd->add_option("--port", args->port, "TCP port (0: any free port; the URL printed says which)")
+      ->check(CLI::Range(0, 65535))
+      ->capture_default_str();
+  cmd->add_option("--listen", args->listen,
+                  "Address to listen on (default loopback only; another address exposes the "
+                  "scene to the network)")
+      ->capture_default_str();
+  cmd->add_option("--emitters", args->emitters,
+                  "Per-emitter radiosity responses (.prte) added to the environment light, with "
+                  "a colour and intensity slider per emitter (as prt relight --emitters)");
+  cmd->add_option("--max-edge", args->max_edge,
+                  "Subdivide the scene as prt bake --max-edge did (the vertices of --emitters)");
+  cmd->add_flag("--quiet", args->quiet, "Print the URL only");
+  const auto files = [args] {
+    CommandFiles f;
+    f.add_scene(args->scene);
+    f.add_input("coefficient file", args->transfer);
+    if (!args->environment.empty()) f.add_environment(args->environment);
+    if (!args->emitters.empty()) f.add_input("emitter responses", args->emitters);
+    return f;
+  };
+  return {cmd, {}, files, [args] { run(*args); }};
+}
+
+}  // namespace
+
+PRT_REGISTER_COMMAND(32, register_view);
+
+}  // namespace prt::cli

@@ -1,0 +1,136 @@
+// The real-browser test of `prt view`: Debian's Chromium, headless, driven by puppeteer-core,
+// loads the viewer that run_browser_check.sh started and compares its pictures with
+// `prt relight`'s renders of the same camera, rotation, window and exposure.
+//   1. defaults: the page as it opens (camera, exposure and window from the manifest, i.e. the
+//      rules prt relight applies when given none) against `prt relight` with no options;
+//   2. rotate=0,0,0 and rotate=90,0,0 at a fixed exposure (the manifest's) and window none,
+//      against prt relight --rotate … --exposure … --window none: each within the tolerance, and
+//      the change between the two (GPU rotated − GPU unrotated) against the CPU's change.
+// The object's pixels: where the page, drawn without background (background=0), is not black,
+// minus a 1-pixel rim (edges are antialiased differently: 3×3 samples a pixel on the CPU, MSAA
+// on the GPU). Compared values are the 8-bit display values of both PNGs. Relative RMS =
+// √(Σ(gpu − cpu)² / Σ cpu²) over those pixels and the three channels.
+// Tolerances: 3% for each picture (the GPU shades from float16 transfer and float32 lighting,
+// the CPU from float32 transfer and double lighting, and the page's sky is a 512×256 resampling;
+// measured 1.4–1.7% on the demo, docs/VIEWER.md); the change must be at least 10% of the picture's
+// RMS (the rotation does change the image), and the GPU's change may differ from the CPU's by
+// at most 10% of the CPU's.
+// With `emitters` (a room lit by its lamps, prt view --emitters): the page at the stored emitter
+// colours and at emitter=lamp=2,1,0.5 against prt relight --emitters (--emitter …), same
+// tolerance; one sample a pixel on both sides (antialias=0, --spp 1), as the room's emitting
+// patches make hard edges inside the object that the two antialiasing schemes draw apart.
+// Usage: node check_browser.mjs URL OUT_DIR [emitters]   (OUT_DIR holds cpu_default.png,
+// cpu_r0.png, cpu_r90.png — or cpu_emitters.png, cpu_lamp.png — and receives the screenshots;
+// exit 0 when every check passes).
+import { mkdtempSync, readFileSync, writeFileSync } from 'node:fs';
+import puppeteer from 'puppeteer-core';
+import { readPng } from './png.mjs';
+
+const [url, out, emitterCase] = process.argv.slice(2);
+const WIDTH = 640, HEIGHT = 360;
+const TOLERANCE = 0.03, MIN_CHANGE = 0.10, CHANGE_TOLERANCE = 0.10;
+let failures = 0;
+function check(ok, message) {
+  console.log(`${ok ? 'ok  ' : 'FAIL'} ${message}`);
+  if (!ok) failures += 1;
+}
+
+const browser = await puppeteer.launch({
+  executablePath: process.env.CHROMIUM ?? '/usr/bin/chromium',
+  headless: true,
+  args: ['--no-sandbox', '--disable-gpu', '--disable-quic', '--no-first-run',
+    '--disable-background-networking', '--disable-component-update', '--disable-sync',
+    '--use-gl=angle', '--use-angle=swiftshader', '--enable-unsafe-swiftshader',
+    `--user-data-dir=${mkdtempSync(`${out}/chromium-`)}`],
+});
+
+async function shoot(query, name, width = WIDTH, height = HEIGHT) {
+  const page = await browser.newPage();
+  const errors = [];
+  page.on('pageerror', (e) => errors.push(e.message));
+  page.on('console', (m) => { if (m.type() === 'error') errors.push(m.text()); });
+  await page.setViewport({ width, height });
+  await page.goto(`${url}?${query}`);
+  await page.waitForFunction('window.prtViewer !== undefined', { timeout: 120000 });
+  const state = await page.evaluate(() => ({ ready: window.prtViewer.ready, error: window.prtViewer.error, firstFrameMs: window.prtViewer.firstFrameMs }));
+  if (!state.ready) throw new Error(`the page did not load: ${state.error}`);
+  if (errors.length) throw new Error(`the page reported: ${errors.join('; ')}`);
+  const path = `${out}/${name}.png`;
+  await page.screenshot({ path });
+  await page.close();
+  return { image: readPng(readFileSync(path)), firstFrameMs: state.firstFrameMs };
+}
+
+function objectMask(black) {
+  const { width, height, rgb } = black;
+  const lit = (x, y) => rgb[3 * (y * width + x)] + rgb[3 * (y * width + x) + 1] + rgb[3 * (y * width + x) + 2] > 0;
+  const mask = new Uint8Array(width * height);
+  for (let y = 1; y < height - 1; ++y)
+    for (let x = 1; x < width - 1; ++x)
+      mask[y * width + x] = lit(x, y) && lit(x - 1, y) && lit(x + 1, y) && lit(x, y - 1) && lit(x, y + 1) ? 1 : 0;
+  return mask;
+}
+
+function relativeRms(a, b, mask, subtract = null) {
+  let num = 0, den = 0;
+  for (let i = 0; i < mask.length; ++i) {
+    if (!mask[i]) continue;
+    for (let c = 0; c < 3; ++c) {
+      const j = 3 * i + c;
+      const x = subtract ? (a[j] - subtract.a[j]) : a[j];
+      const y = subtract ? (b[j] - subtract.b[j]) : b[j];
+      num += (x - y) ** 2;
+      den += y * y;
+    }
+  }
+  return Math.sqrt(num / den);
+}
+
+const cpu = (name) => readPng(readFileSync(`${out}/${name}.png`));
+
+async function checkEmitters() {
+  const exposure = JSON.parse(readFileSync(`${out}/manifest.json`, 'utf8')).exposure_ev;
+  const fixed = `ui=0&exposure=${exposure}&window=none&antialias=0`;
+  const mask = objectMask((await shoot(`${fixed}&background=0`, 'gpu_mask')).image);
+  const count = mask.reduce((s, m) => s + m, 0);
+  check(count > 0.2 * WIDTH * HEIGHT, `the room covers ${count} pixels of ${WIDTH * HEIGHT}`);
+  const stored = relativeRms((await shoot(fixed, 'gpu_emitters')).image.rgb, cpu('cpu_emitters').rgb, mask);
+  check(stored <= TOLERANCE, `emitters at their stored colours: relative RMS ${(100 * stored).toFixed(2)}% against prt relight --emitters`);
+  const lamp = relativeRms((await shoot(`${fixed}&emitter=lamp=2,1,0.5`, 'gpu_lamp')).image.rgb, cpu('cpu_lamp').rgb, mask);
+  check(lamp <= TOLERANCE, `emitter=lamp=2,1,0.5: relative RMS ${(100 * lamp).toFixed(2)}% against prt relight --emitter lamp=2,1,0.5`);
+  const change = relativeRms(cpu('cpu_lamp').rgb, cpu('cpu_emitters').rgb, mask);
+  check(change >= MIN_CHANGE, `recolouring the lamp changes the CPU picture by ${(100 * change).toFixed(1)}%`);
+}
+
+try {
+  if (emitterCase === 'emitters') {
+    await checkEmitters();
+    await browser.close();
+    process.exit(failures === 0 ? 0 : 1);
+  }
+  const exposure = JSON.parse(readFileSync(`${out}/manifest.json`, 'utf8')).exposure_ev;
+  const fixed = `ui=0&exposure=${exposure}&window=none`;
+  const mask = objectMask((await shoot(`${fixed}&background=0`, 'gpu_mask')).image);
+  const count = mask.reduce((s, m) => s + m, 0);
+  check(count > 0.2 * WIDTH * HEIGHT, `the object covers ${count} pixels of ${WIDTH * HEIGHT}`);
+  const defaults = await shoot('ui=0', 'gpu_default');
+  const e0 = relativeRms(defaults.image.rgb, cpu('cpu_default').rgb, mask);
+  check(e0 <= TOLERANCE, `defaults (camera, exposure, window of the manifest): relative RMS ${(100 * e0).toFixed(2)}% against prt relight (≤ ${100 * TOLERANCE}%)`);
+  const g0 = (await shoot(`${fixed}&rotate=0,0,0`, 'gpu_r0')).image.rgb;
+  const g90 = (await shoot(`${fixed}&rotate=90,0,0`, 'gpu_r90')).image.rgb;
+  const c0 = cpu('cpu_r0').rgb, c90 = cpu('cpu_r90').rgb;
+  const e1 = relativeRms(g0, c0, mask), e2 = relativeRms(g90, c90, mask);
+  check(e1 <= TOLERANCE, `rotate 0,0,0: relative RMS ${(100 * e1).toFixed(2)}%`);
+  check(e2 <= TOLERANCE, `rotate 90,0,0: relative RMS ${(100 * e2).toFixed(2)}%`);
+  const change = relativeRms(c90, c0, mask);
+  check(change >= MIN_CHANGE, `the rotation changes the CPU picture by ${(100 * change).toFixed(1)}% (≥ ${100 * MIN_CHANGE}%)`);
+  const changeError = relativeRms(g90, c90, mask, { a: g0, b: c0 });
+  check(changeError <= CHANGE_TOLERANCE, `the GPU's change differs from the CPU's by ${(100 * changeError).toFixed(2)}% of it (≤ ${100 * CHANGE_TOLERANCE}%)`);
+  const shot = await shoot('', 'viewer', 960, 540);
+  console.log(`first frame ${shot.firstFrameMs.toFixed(0)} ms after the page started (software WebGL)`);
+} catch (error) {
+  check(false, error.message);
+} finally {
+  await browser.close();
+}
+process.exit(failures === 0 ? 0 : 1);

@@ -1,0 +1,87 @@
+#!/usr/bin/env bash
+# ctest: what `prt view`'s server refuses (cli/view/request_target.h, view_server.h). Starts
+# `prt view --port 0` on the bundled demo and sends each request with `curl --path-as-is` (so
+# curl sends the path as written) or, for request lines curl cannot write, through a raw socket
+# (bash's /dev/tcp). Every refusal must come with its status and no payload. Exits 77 (skipped)
+# when curl is missing or the page was not built.
+# Usage: check_server_refusals.sh PRT_BINARY REPOSITORY_ROOT SCRATCH_DIR WEB_DIR
+set -euo pipefail
+prt="$1" root="$2" out="$3" web="$4"
+command -v curl >/dev/null 2>&1 || { echo "skipping: curl is not installed"; exit 77; }
+[ -f "$web/index.html" ] || { echo "skipping: the viewer's page was not built ($web)"; exit 77; }
+rm -rf "$out" && mkdir -p "$out"
+"$prt" bake "$root/data/demo.glb" -o "$out/demo.prt" --order 2 --samples 16 --quiet
+# Without the page's build (a build without node): one line, status 1, nothing served.
+status=0
+PRT_VIEW_WEB_DIR="$out/no-web" "$prt" view "$root/data/demo.glb" "$out/demo.prt" --port 0 \
+  >"$out/noweb.out" 2>"$out/noweb.err" || status=$?
+if [ "$status" != 1 ] || [ "$(wc -l <"$out/noweb.err")" != 1 ] || ! grep -q "web assets were not built" "$out/noweb.err" || [ -s "$out/noweb.out" ]; then
+  echo "FAIL: without the page: status $status, stderr: $(cat "$out/noweb.err"), stdout: $(cat "$out/noweb.out")"; exit 1
+fi
+echo "ok   without the page: $(cat "$out/noweb.err")"
+"$prt" view "$root/data/demo.glb" "$out/demo.prt" --port 0 --quiet >"$out/view.out" 2>"$out/view.err" &
+server=$!
+trap 'kill $server 2>/dev/null || true' EXIT
+url=""
+for _ in $(seq 1 300); do
+  url="$(grep -o 'http://[^ ]*' "$out/view.out" || true)"
+  [ -n "$url" ] && break
+  kill -0 $server 2>/dev/null || { cat "$out/view.err"; exit 1; }
+  sleep 0.1
+done
+case "$url" in http://127.0.0.1:*/) ;; *) echo "FAIL: not on loopback by default: '$url'"; exit 1 ;; esac
+port="${url#http://127.0.0.1:}" port="${port%/}"
+failures=0
+expect() {  # expect STATUS DESCRIPTION CURL_ARGS...
+  local want="$1" what="$2"; shift 2
+  local got
+  got="$(curl -s --path-as-is -o "$out/body" -w '%{http_code}' "$@" || true)"
+  if [ "$got" = "$want" ]; then echo "ok   $want $what"; else echo "FAIL $what: HTTP $got, expected $want"; failures=$((failures + 1)); fi
+  if [ "$want" != 200 ] && grep -q '"format"' "$out/body" 2>/dev/null; then
+    echo "FAIL $what: a refused request got a payload"; failures=$((failures + 1))
+  fi
+}
+raw() {  # raw STATUS DESCRIPTION REQUEST_LINE [HOST]
+  local want="$1" what="$2" line="$3" host="${4:-127.0.0.1:$port}" got
+  exec 3<>"/dev/tcp/127.0.0.1/$port"
+  printf '%s\r\nHost: %s\r\nConnection: close\r\n\r\n' "$line" "$host" >&3
+  got="$(head -n 1 <&3 | tr -d '\r' | cut -d' ' -f2)"
+  exec 3<&- 3>&-
+  if [ "$got" = "$want" ]; then echo "ok   $want $what"; else echo "FAIL $what: HTTP '$got', expected $want"; failures=$((failures + 1)); fi
+}
+base="http://127.0.0.1:$port"
+expect 200 "the page" "$base/"
+expect 200 "the page with a query" "$base/?rotate=90,0,0&exposure=-1"
+expect 200 "the manifest" "$base/api/manifest.json"
+expect 200 "the transfer" "$base/api/transfer.bin"
+for method in POST PUT DELETE OPTIONS PATCH TRACE; do
+  expect 405 "method $method" -X "$method" "$base/api/manifest.json"
+done
+expect 405 "method HEAD" -I "$base/"
+raw 400 "a method HTTP does not define" "FOO / HTTP/1.1"
+expect 400 "/../" "$base/../../../../etc/passwd"
+expect 400 "/api/../" "$base/api/../api/manifest.json"
+expect 400 "/vendor/../ (to a real route)" "$base/vendor/../index.html"
+expect 400 "%2e%2e" "$base/%2e%2e/%2e%2e/etc/passwd"
+expect 400 "%2E%2E" "$base/%2E%2E/etc/passwd"
+expect 400 "..%2f" "$base/..%2f..%2fetc%2fpasswd"
+expect 400 "%2f in a route" "$base/api%2fmanifest.json"
+expect 400 "double-encoded %252e%252e" "$base/%252e%252e/%252e%252e/etc/passwd"
+expect 400 "backslashes" "$base/..\\..\\etc\\passwd"
+expect 400 "%5c" "$base/..%5c..%5cetc%5cpasswd"
+expect 400 "an empty segment" "$base//etc/passwd"
+expect 400 "a space-like byte" "$base/api/manifest.json%00"
+raw 400 "a target without its leading slash" "GET ../../etc/passwd HTTP/1.1"
+raw 400 "an absolute-form target" "GET http://127.0.0.1:$port/api/manifest.json HTTP/1.1"
+raw 400 "a raw /../ the client did not normalise" "GET /../../etc/passwd HTTP/1.1"
+raw 400 "a control byte in the query" "GET /?a$(printf '\x01')b HTTP/1.1"
+raw 400 "a Host header naming another server (DNS rebinding)" "GET /api/manifest.json HTTP/1.1" "attacker.example:$port"
+raw 200 "Host: localhost" "GET /api/manifest.json HTTP/1.1" "localhost:$port"
+expect 404 "an unknown path" "$base/nope"
+expect 404 "the given files are not served by name" "$base/demo.prt"
+expect 404 "nor is the scene" "$base/demo.glb"
+expect 404 "nor index.html by name" "$base/index.html"
+expect 404 "/api/ itself" "$base/api/"
+kill -0 $server 2>/dev/null || { echo "FAIL: the server died"; exit 1; }
+[ "$failures" -eq 0 ] || { echo "$failures refusal checks failed"; exit 1; }
+echo "every refusal held"

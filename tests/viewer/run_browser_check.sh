@@ -1,0 +1,58 @@
+#!/usr/bin/env bash
+# ctest driver of the real-browser test (check_browser.mjs): bakes the bundled demo, renders it
+# with `prt relight` at the settings the page is given, starts `prt view --port 0`, and lets
+# headless Chromium compare. Exits 77 (skipped) with a message when chromium, node, the npm
+# packages or the page's build are missing (scripts/install-deps.sh --for test installs them).
+# Usage: run_browser_check.sh PRT_BINARY REPOSITORY_ROOT SCRATCH_DIR WEB_DIR
+set -euo pipefail
+prt="$1" root="$2" out="$3" web="$4"
+here="$root/tests/viewer"
+chromium="${CHROMIUM:-/usr/bin/chromium}"
+skip() { echo "skipping: $1 (bash scripts/install-deps.sh --for test installs it)"; exit 77; }
+[ -x "$chromium" ] || skip "chromium is not installed"
+command -v node >/dev/null 2>&1 || skip "node is not installed"
+[ -d "$here/node_modules/puppeteer-core" ] || skip "$here/node_modules/puppeteer-core is missing"
+[ -f "$web/index.html" ] || skip "the viewer's page was not built ($web/index.html)"
+rm -rf "$out" && mkdir -p "$out/room"
+scene="$root/data/demo.glb" sky="$root/data/sky.hdr"
+server=""
+trap '[ -z "$server" ] || kill $server 2>/dev/null || true' EXIT
+start_view() {  # start_view DIR ARGS...: prt view in the background, its URL in $url
+  local dir="$1"; shift
+  "$prt" view "$@" --port 0 --quiet >"$dir/view.out" 2>"$dir/view.err" &
+  server=$!
+  url=""
+  for _ in $(seq 1 300); do
+    url="$(grep -o 'http://[^ ]*' "$dir/view.out" || true)"
+    [ -n "$url" ] && break
+    kill -0 $server 2>/dev/null || { cat "$dir/view.err"; exit 1; }
+    sleep 0.1
+  done
+  [ -n "$url" ] || { echo "prt view printed no URL"; exit 1; }
+  curl -sf "${url}api/manifest.json" -o "$dir/manifest.json"
+  exposure="$(node -p "require('$dir/manifest.json').exposure_ev")"
+}
+
+# The demo: defaults and a rotation.
+"$prt" bake "$scene" -o "$out/demo.prt" --order 4 --samples 64 --transfer interreflected \
+  --ao --bent-normals --quiet
+start_view "$out" "$scene" "$out/demo.prt" "$sky"
+relight() { "$prt" relight "$scene" "$out/demo.prt" "$sky" --size 640x360 --quiet "$@"; }
+relight -o "$out/cpu_default.png"
+relight -o "$out/cpu_r0.png" --exposure "$exposure" --window none --rotate 0,0,0
+relight -o "$out/cpu_r90.png" --exposure "$exposure" --window none --rotate 90,0,0
+node "$here/check_browser.mjs" "$url" "$out"
+kill $server && wait $server 2>/dev/null || true
+
+# A room lit by its lamps (tests/scripts/fixtures/room.obj): emitter responses on the bake's
+# vertices (--max-edge), added to the sky's light as prt relight --emitters adds them.
+room="$out/room"
+cp "$root/tests/scripts/fixtures/room.obj" "$root/tests/scripts/fixtures/room.mtl" "$room/"
+"$prt" radiosity "$room/room.obj" --max-edge 0.25 --per-emitter "$room/room.prte" --quiet
+"$prt" bake "$room/room.obj" --max-edge 0.25 -o "$room/room.prt" --order 3 --samples 16 --quiet
+start_view "$room" "$room/room.obj" "$room/room.prt" "$sky" --emitters "$room/room.prte" --max-edge 0.25
+lit() { "$prt" relight "$room/room.obj" "$room/room.prt" "$sky" --max-edge 0.25 --emitters "$room/room.prte" \
+  --size 640x360 --spp 1 --quiet --exposure "$exposure" --window none "$@"; }
+lit -o "$room/cpu_emitters.png"
+lit -o "$room/cpu_lamp.png" --emitter lamp=2,1,0.5
+node "$here/check_browser.mjs" "$url" "$room" emitters
