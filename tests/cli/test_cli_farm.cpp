@@ -1,5 +1,6 @@
 // tests/cli/test_cli_farm.cpp — farm bakes (docs/FARM.md): `prt bake --shard I/N` parts merged by
-// `prt merge` give the bytes of one `prt bake`, for N = 1, 2, 7 and 64; the merge refuses parts
+// `prt merge` give the bytes of one `prt bake` (SH shadowed and interreflected, Haar shadowed and
+// interreflected), for N = 1, 2, 7 and 64; the merge refuses parts
 // that do not belong together in one line, writing nothing; --shard reads the Slurm and
 // Kubernetes variables and refuses bad values.
 //
@@ -109,6 +110,12 @@ TEST_CASE("cli farm: merged shards of a shadowed bake are the single bake, byte 
 TEST_CASE("cli farm: merged shards of an interreflected bake are the single bake, byte for byte") {
   check_identity_for_every_n("farm_interreflected",
                              "--transfer interreflected --order 3 --samples 32 --ao");
+}
+
+TEST_CASE("cli farm: merged shards of Haar bakes are the single bake, byte for byte") {
+  check_identity_for_every_n("farm_haar", "--basis haar --cube 8 --haar-supersample 2");
+  check_identity_for_every_n("farm_haar_interreflected",
+                             "--basis haar --cube 8 --transfer interreflected --haar-bits 8");
 }
 
 TEST_CASE("cli farm: f16, fixed bounces and unshadowed AO merge to the single bake's bytes") {
@@ -277,8 +284,7 @@ TEST_CASE("cli farm: bad --shard values and bakes that cannot be sharded are ref
     CHECK(r.err.find("--shard") != std::string::npos);
     CHECK_FALSE(fs::exists(out));
   }
-  for (const std::string options :
-       {"--auto", "--glossy", "--basis haar --cube 8", "--transfer shadowed"}) {
+  for (const std::string options : {"--auto", "--glossy", "--transfer shadowed"}) {
     INFO(options);
     const fs::path wrong = dir / "p.prt";  // a part must be a .prtpart
     const RunResult r = run(

@@ -24,7 +24,8 @@ inline constexpr uint32_t kPartFileVersion = 1;
 
 // What a part holds (the header's kind field).
 enum class PartKind : uint32_t {
-  ShTransfer = 1,  // diffuse SH transfer: direct transfer, AO, bent normals, compact gather rows
+  ShTransfer = 1,    // diffuse SH transfer: direct transfer, AO, bent normals, compact gather rows
+  HaarTransfer = 2,  // Haar transfer: truncated wavelet vectors, or D̂ and gather rows
 };
 
 struct PartSection {
