@@ -1,5 +1,6 @@
 // `prt merge PART... -o OUT`: the parts a sharded `prt bake --shard I/N` wrote (any order) into the
-// file a single `prt bake` with the same options writes, byte for byte (docs/FARM.md).
+// file a single `prt bake` with the same options writes, byte for byte (docs/FARM.md); the parts
+// of `prt radiosity --shard I/N` into the form-factor cache `--form-factor-cache` writes.
 //
 // The parts are read and checked first (prt/formats/part_file.h: size, checksum; then
 // bake/transfer_part_file.h: one prt version, scene, seed, settings and split, every shard once);
@@ -21,6 +22,7 @@
 #include "prt/formats/haar_transfer_file.h"
 #include "prt/formats/part_file.h"
 #include "prt/formats/transfer_file.h"
+#include "radiosity_shard.h"
 #include "run_record.h"
 
 namespace prt::cli {
@@ -37,7 +39,7 @@ struct MergeArguments {
 CommandFiles merge_files(const MergeArguments& a) {
   CommandFiles files;
   files.add_inputs("part", a.parts);
-  files.add_output_file("-o", a.output, {".prt"}, "a coefficient file");
+  files.add_output_file("-o", a.output);  // .prt, or a form-factor cache (checked in run)
   files.add_run_record(a.output);
   return files;
 }
@@ -84,6 +86,8 @@ void run(const MergeArguments& args) {
   const double read_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   run_record().phase("read parts", read_seconds);
+  if (ordered[0]->form_factors) return merge_form_factor_parts(ordered, args.output, args.quiet);
+  check_output_file("-o", args.output, {".prt"}, "a coefficient file");
   if (ordered[0]->haar) return merge_haar(args, ordered);
   const scene::Scene& scene = *ordered[0]->scene;
   bake::BakeOptions options = ordered[0]->options;

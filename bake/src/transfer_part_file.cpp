@@ -35,7 +35,8 @@ enum Tag : uint32_t {
   kWavelets,
   kHaarGatherLengths,
   kHaarGatherColumns,
-  kHaarGatherWeights
+  kHaarGatherWeights,
+  kFormFactors
 };
 
 template <class T>
@@ -343,6 +344,33 @@ prt::PartFile encode_haar_part(const HaarPart& part, const scene::Scene& scene,
   return f;
 }
 
+prt::PartFile encode_form_factor_part(ShardSpec shard, uint64_t key, uint64_t patches,
+                                      uint64_t first, const std::vector<float>& rows,
+                                      const std::string& settings, uint64_t seed,
+                                      const std::string& prt_version) {
+  prt::PartFile f;
+  f.kind = prt::PartKind::FormFactorRows;
+  f.index = shard.index;
+  f.count = shard.count;
+  f.fingerprint = key;
+  f.total_rows = patches;
+  f.first_row = first;
+  f.row_count = patches ? rows.size() / patches : 0;
+  nlohmann::json j;
+  j["generator"] = "prt radiosity --shard";
+  j["prt_version"] = prt_version;
+  j["seed"] = seed;
+  nlohmann::json s = nlohmann::json::parse(settings);
+  s["basis"] = "form factors";
+  j["settings"] = s;
+  char text[24];
+  std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(key));
+  j["scene_inputs"] = text;
+  f.sections.push_back(text_section(kSettings, j.dump()));
+  f.sections.push_back(section_of(kFormFactors, rows.data(), rows.size()));
+  return f;
+}
+
 TransferPartFile decode_transfer_part(const prt::PartFile& f, const std::string& name) {
   TransferPartFile out;
   out.name = name;
@@ -354,12 +382,22 @@ TransferPartFile decode_transfer_part(const prt::PartFile& f, const std::string&
     out.seed = j.at("seed").get<uint64_t>();
     out.settings = j.at("settings").dump();
     out.scene_inputs = j.at("scene_inputs").get<std::string>();
+    out.form_factors = f.kind == prt::PartKind::FormFactorRows;
     if (out.haar)
       out.haar_options = haar_options_of(j.at("settings"), out.seed);
-    else
+    else if (!out.form_factors)
       out.options = options_of(j.at("settings"), out.seed);
   } catch (const nlohmann::json::exception& e) {
     throw BakeError(name + ": settings section: " + e.what());
+  }
+  if (out.form_factors) {
+    out.key = f.fingerprint;
+    out.form_factor_rows =
+        read_array<float>(f, kFormFactors, f.row_count * f.total_rows, name, "form factors");
+    out.part.shard = {f.index, f.count};
+    out.part.vertices = f.total_rows;
+    out.part.rows = {f.first_row, f.first_row + f.row_count};
+    return out;
   }
   if (out.haar) {
     if (f.index == 0) out.scene = decode_scene(f, name);
@@ -414,6 +452,10 @@ std::string difference(const TransferPartFile& p, const TransferPartFile& r) {
   if (p.prt_version != r.prt_version)
     return p.name + ": written by prt " + p.prt_version + ", " + r.name + " by prt " +
            r.prt_version + " (the parts of one bake must come from one prt version)";
+  // A form-factor part's key covers its options too: name the settings first.
+  if (p.form_factors && p.settings != r.settings)
+    return p.name +
+           ": baked with other settings: " + settings_difference(p.settings, r.settings, r.name);
   if (p.fingerprint != r.fingerprint || p.scene_inputs != r.scene_inputs ||
       p.part.vertices != r.part.vertices)
     return p.name + ": a part of another scene than " + r.name + " (" +
@@ -470,6 +512,7 @@ std::vector<const TransferPartFile*> check_parts_fit(const std::vector<TransferP
                       std::to_string(rows.first) + ".." + std::to_string(rows.end) + " of " +
                       std::to_string(r.part.vertices) + "): no part given holds it");
     }
+  if (!ordered[0]->scene) return ordered;  // form-factor parts carry no scene
   const uint64_t T = ordered[0]->scene->triangles.size();
   for (const TransferPartFile* p : ordered)
     for (const CompactHit& h : p->part.gather_hits)

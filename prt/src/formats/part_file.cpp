@@ -31,7 +31,8 @@ constexpr std::size_t kOffVersion = 4, kOffHeaderSize = 8, kOffKind = 12, kOffIn
 
 bool known_kind(uint32_t kind) {
   return kind == static_cast<uint32_t>(PartKind::ShTransfer) ||
-         kind == static_cast<uint32_t>(PartKind::HaarTransfer);
+         kind == static_cast<uint32_t>(PartKind::HaarTransfer) ||
+         kind == static_cast<uint32_t>(PartKind::FormFactorRows);
 }
 
 // Checks the fields of the header and the section table of the `size` bytes at `b`.

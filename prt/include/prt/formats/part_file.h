@@ -26,6 +26,7 @@ inline constexpr uint32_t kPartFileVersion = 1;
 enum class PartKind : uint32_t {
   ShTransfer = 1,    // diffuse SH transfer: direct transfer, AO, bent normals, compact gather rows
   HaarTransfer = 2,  // Haar transfer: truncated wavelet vectors, or D̂ and gather rows
+  FormFactorRows = 3,  // radiosity: rows of senders of the form-factor matrix
 };
 
 struct PartSection {
