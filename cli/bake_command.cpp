@@ -358,6 +358,7 @@ void run_shard(const BakeArguments& args, const scene::Scene& scene,
   const prt::Status written = prt::write_part_file(
       args.output, bake::encode_transfer_part(part, scene, options, prt_version()));
   if (!written.ok()) throw CommandError(written.message());
+  run_record().phase("bvh", part.stats.seconds_bvh);
   run_record().phase("rays", part.stats.seconds_rays);
   run_record().phase("bake", part.stats.seconds_total);
   summarise_shard(args, scene, shard, part.rays, part.stats.seconds_rays);
