@@ -48,6 +48,17 @@ prt::PartSection section_of(uint32_t tag, const T* data, std::size_t count) {
   return s;
 }
 
+// A section that refers to the caller's `count` values at `data` (no copy: they must outlive
+// the write).
+template <class T>
+prt::PartSection view_of(uint32_t tag, const T* data, std::size_t count) {
+  prt::PartSection s;
+  s.tag = tag;
+  s.view = count ? static_cast<const void*>(data) : s.bytes.data();
+  s.view_size = count * sizeof(T);
+  return s;
+}
+
 prt::PartSection text_section(uint32_t tag, const std::string& text) {
   return section_of(tag, text.data(), text.size());
 }
@@ -183,12 +194,12 @@ void add_scene_sections(const scene::Scene& scene, prt::PartFile& f) {
         {{"name", p.name}, {"first_vertex", p.first_vertex}, {"vertex_count", p.vertex_count}});
   j["primitives"] = prims;
   f.sections.push_back(text_section(kScene, j.dump()));
-  f.sections.push_back(section_of(kPositions, &scene.positions[0].x, 3 * scene.positions.size()));
-  f.sections.push_back(section_of(kNormals, &scene.normals[0].x, 3 * scene.normals.size()));
-  f.sections.push_back(section_of(kAlbedo, &scene.albedo[0].x, 3 * scene.albedo.size()));
-  f.sections.push_back(section_of(kTriangles,
-                                  scene.triangles.empty() ? nullptr : &scene.triangles[0].x,
-                                  3 * scene.triangles.size()));
+  f.sections.push_back(view_of(kPositions, &scene.positions[0].x, 3 * scene.positions.size()));
+  f.sections.push_back(view_of(kNormals, &scene.normals[0].x, 3 * scene.normals.size()));
+  f.sections.push_back(view_of(kAlbedo, &scene.albedo[0].x, 3 * scene.albedo.size()));
+  f.sections.push_back(view_of(kTriangles,
+                               scene.triangles.empty() ? nullptr : &scene.triangles[0].x,
+                               3 * scene.triangles.size()));
 }
 
 scene::Scene decode_scene(const prt::PartFile& f, const std::string& name) {
@@ -314,11 +325,11 @@ prt::PartFile encode_transfer_part(const TransferPart& part, const scene::Scene&
                                    const BakeOptions& options, const std::string& prt_version) {
   prt::PartFile f = part_with_settings(prt::PartKind::ShTransfer, part.shard, part.rows, scene,
                                        settings_of(options), options.seed, prt_version);
-  f.sections.push_back(section_of(kDirect, part.direct.data(), part.direct.size()));
-  f.sections.push_back(section_of(kAo, part.ao.data(), part.ao.size()));
-  f.sections.push_back(section_of(kBent, part.bent.data(), part.bent.size()));
-  f.sections.push_back(section_of(kGatherRows, part.gather_rows.data(), part.gather_rows.size()));
-  f.sections.push_back(section_of(kGatherHits, part.gather_hits.data(), part.gather_hits.size()));
+  f.sections.push_back(view_of(kDirect, part.direct.data(), part.direct.size()));
+  f.sections.push_back(view_of(kAo, part.ao.data(), part.ao.size()));
+  f.sections.push_back(view_of(kBent, part.bent.data(), part.bent.size()));
+  f.sections.push_back(view_of(kGatherRows, part.gather_rows.data(), part.gather_rows.size()));
+  f.sections.push_back(view_of(kGatherHits, part.gather_hits.data(), part.gather_hits.size()));
   f.sections.push_back(counters_section(part.rays, part.back_face_hits, part.ray_offset_max));
   return f;
 }
@@ -328,18 +339,17 @@ prt::PartFile encode_haar_part(const HaarPart& part, const scene::Scene& scene,
   prt::PartFile f = part_with_settings(prt::PartKind::HaarTransfer, part.shard, part.rows, scene,
                                        haar_settings_of(options), options.seed, prt_version);
   f.sections.push_back(
-      section_of(kSparseLengths, part.sparse_lengths.data(), part.sparse_lengths.size()));
+      view_of(kSparseLengths, part.sparse_lengths.data(), part.sparse_lengths.size()));
+  f.sections.push_back(view_of(kSparseIndex, part.sparse_index.data(), part.sparse_index.size()));
   f.sections.push_back(
-      section_of(kSparseIndex, part.sparse_index.data(), part.sparse_index.size()));
+      view_of(kSparseValues, part.sparse_values.data(), part.sparse_values.size()));
+  f.sections.push_back(view_of(kWavelets, part.wavelets.data(), part.wavelets.size()));
   f.sections.push_back(
-      section_of(kSparseValues, part.sparse_values.data(), part.sparse_values.size()));
-  f.sections.push_back(section_of(kWavelets, part.wavelets.data(), part.wavelets.size()));
+      view_of(kHaarGatherLengths, part.gather_lengths.data(), part.gather_lengths.size()));
   f.sections.push_back(
-      section_of(kHaarGatherLengths, part.gather_lengths.data(), part.gather_lengths.size()));
+      view_of(kHaarGatherColumns, part.gather_columns.data(), part.gather_columns.size()));
   f.sections.push_back(
-      section_of(kHaarGatherColumns, part.gather_columns.data(), part.gather_columns.size()));
-  f.sections.push_back(
-      section_of(kHaarGatherWeights, part.gather_weights.data(), part.gather_weights.size()));
+      view_of(kHaarGatherWeights, part.gather_weights.data(), part.gather_weights.size()));
   f.sections.push_back(counters_section(part.rays, 0, 0.0));
   return f;
 }
@@ -367,7 +377,7 @@ prt::PartFile encode_form_factor_part(ShardSpec shard, uint64_t key, uint64_t pa
   std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(key));
   j["scene_inputs"] = text;
   f.sections.push_back(text_section(kSettings, j.dump()));
-  f.sections.push_back(section_of(kFormFactors, rows.data(), rows.size()));
+  f.sections.push_back(view_of(kFormFactors, rows.data(), rows.size()));
   return f;
 }
 

@@ -57,11 +57,12 @@ struct TransferPartFile {
   std::vector<float> form_factor_rows;  // rows × N
 };
 
-// The part file of `part`, baked from `scene` with `options` by prt `prt_version`.
+// The part file of `part`, baked from `scene` with `options` by prt `prt_version`. Its large
+// sections refer to the arrays of `part` and `scene` (no copy): keep them until it is written.
 prt::PartFile encode_transfer_part(const TransferPart& part, const scene::Scene& scene,
                                    const BakeOptions& options, const std::string& prt_version);
 
-// The part file of a Haar bake's part.
+// The part file of a Haar bake's part (referring to its arrays, as above).
 prt::PartFile encode_haar_part(const HaarPart& part, const scene::Scene& scene,
                                const HaarBakeOptions& options, const std::string& prt_version);
 
