@@ -19,6 +19,7 @@
 #include "bake/obscurance_falloff.h"
 #include "bake/progress.h"
 #include "bake/transfer_baker.h"
+#include "bake/transfer_part_file.h"
 #include "cli_parsing.h"
 #include "command_registry.h"
 #include "glossy_cli.h"
@@ -27,6 +28,7 @@
 #include "option_rules.h"
 #include "output_safety.h"
 #include "progress_reporter.h"
+#include "prt/formats/part_file.h"
 #include "prt/formats/transfer_file.h"
 #include "prt/haar/cube_map.h"
 #include "relight/environment_input.h"
@@ -36,6 +38,7 @@
 #include "scene/subdivide.h"
 #include "sh/projection.h"
 #include "subsurface_cli.h"
+#include "shard_cli.h"
 
 namespace prt::cli {
 namespace {
@@ -64,6 +67,8 @@ struct BakeArguments {
   std::string env;         // --env: lighting that --auto chooses the SH order for
   SubsurfaceArguments subsurface;  // --subsurface and its options (subsurface_cli.h)
   bool tolerance_given = false, transfer_given = false;
+  std::string shard;                          // --shard I/N | auto | auto/N (cli/shard_cli.h)
+  std::optional<bake::ShardSpec> shard_spec;  // resolved before the run
 };
 
 // "r,g,b" or a single grey value; each in [0, 1).
@@ -233,7 +238,9 @@ CommandFiles bake_files(const BakeArguments& a) {
   CommandFiles files;
   files.add_scene(a.scene);
   if (!a.env.empty()) files.add_environment(a.env);
-  if (a.glossy)
+  if (a.shard_spec)
+    files.add_output_file("-o", a.output, {".prtpart"}, "a part file (--shard)");
+  else if (a.glossy)
     files.add_output_file("-o", a.output, {".prtg"}, "a glossy transfer file");
   else
     files.add_output_file("-o", a.output, {".prt"}, "a coefficient file");
@@ -269,7 +276,7 @@ GlossyBakeRequest glossy_request(const BakeArguments& args, const CLI::App& cmd)
 }
 
 // The command line's own refusals, before any file is looked at.
-void check_usage(const BakeArguments& args, const CLI::App& cmd) {
+void check_usage(BakeArguments& args, const CLI::App& cmd) {
   check_values(args, cmd);
   check_subsurface_usage(args.subsurface, cmd,
                          args.glossy                  ? "--glossy"
@@ -277,6 +284,14 @@ void check_usage(const BakeArguments& args, const CLI::App& cmd) {
                          : args.automatic             ? "--auto"
                          : args.transfer == "unshadowed" ? "--transfer unshadowed"
                                                          : "");
+  if (!args.shard.empty()) {
+    if (args.automatic)
+      throw UsageError("--shard does not apply to --auto (shards bake the fixed recipe)");
+    if (args.glossy) throw UsageError("--shard does not apply to --glossy yet (docs/FARM.md)");
+    if (args.subsurface.given())
+      throw UsageError("--shard does not apply to --subsurface yet (docs/FARM.md)");
+    args.shard_spec = resolve_shard(args.shard, process_environment());
+  }
   if (args.glossy) {
     check_glossy_applicable(cmd);
     check_glossy_request(glossy_request(args, cmd));
@@ -335,6 +350,65 @@ void run_auto(const BakeArguments& args, const scene::Scene& scene, const bake::
   std::printf("  wrote %s\n", args.output.c_str());
 }
 
+// The shard's first line on stderr (the scheduler's log): which rows it bakes.
+void announce_shard(const BakeArguments& args, const scene::Scene& scene, bake::ShardSpec shard) {
+  if (args.quiet) return;
+  const bake::RowRange rows = bake::shard_rows(scene.vertex_count(), shard);
+  std::fprintf(stderr, "prt bake: %s: shard %s, rows %llu..%llu of %zu (Morton order)\n",
+               args.scene.c_str(), shard_text(shard).c_str(),
+               static_cast<unsigned long long>(rows.first),
+               static_cast<unsigned long long>(rows.end), scene.vertex_count());
+}
+
+// The shard's summary on stdout.
+void summarise_shard(const BakeArguments& args, const scene::Scene& scene, bake::ShardSpec shard,
+                     uint64_t rays, double seconds_rays) {
+  if (args.quiet) return;
+  std::error_code ec;
+  const auto bytes = std::filesystem::file_size(args.output, ec);
+  std::printf(
+      "baked shard %s of %s: %llu of %zu vertices, %llu rays in %.2f s; wrote %s (%llu bytes)\n",
+      shard_text(shard).c_str(), args.scene.c_str(),
+      static_cast<unsigned long long>(bake::shard_rows(scene.vertex_count(), shard).size()),
+      scene.vertex_count(), static_cast<unsigned long long>(rays), seconds_rays,
+      args.output.c_str(), static_cast<unsigned long long>(ec ? 0 : bytes));
+}
+
+// `--shard I/N`: the shard's rows into a part file (bake/transfer_part_file.h), which
+// `prt merge` joins with the other shards' parts.
+void run_shard(const BakeArguments& args, const scene::Scene& scene,
+               const bake::BakeOptions& options, ProgressReporter& progress) {
+  const bake::ShardSpec shard = *args.shard_spec;
+  bake::check_shardable(scene, options);
+  announce_shard(args, scene, shard);
+  const bake::TransferPart part = bake::bake_transfer_part(scene, options, shard, &progress);
+  const prt::Status written = prt::write_part_file(
+      args.output, bake::encode_transfer_part(part, scene, options, prt_version()));
+  if (!written.ok()) throw CommandError(written.message());
+  run_record().phase("bvh", part.stats.seconds_bvh);
+  run_record().phase("rays", part.stats.seconds_rays);
+  run_record().phase("bake", part.stats.seconds_total);
+  summarise_shard(args, scene, shard, part.rays, part.stats.seconds_rays);
+}
+
+// `--basis haar --shard I/N`: the Haar bake's rows into a part file (bake/haar_part.h).
+void run_haar_shard(const BakeArguments& args, const scene::Scene& scene,
+                    const bake::BakeOptions& sh) {
+  const bake::ShardSpec shard = *args.shard_spec;
+  const bake::HaarBakeOptions options = haar_bake_options(
+      sh.kind, args.haar, args.seed, args.threads, args.bounces, args.tolerance, sh.memory_limit);
+  bake::check_haar_shardable(scene, options);
+  announce_shard(args, scene, shard);
+  ProgressReporter progress(args.quiet);
+  const bake::HaarPart part = bake::bake_haar_part(scene, options, shard, &progress);
+  const prt::Status written = prt::write_part_file(
+      args.output, bake::encode_haar_part(part, scene, options, prt_version()));
+  if (!written.ok()) throw CommandError(written.message());
+  run_record().phase("rays", part.stats.seconds_rays);
+  run_record().phase("bake", part.stats.seconds_total);
+  summarise_shard(args, scene, shard, part.rays, part.stats.seconds_rays);
+}
+
 void run(const BakeArguments& args, const CLI::App& cmd) {
   run_record().threads = resolved_threads(args.threads);
   if (args.glossy) return run_glossy(args, cmd);
@@ -356,6 +430,7 @@ void run(const BakeArguments& args, const CLI::App& cmd) {
   options.precision = args.precision == "f16" ? prt::Precision::F16 : prt::Precision::F32;
 
   const scene::Scene scene = load_for_bake(args);
+  if (args.haar.basis == "haar" && args.shard_spec) return run_haar_shard(args, scene, options);
   if (args.haar.basis == "haar") {
     run_haar_bake(scene, args.output, options.kind, args.haar, args.seed, args.threads,
                   args.bounces, args.tolerance, args.quiet, options.memory_limit);
@@ -365,6 +440,7 @@ void run(const BakeArguments& args, const CLI::App& cmd) {
   if (args.subsurface.given())
     return run_subsurface_bake(scene, args.output, options, args.subsurface, args.quiet);
   ProgressReporter progress(args.quiet);
+  if (args.shard_spec) return run_shard(args, scene, options, progress);
   if (args.automatic) return run_auto(args, scene, options, progress);
   const bake::BakeResult result = bake::bake_transfer(scene, options, &progress);
   const prt::Status written = prt::write_transfer_file(args.output, result.data);
@@ -446,6 +522,9 @@ Command register_bake(CLI::App& app) {
   cmd->add_flag("--auto", args->automatic,
                 "Analyse the scene and bake only what it needs for --tolerance (default 0.01)");
   cmd->add_option("--env", args->env, "--auto: lighting whose band energy picks the SH order");
+  cmd->add_option("--shard", args->shard,
+                  "Bake one shard of a farm bake into a part file (.prtpart) for prt merge: I/N "
+                  "(0-based), auto (Slurm array) or auto/N (Kubernetes Indexed Job or Slurm)");
   cmd->add_flag("--glossy", args->glossy,
                 "Bake glossy transfer matrices (order 1..10, default 5) into a .prtg file");
   const auto check = [args, cmd] {

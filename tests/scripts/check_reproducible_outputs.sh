@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Every file kind prt writes is the same, byte for byte, whether it was made with one thread or
 # two: SH bakes (shadowed with AO and bent normals, interreflected, interreflected with a texture
-# kept apart, --auto with and without --env), Haar (shadowed, interreflected textured), glossy
+# kept apart, --auto with and without --env, obscurance, --subsurface, the parts of --shard and
+# their merge), Haar (shadowed, interreflected textured), glossy
 # shadowed and interreflected (.prtg), CPCA (.prtq), radiosity (.prte with --per-emitter, the
 # form-factor cache, --csv, --vertex-colors .glb, the EXR image; Gauss-Seidel, Jacobi,
 # progressive, --adaptive), export-gltf, make-scene and make-sky.
@@ -69,6 +70,15 @@ same "interreflected" interreflected.prt
 both yes bake --quiet "$demo" -o subsurface.prt --transfer interreflected --order 3 --samples 16 \
   --subsurface marble
 same "interreflected, --subsurface marble" subsurface.prt
+for i in 0 1; do
+  both yes bake --quiet "$demo" -o "shard$i.prtpart" --transfer interreflected --order 3 \
+    --samples 16 --shard "$i/2"
+  same "interreflected, --shard $i/2 (part)" "shard$i.prtpart"
+done
+both yes merge --quiet shard1.prtpart shard0.prtpart -o merged.prt
+same "merge of the interreflected parts" merged.prt
+cmp -s "$scratch/t1/merged.prt" "$scratch/t1/interreflected.prt" ||
+  { echo "FAIL: the merged parts differ from the single interreflected bake"; failures=$((failures + 1)); }
 both yes bake --quiet "$tex" -o textured.prt --transfer interreflected --order 2 --samples 16
 same "interreflected, textured (albedo kept apart)" textured.prt
 both yes bake --quiet "$demo" -o auto.prt --auto --tolerance 0.3
@@ -77,6 +87,14 @@ both yes bake --quiet "$demo" -o auto-env.prt --auto --tolerance 0.3 --env ../in
 same "--auto --env" auto-env.prt
 both yes bake --quiet "$demo" -o haar.prt --basis haar --cube 8
 same "Haar" haar.prt
+for i in 0 1; do
+  both yes bake --quiet "$demo" -o "haar$i.prtpart" --basis haar --cube 8 --shard "$i/2"
+  same "Haar, --shard $i/2 (part)" "haar$i.prtpart"
+done
+both yes merge --quiet haar0.prtpart haar1.prtpart -o haar-merged.prt
+cmp -s "$scratch/t1/haar-merged.prt" "$scratch/t1/haar.prt" && cmp -s "$scratch/t2/haar-merged.prt" \
+  "$scratch/t1/haar.prt" ||
+  { echo "FAIL: the merged Haar parts differ from the single Haar bake"; failures=$((failures + 1)); }
 both yes bake --quiet "$tex" -o haar-ir.prt --basis haar --cube 8 --transfer interreflected
 same "Haar interreflected, textured" haar-ir.prt
 both yes bake --quiet "$glossy" --glossy -o glossy.prtg --order 2 --samples 16

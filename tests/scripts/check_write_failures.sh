@@ -6,7 +6,8 @@
 # The same for `--memory-limit 1K`: the bake stops before anything is written (status 1, one
 # line naming the scene and the limit), and a value that is not a size is a usage error (status 2).
 # Covers bake (SH), bake --glossy, compress, radiosity --per-emitter / --csv / --vertex-colors /
-# --form-factor-cache, make-scene and export-gltf. A few seconds.
+# --form-factor-cache, make-scene, export-gltf, bake --shard and radiosity --shard (part files)
+# and merge. A few seconds.
 # Usage: check_write_failures.sh PRT_BINARY
 set -euo pipefail
 prt="$(realpath "$1")"
@@ -60,6 +61,21 @@ rm -f room.png room.png.run.json
 limited 64 scene.glb make-scene -o scene.glb
 "$prt" bake glossy.glb -o sh.prt --order 3 --samples 16 --quiet
 limited 16 export.glb export-gltf glossy.glb sh.prt -o export.glb --quiet
+# Farm bakes: a shard's part file, and the merge of the parts.
+"$prt" make-scene --scene field --vertices 2000 -o field.glb >/dev/null
+for i in 0 1; do
+  "$prt" bake field.glb --transfer interreflected --samples 32 --shard "$i/2" -o "p$i.prtpart" \
+    --quiet
+done
+limited 16 part.prtpart bake field.glb --transfer interreflected --samples 32 --shard 1/2 \
+  -o part.prtpart --quiet
+limited 16 merged.prt merge p0.prtpart p1.prtpart -o merged.prt --quiet
+# Form-factor shards of prt radiosity, and their merge into a form-factor cache.
+for i in 0 1; do
+  "$prt" radiosity room.obj --max-edge 0.1 --shard "$i/2" -o "ff$i.prtpart" --quiet
+done
+limited 64 ffpart.prtpart radiosity room.obj --max-edge 0.1 --shard 0/2 -o ffpart.prtpart --quiet
+limited 64 merged.ffc merge ff0.prtpart ff1.prtpart -o merged.ffc --quiet
 
 # --memory-limit: too small for the coefficients (V × channels × order² × 4 bytes).
 status=0
