@@ -55,8 +55,8 @@ std::map<std::string, Route> asset_routes(const std::string& web_dir) {
   std::error_code ec;
   if (!fs::is_regular_file(root / "index.html", ec))
     throw std::runtime_error("the web assets were not built (" + (root / "index.html").string() +
-                             " is missing): install node and three.js (scripts/install-deps.sh "
-                             "--for test), then configure and build again");
+                             " is missing): install node and three.js with "
+                             "scripts/install-deps.sh, then configure and build again");
   std::map<std::string, Route> routes;
   for (const fs::directory_entry& entry : fs::recursive_directory_iterator(root)) {
     if (!entry.is_regular_file()) continue;
