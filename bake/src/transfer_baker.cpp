@@ -82,6 +82,7 @@ bool is_grey(const glm::vec3& a) {
 
 // Channels of the transfer (transfer_baker.h): 1 when it cannot depend on colour, else 3.
 int channel_count(const scene::Scene& scene, const BakeOptions& options, bool apart) {
+  if (options.direct_override) return 3;
   if (apart && options.kind != prt::TransferKind::Interreflected) return 1;  // T = S
   bool grey = std::all_of(scene.albedo.begin(), scene.albedo.end(), is_grey);
   for (const scene::ScenePrimitive& p : scene.primitives)
@@ -351,8 +352,14 @@ void solve_compact_channels(BakeJob& job) {
   for (std::size_t r = 0; r < V; ++r)
     for (std::size_t c = 0; c < C; ++c)
       rho[r * C + c] = job.scene.albedo[g.vertex_of_row(r)][static_cast<int>(c)];
+  std::vector<double> override_d;
+  if (job.options.direct_override) override_d = job.options.direct_override(job.sums.visibility_sh);
   const auto fill_direct = [&](double* d) {
     tbb::parallel_for(std::size_t(0), V, [&](std::size_t r) {
+      if (!override_d.empty()) {
+        std::copy_n(&override_d[g.vertex_of_row(r) * CK], CK, &d[r * CK]);
+        return;
+      }
       const double* s = &job.sums.visibility_sh[g.vertex_of_row(r) * K];
       for (std::size_t c = 0; c < C; ++c)
         for (std::size_t k = 0; k < K; ++k) d[r * CK + c * K + k] = rho[r * C + c] * s[k];
@@ -383,6 +390,8 @@ void solve_interreflection_channels(BakeJob& job) {
   const std::size_t V = job.V, K = static_cast<std::size_t>(job.K);
   const std::size_t C = static_cast<std::size_t>(job.C);
   std::vector<double> direct(V * K), solved(V * K), rho(V, 1.0);
+  std::vector<double> override_d;
+  if (job.options.direct_override) override_d = job.options.direct_override(job.sums.visibility_sh);
   prt::TransferData& data = job.result.data;
   for (std::size_t c = 0; c < C; ++c) {
     const SparseTransferMatrix block =
@@ -392,7 +401,8 @@ void solve_interreflection_channels(BakeJob& job) {
       for (std::size_t v = 0; v < V; ++v) rho[v] = job.scene.albedo[v][static_cast<int>(c)];
     for (std::size_t v = 0; v < V; ++v)
       for (std::size_t k = 0; k < K; ++k)
-        direct[v * K + k] = rho[v] * job.sums.visibility_sh[v * K + k];
+        direct[v * K + k] = override_d.empty() ? rho[v] * job.sums.visibility_sh[v * K + k]
+                                               : override_d[(v * C + c) * K + k];
     if (job.adaptive) {
       solve_adaptively(h, rho, direct, job.K, job.options.adaptive.bounce_tolerance, solved, st,
                        job.progress);
@@ -512,6 +522,10 @@ void validate_bake_inputs(const scene::Scene& scene, const BakeOptions& o) {
     throw BakeError(name + ": bounce tolerance must be in (0, 1)");
   if (o.max_solver_iterations < 1) throw BakeError(name + ": solver iteration cap must be >= 1");
   if (o.threads < 0) throw BakeError(name + ": thread count must be >= 0");
+  if (o.direct_override && (o.kind != prt::TransferKind::Interreflected || o.adaptive.enabled ||
+                            o.keep_albedo_apart || scene.textured()))
+    throw BakeError(name + ": a direct term of the caller's is for interreflected, fixed-recipe "
+                           "bakes with the albedo folded");
   if (o.adaptive.enabled) {
     const AdaptiveSampling& a = o.adaptive;
     if (a.min_samples < 1 || a.max_samples < a.min_samples || a.max_samples > kMaxBakeSamples)

@@ -84,6 +84,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -165,6 +166,11 @@ struct BakeOptions {
   // Neumann bounces (compact_gather.h, solve_by_bounces). Adaptive bakes and bakes with the albedo
   // kept apart always take the reference path.
   bool dense_gather = false;
+  // Interreflected, not adaptive: the direct term D of T = D + diag(ρ) H T is the caller's
+  // instead of ρ_c·S. Called once after the sampling pass with S (V × K doubles, (1/N) Σ V Y_k,
+  // no albedo) and returns V × 3 × K doubles; the bake then has 3 channels. The subsurface bake
+  // uses it (bake/subsurface/subsurface_baker.h).
+  std::function<std::vector<double>(const std::vector<double>& s)> direct_override;
 };
 
 struct BakeStatistics {

@@ -137,13 +137,14 @@ double DipoleProfile::total() const {
   return total_diffuse_reflectance(alpha_prime_, a_);
 }
 
+double DipoleProfile::tail(double r) const {
+  const double dr = std::sqrt(r * r + z_r_ * z_r_), dv = std::sqrt(r * r + z_v_ * z_v_);
+  return 0.5 * alpha_prime_ *
+         (z_r_ * std::exp(-sigma_tr_ * dr) / dr + z_v_ * std::exp(-sigma_tr_ * dv) / dv);
+}
+
 double DipoleProfile::radius_for_tail(double fraction) const {
   const double target = fraction * total();
-  auto tail = [&](double r) {
-    const double dr = std::sqrt(r * r + z_r_ * z_r_), dv = std::sqrt(r * r + z_v_ * z_v_);
-    return 0.5 * alpha_prime_ *
-           (z_r_ * std::exp(-sigma_tr_ * dr) / dr + z_v_ * std::exp(-sigma_tr_ * dv) / dv);
-  };
   double lo = 0, hi = z_v_;
   while (tail(hi) > target && hi < 1e300) hi *= 2;
   for (int i = 0; i < 200 && hi - lo > 1e-12 * hi; ++i) {

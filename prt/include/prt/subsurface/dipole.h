@@ -92,6 +92,8 @@ class DipoleProfile {
   double profile(double r) const;
   // ∫ R_d over the plane, closed form.
   double total() const;
+  // ∫_r^∞ 2πρ R_d(ρ) dρ, the reflectance beyond radius r (closed form, below).
+  double tail(double r) const;
   // The radius beyond which the profile holds at most `fraction` of R_total (closed form of the
   // tail integral ∫_r^∞ 2πρ R_d dρ = (α′/2)(z_r e^{−σ_tr d_r}/d_r + z_v e^{−σ_tr d_v}/d_v),
   // solved by bisection). fraction in (0, 1).
