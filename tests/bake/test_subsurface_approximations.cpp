@@ -6,6 +6,7 @@
 
 #include <catch2/catch.hpp>
 
+#include "bake/subsurface/subsurface_baker.h"
 #include "bake/subsurface_approx/gaussian_sum_fit.h"
 #include "bake/subsurface_approx/subsurface_approximations.h"
 #include "bake/subsurface_approx/surface_blur.h"

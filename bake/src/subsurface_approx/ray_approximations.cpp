@@ -6,6 +6,7 @@
 #include <tbb/parallel_for.h>
 
 #include "approximation_common.h"
+#include "bake/subsurface/subsurface_baker.h"
 #include "bake/subsurface_approx/surface_blur.h"
 #include "numerics/constants.h"
 #include "numerics/hash.h"

@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "approximation_common.h"
+#include "bake/subsurface/subsurface_baker.h"
 #include "bake/subsurface_approx/surface_blur.h"
 
 namespace prt::bake {

@@ -32,18 +32,6 @@ CellKey cell_of(const glm::vec3& p, double cell) {
 
 }  // namespace
 
-std::vector<double> vertex_areas(const scene::Scene& scene) {
-  std::vector<double> areas(scene.positions.size(), 0.0);
-  for (const glm::uvec3& t : scene.triangles) {
-    const glm::dvec3 a(scene.positions[t.x]), b(scene.positions[t.y]), c(scene.positions[t.z]);
-    const double third = glm::length(glm::cross(b - a, c - a)) / 6.0;
-    areas[t.x] += third;
-    areas[t.y] += third;
-    areas[t.z] += third;
-  }
-  return areas;
-}
-
 std::vector<double> blur_over_surface(const scene::Scene& scene, const std::vector<double>& areas,
                                       const std::vector<int32_t>& group,
                                       const std::vector<double>& values, int width, double sigma) {

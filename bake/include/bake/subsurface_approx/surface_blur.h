@@ -4,14 +4,14 @@
 // blurred_v = Σ_j a_j g(|x_v − x_j|) f_j / Σ_j a_j g(|x_v − x_j|),  g(r) = e^{−r²/2σ²},
 // over the vertices j of v's own group (a translucent object: values never cross between
 // groups; group −1 is left out, its vertices keep their own values), with a_j the vertex's area
-// (a third of its triangles' areas) and the sum cut at r ≤ kBlurCutoff·σ (the 2D Gaussian's mass
-// beyond 3.5σ is e^{−6.125} = 0.2%). Normalised, so the blur of a constant field is that
-// constant, at an object's edges too, as a texture-space blur of a filled atlas is.
-// Straight-line distance is the dipole bake's metric (Jensen et al. 2001): light crosses a thin
-// part through its thickness, as it does in the dipole, where a geodesic blur (repeated mesh
-// smoothing) would carry it only around the rim. Cost: O(Σ_v neighbours of v within the cutoff)
-// with a hash grid of cell kBlurCutoff·σ; vertices run in parallel, each summed in a fixed order
-// (bit-identical for any thread count).
+// (a third of its triangles' areas: vertex_areas() of bake/subsurface/subsurface_baker.h) and the
+// sum cut at r ≤ kBlurCutoff·σ (the 2D Gaussian's mass beyond 3.5σ is e^{−6.125} = 0.2%).
+// Normalised, so the blur of a constant field is that constant, at an object's edges too, as a
+// texture-space blur of a filled atlas is. Straight-line distance is the dipole bake's metric
+// (Jensen et al. 2001): light crosses a thin part through its thickness, as it does in the dipole,
+// where a geodesic blur (repeated mesh smoothing) would carry it only around the rim. Cost: O(Σ_v
+// neighbours of v within the cutoff) with a hash grid of cell kBlurCutoff·σ; vertices run in
+// parallel, each summed in a fixed order (bit-identical for any thread count).
 #pragma once
 
 #include <cstdint>
@@ -22,9 +22,6 @@
 namespace prt::bake {
 
 inline constexpr double kBlurCutoff = 3.5;
-
-// a_v: a third of the area of every triangle using v.
-std::vector<double> vertex_areas(const scene::Scene& scene);
 
 // Blurs `values` (`width` floats per vertex, vertex-major) with standard deviation sigma (scene
 // units, > 0). `group` has one entry per vertex (−1: not blurred). Returns the blurred values.
