@@ -169,14 +169,17 @@ void measure_scene(const TranslucencyReportOptions& o, const TranslucencyScene& 
   in.shadowed = &shadowed;
   in.seed = o.seed;
   // The parts: "all" and each translucent primitive.
+  // Vertices no triangle uses (zero area) are never drawn: left out of every part.
+  const std::vector<double> areas = bake::vertex_areas(scene);
   std::vector<std::pair<std::string, std::vector<char>>> parts(1);
   parts[0].first = "all";
   parts[0].second.assign(group.size(), 0);
-  for (std::size_t v = 0; v < group.size(); ++v) parts[0].second[v] = group[v] >= 0;
+  for (std::size_t v = 0; v < group.size(); ++v) parts[0].second[v] = group[v] >= 0 && areas[v] > 0;
   for (const scene::ScenePrimitive& p : scene.primitives) {
     if (group[p.first_vertex] < 0 || scene.primitives.size() == 1) continue;
     std::vector<char> use(group.size(), 0);
-    for (uint32_t v = p.first_vertex; v < p.first_vertex + p.vertex_count; ++v) use[v] = 1;
+    for (uint32_t v = p.first_vertex; v < p.first_vertex + p.vertex_count; ++v)
+      use[v] = areas[v] > 0;
     parts.emplace_back(p.name, std::move(use));
   }
   for (bake::SubsurfaceApproximation a : bake::kAllApproximations) {

@@ -10,7 +10,8 @@
 // taking its dominant direction, the l = 1 band of its luminance, to 20° above −Z: "back", the
 // light behind the objects as the bundled scene's camera at +Z sees them; to 20° above +Z:
 // "front"). Error: relative RMS over the translucent vertices and RGB,
-// sqrt(Σ|B − B_dipole|² / Σ|B_dipole|²), for the scene and for each translucent primitive.
+// sqrt(Σ|B − B_dipole|² / Σ|B_dipole|²), for the scene and for each translucent primitive;
+// vertices that no triangle uses (never drawn; a scan's stray points) are left out.
 // Timing: lone spheres (scene/translucent_scene.h's, radius 10 mm, marble by default) of growing
 // ring counts: the hierarchical dipole gather, the O(n²) reference (up to kReferenceMaxVertices)
 // and mesh-space diffusion, each the wall time of its own call (shared machine: noisy).
