@@ -4,7 +4,7 @@
 # kept apart, --auto with and without --env), Haar (shadowed, interreflected textured), glossy
 # shadowed and interreflected (.prtg), CPCA (.prtq), radiosity (.prte with --per-emitter, the
 # form-factor cache, --csv, --vertex-colors .glb, the EXR image; Gauss-Seidel, Jacobi,
-# progressive, --adaptive), make-scene and make-sky.
+# progressive, --adaptive), make-scene (the demo and the translucent scene) and make-sky.
 # Nothing that changes from run to run (wall times, thread counts, the host) may be in them: that
 # goes to the OUT.run.json beside each output, which is checked to exist and is not compared.
 # Each pair is made in its own folder with the same relative paths, so a path recorded as given
@@ -98,6 +98,8 @@ both yes radiosity --quiet "$room" --max-edge 0.5 --adaptive 0.05 --max-patches 
 same "radiosity --adaptive" adaptive.csv
 both no make-scene -o scene.glb
 same "make-scene" scene.glb no
+both no make-scene --scene translucent -o translucent.glb
+same "make-scene translucent" translucent.glb no
 both no make-sky -o sky.hdr --width 64 --height 32
 same "make-sky" sky.hdr no
 
