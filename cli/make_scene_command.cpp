@@ -5,6 +5,8 @@
 //   prt make-scene --scene glossy -o glossy.glb      glossy sphere, brushed disc, rough gold box
 //   prt make-scene --scene level -o level.glb [--seed S --rooms N --objects N --triangles N]
 //   prt make-scene --scene field -o field.glb --vertices 1000000     (or field-glossy)
+//   prt make-scene --scene translucent -o t.glb   slab, sphere, ear-like fin on a ground (mm);
+//                  translucent-slab, translucent-sphere: each alone (scene/translucent_scene.h)
 //
 // The scenes are procedural and deterministic, so data/demo.glb can be regenerated at any time,
 // and a level or field is the same file for the same options. The glossy scene's materials are
@@ -31,6 +33,7 @@
 #include "scene/material_override.h"
 #include "scene/procedural_mesh.h"
 #include "scene/shape_layout.h"
+#include "scene/translucent_scene.h"
 
 namespace prt::cli {
 namespace {
@@ -149,13 +152,17 @@ Command register_make_scene(CLI::App& app) {
   auto a = std::make_shared<MakeSceneArgs>();
   command->add_option("-o,--output", a->output, "Output .glb path")->required();
   command
-      ->add_option("--scene", a->which,
-                   "demo (diffuse), glossy (glossy sphere, brushed-metal disc, rough gold box on "
-                   "a diffuse floor; glTF PBR materials with anisotropy and tangents), level "
-                   "(rooms, corridors, doors, pillars, crates, tables, clutter, ceiling lamps "
-                   "lamp_warm, lamp_cool, lamp_corridor), field (ground plane, spheres and boxes "
-                   "for bake benchmarks; diffuse) or field-glossy (the same, glTF PBR)")
-      ->check(CLI::IsMember({"demo", "glossy", "level", "field", "field-glossy"}));
+      ->add_option(
+          "--scene", a->which,
+          "demo (diffuse), glossy (glossy sphere, brushed-metal disc, rough gold box on "
+          "a diffuse floor; glTF PBR materials with anisotropy and tangents), level "
+          "(rooms, corridors, doors, pillars, crates, tables, clutter, ceiling lamps "
+          "lamp_warm, lamp_cool, lamp_corridor), field (ground plane, spheres and boxes "
+          "for bake benchmarks; diffuse), field-glossy (the same, glTF PBR), translucent (a slab, "
+          "a sphere and an ear-like thin fin on a ground, 1 unit = 1 mm) or "
+          "translucent-slab / translucent-sphere (each alone)")
+      ->check(CLI::IsMember({"demo", "glossy", "level", "field", "field-glossy", "translucent",
+                             "translucent-slab", "translucent-sphere"}));
   CLI::Option* seed = command->add_option("--seed", a->seed, "Level: random seed (default 1)");
   CLI::Option* rooms = command->add_option(
       "--rooms", a->rooms, "Level: number of rooms, 1 to 64 (default 6, on a square grid)");
@@ -187,7 +194,11 @@ Command register_make_scene(CLI::App& app) {
       return;
     }
     const bool glossy = a->which == "glossy";
-    const scene::Scene scene = glossy ? scene::make_glossy_scene() : scene::make_demo_scene();
+    const scene::Scene scene = glossy                             ? scene::make_glossy_scene()
+                               : a->which == "translucent"        ? scene::make_translucent_scene()
+                               : a->which == "translucent-slab"   ? scene::make_translucent_slab()
+                               : a->which == "translucent-sphere" ? scene::make_translucent_sphere()
+                                                                  : scene::make_demo_scene();
     scene::write_glb(a->output, scene);  // throws SceneError("PATH: problem")
     std::printf("%s: %zu vertices, %zu triangles, %zu primitives, %zu camera(s)\n",
                 a->output.c_str(), scene.positions.size(), scene.triangles.size(),

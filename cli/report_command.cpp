@@ -12,6 +12,8 @@
 // count × solver, against a path-traced ground truth (report/radiosity_report.h).
 // `prt report --sun-study -o DIR [--quick] [--roughness LIST] ...`: where SH fails, a sun on
 // glossy surfaces (report_sun_study.h, report/sun_study.h).
+// `prt report --translucency SCENE ENV -o DIR [--subsurface P] [--more-scenes A,B] ...`: the
+// real-time approximations of subsurface scattering against the dipole (report_translucency.h).
 // `prt report --glossy SCENE ENV -o DIR [--quick] [--seed S] [--material M ...]`: glossy PRT
 // error against cost (order, samples, bounces, CPCA size) against the glossy ground truth, with
 // `prt bake`'s material overrides (cli/glossy_report_cli.h). --material needs --glossy.
@@ -42,6 +44,7 @@
 #include "report/stability_report.h"
 #include "report_ssao.h"
 #include "report_sun_study.h"
+#include "report_translucency.h"
 
 namespace prt::cli {
 namespace {
@@ -58,6 +61,7 @@ struct ReportArguments {
   int ground_truth_patches = 0, ground_truth_samples = 0, rays = 1024, hemicube = 64;
   SunStudyArguments sun;
   SsaoReportArguments ssao;   // --ssao (report_ssao.h)
+  TranslucencyArguments translucency;
   uint64_t memory_limit = 0;  // --memory-limit (option_rules.h): the SH and glossy sweeps' bakes
 };
 
@@ -190,6 +194,8 @@ void check_options(const ReportArguments& a, const CLI::App& cmd) {
 CommandFiles report_files(const ReportArguments& a) {
   if (a.sun.enabled) return sun_study_files(a.output);
   if (a.ssao.enabled) return ssao_report_files(a.ssao, a.scene, a.output, a.quick);
+  if (a.translucency.enabled)
+    return translucency_files(a.translucency, a.scene, a.environment, a.output);
   CommandFiles files;
   if (!a.scene.empty()) files.add_scene(a.scene);
   if (!a.environment.empty()) files.add_environment(a.environment);
@@ -285,9 +291,15 @@ std::string other_mode_argument(const ReportArguments& a, const CLI::App& cmd) {
 
 // The command line, before the files are checked.
 void check_usage(const ReportArguments& a, const CLI::App& cmd) {
+  // The modes with a command line of their own exclude each other; each refuses the others'
+  // options.
   if (a.sun.enabled && a.ssao.enabled)
     throw UsageError("--ssao and --sun-study exclude each other");
-  if (a.sun.enabled) refuse_ssao_options(cmd);
+  if (a.translucency.enabled && (a.sun.enabled || a.ssao.enabled))
+    throw UsageError(std::string("--translucency and ") +
+                     (a.sun.enabled ? "--sun-study" : "--ssao") + " exclude each other");
+  if (!a.ssao.enabled) refuse_ssao_options(cmd);
+  if (!a.translucency.enabled) refuse_translucency_options(cmd);
   if (a.sun.enabled) return check_sun_study_mode(a.sun, other_mode_argument(a, cmd));
   refuse_sun_study_options(cmd);
   if (a.ssao.enabled) {
@@ -295,13 +307,22 @@ void check_usage(const ReportArguments& a, const CLI::App& cmd) {
     others.scene.clear();
     return check_ssao_mode(a.ssao, a.scene, other_mode_argument(others, cmd));
   }
-  refuse_ssao_options(cmd);
+  if (a.translucency.enabled) {
+    const std::string other = a.stability   ? "--stability"
+                              : a.radiosity ? "--radiosity"
+                              : a.glossy    ? "--glossy"
+                                            : "";
+    return check_translucency_mode(a.translucency, a.scene, a.environment, other);
+  }
   check_options(a, cmd);
 }
 
 void run(const ReportArguments& a) {
   if (a.sun.enabled) return run_sun_study_mode(a.sun, a.output, a.quick, a.quiet);
   if (a.ssao.enabled) return run_ssao_mode(a.ssao, a.scene, a.output, a.quick, a.quiet);
+  if (a.translucency.enabled)
+    return run_translucency_mode(a.translucency, a.scene, a.environment, a.output, a.layout, a.seed,
+                                 a.quick, a.quiet, memory_limit_or_default(a.memory_limit));
   if (a.glossy) {
     run_glossy_report_command(glossy_request(a));
     return;
@@ -391,6 +412,7 @@ Command register_report(CLI::App& app) {
   material->description("--glossy: " + material->get_description());
   add_sun_study_options(cmd, &args->sun);
   add_ssao_report_options(cmd, &args->ssao);
+  add_translucency_options(cmd, &args->translucency);
   return {cmd, [args, cmd] { check_usage(*args, *cmd); }, [args] { return report_files(*args); },
           [args] { run(*args); }};
 }

@@ -5,7 +5,8 @@
 # their merge), Haar (shadowed, interreflected textured), glossy
 # shadowed and interreflected (.prtg), CPCA (.prtq), radiosity (.prte with --per-emitter, the
 # form-factor cache, --csv, --vertex-colors .glb, the EXR image; Gauss-Seidel, Jacobi,
-# progressive, --adaptive), export-gltf, make-scene and make-sky.
+# progressive, --adaptive), export-gltf, make-scene (the demo and the translucent scene) and
+# make-sky.
 # Nothing that changes from run to run (wall times, thread counts, the host) may be in them: that
 # goes to the OUT.run.json beside each output, which is checked to exist and is not compared.
 # Each pair is made in its own folder with the same relative paths, so a path recorded as given
@@ -125,6 +126,8 @@ both no export-gltf --quiet "$demo" shadowed.prt ../in/sky.hdr -o export.glb
 same "export-gltf" export.glb no
 both no make-scene -o scene.glb
 same "make-scene" scene.glb no
+both no make-scene --scene translucent -o translucent.glb
+same "make-scene translucent" translucent.glb no
 both no make-sky -o sky.hdr --width 64 --height 32
 same "make-sky" sky.hdr no
 
