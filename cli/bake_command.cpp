@@ -37,8 +37,8 @@
 #include "scene/scene_loader.h"
 #include "scene/subdivide.h"
 #include "sh/projection.h"
-#include "subsurface_cli.h"
 #include "shard_cli.h"
+#include "subsurface_cli.h"
 
 namespace prt::cli {
 namespace {
@@ -61,10 +61,10 @@ struct BakeArguments {
   uint64_t memory_limit = 0;  // --memory-limit (option_rules.h); 0: not given
   std::string precision = "f32";
   bool quiet = false;
-  HaarBakeArguments haar;  // --basis haar and its options (haar_cli.h)
-  bool automatic = false;  // --auto (bake/adaptive/adaptive_baker.h)
-  bool glossy = false;     // --glossy: transfer matrices (cli/glossy_cli.h)
-  std::string env;         // --env: lighting that --auto chooses the SH order for
+  HaarBakeArguments haar;          // --basis haar and its options (haar_cli.h)
+  bool automatic = false;          // --auto (bake/adaptive/adaptive_baker.h)
+  bool glossy = false;             // --glossy: transfer matrices (cli/glossy_cli.h)
+  std::string env;                 // --env: lighting that --auto chooses the SH order for
   SubsurfaceArguments subsurface;  // --subsurface and its options (subsurface_cli.h)
   bool tolerance_given = false, transfer_given = false;
   std::string shard;                          // --shard I/N | auto | auto/N (cli/shard_cli.h)
@@ -279,9 +279,9 @@ GlossyBakeRequest glossy_request(const BakeArguments& args, const CLI::App& cmd)
 void check_usage(BakeArguments& args, const CLI::App& cmd) {
   check_values(args, cmd);
   check_subsurface_usage(args.subsurface, cmd,
-                         args.glossy                  ? "--glossy"
-                         : args.haar.basis == "haar"  ? "--basis haar"
-                         : args.automatic             ? "--auto"
+                         args.glossy                     ? "--glossy"
+                         : args.haar.basis == "haar"     ? "--basis haar"
+                         : args.automatic                ? "--auto"
                          : args.transfer == "unshadowed" ? "--transfer unshadowed"
                                                          : "");
   if (!args.shard.empty()) {

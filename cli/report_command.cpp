@@ -60,7 +60,7 @@ struct ReportArguments {
   std::string max_edges, methods, solvers;
   int ground_truth_patches = 0, ground_truth_samples = 0, rays = 1024, hemicube = 64;
   SunStudyArguments sun;
-  SsaoReportArguments ssao;   // --ssao (report_ssao.h)
+  SsaoReportArguments ssao;  // --ssao (report_ssao.h)
   TranslucencyArguments translucency;
   uint64_t memory_limit = 0;  // --memory-limit (option_rules.h): the SH and glossy sweeps' bakes
 };

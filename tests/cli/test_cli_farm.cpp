@@ -341,7 +341,8 @@ TEST_CASE("cli farm: bad --shard values and bakes that cannot be sharded are ref
     CHECK(r.err.find("--shard") != std::string::npos);
     CHECK_FALSE(fs::exists(out));
   }
-  for (const std::string options : {"--auto", "--glossy", "--transfer shadowed"}) {
+  for (const std::string options :
+       {"--auto", "--glossy", "--subsurface marble", "--transfer shadowed"}) {
     INFO(options);
     const fs::path wrong = dir / "p.prt";  // a part must be a .prtpart
     const RunResult r = run(
