@@ -42,6 +42,9 @@ TEST_PACKAGES=(
   librsvg2-bin                         # rsvg-convert: the PNG plots of `prt report`, which the
                                        # report tests exercise (without it: SVG only, tests pass)
   clang libclang-rt-14-dev             # scripts/fuzz.sh (libFuzzer)
+  slurm-wlm munge                      # scripts/slurm-local.sh: a single-node Slurm (slurmctld,
+                                       # slurmd, sbatch/squeue/sacct/scancel, munged) that
+                                       # tests/scripts/check_slurm_farm.sh runs the examples on
 )
 # Not needed by either side: pkg-config (no find module calls it) and libopenexr-dev (OpenImageIO
 # 2.4 takes half and Imath from libimath-dev; prt includes no OpenEXR header).
