@@ -18,6 +18,7 @@
 #include "bake/haar_baker.h"
 #include "bake/progress.h"
 #include "bake/transfer_baker.h"
+#include "bake/transfer_part_file.h"
 #include "cli_parsing.h"
 #include "command_registry.h"
 #include "glossy_cli.h"
@@ -26,6 +27,7 @@
 #include "option_rules.h"
 #include "output_safety.h"
 #include "progress_reporter.h"
+#include "prt/formats/part_file.h"
 #include "prt/formats/transfer_file.h"
 #include "prt/haar/cube_map.h"
 #include "relight/environment_input.h"
@@ -34,6 +36,7 @@
 #include "scene/scene_loader.h"
 #include "scene/subdivide.h"
 #include "sh/projection.h"
+#include "shard_cli.h"
 
 namespace prt::cli {
 namespace {
@@ -59,6 +62,8 @@ struct BakeArguments {
   bool glossy = false;     // --glossy: transfer matrices (cli/glossy_cli.h)
   std::string env;         // --env: lighting that --auto chooses the SH order for
   bool tolerance_given = false, transfer_given = false;
+  std::string shard;                          // --shard I/N | auto | auto/N (cli/shard_cli.h)
+  std::optional<bake::ShardSpec> shard_spec;  // resolved before the run
 };
 
 // "r,g,b" or a single grey value; each in [0, 1).
@@ -214,7 +219,9 @@ CommandFiles bake_files(const BakeArguments& a) {
   CommandFiles files;
   files.add_scene(a.scene);
   if (!a.env.empty()) files.add_environment(a.env);
-  if (a.glossy)
+  if (a.shard_spec)
+    files.add_output_file("-o", a.output, {".prtpart"}, "a part file (--shard)");
+  else if (a.glossy)
     files.add_output_file("-o", a.output, {".prtg"}, "a glossy transfer file");
   else
     files.add_output_file("-o", a.output, {".prt"}, "a coefficient file");
@@ -250,8 +257,16 @@ GlossyBakeRequest glossy_request(const BakeArguments& args, const CLI::App& cmd)
 }
 
 // The command line's own refusals, before any file is looked at.
-void check_usage(const BakeArguments& args, const CLI::App& cmd) {
+void check_usage(BakeArguments& args, const CLI::App& cmd) {
   check_values(args, cmd);
+  if (!args.shard.empty()) {
+    if (args.automatic)
+      throw UsageError("--shard does not apply to --auto (shards bake the fixed recipe)");
+    if (args.glossy) throw UsageError("--shard does not apply to --glossy yet (docs/FARM.md)");
+    if (args.haar.basis == "haar")
+      throw UsageError("--shard does not apply to --basis haar yet (docs/FARM.md)");
+    args.shard_spec = resolve_shard(args.shard, process_environment());
+  }
   if (args.glossy) {
     check_glossy_applicable(cmd);
     check_glossy_request(glossy_request(args, cmd));
@@ -310,6 +325,36 @@ void run_auto(const BakeArguments& args, const scene::Scene& scene, const bake::
   std::printf("  wrote %s\n", args.output.c_str());
 }
 
+// `--shard I/N`: the shard's rows into a part file (bake/transfer_part_file.h), which
+// `prt merge` joins with the other shards' parts.
+void run_shard(const BakeArguments& args, const scene::Scene& scene,
+               const bake::BakeOptions& options, ProgressReporter& progress) {
+  const bake::ShardSpec shard = *args.shard_spec;
+  bake::check_shardable(scene, options);
+  const bake::RowRange rows = bake::shard_rows(scene.vertex_count(), shard);
+  if (!args.quiet)
+    std::fprintf(stderr, "prt bake: %s: shard %s, rows %llu..%llu of %zu (Morton order)\n",
+                 args.scene.c_str(), shard_text(shard).c_str(),
+                 static_cast<unsigned long long>(rows.first),
+                 static_cast<unsigned long long>(rows.end), scene.vertex_count());
+  const bake::TransferPart part = bake::bake_transfer_part(scene, options, shard, &progress);
+  const prt::Status written = prt::write_part_file(
+      args.output, bake::encode_transfer_part(part, scene, options, prt_version()));
+  if (!written.ok()) throw CommandError(written.message());
+  run_record().phase("rays", part.stats.seconds_rays);
+  run_record().phase("bake", part.stats.seconds_total);
+  if (args.quiet) return;
+  std::error_code ec;
+  const auto bytes = std::filesystem::file_size(args.output, ec);
+  std::printf(
+      "baked shard %s of %s: %llu of %zu vertices, %llu rays in %.2f s (%.2f Mrays/s); "
+      "wrote %s (%llu bytes)\n",
+      shard_text(shard).c_str(), args.scene.c_str(), static_cast<unsigned long long>(rows.size()),
+      scene.vertex_count(), static_cast<unsigned long long>(part.rays), part.stats.seconds_rays,
+      part.stats.mrays_per_second(), args.output.c_str(),
+      static_cast<unsigned long long>(ec ? 0 : bytes));
+}
+
 void run(const BakeArguments& args, const CLI::App& cmd) {
   run_record().threads = resolved_threads(args.threads);
   if (args.glossy) return run_glossy(args, cmd);
@@ -334,6 +379,7 @@ void run(const BakeArguments& args, const CLI::App& cmd) {
   }
 
   ProgressReporter progress(args.quiet);
+  if (args.shard_spec) return run_shard(args, scene, options, progress);
   if (args.automatic) return run_auto(args, scene, options, progress);
   const bake::BakeResult result = bake::bake_transfer(scene, options, &progress);
   const prt::Status written = prt::write_transfer_file(args.output, result.data);
@@ -408,6 +454,9 @@ Command register_bake(CLI::App& app) {
   cmd->add_flag("--auto", args->automatic,
                 "Analyse the scene and bake only what it needs for --tolerance (default 0.01)");
   cmd->add_option("--env", args->env, "--auto: lighting whose band energy picks the SH order");
+  cmd->add_option("--shard", args->shard,
+                  "Bake one shard of a farm bake into a part file (.prtpart) for prt merge: I/N "
+                  "(0-based), auto (Slurm array) or auto/N (Kubernetes Indexed Job or Slurm)");
   cmd->add_flag("--glossy", args->glossy,
                 "Bake glossy transfer matrices (order 1..10, default 5) into a .prtg file");
   const auto check = [args, cmd] {

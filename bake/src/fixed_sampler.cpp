@@ -93,25 +93,33 @@ struct FixedVertexSampler {
 
 }  // namespace
 
-// Block blk covers rows [blk·64, ...): the vertices themselves, or the compact gather's rows
-// (its Morton order), whose block is charged and stored at the end.
+// Block blk covers rows [first_row + blk·64, ...): the vertices themselves, the compact gather's
+// rows (its Morton order) or a shard's rows of row_order; a compact block is charged and stored
+// at the end (in the gather, or in the shard's part_blocks).
 void sample_fixed(SamplingPass& pass) {
+  const std::size_t first = pass.first_row, end = pass.row_end();
   tbb::parallel_for(std::size_t(0), pass.blocks(), [&](std::size_t blk) {
     FixedVertexSampler sampler(pass, blk);
-    const std::size_t v_end = std::min(pass.V, (blk + 1) * kVertexBlock);
+    const std::size_t r_begin = first + blk * kVertexBlock;
+    const std::size_t r_end = std::min(end, r_begin + kVertexBlock);
     uint64_t rays = 0;
-    for (std::size_t r = blk * kVertexBlock; r < v_end; ++r)
-      rays += sampler.sample(pass.compact ? pass.compact->vertex_of_row(r) : r);
+    for (std::size_t r = r_begin; r < r_end; ++r)
+      rays += sampler.sample(pass.row_order ? (*pass.row_order)[r]
+                             : pass.compact ? pass.compact->vertex_of_row(r)
+                                            : r);
     if (pass.compact) {
       CompactGather::Block& b = sampler.compact;
       if (pass.budget)
         pass.budget->charge(CompactGather::block_bytes(b.lengths.size(), b.hits.size()),
                             "the gather matrix");
       b.hits.shrink_to_fit();
-      pass.compact->set_block(blk, std::move(b));
+      if (pass.part_blocks)
+        (*pass.part_blocks)[blk] = std::move(b);
+      else
+        pass.compact->set_block(blk, std::move(b));
     }
     pass.block_rays[blk] = rays;
-    if (pass.progress) pass.progress->advance(v_end - blk * kVertexBlock, rays);
+    if (pass.progress) pass.progress->advance(r_end - r_begin, rays);
   });
 }
 

@@ -22,6 +22,7 @@
 // ray before merging; rows merge duplicate columns, so a row costs 8 bytes × distinct vertices hit
 // (typically far fewer than 3·hits at high sample counts).
 #include "bake/transfer_baker.h"
+#include "bake/transfer_part.h"
 
 #include <algorithm>
 #include <chrono>
@@ -154,7 +155,7 @@ struct BakeJob {
   double ray_offset_max = 0.0;
 
   BakeJob(const scene::Scene& s, const BakeOptions& o, ProgressSink* p, BakeResult& r, int channels,
-          bool albedo_apart, MemoryBudget& b)
+          bool albedo_apart, MemoryBudget& b, bool shard_part = false)
       : scene(s),
         options(o),
         progress(p),
@@ -171,7 +172,7 @@ struct BakeJob {
         compact(interreflect && !adaptive && !apart && !o.dense_gather),
         result(r),
         budget(b),
-        direct(s, o, channels, albedo_apart, r.data, sums) {}
+        direct(s, o, channels, albedo_apart, r.data, sums, shard_part) {}
 
   BakeStatistics& st() { return result.stats; }
   uint8_t mode_of(std::size_t v) const { return modes.empty() ? kSampleVertex : modes[v]; }
@@ -225,9 +226,16 @@ void store_without_rays(BakeJob& job) {
   if (job.interreflect) job.h.row_offsets.assign(job.V + 1, 0);
 }
 
+// A shard's rows (bake/transfer_part.h): which rows of which order, and where its gather blocks go.
+struct ShardRows {
+  const std::vector<uint32_t>* order;
+  RowRange range;
+  std::vector<CompactGather::Block>* blocks;
+};
+
 // Casts the rays: builds (or borrows) the BVH, runs the fixed or the adaptive sampler, and
-// assembles H from the blocks' rows.
-void run_sampling_pass(BakeJob& job) {
+// assembles H from the blocks' rows; with `shard`, the fixed sampler over the shard's rows only.
+void run_sampling_pass(BakeJob& job, const ShardRows* shard = nullptr) {
   BakeStatistics& st = job.st();
   const AdaptiveSampling& ad = job.options.adaptive;
   const Clock::time_point t_rays = Clock::now();
@@ -239,9 +247,9 @@ void run_sampling_pass(BakeJob& job) {
     job.ray_offset_max = std::max(job.ray_offset_max, static_cast<double>(eps));
   const int gather_channels = job.apart && job.interreflect ? job.C : 0;
   if (job.compact)
-    job.gather =
-        std::make_unique<CompactGather>(make_morton_order(job.scene.positions), job.scene.triangles,
-                                        detail::kVertexBlock, 1.0 / job.N);
+    job.gather = std::make_unique<CompactGather>(
+        shard ? *shard->order : make_morton_order(job.scene.positions), job.scene.triangles,
+        detail::kVertexBlock, 1.0 / job.N);
   SamplingPass pass{job.scene,
                     job.options,
                     caster,
@@ -263,11 +271,18 @@ void run_sampling_pass(BakeJob& job) {
                     {}};
   pass.compact = job.gather.get();
   pass.budget = &job.budget;
+  if (shard) {
+    pass.row_order = shard->order;
+    pass.first_row = shard->range.first;
+    pass.end_row = shard->range.end;
+    pass.part_blocks = shard->blocks;
+    shard->blocks->resize(job.compact ? pass.blocks() : 0);
+  }
   const std::size_t blocks = pass.blocks();
   pass.rows.resize(job.interreflect && !job.compact ? blocks : 0);
   pass.block_rays.assign(blocks, 0);
   pass.block_back_hits.assign(blocks, 0);
-  if (job.progress) job.progress->start("bake", job.V);
+  if (job.progress) job.progress->start("bake", shard ? shard->range.size() : job.V);
   if (job.adaptive)
     detail::sample_adaptive(pass);
   else
@@ -277,6 +292,7 @@ void run_sampling_pass(BakeJob& job) {
   for (uint64_t b : pass.block_back_hits) st.back_face_hits += b;
   st.seconds_rays = seconds_since(t_rays);
   st.bvh_bytes = caster.embree_peak_bytes();
+  if (shard) return;  // the part holds the rows; the merge assembles H
   if (job.interreflect && job.compact) {
     st.matrix_entries = job.gather->hits();
     st.matrix_bytes = job.gather->bytes();
@@ -290,6 +306,51 @@ void run_sampling_pass(BakeJob& job) {
     job.budget.release(entries * (sizeof(uint32_t) + sizeof(float)) + 4 * (job.V + 1));
     st.matrix_entries = job.h.entries();
     st.matrix_bytes = job.h.bytes();
+  }
+}
+
+// A merge of shards' parts (bake/transfer_part.h) in place of the sampling pass: each row's
+// direct transfer, AO and bent normal stored as the fixed sampler stores them, and the gather's
+// rows cut into the blocks of 64 rows the sampler would have made, charged as it charges them.
+void fill_from_parts(BakeJob& job, const std::vector<const TransferPart*>& parts) {
+  BakeStatistics& st = job.st();
+  const std::size_t K = static_cast<std::size_t>(job.K);
+  std::vector<uint32_t> order = make_morton_order(job.scene.positions);
+  if (job.compact)
+    job.gather = std::make_unique<CompactGather>(order, job.scene.triangles, detail::kVertexBlock,
+                                                 1.0 / job.N);
+  CompactGather::Block block;
+  std::size_t next_block = 0;
+  const auto store_block = [&] {
+    job.budget.charge(CompactGather::block_bytes(block.lengths.size(), block.hits.size()),
+                      "the gather matrix");
+    job.gather->set_block(next_block++, std::move(block));
+    block = CompactGather::Block{};
+  };
+  for (const TransferPart* part : parts) {
+    std::size_t hit = 0;
+    for (std::size_t i = 0; i < part->rows.size(); ++i) {
+      const std::size_t r = part->rows.first + i, v = order[r];
+      if (job.need_sh_rays) job.direct.store(v, &part->direct[i * K]);
+      if (job.options.ao) job.sums.ao[v] = part->ao[i];
+      if (job.options.bent_normals)
+        for (std::size_t a = 0; a < 3; ++a) job.sums.bent[3 * v + a] = part->bent[3 * i + a];
+      if (!job.compact) continue;
+      const uint32_t len = part->gather_rows[i];
+      block.lengths.push_back(len);
+      block.hits.insert(block.hits.end(),
+                        part->gather_hits.begin() + static_cast<std::ptrdiff_t>(hit),
+                        part->gather_hits.begin() + static_cast<std::ptrdiff_t>(hit + len));
+      hit += len;
+      if (block.lengths.size() == detail::kVertexBlock || r + 1 == job.V) store_block();
+    }
+    st.rays += part->rays;
+    st.back_face_hits += part->back_face_hits;
+    job.ray_offset_max = std::max(job.ray_offset_max, part->ray_offset_max);
+  }
+  if (job.compact) {
+    st.matrix_entries = job.gather->hits();
+    st.matrix_bytes = job.gather->bytes();
   }
 }
 
@@ -564,8 +625,12 @@ void validate_bake_inputs(const scene::Scene& scene, const BakeOptions& o) {
       throw BakeError(name + ": a triangle index is out of range");
 }
 
-BakeResult bake_transfer(const scene::Scene& scene, const BakeOptions& options,
-                         ProgressSink* progress) {
+namespace {
+
+// bake_transfer, or (with `parts`) the merge of a sharded bake's parts.
+BakeResult bake_transfer_with(const scene::Scene& scene, const BakeOptions& options,
+                              ProgressSink* progress,
+                              const std::vector<const TransferPart*>* parts) {
   const Clock::time_point t_start = Clock::now();
   validate_bake_inputs(scene, options);
   std::optional<tbb::global_control> thread_limit;
@@ -611,7 +676,10 @@ BakeResult bake_transfer(const scene::Scene& scene, const BakeOptions& options,
       any_sampled = any_sampled || job.mode_of(v) == kSampleVertex;
     if (!any_sampled) store_without_rays(job);
   }
-  if (job.need_rays && any_sampled) run_sampling_pass(job);
+  if (parts)
+    fill_from_parts(job, *parts);
+  else if (job.need_rays && any_sampled)
+    run_sampling_pass(job);
 
   // 3. The header arrays, then the interreflection solve per channel.
   prt::TransferData& data = result.data;
@@ -648,6 +716,124 @@ BakeResult bake_transfer(const scene::Scene& scene, const BakeOptions& options,
   st.seconds_total = seconds_since(t_start);
   data.metadata_json = bake_metadata(job);
   return result;
+}
+
+}  // namespace
+
+BakeResult bake_transfer(const scene::Scene& scene, const BakeOptions& options,
+                         ProgressSink* progress) {
+  return bake_transfer_with(scene, options, progress, nullptr);
+}
+
+RowRange shard_rows(uint64_t rows, ShardSpec shard) {
+  // ⌊i·rows/N⌋ without overflow: rows = q·N + m, i·rows/N = i·q + ⌊i·m/N⌋ (i, m < N < 2³²).
+  const auto bound = [&](uint64_t i) {
+    const uint64_t q = rows / shard.count, m = rows % shard.count;
+    return i * q + i * m / shard.count;
+  };
+  return {bound(shard.index), bound(uint64_t{shard.index} + 1)};
+}
+
+void check_shardable(const scene::Scene& scene, const BakeOptions& options) {
+  const std::string name = scene::scene_label(scene);
+  if (options.adaptive.enabled)
+    throw BakeError(name + ": a sharded bake needs the fixed recipe, not adaptive sampling");
+  if (options.keep_albedo_apart || scene.textured())
+    throw BakeError(name +
+                    ": a sharded bake needs the albedo folded into the transfer (the scene "
+                    "is textured or the albedo is kept apart)");
+  if (options.kind == prt::TransferKind::Interreflected && options.dense_gather)
+    throw BakeError(name + ": a sharded interreflected bake needs the compact gather");
+}
+
+TransferPart bake_transfer_part(const scene::Scene& scene, const BakeOptions& options,
+                                ShardSpec shard, ProgressSink* progress) {
+  const Clock::time_point t_start = Clock::now();
+  validate_bake_inputs(scene, options);
+  check_shardable(scene, options);
+  if (shard.count == 0 || shard.index >= shard.count)
+    throw BakeError(scene::scene_label(scene) + ": shard " + std::to_string(shard.index) + "/" +
+                    std::to_string(shard.count) + " is not a shard");
+  std::optional<tbb::global_control> thread_limit;
+  if (options.threads > 0)
+    thread_limit.emplace(tbb::global_control::max_allowed_parallelism,
+                         static_cast<std::size_t>(options.threads));
+  BakeResult result;
+  MemoryBudget budget(options.memory_limit, scene::scene_label(scene));
+  const uint64_t V = scene.positions.size(), K = uint64_t(options.order) * options.order;
+  const bool need_sh = options.kind != prt::TransferKind::Unshadowed;
+  const bool need_rays = need_sh || options.ao || options.bent_normals;
+  budget.charge(V * (need_sh ? K * sizeof(double) : 0) + (need_rays ? V * 16 : 0),
+                "the visibility sums");
+  BakeJob job(scene, options, progress, result, channel_count(scene, options, false), false, budget,
+              true);
+  TransferPart part;
+  part.shard = shard;
+  part.vertices = V;
+  part.rows = shard_rows(V, shard);
+  part.coefficients = job.K;
+  if (need_rays) {
+    job.sums.ao.assign(V, 0.f);
+    job.sums.bent.assign(3 * V, 0.f);
+    const std::vector<uint32_t> order = make_morton_order(scene.positions);
+    std::vector<CompactGather::Block> blocks;
+    const ShardRows rows{&order, part.rows, &blocks};
+    run_sampling_pass(job, &rows);
+    for (uint64_t r = part.rows.first; r < part.rows.end; ++r) {
+      const std::size_t v = order[r];
+      if (need_sh)
+        part.direct.insert(part.direct.end(), &job.sums.visibility_sh[v * K],
+                           &job.sums.visibility_sh[v * K] + K);
+      if (options.ao) part.ao.push_back(job.sums.ao[v]);
+      if (options.bent_normals)
+        part.bent.insert(part.bent.end(), &job.sums.bent[3 * v], &job.sums.bent[3 * v] + 3);
+    }
+    for (CompactGather::Block& b : blocks) {
+      part.gather_rows.insert(part.gather_rows.end(), b.lengths.begin(), b.lengths.end());
+      part.gather_hits.insert(part.gather_hits.end(), b.hits.begin(), b.hits.end());
+      b = CompactGather::Block{};
+    }
+  }
+  part.rays = result.stats.rays;
+  part.back_face_hits = result.stats.back_face_hits;
+  part.ray_offset_max = job.ray_offset_max;
+  result.stats.vertices = part.rows.size();
+  result.stats.triangles = scene.triangles.size();
+  result.stats.samples_per_vertex = need_rays ? job.N : 0;
+  result.stats.matrix_entries = part.gather_hits.size();
+  result.stats.budget_peak_bytes = budget.peak();
+  result.stats.seconds_total = seconds_since(t_start);
+  part.stats = result.stats;
+  return part;
+}
+
+BakeResult merge_transfer_parts(const scene::Scene& scene, const BakeOptions& options,
+                                const std::vector<const TransferPart*>& parts,
+                                ProgressSink* progress) {
+  check_shardable(scene, options);
+  const std::string name = scene::scene_label(scene);
+  const uint64_t V = scene.positions.size(), K = uint64_t(options.order) * options.order;
+  const bool need_sh = options.kind != prt::TransferKind::Unshadowed;
+  const bool interreflect = options.kind == prt::TransferKind::Interreflected;
+  uint64_t next = 0;
+  for (std::size_t i = 0; i < parts.size(); ++i) {
+    const TransferPart& p = *parts[i];
+    const RowRange want =
+        shard_rows(V, {static_cast<uint32_t>(i), static_cast<uint32_t>(parts.size())});
+    const uint64_t n = p.rows.size();
+    uint64_t hits = 0;
+    for (uint32_t len : p.gather_rows) hits += len;
+    if (p.vertices != V || p.shard.index != i || p.shard.count != parts.size() ||
+        p.rows.first != want.first || p.rows.end != want.end || p.rows.first != next ||
+        p.direct.size() != (need_sh ? n * K : 0) || p.ao.size() != (options.ao ? n : 0) ||
+        p.bent.size() != (options.bent_normals ? 3 * n : 0) ||
+        p.gather_rows.size() != (interreflect ? n : 0) || hits != p.gather_hits.size())
+      throw BakeError(name + ": part " + std::to_string(i) + " of " + std::to_string(parts.size()) +
+                      " does not fit the scene or the split");
+    next = p.rows.end;
+  }
+  if (next != V) throw BakeError(name + ": the parts do not cover every vertex");
+  return bake_transfer_with(scene, options, progress, &parts);
 }
 
 }  // namespace prt::bake

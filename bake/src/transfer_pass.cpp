@@ -17,13 +17,14 @@ using sh::kPi;
 }  // namespace
 
 DirectTransfer::DirectTransfer(const scene::Scene& scene, const BakeOptions& options, int channels,
-                               bool albedo_apart, prt::TransferData& data, VertexSums& sums)
+                               bool albedo_apart, prt::TransferData& data, VertexSums& sums,
+                               bool shard_part)
     : scene_(scene),
       order_(options.order),
       K_(options.order * options.order),
       C_(channels),
       albedo_apart_(albedo_apart),
-      interreflect_(options.kind == prt::TransferKind::Interreflected),
+      keep_sums_(options.kind == prt::TransferKind::Interreflected || shard_part),
       compact_(options.adaptive.enabled && options.adaptive.compact_output),
       data_(data),
       sums_(sums) {
@@ -37,8 +38,9 @@ DirectTransfer::DirectTransfer(const scene::Scene& scene, const BakeOptions& opt
       if (options.adaptive.vertex_mode.empty() || options.adaptive.vertex_mode[v] != kSkipVertex)
         row_of_[v] = rows_out++;
   }
+  if (shard_part) rows_out = 0;
   data_.coefficients.assign(rows_out * static_cast<std::size_t>(C_ * K_), 0.f);
-  if (interreflect_) sums_.visibility_sh.assign(V * static_cast<std::size_t>(K_), 0.0);
+  if (keep_sums_) sums_.visibility_sh.assign(V * static_cast<std::size_t>(K_), 0.0);
   zonal_.resize(static_cast<std::size_t>(order_));
   for (int l = 0; l < order_; ++l)
     zonal_[static_cast<std::size_t>(l)] = sh::clamped_cosine_zonal_coefficient(l);
@@ -52,7 +54,7 @@ void DirectTransfer::unshadowed(std::size_t v, double* out) const {
 
 void DirectTransfer::store(std::size_t v, const double* s_k) {
   const std::size_t K = static_cast<std::size_t>(K_);
-  if (interreflect_) {
+  if (keep_sums_) {
     std::copy(s_k, s_k + K, &sums_.visibility_sh[v * K]);
     return;
   }

@@ -54,8 +54,11 @@ struct VertexSums {
 // kSkipVertex only, in vertex order.
 class DirectTransfer {
  public:
+  // `shard_part`: a shard of a farm bake (bake/transfer_part.h) keeps every sampled S_v in
+  // sums.visibility_sh (double, for its part file) and allocates no output coefficients.
   DirectTransfer(const scene::Scene& scene, const BakeOptions& options, int channels,
-                 bool albedo_apart, prt::TransferData& data, VertexSums& sums);
+                 bool albedo_apart, prt::TransferData& data, VertexSums& sums,
+                 bool shard_part = false);
   // The analytic unshadowed transfer of vertex v, grey: (1/π) · rotate_zonal(clamped cosine, n).
   void unshadowed(std::size_t v, double* out) const;
   // Stores S_v (K values) as described above.
@@ -65,7 +68,7 @@ class DirectTransfer {
   const scene::Scene& scene_;
   int order_, K_, C_;
   bool albedo_apart_;
-  bool interreflect_;
+  bool keep_sums_;  // S_v goes to sums.visibility_sh (interreflected, or a shard's part)
   bool compact_;
   std::vector<std::size_t> row_of_;
   std::vector<double> zonal_;
@@ -99,8 +102,16 @@ struct SamplingPass {
   // null) before the block is stored.
   CompactGather* compact = nullptr;
   MemoryBudget* budget = nullptr;
+  // A shard of a farm bake (bake/transfer_part.h, fixed recipe only): the rows [first_row,
+  // end_row) of `row_order` (the Morton order of compact_gather.h) instead of every vertex; block
+  // b covers rows first_row + 64b onwards, and a compact gather's blocks go to part_blocks[b]
+  // instead of the gather (which then only renumbers the hit triangles).
+  const std::vector<uint32_t>* row_order = nullptr;
+  std::size_t first_row = 0, end_row = ~std::size_t{0};
+  std::vector<CompactGather::Block>* part_blocks = nullptr;
 
-  std::size_t blocks() const { return (V + kVertexBlock - 1) / kVertexBlock; }
+  std::size_t row_end() const { return end_row < V ? end_row : V; }
+  std::size_t blocks() const { return (row_end() - first_row + kVertexBlock - 1) / kVertexBlock; }
   uint8_t mode_of(std::size_t v) const { return modes.empty() ? kSampleVertex : modes[v]; }
   bool capped(std::size_t v) const {
     return !caps.covered.empty() && caps.covered[v] && caps.count(v) > 0;

@@ -1,0 +1,59 @@
+// bake/transfer_part_file.h — a sharded SH bake's part (bake/transfer_part.h) as a part file
+// (prt/formats/part_file.h, kind ShTransfer), and the checks that parts belong together.
+//
+// Sections (tags; docs/FORMAT.md, "Part files"):
+//   1 settings   JSON: {"generator", "prt_version", "seed", "settings": {the BakeOptions that
+//                change the output}, "scene_inputs": hex hash of normals, albedo, triangles and
+//                primitives}. Parts of one bake have equal settings sections.
+//   2 scene      JSON (shard 0 only): source path, skipped triangles, primitives (name, first
+//                vertex, vertex count); with sections 3–6 the scene as the bake saw it (after
+//                --albedo, --material and --max-edge), so that the merge needs no scene file.
+//   3 positions  f32 × 3V   4 normals f32 × 3V   5 albedo f32 × 3V   6 triangles u32 × 3T
+//   7 direct     f64 × rows·K (shadowed, interreflected): S_v of bake/transfer_baker.h
+//   8 ao         f32 × rows (--ao)            9 bent normals f32 × 3·rows (--bent-normals)
+//  10 gather rows u32 × rows (interreflected): hits per row
+//  11 gather hits 8 bytes each: u32 triangle (renumbered), u16 u, u16 v (bake/compact_gather.h)
+//  12 counters   u64 rays, u64 back-face hits, f64 largest ray offset
+// Rows are those of bake/transfer_part.h (Morton order); the header's fingerprint is
+// geometry_fingerprint of the positions, its rows [first_row, first_row + row_count) of V.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "bake/transfer_part.h"
+#include "prt/formats/part_file.h"
+#include "scene/scene.h"
+
+namespace prt::bake {
+
+// A part file's contents, decoded.
+struct TransferPartFile {
+  std::string name;         // the file, for messages
+  std::string prt_version;  // of the prt that wrote it
+  uint64_t seed = 0;
+  uint64_t fingerprint = 0;  // of the positions
+  std::string settings;      // the settings object, canonical JSON (compared between parts)
+  std::string scene_inputs;  // hex hash of the scene's normals, albedo, triangles, primitives
+  BakeOptions options;       // rebuilt from the settings (threads and memory limit not set)
+  std::optional<scene::Scene> scene;  // shard 0
+  TransferPart part;
+};
+
+// The part file of `part`, baked from `scene` with `options` by prt `prt_version`.
+prt::PartFile encode_transfer_part(const TransferPart& part, const scene::Scene& scene,
+                                   const BakeOptions& options, const std::string& prt_version);
+
+// Decodes a part file read by prt::read_part_file; throws BakeError "NAME: problem" when its
+// sections do not hold what its header and settings say.
+TransferPartFile decode_transfer_part(const prt::PartFile& file, const std::string& name);
+
+// Checks that `parts` (any order) are the whole of one bake: the same prt version, scene
+// (fingerprint and inputs), seed, settings and shard count, every shard exactly once. Returns
+// them in shard order; throws BakeError with one line naming the part that does not fit (the
+// parts most of them agree with are taken as the reference) or the shard that is missing.
+std::vector<const TransferPartFile*> check_parts_fit(const std::vector<TransferPartFile>& parts);
+
+}  // namespace prt::bake

@@ -1,0 +1,55 @@
+// prt/formats/part_file.h — part files (`.prtpart`, magic "PRTP"): what one shard of a bake farm
+// computed for its range of rows, to be merged with the other shards' parts into one output.
+//
+// A part is a container of tagged byte sections behind a fixed header (docs/FORMAT.md, "Part
+// files"): which kind of work it holds (`kind`), which shard of how many (`index` of `count`),
+// the fingerprint of the scene's positions (prt/formats/geometry_check.h), the rows it covers
+// ([first_row, first_row + row_count) of total_rows), and the sections, whose contents the kind
+// defines (bake/transfer_part.h for SH transfer). The whole file is protected by the CRC-32C of
+// the coefficient files (prt/formats/crc32c.h), its recorded size and a checked section table,
+// so a truncated or corrupt part is refused by name before anything reads its sections.
+// Byte order little-endian; sections 16-byte aligned with zero padding; tags unique.
+// Compiles as C++17.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "prt/core/status.h"
+
+namespace prt {
+
+inline constexpr uint32_t kPartFileVersion = 1;
+
+// What a part holds (the header's kind field).
+enum class PartKind : uint32_t {
+  ShTransfer = 1,  // diffuse SH transfer: direct transfer, AO, bent normals, compact gather rows
+};
+
+struct PartSection {
+  uint32_t tag = 0;
+  std::vector<unsigned char> bytes;
+};
+
+struct PartFile {
+  PartKind kind = PartKind::ShTransfer;
+  uint32_t index = 0, count = 1;  // shard `index` (0-based) of `count`
+  uint64_t fingerprint = 0;       // geometry_fingerprint of the scene's positions
+  uint64_t total_rows = 0, first_row = 0, row_count = 0;
+  std::vector<PartSection> sections;
+
+  // The section with `tag`, or null.
+  const PartSection* find(uint32_t tag) const;
+};
+
+// Writes `part` atomically (prt/core/atomic_file.h). Errors name `path`.
+Status write_part_file(const std::string& path, const PartFile& part);
+
+// Reads and checks a part: size, magic, version, recorded size ("truncated"), checksum, header
+// fields (index < count, the row range inside total_rows, a known kind) and the section table
+// (inside the file, aligned, in order without overlap, unique tags). Errors: one line naming
+// `path`.
+Status read_part_file(const std::string& path, PartFile* out);
+
+}  // namespace prt
