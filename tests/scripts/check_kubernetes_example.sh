@@ -12,7 +12,6 @@
 set -euo pipefail
 prt="$(realpath "$1")"
 source_dir="$(realpath "$2")"
-"$prt" bake --help | grep -q -- --shard || { echo "SKIP: this prt has no bake --shard yet"; exit 77; }  # TEMPORARY until the shard branch is merged
 python3 -c 'import yaml' 2>/dev/null || { echo "SKIP: python3 has no yaml module"; exit 77; }
 scratch="$(mktemp -d)"
 trap 'rm -rf "$scratch"' EXIT

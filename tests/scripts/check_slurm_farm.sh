@@ -1,22 +1,22 @@
 #!/usr/bin/env bash
 # The Slurm example (examples/slurm/) on a real single-node Slurm: scripts/slurm-local.sh starts
-# munged, slurmctld and slurmd in a scratch folder (its own ports), examples/slurm/submit.sh
-# submits a job array of 3 shard bakes and the merge after it (--dependency=afterok), squeue
-# waits for them, and the merged file must equal, byte for byte, one `prt bake` with the same
-# options. Then again with one array task cancelled while its prt runs (scancel): the task must
-# end CANCELLED without a part, the merge must be left waiting (DependencyNeverSatisfied), and
-# the rerun of that shard alone (submit.sh --tasks 1) with its merge must still give the same
-# bytes. Each task's log must show prt's progress lines.
-# Finished jobs' states come from the cluster's jobcomp/filetxt record (sacct needs slurmdbd,
-# which the local cluster has not; scripts/slurm-local.sh says why).
-# Skips (77), saying why, when the cluster cannot start here (not root, slurm-wlm or munge
-# missing, a daemon that refuses); PRT_REQUIRE_SLURM=1 makes that a failure. Daemons and the
-# scratch folder are removed on every exit path. About 30-40 s on the shared 2-core machine.
+# munged, slurmctld and slurmd in a scratch folder (its own ports), examples/slurm/submit.sh submits
+# a job array of 3 shard bakes and the merge after it (--dependency=afterok), squeue waits for them,
+# and the merged file must equal, byte for byte, one `prt bake` with the same options. Then again
+# with one array task cancelled (scancel) while its prt bakes (frozen by SIGSTOP once its log shows
+# a progress line, so that the cancellation lands mid-bake on a machine of any speed; scancel sends
+# SIGCONT, SIGTERM, SIGKILL): the task must end CANCELLED without a part, the merge must be left
+# waiting (DependencyNeverSatisfied), and the rerun of that shard alone (submit.sh --tasks 1) with
+# its merge must still give the same bytes. Each task's log must show prt's progress lines.
+# Finished jobs' states come from the cluster's jobcomp/filetxt record (sacct needs slurmdbd, which
+# the local cluster has not; scripts/slurm-local.sh says why).
+# Skips (77), saying why, when the cluster cannot start here (not root, slurm-wlm or munge missing,
+# a daemon that refuses); PRT_REQUIRE_SLURM=1 makes that a failure. Daemons and the scratch folder
+# are removed on every exit path. About 25 s on the shared 2-core machine.
 # Usage: check_slurm_farm.sh PRT_BINARY SOURCE_DIR
 set -euo pipefail
 prt="$(realpath "$1")"
 source_dir="$(realpath "$2")"
-"$prt" bake --help | grep -q -- --shard || { echo "SKIP: this prt has no bake --shard yet"; exit 77; }  # TEMPORARY until the shard branch is merged
 # /tmp, not the build folder: munge's socket path must be short.
 scratch="$(mktemp -d /tmp/prt-slurm-farm.XXXXXX)"
 cleanup() {
@@ -45,11 +45,13 @@ echo "ok: local Slurm cluster up ($(sinfo -h -o '%P %D node(s) %c CPUs %T'))"
 
 fail() { echo "FAIL: $*"; exit 1; }
 
-# A level whose shards take a few seconds each, so that one can be caught running.
-scene="$scratch/level.glb"
-"$prt" make-scene --scene level --rooms 2 --objects 30 --triangles 20000 -o "$scene" >/dev/null
+# The bake field at 30k vertices, interreflected: about 1 s of one core per shard.
+# --cpus-per-task=1: one thread per task, two tasks at once on two cores.
+scene="$scratch/field.glb"
+"$prt" make-scene --scene field --vertices 30000 -o "$scene" >/dev/null
 export PRT="$prt" PRT_SCENE="$scene" PRT_SHARDS=3 PRT_PROGRESS_INTERVAL=0
 export PRT_BAKE_OPTIONS="--transfer interreflected --order 3 --samples 512 --seed 7"
+export PRT_SBATCH_OPTIONS="--cpus-per-task=1"
 # The single-process reference, baked while the cluster works on the first run.
 # shellcheck disable=SC2086
 "$prt" bake "$scene" $PRT_BAKE_OPTIONS --quiet -o "$scratch/single.prt" &
@@ -101,20 +103,25 @@ for task in 0 1 2; do
   grep -q '%' "$run1/logs/bake_${array}_$task.log" ||
     fail "run 1: the log of task $task has no progress line: $(cat "$run1/logs/bake_${array}_$task.log")"
 done
-[[ "$(state_of "$merge")" == COMPLETED ]] || fail "run 1: merge job $merge ended $(state_of "$merge")"
+[[ "$(state_of "$merge")" == COMPLETED ]] || fail "run 1: merge job $merge ended $(state_of "$merge"): $(tail -2 "$run1/logs/merge_$merge.log")"
 same_as_single "3 shards on Slurm, then the merge" "$run1/merged.prt"
 
 # Run 2: task 1 is cancelled while its prt runs, then rerun alone.
 run2="$scratch/run2"
 submit "$run2"
 part1="$run2/parts/part_0001.prtpart"
-caught=no
-for ((i = 0; i < 600; i++)); do
-  if pgrep -f -- "-o $part1" >/dev/null; then caught=yes; break; fi
-  sleep 0.05
+log1="$run2/logs/bake_${array}_1.log"
+# Once task 1's log shows prt baking (a progress line), its prt is frozen (SIGSTOP) so that the
+# cancellation lands mid-bake however fast the machine; scancel sends SIGCONT, SIGTERM, SIGKILL.
+pid=""
+for ((i = 0; i < 3000; i++)); do
+  if grep -qs '^bake: .*%' "$log1"; then pid="$(pgrep -f -- "-o $part1\$" || true)"; fi
+  [[ -n "$pid" || -f "$part1" ]] && break
+  sleep 0.02
 done
-[[ $caught == yes ]] || fail "run 2: task ${array}_1's prt was never seen running"
-sleep 0.5
+[[ -n "$pid" ]] || fail "run 2: task ${array}_1's prt was not seen baking (log: $(cat "$log1" 2>&1))"
+kill -STOP $pid
+progress="$(grep '^bake: .*%' "$log1" | tail -1 | sed 's/  */ /g')"
 [[ ! -f "$part1" ]] || fail "run 2: task 1 finished before it could be cancelled (make its bake longer)"
 scancel "${array}_1"
 wait_jobs "$array"
@@ -133,11 +140,11 @@ done
 [[ "$reason" == DependencyNeverSatisfied ]] ||
   fail "run 2: the merge after a cancelled task is '$reason', not waiting forever"
 [[ ! -f "$run2/merged.prt" ]] || fail "run 2: a merge ran although a shard was cancelled"
-echo "ok: task ${array}_1 cancelled while running: no part, the merge held (DependencyNeverSatisfied)"
+echo "ok: task ${array}_1 cancelled mid-bake (at '$progress'): no part, the merge held (DependencyNeverSatisfied)"
 scancel "$merge"
 old_array="$array"
 submit "$run2" --tasks 1
 wait_jobs "$array" "$merge"
 [[ "$(state_of "$array" 1)" == COMPLETED ]] || fail "run 2: the rerun ${array}_1 ended $(state_of "$array" 1)"
-[[ "$(state_of "$merge")" == COMPLETED ]] || fail "run 2: merge job $merge ended $(state_of "$merge")"
+[[ "$(state_of "$merge")" == COMPLETED ]] || fail "run 2: merge job $merge ended $(state_of "$merge"): $(tail -2 "$run2/logs/merge_$merge.log")"
 same_as_single "task ${old_array}_1 cancelled, rerun alone as ${array}_1, merged" "$run2/merged.prt"
