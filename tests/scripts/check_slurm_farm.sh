@@ -31,11 +31,11 @@ status=0
 "$source_dir/scripts/slurm-local.sh" start "$scratch/cluster" >/dev/null 2>"$scratch/start.log" ||
   status=$?
 if [[ $status -ne 0 ]]; then
-  cat "$scratch/start.log"
   if [[ $status -eq 77 && "${PRT_REQUIRE_SLURM:-0}" != 1 ]]; then
     echo "SKIP: no local Slurm cluster here: $(head -1 "$scratch/start.log")"
     exit 77
   fi
+  cat "$scratch/start.log"
   echo "FAIL: scripts/slurm-local.sh start exited with status $status"
   exit 1
 fi
