@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Every file kind prt writes is the same, byte for byte, whether it was made with one thread or
 # two: SH bakes (shadowed with AO and bent normals, interreflected, interreflected with a texture
-# kept apart, --auto with and without --env), Haar (shadowed, interreflected textured), glossy
+# kept apart, --auto with and without --env, the parts of --shard and their merge), Haar (shadowed, interreflected textured), glossy
 # shadowed and interreflected (.prtg), CPCA (.prtq), radiosity (.prte with --per-emitter, the
 # form-factor cache, --csv, --vertex-colors .glb, the EXR image; Gauss-Seidel, Jacobi,
 # progressive, --adaptive), make-scene and make-sky.
@@ -62,6 +62,15 @@ both yes bake --quiet "$demo" -o shadowed.prt --order 3 --samples 32 --ao --bent
 same "shadowed, --ao --bent-normals" shadowed.prt
 both yes bake --quiet "$demo" -o interreflected.prt --transfer interreflected --order 3 --samples 16
 same "interreflected" interreflected.prt
+for i in 0 1; do
+  both yes bake --quiet "$demo" -o "shard$i.prtpart" --transfer interreflected --order 3 \
+    --samples 16 --shard "$i/2"
+  same "interreflected, --shard $i/2 (part)" "shard$i.prtpart"
+done
+both yes merge --quiet shard1.prtpart shard0.prtpart -o merged.prt
+same "merge of the interreflected parts" merged.prt
+cmp -s "$scratch/t1/merged.prt" "$scratch/t1/interreflected.prt" ||
+  { echo "FAIL: the merged parts differ from the single interreflected bake"; failures=$((failures + 1)); }
 both yes bake --quiet "$tex" -o textured.prt --transfer interreflected --order 2 --samples 16
 same "interreflected, textured (albedo kept apart)" textured.prt
 both yes bake --quiet "$demo" -o auto.prt --auto --tolerance 0.3

@@ -6,7 +6,7 @@
 # The same for `--memory-limit 1K`: the bake stops before anything is written (status 1, one
 # line naming the scene and the limit), and a value that is not a size is a usage error (status 2).
 # Covers bake (SH), bake --glossy, compress, radiosity --per-emitter / --csv / --vertex-colors /
-# --form-factor-cache and make-scene. A few seconds.
+# --form-factor-cache, make-scene, bake --shard (a part file) and merge. A few seconds.
 # Usage: check_write_failures.sh PRT_BINARY
 set -euo pipefail
 prt="$(realpath "$1")"
@@ -58,6 +58,15 @@ limited 64 room.ffc radiosity room.obj --max-edge 0.1 --form-factor-cache room.f
   -o room.png --size 8x6 --quiet
 rm -f room.png room.png.run.json
 limited 64 scene.glb make-scene -o scene.glb
+# Farm bakes: a shard's part file, and the merge of the parts.
+"$prt" make-scene --scene field --vertices 2000 -o field.glb >/dev/null
+for i in 0 1; do
+  "$prt" bake field.glb --transfer interreflected --samples 32 --shard "$i/2" -o "p$i.prtpart" \
+    --quiet
+done
+limited 16 part.prtpart bake field.glb --transfer interreflected --samples 32 --shard 1/2 \
+  -o part.prtpart --quiet
+limited 16 merged.prt merge p0.prtpart p1.prtpart -o merged.prt --quiet
 
 # --memory-limit: too small for the coefficients (V × channels × order² × 4 bytes).
 status=0

@@ -1,0 +1,291 @@
+// tests/cli/test_cli_farm.cpp — farm bakes (docs/FARM.md): `prt bake --shard I/N` parts merged by
+// `prt merge` give the bytes of one `prt bake`, for N = 1, 2, 7 and 64; the merge refuses parts
+// that do not belong together in one line, writing nothing; --shard reads the Slurm and
+// Kubernetes variables and refuses bad values.
+//
+// The scene is `prt make-scene --scene field` at about 400 vertices (spheres and boxes on a
+// ground: occlusion and interreflection everywhere), 32 samples a vertex: every comparison is of
+// whole files, byte for byte, so no tolerance is involved.
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include <catch2/catch.hpp>
+#include <nlohmann/json.hpp>
+
+#include "cli_run.h"
+#include "prt/formats/part_file.h"
+
+namespace fs = std::filesystem;
+using namespace prt::test::cli;
+
+namespace {
+
+// The field scene with about `vertices` vertices, in `dir`.
+fs::path make_field(const fs::path& dir, int vertices, const std::string& name = "field.glb") {
+  const fs::path scene = dir / name;
+  const RunResult r = run(prt_cli() + " make-scene --scene field --vertices " +
+                          std::to_string(vertices) + " -o " + scene.string());
+  INFO(r.err);
+  REQUIRE(r.exit_code == 0);
+  return scene;
+}
+
+std::string bake_line(const fs::path& scene, const std::string& options, const fs::path& out) {
+  return prt_cli() + " bake " + scene.string() + " " + options + " --quiet -o " + out.string();
+}
+
+// Bakes the N shards of `options` into dir/part_I.prtpart; returns their paths.
+std::vector<fs::path> bake_shards(const fs::path& scene, const std::string& options, int n,
+                                  const fs::path& dir) {
+  std::vector<fs::path> parts;
+  for (int i = 0; i < n; ++i) {
+    parts.push_back(dir / ("part_" + std::to_string(i) + ".prtpart"));
+    const RunResult r = run(bake_line(
+        scene, options + " --shard " + std::to_string(i) + "/" + std::to_string(n), parts.back()));
+    INFO(r.err);
+    REQUIRE(r.exit_code == 0);
+  }
+  return parts;
+}
+
+RunResult merge(const std::vector<fs::path>& parts, const fs::path& out) {
+  std::string line = prt_cli() + " merge --quiet -o " + out.string();
+  for (const fs::path& p : parts) {
+    line += ' ';
+    line += p.string();
+  }
+  return run(line);
+}
+
+// Merges the parts in reverse order (the merge takes any order) and compares with `single`.
+void check_merge_identical(const std::vector<fs::path>& parts, const fs::path& single,
+                           const fs::path& out) {
+  const std::vector<fs::path> reversed(parts.rbegin(), parts.rend());
+  const RunResult r = merge(reversed, out);
+  INFO(r.err);
+  REQUIRE(r.exit_code == 0);
+  CHECK(fs::exists(out.string() + ".run.json"));
+  const std::string a = slurp(single), b = slurp(out);
+  REQUIRE(a.size() > 1000);
+  CHECK(a == b);
+}
+
+void check_identity_for_every_n(const std::string& name, const std::string& options) {
+  const fs::path dir = scratch(name);
+  const fs::path scene = make_field(dir, 400), single = dir / "single.prt";
+  const RunResult s = run(bake_line(scene, options, single));
+  INFO(s.err);
+  REQUIRE(s.exit_code == 0);
+  for (const int n : {1, 2, 7, 64}) {
+    INFO("N = " << n);
+    fs::path sub = dir / "n";
+    sub += std::to_string(n);
+    fs::create_directories(sub);
+    check_merge_identical(bake_shards(scene, options, n, sub), single, sub / "merged.prt");
+  }
+}
+
+// A refused merge: a non-zero exit, one line naming `expected`, neither OUT nor its record.
+void check_refused(const std::vector<fs::path>& parts, const fs::path& out,
+                   const std::string& expected) {
+  const RunResult r = merge(parts, out);
+  INFO(r.err);
+  CHECK(r.exit_code != 0);
+  CHECK(line_count(r.err) == 1);
+  CHECK(r.err.find(expected) != std::string::npos);
+  CHECK_FALSE(fs::exists(out));
+  CHECK_FALSE(fs::exists(out.string() + ".run.json"));
+}
+
+}  // namespace
+
+TEST_CASE("cli farm: merged shards of a shadowed bake are the single bake, byte for byte") {
+  check_identity_for_every_n("farm_shadowed",
+                             "--transfer shadowed --order 3 --samples 32 --ao --bent-normals");
+}
+
+TEST_CASE("cli farm: merged shards of an interreflected bake are the single bake, byte for byte") {
+  check_identity_for_every_n("farm_interreflected",
+                             "--transfer interreflected --order 3 --samples 32 --ao");
+}
+
+TEST_CASE("cli farm: f16, fixed bounces and unshadowed AO merge to the single bake's bytes") {
+  const fs::path dir = scratch("farm_variants");
+  const fs::path scene = make_field(dir, 300);
+  for (const std::string options :
+       {"--transfer interreflected --bounces 2 --order 4 --samples 16 --precision f16",
+        "--transfer unshadowed --ao --samples 16"}) {
+    INFO(options);
+    const fs::path single = dir / "single.prt";
+    REQUIRE(run(bake_line(scene, options, single)).exit_code == 0);
+    check_merge_identical(bake_shards(scene, options, 3, dir), single, dir / "merged.prt");
+    fs::remove(dir / "merged.prt");
+    fs::remove(dir / "merged.prt.run.json");
+  }
+}
+
+TEST_CASE("cli farm: a shard baked again writes the same part bytes") {
+  const fs::path dir = scratch("farm_rerun");
+  const fs::path scene = make_field(dir, 300);
+  const std::string options = "--transfer interreflected --samples 16 --shard 1/3";
+  REQUIRE(run(bake_line(scene, options + " --threads 1", dir / "a.prtpart")).exit_code == 0);
+  REQUIRE(run(bake_line(scene, options + " --threads 2", dir / "b.prtpart")).exit_code == 0);
+  const std::string a = slurp(dir / "a.prtpart");
+  CHECK(a.size() > 1000);
+  CHECK(a == slurp(dir / "b.prtpart"));
+}
+
+TEST_CASE("cli farm: prt merge refuses parts that do not belong together, in one line") {
+  const fs::path dir = scratch("farm_refusals");
+  const fs::path scene = make_field(dir, 300), other = make_field(dir, 350, "other.glb");
+  const std::string options = "--transfer interreflected --samples 16";
+  const std::vector<fs::path> p = bake_shards(scene, options, 3, dir);
+  const fs::path out = dir / "merged.prt";
+  const auto shard1 = [&](const std::string& extra, const fs::path& s, const std::string& name) {
+    const fs::path path = dir / name;
+    const RunResult r = run(bake_line(s, options + " " + extra + " --shard 1/3", path));
+    INFO(r.err);
+    REQUIRE(r.exit_code == 0);
+    return path;
+  };
+  SECTION("a missing range") {
+    check_refused({p[0], p[2]}, out, "shard 1/3 is missing");
+  }
+  SECTION("a range given twice") {
+    const fs::path copy = dir / "copy.prtpart";
+    fs::copy_file(p[1], copy);
+    check_refused({p[0], p[1], copy, p[2]}, out, "given twice");
+  }
+  SECTION("another scene") {
+    check_refused({p[0], shard1("", other, "o.prtpart"), p[2]}, out,
+                  "o.prtpart: a part of another scene");
+  }
+  SECTION("another albedo") {
+    check_refused({p[0], shard1("--albedo 0.3", scene, "a.prtpart"), p[2]}, out,
+                  "a.prtpart: a part of another scene");
+  }
+  SECTION("other settings") {
+    check_refused({p[0], shard1("--order 4", scene, "s.prtpart"), p[2]}, out,
+                  "s.prtpart: baked with other settings: order 4 here, 3 in");
+  }
+  SECTION("another seed") {
+    check_refused({p[0], shard1("--seed 7", scene, "d.prtpart"), p[2]}, out,
+                  "d.prtpart: baked with --seed 7");
+  }
+  SECTION("another split") {
+    const fs::path q = dir / "q.prtpart";
+    REQUIRE(run(bake_line(scene, options + " --shard 1/4", q)).exit_code == 0);
+    check_refused({p[0], q, p[2]}, out, "q.prtpart: shard 1/4 of another split");
+  }
+  SECTION("another prt version") {
+    // The same part, its settings section saying another version (checksum recomputed).
+    prt::PartFile f;
+    REQUIRE(prt::read_part_file(p[1].string(), &f).ok());
+    for (prt::PartSection& s : f.sections) {
+      if (s.tag != 1) continue;
+      nlohmann::json j = nlohmann::json::parse(std::string(s.bytes.begin(), s.bytes.end()));
+      j["prt_version"] = "0.0.1";
+      const std::string text = j.dump();
+      s.bytes.assign(text.begin(), text.end());
+    }
+    const fs::path v = dir / "v.prtpart";
+    REQUIRE(prt::write_part_file(v.string(), f).ok());
+    check_refused({p[0], v, p[2]}, out, "v.prtpart: written by prt 0.0.1");
+  }
+  SECTION("a truncated part") {
+    const fs::path t = dir / "t.prtpart";
+    const std::string bytes = slurp(p[1]);
+    std::ofstream(t, std::ios::binary) << bytes.substr(0, bytes.size() / 2);
+    check_refused({p[0], t, p[2]}, out, "t.prtpart: truncated");
+  }
+  SECTION("a corrupt part") {
+    const fs::path c = dir / "c.prtpart";
+    std::string bytes = slurp(p[1]);
+    bytes[bytes.size() / 2] = static_cast<char>(bytes[bytes.size() / 2] ^ 0x10);
+    std::ofstream(c, std::ios::binary) << bytes;
+    check_refused({p[0], c, p[2]}, out, "c.prtpart: checksum mismatch");
+  }
+  SECTION("not a part") {
+    check_refused({p[0], scene, p[2]}, out, "bad magic");
+  }
+}
+
+TEST_CASE("cli farm: --shard auto reads the Slurm array and Kubernetes Indexed Job variables") {
+  const fs::path dir = scratch("farm_auto");
+  const fs::path scene = make_field(dir, 300);
+  const std::string options = "--transfer shadowed --samples 16";
+  const fs::path ref = dir / "ref.prtpart";
+  REQUIRE(run(bake_line(scene, options + " --shard 1/3", ref)).exit_code == 0);
+  const std::string expected = slurp(ref);
+  const auto bake_env = [&](const std::string& env, const std::string& shard, const fs::path& out) {
+    return run(env + " " + bake_line(scene, options + " --shard " + shard, out));
+  };
+  const std::string unset =
+      "env -u SLURM_ARRAY_TASK_ID -u SLURM_ARRAY_TASK_MIN -u SLURM_ARRAY_TASK_COUNT "
+      "-u JOB_COMPLETION_INDEX";
+  struct Case {
+    std::string env, shard;
+  };
+  for (const Case& c :
+       {Case{"SLURM_ARRAY_TASK_ID=1 SLURM_ARRAY_TASK_COUNT=3", "auto"},
+        Case{"SLURM_ARRAY_TASK_ID=5 SLURM_ARRAY_TASK_MIN=4 SLURM_ARRAY_TASK_COUNT=3", "auto"},
+        Case{"JOB_COMPLETION_INDEX=1", "auto/3"}, Case{"SLURM_ARRAY_TASK_ID=1", "auto/3"}}) {
+    INFO(c.env << " --shard " << c.shard);
+    const fs::path out = dir / "auto.prtpart";
+    fs::remove(out);
+    const RunResult r = bake_env(unset + " " + c.env, c.shard, out);
+    INFO(r.err);
+    REQUIRE(r.exit_code == 0);
+    CHECK(slurp(out) == expected);
+  }
+  for (const Case& c :
+       {Case{"", "auto"}, Case{"", "auto/3"},
+        Case{"SLURM_ARRAY_TASK_ID=x SLURM_ARRAY_TASK_COUNT=3", "auto"},
+        Case{"SLURM_ARRAY_TASK_ID=1", "auto"},
+        Case{"SLURM_ARRAY_TASK_ID=3 SLURM_ARRAY_TASK_COUNT=3", "auto"},
+        Case{"SLURM_ARRAY_TASK_ID=1 SLURM_ARRAY_TASK_MIN=2 SLURM_ARRAY_TASK_COUNT=3", "auto"},
+        Case{"SLURM_ARRAY_TASK_ID=1 SLURM_ARRAY_TASK_COUNT=4", "auto/3"},
+        Case{"JOB_COMPLETION_INDEX=-1", "auto/3"}, Case{"JOB_COMPLETION_INDEX=3", "auto/3"}}) {
+    INFO("refused: " << c.env << " --shard " << c.shard);
+    const fs::path out = dir / "refused.prtpart";
+    const RunResult r = bake_env(unset + " " + c.env, c.shard, out);
+    CHECK(r.exit_code == 2);
+    CHECK(line_count(r.err) == 1);
+    CHECK(r.err.find("--shard auto") != std::string::npos);
+    CHECK_FALSE(fs::exists(out));
+    CHECK_FALSE(fs::exists(out.string() + ".run.json"));
+  }
+  // Without --shard the variables are not read: the whole bake, as outside a job.
+  const fs::path whole = dir / "whole.prt", inside = dir / "inside.prt";
+  REQUIRE(run(bake_line(scene, options, whole)).exit_code == 0);
+  REQUIRE(run("SLURM_ARRAY_TASK_ID=1 SLURM_ARRAY_TASK_COUNT=3 " + bake_line(scene, options, inside))
+              .exit_code == 0);
+  CHECK(slurp(whole) == slurp(inside));
+}
+
+TEST_CASE("cli farm: bad --shard values and bakes that cannot be sharded are refused") {
+  const fs::path dir = scratch("farm_bad_values");
+  const fs::path scene = make_field(dir, 300), out = dir / "p.prtpart";
+  for (const char* value : {"0/0", "3/2", "2/2", "-1/2", "junk", "1/", "/2", "1/2/3", "1.5/2",
+                            "0/99999999999", "auto/0"}) {
+    INFO("--shard " << value);
+    const RunResult r = run(bake_line(scene, std::string("--shard '") + value + "'", out));
+    CHECK(r.exit_code == 2);
+    CHECK(line_count(r.err) == 1);
+    CHECK(r.err.find("--shard") != std::string::npos);
+    CHECK_FALSE(fs::exists(out));
+  }
+  for (const std::string options :
+       {"--auto", "--glossy", "--basis haar --cube 8", "--transfer shadowed"}) {
+    INFO(options);
+    const fs::path wrong = dir / "p.prt";  // a part must be a .prtpart
+    const RunResult r = run(
+        bake_line(scene, options + " --shard 0/2", options == "--transfer shadowed" ? wrong : out));
+    CHECK(r.exit_code == 2);
+    CHECK(line_count(r.err) == 1);
+    CHECK_FALSE(fs::exists(out));
+    CHECK_FALSE(fs::exists(wrong));
+  }
+}
