@@ -263,8 +263,6 @@ void check_usage(BakeArguments& args, const CLI::App& cmd) {
     if (args.automatic)
       throw UsageError("--shard does not apply to --auto (shards bake the fixed recipe)");
     if (args.glossy) throw UsageError("--shard does not apply to --glossy yet (docs/FARM.md)");
-    if (args.haar.basis == "haar")
-      throw UsageError("--shard does not apply to --basis haar yet (docs/FARM.md)");
     args.shard_spec = resolve_shard(args.shard, process_environment());
   }
   if (args.glossy) {
@@ -325,34 +323,63 @@ void run_auto(const BakeArguments& args, const scene::Scene& scene, const bake::
   std::printf("  wrote %s\n", args.output.c_str());
 }
 
+// The shard's first line on stderr (the scheduler's log): which rows it bakes.
+void announce_shard(const BakeArguments& args, const scene::Scene& scene, bake::ShardSpec shard) {
+  if (args.quiet) return;
+  const bake::RowRange rows = bake::shard_rows(scene.vertex_count(), shard);
+  std::fprintf(stderr, "prt bake: %s: shard %s, rows %llu..%llu of %zu (Morton order)\n",
+               args.scene.c_str(), shard_text(shard).c_str(),
+               static_cast<unsigned long long>(rows.first),
+               static_cast<unsigned long long>(rows.end), scene.vertex_count());
+}
+
+// The shard's summary on stdout.
+void summarise_shard(const BakeArguments& args, const scene::Scene& scene, bake::ShardSpec shard,
+                     uint64_t rays, double seconds_rays) {
+  if (args.quiet) return;
+  std::error_code ec;
+  const auto bytes = std::filesystem::file_size(args.output, ec);
+  std::printf(
+      "baked shard %s of %s: %llu of %zu vertices, %llu rays in %.2f s; wrote %s (%llu bytes)\n",
+      shard_text(shard).c_str(), args.scene.c_str(),
+      static_cast<unsigned long long>(bake::shard_rows(scene.vertex_count(), shard).size()),
+      scene.vertex_count(), static_cast<unsigned long long>(rays), seconds_rays,
+      args.output.c_str(), static_cast<unsigned long long>(ec ? 0 : bytes));
+}
+
 // `--shard I/N`: the shard's rows into a part file (bake/transfer_part_file.h), which
 // `prt merge` joins with the other shards' parts.
 void run_shard(const BakeArguments& args, const scene::Scene& scene,
                const bake::BakeOptions& options, ProgressReporter& progress) {
   const bake::ShardSpec shard = *args.shard_spec;
   bake::check_shardable(scene, options);
-  const bake::RowRange rows = bake::shard_rows(scene.vertex_count(), shard);
-  if (!args.quiet)
-    std::fprintf(stderr, "prt bake: %s: shard %s, rows %llu..%llu of %zu (Morton order)\n",
-                 args.scene.c_str(), shard_text(shard).c_str(),
-                 static_cast<unsigned long long>(rows.first),
-                 static_cast<unsigned long long>(rows.end), scene.vertex_count());
+  announce_shard(args, scene, shard);
   const bake::TransferPart part = bake::bake_transfer_part(scene, options, shard, &progress);
   const prt::Status written = prt::write_part_file(
       args.output, bake::encode_transfer_part(part, scene, options, prt_version()));
   if (!written.ok()) throw CommandError(written.message());
+  run_record().phase("bvh", part.stats.seconds_bvh);
   run_record().phase("rays", part.stats.seconds_rays);
   run_record().phase("bake", part.stats.seconds_total);
-  if (args.quiet) return;
-  std::error_code ec;
-  const auto bytes = std::filesystem::file_size(args.output, ec);
-  std::printf(
-      "baked shard %s of %s: %llu of %zu vertices, %llu rays in %.2f s (%.2f Mrays/s); "
-      "wrote %s (%llu bytes)\n",
-      shard_text(shard).c_str(), args.scene.c_str(), static_cast<unsigned long long>(rows.size()),
-      scene.vertex_count(), static_cast<unsigned long long>(part.rays), part.stats.seconds_rays,
-      part.stats.mrays_per_second(), args.output.c_str(),
-      static_cast<unsigned long long>(ec ? 0 : bytes));
+  summarise_shard(args, scene, shard, part.rays, part.stats.seconds_rays);
+}
+
+// `--basis haar --shard I/N`: the Haar bake's rows into a part file (bake/haar_part.h).
+void run_haar_shard(const BakeArguments& args, const scene::Scene& scene,
+                    const bake::BakeOptions& sh) {
+  const bake::ShardSpec shard = *args.shard_spec;
+  const bake::HaarBakeOptions options = haar_bake_options(
+      sh.kind, args.haar, args.seed, args.threads, args.bounces, args.tolerance, sh.memory_limit);
+  bake::check_haar_shardable(scene, options);
+  announce_shard(args, scene, shard);
+  ProgressReporter progress(args.quiet);
+  const bake::HaarPart part = bake::bake_haar_part(scene, options, shard, &progress);
+  const prt::Status written = prt::write_part_file(
+      args.output, bake::encode_haar_part(part, scene, options, prt_version()));
+  if (!written.ok()) throw CommandError(written.message());
+  run_record().phase("rays", part.stats.seconds_rays);
+  run_record().phase("bake", part.stats.seconds_total);
+  summarise_shard(args, scene, shard, part.rays, part.stats.seconds_rays);
 }
 
 void run(const BakeArguments& args, const CLI::App& cmd) {
@@ -372,6 +399,7 @@ void run(const BakeArguments& args, const CLI::App& cmd) {
   options.precision = args.precision == "f16" ? prt::Precision::F16 : prt::Precision::F32;
 
   const scene::Scene scene = load_for_bake(args);
+  if (args.haar.basis == "haar" && args.shard_spec) return run_haar_shard(args, scene, options);
   if (args.haar.basis == "haar") {
     run_haar_bake(scene, args.output, options.kind, args.haar, args.seed, args.threads,
                   args.bounces, args.tolerance, args.quiet, options.memory_limit);

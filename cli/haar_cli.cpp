@@ -30,9 +30,9 @@ void add_haar_bake_options(CLI::App* cmd, HaarBakeArguments* a) {
       ->capture_default_str();
 }
 
-void run_haar_bake(const scene::Scene& scene, const std::string& output, prt::TransferKind kind,
-                   const HaarBakeArguments& a, uint64_t seed, int threads, int bounces,
-                   double tolerance, bool quiet, uint64_t memory_limit) {
+bake::HaarBakeOptions haar_bake_options(prt::TransferKind kind, const HaarBakeArguments& a,
+                                        uint64_t seed, int threads, int bounces, double tolerance,
+                                        uint64_t memory_limit) {
   bake::HaarBakeOptions o;
   o.transport = kind;
   o.cube_size = a.cube;
@@ -47,6 +47,14 @@ void run_haar_bake(const scene::Scene& scene, const std::string& output, prt::Tr
   o.bounces = bounces;
   o.bounce_tolerance = tolerance;
   o.memory_limit = memory_limit;
+  return o;
+}
+
+void run_haar_bake(const scene::Scene& scene, const std::string& output, prt::TransferKind kind,
+                   const HaarBakeArguments& a, uint64_t seed, int threads, int bounces,
+                   double tolerance, bool quiet, uint64_t memory_limit) {
+  const bake::HaarBakeOptions o =
+      haar_bake_options(kind, a, seed, threads, bounces, tolerance, memory_limit);
   ProgressReporter progress(quiet);
   const bake::HaarBakeResult r = bake::bake_haar_transfer(scene, o, &progress);
   const prt::Status written = prt::write_haar_transfer_file(output, r.file);

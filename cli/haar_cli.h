@@ -10,6 +10,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "bake/haar_baker.h"
 #include "prt/formats/transfer_data.h"
 #include "relight/relight_pipeline.h"
 #include "scene/scene.h"
@@ -29,6 +30,12 @@ void add_haar_bake_options(CLI::App* command, HaarBakeArguments* args);
 
 // Bakes, writes and reports (stored vs dense size); the phases go to the run record
 // (run_record.h). `memory_limit`: HaarBakeOptions::memory_limit. Throws CommandError / BakeError.
+// The Haar baker's options of the command line's values (the one mapping of `prt bake --basis
+// haar`, whole or sharded).
+bake::HaarBakeOptions haar_bake_options(prt::TransferKind kind, const HaarBakeArguments& args,
+                                        uint64_t seed, int threads, int bounces, double tolerance,
+                                        uint64_t memory_limit);
+
 void run_haar_bake(const scene::Scene& scene, const std::string& output, prt::TransferKind kind,
                    const HaarBakeArguments& args, uint64_t seed, int threads, int bounces,
                    double tolerance, bool quiet, uint64_t memory_limit);

@@ -1,5 +1,6 @@
 // `prt merge PART... -o OUT`: the parts a sharded `prt bake --shard I/N` wrote (any order) into the
-// file a single `prt bake` with the same options writes, byte for byte (docs/FARM.md).
+// file a single `prt bake` with the same options writes, byte for byte (docs/FARM.md); the parts
+// of `prt radiosity --shard I/N` into the form-factor cache `--form-factor-cache` writes.
 //
 // The parts are read and checked first (prt/formats/part_file.h: size, checksum; then
 // bake/transfer_part_file.h: one prt version, scene, seed, settings and split, every shard once);
@@ -18,8 +19,10 @@
 #include "command_registry.h"
 #include "option_rules.h"
 #include "progress_reporter.h"
+#include "prt/formats/haar_transfer_file.h"
 #include "prt/formats/part_file.h"
 #include "prt/formats/transfer_file.h"
+#include "radiosity_shard.h"
 #include "run_record.h"
 
 namespace prt::cli {
@@ -36,7 +39,7 @@ struct MergeArguments {
 CommandFiles merge_files(const MergeArguments& a) {
   CommandFiles files;
   files.add_inputs("part", a.parts);
-  files.add_output_file("-o", a.output, {".prt"}, "a coefficient file");
+  files.add_output_file("-o", a.output);  // .prt, or a form-factor cache (checked in run)
   files.add_run_record(a.output);
   return files;
 }
@@ -52,24 +55,50 @@ std::vector<bake::TransferPartFile> read_parts(const std::vector<std::string>& p
   return parts;
 }
 
+// Haar parts: the single Haar bake's file (bake/haar_part.h).
+void merge_haar(const MergeArguments& args,
+                const std::vector<const bake::TransferPartFile*>& ordered) {
+  const scene::Scene& scene = *ordered[0]->scene;
+  bake::HaarBakeOptions options = ordered[0]->haar_options;
+  options.threads = args.threads;
+  options.memory_limit = memory_limit_or_default(args.memory_limit);
+  std::vector<const bake::HaarPart*> parts;
+  for (const bake::TransferPartFile* f : ordered) parts.push_back(&f->haar_part);
+  ProgressReporter progress(args.quiet);
+  const bake::HaarBakeResult result = bake::merge_haar_parts(scene, options, parts, &progress);
+  const prt::Status written = prt::write_haar_transfer_file(args.output, result.file);
+  if (!written.ok()) throw CommandError(written.message());
+  if (result.stats.seconds_solve > 0)
+    run_record().phase("interreflection solve", result.stats.seconds_solve);
+  run_record().phase("merge", result.stats.seconds_total);
+  if (!args.quiet)
+    std::printf("merged %zu parts of %s (Haar %s transfer, cube %d, %llu vertices); wrote %s\n",
+                parts.size(), scene.source_path.c_str(),
+                bake::transfer_kind_name(options.transport), options.cube_size,
+                static_cast<unsigned long long>(result.stats.vertices), args.output.c_str());
+}
+
 void run(const MergeArguments& args) {
   const auto t0 = std::chrono::steady_clock::now();
   run_record().threads = resolved_threads(args.threads);
   const std::vector<bake::TransferPartFile> files = read_parts(args.parts);
   const std::vector<const bake::TransferPartFile*> ordered = bake::check_parts_fit(files);
+  const double read_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  run_record().phase("read parts", read_seconds);
+  if (ordered[0]->form_factors) return merge_form_factor_parts(ordered, args.output, args.quiet);
+  check_output_file("-o", args.output, {".prt"}, "a coefficient file");
+  if (ordered[0]->haar) return merge_haar(args, ordered);
   const scene::Scene& scene = *ordered[0]->scene;
   bake::BakeOptions options = ordered[0]->options;
   options.threads = args.threads;
   options.memory_limit = memory_limit_or_default(args.memory_limit);
   std::vector<const bake::TransferPart*> parts;
   for (const bake::TransferPartFile* f : ordered) parts.push_back(&f->part);
-  const double read_seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   ProgressReporter progress(args.quiet);
   const bake::BakeResult result = bake::merge_transfer_parts(scene, options, parts, &progress);
   const prt::Status written = prt::write_transfer_file(args.output, result.data);
   if (!written.ok()) throw CommandError(written.message());
-  run_record().phase("read parts", read_seconds);
   if (result.stats.seconds_solve > 0)
     run_record().phase("interreflection solve", result.stats.seconds_solve);
   run_record().phase("merge", result.stats.seconds_total);

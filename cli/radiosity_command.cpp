@@ -22,10 +22,12 @@
 #include "option_rules.h"
 #include "prt/core/memory_budget.h"
 #include "radiosity/scene_solve.h"
+#include "radiosity_shard.h"
 #include "relight/auto_exposure.h"
 #include "relight/radiosity_render.h"
 #include "run_record.h"
 #include "scene/material_assignment.h"
+#include "shard_cli.h"
 
 namespace prt::cli {
 namespace {
@@ -58,7 +60,9 @@ struct RadiosityArguments {
   int spp = 3;
   std::string camera = "auto";
   bool quiet = false;
-  int threads = 0;            // --threads (0: every core)
+  int threads = 0;    // --threads (0: every core)
+  std::string shard;  // --shard I/N: form-factor rows into a part file (radiosity_shard.h)
+  std::optional<bake::ShardSpec> shard_spec;
   uint64_t memory_limit = 0;  // --memory-limit (option_rules.h); 0: not given
 };
 
@@ -212,8 +216,22 @@ void check_applicable(const RadiosityArguments& a, const CLI::App& cmd) {
 // Every value and combination of the command line, before any file is read. The solve's own
 // request checks (radiosity::check_scene_solve) report a wrong option as invalid_argument: a
 // UsageError here.
-void check_request(const RadiosityArguments& a, const CLI::App& cmd) {
+void check_request(RadiosityArguments& a, const CLI::App& cmd) {
   check_applicable(a, cmd);
+  if (!a.shard.empty()) {  // form-factor rows only (radiosity_shard.h)
+    check_radiosity_shard(cmd);
+    if (a.form_factors == "hemicube")
+      throw UsageError(
+          "--form-factors hemicube: not with --shard (its rows are combined across the "
+          "matrix); use analytic or rays");
+    a.shard_spec = resolve_shard(a.shard, process_environment());
+    try {
+      radiosity::check_scene_solve(make_solve_request(a), {a.output});
+    } catch (const std::invalid_argument& e) {
+      throw UsageError(e.what());
+    }
+    return;
+  }
   if (a.exposure) check_exposure(*a.exposure, cmd.get_option("--exposure")->as<std::string>());
   if (a.max_iterations < 1)
     throw UsageError("--max-iterations " + std::to_string(a.max_iterations) +
@@ -242,6 +260,11 @@ void check_request(const RadiosityArguments& a, const CLI::App& cmd) {
 CommandFiles radiosity_files(const RadiosityArguments& a) {
   CommandFiles files;
   files.add_scene(a.scene);
+  if (a.shard_spec) {
+    files.add_output_file("-o", a.output, {".prtpart"}, "a part file (--shard)");
+    files.add_run_record(a.output);
+    return files;
+  }
   std::error_code ec;
   if (!a.form_factor_cache.empty() && std::filesystem::exists(a.form_factor_cache, ec))
     files.add_input("form-factor cache", a.form_factor_cache);
@@ -340,6 +363,8 @@ void run(const RadiosityArguments& args) {
     thread_limit.emplace(tbb::global_control::max_allowed_parallelism,
                          static_cast<std::size_t>(args.threads));
   run_record().threads = resolved_threads(args.threads);
+  if (args.shard_spec)
+    return run_radiosity_shard(make_solve_request(args), *args.shard_spec, args.output, args.quiet);
   const RadiosityRun result = solve_and_render(args);
   record_phases(args, result);
   warn_unconverged(args, result.solution);
@@ -492,6 +517,9 @@ Command register_radiosity(CLI::App& app) {
   cmd->add_option("--threads", args->threads, "Worker threads (0 = all)")->capture_default_str();
   add_memory_limit_option(*cmd, &args->memory_limit);
   cmd->add_flag("--quiet", args->quiet, "Print nothing on success");
+  cmd->add_option("--shard", args->shard,
+                  "Compute the form-factor rows of shard I/N (auto, auto/N: from Slurm or "
+                  "Kubernetes) into -o PART.prtpart for prt merge (docs/FARM.md)");
   return {cmd, [args, cmd] { check_request(*args, *cmd); },
           [args] { return radiosity_files(*args); }, [args] { run(*args); }};
 }

@@ -1,11 +1,13 @@
 // bake/src/haar_baker.cpp — the Haar-wavelet bake (see bake/haar_baker.h).
 #include "bake/haar_baker.h"
+#include "bake/haar_part.h"
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -14,6 +16,7 @@
 #include <tbb/parallel_for.h>
 #include <nlohmann/json.hpp>
 
+#include "bake/compact_gather.h"
 #include "bake/interreflection_solver.h"
 #include "bake/progress.h"
 #include "bake/sampling.h"
@@ -22,6 +25,7 @@
 #include "prt/haar/cube_map.h"
 #include "prt/haar/transform.h"
 #include "scene/ray_caster.h"
+#include "scene/scene_label.h"
 #include "sh/constants.h"
 
 #include "hit_side.h"
@@ -230,7 +234,7 @@ struct HaarBakeContext {
   const bool shadows;
   const bool apart;  // the albedo is kept apart (textured scene, bake/transfer_baker.h)
   const TexelSamples& ts;
-  const scene::RayCaster& caster;
+  const scene::RayCaster* caster;  // null when merging parts (no rays)
   ProgressSink* progress;
   std::vector<uint64_t> task_rays;  // rays cast per task of kVerticesPerTask vertices
 
@@ -240,7 +244,7 @@ struct HaarBakeContext {
                           std::vector<float>& dense) const {
     std::fill(grey_dense.begin(), grey_dense.end(), 0.f);
     const uint64_t rays =
-        trace_vertex(scene, caster, ts, v, shadows, apart ? C : 0, row, grey_dense.data());
+        trace_vertex(scene, *caster, ts, v, shadows, apart ? C : 0, row, grey_dense.data());
     for (int c = 0; c < C; ++c) {
       const float k = static_cast<float>((apart ? 1.0 : scene.albedo[v][c]) * kInvPi);
       for (std::size_t t = 0; t < W; ++t) dense[t * C + c] = grey_dense[t] * k;
@@ -367,18 +371,13 @@ void solve_wavelet_interreflection(const HaarBakeContext& ctx, const SparseTrans
   st.seconds_solve = seconds_since(t_solve);
 }
 
-// Interreflected transfer: pass 1 traces (the rays' statistics are recorded when it ends),
-// pass 2 solves; then every vertex's T̂ is truncated and added to the builder.
-void bake_interreflected_haar(HaarBakeContext& ctx, prt::HaarTransferBuilder& builder,
-                              HaarBakeStatistics& st, Clock::time_point t_rays) {
+// Interreflection after the rays: H from the gather rows, the solve of D̂ in coeffs, then every
+// vertex's T̂ truncated and added to the builder.
+void finish_interreflected_haar(HaarBakeContext& ctx, prt::HaarTransferBuilder& builder,
+                                HaarBakeStatistics& st, std::vector<float>& coeffs,
+                                std::vector<GatherRow>& rows) {
   const std::size_t V = ctx.V, W = ctx.W;
   const int N = ctx.N, C = ctx.C;
-  std::vector<float> coeffs(V * W * C);
-  std::vector<GatherRow> rows(V);
-  trace_direct_wavelets(ctx, coeffs, rows);
-  if (ctx.progress) ctx.progress->finish();
-  for (uint64_t r : ctx.task_rays) st.rays += r;
-  st.seconds_rays = seconds_since(t_rays);
   const SparseTransferMatrix h = gather_matrix(rows);
   solve_wavelet_interreflection(ctx, h, coeffs, st);
   for (std::size_t v = 0; v < V; ++v) {
@@ -389,10 +388,89 @@ void bake_interreflected_haar(HaarBakeContext& ctx, prt::HaarTransferBuilder& bu
   }
 }
 
+// Interreflected transfer: pass 1 traces (the rays' statistics are recorded when it ends),
+// pass 2 solves and truncates.
+void bake_interreflected_haar(HaarBakeContext& ctx, prt::HaarTransferBuilder& builder,
+                              HaarBakeStatistics& st, Clock::time_point t_rays) {
+  std::vector<float> coeffs(ctx.V * ctx.W * ctx.C);
+  std::vector<GatherRow> rows(ctx.V);
+  trace_direct_wavelets(ctx, coeffs, rows);
+  if (ctx.progress) ctx.progress->finish();
+  for (uint64_t r : ctx.task_rays) st.rays += r;
+  st.seconds_rays = seconds_since(t_rays);
+  finish_interreflected_haar(ctx, builder, st, coeffs, rows);
+}
+
+// The parts of a sharded bake (haar_part.h) in place of the rays: each vertex's truncated vector
+// added in vertex order, or D̂ and the gather rows assembled for the single bake's solve.
+void fill_haar_from_parts(HaarBakeContext& ctx, prt::HaarTransferBuilder& builder,
+                          HaarBakeStatistics& st, const std::vector<const HaarPart*>& parts) {
+  const std::size_t V = ctx.V, WC = ctx.W * static_cast<std::size_t>(ctx.C);
+  const std::vector<uint32_t> order = make_morton_order(ctx.scene.positions);
+  for (const HaarPart* p : parts) st.rays += p->rays;
+  if (ctx.options.transport != prt::TransferKind::Interreflected) {
+    // Each vertex's part, row in it and first index of its vector there.
+    struct Where {
+      const HaarPart* part;
+      std::size_t row;
+      uint64_t first;
+    };
+    std::vector<Where> at(V);
+    for (const HaarPart* p : parts) {
+      uint64_t first = 0;
+      for (std::size_t i = 0; i < p->rows.size(); ++i) {
+        at[order[p->rows.first + i]] = {p, i, first};
+        first += p->sparse_lengths[i];
+      }
+    }
+    for (std::size_t v = 0; v < V; ++v) {
+      const HaarPart& p = *at[v].part;
+      const uint64_t first = at[v].first, n = p.sparse_lengths[at[v].row];
+      prt::SparseVertexTransfer s;
+      s.index.assign(p.sparse_index.begin() + first, p.sparse_index.begin() + first + n);
+      s.values.assign(p.sparse_values.begin() + first * ctx.C,
+                      p.sparse_values.begin() + (first + n) * ctx.C);
+      const prt::Status added = builder.add_vertex(s);
+      if (!added.ok()) throw BakeError(ctx.scene.source_path + ": " + added.message());
+    }
+    return;
+  }
+  std::vector<float> coeffs(V * WC);
+  std::vector<GatherRow> rows(V);
+  for (const HaarPart* p : parts) {
+    uint64_t entry = 0;
+    for (std::size_t i = 0; i < p->rows.size(); ++i) {
+      const std::size_t v = order[p->rows.first + i];
+      std::copy(p->wavelets.begin() + i * WC, p->wavelets.begin() + (i + 1) * WC,
+                coeffs.begin() + v * WC);
+      for (uint32_t k = 0; k < p->gather_lengths[i]; ++k, ++entry)
+        rows[v].emplace_back(p->gather_columns[entry], p->gather_weights[entry]);
+    }
+  }
+  finish_interreflected_haar(ctx, builder, st, coeffs, rows);
+}
+
 }  // namespace
 
-HaarBakeResult bake_haar_transfer(const scene::Scene& scene, const HaarBakeOptions& options,
-                                  ProgressSink* progress) {
+namespace {
+
+// Channels: 1 when the albedo is grey (or kept apart without bounces), else 3.
+int haar_channels(const scene::Scene& scene, const HaarBakeOptions& options) {
+  const bool interreflect = options.transport == prt::TransferKind::Interreflected;
+  const bool apart = scene.textured();
+  bool grey = true;
+  for (const glm::vec3& a : scene.albedo) grey = grey && a.x == a.y && a.y == a.z;
+  for (const scene::ScenePrimitive& p : scene.primitives)
+    if (p.base_color_texture) {
+      const glm::vec3 f = p.base_color_texture->factor;
+      grey = grey && f.x == f.y && f.y == f.z && p.base_color_texture->image->grey();
+    }
+  return grey || (apart && !interreflect) ? 1 : 3;
+}
+
+// bake_haar_transfer, or (with `parts`) the merge of a sharded bake's parts (no BVH, no rays).
+HaarBakeResult bake_haar_with(const scene::Scene& scene, const HaarBakeOptions& options,
+                              ProgressSink* progress, const std::vector<const HaarPart*>* parts) {
   const Clock::time_point t_start = Clock::now();
   validate_haar_options(scene, options);
   std::unique_ptr<tbb::global_control> limit;
@@ -403,21 +481,15 @@ HaarBakeResult bake_haar_transfer(const scene::Scene& scene, const HaarBakeOptio
   const int N = options.cube_size;
   const bool interreflect = options.transport == prt::TransferKind::Interreflected;
   const bool apart = scene.textured();
-  bool grey = true;
-  for (const glm::vec3& a : scene.albedo) grey = grey && a.x == a.y && a.y == a.z;
-  for (const scene::ScenePrimitive& p : scene.primitives)
-    if (p.base_color_texture) {
-      const glm::vec3 f = p.base_color_texture->factor;
-      grey = grey && f.x == f.y && f.y == f.z && p.base_color_texture->image->grey();
-    }
-  const int C = grey || (apart && !interreflect) ? 1 : 3;
+  const int C = haar_channels(scene, options);
 
   HaarBakeResult result;
   HaarBakeStatistics& st = result.stats;
   st.vertices = V;
   st.triangles = scene.triangles.size();
   const TexelSamples ts = make_texel_samples(N, options.supersample, options.seed);
-  const scene::RayCaster caster(scene);
+  std::optional<scene::RayCaster> caster;
+  if (!parts) caster.emplace(scene);
   prt::HaarTransferBuilder builder(N, C, options.compression.quantization);
   HaarBakeContext ctx{scene,
                       options,
@@ -428,10 +500,9 @@ HaarBakeResult bake_haar_transfer(const scene::Scene& scene, const HaarBakeOptio
                       options.transport != prt::TransferKind::Unshadowed,
                       apart,
                       ts,
-                      caster,
+                      caster ? &*caster : nullptr,
                       progress,
                       {}};
-
   // The memory known before the rays: interreflection holds every vertex's dense wavelet
   // vector (6N² × channels floats) and the Krylov solve's blocks (d, t and BiCGSTAB's seven, of
   // kSolveColumns doubles per vertex). The gather rows and the truncated output grow with what
@@ -445,13 +516,16 @@ HaarBakeResult bake_haar_transfer(const scene::Scene& scene, const HaarBakeOptio
   }
   const Clock::time_point t_rays = Clock::now();
   ctx.task_rays.assign((V + kVerticesPerTask - 1) / kVerticesPerTask, 0);
-  if (progress) progress->start("bake haar", V);
-  if (!interreflect) {
+  if (parts) {
+    fill_haar_from_parts(ctx, builder, st, *parts);
+  } else if (!interreflect) {
+    if (progress) progress->start("bake haar", V);
     bake_direct_haar(ctx, builder);
     if (progress) progress->finish();
     for (uint64_t r : ctx.task_rays) st.rays += r;
     st.seconds_rays = seconds_since(t_rays);
   } else {
+    if (progress) progress->start("bake haar", V);
     bake_interreflected_haar(ctx, builder, st, t_rays);
   }
 
@@ -471,6 +545,142 @@ HaarBakeResult bake_haar_transfer(const scene::Scene& scene, const HaarBakeOptio
   st.entries = file.transfer.entry_count();
   st.seconds_total = seconds_since(t_start);
   return result;
+}
+
+}  // namespace
+
+HaarBakeResult bake_haar_transfer(const scene::Scene& scene, const HaarBakeOptions& options,
+                                  ProgressSink* progress) {
+  return bake_haar_with(scene, options, progress, nullptr);
+}
+
+void check_haar_shardable(const scene::Scene& scene, const HaarBakeOptions&) {
+  if (scene.textured())
+    throw BakeError(scene::scene_label(scene) +
+                    ": a sharded bake needs the albedo folded into the transfer (the scene is "
+                    "textured)");
+}
+
+HaarPart bake_haar_part(const scene::Scene& scene, const HaarBakeOptions& options, ShardSpec shard,
+                        ProgressSink* progress) {
+  const Clock::time_point t_start = Clock::now();
+  validate_haar_options(scene, options);
+  check_haar_shardable(scene, options);
+  if (shard.count == 0 || shard.index >= shard.count)
+    throw BakeError(scene::scene_label(scene) + ": not a shard");
+  std::unique_ptr<tbb::global_control> limit;
+  if (options.threads > 0)
+    limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
+                                                  options.threads);
+  HaarPart part;
+  part.shard = shard;
+  part.vertices = scene.vertex_count();
+  part.rows = shard_rows(part.vertices, shard);
+  part.channels = haar_channels(scene, options);
+  const int N = options.cube_size, C = part.channels;
+  const std::size_t W = std::size_t{6} * N * N, n = part.rows.size();
+  const bool interreflect = options.transport == prt::TransferKind::Interreflected;
+  const TexelSamples ts = make_texel_samples(N, options.supersample, options.seed);
+  const scene::RayCaster caster(scene);
+  HaarBakeContext ctx{scene,
+                      options,
+                      part.vertices,
+                      N,
+                      W,
+                      C,
+                      options.transport != prt::TransferKind::Unshadowed,
+                      false,
+                      ts,
+                      &caster,
+                      progress,
+                      {}};
+  const std::vector<uint32_t> order = make_morton_order(scene.positions);
+  std::vector<prt::SparseVertexTransfer> sparse(interreflect ? 0 : n);
+  std::vector<GatherRow> rows(interreflect ? n : 0);
+  if (interreflect) {
+    MemoryBudget budget(options.memory_limit, scene.source_path);
+    budget.charge(uint64_t(n) * W * uint64_t(C) * sizeof(float),
+                  "the dense wavelet coefficients of the interreflection");
+    part.wavelets.assign(n * W * C, 0.f);
+  }
+  const Clock::time_point t_rays = Clock::now();
+  ctx.task_rays.assign((n + kVerticesPerTask - 1) / kVerticesPerTask, 0);
+  if (progress) progress->start("bake haar", n);
+  tbb::parallel_for(std::size_t(0), n, kVerticesPerTask, [&](std::size_t task_first) {
+    std::vector<float> grey_dense(W), dense(W * C);
+    const std::size_t task_end = std::min(n, task_first + kVerticesPerTask);
+    uint64_t rays = 0;
+    for (std::size_t i = task_first; i < task_end; ++i) {
+      const uint32_t v = order[part.rows.first + i];
+      rays += ctx.dense_transfer(v, interreflect ? &rows[i] : nullptr, grey_dense, dense);
+      if (!interreflect) {
+        sparse[i] = std::move(
+            prt::compress_vertex_transfer(dense.data(), N, C, options.compression).value());
+        continue;
+      }
+      float* out = part.wavelets.data() + i * W * C;
+      std::copy(dense.begin(), dense.end(), out);
+      for (int face = 0; face < 6; ++face)
+        for (int c = 0; c < C; ++c)
+          prt::forward_haar_2d(out + std::size_t(face) * N * N * C + c, N, C);
+      merge_gather_row(rows[i]);
+    }
+    ctx.task_rays[task_first / kVerticesPerTask] = rays;
+    if (progress) progress->advance(task_end - task_first, rays);
+  });
+  if (progress) progress->finish();
+  for (uint64_t r : ctx.task_rays) part.rays += r;
+  for (const prt::SparseVertexTransfer& sv : sparse) {
+    part.sparse_lengths.push_back(static_cast<uint32_t>(sv.index.size()));
+    part.sparse_index.insert(part.sparse_index.end(), sv.index.begin(), sv.index.end());
+    part.sparse_values.insert(part.sparse_values.end(), sv.values.begin(), sv.values.end());
+  }
+  for (const GatherRow& row : rows) {
+    part.gather_lengths.push_back(static_cast<uint32_t>(row.size()));
+    for (const auto& [col, w] : row) {
+      part.gather_columns.push_back(col);
+      part.gather_weights.push_back(w);
+    }
+  }
+  part.stats.vertices = n;
+  part.stats.rays = part.rays;
+  part.stats.seconds_rays = seconds_since(t_rays);
+  part.stats.seconds_total = seconds_since(t_start);
+  return part;
+}
+
+HaarBakeResult merge_haar_parts(const scene::Scene& scene, const HaarBakeOptions& options,
+                                const std::vector<const HaarPart*>& parts, ProgressSink* progress) {
+  check_haar_shardable(scene, options);
+  const std::string name = scene::scene_label(scene);
+  const uint64_t V = scene.vertex_count();
+  const int C = haar_channels(scene, options);
+  const uint64_t WC = uint64_t{6} * options.cube_size * options.cube_size * C;
+  const bool interreflect = options.transport == prt::TransferKind::Interreflected;
+  uint64_t next = 0;
+  for (std::size_t i = 0; i < parts.size(); ++i) {
+    const HaarPart& p = *parts[i];
+    const uint64_t n = p.rows.size();
+    const RowRange want =
+        shard_rows(V, {static_cast<uint32_t>(i), static_cast<uint32_t>(parts.size())});
+    uint64_t entries = 0, gathered = 0;
+    for (uint32_t len : p.sparse_lengths) entries += len;
+    for (uint32_t len : p.gather_lengths) gathered += len;
+    bool ok = p.vertices == V && p.channels == C && p.rows.first == want.first &&
+              p.rows.end == want.end && p.rows.first == next &&
+              p.sparse_lengths.size() == (interreflect ? 0 : n) &&
+              p.sparse_index.size() == entries && p.sparse_values.size() == entries * C &&
+              p.wavelets.size() == (interreflect ? n * WC : 0) &&
+              p.gather_lengths.size() == (interreflect ? n : 0) &&
+              p.gather_columns.size() == gathered && p.gather_weights.size() == gathered;
+    for (uint32_t col : p.gather_columns) ok = ok && col < V;
+    if (!ok)
+      throw BakeError(name + ": part " + std::to_string(i) + " of " + std::to_string(parts.size()) +
+                      " does not fit the scene or the split");
+    next = p.rows.end;
+  }
+  if (next != V) throw BakeError(name + ": the parts do not cover every vertex");
+  return bake_haar_with(scene, options, progress, &parts);
 }
 
 }  // namespace prt::bake

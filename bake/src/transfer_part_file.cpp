@@ -4,12 +4,12 @@
 #include <algorithm>
 #include <cstdio>
 #include <cstring>
-#include <map>
 
 #include <nlohmann/json.hpp>
 
 #include "numerics/hash.h"
 #include "prt/formats/geometry_check.h"
+#include "prt/haar/cube_map.h"
 
 namespace prt::bake {
 namespace {
@@ -28,7 +28,15 @@ enum Tag : uint32_t {
   kBent,
   kGatherRows,
   kGatherHits,
-  kCounters
+  kCounters,
+  kSparseLengths,
+  kSparseIndex,
+  kSparseValues,
+  kWavelets,
+  kHaarGatherLengths,
+  kHaarGatherColumns,
+  kHaarGatherWeights,
+  kFormFactors
 };
 
 template <class T>
@@ -37,6 +45,17 @@ prt::PartSection section_of(uint32_t tag, const T* data, std::size_t count) {
   s.tag = tag;
   s.bytes.resize(count * sizeof(T));
   if (count) std::memcpy(s.bytes.data(), data, s.bytes.size());
+  return s;
+}
+
+// A section that refers to the caller's `count` values at `data` (no copy: they must outlive
+// the write).
+template <class T>
+prt::PartSection view_of(uint32_t tag, const T* data, std::size_t count) {
+  prt::PartSection s;
+  s.tag = tag;
+  s.view = count ? static_cast<const void*>(data) : s.bytes.data();
+  s.view_size = count * sizeof(T);
   return s;
 }
 
@@ -94,8 +113,15 @@ std::string scene_inputs_hash(const scene::Scene& scene) {
   return text;
 }
 
+prt::TransferKind kind_named(const std::string& kind) {
+  return kind == "unshadowed"       ? prt::TransferKind::Unshadowed
+         : kind == "interreflected" ? prt::TransferKind::Interreflected
+                                    : prt::TransferKind::Shadowed;
+}
+
 nlohmann::json settings_of(const BakeOptions& o) {
   nlohmann::json s;
+  s["basis"] = "sh";
   s["transfer"] = transfer_kind_name(o.kind);
   s["order"] = o.order;
   s["samples"] = o.samples;
@@ -110,10 +136,7 @@ nlohmann::json settings_of(const BakeOptions& o) {
 
 BakeOptions options_of(const nlohmann::json& s, uint64_t seed) {
   BakeOptions o;
-  const std::string kind = s.at("transfer").get<std::string>();
-  o.kind = kind == "unshadowed"       ? prt::TransferKind::Unshadowed
-           : kind == "interreflected" ? prt::TransferKind::Interreflected
-                                      : prt::TransferKind::Shadowed;
+  o.kind = kind_named(s.at("transfer").get<std::string>());
   o.order = s.at("order").get<int>();
   o.samples = s.at("samples").get<int>();
   o.bounces = s.at("bounces").get<int>();
@@ -123,6 +146,39 @@ BakeOptions options_of(const nlohmann::json& s, uint64_t seed) {
   o.bent_normals = s.at("bent_normals").get<bool>();
   o.precision =
       s.at("precision").get<std::string>() == "f16" ? prt::Precision::F16 : prt::Precision::F32;
+  o.seed = seed;
+  return o;
+}
+
+nlohmann::json haar_settings_of(const HaarBakeOptions& o) {
+  nlohmann::json s;
+  s["basis"] = "haar";
+  s["transfer"] = transfer_kind_name(o.transport);
+  s["cube"] = o.cube_size;
+  s["supersample"] = o.supersample;
+  s["relative_threshold"] = o.compression.relative_threshold;
+  s["max_terms_per_vertex"] = o.compression.max_terms_per_vertex;
+  s["quantization_bits"] = static_cast<int>(o.compression.quantization);
+  s["bounces"] = o.bounces;
+  s["tolerance"] = o.bounce_tolerance;
+  s["max_solver_iterations"] = o.max_solver_iterations;
+  return s;
+}
+
+HaarBakeOptions haar_options_of(const nlohmann::json& s, uint64_t seed) {
+  HaarBakeOptions o;
+  o.transport = kind_named(s.at("transfer").get<std::string>());
+  o.cube_size = s.at("cube").get<int>();
+  o.supersample = s.at("supersample").get<int>();
+  o.compression.relative_threshold = s.at("relative_threshold").get<double>();
+  o.compression.max_terms_per_vertex = s.at("max_terms_per_vertex").get<int64_t>();
+  const int bits = s.at("quantization_bits").get<int>();
+  o.compression.quantization = bits == 8    ? prt::HaarQuantization::Bits8
+                               : bits == 16 ? prt::HaarQuantization::Bits16
+                                            : prt::HaarQuantization::Float32;
+  o.bounces = s.at("bounces").get<int>();
+  o.bounce_tolerance = s.at("tolerance").get<double>();
+  o.max_solver_iterations = s.at("max_solver_iterations").get<int>();
   o.seed = seed;
   return o;
 }
@@ -138,12 +194,12 @@ void add_scene_sections(const scene::Scene& scene, prt::PartFile& f) {
         {{"name", p.name}, {"first_vertex", p.first_vertex}, {"vertex_count", p.vertex_count}});
   j["primitives"] = prims;
   f.sections.push_back(text_section(kScene, j.dump()));
-  f.sections.push_back(section_of(kPositions, &scene.positions[0].x, 3 * scene.positions.size()));
-  f.sections.push_back(section_of(kNormals, &scene.normals[0].x, 3 * scene.normals.size()));
-  f.sections.push_back(section_of(kAlbedo, &scene.albedo[0].x, 3 * scene.albedo.size()));
-  f.sections.push_back(section_of(kTriangles,
-                                  scene.triangles.empty() ? nullptr : &scene.triangles[0].x,
-                                  3 * scene.triangles.size()));
+  f.sections.push_back(view_of(kPositions, &scene.positions[0].x, 3 * scene.positions.size()));
+  f.sections.push_back(view_of(kNormals, &scene.normals[0].x, 3 * scene.normals.size()));
+  f.sections.push_back(view_of(kAlbedo, &scene.albedo[0].x, 3 * scene.albedo.size()));
+  f.sections.push_back(view_of(kTriangles,
+                               scene.triangles.empty() ? nullptr : &scene.triangles[0].x,
+                               3 * scene.triangles.size()));
 }
 
 scene::Scene decode_scene(const prt::PartFile& f, const std::string& name) {
@@ -190,52 +246,173 @@ scene::Scene decode_scene(const prt::PartFile& f, const std::string& name) {
 
 }  // namespace
 
-prt::PartFile encode_transfer_part(const TransferPart& part, const scene::Scene& scene,
-                                   const BakeOptions& options, const std::string& prt_version) {
+namespace {
+
+// A part's header, settings section and (shard 0) scene sections.
+prt::PartFile part_with_settings(prt::PartKind kind, ShardSpec shard, RowRange rows,
+                                 const scene::Scene& scene, const nlohmann::json& settings,
+                                 uint64_t seed, const std::string& prt_version) {
   prt::PartFile f;
-  f.kind = prt::PartKind::ShTransfer;
-  f.index = part.shard.index;
-  f.count = part.shard.count;
+  f.kind = kind;
+  f.index = shard.index;
+  f.count = shard.count;
   std::vector<float> xyz(3 * scene.positions.size());
   for (std::size_t v = 0; v < scene.positions.size(); ++v)
     for (int a = 0; a < 3; ++a) xyz[3 * v + a] = scene.positions[v][a];
   f.fingerprint = prt::geometry_fingerprint(xyz.data(), scene.positions.size());
-  f.total_rows = part.vertices;
-  f.first_row = part.rows.first;
-  f.row_count = part.rows.size();
+  f.total_rows = scene.positions.size();
+  f.first_row = rows.first;
+  f.row_count = rows.size();
   nlohmann::json j;
   j["generator"] = "prt bake --shard";
   j["prt_version"] = prt_version;
-  j["seed"] = options.seed;
-  j["settings"] = settings_of(options);
+  j["seed"] = seed;
+  j["settings"] = settings;
   j["scene_inputs"] = scene_inputs_hash(scene);
   f.sections.push_back(text_section(kSettings, j.dump()));
-  if (part.shard.index == 0) add_scene_sections(scene, f);
-  f.sections.push_back(section_of(kDirect, part.direct.data(), part.direct.size()));
-  f.sections.push_back(section_of(kAo, part.ao.data(), part.ao.size()));
-  f.sections.push_back(section_of(kBent, part.bent.data(), part.bent.size()));
-  f.sections.push_back(section_of(kGatherRows, part.gather_rows.data(), part.gather_rows.size()));
-  f.sections.push_back(section_of(kGatherHits, part.gather_hits.data(), part.gather_hits.size()));
-  uint64_t counters[3] = {part.rays, part.back_face_hits, 0};
-  std::memcpy(&counters[2], &part.ray_offset_max, sizeof(double));
-  f.sections.push_back(section_of(kCounters, counters, 3));
+  if (shard.index == 0) add_scene_sections(scene, f);
+  return f;
+}
+
+prt::PartSection counters_section(uint64_t rays, uint64_t back_face_hits, double offset) {
+  uint64_t counters[3] = {rays, back_face_hits, 0};
+  std::memcpy(&counters[2], &offset, sizeof(double));
+  return section_of(kCounters, counters, 3);
+}
+
+void decode_haar(const prt::PartFile& f, const std::string& name, TransferPartFile& out) {
+  const HaarBakeOptions& o = out.haar_options;
+  if (!prt::is_valid_cube_size(o.cube_size) || o.supersample < 1 ||
+      o.supersample > kMaxHaarSupersample)
+    throw BakeError(name + ": settings out of range");
+  HaarPart& p = out.haar_part;
+  p.shard = {f.index, f.count};
+  p.vertices = f.total_rows;
+  p.rows = {f.first_row, f.first_row + f.row_count};
+  const uint64_t n = f.row_count, W = uint64_t{6} * o.cube_size * o.cube_size;
+  const bool interreflect = o.transport == prt::TransferKind::Interreflected;
+  p.sparse_lengths =
+      read_array<uint32_t>(f, kSparseLengths, interreflect ? 0 : n, name, "sparse lengths");
+  uint64_t entries = 0;
+  for (uint32_t len : p.sparse_lengths) entries += len;
+  p.sparse_index = read_array<uint32_t>(f, kSparseIndex, entries, name, "sparse index");
+  const prt::PartSection* values = f.find(kSparseValues);
+  p.channels = entries > 0 && values ? static_cast<int>(values->bytes.size() / 4 / entries) : 1;
+  if (interreflect) {
+    const prt::PartSection* w = f.find(kWavelets);
+    p.channels = n > 0 && w ? static_cast<int>(w->bytes.size() / 4 / (n * W)) : 1;
+  }
+  if (p.channels != 1 && p.channels != 3) throw BakeError(name + ": bad channel count");
+  p.sparse_values =
+      read_array<float>(f, kSparseValues, entries * p.channels, name, "sparse values");
+  p.wavelets =
+      read_array<float>(f, kWavelets, interreflect ? n * W * p.channels : 0, name, "wavelets");
+  p.gather_lengths =
+      read_array<uint32_t>(f, kHaarGatherLengths, interreflect ? n : 0, name, "gather lengths");
+  uint64_t gathered = 0;
+  for (uint32_t len : p.gather_lengths) gathered += len;
+  p.gather_columns = read_array<uint32_t>(f, kHaarGatherColumns, gathered, name, "gather columns");
+  p.gather_weights = read_array<float>(f, kHaarGatherWeights, gathered, name, "gather weights");
+  p.rays = read_array<uint64_t>(f, kCounters, 3, name, "counters")[0];
+  out.part.shard = p.shard;
+  out.part.vertices = p.vertices;
+  out.part.rows = p.rows;
+}
+
+}  // namespace
+
+prt::PartFile encode_transfer_part(const TransferPart& part, const scene::Scene& scene,
+                                   const BakeOptions& options, const std::string& prt_version) {
+  prt::PartFile f = part_with_settings(prt::PartKind::ShTransfer, part.shard, part.rows, scene,
+                                       settings_of(options), options.seed, prt_version);
+  f.sections.push_back(view_of(kDirect, part.direct.data(), part.direct.size()));
+  f.sections.push_back(view_of(kAo, part.ao.data(), part.ao.size()));
+  f.sections.push_back(view_of(kBent, part.bent.data(), part.bent.size()));
+  f.sections.push_back(view_of(kGatherRows, part.gather_rows.data(), part.gather_rows.size()));
+  f.sections.push_back(view_of(kGatherHits, part.gather_hits.data(), part.gather_hits.size()));
+  f.sections.push_back(counters_section(part.rays, part.back_face_hits, part.ray_offset_max));
+  return f;
+}
+
+prt::PartFile encode_haar_part(const HaarPart& part, const scene::Scene& scene,
+                               const HaarBakeOptions& options, const std::string& prt_version) {
+  prt::PartFile f = part_with_settings(prt::PartKind::HaarTransfer, part.shard, part.rows, scene,
+                                       haar_settings_of(options), options.seed, prt_version);
+  f.sections.push_back(
+      view_of(kSparseLengths, part.sparse_lengths.data(), part.sparse_lengths.size()));
+  f.sections.push_back(view_of(kSparseIndex, part.sparse_index.data(), part.sparse_index.size()));
+  f.sections.push_back(
+      view_of(kSparseValues, part.sparse_values.data(), part.sparse_values.size()));
+  f.sections.push_back(view_of(kWavelets, part.wavelets.data(), part.wavelets.size()));
+  f.sections.push_back(
+      view_of(kHaarGatherLengths, part.gather_lengths.data(), part.gather_lengths.size()));
+  f.sections.push_back(
+      view_of(kHaarGatherColumns, part.gather_columns.data(), part.gather_columns.size()));
+  f.sections.push_back(
+      view_of(kHaarGatherWeights, part.gather_weights.data(), part.gather_weights.size()));
+  f.sections.push_back(counters_section(part.rays, 0, 0.0));
+  return f;
+}
+
+prt::PartFile encode_form_factor_part(ShardSpec shard, uint64_t key, uint64_t patches,
+                                      uint64_t first, const std::vector<float>& rows,
+                                      const std::string& settings, uint64_t seed,
+                                      const std::string& prt_version) {
+  prt::PartFile f;
+  f.kind = prt::PartKind::FormFactorRows;
+  f.index = shard.index;
+  f.count = shard.count;
+  f.fingerprint = key;
+  f.total_rows = patches;
+  f.first_row = first;
+  f.row_count = patches ? rows.size() / patches : 0;
+  nlohmann::json j;
+  j["generator"] = "prt radiosity --shard";
+  j["prt_version"] = prt_version;
+  j["seed"] = seed;
+  nlohmann::json s = nlohmann::json::parse(settings);
+  s["basis"] = "form factors";
+  j["settings"] = s;
+  char text[24];
+  std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(key));
+  j["scene_inputs"] = text;
+  f.sections.push_back(text_section(kSettings, j.dump()));
+  f.sections.push_back(view_of(kFormFactors, rows.data(), rows.size()));
   return f;
 }
 
 TransferPartFile decode_transfer_part(const prt::PartFile& f, const std::string& name) {
-  if (f.kind != prt::PartKind::ShTransfer) throw BakeError(name + ": not a part of an SH bake");
   TransferPartFile out;
   out.name = name;
   out.fingerprint = f.fingerprint;
+  out.haar = f.kind == prt::PartKind::HaarTransfer;
   try {
     const nlohmann::json j = nlohmann::json::parse(read_text(f, kSettings, name, "settings"));
     out.prt_version = j.at("prt_version").get<std::string>();
     out.seed = j.at("seed").get<uint64_t>();
     out.settings = j.at("settings").dump();
     out.scene_inputs = j.at("scene_inputs").get<std::string>();
-    out.options = options_of(j.at("settings"), out.seed);
+    out.form_factors = f.kind == prt::PartKind::FormFactorRows;
+    if (out.haar)
+      out.haar_options = haar_options_of(j.at("settings"), out.seed);
+    else if (!out.form_factors)
+      out.options = options_of(j.at("settings"), out.seed);
   } catch (const nlohmann::json::exception& e) {
     throw BakeError(name + ": settings section: " + e.what());
+  }
+  if (out.form_factors) {
+    out.key = f.fingerprint;
+    out.form_factor_rows =
+        read_array<float>(f, kFormFactors, f.row_count * f.total_rows, name, "form factors");
+    out.part.shard = {f.index, f.count};
+    out.part.vertices = f.total_rows;
+    out.part.rows = {f.first_row, f.first_row + f.row_count};
+    return out;
+  }
+  if (out.haar) {
+    if (f.index == 0) out.scene = decode_scene(f, name);
+    decode_haar(f, name, out);
+    return out;
   }
   const BakeOptions& o = out.options;
   if (o.order < 1 || o.order > kMaxBakeOrder || o.samples < 1 || o.samples > kMaxBakeSamples)
@@ -285,6 +462,10 @@ std::string difference(const TransferPartFile& p, const TransferPartFile& r) {
   if (p.prt_version != r.prt_version)
     return p.name + ": written by prt " + p.prt_version + ", " + r.name + " by prt " +
            r.prt_version + " (the parts of one bake must come from one prt version)";
+  // A form-factor part's key covers its options too: name the settings first.
+  if (p.form_factors && p.settings != r.settings)
+    return p.name +
+           ": baked with other settings: " + settings_difference(p.settings, r.settings, r.name);
   if (p.fingerprint != r.fingerprint || p.scene_inputs != r.scene_inputs ||
       p.part.vertices != r.part.vertices)
     return p.name + ": a part of another scene than " + r.name + " (" +
@@ -341,6 +522,7 @@ std::vector<const TransferPartFile*> check_parts_fit(const std::vector<TransferP
                       std::to_string(rows.first) + ".." + std::to_string(rows.end) + " of " +
                       std::to_string(r.part.vertices) + "): no part given holds it");
     }
+  if (!ordered[0]->scene) return ordered;  // form-factor parts carry no scene
   const uint64_t T = ordered[0]->scene->triangles.size();
   for (const TransferPartFile* p : ordered)
     for (const CompactHit& h : p->part.gather_hits)

@@ -9,6 +9,7 @@
 #include <stdexcept>
 #include <system_error>
 
+#include "form_factor_rows.h"
 #include "prt/core/memory_budget.h"
 #include "prt/emitters/emitter_responses.h"
 #include "radiosity/form_factor_cache.h"
@@ -19,6 +20,9 @@
 #include "scene/ray_caster.h"
 #include "scene/scene_loader.h"
 #include "scene/subdivide.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 
 namespace prt::radiosity {
 namespace {
@@ -406,6 +410,52 @@ SceneSolution solve_scene(const SceneSolveRequest& request,
   out.solution.radiance.clear();
   out.solution.display_radiance.clear();
   out.scene = std::move(scene);
+  return out;
+}
+
+FormFactorShard compute_form_factor_shard(const SceneSolveRequest& request, uint32_t index,
+                                          uint32_t count) {
+  check_scene_solve(request, {});
+  SceneSolveRequest r = request;
+  if (!r.moves.empty() || r.refinement || r.hierarchical || count == 0 || index >= count)
+    throw RequestError(r.scene_path + ": form-factor shards are for dense solves without --move " +
+                       "or --adaptive");
+  const scene::Scene scene = prepare_scene(r, false);
+  if (r.choose_solver && scene.triangles.size() > kMaxPatches)
+    throw RequestError(r.scene_path + ": " + std::to_string(scene.triangles.size()) +
+                       " patches need the hierarchical solver, which has no dense form factors "
+                       "to shard");
+  check_patch_count(r, scene);
+  FormFactorShard out;
+  if (r.choose_method)
+    r.form_factors = choose_form_factors(scene.triangles.size(), r.form_factors).options;
+  if (r.form_factors.method == FormFactorMethod::Hemicube)
+    throw RequestError(r.scene_path +
+                       ": hemicube form factors combine rows across the matrix and cannot be "
+                       "sharded; use --form-factors analytic or rays");
+  std::vector<Patch> patches = make_patches(scene);
+  SceneSolution unused;
+  check_unit_albedo(r, scene, patches, &unused);
+  out.key = form_factor_key(patches, r.form_factors);
+  out.options = r.form_factors;
+  const std::size_t n = patches.size();
+  out.patches = n;
+  const auto bound = [&](uint64_t i) { return i * (n / count) + i * (n % count) / count; };
+  out.first = bound(index);
+  out.end = bound(uint64_t{index} + 1);
+  const Clock::time_point t = Clock::now();
+  const scene::RayCaster caster(scene);
+  if (r.hide_enclosed) mark_hidden_parts(&patches, caster, r.form_factors);
+  MemoryBudget budget(r.memory_limit, r.scene_path);
+  budget.charge(4 * uint64_t(out.end - out.first) * n, "the form-factor rows");
+  out.rows.assign((out.end - out.first) * n, 0.f);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(out.first, out.end, 8),
+                    [&](const tbb::blocked_range<std::size_t>& range) {
+                      for (std::size_t i = range.begin(); i != range.end(); ++i)
+                        detail::row_into(patches, caster, static_cast<uint32_t>(i), out.options,
+                                         out.rows.data() + (i - out.first) * n);
+                    });
+  out.seconds = since(t);
   return out;
 }
 

@@ -1,5 +1,6 @@
 // tests/cli/test_cli_farm.cpp — farm bakes (docs/FARM.md): `prt bake --shard I/N` parts merged by
-// `prt merge` give the bytes of one `prt bake`, for N = 1, 2, 7 and 64; the merge refuses parts
+// `prt merge` give the bytes of one `prt bake` (SH shadowed and interreflected, Haar shadowed and
+// interreflected), for N = 1, 2, 7 and 64; the merge refuses parts
 // that do not belong together in one line, writing nothing; --shard reads the Slurm and
 // Kubernetes variables and refuses bad values.
 //
@@ -109,6 +110,69 @@ TEST_CASE("cli farm: merged shards of a shadowed bake are the single bake, byte 
 TEST_CASE("cli farm: merged shards of an interreflected bake are the single bake, byte for byte") {
   check_identity_for_every_n("farm_interreflected",
                              "--transfer interreflected --order 3 --samples 32 --ao");
+}
+
+TEST_CASE("cli farm: merged shards of Haar bakes are the single bake, byte for byte") {
+  check_identity_for_every_n("farm_haar", "--basis haar --cube 8 --haar-supersample 2");
+  check_identity_for_every_n("farm_haar_interreflected",
+                             "--basis haar --cube 8 --transfer interreflected --haar-bits 8");
+}
+
+TEST_CASE("cli farm: merged form-factor shards are the cache one prt radiosity writes") {
+  const fs::path dir = scratch("farm_radiosity");
+  const fs::path fixtures = fs::path(PRT_SOURCE_DIR) / "tests" / "scripts" / "fixtures";
+  fs::copy_file(fixtures / "room.obj", dir / "room.obj");
+  fs::copy_file(fixtures / "room.mtl", dir / "room.mtl");
+  const std::string room = (dir / "room.obj").string();
+  for (const std::string options :
+       {"--max-edge 0.25", "--max-edge 0.25 --form-factors rays --rays 64 --seed 3"}) {
+    INFO(options);
+    const fs::path single = dir / "single.ffc";
+    fs::remove(single);
+    const RunResult s =
+        run(prt_cli() + " radiosity " + room + " " + options + " --quiet --csv " +
+            (dir / "single.csv").string() + " --form-factor-cache " + single.string());
+    INFO(s.err);
+    REQUIRE(s.exit_code == 0);
+    for (const int n : {1, 2, 7, 64}) {
+      INFO("N = " << n);
+      std::vector<fs::path> parts;
+      for (int i = 0; i < n; ++i) {
+        parts.push_back(dir / ("ff_" + std::to_string(i) + ".prtpart"));
+        const RunResult r =
+            run(prt_cli() + " radiosity " + room + " " + options + " --shard " + std::to_string(i) +
+                "/" + std::to_string(n) + " --quiet -o " + parts.back().string());
+        INFO(r.err);
+        REQUIRE(r.exit_code == 0);
+      }
+      const fs::path merged = dir / "merged.ffc";
+      fs::remove(merged);
+      const RunResult m = merge(parts, merged);
+      INFO(m.err);
+      REQUIRE(m.exit_code == 0);
+      CHECK(slurp(merged) == slurp(single));
+      for (const fs::path& p : parts) fs::remove(p);
+    }
+  }
+  // prt radiosity takes the merged cache as its own.
+  const RunResult used =
+      run(prt_cli() + " radiosity " + room + " --max-edge 0.25 --form-factors rays --rays 64 " +
+          "--seed 3 --quiet --csv " + (dir / "merged.csv").string() + " --form-factor-cache " +
+          (dir / "merged.ffc").string());
+  INFO(used.err);
+  REQUIRE(used.exit_code == 0);
+  CHECK(slurp(dir / "merged.csv") == slurp(dir / "single.csv"));
+  // What does not apply to a shard is refused by name, nothing written.
+  for (const std::string extra : {"--solver jacobi", "--move room=0.1,0,0", "--size 8x8",
+                                  "--form-factors hemicube", "--csv x.csv", "--adaptive 0.1"}) {
+    INFO(extra);
+    const fs::path out = dir / "refused.prtpart";
+    const RunResult r = run(prt_cli() + " radiosity " + room + " --max-edge 0.25 " + extra +
+                            " --shard 0/2 -o " + out.string());
+    CHECK(r.exit_code == 2);
+    CHECK(line_count(r.err) == 1);
+    CHECK_FALSE(fs::exists(out));
+  }
 }
 
 TEST_CASE("cli farm: f16, fixed bounces and unshadowed AO merge to the single bake's bytes") {
@@ -277,8 +341,7 @@ TEST_CASE("cli farm: bad --shard values and bakes that cannot be sharded are ref
     CHECK(r.err.find("--shard") != std::string::npos);
     CHECK_FALSE(fs::exists(out));
   }
-  for (const std::string options :
-       {"--auto", "--glossy", "--basis haar --cube 8", "--transfer shadowed"}) {
+  for (const std::string options : {"--auto", "--glossy", "--transfer shadowed"}) {
     INFO(options);
     const fs::path wrong = dir / "p.prt";  // a part must be a .prtpart
     const RunResult r = run(

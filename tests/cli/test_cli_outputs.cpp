@@ -116,6 +116,10 @@ TEST_CASE("cli outputs: every registered subcommand refuses outputs that share a
   cases["bake"] = {{"bake " + scene + " -o " + scene, 2, same, {}},
                    {"bake " + scene + " --glossy -o " + dir + "room.mtl", 2, same, {}}};
   cases["compress"] = {{"compress " + f.prtg.string() + " -o " + f.prtg.string(), 2, same, {}}};
+  const std::string part = dir + "room.prtpart";
+  REQUIRE(run(prt_cli() + " bake " + scene + " --samples 16 --shard 0/1 --quiet -o " + part)
+              .exit_code == 0);
+  cases["merge"] = {{"merge " + part + " -o " + part, 2, same, {}}};
   cases["relight"] = {
       {"relight " + scene + " " + f.prtg.string() + " " + env + " -o " + dir + "a.png --csv " +
            dir + "a.png --eye 0.5,0.5,3",

@@ -79,6 +79,14 @@ both yes bake --quiet "$demo" -o auto-env.prt --auto --tolerance 0.3 --env ../in
 same "--auto --env" auto-env.prt
 both yes bake --quiet "$demo" -o haar.prt --basis haar --cube 8
 same "Haar" haar.prt
+for i in 0 1; do
+  both yes bake --quiet "$demo" -o "haar$i.prtpart" --basis haar --cube 8 --shard "$i/2"
+  same "Haar, --shard $i/2 (part)" "haar$i.prtpart"
+done
+both yes merge --quiet haar0.prtpart haar1.prtpart -o haar-merged.prt
+cmp -s "$scratch/t1/haar-merged.prt" "$scratch/t1/haar.prt" && cmp -s "$scratch/t2/haar-merged.prt" \
+  "$scratch/t1/haar.prt" ||
+  { echo "FAIL: the merged Haar parts differ from the single Haar bake"; failures=$((failures + 1)); }
 both yes bake --quiet "$tex" -o haar-ir.prt --basis haar --cube 8 --transfer interreflected
 same "Haar interreflected, textured" haar-ir.prt
 both yes bake --quiet "$glossy" --glossy -o glossy.prtg --order 2 --samples 16

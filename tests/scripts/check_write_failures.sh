@@ -6,7 +6,7 @@
 # The same for `--memory-limit 1K`: the bake stops before anything is written (status 1, one
 # line naming the scene and the limit), and a value that is not a size is a usage error (status 2).
 # Covers bake (SH), bake --glossy, compress, radiosity --per-emitter / --csv / --vertex-colors /
-# --form-factor-cache, make-scene, bake --shard (a part file) and merge. A few seconds.
+# --form-factor-cache, make-scene, bake --shard and radiosity --shard (part files) and merge. A few seconds.
 # Usage: check_write_failures.sh PRT_BINARY
 set -euo pipefail
 prt="$(realpath "$1")"
@@ -67,6 +67,12 @@ done
 limited 16 part.prtpart bake field.glb --transfer interreflected --samples 32 --shard 1/2 \
   -o part.prtpart --quiet
 limited 16 merged.prt merge p0.prtpart p1.prtpart -o merged.prt --quiet
+# Form-factor shards of prt radiosity, and their merge into a form-factor cache.
+for i in 0 1; do
+  "$prt" radiosity room.obj --max-edge 0.1 --shard "$i/2" -o "ff$i.prtpart" --quiet
+done
+limited 64 ffpart.prtpart radiosity room.obj --max-edge 0.1 --shard 0/2 -o ffpart.prtpart --quiet
+limited 64 merged.ffc merge ff0.prtpart ff1.prtpart -o merged.ffc --quiet
 
 # --memory-limit: too small for the coefficients (V × channels × order² × 4 bytes).
 status=0

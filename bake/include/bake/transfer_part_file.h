@@ -14,6 +14,14 @@
 //  10 gather rows u32 × rows (interreflected): hits per row
 //  11 gather hits 8 bytes each: u32 triangle (renumbered), u16 u, u16 v (bake/compact_gather.h)
 //  12 counters   u64 rays, u64 back-face hits, f64 largest ray offset
+// Haar parts (kind HaarTransfer, bake/haar_part.h) have sections 1–6 and 12 as above, and
+//  13 sparse lengths u32 × rows, 14 sparse indices u32, 15 sparse values f32 × C per index
+//     (unshadowed, shadowed); 16 wavelets f32 × rows·6N²·C, 17 gather lengths u32 × rows,
+//  18 gather columns u32, 19 gather weights f32 (interreflected).
+// Form-factor parts (kind FormFactorRows, `prt radiosity --shard`) carry no scene: the header's
+// fingerprint is the form-factor cache key (radiosity/form_factor_cache.h), its rows the
+// senders, section 1's settings the form-factor options, and
+//  20 form factors f32 × rows·N (N = total rows, the patch count).
 // Rows are those of bake/transfer_part.h (Morton order); the header's fingerprint is
 // geometry_fingerprint of the positions, its rows [first_row, first_row + row_count) of V.
 #pragma once
@@ -23,6 +31,7 @@
 #include <string>
 #include <vector>
 
+#include "bake/haar_part.h"
 #include "bake/transfer_part.h"
 #include "prt/formats/part_file.h"
 #include "scene/scene.h"
@@ -39,12 +48,30 @@ struct TransferPartFile {
   std::string scene_inputs;  // hex hash of the scene's normals, albedo, triangles, primitives
   BakeOptions options;       // rebuilt from the settings (threads and memory limit not set)
   std::optional<scene::Scene> scene;  // shard 0
-  TransferPart part;
+  TransferPart part;                  // SH parts; for Haar parts only shard, vertices and rows
+  bool haar = false;                  // a Haar part: the two fields below
+  HaarBakeOptions haar_options;
+  HaarPart haar_part;
+  bool form_factors = false;            // a form-factor part: `settings` holds the options
+  uint64_t key = 0;                     // its cache key (= fingerprint)
+  std::vector<float> form_factor_rows;  // rows × N
 };
 
-// The part file of `part`, baked from `scene` with `options` by prt `prt_version`.
+// The part file of `part`, baked from `scene` with `options` by prt `prt_version`. Its large
+// sections refer to the arrays of `part` and `scene` (no copy): keep them until it is written.
 prt::PartFile encode_transfer_part(const TransferPart& part, const scene::Scene& scene,
                                    const BakeOptions& options, const std::string& prt_version);
+
+// The part file of a Haar bake's part (referring to its arrays, as above).
+prt::PartFile encode_haar_part(const HaarPart& part, const scene::Scene& scene,
+                               const HaarBakeOptions& options, const std::string& prt_version);
+
+// A form-factor part: rows [first, first + rows.size()/patches) of the `patches` × `patches`
+// matrix whose cache key is `key`, computed with the options `settings` (a JSON object).
+prt::PartFile encode_form_factor_part(ShardSpec shard, uint64_t key, uint64_t patches,
+                                      uint64_t first, const std::vector<float>& rows,
+                                      const std::string& settings, uint64_t seed,
+                                      const std::string& prt_version);
 
 // Decodes a part file read by prt::read_part_file; throws BakeError "NAME: problem" when its
 // sections do not hold what its header and settings say.

@@ -143,4 +143,21 @@ void check_scene_solve(const SceneSolveRequest& request,
 SceneSolution solve_scene(const SceneSolveRequest& request,
                           const std::function<void(const scene::Scene&)>& before_solve = {});
 
+// One shard of the form factors a cached dense solve computes (a farm bake, docs/FARM.md): the
+// scene prepared as solve_scene prepares it, the method chosen as it chooses it, the cache key of
+// form_factor_cache.h, and the rows of senders [⌊i·N/n⌋, ⌊(i+1)·N/n⌋) of F for shard i of n, each
+// computed as compute_form_factors computes it (rows are independent: seeded by (seed, row)).
+// The request must ask for a dense solve without moves, refinement or hemicube form factors
+// (whose rows are combined across the matrix); RequestError otherwise.
+struct FormFactorShard {
+  uint64_t key = 0;                // form_factor_key of the patches and options
+  std::size_t patches = 0;         // N
+  FormFactorOptions options;       // as chosen (what the cache records)
+  std::size_t first = 0, end = 0;  // the rows
+  std::vector<float> rows;         // (end − first) × N
+  double seconds = 0;              // computing the rows
+};
+FormFactorShard compute_form_factor_shard(const SceneSolveRequest& request, uint32_t index,
+                                          uint32_t count);
+
 }  // namespace prt::radiosity

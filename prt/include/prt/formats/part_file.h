@@ -24,12 +24,23 @@ inline constexpr uint32_t kPartFileVersion = 1;
 
 // What a part holds (the header's kind field).
 enum class PartKind : uint32_t {
-  ShTransfer = 1,  // diffuse SH transfer: direct transfer, AO, bent normals, compact gather rows
+  ShTransfer = 1,    // diffuse SH transfer: direct transfer, AO, bent normals, compact gather rows
+  HaarTransfer = 2,  // Haar transfer: truncated wavelet vectors, or D̂ and gather rows
+  FormFactorRows = 3,  // radiosity: rows of senders of the form-factor matrix
 };
 
+// A section's bytes: its own (`bytes`), or, to write without a copy, `view_size` bytes at `view`
+// owned by the caller (set view non-null; `bytes` is then ignored). The reader fills `bytes`.
 struct PartSection {
   uint32_t tag = 0;
   std::vector<unsigned char> bytes;
+  const void* view = nullptr;
+  uint64_t view_size = 0;
+
+  const unsigned char* data() const {
+    return view ? static_cast<const unsigned char*>(view) : bytes.data();
+  }
+  uint64_t size() const { return view ? view_size : bytes.size(); }
 };
 
 struct PartFile {
@@ -43,13 +54,14 @@ struct PartFile {
   const PartSection* find(uint32_t tag) const;
 };
 
-// Writes `part` atomically (prt/core/atomic_file.h). Errors name `path`.
+// Writes `part` atomically (prt/core/atomic_file.h), section by section (no copy of the whole
+// file in memory; the checksum is computed first). Errors name `path`.
 Status write_part_file(const std::string& path, const PartFile& part);
 
-// Reads and checks a part: size, magic, version, recorded size ("truncated"), checksum, header
-// fields (index < count, the row range inside total_rows, a known kind) and the section table
-// (inside the file, aligned, in order without overlap, unique tags). Errors: one line naming
-// `path`.
+// Reads and checks a part (section by section into their `bytes`): size, magic, version, recorded
+// size ("truncated"), checksum, header fields (index < count, the row range inside total_rows, a
+// known kind) and the section table (inside the file, aligned, in order without overlap, unique
+// tags). Errors: one line naming `path`.
 Status read_part_file(const std::string& path, PartFile* out);
 
 }  // namespace prt
