@@ -138,8 +138,8 @@ std::map<std::string, std::set<std::string>> options_by_subcommand() {
 TEST_CASE("cli help: every option a subcommand's --help lists is accepted by its parser") {
   const fs::path dir = scratch("help_options");
   const std::vector<std::string> subs = subcommands();
-  CHECK(subs.size() == 10u);  // demo env make-sky make-scene bake compress info relight report
-                              // radiosity
+  CHECK(subs.size() == 11u);  // demo env make-sky make-scene bake merge compress info relight
+                              // report radiosity
   int checked = 0;
   for (const std::string& sub : subs) {
     const RunResult help = run(prt_cli() + " " + sub + " --help");
