@@ -45,6 +45,9 @@ TEST_PACKAGES=(
   clang libclang-rt-14-dev             # scripts/fuzz.sh (libFuzzer)
   chromium                             # tests/viewer: the real-browser test of `prt view`, headless
   curl                                 # tests/viewer: the requests `prt view`'s server refuses
+  slurm-wlm munge                      # scripts/slurm-local.sh: a single-node Slurm (slurmctld,
+                                       # slurmd, sbatch/squeue/sacct/scancel, munged) that
+                                       # tests/scripts/check_slurm_farm.sh runs the examples on
 )
 # Not needed by either side: pkg-config (no find module calls it) and libopenexr-dev (OpenImageIO
 # 2.4 takes half and Imath from libimath-dev; prt includes no OpenEXR header).
