@@ -28,10 +28,10 @@ constexpr double kExactTolerance = 1e-4;
 // Fine visibility of point links (links.h, LinkOptions::fine): split a partly visible link while
 // B_s·F̂ > ε / kPartialSplit, one whose rays all were blocked while B_s·F̂ > ε / kHiddenSplit; above
 // ε / kPartialSplit, a first estimate of none or all visible is checked with kConfirmRays × the
-// rays. Measured on the Cornell box at 9,624 patches (docs/BENCHMARKS.md): with 2, 1 and 1 (the
-// rules before), 4 rays a link left links with a partial view undetected (0.58% of the reflected
-// power dropped by links whose 4 rays were blocked; the ceiling beside the lamp lit through the
-// lamp).
+// rays. The coarse rules (the ones before) split partly visible links while B_s·F̂ > 2ε only and
+// never split or check others; on the Cornell box at 9,624 patches (docs/BENCHMARKS.md) their 4
+// rays a link left partial views undetected (0.73% of the reflected power dropped by links whose
+// 4 rays were all blocked; the ceiling beside the lamp lit through the lamp).
 constexpr double kPartialSplit = 20;
 constexpr double kHiddenSplit = 5;
 constexpr int kConfirmRays = 4;
@@ -370,7 +370,7 @@ struct LinkRefiner::Work {
     if (g.split_receiver) return split(r, s, true);
     const double transfer = double(bmax[s]) * g.fhat;  // B_s·F̂, without visibility
     const bool fine = self.options_.fine;
-    const double partial_split = fine ? kPartialSplit : 2.0;
+    const double partial_split = fine ? kPartialSplit : 0.5;  // coarse: B_s·F̂ > 2ε
     const double v = visibility(r, s, fine && transfer > epsilon / partial_split, locals.local());
     if (v < 0.0 && transfer > epsilon) return split(r, s);  // facing parts rare
     if (v < 0.0) return;
@@ -406,7 +406,7 @@ struct LinkRefiner::Work {
     const PairGeometry g = geometry(r, s);
     const double v = double(link.g) * g.denominator;
     const bool fine = self.options_.fine;
-    const bool matters = double(bmax[s]) * g.fhat > epsilon / (fine ? kPartialSplit : 2.0);
+    const bool matters = double(bmax[s]) * g.fhat > epsilon / (fine ? kPartialSplit : 0.5);
     bool partial = v < 0.999 && matters;
     if (fine && !g.cull && !g.must_split && g.error <= epsilon && !partial && matters)
       partial = visibility(r, s, true, locals.local()) < 1.0;  // all visible: confirmed?

@@ -129,7 +129,7 @@ TEST_CASE(
   // patches. Measured (docs/RADIOSITY.md, "Hierarchical radiosity"): relative RMS of patch
   // radiance against dense analytic 0.60% at ε = 3e-5 (the default, 676,358 links; N² = 12.2 M),
   // 2.27% at 3e-4 (102,695 links); with the coarse transfer (HierarchicalOptions::fine_up_to = 0:
-  // irradiance pushed down the hierarchy, the looser visibility rules) 1.31% at 3e-5. The bounds
+  // irradiance pushed down the hierarchy, the looser visibility rules) 1.37% at 3e-5. The bounds
   // checked are the measured values with a margin of about 1.5× (the solve is deterministic, but
   // the links' random visibility samples move with any change to the refinement): 0.9%, that
   // 10× smaller ε brings it closer, and that the fine transfer beats the coarse one.
