@@ -27,22 +27,30 @@ double max_channel(const glm::dvec3& v) {
 // The state of the gather / push–pull iterations on one hierarchy and one set of links.
 class LinkSolver {
  public:
-  LinkSolver(const std::vector<Patch>& patches, const Hierarchy& h, MemoryBudget* budget)
-      : patches_(patches), h_(h), budget_(budget) {
+  LinkSolver(const std::vector<Patch>& patches, const Hierarchy& h, bool fine, MemoryBudget* budget)
+      : patches_(patches), h_(h), fine_(fine), budget_(budget) {
     const std::size_t n = h.nodes.size();
     std::size_t clusters = 0;
     slot_.assign(n, kNoSlot);
     for (std::size_t i = 0; i < n; ++i)
       if (!h.nodes[i].planar) slot_[i] = static_cast<uint32_t>(clusters++);
-    charged_ = n * (3 * sizeof(glm::dvec3) + sizeof(float) + sizeof(uint32_t) + sizeof(uint64_t)) +
-               clusters * 2 * sizeof(Buckets);
+    charged_ = n * (2 * sizeof(glm::dvec3) + sizeof(float) + sizeof(uint32_t) + sizeof(uint64_t)) +
+               (fine ? n * sizeof(uint32_t) + clusters * sizeof(Buckets)
+                     : n * sizeof(glm::dvec3) + clusters * 2 * sizeof(Buckets));
     if (budget_) budget_->charge(charged_, "the hierarchical radiosity node state");
     radiance_.assign(n, glm::dvec3(0.0));
     irradiance_.assign(n, glm::dvec3(0.0));
-    from_parent_.assign(n, glm::dvec3(0.0));
     bmax_.assign(n, 0.f);
     sent_.assign(clusters, Buckets{});
-    received_.assign(clusters, Buckets{});
+    if (fine) {
+      parent_.assign(n, kNoSlot);
+      for (std::size_t i = 0; i < n; ++i)
+        if (!h.nodes[i].leaf())
+          parent_[h.nodes[i].left] = parent_[h.nodes[i].right] = static_cast<uint32_t>(i);
+    } else {
+      from_parent_.assign(n, glm::dvec3(0.0));
+      received_.assign(clusters, Buckets{});
+    }
     for (std::size_t p = 0; p < patches.size(); ++p) radiance_[h.leaf_of[p]] = patches[p].emission;
     pull();
   }
@@ -60,6 +68,21 @@ class LinkSolver {
   }
 
   const std::vector<float>& bmax() const { return bmax_; }
+
+  // gather_irradiance (hierarchical_solver.h): radiance of the visible parts at the leaves, one
+  // gather (and push); the patches' irradiance.
+  std::vector<glm::dvec3> irradiance_from(const std::vector<glm::dvec3>& radiance) {
+    for (std::size_t p = 0; p < patches_.size(); ++p) {
+      const double v = patches_[p].visible;
+      radiance_[h_.leaf_of[p]] = v > 0.0 ? radiance[p] / v : glm::dvec3(0.0);
+    }
+    pull();
+    gather();
+    if (!fine_) push();
+    std::vector<glm::dvec3> out(patches_.size());
+    for (std::size_t p = 0; p < patches_.size(); ++p) out[p] = irradiance_[h_.leaf_of[p]];
+    return out;
+  }
 
   // Iterates until the unshot power is at most options.tolerance of the emitted power.
   void iterate(const SolveOptions& options, Solution* out) {
@@ -93,7 +116,7 @@ class LinkSolver {
   // One Jacobi iteration; returns the unshot power per channel and sets the energy account.
   glm::dvec3 step(EnergyAccount* energy) {
     gather();
-    push();
+    if (!fine_) push();
     glm::dvec3 unshot(0.0), leaving(0.0), arrived(0.0), absorbed(0.0);
     for (std::size_t p = 0; p < patches_.size(); ++p) {
       const Patch& patch = patches_[p];
@@ -114,11 +137,47 @@ class LinkSolver {
   }
 
   void gather() {
+    if (fine_) {
+      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, patches_.size(), 256),
+                        [&](const tbb::blocked_range<std::size_t>& range) {
+                          for (std::size_t p = range.begin(); p != range.end(); ++p) {
+                            const uint32_t leaf = h_.leaf_of[p];
+                            irradiance_[leaf] = gather_at_patch(leaf);
+                          }
+                        });
+      return;
+    }
     const std::vector<HierarchyNode>& nodes = h_.nodes;
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nodes.size(), 1024),
                       [&](const tbb::blocked_range<std::size_t>& range) {
                         for (std::size_t r = range.begin(); r != range.end(); ++r) gather_at(r);
                       });
+  }
+
+  // Fine transfer: the irradiance of the patch of `leaf` from its exact links and from the point
+  // links of its leaf and of every ancestor (surface nodes and clusters), each evaluated at its
+  // centroid with its own normal — the kernel's variation over a receiving node and its patches'
+  // orientations resolved down to the patches instead of a constant (or six axis buckets) pushed
+  // down the hierarchy. Costs Σ over links of the receiver's patches per iteration.
+  glm::dvec3 gather_at_patch(uint32_t leaf) const {
+    const HierarchyNode& nl = h_.nodes[leaf];
+    if (!(nl.area > 0.f)) return glm::dvec3(0.0);
+    const glm::dvec3 x(nl.centroid), n(nl.normal);
+    glm::dvec3 power(0.0), sum(0.0), d;
+    for (uint64_t k = offsets_[leaf]; k < offsets_[leaf + 1]; ++k) {
+      const Link& link = (*links_)[k];
+      if (link.exact()) power += double(link.g) * radiance_[link.source_node()];
+    }
+    for (uint32_t a = leaf; a != kNoSlot; a = parent_[a]) {
+      const HierarchyNode& na = h_.nodes[a];
+      for (uint64_t k = offsets_[a]; k < offsets_[a + 1]; ++k) {
+        const Link& link = (*links_)[k];
+        if (link.exact()) continue;
+        const glm::dvec3 sent = sent_toward(link, na, x, &d);
+        sum += sent * std::max(0.0, glm::dot(n, d));
+      }
+    }
+    return power / double(nl.area) + sum;
   }
 
   // What a point link r ← s sends toward a receiving point at `x` (direction d to s's centroid):
@@ -245,6 +304,7 @@ class LinkSolver {
 
   const std::vector<Patch>& patches_;
   const Hierarchy& h_;
+  bool fine_;  // HierarchicalOptions::fine_up_to
   MemoryBudget* budget_;
   uint64_t charged_ = 0;
   const std::vector<Link>* links_ = nullptr;
@@ -253,7 +313,8 @@ class LinkSolver {
   std::vector<glm::dvec3> radiance_, irradiance_;
   // A planar node's point links evaluated at its children's centroids: their irradiance, each
   // child's own (push hands it down with the rest instead of the node's centroid value).
-  std::vector<glm::dvec3> from_parent_;
+  std::vector<glm::dvec3> from_parent_;  // coarse transfer only
+  std::vector<uint32_t> parent_;         // fine transfer only; kNoSlot for the root
   std::vector<float> bmax_;
   std::vector<Buckets> sent_, received_;
 };
@@ -290,8 +351,12 @@ HierarchicalSolution solve_hierarchical(const std::vector<Patch>& patches,
   if (!(emission_max > 0.0)) throw std::invalid_argument("hierarchical radiosity: nothing emits");
   st.epsilon_absolute = options.links.epsilon * emission_max;
 
-  LinkSolver solver(patches, out.hierarchy, b);
-  const LinkRefiner refiner(patches, out.hierarchy, caster, options.links, b);
+  const bool fine = patches.size() <= options.fine_up_to;
+  st.fine = fine;
+  LinkSolver solver(patches, out.hierarchy, fine, b);
+  LinkOptions link_options = options.links;
+  link_options.fine = fine;
+  const LinkRefiner refiner(patches, out.hierarchy, caster, link_options, b);
   for (int pass = 0; pass < options.max_passes; ++pass) {
     HierarchicalPass record;
     t = Clock::now();
@@ -330,14 +395,23 @@ HierarchicalSolution solve_hierarchical(const std::vector<Patch>& patches,
 }
 
 Solution solve_on_links(const std::vector<Patch>& patches, const Hierarchy& hierarchy,
-                        const std::vector<Link>& links, const SolveOptions& options,
+                        const std::vector<Link>& links, bool fine, const SolveOptions& options,
                         MemoryBudget* budget) {
-  LinkSolver solver(patches, hierarchy, budget);
+  LinkSolver solver(patches, hierarchy, fine, budget);
   solver.set_links(&links);
   Solution out;
   solver.iterate(options, &out);
   solver.radiance_out(&out);
   return out;
+}
+
+std::vector<glm::dvec3> gather_irradiance(const std::vector<Patch>& patches,
+                                          const Hierarchy& hierarchy,
+                                          const std::vector<Link>& links, bool fine,
+                                          const std::vector<glm::dvec3>& radiance) {
+  LinkSolver solver(patches, hierarchy, fine, nullptr);
+  solver.set_links(&links);
+  return solver.irradiance_from(radiance);
 }
 
 prt::EmitterResponses hierarchical_emitter_responses(const scene::Scene& scene,
@@ -348,7 +422,7 @@ prt::EmitterResponses hierarchical_emitter_responses(const scene::Scene& scene,
   return emitter_responses(
       scene, patches,
       [&](const std::vector<Patch>& lit) {
-        return solve_on_links(lit, solved.hierarchy, solved.links, options);
+        return solve_on_links(lit, solved.hierarchy, solved.links, solved.stats.fine, options);
       },
       reports);
 }

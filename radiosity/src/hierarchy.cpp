@@ -68,6 +68,7 @@ class Builder {
     node.area = float(area);
     node.normal = glm::vec3(p.normal);
     node.planar = true;
+    node.partly_hidden = p.visible > 0.0 && p.visible < 1.0;
     for (int k = 0; k < 3; ++k) {
       node.axis_area[2 * k] = float(area * std::max(0.0, p.normal[k]));
       node.axis_area[2 * k + 1] = float(area * std::max(0.0, -p.normal[k]));
@@ -93,6 +94,7 @@ class Builder {
         a.planar && b.planar && glm::dot(a.normal, b.normal) >= kSameNormal &&
         std::abs(glm::dot(a.normal, b.centroid - a.centroid)) <= 1e-5f * (a.radius + b.radius);
     node.normal = node.planar ? a.normal : glm::vec3(0.f);
+    node.partly_hidden = a.partly_hidden || b.partly_hidden;
     for (int k = 0; k < 6; ++k) node.axis_area[k] = a.axis_area[k] + b.axis_area[k];
   }
 

@@ -25,6 +25,16 @@ constexpr uint32_t kSpawnPatches = 20000;  // spawn a task for pairs holding mor
 constexpr int kExactLevels = 2;
 constexpr double kExactNear = 1.0;
 constexpr double kExactTolerance = 1e-4;
+// Fine visibility of point links (links.h, LinkOptions::fine): split a partly visible link while
+// B_s·F̂ > ε / kPartialSplit, one whose rays all were blocked while B_s·F̂ > ε / kHiddenSplit; above
+// ε / kPartialSplit, a first estimate of none or all visible is checked with kConfirmRays × the
+// rays. The coarse rules (the ones before) split partly visible links while B_s·F̂ > 2ε only and
+// never split or check others; on the Cornell box at 9,624 patches (docs/BENCHMARKS.md) their 4
+// rays a link left partial views undetected (0.73% of the reflected power dropped by links whose
+// 4 rays were all blocked; the ceiling beside the lamp lit through the lamp).
+constexpr double kPartialSplit = 20;
+constexpr double kHiddenSplit = 5;
+constexpr int kConfirmRays = 4;
 
 uint64_t mix(uint64_t x) {
   x += 0x9E3779B97F4A7C15ull;
@@ -80,6 +90,7 @@ struct Local {
 // What the oracle sees of a pair, before visibility.
 struct PairGeometry {
   bool cull = false, both_leaves = false, must_split = false;
+  bool split_receiver = false;  // a partly hidden receiver (hierarchy.h) whose light matters
   double distance = 0, denominator = 0;  // π r² + max(A_r, A_s)
   double fhat = 0;                       // F̂ (see links.h)
   double error = 0;                      // B_s · F̂ · min(1, (R_r + R_s)/r)
@@ -166,6 +177,8 @@ struct LinkRefiner::Work {
       return g.cull = true, g;
     }
     g.error = double(bmax[s]) * kernel_spread(nr, ns);
+    g.split_receiver = self.options_.fine && nr.partly_hidden && !nr.leaf() &&
+                       double(bmax[s]) * g.fhat > epsilon / kPartialSplit;
     return g;
   }
 
@@ -287,13 +300,16 @@ struct LinkRefiner::Work {
   }
 
   // The fraction of facing sample pairs of r and s that see each other; −1 if no sample pair
-  // faces.
-  double visibility(uint32_t r, uint32_t s, Local& local) {
+  // faces. With `confirm`, a first estimate of none or all visible is checked with
+  // kConfirmRays × as many pairs (links.h).
+  double visibility(uint32_t r, uint32_t s, bool confirm, Local& local) {
     const HierarchyNode &nr = node(r), &ns = node(s);
     Random random{mix(self.options_.seed ^ mix((uint64_t(r) << 32) | s))};
-    const int wanted = std::max(1, self.options_.visibility_rays);
-    int facing = 0, visible = 0;
+    const int first = std::max(1, self.options_.visibility_rays);
+    int wanted = first, facing = 0, visible = 0;
     for (int tries = 0; tries < 8 * wanted && facing < wanted; ++tries) {
+      if (confirm && facing == first && wanted == first && (visible == 0 || visible == facing))
+        wanted = kConfirmRays * first;
       const uint32_t a = receiver_sample(nr, random);
       const uint32_t b = source_sample(ns, random);
       const Patch &pa = self.patches_[a], &pb = self.patches_[b];
@@ -315,9 +331,9 @@ struct LinkRefiner::Work {
     return facing == 0 ? -1.0 : double(visible) / facing;
   }
 
-  void split(uint32_t r, uint32_t s) {
+  void split(uint32_t r, uint32_t s, bool receiver = false) {
     const HierarchyNode &nr = node(r), &ns = node(s);
-    const bool split_source = nr.leaf() || (!ns.leaf() && ns.radius > nr.radius);
+    const bool split_source = !receiver && (nr.leaf() || (!ns.leaf() && ns.radius > nr.radius));
     const auto run = [&](uint32_t a0, uint32_t b0, uint32_t a1, uint32_t b1) {
       if (nr.count + ns.count > kSpawnPatches) {
         tbb::task_group group;
@@ -351,10 +367,16 @@ struct LinkRefiner::Work {
       return;
     }
     if (g.must_split || g.error > epsilon) return split(r, s);
-    const double v = visibility(r, s, locals.local());
-    if (v < 0.0 && double(bmax[s]) * g.fhat > epsilon) return split(r, s);  // facing parts rare
-    if (v <= 0.0) return;
-    if (v < 1.0 && 0.5 * double(bmax[s]) * g.fhat > epsilon) return split(r, s);
+    if (g.split_receiver) return split(r, s, true);
+    const double transfer = double(bmax[s]) * g.fhat;  // B_s·F̂, without visibility
+    const bool fine = self.options_.fine;
+    const double partial_split = fine ? kPartialSplit : 0.5;  // coarse: B_s·F̂ > 2ε
+    const double v = visibility(r, s, fine && transfer > epsilon / partial_split, locals.local());
+    if (v < 0.0 && transfer > epsilon) return split(r, s);  // facing parts rare
+    if (v < 0.0) return;
+    if (v == 0.0 && fine && transfer > epsilon / kHiddenSplit) return split(r, s);
+    if (v == 0.0) return;
+    if (v < 1.0 && transfer > epsilon / partial_split) return split(r, s);
     emit({r, s, static_cast<float>(v / g.denominator)});
   }
 
@@ -383,10 +405,15 @@ struct LinkRefiner::Work {
     const uint32_t r = link.receiver, s = link.source_node();
     const PairGeometry g = geometry(r, s);
     const double v = double(link.g) * g.denominator;
-    const bool partial = v < 0.999 && 0.5 * double(bmax[s]) * g.fhat > epsilon;
-    if (!g.cull && !g.must_split && g.error <= epsilon && !partial) return emit(link);
+    const bool fine = self.options_.fine;
+    const bool matters = double(bmax[s]) * g.fhat > epsilon / (fine ? kPartialSplit : 0.5);
+    bool partial = v < 0.999 && matters;
+    if (fine && !g.cull && !g.must_split && g.error <= epsilon && !partial && matters)
+      partial = visibility(r, s, true, locals.local()) < 1.0;  // all visible: confirmed?
+    if (!g.cull && !g.must_split && g.error <= epsilon && !partial && !g.split_receiver)
+      return emit(link);
     ++locals.local().refined;
-    split(r, s);
+    split(r, s, g.split_receiver && !g.must_split && g.error <= epsilon);
   }
 
   std::vector<Link> collect(LinkStats* stats) {

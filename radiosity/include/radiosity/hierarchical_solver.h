@@ -11,18 +11,20 @@
 // every link against the radiosity just solved (the "BF" refinement: reflectors now carry light)
 // and solves again from the current solution, until a pass splits no link or `max_passes`.
 //
-// One iteration (Jacobi): every node gathers over its links (planar nodes into irradiance H,
-// clusters into six axis buckets of power; a planar node that has children evaluates its point
-// links at their two centroids instead of its own, a piecewise-constant rather than constant
-// irradiance over it); push: a planar node hands its H (and each child its own part) down, a
-// cluster hands each bucket to its children in proportion to their axis areas (a planar child
-// turns its share into irradiance); at the patches L = E + ρ·H; pull: a planar node's radiance is
-// the area-weighted mean of its children's, a cluster's six radiance-weighted axis areas
-// Q_{k,±} = Σ_i L_i A_{i,k,±} are summed (a cluster sends Σ_k |d_k| Q_{k,sign d_k} toward d).
-// The unshot power of an iteration is Σ_i A_i Σ_c |L_i,c − L'_i,c| over the patches, the change it
-// made (the residual of the previous iterate, as radiosity/solver.h defines it).
-// Energy account (per channel): emitted Σ A E; absorbed Σ A (1 − ρ) H; escaped Σ A L − Σ A H
-// (what left the patches and arrived nowhere, measured by the links: negative if the
+// One iteration (Jacobi), fine transfer (HierarchicalOptions::fine_up_to): every patch gathers its
+// exact links and the point links of its leaf and all its ancestors, each evaluated at the
+// patch's centroid toward its own normal; no push. Otherwise: every node gathers over its links
+// (planar nodes into irradiance H, clusters into six axis buckets of power; a planar node that has
+// children evaluates its point links at their two centroids instead of its own, a
+// piecewise-constant rather than constant irradiance over it); push: a planar node hands its H (and
+// each child its own part) down, a cluster hands each bucket to its children in proportion to their
+// axis areas (a planar child turns its share into irradiance); at the patches L = E + ρ·H; pull: a
+// planar node's radiance is the area-weighted mean of its children's, a cluster's six
+// radiance-weighted axis areas Q_{k,±} = Σ_i L_i A_{i,k,±} are summed (a cluster sends Σ_k |d_k|
+// Q_{k,sign d_k} toward d). The unshot power of an iteration is Σ_i A_i Σ_c |L_i,c − L'_i,c| over
+// the patches, the change it made (the residual of the previous iterate, as radiosity/solver.h
+// defines it). Energy account (per channel): emitted Σ A E; absorbed Σ A (1 − ρ) H; escaped Σ A L −
+// Σ A H (what left the patches and arrived nowhere, measured by the links: negative if the
 // approximations send more than a patch has); unshot as above; the balance holds exactly.
 // Memory: the hierarchy, the per-node state and the links are charged to `budget`.
 // Results do not depend on the thread count. Frame and units: the Scene's.
@@ -45,7 +47,13 @@
 namespace prt::radiosity {
 
 struct HierarchicalOptions {
-  LinkOptions links;
+  LinkOptions links;  // `fine` is set from fine_up_to
+  // Fine transfer for at most this many patches (LinkOptions::fine, and the gather below): every
+  // patch gathers its ancestors' point links at its own centroid and normal instead of a push
+  // down the hierarchy. Its cost per iteration is the sum over links of their receivers' patches
+  // and its links and rays grow with it: measured 3.41% → 1.41% against dense on the Cornell box
+  // at 9,624 patches, but at 300k level patches 12× the time (docs/BENCHMARKS.md).
+  std::size_t fine_up_to = 100000;
   int max_passes = 4;  // refinement passes (each followed by a solve), at least 1
   SolveOptions solve;  // tolerance and max_iterations; the solver kind is ignored
 };
@@ -57,6 +65,7 @@ struct HierarchicalPass {
 
 struct HierarchicalStats {
   std::size_t patches = 0, nodes = 0, planar_nodes = 0, clusters = 0;
+  bool fine = false;  // fine transfer (HierarchicalOptions::fine_up_to)
   std::vector<HierarchicalPass> passes;
   std::size_t links = 0, exact_links = 0, rays = 0;  // links of the last pass; rays of all
   double hierarchy_seconds = 0, link_seconds = 0, solve_seconds = 0;
@@ -81,10 +90,18 @@ HierarchicalSolution solve_hierarchical(const std::vector<Patch>& patches,
                                         MemoryBudget* budget = nullptr);
 
 // Gather / push–pull iterations on given links (any emission and albedo of the same patches),
-// from L = E.
+// from L = E; `fine` as the solve that made the links (HierarchicalStats::fine).
 Solution solve_on_links(const std::vector<Patch>& patches, const Hierarchy& hierarchy,
-                        const std::vector<Link>& links, const SolveOptions& options,
+                        const std::vector<Link>& links, bool fine, const SolveOptions& options,
                         MemoryBudget* budget = nullptr);
+
+// The irradiance H at every patch that one gather and push over `links` delivers when the patches
+// have the area-mean radiance `radiance` (no emission added, no iteration): the transport the
+// links stand for, for comparing them with a dense matrix link by link (any subset of the links).
+std::vector<glm::dvec3> gather_irradiance(const std::vector<Patch>& patches,
+                                          const Hierarchy& hierarchy,
+                                          const std::vector<Link>& links, bool fine,
+                                          const std::vector<glm::dvec3>& radiance);
 
 // One solve per emitter of `scene` on the same hierarchy and links (radiosity/emitter_solve.h's
 // responses: unit white emission on that emitter, every other patch dark).

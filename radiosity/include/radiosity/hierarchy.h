@@ -16,6 +16,10 @@
 // A·Patch::visible (radiosity/hidden_patches.h; 1 unless marked): the floor under a block takes
 // no part in the exchange, and a patch's radiance in the solve is that of its visible part.
 //
+// A node is *partly hidden* when one of its patches is (0 < Patch::visible < 1: the patch lies
+// partly in a contact or under an occluder that nearly touches it); the links refine their
+// receivers down to such patches (radiosity/links.h).
+//
 // Node indices: the root is 0, a node's children come after it (left = node + 1, right = node +
 // 2·(leaves of left) ), so a forward sweep visits parents first. Built in parallel (TBB),
 // deterministic. Frame and units: the Scene's.
@@ -38,6 +42,7 @@ struct HierarchyNode {
   float area = 0.f;       // visible area (see above)
   glm::vec3 normal{0.f};  // planar nodes: the common unit normal; clusters: 0
   bool planar = false;
+  bool partly_hidden = false;        // holds a patch with 0 < Patch::visible < 1
   uint32_t first = 0, count = 0;     // its patches: order[first, first + count)
   uint32_t left = 0, right = 0;      // children; 0 for a leaf
   std::array<float, 6> axis_area{};  // A_{x,+}, A_{x,−}, A_{y,+}, … (see above)
