@@ -266,6 +266,10 @@ void link_report(const std::vector<Patch>& patches, const std::vector<std::strin
 
 int main(int argc, char** argv) {
   const Args a = parse(argc, argv);
+  if (!std::filesystem::exists(a.scene)) {
+    std::printf("SKIP: %s is missing (../shared/data beside the project)\n", a.scene.c_str());
+    return 77;
+  }
   const scene::Scene s = cornell(a);
   const scene::RayCaster caster(s);
   std::vector<Patch> patches = make_patches(s);
