@@ -34,10 +34,6 @@ Run run(const std::string& command) {
   return r;
 }
 
-std::string read_all(const fs::path& p) {
-  return prt::test::cli::slurp(p);
-}
-
 std::string prt_cli(const std::string& interval = "0") {
   return "PRT_PROGRESS_INTERVAL=" + interval + " " + std::string(PRT_CLI_PATH);
 }

@@ -180,7 +180,8 @@ TEST_CASE("hierarchical: links grow far slower than the patches squared",
     links[k] = s.stats.links;
     count[k] = patches.size();
   }
-  const double patch_ratio = double(count[1]) / count[0], link_ratio = double(links[1]) / links[0];
+  const double patch_ratio = double(count[1]) / double(count[0]),
+               link_ratio = double(links[1]) / double(links[0]);
   INFO("patches " << count[0] << " -> " << count[1] << ", links " << links[0] << " -> "
                   << links[1]);
   CHECK(patch_ratio > 3.0);
