@@ -12,9 +12,13 @@
 #include "prt/subsurface/dipole.h"
 #include "run_record.h"
 #include "scene/material_assignment.h"
+#include "subsurface_gltf.h"
 
 namespace prt::cli {
 namespace {
+
+// The --subsurface value that takes each material's coefficients from its glTF extensions.
+constexpr const char* kFromGltf = "gltf";
 
 subsurface::Rgb parse_rgb(const std::string& option, const std::string& text) {
   std::vector<double> v = parse_number_list(option, text);
@@ -63,6 +67,28 @@ subsurface::DipoleCoefficients material_of(const SubsurfaceArguments& a, const s
   return c;
 }
 
+// The primitives among `primitives` whose glTF material has translucency extensions, and their
+// coefficients (one material each); refuses a scene where none has them.
+void assign_from_gltf(const scene::Scene& scene, const std::vector<std::size_t>& primitives,
+                      const SubsurfaceArguments& a, const std::string& text,
+                      bake::SubsurfaceBakeOptions* ss) {
+  const double mm_per_unit = a.scale ? *a.scale : bake::default_mm_per_unit(scene);
+  bool any = false;
+  for (std::size_t p : primitives) {
+    const scene::ScenePrimitive& prim = scene.primitives[p];
+    if (!prim.translucency) continue;
+    any = true;
+    ss->materials.push_back(gltf_dipole_coefficients(scene.source_path, prim, mm_per_unit, a.eta));
+    const int32_t index = static_cast<int32_t>(ss->materials.size() - 1);
+    for (uint32_t v = prim.first_vertex; v < prim.first_vertex + prim.vertex_count; ++v)
+      ss->vertex_material[v] = index;
+  }
+  if (!any)
+    throw CommandError(scene.source_path + ": --subsurface " + text +
+                       ": no material has KHR_materials_volume or "
+                       "KHR_materials_diffuse_transmission");
+}
+
 // "VALUE" or "MATERIAL=VALUE": the name (empty: every primitive) and the value.
 std::pair<std::string, std::string> split_assignment(const std::string& text) {
   const std::size_t eq = text.rfind('=');
@@ -79,10 +105,12 @@ std::pair<std::string, std::string> split_assignment(const std::string& text) {
 }  // namespace
 
 void add_subsurface_options(CLI::App* cmd, SubsurfaceArguments* a) {
-  cmd->add_option("--subsurface", a->subsurface,
-                  "Translucent: a preset of Jensen et al. 2001 (marble, skin1, skin2, wholemilk, "
-                  "skimmilk, ketchup, apple, chicken1, chicken2, cream, potato) or custom; "
-                  "MATERIAL=VALUE for one material (repeatable)")
+  cmd->add_option(
+         "--subsurface", a->subsurface,
+         "Translucent: a preset of Jensen et al. 2001 (marble, skin1, skin2, wholemilk, "
+         "skimmilk, ketchup, apple, chicken1, chicken2, cream, potato), custom, or gltf (the "
+         "materials with KHR_materials_volume/_diffuse_transmission); "
+         "MATERIAL=VALUE for one material (repeatable)")
       ->allow_extra_args(false);
   cmd->add_option("--sigma-a", a->sigma_a, "--subsurface custom: absorption r,g,b in 1/mm");
   cmd->add_option("--sigma-s", a->sigma_s, "--subsurface custom: reduced scattering r,g,b in 1/mm");
@@ -122,6 +150,7 @@ void check_subsurface_usage(const SubsurfaceArguments& a, const CLI::App& cmd,
       custom = true;
       continue;
     }
+    if (value == kFromGltf) continue;
     if (!subsurface::find_subsurface_preset(value).ok())
       throw UsageError("--subsurface " + text + ": " +
                        subsurface::find_subsurface_preset(value).status().message());
@@ -163,8 +192,6 @@ void run_subsurface_bake(const scene::Scene& scene, const std::string& output,
   ss.vertex_material.assign(scene.positions.size(), -1);
   for (const std::string& text : a.subsurface) {
     const auto [name, value] = split_assignment(text);
-    ss.materials.push_back(material_of(a, value, text));
-    const int32_t index = static_cast<int32_t>(ss.materials.size() - 1);
     std::vector<std::size_t> primitives;
     if (name.empty()) {
       for (std::size_t p = 0; p < scene.primitives.size(); ++p) primitives.push_back(p);
@@ -180,6 +207,12 @@ void run_subsurface_bake(const scene::Scene& scene, const std::string& output,
         throw UsageError(e.what());
       }
     }
+    if (value == kFromGltf) {
+      assign_from_gltf(scene, primitives, a, text, &ss);
+      continue;
+    }
+    ss.materials.push_back(material_of(a, value, text));
+    const int32_t index = static_cast<int32_t>(ss.materials.size() - 1);
     for (std::size_t p : primitives) {
       const scene::ScenePrimitive& prim = scene.primitives[p];
       for (uint32_t v = prim.first_vertex; v < prim.first_vertex + prim.vertex_count; ++v)

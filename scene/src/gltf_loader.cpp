@@ -2,6 +2,7 @@
 #include "gltf_loader.h"
 #include "gltf_brdf_textures.h"
 #include "gltf_emission.h"
+#include "gltf_translucency.h"
 #include "gltf_extensions.h"
 #include "gltf_materials.h"
 #include "gltf_textures.h"
@@ -434,6 +435,7 @@ class GltfReader {
     const tinygltf::Material& m = model_.materials[static_cast<std::size_t>(primitive.material)];
     out.material = m.name;
     out.emission = gltf_emission(m);
+    out.translucency = gltf_translucency(m);
     const GltfBrdf read = gltf_brdf(path_, m, brdf_base_color(out));
     out.brdf = read.brdf;
     out.anisotropy_rotation = read.anisotropy_rotation;

@@ -32,6 +32,19 @@ namespace prt::scene {
 // The albedo (grey) of a primitive whose material gives no colour the loaders read.
 inline constexpr float kDefaultAlbedo = 0.8f;
 
+// A glTF material's KHR_materials_volume and KHR_materials_diffuse_transmission as written
+// (scene units; a value that is not a number reads as NaN), with KHR_materials_ior's ior.
+// `prt bake --subsurface gltf` derives dipole coefficients from them (docs/SUBSURFACE.md).
+struct GltfTranslucency {
+  bool volume = false, diffuse_transmission = false;
+  double attenuation_distance = 0;  // 0: absent (glTF's default is +infinity)
+  glm::dvec3 attenuation_color{1.0};
+  double thickness = 0;
+  double diffuse_transmission_factor = 0;
+  glm::dvec3 diffuse_transmission_color{1.0};
+  double ior = 1.5;  // glTF's default when KHR_materials_ior is absent
+};
+
 struct ScenePrimitive {
   std::string name;           // "mesh/primitive" or OBJ shape name
   uint32_t first_vertex = 0;  // into Scene::positions
@@ -72,6 +85,8 @@ struct ScenePrimitive {
   // anisotropyTexture); "" when none (the first problem when several). The loader uses the factors
   // and prints nothing (describe_materials lists it); a glossy bake refuses the scene with it.
   std::string brdf_texture_problem;
+  // The material's translucency extensions (glTF); absent when it has neither.
+  std::optional<GltfTranslucency> translucency;
 };
 
 struct SceneCamera {
