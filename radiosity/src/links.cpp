@@ -149,7 +149,6 @@ struct LinkRefiner::Work {
   }
 
   PairGeometry geometry(uint32_t r, uint32_t s) const {
-    const double epsilon = this->epsilon;
     PairGeometry g;
     const HierarchyNode &nr = node(r), &ns = node(s);
     if (!(nr.area > 0.f) || !(ns.area > 0.f)) return g.cull = true, g;
