@@ -290,6 +290,8 @@ void check_usage(BakeArguments& args, const CLI::App& cmd) {
     if (args.glossy) throw UsageError("--shard does not apply to --glossy yet (docs/FARM.md)");
     if (args.subsurface.given())
       throw UsageError("--shard does not apply to --subsurface yet (docs/FARM.md)");
+    if (args.ao_distance)  // a part's settings do not carry the obscurance distance and falloff
+      throw UsageError("--shard does not apply to --ao-distance yet (docs/FARM.md)");
     args.shard_spec = resolve_shard(args.shard, process_environment());
   }
   if (args.glossy) {
