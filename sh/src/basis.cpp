@@ -40,246 +40,128 @@ namespace {
 // and rounded to 17 significant digits. The tests check them against the recurrence.
 
 template <typename T>
-inline void evaluate_order1(T x, T y, T z, T* out) noexcept {
-  (void)x;
-  (void)y;
-  (void)z;
+inline void band0(T /*z*/, T /*z2*/, const T* /*c*/, const T* /*s*/, T* out) noexcept {
   out[0] = T(kY00);
 }
 
 template <typename T>
-inline void evaluate_order2(T x, T y, T z, T* out) noexcept {
-  const T c1 = x, s1 = y;
-  out[0] = T(kY00);
+inline void band1(T z, T /*z2*/, const T* c, const T* s, T* out) noexcept {
   out[2] = T(0.48860251190291992) * z;
   {
     const T q = T(0.48860251190291992);
-    out[3] = q * c1;
-    out[1] = q * s1;
+    out[3] = q * c[1];
+    out[1] = q * s[1];
   }
 }
 
 template <typename T>
-inline void evaluate_order3(T x, T y, T z, T* out) noexcept {
-  const T z2 = z * z;
-  const T c1 = x, s1 = y;
-  const T c2 = x * c1 - y * s1, s2 = x * s1 + y * c1;
-  out[0] = T(kY00);
-  out[2] = T(0.48860251190291992) * z;
-  {
-    const T q = T(0.48860251190291992);
-    out[3] = q * c1;
-    out[1] = q * s1;
-  }
+inline void band2(T z, T z2, const T* c, const T* s, T* out) noexcept {
   out[6] = T(0.94617469575756002) * z2 + T(-0.31539156525252001);
   {
     const T q = T(1.0925484305920791) * z;
-    out[7] = q * c1;
-    out[5] = q * s1;
+    out[7] = q * c[1];
+    out[5] = q * s[1];
   }
   {
     const T q = T(0.54627421529603954);
-    out[8] = q * c2;
-    out[4] = q * s2;
+    out[8] = q * c[2];
+    out[4] = q * s[2];
   }
 }
 
 template <typename T>
-inline void evaluate_order4(T x, T y, T z, T* out) noexcept {
-  const T z2 = z * z;
-  const T c1 = x, s1 = y;
-  const T c2 = x * c1 - y * s1, s2 = x * s1 + y * c1;
-  const T c3 = x * c2 - y * s2, s3 = x * s2 + y * c2;
-  out[0] = T(kY00);
-  out[2] = T(0.48860251190291992) * z;
-  {
-    const T q = T(0.48860251190291992);
-    out[3] = q * c1;
-    out[1] = q * s1;
-  }
-  out[6] = T(0.94617469575756002) * z2 + T(-0.31539156525252001);
-  {
-    const T q = T(1.0925484305920791) * z;
-    out[7] = q * c1;
-    out[5] = q * s1;
-  }
-  {
-    const T q = T(0.54627421529603954);
-    out[8] = q * c2;
-    out[4] = q * s2;
-  }
+inline void band3(T z, T z2, const T* c, const T* s, T* out) noexcept {
   out[12] = z * (T(1.865881662950577) * z2 + T(-1.1195289977703462));
   {
     const T q = T(2.2852289973223287) * z2 + T(-0.45704579946446574);
-    out[13] = q * c1;
-    out[11] = q * s1;
+    out[13] = q * c[1];
+    out[11] = q * s[1];
   }
   {
     const T q = T(1.445305721320277) * z;
-    out[14] = q * c2;
-    out[10] = q * s2;
+    out[14] = q * c[2];
+    out[10] = q * s[2];
   }
   {
     const T q = T(0.59004358992664351);
-    out[15] = q * c3;
-    out[9] = q * s3;
+    out[15] = q * c[3];
+    out[9] = q * s[3];
   }
 }
 
 template <typename T>
-inline void evaluate_order5(T x, T y, T z, T* out) noexcept {
-  const T z2 = z * z;
-  const T c1 = x, s1 = y;
-  const T c2 = x * c1 - y * s1, s2 = x * s1 + y * c1;
-  const T c3 = x * c2 - y * s2, s3 = x * s2 + y * c2;
-  const T c4 = x * c3 - y * s3, s4 = x * s3 + y * c3;
-  out[0] = T(kY00);
-  out[2] = T(0.48860251190291992) * z;
-  {
-    const T q = T(0.48860251190291992);
-    out[3] = q * c1;
-    out[1] = q * s1;
-  }
-  out[6] = T(0.94617469575756002) * z2 + T(-0.31539156525252001);
-  {
-    const T q = T(1.0925484305920791) * z;
-    out[7] = q * c1;
-    out[5] = q * s1;
-  }
-  {
-    const T q = T(0.54627421529603954);
-    out[8] = q * c2;
-    out[4] = q * s2;
-  }
-  out[12] = z * (T(1.865881662950577) * z2 + T(-1.1195289977703462));
-  {
-    const T q = T(2.2852289973223287) * z2 + T(-0.45704579946446574);
-    out[13] = q * c1;
-    out[11] = q * s1;
-  }
-  {
-    const T q = T(1.445305721320277) * z;
-    out[14] = q * c2;
-    out[10] = q * s2;
-  }
-  {
-    const T q = T(0.59004358992664351);
-    out[15] = q * c3;
-    out[9] = q * s3;
-  }
+inline void band4(T z, T z2, const T* c, const T* s, T* out) noexcept {
   out[20] = (T(3.7024941420321506) * z2 + T(-3.1735664074561291)) * z2 + T(0.31735664074561291);
   {
     const T q = z * (T(4.6833258049010242) * z2 + T(-2.0071396306718675));
-    out[21] = q * c1;
-    out[19] = q * s1;
+    out[21] = q * c[1];
+    out[19] = q * s[1];
   }
   {
     const T q = T(3.3116114351514601) * z2 + T(-0.47308734787878001);
-    out[22] = q * c2;
-    out[18] = q * s2;
+    out[22] = q * c[2];
+    out[18] = q * s[2];
   }
   {
     const T q = T(1.7701307697799305) * z;
-    out[23] = q * c3;
-    out[17] = q * s3;
+    out[23] = q * c[3];
+    out[17] = q * s[3];
   }
   {
     const T q = T(0.62583573544917613);
-    out[24] = q * c4;
-    out[16] = q * s4;
+    out[24] = q * c[4];
+    out[16] = q * s[4];
   }
 }
 
 template <typename T>
-inline void evaluate_order6(T x, T y, T z, T* out) noexcept {
-  const T z2 = z * z;
-  const T c1 = x, s1 = y;
-  const T c2 = x * c1 - y * s1, s2 = x * s1 + y * c1;
-  const T c3 = x * c2 - y * s2, s3 = x * s2 + y * c2;
-  const T c4 = x * c3 - y * s3, s4 = x * s3 + y * c3;
-  const T c5 = x * c4 - y * s4, s5 = x * s4 + y * c4;
-  out[0] = T(kY00);
-  out[2] = T(0.48860251190291992) * z;
-  {
-    const T q = T(0.48860251190291992);
-    out[3] = q * c1;
-    out[1] = q * s1;
-  }
-  out[6] = T(0.94617469575756002) * z2 + T(-0.31539156525252001);
-  {
-    const T q = T(1.0925484305920791) * z;
-    out[7] = q * c1;
-    out[5] = q * s1;
-  }
-  {
-    const T q = T(0.54627421529603954);
-    out[8] = q * c2;
-    out[4] = q * s2;
-  }
-  out[12] = z * (T(1.865881662950577) * z2 + T(-1.1195289977703462));
-  {
-    const T q = T(2.2852289973223287) * z2 + T(-0.45704579946446574);
-    out[13] = q * c1;
-    out[11] = q * s1;
-  }
-  {
-    const T q = T(1.445305721320277) * z;
-    out[14] = q * c2;
-    out[10] = q * s2;
-  }
-  {
-    const T q = T(0.59004358992664351);
-    out[15] = q * c3;
-    out[9] = q * s3;
-  }
-  out[20] = (T(3.7024941420321506) * z2 + T(-3.1735664074561291)) * z2 + T(0.31735664074561291);
-  {
-    const T q = z * (T(4.6833258049010242) * z2 + T(-2.0071396306718675));
-    out[21] = q * c1;
-    out[19] = q * s1;
-  }
-  {
-    const T q = T(3.3116114351514601) * z2 + T(-0.47308734787878001);
-    out[22] = q * c2;
-    out[18] = q * s2;
-  }
-  {
-    const T q = T(1.7701307697799305) * z;
-    out[23] = q * c3;
-    out[17] = q * s3;
-  }
-  {
-    const T q = T(0.62583573544917613);
-    out[24] = q * c4;
-    out[16] = q * s4;
-  }
+inline void band5(T z, T z2, const T* c, const T* s, T* out) noexcept {
   out[30] =
       z * ((T(7.3678703145656866) * z2 + T(-8.1865225717396518)) * z2 + T(1.7542548368013539));
   {
     const T q = (T(9.5118796751096353) * z2 + T(-6.3412531167397569)) * z2 + T(0.45294665119569692);
-    out[31] = q * c1;
-    out[29] = q * s1;
+    out[31] = q * c[1];
+    out[29] = q * s[1];
   }
   {
     const T q = z * (T(7.1903051774599856) * z2 + T(-2.3967683924866619));
-    out[32] = q * c2;
-    out[28] = q * s2;
+    out[32] = q * c[2];
+    out[28] = q * s[2];
   }
   {
     const T q = T(4.4031446949172535) * z2 + T(-0.48923829943525039);
-    out[33] = q * c3;
-    out[27] = q * s3;
+    out[33] = q * c[3];
+    out[27] = q * s[3];
   }
   {
     const T q = T(2.0756623148810413) * z;
-    out[34] = q * c4;
-    out[26] = q * s4;
+    out[34] = q * c[4];
+    out[26] = q * s[4];
   }
   {
     const T q = T(0.6563820568401701);
-    out[35] = q * c5;
-    out[25] = q * s5;
+    out[35] = q * c[5];
+    out[25] = q * s[5];
   }
+}
+
+// Fills bands 0 … N−1 (N² outputs). Band l reads z, z² and C_m, S_m for m ≤ l, with
+// C_m + i S_m = (x + i y)^m formed by repeated complex products.
+template <int N, typename T>
+inline void evaluate_fixed(T x, T y, T z, T* out) noexcept {
+  const T z2 = z * z;
+  T c[N + 1] = {T(1), x};
+  T s[N + 1] = {T(0), y};
+  for (int m = 2; m < N; ++m) {
+    c[m] = x * c[m - 1] - y * s[m - 1];
+    s[m] = x * s[m - 1] + y * c[m - 1];
+  }
+  band0(z, z2, c, s, out);
+  if constexpr (N > 1) band1(z, z2, c, s, out);
+  if constexpr (N > 2) band2(z, z2, c, s, out);
+  if constexpr (N > 3) band3(z, z2, c, s, out);
+  if constexpr (N > 4) band4(z, z2, c, s, out);
+  if constexpr (N > 5) band5(z, z2, c, s, out);
 }
 
 // ---- general recurrence ------------------------------------------------------------------
@@ -482,22 +364,22 @@ template <typename T>
 void evaluate_impl(int order, T x, T y, T z, T* out) {
   switch (order) {
     case 1:
-      evaluate_order1(x, y, z, out);
+      evaluate_fixed<1>(x, y, z, out);
       return;
     case 2:
-      evaluate_order2(x, y, z, out);
+      evaluate_fixed<2>(x, y, z, out);
       return;
     case 3:
-      evaluate_order3(x, y, z, out);
+      evaluate_fixed<3>(x, y, z, out);
       return;
     case 4:
-      evaluate_order4(x, y, z, out);
+      evaluate_fixed<4>(x, y, z, out);
       return;
     case 5:
-      evaluate_order5(x, y, z, out);
+      evaluate_fixed<5>(x, y, z, out);
       return;
     case 6:
-      evaluate_order6(x, y, z, out);
+      evaluate_fixed<6>(x, y, z, out);
       return;
     default:
       evaluate_recurrence_impl(order, x, y, z, out);
