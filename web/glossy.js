@@ -1,0 +1,424 @@
+// web/glossy.js — view-dependent shading of prt's GLOSSY transfer in the `prt view` page: the
+// arithmetic of prt::GlossyRelighter (prt/glossy/relighter.h; docs/GLOSSY.md, "Shading") on the
+// GPU, from the payloads of cli/view/glossy_payload.h (docs/VIEWER.md, "Glossy files").
+//
+// Per vertex v with frame rows (t, b, n) and material q:
+//   ωo = (t·d, b·d, n·d), d = eye − p (0 radiance when n·d ≤ 0: the BRDFs are one-sided);
+//   y_i = Σ_j M_v,c',i,j L_c,j         (.prtg: the vertex's matrix, c' = c or 0 for grey M)
+//   y_i = P_q,0,i + Σ_k w_v,k P_q,k,i  (.prtq: P_q,k = U_q,k · L, computed per frame in
+//                                       JavaScript for every cluster: clusterProducts())
+//   exit_c = Σ_i b_c,i(ωo) y_c,i,       b from the material's sampled nodes (viewVector()).
+// b: a "table" material (isotropic) holds b(θo, 0) at T elevations, θo = t/(T−1)·90°,
+// interpolated linearly in θo and rotated about +z by φo (per band the pairs (m, −m) mix by
+// cos mφo, sin mφo) — what prt::BrdfProjection's isotropic table does; a "grid" material
+// (anisotropic) holds b at T elevations × P azimuths, read bilinearly (periodic in φo).
+// Lighting: channel-major radiance SH (prt-relight.js prepareLighting, windowed then rotated),
+// given to the material through prt-relight.js setLighting (its uLight uniform); exposure and
+// tone map as prt-relight.js's. The eye is the camera's position at each draw.
+//
+//   parseGlossy(manifest, transferBuffer, glossyBuffer)   typed views of the payloads
+//   viewVector(glossy, material, wo)     b(ωo) at local ωo: Float64Array(3·n²), channel-major
+//   localView(glossy, v, position, eye)  ωo of vertex v, normalised (null below the horizon)
+//   clusterProducts(glossy, lighting)    the per-frame CPCA products, RGBA float32 texels
+//   shadeGlossyVertex(glossy, v, position, lighting, eye)   one vertex on the CPU (tests)
+//   createGlossyMaterial(manifest, transferBuffer, glossyBuffer)   the RawShaderMaterial
+import * as THREE from 'three';
+import { MAX_ORDER, TONE_MAP_GLSL } from './prt-relight.js';
+
+export const MAX_MATERIALS = 64;
+const HALF_PI = Math.PI / 2;
+
+export function parseGlossy(manifest, transferBuffer, glossyBuffer) {
+  const g = manifest.glossy;
+  const order = manifest.order, n2 = order * order;
+  const vertex = g.vertex, brdf = g.brdf;
+  const out = {
+    form: g.form,
+    order,
+    n2,
+    channels: manifest.channels,
+    vertex: { ...vertex, data: new Float32Array(glossyBuffer, vertex.offset, vertex.width * vertex.height * 4) },
+    brdf: { ...brdf, data: new Float32Array(glossyBuffer, brdf.offset, brdf.width * brdf.height * 4) },
+    materials: brdf.materials,
+  };
+  if (g.form === 'cpca') {
+    const t = manifest.transfer;
+    out.cpca = { clusters: t.clusters, vectors: t.vectors, dimension: t.dimension, data: new Float32Array(transferBuffer) };
+  } else {
+    out.matrices = { ...manifest.transfer, data: new Uint16Array(transferBuffer) };
+  }
+  return out;
+}
+
+// The node's coefficient i (RGB) in glossy.brdf: texel node·n² + i.
+function node(glossy, index, i, out, weight) {
+  const d = glossy.brdf.data, at = 4 * (index * glossy.n2 + i);
+  out[0] += weight * d[at];
+  out[1] += weight * d[at + 1];
+  out[2] += weight * d[at + 2];
+}
+
+export function viewVector(glossy, materialIndex, wo) {
+  const n2 = glossy.n2, order = glossy.order;
+  const m = glossy.materials[materialIndex];
+  const b = new Float64Array(3 * n2);
+  const [x, y, z] = wo;
+  const T = m.elevations;
+  const position = (Math.acos(Math.min(z, 1)) / HALF_PI) * (T - 1);
+  const t0 = Math.min(Math.floor(position), T - 2);
+  const a = position - t0;
+  const rgb = [0, 0, 0];
+  if (m.kind === 'table') {
+    for (let i = 0; i < n2; ++i) {
+      rgb.fill(0);
+      node(glossy, m.first_node + t0, i, rgb, 1 - a);
+      node(glossy, m.first_node + t0 + 1, i, rgb, a);
+      for (let c = 0; c < 3; ++c) b[c * n2 + i] = rgb[c];
+    }
+    const r = Math.hypot(x, y);
+    if (r > 0) {
+      const c1 = x / r, s1 = y / r;
+      let cm = 1, sm = 0;
+      for (let mm = 1; mm < order; ++mm) {
+        [cm, sm] = [cm * c1 - sm * s1, sm * c1 + cm * s1];
+        for (let l = mm; l < order; ++l)
+          for (let c = 0; c < 3; ++c) {
+            const ip = c * n2 + l * (l + 1) + mm, im = c * n2 + l * (l + 1) - mm;
+            const p = b[ip], q = b[im];
+            b[ip] = p * cm - q * sm;
+            b[im] = p * sm + q * cm;
+          }
+      }
+    }
+    return b;
+  }
+  const P = m.azimuths;
+  let phi = Math.atan2(y, x);
+  if (phi < 0) phi += 2 * Math.PI;
+  const u = (phi / (2 * Math.PI)) * P;
+  const p0 = Math.min(Math.floor(u), P - 1), e = u - p0, p1 = (p0 + 1) % P;
+  const corners = [[t0, p0, (1 - a) * (1 - e)], [t0, p1, (1 - a) * e], [t0 + 1, p0, a * (1 - e)], [t0 + 1, p1, a * e]];
+  for (let i = 0; i < n2; ++i) {
+    rgb.fill(0);
+    for (const [t, p, w] of corners) node(glossy, m.first_node + t * P + p, i, rgb, w);
+    for (let c = 0; c < 3; ++c) b[c * n2 + i] = rgb[c];
+  }
+  return b;
+}
+
+// Texel k of vertex v in the vertex texture.
+function vertexTexel(glossy, v, k) {
+  const at = 4 * (v * glossy.vertex.texels_per_vertex + k);
+  return glossy.vertex.data.subarray(at, at + 4);
+}
+
+export function localView(glossy, v, position, eye) {
+  const d = [eye[0] - position[0], eye[1] - position[1], eye[2] - position[2]];
+  const w = [0, 1, 2].map((r) => {
+    const t = vertexTexel(glossy, v, r);
+    return Math.fround(Math.fround(Math.fround(t[0] * d[0]) + Math.fround(t[1] * d[1])) + Math.fround(t[2] * d[2]));
+  });
+  const len = Math.hypot(...w);
+  if (!(len > 0) || !(w[2] > 0)) return null;
+  return [w[0] / len, w[1] / len, Math.min(w[2] / len, 1)];
+}
+
+// P_q,k,i (RGB) for every cluster q and k = 0 (the mean) … K, as RGBA float32 texels
+// ((q·(K+1) + k)·n² + i), from the lighting (3·n² channel-major). Accumulated in double.
+export function clusterProducts(glossy, lighting, out = null) {
+  const { clusters, vectors, dimension, data } = glossy.cpca;
+  const n2 = glossy.n2, grey = glossy.channels === 1;
+  const count = clusters * (vectors + 1) * n2;
+  const products = out ?? new Float32Array(4 * count);
+  for (let vec = 0; vec < clusters * (vectors + 1); ++vec) {
+    const base = vec * dimension;
+    for (let i = 0; i < n2; ++i) {
+      const at = 4 * (vec * n2 + i);
+      for (let c = 0; c < 3; ++c) {
+        const row = base + ((grey ? 0 : c) * n2 + i) * n2, light = c * n2;
+        let s = 0;
+        for (let j = 0; j < n2; ++j) s += data[row + j] * lighting[light + j];
+        products[at + c] = s;
+      }
+    }
+  }
+  return products;
+}
+
+// y (3·n², channel-major) of vertex v under `lighting` (or the CPCA products).
+function transferred(glossy, v, lighting, products) {
+  const n2 = glossy.n2, grey = glossy.channels === 1;
+  const y = new Float64Array(3 * n2);
+  if (glossy.cpca) {
+    const K = glossy.cpca.vectors;
+    const ids = [];
+    for (let k = 0; k <= K; ++k) ids.push(vertexTexel(glossy, v, 3 + (k >> 2))[k & 3]);
+    const q = ids[0];
+    for (let i = 0; i < n2; ++i)
+      for (let k = 0; k <= K; ++k) {
+        const at = 4 * ((q * (K + 1) + k) * n2 + i), w = k === 0 ? 1 : ids[k];
+        for (let c = 0; c < 3; ++c) y[c * n2 + i] += w * products[at + c];
+      }
+    return y;
+  }
+  const m = glossy.matrices, per = m.texels_per_vertex * 4;
+  const base = v * per;
+  for (let c = 0; c < 3; ++c)
+    for (let i = 0; i < n2; ++i) {
+      let s = 0;
+      const row = base + ((grey ? 0 : c) * n2 + i) * n2;
+      for (let j = 0; j < n2; ++j) s += THREE.DataUtils.fromHalfFloat(m.data[row + j]) * lighting[c * n2 + j];
+      y[c * n2 + i] = s;
+    }
+  return y;
+}
+
+// Exit radiance (RGB) of vertex v toward `eye`; also Σ|b·y| per channel (the scale of the
+// sum's rounding, for tests).
+export function shadeGlossyVertex(glossy, v, position, lighting, eye, products = null) {
+  const wo = localView(glossy, v, position, eye);
+  if (!wo) return { rgb: [0, 0, 0], scale: [0, 0, 0] };
+  const material = vertexTexel(glossy, v, 0)[3];
+  const b = viewVector(glossy, material, wo);
+  const y = transferred(glossy, v, lighting, products ?? (glossy.cpca ? clusterProducts(glossy, lighting) : null));
+  const n2 = glossy.n2, rgb = [0, 0, 0], scale = [0, 0, 0];
+  for (let c = 0; c < 3; ++c)
+    for (let i = 0; i < n2; ++i) {
+      rgb[c] += b[c * n2 + i] * y[c * n2 + i];
+      scale[c] += Math.abs(b[c * n2 + i] * y[c * n2 + i]);
+    }
+  return { rgb, scale };
+}
+
+function floatTexture(data, width, height) {
+  const texture = new THREE.DataTexture(data, width, height, THREE.RGBAFormat, THREE.FloatType);
+  texture.minFilter = texture.magFilter = THREE.NearestFilter;
+  texture.generateMipmaps = false;
+  texture.needsUpdate = true;
+  return texture;
+}
+
+function halfTexture(data, width, height) {
+  const texture = new THREE.DataTexture(data, width, height, THREE.RGBAFormat, THREE.HalfFloatType);
+  texture.minFilter = texture.magFilter = THREE.NearestFilter;
+  texture.generateMipmaps = false;
+  texture.needsUpdate = true;
+  return texture;
+}
+
+function vertexShader(glossy) {
+  const n2 = glossy.n2, K = glossy.cpca ? glossy.cpca.vectors : 0;
+  const cpca = !!glossy.cpca;
+  const matrixEntries = glossy.channels * n2 * n2;
+  const matrixTexels = cpca ? 1 : glossy.matrices.texels_per_vertex;
+  return /* glsl */ `
+precision highp float;
+precision highp int;
+precision highp sampler2D;
+#define ORDER ${glossy.order}
+#define N2 ${n2}
+#define K ${K}
+#define CHANNELS ${glossy.channels}
+#define MATRIX_TEXELS ${matrixTexels}
+#define MATRIX_ENTRIES ${matrixEntries}
+#define CPCA ${cpca ? 1 : 0}
+in vec3 position;
+in float prtVertex;
+uniform mat4 modelViewMatrix;
+uniform mat4 projectionMatrix;
+uniform vec3 uEye;
+uniform vec3 uLight[${MAX_ORDER * MAX_ORDER}];
+uniform sampler2D uVertex;
+uniform int uVertexPerRow;
+uniform sampler2D uBrdf;
+uniform int uBrdfWidth;
+uniform ivec4 uMaterial[${MAX_MATERIALS}];  // kind (0 table, 1 grid), first node, elevations, azimuths
+uniform sampler2D uMatrices;    // .prtg: float16, MATRIX_TEXELS a vertex
+uniform int uMatricesPerRow;
+uniform sampler2D uProducts;    // .prtq: the per-frame cluster products
+uniform int uProductsWidth;
+out vec3 vRadiance;
+
+vec4 vertexTexel(int v, int k) {
+  return texelFetch(uVertex, ivec2((v % uVertexPerRow) * ${glossy.vertex.texels_per_vertex} + k, v / uVertexPerRow), 0);
+}
+vec3 brdfNode(int index, int i) {
+  int at = index * N2 + i;
+  return texelFetch(uBrdf, ivec2(at % uBrdfWidth, at / uBrdfWidth), 0).rgb;
+}
+
+// b(ωo) of material m at unit local wo (as viewVector() in web/glossy.js).
+void viewVector(int m, vec3 wo, out vec3 b[N2]) {
+  ivec4 info = uMaterial[m];
+  int T = info.z;
+  float position = acos(min(wo.z, 1.0)) / 1.5707963267948966 * float(T - 1);
+  int t0 = min(int(position), T - 2);
+  float a = position - float(t0);
+  if (info.x == 0) {
+    int n0 = info.y + t0;
+    for (int i = 0; i < N2; ++i) {
+      vec3 b0 = brdfNode(n0, i);
+      b[i] = b0 + a * (brdfNode(n0 + 1, i) - b0);
+    }
+    float r = length(wo.xy);
+    if (r > 0.0) {
+      float c1 = wo.x / r, s1 = wo.y / r, cm = 1.0, sm = 0.0;
+      for (int mm = 1; mm < ORDER; ++mm) {
+        float nc = cm * c1 - sm * s1;
+        sm = sm * c1 + cm * s1;
+        cm = nc;
+        for (int l = mm; l < ORDER; ++l) {
+          int ip = l * (l + 1) + mm, im = l * (l + 1) - mm;
+          vec3 p = b[ip], q = b[im];
+          b[ip] = p * cm - q * sm;
+          b[im] = p * sm + q * cm;
+        }
+      }
+    }
+    return;
+  }
+  int P = info.w;
+  float phi = atan(wo.y, wo.x);
+  if (phi < 0.0) phi += 6.283185307179586;
+  float u = phi / 6.283185307179586 * float(P);
+  int p0 = min(int(u), P - 1);
+  float e = u - float(p0);
+  int p1 = p0 + 1 == P ? 0 : p0 + 1;
+  int r0 = info.y + t0 * P, r1 = r0 + P;
+  for (int i = 0; i < N2; ++i)
+    b[i] = (1.0 - a) * ((1.0 - e) * brdfNode(r0 + p0, i) + e * brdfNode(r0 + p1, i)) +
+           a * ((1.0 - e) * brdfNode(r1 + p0, i) + e * brdfNode(r1 + p1, i));
+}
+
+#if CPCA
+vec3 product(int at) { return texelFetch(uProducts, ivec2(at % uProductsWidth, at / uProductsWidth), 0).rgb; }
+#endif
+
+vec3 glossyRadiance(int v, vec3 wo, int material) {
+  vec3 b[N2];
+  viewVector(material, wo, b);
+  vec3 sum = vec3(0.0);
+#if CPCA
+  float w[K + 1];
+  for (int k = 0; k <= K; ++k) w[k] = vertexTexel(v, 3 + k / 4)[k % 4];
+  int q = int(w[0] + 0.5);
+  w[0] = 1.0;
+  int base = q * (K + 1) * N2;
+  for (int i = 0; i < N2; ++i) {
+    vec3 y = vec3(0.0);
+    for (int k = 0; k <= K; ++k) y += w[k] * product(base + k * N2 + i);
+    sum += b[i] * y;
+  }
+#else
+  ivec2 at = ivec2((v % uMatricesPerRow) * MATRIX_TEXELS, v / uMatricesPerRow);
+  vec3 y = vec3(0.0);
+  int i = 0, j = 0, c = 0;
+  for (int k = 0; k < MATRIX_TEXELS; ++k) {
+    vec4 t = texelFetch(uMatrices, at + ivec2(k, 0), 0);
+    for (int e = 0; e < 4; ++e) {
+      if (4 * k + e >= MATRIX_ENTRIES) break;
+#if CHANNELS == 1
+      y += t[e] * uLight[j];
+#else
+      y[c] += t[e] * uLight[j][c];
+#endif
+      if (++j == N2) {
+        j = 0;
+        sum += b[i] * y;
+        y = vec3(0.0);
+        if (++i == N2) { i = 0; ++c; }
+      }
+    }
+  }
+#endif
+  return sum;
+}
+
+void main() {
+  int v = int(prtVertex + 0.5);
+  vec3 d = uEye - position;
+  vec3 wo = vec3(dot(vertexTexel(v, 0).xyz, d), dot(vertexTexel(v, 1).xyz, d), dot(vertexTexel(v, 2).xyz, d));
+  float len = length(wo);
+  vRadiance = vec3(0.0);
+  if (len > 0.0 && wo.z > 0.0) {
+    wo /= len;
+    wo.z = min(wo.z, 1.0);
+    vRadiance = glossyRadiance(v, wo, int(vertexTexel(v, 0).w + 0.5));
+  }
+  gl_Position = projectionMatrix * modelViewMatrix * vec4(position, 1.0);
+}
+`;
+}
+
+const FRAGMENT_SHADER = /* glsl */ `
+precision highp float;
+in vec3 vRadiance;
+uniform float uExposure;
+out vec4 outColor;
+${TONE_MAP_GLSL}
+void main() {
+  vec3 radiance = gl_FrontFacing ? vRadiance : vec3(0.0);
+  outColor = vec4(prtToneMap(radiance, uExposure), 1.0);
+}
+`;
+
+// The material of a glossy payload; prt-relight.js's setLighting and setExposure drive it.
+// For CPCA the cluster products are recomputed before a draw whenever uLight has changed.
+export function createGlossyMaterial(manifest, transferBuffer, glossyBuffer) {
+  const glossy = parseGlossy(manifest, transferBuffer, glossyBuffer);
+  if (glossy.order > MAX_ORDER) throw new Error(`order ${glossy.order}: the page shades up to order ${MAX_ORDER}`);
+  if (glossy.materials.length > MAX_MATERIALS) throw new Error(`${glossy.materials.length} materials: the page shades up to ${MAX_MATERIALS}`);
+  const kinds = new Int32Array(4 * MAX_MATERIALS);
+  glossy.materials.forEach((m, i) => kinds.set([m.kind === 'table' ? 0 : 1, m.first_node, m.elevations, m.azimuths], 4 * i));
+  const uniforms = {
+    uEye: { value: new THREE.Vector3() },
+    uLight: { value: new Float32Array(3 * MAX_ORDER * MAX_ORDER) },
+    uOrder: { value: glossy.order },
+    uMode: { value: 0 },
+    uExposure: { value: 0 },
+    uVertex: { value: floatTexture(glossy.vertex.data, glossy.vertex.width, glossy.vertex.height) },
+    uVertexPerRow: { value: glossy.vertex.vertices_per_row },
+    uBrdf: { value: floatTexture(glossy.brdf.data, glossy.brdf.width, glossy.brdf.height) },
+    uBrdfWidth: { value: glossy.brdf.width },
+    uMaterial: { value: kinds },
+    uMatrices: { value: null },
+    uMatricesPerRow: { value: 1 },
+    uProducts: { value: null },
+    uProductsWidth: { value: 1 },
+  };
+  let products = null, lighting = null, lastLight = null;
+  if (glossy.cpca) {
+    const texels = glossy.cpca.clusters * (glossy.cpca.vectors + 1) * glossy.n2;
+    const width = Math.min(texels, 4096), height = Math.ceil(texels / width);
+    products = new Float32Array(4 * width * height);
+    uniforms.uProducts.value = floatTexture(products, width, height);
+    uniforms.uProductsWidth.value = width;
+    lighting = new Float64Array(3 * glossy.n2);
+    lastLight = new Float32Array(3 * MAX_ORDER * MAX_ORDER).fill(NaN);
+  } else {
+    const m = glossy.matrices;
+    uniforms.uMatrices.value = halfTexture(m.data, m.width, m.height);
+    uniforms.uMatricesPerRow.value = m.vertices_per_row;
+  }
+  const material = new THREE.RawShaderMaterial({
+    glslVersion: THREE.GLSL3,
+    vertexShader: vertexShader(glossy),
+    fragmentShader: FRAGMENT_SHADER,
+    side: THREE.DoubleSide,
+    uniforms,
+  });
+  // Before each draw: the eye, and for CPCA the products of a changed lighting.
+  material.onBeforeRender = (renderer, scene, camera) => {
+    uniforms.uEye.value.setFromMatrixPosition(camera.matrixWorld);
+    if (!glossy.cpca) return;
+    const u = uniforms.uLight.value;
+    if (u.every((x, i) => x === lastLight[i])) return;
+    lastLight.set(u);
+    const n2 = glossy.n2;
+    for (let c = 0; c < 3; ++c) for (let k = 0; k < n2; ++k) lighting[c * n2 + k] = u[3 * k + c];
+    clusterProducts(glossy, lighting, products);
+    uniforms.uProducts.value.needsUpdate = true;
+  };
+  material.userData.glossy = glossy;
+  return material;
+}
