@@ -10,8 +10,9 @@
 //   exit_c = Σ_i b_c,i(ωo) y_c,i,       b from the material's sampled nodes (viewVector()).
 // b: a "table" material (isotropic) holds b(θo, 0) at T elevations, θo = t/(T−1)·90°,
 // interpolated linearly in θo and rotated about +z by φo (per band the pairs (m, −m) mix by
-// cos mφo, sin mφo) — what prt::BrdfProjection's isotropic table does; a "grid" material
-// (anisotropic) holds b at T elevations × P azimuths, read bilinearly (periodic in φo).
+// cos mφo, sin mφo) — what prt::BrdfProjection's isotropic table does; a "matrix" material
+// (anisotropic) holds B with b_c,i(ωo) = Σ_e B_c,i,e y_e(ωo) over the view-side SH y_e of order
+// m_v with l + m even (node e = l(l+1)/2 + (m + l)/2) — the library's matrix projection.
 // Lighting: channel-major radiance SH (prt-relight.js prepareLighting, windowed then rotated),
 // given to the material through prt-relight.js setLighting (its uLight uniform); exposure and
 // tone map as prt-relight.js's. The eye is the camera's position at each draw.
@@ -24,8 +25,10 @@
 //   createGlossyMaterial(manifest, transferBuffer, glossyBuffer)   the RawShaderMaterial
 import * as THREE from 'three';
 import { MAX_ORDER, TONE_MAP_GLSL } from './prt-relight.js';
+import { evaluateBasis } from './sh.js';
 
 export const MAX_MATERIALS = 64;
+export const MAX_VIEW_ORDER = 16;  // the matrix projections' view-side order (order + 6 by default)
 const HALF_PI = Math.PI / 2;
 
 export function parseGlossy(manifest, transferBuffer, glossyBuffer) {
@@ -63,45 +66,45 @@ export function viewVector(glossy, materialIndex, wo) {
   const m = glossy.materials[materialIndex];
   const b = new Float64Array(3 * n2);
   const [x, y, z] = wo;
-  const T = m.elevations;
+  const rgb = [0, 0, 0];
+  if (m.kind === 'matrix') {  // b_c,i = Σ_e B_c,i,e y_e(ωo), e = l(l+1)/2 + (m + l)/2, l + m even
+    const mv = m.view_order;
+    const basis = evaluateBasis(mv, x, y, z);
+    for (let l = 0; l < mv; ++l)
+      for (let mm = -l; mm <= l; mm += 2) {
+        const e = (l * (l + 1)) / 2 + (mm + l) / 2;
+        for (let i = 0; i < n2; ++i) {
+          rgb.fill(0);
+          node(glossy, m.first_node + e, i, rgb, basis[l * (l + 1) + mm]);
+          for (let c = 0; c < 3; ++c) b[c * n2 + i] += rgb[c];
+        }
+      }
+    return b;
+  }
+  const T = m.elevations;  // 'table': b(θo, 0) linear in θo, then rotated about +z by φo
   const position = (Math.acos(Math.min(z, 1)) / HALF_PI) * (T - 1);
   const t0 = Math.min(Math.floor(position), T - 2);
   const a = position - t0;
-  const rgb = [0, 0, 0];
-  if (m.kind === 'table') {
-    for (let i = 0; i < n2; ++i) {
-      rgb.fill(0);
-      node(glossy, m.first_node + t0, i, rgb, 1 - a);
-      node(glossy, m.first_node + t0 + 1, i, rgb, a);
-      for (let c = 0; c < 3; ++c) b[c * n2 + i] = rgb[c];
-    }
-    const r = Math.hypot(x, y);
-    if (r > 0) {
-      const c1 = x / r, s1 = y / r;
-      let cm = 1, sm = 0;
-      for (let mm = 1; mm < order; ++mm) {
-        [cm, sm] = [cm * c1 - sm * s1, sm * c1 + cm * s1];
-        for (let l = mm; l < order; ++l)
-          for (let c = 0; c < 3; ++c) {
-            const ip = c * n2 + l * (l + 1) + mm, im = c * n2 + l * (l + 1) - mm;
-            const p = b[ip], q = b[im];
-            b[ip] = p * cm - q * sm;
-            b[im] = p * sm + q * cm;
-          }
-      }
-    }
-    return b;
-  }
-  const P = m.azimuths;
-  let phi = Math.atan2(y, x);
-  if (phi < 0) phi += 2 * Math.PI;
-  const u = (phi / (2 * Math.PI)) * P;
-  const p0 = Math.min(Math.floor(u), P - 1), e = u - p0, p1 = (p0 + 1) % P;
-  const corners = [[t0, p0, (1 - a) * (1 - e)], [t0, p1, (1 - a) * e], [t0 + 1, p0, a * (1 - e)], [t0 + 1, p1, a * e]];
   for (let i = 0; i < n2; ++i) {
     rgb.fill(0);
-    for (const [t, p, w] of corners) node(glossy, m.first_node + t * P + p, i, rgb, w);
+    node(glossy, m.first_node + t0, i, rgb, 1 - a);
+    node(glossy, m.first_node + t0 + 1, i, rgb, a);
     for (let c = 0; c < 3; ++c) b[c * n2 + i] = rgb[c];
+  }
+  const r = Math.hypot(x, y);
+  if (r > 0) {
+    const c1 = x / r, s1 = y / r;
+    let cm = 1, sm = 0;
+    for (let mm = 1; mm < order; ++mm) {
+      [cm, sm] = [cm * c1 - sm * s1, sm * c1 + cm * s1];
+      for (let l = mm; l < order; ++l)
+        for (let c = 0; c < 3; ++c) {
+          const ip = c * n2 + l * (l + 1) + mm, im = c * n2 + l * (l + 1) - mm;
+          const p = b[ip], q = b[im];
+          b[ip] = p * cm - q * sm;
+          b[im] = p * sm + q * cm;
+        }
+    }
   }
   return b;
 }
@@ -125,7 +128,8 @@ export function localView(glossy, v, position, eye) {
 
 // P_q,k,i (RGB) for every cluster q and k = 0 (the mean) … K, as RGBA float32 texels
 // ((q·(K+1) + k)·n² + i), from the lighting (3·n² channel-major). Accumulated in double.
-export function clusterProducts(glossy, lighting, out = null) {
+// absolute: Σ_j |U_ij L_j| instead (the scale of the sum's rounding, for tests).
+export function clusterProducts(glossy, lighting, out = null, absolute = false) {
   const { clusters, vectors, dimension, data } = glossy.cpca;
   const n2 = glossy.n2, grey = glossy.channels === 1;
   const count = clusters * (vectors + 1) * n2;
@@ -137,7 +141,8 @@ export function clusterProducts(glossy, lighting, out = null) {
       for (let c = 0; c < 3; ++c) {
         const row = base + ((grey ? 0 : c) * n2 + i) * n2, light = c * n2;
         let s = 0;
-        for (let j = 0; j < n2; ++j) s += data[row + j] * lighting[light + j];
+        if (absolute) for (let j = 0; j < n2; ++j) s += Math.abs(data[row + j] * lighting[light + j]);
+        else for (let j = 0; j < n2; ++j) s += data[row + j] * lighting[light + j];
         products[at + c] = s;
       }
     }
@@ -145,10 +150,12 @@ export function clusterProducts(glossy, lighting, out = null) {
   return products;
 }
 
-// y (3·n², channel-major) of vertex v under `lighting` (or the CPCA products).
-function transferred(glossy, v, lighting, products) {
+// y (3·n², channel-major) of vertex v under `lighting` (or the CPCA products), and with
+// `absolute` the same sums of absolute values.
+function transferred(glossy, v, lighting, products, absolute) {
   const n2 = glossy.n2, grey = glossy.channels === 1;
   const y = new Float64Array(3 * n2);
+  const f = absolute ? Math.abs : (x) => x;
   if (glossy.cpca) {
     const K = glossy.cpca.vectors;
     const ids = [];
@@ -156,7 +163,7 @@ function transferred(glossy, v, lighting, products) {
     const q = ids[0];
     for (let i = 0; i < n2; ++i)
       for (let k = 0; k <= K; ++k) {
-        const at = 4 * ((q * (K + 1) + k) * n2 + i), w = k === 0 ? 1 : ids[k];
+        const at = 4 * ((q * (K + 1) + k) * n2 + i), w = k === 0 ? 1 : f(ids[k]);
         for (let c = 0; c < 3; ++c) y[c * n2 + i] += w * products[at + c];
       }
     return y;
@@ -167,27 +174,43 @@ function transferred(glossy, v, lighting, products) {
     for (let i = 0; i < n2; ++i) {
       let s = 0;
       const row = base + ((grey ? 0 : c) * n2 + i) * n2;
-      for (let j = 0; j < n2; ++j) s += THREE.DataUtils.fromHalfFloat(m.data[row + j]) * lighting[c * n2 + j];
+      for (let j = 0; j < n2; ++j) s += f(THREE.DataUtils.fromHalfFloat(m.data[row + j]) * lighting[c * n2 + j]);
       y[c * n2 + i] = s;
     }
   return y;
 }
 
-// Exit radiance (RGB) of vertex v toward `eye`; also Σ|b·y| per channel (the scale of the
-// sum's rounding, for tests).
+// Exit radiance (RGB) of vertex v toward `eye` (`position` its position, `lighting` 3·n²
+// channel-major); also `scale`, the same sum over absolute values of every product (the scale
+// of its rounding error, for tests). `products`: clusterProducts() of the lighting, plain and
+// absolute, for CPCA (computed here when not given).
 export function shadeGlossyVertex(glossy, v, position, lighting, eye, products = null) {
   const wo = localView(glossy, v, position, eye);
   if (!wo) return { rgb: [0, 0, 0], scale: [0, 0, 0] };
   const material = vertexTexel(glossy, v, 0)[3];
   const b = viewVector(glossy, material, wo);
-  const y = transferred(glossy, v, lighting, products ?? (glossy.cpca ? clusterProducts(glossy, lighting) : null));
+  const p = glossy.cpca ? (products ?? [clusterProducts(glossy, lighting), clusterProducts(glossy, lighting, null, true)]) : [null, null];
+  const y = transferred(glossy, v, lighting, p[0], false);
+  const yAbs = transferred(glossy, v, lighting, p[1], true);
   const n2 = glossy.n2, rgb = [0, 0, 0], scale = [0, 0, 0];
   for (let c = 0; c < 3; ++c)
     for (let i = 0; i < n2; ++i) {
       rgb[c] += b[c * n2 + i] * y[c * n2 + i];
-      scale[c] += Math.abs(b[c * n2 + i] * y[c * n2 + i]);
+      scale[c] += Math.abs(b[c * n2 + i]) * yAbs[c * n2 + i];
     }
   return { rgb, scale };
+}
+
+// K_lm (√2·K_lm for m > 0) of sh.js's basis at l(l+1)/2 + m, m ≥ 0, l < MAX_VIEW_ORDER.
+function viewNormalisation() {
+  const out = new Float32Array((MAX_VIEW_ORDER * (MAX_VIEW_ORDER + 1)) / 2);
+  for (let l = 0; l < MAX_VIEW_ORDER; ++l)
+    for (let m = 0; m <= l; ++m) {
+      let ratio = 1;
+      for (let i = l - m + 1; i <= l + m; ++i) ratio /= i;
+      out[(l * (l + 1)) / 2 + m] = Math.sqrt(((2 * l + 1) / (4 * Math.PI)) * ratio) * (m === 0 ? 1 : Math.SQRT2);
+    }
+  return out;
 }
 
 function floatTexture(data, width, height) {
@@ -222,6 +245,7 @@ precision highp sampler2D;
 #define MATRIX_TEXELS ${matrixTexels}
 #define MATRIX_ENTRIES ${matrixEntries}
 #define CPCA ${cpca ? 1 : 0}
+#define MAX_VIEW_ORDER ${MAX_VIEW_ORDER}
 in vec3 position;
 in float prtVertex;
 uniform mat4 modelViewMatrix;
@@ -232,7 +256,8 @@ uniform sampler2D uVertex;
 uniform int uVertexPerRow;
 uniform sampler2D uBrdf;
 uniform int uBrdfWidth;
-uniform ivec4 uMaterial[${MAX_MATERIALS}];  // kind (0 table, 1 grid), first node, elevations, azimuths
+uniform ivec4 uMaterial[${MAX_MATERIALS}];  // kind (0 table, 1 matrix), first node, elevations or view order
+uniform vec4 uViewK[${MAX_VIEW_ORDER * (MAX_VIEW_ORDER + 1) / 8}];  // K_lm (√2 K_lm for m > 0) at l(l+1)/2 + m
 uniform sampler2D uMatrices;    // .prtg: float16, MATRIX_TEXELS a vertex
 uniform int uMatricesPerRow;
 uniform sampler2D uProducts;    // .prtq: the per-frame cluster products
@@ -277,17 +302,39 @@ void viewVector(int m, vec3 wo, out vec3 b[N2]) {
     }
     return;
   }
-  int P = info.w;
-  float phi = atan(wo.y, wo.x);
-  if (phi < 0.0) phi += 6.283185307179586;
-  float u = phi / 6.283185307179586 * float(P);
-  int p0 = min(int(u), P - 1);
-  float e = u - float(p0);
-  int p1 = p0 + 1 == P ? 0 : p0 + 1;
-  int r0 = info.y + t0 * P, r1 = r0 + P;
-  for (int i = 0; i < N2; ++i)
-    b[i] = (1.0 - a) * ((1.0 - e) * brdfNode(r0 + p0, i) + e * brdfNode(r0 + p1, i)) +
-           a * ((1.0 - e) * brdfNode(r1 + p0, i) + e * brdfNode(r1 + p1, i));
+  // matrix: the even view-side SH by the recurrence of prt-relight.js's irradiance()
+  for (int i = 0; i < N2; ++i) b[i] = vec3(0.0);
+  int M = info.z;
+  float re = 1.0, im = 0.0, qmm = 1.0;
+  for (int m = 0; m < MAX_VIEW_ORDER; ++m) {
+    if (m >= M) break;
+    if (m > 0) {
+      float r = re * wo.x - im * wo.y;
+      im = re * wo.y + im * wo.x;
+      re = r;
+      qmm *= float(2 * m - 1);
+    }
+    float qPrev = 0.0, q = qmm;
+    for (int l = m; l < MAX_VIEW_ORDER; ++l) {
+      if (l >= M) break;
+      if (l > m) {
+        float next = l == m + 1 ? wo.z * float(2 * m + 1) * qmm
+                                : (float(2 * l - 1) * wo.z * q - float(l + m - 1) * qPrev) / float(l - m);
+        qPrev = q;
+        q = next;
+      }
+      if (((l + m) & 1) == 1) continue;
+      int kIndex = l * (l + 1) / 2 + m;
+      float kq = uViewK[kIndex / 4][kIndex % 4] * q;
+      int e = info.y + l * (l + 1) / 2;
+      if (m == 0) {
+        for (int i = 0; i < N2; ++i) b[i] += kq * brdfNode(e + l / 2, i);
+      } else {
+        int ep = e + (l + m) / 2, en = e + (l - m) / 2;
+        for (int i = 0; i < N2; ++i) b[i] += kq * (re * brdfNode(ep, i) + im * brdfNode(en, i));
+      }
+    }
+  }
 }
 
 #if CPCA
@@ -369,7 +416,10 @@ export function createGlossyMaterial(manifest, transferBuffer, glossyBuffer) {
   if (glossy.order > MAX_ORDER) throw new Error(`order ${glossy.order}: the page shades up to order ${MAX_ORDER}`);
   if (glossy.materials.length > MAX_MATERIALS) throw new Error(`${glossy.materials.length} materials: the page shades up to ${MAX_MATERIALS}`);
   const kinds = new Int32Array(4 * MAX_MATERIALS);
-  glossy.materials.forEach((m, i) => kinds.set([m.kind === 'table' ? 0 : 1, m.first_node, m.elevations, m.azimuths], 4 * i));
+  glossy.materials.forEach((m, i) => {
+    if (m.kind === 'matrix' && m.view_order > MAX_VIEW_ORDER) throw new Error(`view order ${m.view_order}: the page evaluates up to ${MAX_VIEW_ORDER}`);
+    kinds.set(m.kind === 'table' ? [0, m.first_node, m.elevations, 0] : [1, m.first_node, m.view_order, 0], 4 * i);
+  });
   const uniforms = {
     uEye: { value: new THREE.Vector3() },
     uLight: { value: new Float32Array(3 * MAX_ORDER * MAX_ORDER) },
@@ -381,6 +431,7 @@ export function createGlossyMaterial(manifest, transferBuffer, glossyBuffer) {
     uBrdf: { value: floatTexture(glossy.brdf.data, glossy.brdf.width, glossy.brdf.height) },
     uBrdfWidth: { value: glossy.brdf.width },
     uMaterial: { value: kinds },
+    uViewK: { value: viewNormalisation() },
     uMatrices: { value: null },
     uMatricesPerRow: { value: 1 },
     uProducts: { value: null },
@@ -408,8 +459,11 @@ export function createGlossyMaterial(manifest, transferBuffer, glossyBuffer) {
     uniforms,
   });
   // Before each draw: the eye, and for CPCA the products of a changed lighting.
+  // material.userData.fixedEye ([x, y, z]) pins the eye (a view-independent picture, for tests).
   material.onBeforeRender = (renderer, scene, camera) => {
-    uniforms.uEye.value.setFromMatrixPosition(camera.matrixWorld);
+    const fixed = material.userData.fixedEye;
+    if (fixed) uniforms.uEye.value.set(...fixed);
+    else uniforms.uEye.value.setFromMatrixPosition(camera.matrixWorld);
     if (!glossy.cpca) return;
     const u = uniforms.uLight.value;
     if (u.every((x, i) => x === lastLight[i])) return;

@@ -12,6 +12,7 @@
 //   mode=transfer|unshadowed|ao|bent|ao-only|PASS  background=0|1   ui=0 (no panel)
 //   emitter=NAME=r,g,b (repeatable)             as prt relight --emitter (prt view --emitters)
 //   antialias=0                                 one sample a pixel (as prt relight --spp 1)
+//   eye=x,y,z                                   glossy files: shade toward this eye, not the camera's
 // window.prtViewer exposes the state for tests: ready, firstFrameMs, render(), measureFrames(n).
 import * as THREE from 'three';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
@@ -110,6 +111,7 @@ async function main() {
     albedoFolded: manifest.albedo_folded,
     transfer: { texture: halfTexture(new Uint16Array(transferBuffer), t.width, t.height), width: t.width, texelsPerVertex: t.texels_per_vertex },
   });
+  if (manifest.glossy && params.has('eye')) material.userData.fixedEye = numbers(params.get('eye'), 3, 'eye');
   const mesh = new THREE.Mesh(geometry, material);
   mesh.frustumCulled = false;
   const scene = new THREE.Scene();

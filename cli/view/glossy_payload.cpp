@@ -8,6 +8,7 @@
 #include <fstream>
 #include <stdexcept>
 
+#include "numerics/gauss_legendre.h"
 #include "prt/core/half.h"
 #include "prt/formats/cpca_file.h"
 #include "prt/formats/glossy_transfer_file.h"
@@ -20,6 +21,7 @@
 #include "scene/ray_caster.h"
 #include "scene/scene_loader.h"
 #include "scene/subdivide.h"
+#include "sh/basis.h"
 #include "sh/window.h"
 
 namespace prt::cli::view {
@@ -28,7 +30,6 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 constexpr std::size_t kTextureWidth = 4096;  // texels a row (whole vertices a row)
 constexpr std::size_t kMaxTextureSide = 8192;
-constexpr int kGridAzimuths = 144;  // "grid" materials: 2.5° apart
 
 template <class T>
 void append(std::vector<std::uint8_t>* out, const T* data, std::size_t count) {
@@ -155,6 +156,40 @@ void extrapolate_horizon(std::vector<double>* nodes, std::size_t horizon, std::s
   for (std::size_t i = 0; i < count * row_doubles; ++i) h[i] = 2.0 * a[i] - b[i];
 }
 
+// kMatrix: the nodes B_·,·,e of b_c,i(ωo) = Σ_e B_c,i,e y_e(ωo), e over the view-side SH (l, m)
+// of order m_v with l + m even, in the order e = l(l+1)/2 + (m + l)/2. b is that polynomial
+// above the horizon, and the even y_e are orthogonal there with norm 1/2, so
+// B_c,i,e = 2 ∫_{H+} b_c,i y_e, which a product rule integrates EXACTLY (the integrand is a
+// polynomial of degree ≤ 2(m_v − 1) in ωo): m_v Gauss–Legendre nodes in cos θo × 2·m_v azimuths.
+void append_matrix_nodes(const prt::BrdfProjection& p, std::vector<double>* nodes) {
+  const int mv = p.view_order(), n2 = p.order() * p.order();
+  const int count = mv * (mv + 1) / 2;
+  std::vector<double> z, zw;
+  numerics::append_gauss_legendre(mv, 0.0, 1.0, &z, &zw);
+  std::vector<double> b(3 * std::size_t(n2)), y(std::size_t(mv) * mv);
+  std::vector<double> sums(std::size_t(count) * 3 * n2, 0.0);
+  const int azimuths = 2 * mv;
+  for (std::size_t a = 0; a < z.size(); ++a)
+    for (int f = 0; f < azimuths; ++f) {
+      const double phi = 2 * kPi * (f + 0.5) / azimuths, s = std::sqrt(1 - z[a] * z[a]);
+      const double w = 2.0 * zw[a] * (2 * kPi / azimuths);
+      const double x = s * std::cos(phi), yy = s * std::sin(phi);
+      p.evaluate(brdf::Vec3{x, yy, z[a]}, b.data());
+      sh::evaluate(mv, x, yy, z[a], y.data());
+      for (int l = 0; l < mv; ++l)
+        for (int m = -l; m <= l; m += 2) {
+          const double ye = w * y[std::size_t(sh::index(l, m))];
+          double* row = &sums[std::size_t(l * (l + 1) / 2 + (m + l) / 2) * 3 * n2];
+          for (int i = 0; i < 3 * n2; ++i) row[i] += ye * b[std::size_t(i)];
+        }
+    }
+  for (int e = 0; e < count; ++e)
+    for (int i = 0; i < n2; ++i) {
+      const double* row = &sums[std::size_t(e) * 3 * n2];
+      nodes->insert(nodes->end(), {row[i], row[n2 + i], row[2 * n2 + i], 0.0});
+    }
+}
+
 // The "brdf" nodes of every material and their manifest entries.
 std::vector<float> brdf_nodes(const prt::GlossyTransferData& data, const std::string& path,
                               nlohmann::json* materials) {
@@ -179,20 +214,9 @@ std::vector<float> brdf_nodes(const prt::GlossyTransferData& data, const std::st
       }
       extrapolate_horizon(&nodes, first + elevations - 1, 1, 4 * std::size_t(n2));
       entry.update({{"kind", "table"}, {"elevations", elevations}, {"azimuths", 1}});
-    } else {
-      for (int t = 0; t < elevations; ++t) {
-        const double theta = 0.5 * kPi * t / (elevations - 1);
-        for (int a = 0; a < kGridAzimuths; ++a) {
-          const double phi = 2 * kPi * a / kGridAzimuths;
-          append_node(
-              p,
-              {std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta)},
-              &nodes);
-        }
-      }
-      extrapolate_horizon(&nodes, first + std::size_t(elevations - 1) * kGridAzimuths,
-                          kGridAzimuths, 4 * std::size_t(n2));
-      entry.update({{"kind", "grid"}, {"elevations", elevations}, {"azimuths", kGridAzimuths}});
+    } else {  // kMatrix: b_c,i(ωo) = Σ_e B_c,i,e y_e(ωo) over the even view-side SH
+      append_matrix_nodes(p, &nodes);
+      entry.update({{"kind", "matrix"}, {"view_order", p.view_order()}});
     }
     materials->push_back(entry);
   }

@@ -21,9 +21,11 @@
 //                 "brdf"    RGBA texels, n² a node: texel i of node k = (b_R,i, b_G,i, b_B,i, 0)
 //                           of one sampled b(ωo); each material's nodes are listed in the
 //                           manifest: "table" (isotropic: b(θo, 0) at θo = t/(T−1)·90°, linear
-//                           in θo, then rotated about +z by φo — the library's table exactly) or
-//                           "grid" (other BRDFs: b at T elevations × P azimuths φ = 2πp/P,
-//                           bilinear; the horizon row is extrapolated as the library's tables).
+//                           in θo, then rotated about +z by φo — the library's table exactly;
+//                           the horizon node extrapolated as the library does) or "matrix"
+//                           (anisotropic: b_c,i(ωo) = Σ_e B_c,i,e y_e(ωo) over the view-side
+//                           SH of order m_v with l + m even, node e = l(l+1)/2 + (m + l)/2;
+//                           B recovered exactly from the library's b by a product rule).
 // Throws std::runtime_error "PATH: problem" for an unreadable or mismatched input.
 #pragma once
 
