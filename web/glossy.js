@@ -229,80 +229,37 @@ function halfTexture(data, width, height) {
   return texture;
 }
 
-function vertexShader(glossy) {
-  const n2 = glossy.n2, K = glossy.cpca ? glossy.cpca.vectors : 0;
-  const cpca = !!glossy.cpca;
-  const matrixEntries = glossy.channels * n2 * n2;
-  const matrixTexels = cpca ? 1 : glossy.matrices.texels_per_vertex;
-  return /* glsl */ `
-precision highp float;
-precision highp int;
-precision highp sampler2D;
-#define ORDER ${glossy.order}
-#define N2 ${n2}
-#define K ${K}
-#define CHANNELS ${glossy.channels}
-#define MATRIX_TEXELS ${matrixTexels}
-#define MATRIX_ENTRIES ${matrixEntries}
-#define CPCA ${cpca ? 1 : 0}
-#define MAX_VIEW_ORDER ${MAX_VIEW_ORDER}
-in vec3 position;
-in float prtVertex;
-uniform mat4 modelViewMatrix;
-uniform mat4 projectionMatrix;
-uniform vec3 uEye;
-uniform vec3 uLight[${MAX_ORDER * MAX_ORDER}];
-uniform sampler2D uVertex;
-uniform int uVertexPerRow;
-uniform sampler2D uBrdf;
-uniform int uBrdfWidth;
-uniform ivec4 uMaterial[${MAX_MATERIALS}];  // kind (0 table, 1 matrix), first node, elevations or view order
-uniform vec4 uViewK[${MAX_VIEW_ORDER * (MAX_VIEW_ORDER + 1) / 8}];  // K_lm (√2 K_lm for m > 0) at l(l+1)/2 + m
-uniform sampler2D uMatrices;    // .prtg: float16, MATRIX_TEXELS a vertex
-uniform int uMatricesPerRow;
-uniform sampler2D uProducts;    // .prtq: the per-frame cluster products
-uniform int uProductsWidth;
-out vec3 vRadiance;
-
-vec4 vertexTexel(int v, int k) {
-  return texelFetch(uVertex, ivec2((v % uVertexPerRow) * ${glossy.vertex.texels_per_vertex} + k, v / uVertexPerRow), 0);
-}
-vec3 brdfNode(int index, int i) {
-  int at = index * N2 + i;
-  return texelFetch(uBrdf, ivec2(at % uBrdfWidth, at / uBrdfWidth), 0).rgb;
+// GLSL written out for the file's order, channels and K (constant indices, no loops over
+// coefficients: SwiftShader runs such code several times faster, as prt-relight.js's sum).
+function lines(count, f) {
+  return Array.from({ length: count }, (_, i) => f(i)).join('\n');
 }
 
-// b(ωo) of material m at unit local wo (as viewVector() in web/glossy.js).
-void viewVector(int m, vec3 wo, out vec3 b[N2]) {
-  ivec4 info = uMaterial[m];
-  int T = info.z;
-  float position = acos(min(wo.z, 1.0)) / 1.5707963267948966 * float(T - 1);
-  int t0 = min(int(position), T - 2);
-  float a = position - float(t0);
-  if (info.x == 0) {
-    int n0 = info.y + t0;
-    for (int i = 0; i < N2; ++i) {
-      vec3 b0 = brdfNode(n0, i);
-      b[i] = b0 + a * (brdfNode(n0 + 1, i) - b0);
+// b of a "table" material: the two nodes about θo, then the rotation about +z by φo.
+function tableGlsl(order, n2) {
+  const rotation = [];
+  for (let m = 1; m < order; ++m) {
+    rotation.push('    nc = cm * c1 - sm * s1;', '    sm = sm * c1 + cm * s1;', '    cm = nc;');
+    for (let l = m; l < order; ++l) {
+      const ip = l * (l + 1) + m, im = l * (l + 1) - m;
+      rotation.push(`    p = b[${ip}]; q = b[${im}]; b[${ip}] = p * cm - q * sm; b[${im}] = p * sm + q * cm;`);
     }
-    float r = length(wo.xy);
-    if (r > 0.0) {
-      float c1 = wo.x / r, s1 = wo.y / r, cm = 1.0, sm = 0.0;
-      for (int mm = 1; mm < ORDER; ++mm) {
-        float nc = cm * c1 - sm * s1;
-        sm = sm * c1 + cm * s1;
-        cm = nc;
-        for (int l = mm; l < ORDER; ++l) {
-          int ip = l * (l + 1) + mm, im = l * (l + 1) - mm;
-          vec3 p = b[ip], q = b[im];
-          b[ip] = p * cm - q * sm;
-          b[im] = p * sm + q * cm;
-        }
-      }
-    }
-    return;
   }
-  // matrix: the even view-side SH by the recurrence of prt-relight.js's irradiance()
+  return `
+  ivec2 p0 = nodeAt(info.y + t0), p1 = nodeAt(info.y + t0 + 1);
+  vec3 t;
+${lines(n2, (i) => `  t = texelFetch(uBrdf, p0 + ivec2(${i}, 0), 0).rgb; b[${i}] = t + a * (texelFetch(uBrdf, p1 + ivec2(${i}, 0), 0).rgb - t);`)}
+  float r = length(wo.xy);
+  if (r > 0.0) {
+    float c1 = wo.x / r, s1 = wo.y / r, cm = 1.0, sm = 0.0, nc;
+    vec3 p, q;
+${rotation.join('\n')}
+  }`;
+}
+
+// b of a "matrix" material: Σ_e y_e(ωo) B_e over the even view-side SH, by the recurrence of
+// prt-relight.js's irradiance() (loops: the view order is per material).
+const MATRIX_GLSL = `
   for (int i = 0; i < N2; ++i) b[i] = vec3(0.0);
   int M = info.z;
   float re = 1.0, im = 0.0, qmm = 1.0;
@@ -328,70 +285,105 @@ void viewVector(int m, vec3 wo, out vec3 b[N2]) {
       float kq = uViewK[kIndex / 4][kIndex % 4] * q;
       int e = info.y + l * (l + 1) / 2;
       if (m == 0) {
-        for (int i = 0; i < N2; ++i) b[i] += kq * brdfNode(e + l / 2, i);
+        ivec2 at = nodeAt(e + l / 2);
+        for (int i = 0; i < N2; ++i) b[i] += kq * texelFetch(uBrdf, at + ivec2(i, 0), 0).rgb;
       } else {
-        int ep = e + (l + m) / 2, en = e + (l - m) / 2;
-        for (int i = 0; i < N2; ++i) b[i] += kq * (re * brdfNode(ep, i) + im * brdfNode(en, i));
+        ivec2 ap = nodeAt(e + (l + m) / 2), an = nodeAt(e + (l - m) / 2);
+        for (int i = 0; i < N2; ++i)
+          b[i] += kq * (re * texelFetch(uBrdf, ap + ivec2(i, 0), 0).rgb + im * texelFetch(uBrdf, an + ivec2(i, 0), 0).rgb);
       }
     }
-  }
+  }`;
+
+// Σ_i b_i ⊙ y_i, y from the CPCA products: y_i = P_q,0,i + Σ_k w_k P_q,k,i.
+function cpcaGlsl(n2, K, texelsPerVertex) {
+  const weightTexels = Math.ceil((K + 1) / 4);
+  const w = (k) => `w${k >> 2}.${'xyzw'[k & 3]}`;
+  return `
+  vec4 ${lines(weightTexels, (j) => `w${j} = texelFetch(uVertex, vat + ivec2(${3 + j}, 0), 0)`).split('\n').join(', ')};
+  int q = int(w0.x + 0.5);
+  ivec2 c0 = ivec2((q % uClustersPerRow) * ${(K + 1) * n2}, q / uClustersPerRow);
+${lines(n2, (i) => `  sum += b[${i}] * (texelFetch(uProducts, c0 + ivec2(${i}, 0), 0).rgb${lines(K, (k) => ` + ${w(k + 1)} * texelFetch(uProducts, c0 + ivec2(${(k + 1) * n2 + i}, 0), 0).rgb`).split('\n').join('')});`)}`;
 }
 
-#if CPCA
-vec3 product(int at) { return texelFetch(uProducts, ivec2(at % uProductsWidth, at / uProductsWidth), 0).rgb; }
-#endif
-
-vec3 glossyRadiance(int v, vec3 wo, int material) {
-  vec3 b[N2];
-  viewVector(material, wo, b);
-  vec3 sum = vec3(0.0);
-#if CPCA
-  float w[K + 1];
-  for (int k = 0; k <= K; ++k) w[k] = vertexTexel(v, 3 + k / 4)[k % 4];
-  int q = int(w[0] + 0.5);
-  w[0] = 1.0;
-  int base = q * (K + 1) * N2;
-  for (int i = 0; i < N2; ++i) {
-    vec3 y = vec3(0.0);
-    for (int k = 0; k <= K; ++k) y += w[k] * product(base + k * N2 + i);
-    sum += b[i] * y;
-  }
-#else
-  ivec2 at = ivec2((v % uMatricesPerRow) * MATRIX_TEXELS, v / uMatricesPerRow);
-  vec3 y = vec3(0.0);
-  int i = 0, j = 0, c = 0;
-  for (int k = 0; k < MATRIX_TEXELS; ++k) {
-    vec4 t = texelFetch(uMatrices, at + ivec2(k, 0), 0);
-    for (int e = 0; e < 4; ++e) {
-      if (4 * k + e >= MATRIX_ENTRIES) break;
-#if CHANNELS == 1
-      y += t[e] * uLight[j];
-#else
-      y[c] += t[e] * uLight[j][c];
-#endif
-      if (++j == N2) {
-        j = 0;
-        sum += b[i] * y;
-        y = vec3(0.0);
-        if (++i == N2) { i = 0; ++c; }
-      }
+// Σ_i b_i ⊙ (M L)_i from the vertex's float16 matrix texels (entries (c·n² + i)·n² + j).
+function matricesGlsl(n2, channels, texels) {
+  const out = ['  ivec2 mat = ivec2((v % uMatricesPerRow) * ' + texels + ', v / uMatricesPerRow);', '  vec4 t;', '  float y;', '  vec3 yy;'];
+  const count = channels * n2 * n2;
+  for (let f = 0; f < count; ++f) {
+    if (f % 4 === 0) out.push(`  t = texelFetch(uMatrices, mat + ivec2(${f / 4}, 0), 0);`);
+    const c = Math.floor(f / (n2 * n2)), i = Math.floor(f / n2) % n2, j = f % n2, e = 'xyzw'[f % 4];
+    if (channels === 1) {
+      out.push(`  yy ${j === 0 ? '=' : '+='} t.${e} * uLight[${j}];`);
+      if (j === n2 - 1) out.push(`  sum += b[${i}] * yy;`);
+    } else {
+      const ch = 'rgb'[c];
+      out.push(`  y ${j === 0 ? '=' : '+='} t.${e} * uLight[${j}].${ch};`);
+      if (j === n2 - 1) out.push(`  sum.${ch} += b[${i}].${ch} * y;`);
     }
   }
-#endif
-  return sum;
+  return out.join('\n');
+}
+
+function vertexShader(glossy) {
+  const n2 = glossy.n2, K = glossy.cpca ? glossy.cpca.vectors : 0;
+  const kinds = new Set(glossy.materials.map((m) => m.kind));
+  const texelsPerVertex = glossy.vertex.texels_per_vertex;
+  return /* glsl */ `
+precision highp float;
+precision highp int;
+precision highp sampler2D;
+#define N2 ${n2}
+#define MAX_VIEW_ORDER ${MAX_VIEW_ORDER}
+in vec3 position;
+in float prtVertex;
+uniform mat4 modelViewMatrix;
+uniform mat4 projectionMatrix;
+uniform vec3 uEye;
+uniform vec3 uLight[${MAX_ORDER * MAX_ORDER}];
+uniform sampler2D uVertex;      // frames, material, CPCA cluster and weights
+uniform int uVertexPerRow;
+uniform sampler2D uBrdf;        // the materials' nodes, N2 texels a node, whole nodes a row
+uniform int uBrdfNodesPerRow;
+uniform ivec4 uMaterial[${MAX_MATERIALS}];  // kind (0 table, 1 matrix), first node, elevations or view order
+uniform vec4 uViewK[${(MAX_VIEW_ORDER * (MAX_VIEW_ORDER + 1)) / 8}];  // K_lm (√2 K_lm for m > 0) at l(l+1)/2 + m
+uniform sampler2D uMatrices;    // .prtg: float16 matrices, whole vertices a row
+uniform int uMatricesPerRow;
+uniform sampler2D uProducts;    // .prtq: the per-frame cluster products, whole clusters a row
+uniform int uClustersPerRow;
+out vec3 vRadiance;
+
+ivec2 nodeAt(int node) { return ivec2((node % uBrdfNodesPerRow) * N2, node / uBrdfNodesPerRow); }
+
+// b(ωo) of material m at unit local wo (as viewVector() in web/glossy.js).
+void viewVector(int m, vec3 wo, out vec3 b[N2]) {
+  ivec4 info = uMaterial[m];
+  if (info.x == 0) {
+    float position = acos(min(wo.z, 1.0)) / 1.5707963267948966 * float(info.z - 1);
+    int t0 = min(int(position), info.z - 2);
+    float a = position - float(t0);
+${kinds.has('table') ? tableGlsl(glossy.order, n2) : ''}
+    return;
+  }
+${kinds.has('matrix') ? MATRIX_GLSL : ''}
 }
 
 void main() {
   int v = int(prtVertex + 0.5);
+  ivec2 vat = ivec2((v % uVertexPerRow) * ${texelsPerVertex}, v / uVertexPerRow);
+  vec4 f0 = texelFetch(uVertex, vat, 0);
   vec3 d = uEye - position;
-  vec3 wo = vec3(dot(vertexTexel(v, 0).xyz, d), dot(vertexTexel(v, 1).xyz, d), dot(vertexTexel(v, 2).xyz, d));
+  vec3 wo = vec3(dot(f0.xyz, d), dot(texelFetch(uVertex, vat + ivec2(1, 0), 0).xyz, d), dot(texelFetch(uVertex, vat + ivec2(2, 0), 0).xyz, d));
   float len = length(wo);
-  vRadiance = vec3(0.0);
+  vec3 sum = vec3(0.0);
   if (len > 0.0 && wo.z > 0.0) {
     wo /= len;
     wo.z = min(wo.z, 1.0);
-    vRadiance = glossyRadiance(v, wo, int(vertexTexel(v, 0).w + 0.5));
+    vec3 b[N2];
+    viewVector(int(f0.w + 0.5), wo, b);
+${glossy.cpca ? cpcaGlsl(n2, K, texelsPerVertex) : matricesGlsl(n2, glossy.channels, glossy.matrices.texels_per_vertex)}
   }
+  vRadiance = sum;
   gl_Position = projectionMatrix * modelViewMatrix * vec4(position, 1.0);
 }
 `;
@@ -429,21 +421,23 @@ export function createGlossyMaterial(manifest, transferBuffer, glossyBuffer) {
     uVertex: { value: floatTexture(glossy.vertex.data, glossy.vertex.width, glossy.vertex.height) },
     uVertexPerRow: { value: glossy.vertex.vertices_per_row },
     uBrdf: { value: floatTexture(glossy.brdf.data, glossy.brdf.width, glossy.brdf.height) },
-    uBrdfWidth: { value: glossy.brdf.width },
+    uBrdfNodesPerRow: { value: glossy.brdf.width / glossy.n2 },
     uMaterial: { value: kinds },
     uViewK: { value: viewNormalisation() },
     uMatrices: { value: null },
     uMatricesPerRow: { value: 1 },
     uProducts: { value: null },
-    uProductsWidth: { value: 1 },
+    uClustersPerRow: { value: 1 },
   };
   let products = null, lighting = null, lastLight = null;
   if (glossy.cpca) {
-    const texels = glossy.cpca.clusters * (glossy.cpca.vectors + 1) * glossy.n2;
-    const width = Math.min(texels, 4096), height = Math.ceil(texels / width);
+    const perCluster = (glossy.cpca.vectors + 1) * glossy.n2;  // texels; whole clusters a row
+    if (perCluster > 8192) throw new Error(`${glossy.cpca.vectors} vectors at order ${glossy.order}: a cluster's products exceed a texture row`);
+    const perRow = Math.max(1, Math.floor(4096 / perCluster));
+    const width = perRow * perCluster, height = Math.ceil(glossy.cpca.clusters / perRow);
     products = new Float32Array(4 * width * height);
     uniforms.uProducts.value = floatTexture(products, width, height);
-    uniforms.uProductsWidth.value = width;
+    uniforms.uClustersPerRow.value = perRow;
     lighting = new Float64Array(3 * glossy.n2);
     lastLight = new Float32Array(3 * MAX_ORDER * MAX_ORDER).fill(NaN);
   } else {

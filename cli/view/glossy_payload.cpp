@@ -231,7 +231,8 @@ std::vector<std::uint8_t> glossy_bytes(const prt::GlossyTransferData& data,
   const std::vector<float> vertex = vertex_texels(data, cpca, &vertex_layout);
   std::vector<float> brdf = brdf_nodes(data, path, &materials);
   const std::size_t texels = brdf.size() / 4;
-  const std::size_t width = std::min(texels, kTextureWidth);
+  const std::size_t per_node = std::size_t(data.order) * data.order;  // whole nodes a row
+  const std::size_t width = std::min(texels, per_node * (kTextureWidth / per_node));
   const std::size_t height = (texels + width - 1) / width;
   if (height > kMaxTextureSide)
     throw std::runtime_error(path + ": the BRDF tables take " + std::to_string(texels) +

@@ -18,7 +18,7 @@
 //                           orthonormal frame rows t, b, n (Gram–Schmidt as the relighter does)
 //                           in texels 0–2 (xyz; w of texel 0 the material index), then for CPCA
 //                           the cluster id and the K weights, four a texel (id first).
-//                 "brdf"    RGBA texels, n² a node: texel i of node k = (b_R,i, b_G,i, b_B,i, 0)
+//                 "brdf"    RGBA texels, n² a node, whole nodes a row: texel i of node k = (b_R,i, b_G,i, b_B,i, 0)
 //                           of one sampled b(ωo); each material's nodes are listed in the
 //                           manifest: "table" (isotropic: b(θo, 0) at θo = t/(T−1)·90°, linear
 //                           in θo, then rotated about +z by φo — the library's table exactly;
