@@ -34,7 +34,7 @@ for file in "$name.prtq" "$name.prtg"; do
   server=$!
   url=""
   for _ in $(seq 1 3000); do
-    url="$(grep -o 'http://[^ ]*' "$out/view.out" || true)"
+    url="$(grep -so 'http://[^ ]*' "$out/view.out" || true)"
     [ -n "$url" ] && break
     kill -0 $server 2>/dev/null || { cat "$out/view.err"; exit 1; }
     sleep 0.1
