@@ -1,6 +1,7 @@
-// `prt view SCENE FILE.prt [ENV] [--port N] [--listen ADDR]`: serve a browser page that relights
-// the scene on the GPU (web/, docs/VIEWER.md). The page, the payloads and the server's refusals
-// are cli/view/ (view_payload.h, view_server.h, request_target.h); this file maps the arguments.
+// `prt view SCENE FILE.prt|.prtg|.prtq [ENV] [--port N] [--listen ADDR]`: serve a browser page that
+// relights the scene on the GPU (web/, docs/VIEWER.md). The page, the payloads and the server's
+// refusals are cli/view/ (view_payload.h, view_server.h, request_target.h); this file maps the
+// arguments.
 #include <pthread.h>
 #include <csignal>
 #include <cstdio>
@@ -87,7 +88,9 @@ Command register_view(CLI::App& app) {
       "view", "Serve a browser page that relights the scene on the GPU (drag to turn the light)");
   cmd->add_option("scene", args->scene, "Scene (.glb, .gltf, .obj) the file was baked from")
       ->required();
-  cmd->add_option("transfer", args->transfer, "Coefficient file (.prt, SH) or glossy transfer (.prtg, .prtq)")->required();
+  cmd->add_option("transfer", args->transfer,
+                  "Coefficient file (.prt, SH) or glossy transfer (.prtg, .prtq)")
+      ->required();
   cmd->add_option("environment", args->environment,
                   "Environment map (.hdr, .exr, .pfm; default: uniform radiance 1)");
   cmd->add_option("--port", args->port, "TCP port (0: any free port; the URL printed says which)")
