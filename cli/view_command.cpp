@@ -1,6 +1,7 @@
-// `prt view SCENE FILE.prt [ENV] [--port N] [--listen ADDR]`: serve a browser page that relights
-// the scene on the GPU (web/, docs/VIEWER.md). The page, the payloads and the server's refusals
-// are cli/view/ (view_payload.h, view_server.h, request_target.h); this file maps the arguments.
+// `prt view SCENE FILE.prt|.prtg|.prtq [ENV] [--port N] [--listen ADDR]`: serve a browser page that
+// relights the scene on the GPU (web/, docs/VIEWER.md). The page, the payloads and the server's
+// refusals are cli/view/ (view_payload.h, view_server.h, request_target.h); this file maps the
+// arguments.
 #include <pthread.h>
 #include <csignal>
 #include <cstdio>
@@ -13,7 +14,6 @@
 #include <CLI/CLI.hpp>
 
 #include "command_registry.h"
-#include "glossy_cli.h"
 #include "output_safety.h"
 #include "view/view_payload.h"
 #include "view/view_server.h"
@@ -51,8 +51,6 @@ void run(const ViewArguments& args) {
 #ifndef PRT_VIEW_WEB_DIR
   throw CommandError("this prt was built without the viewer (cpp-httplib was not found)");
 #else
-  if (is_glossy_file(args.transfer))
-    throw CommandError(args.transfer + ": is a glossy file; prt view shows SH files (.prt)");
   // The assets first: without them there is nothing to serve, whatever the inputs. The build
   // tree's copy, unless PRT_VIEW_WEB_DIR names another (an installed or a test copy).
   const char* web_dir = std::getenv("PRT_VIEW_WEB_DIR");
@@ -90,7 +88,9 @@ Command register_view(CLI::App& app) {
       "view", "Serve a browser page that relights the scene on the GPU (drag to turn the light)");
   cmd->add_option("scene", args->scene, "Scene (.glb, .gltf, .obj) the file was baked from")
       ->required();
-  cmd->add_option("transfer", args->transfer, "Coefficient file (.prt, SH)")->required();
+  cmd->add_option("transfer", args->transfer,
+                  "Coefficient file (.prt, SH) or glossy transfer (.prtg, .prtq)")
+      ->required();
   cmd->add_option("environment", args->environment,
                   "Environment map (.hdr, .exr, .pfm; default: uniform radiance 1)");
   cmd->add_option("--port", args->port, "TCP port (0: any free port; the URL printed says which)")

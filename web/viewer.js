@@ -12,12 +12,14 @@
 //   mode=transfer|unshadowed|ao|bent|ao-only|PASS  background=0|1   ui=0 (no panel)
 //   emitter=NAME=r,g,b (repeatable)             as prt relight --emitter (prt view --emitters)
 //   antialias=0                                 one sample a pixel (as prt relight --spp 1)
+//   eye=x,y,z                                   glossy files: shade toward this eye, not the camera's
 // window.prtViewer exposes the state for tests: ready, firstFrameMs, render(), measureFrames(n).
 import * as THREE from 'three';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
 import { createBackground } from './background.js';
 import { addDefaultAttributes, createRelightMaterial, halfTexture, MODES, prepareLighting, setEmitterLight, setExposure, setLighting, setMode } from './prt-relight.js';
 import { rotationFromYawPitchRoll } from './sh.js';
+import { createGlossyMaterial } from './glossy.js';
 import { passes } from './passes/index.js';
 
 const started = performance.now();
@@ -96,16 +98,20 @@ async function main() {
   const manifest = await (await fetch('/api/manifest.json')).json();
   const urls = [manifest.mesh.url, manifest.transfer.url, manifest.background.url];
   if (manifest.emitters) urls.push(manifest.emitters.url);
-  const [meshBuffer, transferBuffer, environmentBuffer, emittersBuffer] = await Promise.all(urls.map(fetchBytes));
+  if (manifest.glossy) urls.push(manifest.glossy.url);
+  const buffers = await Promise.all(urls.map(fetchBytes));
+  const [meshBuffer, transferBuffer, environmentBuffer] = buffers;
+  const emittersBuffer = manifest.emitters ? buffers[3] : null;
   const geometry = buildGeometry(manifest, meshBuffer);
   manifest.radius = geometry.boundingSphere.radius;
   const t = manifest.transfer;
-  const material = createRelightMaterial({
+  const material = manifest.glossy ? createGlossyMaterial(manifest, transferBuffer, buffers.at(-1)) : createRelightMaterial({
     order: manifest.order,
     channels: manifest.channels,
     albedoFolded: manifest.albedo_folded,
     transfer: { texture: halfTexture(new Uint16Array(transferBuffer), t.width, t.height), width: t.width, texelsPerVertex: t.texels_per_vertex },
   });
+  if (manifest.glossy && params.has('eye')) material.userData.fixedEye = numbers(params.get('eye'), 3, 'eye');
   const mesh = new THREE.Mesh(geometry, material);
   mesh.frustumCulled = false;
   const scene = new THREE.Scene();
@@ -265,7 +271,7 @@ function setUpControls(manifest, state, render, canvas) {
   };
   windowSelect.addEventListener('change', applyWindow);
   strength.addEventListener('change', applyWindow);
-  const available = { transfer: true, unshadowed: true, ao: !!manifest.mesh.sections.ao, bent: !!manifest.mesh.sections.bent_normals, 'ao-only': !!manifest.mesh.sections.ao };
+  const available = { transfer: true, unshadowed: !manifest.glossy, ao: !!manifest.mesh.sections.ao, bent: !!manifest.mesh.sections.bent_normals, 'ao-only': !!manifest.mesh.sections.ao };
   const labels = { transfer: `${manifest.kind} (file)`, unshadowed: 'unshadowed (normal)', ao: 'baked AO × unshadowed', bent: 'bent normal × AO', 'ao-only': 'baked AO' };
   for (const name of MODES) {
     if (!available[name]) continue;

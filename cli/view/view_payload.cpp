@@ -2,6 +2,8 @@
 // `prt relight` uses (so the page's camera, window and exposure are the offline render's).
 #include "view_payload.h"
 
+#include "glossy_payload.h"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -170,7 +172,16 @@ nlohmann::json emitters_json(const prt::EmitterResponses& responses) {
 
 }  // namespace
 
+std::vector<std::uint8_t> environment_payload(const sh::EnvMap& env, int width) {
+  return environment_bytes(env, width);
+}
+sh::EnvMap uniform_environment_map() { return uniform_environment(); }
+nlohmann::json camera_manifest(const relight::CameraChoice& choice, float aspect) {
+  return camera_json(choice, aspect);
+}
+
 ViewPayload build_view_payload(const ViewInputs& inputs) {
+  if (is_glossy_view_file(inputs.transfer_path)) return build_glossy_view_payload(inputs);
   scene::Scene scene = scene::load_scene(inputs.scene_path);
   if (inputs.max_edge) scene = scene::subdivide_to_edge_length(scene, *inputs.max_edge);
   const prt::TransferData data = relight::load_transfer_for_scene(inputs.transfer_path, scene);

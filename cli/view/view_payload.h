@@ -29,6 +29,11 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
+#include "relight/auto_camera.h"
+#include "sh/env_map.h"
+
 namespace prt::cli::view {
 
 struct ViewInputs {
@@ -45,9 +50,16 @@ struct ViewInputs {
 struct ViewPayload {
   std::string manifest_json;
   std::vector<std::uint8_t> mesh, transfer, environment, emitters;  // emitters: maybe empty
+  std::vector<std::uint8_t> glossy;  // glossy files only (glossy_payload.h)
   std::string summary;                                              // one line for the terminal
 };
 
 ViewPayload build_view_payload(const ViewInputs& inputs);
+
+// Parts shared with glossy_payload.cpp: environment.bin of `env`, the uniform environment used
+// without a map, and the manifest's camera object.
+std::vector<std::uint8_t> environment_payload(const sh::EnvMap& env, int width);
+sh::EnvMap uniform_environment_map();
+nlohmann::json camera_manifest(const relight::CameraChoice& choice, float aspect);
 
 }  // namespace prt::cli::view

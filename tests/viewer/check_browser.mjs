@@ -19,7 +19,8 @@
 // colours and at emitter=lamp=2,1,0.5 against prt relight --emitters (--emitter …), same
 // tolerance; one sample a pixel on both sides (antialias=0, --spp 1), as the room's emitting
 // patches make hard edges inside the object that the two antialiasing schemes draw apart.
-// Usage: node check_browser.mjs URL OUT_DIR [emitters]   (OUT_DIR holds cpu_default.png,
+// With `glossy CAMERA_A CAMERA_B`: a glossy file, see checkGlossy() below.
+// Usage: node check_browser.mjs URL OUT_DIR [emitters | glossy CAMERA_A CAMERA_B]   (OUT_DIR holds cpu_default.png,
 // cpu_r0.png, cpu_r90.png — or cpu_emitters.png, cpu_lamp.png — and receives the screenshots;
 // exit 0 when every check passes).
 import { mkdtempSync, readFileSync, writeFileSync } from 'node:fs';
@@ -28,7 +29,7 @@ import { readPng } from './png.mjs';
 
 const [url, out, emitterCase] = process.argv.slice(2);
 const WIDTH = 640, HEIGHT = 360;
-const TOLERANCE = 0.03, MIN_CHANGE = 0.10, CHANGE_TOLERANCE = 0.10;
+const TOLERANCE = 0.03, MIN_CHANGE = 0.10, CHANGE_TOLERANCE = 0.10, MIN_VIEW_CHANGE = 0.06;
 let failures = 0;
 function check(ok, message) {
   console.log(`${ok ? 'ok  ' : 'FAIL'} ${message}`);
@@ -102,7 +103,41 @@ async function checkEmitters() {
   check(change >= MIN_CHANGE, `recolouring the lamp changes the CPU picture by ${(100 * change).toFixed(1)}%`);
 }
 
+// A glossy file (glossy, CAMERA_A, CAMERA_B): view-dependent shading. The defaults; then at
+// camera A and camera B (the same light turned by 30°, fixed exposure, window none) against
+// prt relight --camera …; then view dependence: the page at camera B shading toward A's eye
+// (eye=…, what a view-independent picture would show) must differ from prt relight's B by more
+// than MIN_VIEW_CHANGE, and the change the page makes when the eye moves from A to B must match
+// the CPU's (the GPU's error at B relative to the size of that change: ≤ CHANGE_TOLERANCE).
+async function checkGlossy(cameraA, cameraB) {
+  const manifest = JSON.parse(readFileSync(`${out}/manifest.json`, 'utf8'));
+  const fixed = `ui=0&exposure=${manifest.exposure_ev}&window=none&rotate=30,0,0`;
+  const maskA = objectMask((await shoot(`${fixed}&camera=${cameraA}&background=0`, 'gpu_mask_a')).image);
+  const maskB = objectMask((await shoot(`${fixed}&camera=${cameraB}&background=0`, 'gpu_mask_b')).image);
+  const count = maskB.reduce((s, m) => s + m, 0);
+  check(count > 0.2 * WIDTH * HEIGHT, `the scene covers ${count} pixels of ${WIDTH * HEIGHT} at camera B`);
+  const e0 = relativeRms((await shoot('ui=0', 'gpu_default')).image.rgb, cpu('cpu_default').rgb, maskA);
+  check(e0 <= TOLERANCE, `${manifest.kind} defaults: relative RMS ${(100 * e0).toFixed(2)}% against prt relight (≤ ${100 * TOLERANCE}%)`);
+  const eA = relativeRms((await shoot(`${fixed}&camera=${cameraA}`, 'gpu_a')).image.rgb, cpu('cpu_a').rgb, maskA);
+  check(eA <= TOLERANCE, `camera A, rotate 30,0,0: relative RMS ${(100 * eA).toFixed(2)}%`);
+  const gB = (await shoot(`${fixed}&camera=${cameraB}`, 'gpu_b')).image.rgb, cB = cpu('cpu_b').rgb;
+  const eB = relativeRms(gB, cB, maskB);
+  check(eB <= TOLERANCE, `camera B: relative RMS ${(100 * eB).toFixed(2)}%`);
+  const eyeA = cameraA.split(',').slice(0, 3).join(',');
+  const pinned = (await shoot(`${fixed}&camera=${cameraB}&eye=${eyeA}`, 'gpu_b_eye_a')).image.rgb;
+  const viewChange = relativeRms(pinned, cB, maskB);
+  check(viewChange >= MIN_VIEW_CHANGE, `camera B shaded toward A's eye differs from prt relight's B by ${(100 * viewChange).toFixed(1)}% (≥ ${100 * MIN_VIEW_CHANGE}%: the shading depends on the view)`);
+  const changeError = relativeRms(gB, cB, maskB, { a: pinned, b: pinned });
+  check(changeError <= CHANGE_TOLERANCE, `the page's change from eye A to eye B differs from the CPU's by ${(100 * changeError).toFixed(1)}% of it (≤ ${100 * CHANGE_TOLERANCE}%)`);
+  await shoot(`camera=${cameraB}`, 'viewer_glossy', 960, 540);  // with the panel, for docs/images
+}
+
 try {
+  if (emitterCase === 'glossy') {
+    await checkGlossy(process.argv[5], process.argv[6]);
+    await browser.close();
+    process.exit(failures === 0 ? 0 : 1);
+  }
   if (emitterCase === 'emitters') {
     await checkEmitters();
     await browser.close();

@@ -56,3 +56,29 @@ lit() { "$prt" relight "$room/room.obj" "$room/room.prt" "$sky" --max-edge 0.25 
 lit -o "$room/cpu_emitters.png"
 lit -o "$room/cpu_lamp.png" --emitter lamp=2,1,0.5
 node "$here/check_browser.mjs" "$url" "$room" emitters
+kill $server && wait $server 2>/dev/null || true
+
+# Glossy files (`prt make-scene --scene glossy`, baked at order 4, and its CPCA compression):
+# view-dependent shading at two cameras, camera B orbited 50° about the vertical through the
+# target (check_browser.mjs, checkGlossy).
+glossy="$out/glossy" && mkdir -p "$glossy"
+"$prt" make-scene --scene glossy -o "$glossy/glossy.glb" >/dev/null
+"$prt" bake "$glossy/glossy.glb" --glossy -o "$glossy/g.prtg" --order 4 --samples 32 --quiet
+"$prt" compress "$glossy/g.prtg" -o "$glossy/g.prtq" --clusters 8 --vectors 4 --quiet
+for file in g.prtg g.prtq; do
+  dir="$glossy/${file/./_}" && mkdir -p "$dir"
+  start_view "$dir" "$glossy/glossy.glb" "$glossy/$file" "$sky"
+  cameras="$(node -e "
+    const c = require('$dir/manifest.json').camera, t = c.target, a = 50 * Math.PI / 180;
+    const d = [c.eye[0] - t[0], c.eye[2] - t[2]];
+    const b = [t[0] + Math.cos(a) * d[0] + Math.sin(a) * d[1], c.eye[1], t[2] - Math.sin(a) * d[0] + Math.cos(a) * d[1]];
+    const s = (e) => [...e, ...t, ...c.up, c.yfov_degrees].map((x) => +x.toFixed(6)).join(',');
+    console.log(s(c.eye), s(b));")"
+  read -r camera_a camera_b <<<"$cameras"
+  shade() { "$prt" relight "$glossy/glossy.glb" "$glossy/$file" "$sky" --size 640x360 --quiet "$@"; }
+  shade -o "$dir/cpu_default.png"
+  shade -o "$dir/cpu_a.png" --camera "$camera_a" --exposure "$exposure" --window none --rotate 30,0,0
+  shade -o "$dir/cpu_b.png" --camera "$camera_b" --exposure "$exposure" --window none --rotate 30,0,0
+  node "$here/check_browser.mjs" "$url" "$dir" glossy "$camera_a" "$camera_b"
+  kill $server && wait $server 2>/dev/null || true
+done
