@@ -12,13 +12,18 @@
 //   mode=transfer|unshadowed|ao|bent|ao-only|PASS  background=0|1   ui=0 (no panel)
 //   emitter=NAME=r,g,b (repeatable)             as prt relight --emitter (prt view --emitters)
 //   antialias=0                                 one sample a pixel (as prt relight --spp 1)
-// window.prtViewer exposes the state for tests: ready, firstFrameMs, render(), measureFrames(n).
+//   preview=0                                   no coarse first frame (preview.js) for a large scene
+// A large scene is drawn first from its coarse preview (preview.js), then, as soon as the full
+// payloads have arrived, in full; window.prtViewer appears after the full frame.
+// window.prtViewer exposes the state for tests: ready, firstFrameMs, previewFrameMs (or null),
+// timings (ms since navigation), render(), measureFrames(n).
 import * as THREE from 'three';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
 import { createBackground } from './background.js';
 import { addDefaultAttributes, createRelightMaterial, halfTexture, MODES, prepareLighting, setEmitterLight, setExposure, setLighting, setMode } from './prt-relight.js';
 import { rotationFromYawPitchRoll } from './sh.js';
 import { passes } from './passes/index.js';
+import { disposePreview, previewMesh, wantsPreview } from './preview.js';
 
 const started = performance.now();
 const params = new URLSearchParams(location.search);
@@ -39,6 +44,21 @@ async function fetchBytes(url) {
 
 function section(buffer, info, Type) {
   return new Type(buffer, info.offset, info.count);
+}
+
+// The relit mesh of the full payloads.
+function fullMesh(manifest, meshBuffer, transferBuffer) {
+  const geometry = buildGeometry(manifest, meshBuffer);
+  const t = manifest.transfer;
+  const material = createRelightMaterial({
+    order: manifest.order,
+    channels: manifest.channels,
+    albedoFolded: manifest.albedo_folded,
+    transfer: { texture: halfTexture(new Uint16Array(transferBuffer), t.width, t.height), width: t.width, texelsPerVertex: t.texels_per_vertex },
+  });
+  const mesh = new THREE.Mesh(geometry, material);
+  mesh.frustumCulled = false;
+  return mesh;
 }
 
 function buildGeometry(manifest, meshBuffer) {
@@ -82,32 +102,49 @@ function makeCamera(manifest, aspect) {
     const v = numbers(params.get('camera'), 10, 'camera');
     [eye, target, up, fov] = [v.slice(0, 3), v.slice(3, 6), v.slice(6, 9), v[9]];
   }
-  const radius = manifest.radius;
   const distance = Math.hypot(eye[0] - target[0], eye[1] - target[1], eye[2] - target[2]);
-  const camera = new THREE.PerspectiveCamera(fov, aspect, Math.max(1e-4 * radius, (distance - 2 * radius) * 0.5), (distance + 2 * radius) * 2);
+  const camera = new THREE.PerspectiveCamera(fov, aspect);
+  setClipPlanes(camera, distance, manifest.radius);
   camera.position.set(...eye);
   camera.up.set(...up);
   camera.lookAt(...target);
   camera.updateMatrixWorld();
-  return { camera, target: new THREE.Vector3(...target) };
+  return { camera, target: new THREE.Vector3(...target), distance };
+}
+
+// Near and far planes around a mesh of bounding radius `radius` seen from `distance`.
+function setClipPlanes(camera, distance, radius) {
+  camera.near = Math.max(1e-4 * radius, (distance - 2 * radius) * 0.5);
+  camera.far = (distance + 2 * radius) * 2;
+  camera.updateProjectionMatrix();
 }
 
 async function main() {
+  const timings = {};
   const manifest = await (await fetch('/api/manifest.json')).json();
-  const urls = [manifest.mesh.url, manifest.transfer.url, manifest.background.url];
+  timings.manifest = performance.now();
+  const environmentBytes = fetchBytes(manifest.background.url);
+  const previewBuffer = wantsPreview(manifest, params) ? await fetchBytes(manifest.preview.url) : null;
+  if (previewBuffer) timings.previewBytes = performance.now();
+  // The full payloads, requested once the preview's bytes are in (not to slow their download).
+  const urls = [manifest.mesh.url, manifest.transfer.url];
   if (manifest.emitters) urls.push(manifest.emitters.url);
-  const [meshBuffer, transferBuffer, environmentBuffer, emittersBuffer] = await Promise.all(urls.map(fetchBytes));
-  const geometry = buildGeometry(manifest, meshBuffer);
-  manifest.radius = geometry.boundingSphere.radius;
-  const t = manifest.transfer;
-  const material = createRelightMaterial({
-    order: manifest.order,
-    channels: manifest.channels,
-    albedoFolded: manifest.albedo_folded,
-    transfer: { texture: halfTexture(new Uint16Array(transferBuffer), t.width, t.height), width: t.width, texelsPerVertex: t.texels_per_vertex },
+  const fullBytes = Promise.all(urls.map(fetchBytes)).then((buffers) => {
+    timings.fullBytes = performance.now();
+    return buffers;
   });
-  const mesh = new THREE.Mesh(geometry, material);
-  mesh.frustumCulled = false;
+  const environmentBuffer = await environmentBytes;
+  let emittersBuffer = null;
+  let mesh;
+  if (previewBuffer) {
+    mesh = previewMesh(manifest, previewBuffer);
+  } else {
+    const [meshBuffer, transferBuffer, emitted] = await fullBytes;
+    mesh = fullMesh(manifest, meshBuffer, transferBuffer);
+    emittersBuffer = emitted;
+  }
+  let { geometry, material } = mesh;
+  manifest.radius = geometry.boundingSphere.radius;
   const scene = new THREE.Scene();
   scene.add(mesh);
   const b = manifest.background;
@@ -120,21 +157,18 @@ async function main() {
   renderer.autoClear = false;
   renderer.setPixelRatio(1);
   renderer.setSize(window.innerWidth, window.innerHeight, false);
-  const { camera, target } = makeCamera(manifest, window.innerWidth / window.innerHeight);
+  const { camera, target, distance } = makeCamera(manifest, window.innerWidth / window.innerHeight);
   const controls = new OrbitControls(camera, canvas);
   controls.target.copy(target);
   controls.mouseButtons = { LEFT: null, MIDDLE: THREE.MOUSE.DOLLY, RIGHT: THREE.MOUSE.ROTATE };
   controls.update();
 
+  if (params.get('ui') === '0') document.getElementById('panel').style.display = 'none';
   const state = initialState(manifest);
-  const emitters = manifest.emitters ? { responses: new Float32Array(emittersBuffer), list: manifest.emitters.emitters } : null;
-  if (emitters) {
-    state.emitterColors = emitterColors(emitters.list);
-    setEmitterLight(geometry, emitters.responses, state.emitterColors);
-  }
   const context = { THREE, renderer, scene, camera, mesh, geometry, material, manifest, state, background };
 
   function render() {
+    const material = context.material;
     const m = rotationFromYawPitchRoll(...state.rotation);
     const builtIn = MODES.includes(state.mode);
     if (builtIn) setMode(material, state.mode);
@@ -152,12 +186,35 @@ async function main() {
     }
   }
   context.render = render;
+  controls.addEventListener('change', render);
+  let previewFrameMs = null;
+  if (previewBuffer) {
+    render();
+    waitForGpu(renderer.getContext());
+    timings.previewFrame = performance.now();
+    previewFrameMs = timings.previewFrame - started;
+    status.textContent = `preview (${manifest.preview.vertex_count.toLocaleString()} of ${manifest.vertex_count.toLocaleString()} vertices) in ${previewFrameMs.toFixed(0)} ms; loading the rest…`;
+    const [meshBuffer, transferBuffer] = await fullBytes;
+    const full = fullMesh(manifest, meshBuffer, transferBuffer);
+    scene.remove(mesh);
+    scene.add(full);
+    const preview = mesh;
+    ({ geometry, material } = full);
+    Object.assign(context, { mesh: full, geometry, material });
+    manifest.radius = geometry.boundingSphere.radius;
+    setClipPlanes(camera, distance, manifest.radius);
+    mesh = full;
+    requestAnimationFrame(() => disposePreview(preview));
+  }
+  const emitters = manifest.emitters ? { responses: new Float32Array(emittersBuffer), list: manifest.emitters.emitters } : null;
+  if (emitters) {
+    state.emitterColors = emitterColors(emitters.list);
+    setEmitterLight(geometry, emitters.responses, state.emitterColors);
+  }
   for (const pass of passes) pass.init?.(context);
 
   const ui = setUpControls(manifest, state, render, canvas);
   if (emitters) setUpEmitterControls(emitters, state, geometry, render);
-  if (params.get('ui') === '0') document.getElementById('panel').style.display = 'none';
-  controls.addEventListener('change', render);
   window.addEventListener('resize', () => {
     renderer.setSize(window.innerWidth, window.innerHeight, false);
     camera.aspect = window.innerWidth / window.innerHeight;
@@ -168,12 +225,17 @@ async function main() {
   waitForGpu(renderer.getContext());
   const firstFrameMs = performance.now() - started;
   const firstFrameSinceNavigationMs = performance.now();
-  status.textContent = `${manifest.vertex_count.toLocaleString()} vertices, ${manifest.kind} SH order ${manifest.order}; first frame ${firstFrameMs.toFixed(0)} ms`;
+  timings.fullFrame = firstFrameSinceNavigationMs;
+  status.textContent = `${manifest.vertex_count.toLocaleString()} vertices, ${manifest.kind} SH order ${manifest.order}; ` +
+    (previewFrameMs === null ? `first frame ${firstFrameMs.toFixed(0)} ms` : `preview ${previewFrameMs.toFixed(0)} ms, full frame ${firstFrameMs.toFixed(0)} ms`);
   window.prtViewer = {
     ready: true,
     context,
     firstFrameMs,
     firstFrameSinceNavigationMs,
+    previewFrameMs,
+    previewFrameSinceNavigationMs: timings.previewFrame ?? null,
+    timings,
     manifest,
     state,
     render,

@@ -43,12 +43,15 @@ try {
     v.context.mesh.visible = false;
     const background = v.measureFrames(n);
     return { vertices: v.manifest.vertex_count, triangles: v.manifest.triangle_count, order: v.manifest.order, channels: v.manifest.channels,
-      firstFrameMs: v.firstFrameSinceNavigationMs, withMesh, plain, background };
+      firstFrameMs: v.firstFrameSinceNavigationMs, previewFrameMs: v.previewFrameSinceNavigationMs, timings: v.timings,
+      withMesh, plain, background };
   }, frames);
   if (result.error) throw new Error(result.error);
   const frame = median(result.withMesh), plain = median(result.plain), empty = median(result.background);
   console.log(JSON.stringify({ vertices: result.vertices, triangles: result.triangles, order: result.order, channels: result.channels,
-    first_frame_ms: Math.round(result.firstFrameMs), frame_ms_median: +frame.toFixed(1), background_only_ms_median: +empty.toFixed(1),
+    first_frame_ms: Math.round(result.firstFrameMs),
+    preview_frame_ms: result.previewFrameMs === null ? null : Math.round(result.previewFrameMs),
+    timings_ms: Object.fromEntries(Object.entries(result.timings ?? {}).map(([k, t]) => [k, Math.round(t)])), frame_ms_median: +frame.toFixed(1), background_only_ms_median: +empty.toFixed(1),
     ao_only_ms_median: +plain.toFixed(1),
     mesh_ns_per_vertex: +((1e6 * (frame - empty)) / result.vertices).toFixed(1),
     transfer_sum_ns_per_vertex: +((1e6 * (frame - plain)) / result.vertices).toFixed(1), frames }));

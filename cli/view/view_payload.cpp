@@ -24,6 +24,7 @@
 #include "scene/scene_loader.h"
 #include "scene/subdivide.h"
 #include "sh/window.h"
+#include "view_preview.h"
 
 namespace prt::cli::view {
 namespace {
@@ -230,6 +231,12 @@ ViewPayload build_view_payload(const ViewInputs& inputs) {
   payload.transfer = transfer_bytes(data, &layout);
   layout["url"] = "/api/transfer.bin";
   manifest["transfer"] = layout;
+  if (scene.vertex_count() > kPreviewMinVertices && responses.emitters.empty()) {
+    nlohmann::json preview;
+    payload.preview =
+        preview_bytes(scene, data, build_preview_mesh(scene, kPreviewVertices), &preview);
+    manifest["preview"] = preview;
+  }
   std::vector<double> lighting;
   for (int c = 0; c < 3; ++c)
     lighting.insert(lighting.end(), unwindowed.coefficients_double(c),

@@ -75,6 +75,8 @@ void add_payload_routes(ViewPayload payload, std::map<std::string, Route>* route
   (*routes)["/api/transfer.bin"] = {"application/octet-stream", share(std::move(payload.transfer))};
   (*routes)["/api/environment.bin"] = {"application/octet-stream",
                                        share(std::move(payload.environment))};
+  if (!payload.preview.empty())
+    (*routes)["/api/preview.bin"] = {"application/octet-stream", share(std::move(payload.preview))};
   if (!payload.emitters.empty())
     (*routes)["/api/emitters.bin"] = {"application/octet-stream",
                                       share(std::move(payload.emitters))};
