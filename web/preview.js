@@ -1,9 +1,13 @@
 // web/preview.js — the first frame of a large scene: the server's coarse copy (preview.bin,
 // cli/view/view_preview.h: vertex clustering, each preview vertex a scene vertex with its own
 // transfer) drawn with the same relighting material while the full payloads are on the way.
-// The full frame replaces it as soon as they have arrived (viewer.js).
+// The full frame replaces it as soon as they have arrived (viewer.js). The preview stays: while
+// the user turns the light, orbits or slides, the page draws it (a frame in a tenth of the
+// time) and redraws in full once the input has rested for kRefineMs.
 import * as THREE from 'three';
 import { addDefaultAttributes, createRelightMaterial, halfTexture } from './prt-relight.js';
+
+export const kRefineMs = 250;
 
 // Whether the page draws the preview first: the manifest has one, the display is the file's
 // transfer (the preview carries no AO, bent normals or emitter light) and preview=0 is absent.
@@ -36,9 +40,3 @@ export function previewMesh(manifest, buffer) {
   return mesh;
 }
 
-// Frees the preview's GPU buffers and texture once the full mesh is drawn.
-export function disposePreview(mesh) {
-  mesh.geometry.dispose();
-  mesh.material.uniforms.uTransfer.value.dispose();
-  mesh.material.dispose();
-}

@@ -23,7 +23,7 @@ import { createBackground } from './background.js';
 import { addDefaultAttributes, createRelightMaterial, halfTexture, MODES, prepareLighting, setEmitterLight, setExposure, setLighting, setMode } from './prt-relight.js';
 import { rotationFromYawPitchRoll } from './sh.js';
 import { passes } from './passes/index.js';
-import { disposePreview, previewMesh, wantsPreview } from './preview.js';
+import { kRefineMs, previewMesh, wantsPreview } from './preview.js';
 
 const started = performance.now();
 const params = new URLSearchParams(location.search);
@@ -167,8 +167,9 @@ async function main() {
   const state = initialState(manifest);
   const context = { THREE, renderer, scene, camera, mesh, geometry, material, manifest, state, background };
 
-  function render() {
-    const material = context.material;
+  // Draws the frame with `target` (the relit mesh, or the coarse preview while the user moves).
+  function render(target = context.mesh) {
+    const material = target.material;
     const m = rotationFromYawPitchRoll(...state.rotation);
     const builtIn = MODES.includes(state.mode);
     if (builtIn) setMode(material, state.mode);
@@ -182,11 +183,23 @@ async function main() {
       pass.render(context);
     } else {
       renderer.render(background.scene, camera);
+      const swap = target !== context.mesh;
+      if (swap) scene.remove(context.mesh).add(target);
       renderer.render(scene, camera);
+      if (swap) scene.remove(target).add(context.mesh);
     }
   }
   context.render = render;
-  controls.addEventListener('change', render);
+  // While the user drags or slides, a large scene is drawn from its preview, and in full once
+  // the input has rested for kRefineMs (preview.js).
+  let coarse = null, refine = null;
+  const renderInteractive = () => {
+    if (!coarse || state.mode !== 'transfer') return render();
+    render(coarse);
+    clearTimeout(refine);
+    refine = setTimeout(() => render(), kRefineMs);
+  };
+  controls.addEventListener('change', renderInteractive);
   let previewFrameMs = null;
   if (previewBuffer) {
     render();
@@ -204,7 +217,7 @@ async function main() {
     manifest.radius = geometry.boundingSphere.radius;
     setClipPlanes(camera, distance, manifest.radius);
     mesh = full;
-    requestAnimationFrame(() => disposePreview(preview));
+    coarse = preview;
   }
   const emitters = manifest.emitters ? { responses: new Float32Array(emittersBuffer), list: manifest.emitters.emitters } : null;
   if (emitters) {
@@ -213,7 +226,7 @@ async function main() {
   }
   for (const pass of passes) pass.init?.(context);
 
-  const ui = setUpControls(manifest, state, render, canvas);
+  const ui = setUpControls(manifest, state, renderInteractive, canvas);
   if (emitters) setUpEmitterControls(emitters, state, geometry, render);
   window.addEventListener('resize', () => {
     renderer.setSize(window.innerWidth, window.innerHeight, false);
@@ -240,14 +253,16 @@ async function main() {
     state,
     render,
     ui,
-    // Renders n frames, each waited for (waitForGpu), and returns their times in ms.
-    measureFrames(n) {
+    coarse, // the preview mesh, drawn while the user moves (null without a preview)
+    // Renders n frames, each waited for (waitForGpu), and returns their times in ms; with
+    // `target` = coarse, the frames drawn while the user moves.
+    measureFrames(n, target = context.mesh) {
       const times = [];
       const gl = renderer.getContext();
       for (let i = 0; i < n; ++i) {
         state.rotation[0] += 1;
         const t0 = performance.now();
-        render();
+        render(target);
         waitForGpu(gl);
         times.push(performance.now() - t0);
       }
