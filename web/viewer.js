@@ -13,7 +13,11 @@
 //   emitter=NAME=r,g,b (repeatable)             as prt relight --emitter (prt view --emitters)
 //   antialias=0                                 one sample a pixel (as prt relight --spp 1)
 //   eye=x,y,z                                   glossy files: shade toward this eye, not the camera's
-// window.prtViewer exposes the state for tests: ready, firstFrameMs, render(), measureFrames(n).
+//   preview=0                                   no coarse first frame (preview.js) for a large scene
+// A large scene is drawn first from its coarse preview (preview.js), then, as soon as the full
+// payloads have arrived, in full; window.prtViewer appears after the full frame.
+// window.prtViewer exposes the state for tests: ready, firstFrameMs, previewFrameMs (or null),
+// timings (ms since navigation), render(), measureFrames(n).
 import * as THREE from 'three';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
 import { createBackground } from './background.js';
@@ -21,6 +25,7 @@ import { addDefaultAttributes, createRelightMaterial, halfTexture, MODES, prepar
 import { rotationFromYawPitchRoll } from './sh.js';
 import { createGlossyMaterial } from './glossy.js';
 import { passes } from './passes/index.js';
+import { kRefineMs, previewMesh, wantsPreview } from './preview.js';
 
 const started = performance.now();
 const params = new URLSearchParams(location.search);
@@ -41,6 +46,23 @@ async function fetchBytes(url) {
 
 function section(buffer, info, Type) {
   return new Type(buffer, info.offset, info.count);
+}
+
+// The relit mesh of the full payloads.
+// The relit mesh: SH transfer, or for glossy files (glossyBuffer = /api/glossy.bin) glossy.js.
+function fullMesh(manifest, meshBuffer, transferBuffer, glossyBuffer = null) {
+  const geometry = buildGeometry(manifest, meshBuffer);
+  const t = manifest.transfer;
+  const material = manifest.glossy ? createGlossyMaterial(manifest, transferBuffer, glossyBuffer) : createRelightMaterial({
+    order: manifest.order,
+    channels: manifest.channels,
+    albedoFolded: manifest.albedo_folded,
+    transfer: { texture: halfTexture(new Uint16Array(transferBuffer), t.width, t.height), width: t.width, texelsPerVertex: t.texels_per_vertex },
+  });
+  if (manifest.glossy && params.has('eye')) material.userData.fixedEye = numbers(params.get('eye'), 3, 'eye');
+  const mesh = new THREE.Mesh(geometry, material);
+  mesh.frustumCulled = false;
+  return mesh;
 }
 
 function buildGeometry(manifest, meshBuffer) {
@@ -84,36 +106,50 @@ function makeCamera(manifest, aspect) {
     const v = numbers(params.get('camera'), 10, 'camera');
     [eye, target, up, fov] = [v.slice(0, 3), v.slice(3, 6), v.slice(6, 9), v[9]];
   }
-  const radius = manifest.radius;
   const distance = Math.hypot(eye[0] - target[0], eye[1] - target[1], eye[2] - target[2]);
-  const camera = new THREE.PerspectiveCamera(fov, aspect, Math.max(1e-4 * radius, (distance - 2 * radius) * 0.5), (distance + 2 * radius) * 2);
+  const camera = new THREE.PerspectiveCamera(fov, aspect);
+  setClipPlanes(camera, distance, manifest.radius);
   camera.position.set(...eye);
   camera.up.set(...up);
   camera.lookAt(...target);
   camera.updateMatrixWorld();
-  return { camera, target: new THREE.Vector3(...target) };
+  return { camera, target: new THREE.Vector3(...target), distance };
+}
+
+// Near and far planes around a mesh of bounding radius `radius` seen from `distance`.
+function setClipPlanes(camera, distance, radius) {
+  camera.near = Math.max(1e-4 * radius, (distance - 2 * radius) * 0.5);
+  camera.far = (distance + 2 * radius) * 2;
+  camera.updateProjectionMatrix();
 }
 
 async function main() {
+  const timings = {};
   const manifest = await (await fetch('/api/manifest.json')).json();
-  const urls = [manifest.mesh.url, manifest.transfer.url, manifest.background.url];
+  timings.manifest = performance.now();
+  const environmentBytes = fetchBytes(manifest.background.url);
+  const previewBuffer = wantsPreview(manifest, params) ? await fetchBytes(manifest.preview.url) : null;
+  if (previewBuffer) timings.previewBytes = performance.now();
+  // The full payloads, requested once the preview's bytes are in (not to slow their download).
+  const urls = [manifest.mesh.url, manifest.transfer.url];
   if (manifest.emitters) urls.push(manifest.emitters.url);
   if (manifest.glossy) urls.push(manifest.glossy.url);
-  const buffers = await Promise.all(urls.map(fetchBytes));
-  const [meshBuffer, transferBuffer, environmentBuffer] = buffers;
-  const emittersBuffer = manifest.emitters ? buffers[3] : null;
-  const geometry = buildGeometry(manifest, meshBuffer);
-  manifest.radius = geometry.boundingSphere.radius;
-  const t = manifest.transfer;
-  const material = manifest.glossy ? createGlossyMaterial(manifest, transferBuffer, buffers.at(-1)) : createRelightMaterial({
-    order: manifest.order,
-    channels: manifest.channels,
-    albedoFolded: manifest.albedo_folded,
-    transfer: { texture: halfTexture(new Uint16Array(transferBuffer), t.width, t.height), width: t.width, texelsPerVertex: t.texels_per_vertex },
+  const fullBytes = Promise.all(urls.map(fetchBytes)).then((buffers) => {
+    timings.fullBytes = performance.now();
+    return buffers;
   });
-  if (manifest.glossy && params.has('eye')) material.userData.fixedEye = numbers(params.get('eye'), 3, 'eye');
-  const mesh = new THREE.Mesh(geometry, material);
-  mesh.frustumCulled = false;
+  const environmentBuffer = await environmentBytes;
+  let emittersBuffer = null;
+  let mesh;
+  if (previewBuffer) {
+    mesh = previewMesh(manifest, previewBuffer);
+  } else {
+    const [meshBuffer, transferBuffer, ...extra] = await fullBytes;
+    mesh = fullMesh(manifest, meshBuffer, transferBuffer, manifest.glossy ? extra.at(-1) : null);
+    emittersBuffer = manifest.emitters ? extra[0] : null;
+  }
+  let { geometry, material } = mesh;
+  manifest.radius = geometry.boundingSphere.radius;
   const scene = new THREE.Scene();
   scene.add(mesh);
   const b = manifest.background;
@@ -126,21 +162,19 @@ async function main() {
   renderer.autoClear = false;
   renderer.setPixelRatio(1);
   renderer.setSize(window.innerWidth, window.innerHeight, false);
-  const { camera, target } = makeCamera(manifest, window.innerWidth / window.innerHeight);
+  const { camera, target, distance } = makeCamera(manifest, window.innerWidth / window.innerHeight);
   const controls = new OrbitControls(camera, canvas);
   controls.target.copy(target);
   controls.mouseButtons = { LEFT: null, MIDDLE: THREE.MOUSE.DOLLY, RIGHT: THREE.MOUSE.ROTATE };
   controls.update();
 
+  if (params.get('ui') === '0') document.getElementById('panel').style.display = 'none';
   const state = initialState(manifest);
-  const emitters = manifest.emitters ? { responses: new Float32Array(emittersBuffer), list: manifest.emitters.emitters } : null;
-  if (emitters) {
-    state.emitterColors = emitterColors(emitters.list);
-    setEmitterLight(geometry, emitters.responses, state.emitterColors);
-  }
   const context = { THREE, renderer, scene, camera, mesh, geometry, material, manifest, state, background };
 
-  function render() {
+  // Draws the frame with `target` (the relit mesh, or the coarse preview while the user moves).
+  function render(target = context.mesh) {
+    const material = target.material;
     const m = rotationFromYawPitchRoll(...state.rotation);
     const builtIn = MODES.includes(state.mode);
     if (builtIn) setMode(material, state.mode);
@@ -154,16 +188,51 @@ async function main() {
       pass.render(context);
     } else {
       renderer.render(background.scene, camera);
+      const swap = target !== context.mesh;
+      if (swap) scene.remove(context.mesh).add(target);
       renderer.render(scene, camera);
+      if (swap) scene.remove(target).add(context.mesh);
     }
   }
   context.render = render;
+  // While the user drags or slides, a large scene is drawn from its preview, and in full once
+  // the input has rested for kRefineMs (preview.js).
+  let coarse = null, refine = null;
+  const renderInteractive = () => {
+    if (!coarse || state.mode !== 'transfer') return render();
+    render(coarse);
+    clearTimeout(refine);
+    refine = setTimeout(() => render(), kRefineMs);
+  };
+  controls.addEventListener('change', renderInteractive);
+  let previewFrameMs = null;
+  if (previewBuffer) {
+    render();
+    waitForGpu(renderer.getContext());
+    timings.previewFrame = performance.now();
+    previewFrameMs = timings.previewFrame - started;
+    status.textContent = `preview (${manifest.preview.vertex_count.toLocaleString()} of ${manifest.vertex_count.toLocaleString()} vertices) in ${previewFrameMs.toFixed(0)} ms; loading the rest…`;
+    const [meshBuffer, transferBuffer] = await fullBytes;
+    const full = fullMesh(manifest, meshBuffer, transferBuffer);
+    scene.remove(mesh);
+    scene.add(full);
+    const preview = mesh;
+    ({ geometry, material } = full);
+    Object.assign(context, { mesh: full, geometry, material });
+    manifest.radius = geometry.boundingSphere.radius;
+    setClipPlanes(camera, distance, manifest.radius);
+    mesh = full;
+    coarse = preview;
+  }
+  const emitters = manifest.emitters ? { responses: new Float32Array(emittersBuffer), list: manifest.emitters.emitters } : null;
+  if (emitters) {
+    state.emitterColors = emitterColors(emitters.list);
+    setEmitterLight(geometry, emitters.responses, state.emitterColors);
+  }
   for (const pass of passes) pass.init?.(context);
 
-  const ui = setUpControls(manifest, state, render, canvas);
+  const ui = setUpControls(manifest, state, renderInteractive, canvas);
   if (emitters) setUpEmitterControls(emitters, state, geometry, render);
-  if (params.get('ui') === '0') document.getElementById('panel').style.display = 'none';
-  controls.addEventListener('change', render);
   window.addEventListener('resize', () => {
     renderer.setSize(window.innerWidth, window.innerHeight, false);
     camera.aspect = window.innerWidth / window.innerHeight;
@@ -174,24 +243,31 @@ async function main() {
   waitForGpu(renderer.getContext());
   const firstFrameMs = performance.now() - started;
   const firstFrameSinceNavigationMs = performance.now();
-  status.textContent = `${manifest.vertex_count.toLocaleString()} vertices, ${manifest.kind} SH order ${manifest.order}; first frame ${firstFrameMs.toFixed(0)} ms`;
+  timings.fullFrame = firstFrameSinceNavigationMs;
+  status.textContent = `${manifest.vertex_count.toLocaleString()} vertices, ${manifest.kind} SH order ${manifest.order}; ` +
+    (previewFrameMs === null ? `first frame ${firstFrameMs.toFixed(0)} ms` : `preview ${previewFrameMs.toFixed(0)} ms, full frame ${firstFrameMs.toFixed(0)} ms`);
   window.prtViewer = {
     ready: true,
     context,
     firstFrameMs,
     firstFrameSinceNavigationMs,
+    previewFrameMs,
+    previewFrameSinceNavigationMs: timings.previewFrame ?? null,
+    timings,
     manifest,
     state,
     render,
     ui,
-    // Renders n frames, each waited for (waitForGpu), and returns their times in ms.
-    measureFrames(n) {
+    coarse, // the preview mesh, drawn while the user moves (null without a preview)
+    // Renders n frames, each waited for (waitForGpu), and returns their times in ms; with
+    // `target` = coarse, the frames drawn while the user moves.
+    measureFrames(n, target = context.mesh) {
       const times = [];
       const gl = renderer.getContext();
       for (let i = 0; i < n; ++i) {
         state.rotation[0] += 1;
         const t0 = performance.now();
-        render();
+        render(target);
         waitForGpu(gl);
         times.push(performance.now() - t0);
       }

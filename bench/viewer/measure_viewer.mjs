@@ -7,8 +7,11 @@
 // count is the cost of the relit mesh per vertex (vertex shader, rasterisation of its
 // triangles), and the difference with the 'ao-only' display (the same mesh, the vertex shader
 // without the transfer sum) over the vertex count is the cost of the sum itself (its texel
-// fetches and multiply-adds). Prints one JSON line.
+// fetches and multiply-adds). With a preview (scenes above 200k vertices, cli/view/view_preview.h)
+// it also gives the time to the preview frame, the page's stage timings and the frame drawn
+// from the preview while the user moves. Prints one JSON line.
 // Usage: node measure_viewer.mjs URL FRAMES [ROOT]   (ROOT: the repository, for puppeteer-core)
+// PRT_VIEW_QUERY=preview=0 (for instance) adds URL parameters.
 import { mkdtempSync } from 'node:fs';
 import { createRequire } from 'node:module';
 import { tmpdir } from 'node:os';
@@ -31,25 +34,30 @@ const median = (v) => [...v].sort((a, b) => a - b)[Math.floor(v.length / 2)];
 try {
   const page = await browser.newPage();
   await page.setViewport({ width: 960, height: 540 });
-  await page.goto(`${url}?ui=0`, { timeout: 600000 });
+  await page.goto(`${url}?ui=0${process.env.PRT_VIEW_QUERY ? `&${process.env.PRT_VIEW_QUERY}` : ''}`, { timeout: 600000 });
   await page.waitForFunction('window.prtViewer !== undefined', { timeout: 600000 });
   const result = await page.evaluate((n) => {
     const v = window.prtViewer;
     if (!v.ready) return { error: v.error };
     const withMesh = v.measureFrames(n);
+    const moving = v.coarse ? v.measureFrames(n, v.coarse) : null;  // the preview, while moving
     v.state.mode = 'ao-only';  // the vertex shader without the transfer sum
     const plain = v.measureFrames(n);
     v.state.mode = 'transfer';
     v.context.mesh.visible = false;
     const background = v.measureFrames(n);
     return { vertices: v.manifest.vertex_count, triangles: v.manifest.triangle_count, order: v.manifest.order, channels: v.manifest.channels,
-      firstFrameMs: v.firstFrameSinceNavigationMs, withMesh, plain, background };
+      firstFrameMs: v.firstFrameSinceNavigationMs, previewFrameMs: v.previewFrameSinceNavigationMs, timings: v.timings,
+      previewVertices: v.manifest.preview?.vertex_count ?? null, moving, withMesh, plain, background };
   }, frames);
   if (result.error) throw new Error(result.error);
   const frame = median(result.withMesh), plain = median(result.plain), empty = median(result.background);
   console.log(JSON.stringify({ vertices: result.vertices, triangles: result.triangles, order: result.order, channels: result.channels,
-    first_frame_ms: Math.round(result.firstFrameMs), frame_ms_median: +frame.toFixed(1), background_only_ms_median: +empty.toFixed(1),
+    first_frame_ms: Math.round(result.firstFrameMs),
+    preview_frame_ms: result.previewFrameMs === null ? null : Math.round(result.previewFrameMs),
+    timings_ms: Object.fromEntries(Object.entries(result.timings ?? {}).map(([k, t]) => [k, Math.round(t)])), frame_ms_median: +frame.toFixed(1), background_only_ms_median: +empty.toFixed(1),
     ao_only_ms_median: +plain.toFixed(1),
+    preview_vertices: result.previewVertices, moving_frame_ms_median: result.moving ? +median(result.moving).toFixed(1) : null,
     mesh_ns_per_vertex: +((1e6 * (frame - empty)) / result.vertices).toFixed(1),
     transfer_sum_ns_per_vertex: +((1e6 * (frame - plain)) / result.vertices).toFixed(1), frames }));
 } finally {

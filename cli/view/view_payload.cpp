@@ -10,6 +10,8 @@
 #include <cstring>
 #include <stdexcept>
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 #include <nlohmann/json.hpp>
 
 #include "prt/core/half.h"
@@ -26,6 +28,7 @@
 #include "scene/scene_loader.h"
 #include "scene/subdivide.h"
 #include "sh/window.h"
+#include "view_preview.h"
 
 namespace prt::cli::view {
 namespace {
@@ -53,6 +56,8 @@ std::vector<std::uint8_t> mesh_bytes(const scene::Scene& scene, const prt::Trans
                                      nlohmann::json* sections) {
   std::vector<std::uint8_t> out;
   const std::size_t v = scene.vertex_count();
+  out.reserve(4 * (9 * v + (data.ao.empty() ? 0 : v) + (data.bent_normals.empty() ? 0 : 3 * v) +
+                   3 * scene.triangles.size()));  // one allocation, no copies as it grows
   add_section(sections, &out, "positions", &scene.positions[0].x, 3 * v, "float32");
   add_section(sections, &out, "normals", &scene.normals[0].x, 3 * v, "float32");
   add_section(sections, &out, "albedo", &scene.albedo[0].x, 3 * v, "float32");
@@ -77,17 +82,20 @@ std::vector<std::uint8_t> transfer_bytes(const prt::TransferData& data, nlohmann
     throw std::runtime_error("the transfer takes " + std::to_string(texels) +
                              " texels, more than a " + std::to_string(kMaxTextureSide) +
                              "² texture");
-  std::vector<std::uint16_t> halves(rows * width * 4, 0);
-  for (std::size_t v = 0; v < data.vertex_count; ++v)
-    convert_floats_to_halves(&data.coefficients[v * per_vertex], per_vertex,
-                             &halves[v * texels_per_vertex * 4]);
+  // Written in place, in parallel ranges of vertices (the halves do not depend on the split).
+  std::vector<std::uint8_t> out(rows * width * 4 * sizeof(std::uint16_t), 0);
+  auto* halves = reinterpret_cast<std::uint16_t*>(out.data());
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, data.vertex_count, 4096),
+                    [&](const tbb::blocked_range<std::size_t>& range) {
+                      for (std::size_t v = range.begin(); v < range.end(); ++v)
+                        convert_floats_to_halves(&data.coefficients[v * per_vertex], per_vertex,
+                                                 &halves[v * texels_per_vertex * 4]);
+                    });
   *layout = {{"width", width},
              {"height", rows},
              {"texels_per_vertex", texels_per_vertex},
              {"vertices_per_row", width / texels_per_vertex},
              {"type", "float16 RGBA"}};
-  std::vector<std::uint8_t> out;
-  append(&out, halves.data(), halves.size());
   return out;
 }
 
@@ -241,6 +249,12 @@ ViewPayload build_view_payload(const ViewInputs& inputs) {
   payload.transfer = transfer_bytes(data, &layout);
   layout["url"] = "/api/transfer.bin";
   manifest["transfer"] = layout;
+  if (scene.vertex_count() > kPreviewMinVertices && responses.emitters.empty()) {
+    nlohmann::json preview;
+    payload.preview =
+        preview_bytes(scene, data, build_preview_mesh(scene, kPreviewVertices), &preview);
+    manifest["preview"] = preview;
+  }
   std::vector<double> lighting;
   for (int c = 0; c < 3; ++c)
     lighting.insert(lighting.end(), unwindowed.coefficients_double(c),

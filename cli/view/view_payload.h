@@ -13,6 +13,8 @@
 //   emitters.bin  (with emitter responses) float32 responses of each emitter at each vertex per
 //                 unit emission, (e·V + v)·3 + c (prt/emitters/emitter_responses.h); the page adds
 //                 Σ_e c_e ⊙ R_e,v to the exit radiance, as prt relight --emitters does
+//   preview.bin   (scenes of more than kPreviewMinVertices vertices, without emitters) a coarse
+//                 copy of the scene for the first frame (view_preview.h), manifest "preview"
 //   environment.bin  float16 RGBA lat-long image (docs/CONVENTIONS.md: row 0 the zenith +Y,
 //                 u = 0.5 + atan2(z, x)/2π), the map resampled by 4×4 sub-samples per texel
 //                 (linear radiance, alpha 1; values above float16's 65504 are clamped to it:
@@ -51,6 +53,7 @@ struct ViewPayload {
   std::string manifest_json;
   std::vector<std::uint8_t> mesh, transfer, environment, emitters;  // emitters: maybe empty
   std::vector<std::uint8_t> glossy;  // glossy files only (glossy_payload.h)
+  std::vector<std::uint8_t> preview;                                // maybe empty
   std::string summary;                                              // one line for the terminal
 };
 

@@ -77,6 +77,8 @@ void add_payload_routes(ViewPayload payload, std::map<std::string, Route>* route
                                        share(std::move(payload.environment))};
   if (!payload.glossy.empty())
     (*routes)["/api/glossy.bin"] = {"application/octet-stream", share(std::move(payload.glossy))};
+  if (!payload.preview.empty())
+    (*routes)["/api/preview.bin"] = {"application/octet-stream", share(std::move(payload.preview))};
   if (!payload.emitters.empty())
     (*routes)["/api/emitters.bin"] = {"application/octet-stream",
                                       share(std::move(payload.emitters))};

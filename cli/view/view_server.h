@@ -7,6 +7,7 @@
 //   /api/manifest.json     the manifest of view_payload.h
 //   /api/mesh.bin, /api/transfer.bin, /api/environment.bin   the payloads of view_payload.h
 //   /api/glossy.bin        glossy files only: frames, CPCA weights, b nodes (glossy_payload.h)
+//   (and /api/preview.bin, /api/emitters.bin when the payload has them)
 // The table is built once, at start-up, from the payload and the asset files read into memory;
 // no request reaches the file system. Bodies are streamed from memory (binary payloads are sent
 // as they are, never turned into JSON). Requests whose Host header names neither the bound

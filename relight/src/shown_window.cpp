@@ -7,6 +7,8 @@
 #include <cstdio>
 #include <stdexcept>
 
+#include <tbb/parallel_for.h>
+
 namespace prt::relight {
 namespace {
 
@@ -49,18 +51,15 @@ ShownWindowSearch::ShownWindowSearch(int order) : order_(std::max(1, order)) {
   negative_.assign(lambdas_.size(), 0);
 }
 
-void ShownWindowSearch::add_view_bands(const std::vector<float>& bands, std::size_t vertex_count) {
-  if (bands.size() != vertex_count * 3 * static_cast<std::size_t>(order_))
-    throw std::invalid_argument("window auto: band sums do not match the vertex count");
-  if (views_ > 0 && vertex_count != vertices_)
-    throw std::invalid_argument("window auto: views with different vertex counts");
-  vertices_ = vertex_count;
-  ++views_;
+ShownWindowSearch::RangeCounts ShownWindowSearch::count_range(const std::vector<float>& bands,
+                                                              std::size_t first,
+                                                              std::size_t end) const {
   const std::size_t candidates = lambdas_.size();
-  std::vector<std::size_t> failing(candidates, 0), negative(candidates, 0);
+  RangeCounts out;
+  out.failing.assign(candidates, 0);
+  out.negative.assign(candidates, 0);
   std::vector<char> vertex_fails(candidates), vertex_negative(candidates);
-  std::size_t intrinsic = 0;
-  for (std::size_t v = 0; v < vertex_count; ++v) {
+  for (std::size_t v = first; v < end; ++v) {
     bool any = false, unremovable = false;
     std::fill(vertex_fails.begin(), vertex_fails.end(), 0);
     std::fill(vertex_negative.begin(), vertex_negative.end(), 0);
@@ -86,11 +85,39 @@ void ShownWindowSearch::add_view_bands(const std::vector<float>& bands, std::siz
       }
     }
     if (!any) continue;
-    intrinsic += unremovable ? 1 : 0;
+    out.intrinsic += unremovable ? 1 : 0;
     for (std::size_t j = 0; j < candidates; ++j) {
-      failing[j] += vertex_fails[j] && !unremovable;
-      negative[j] += vertex_negative[j];
+      out.failing[j] += vertex_fails[j] && !unremovable;
+      out.negative[j] += vertex_negative[j];
     }
+  }
+  return out;
+}
+
+void ShownWindowSearch::add_view_bands(const std::vector<float>& bands, std::size_t vertex_count) {
+  if (bands.size() != vertex_count * 3 * static_cast<std::size_t>(order_))
+    throw std::invalid_argument("window auto: band sums do not match the vertex count");
+  if (views_ > 0 && vertex_count != vertices_)
+    throw std::invalid_argument("window auto: views with different vertex counts");
+  vertices_ = vertex_count;
+  ++views_;
+  const std::size_t candidates = lambdas_.size();
+  // Counted in fixed ranges of vertices in parallel, then summed: integer counts, the same for
+  // any thread count.
+  constexpr std::size_t kRange = 16384;
+  const std::size_t ranges = (vertex_count + kRange - 1) / kRange;
+  std::vector<RangeCounts> counts(ranges);
+  tbb::parallel_for(std::size_t{0}, ranges, [&](std::size_t r) {
+    counts[r] = count_range(bands, r * kRange, std::min(vertex_count, (r + 1) * kRange));
+  });
+  std::vector<std::size_t> failing(candidates, 0), negative(candidates, 0);
+  std::size_t intrinsic = 0;
+  for (const RangeCounts& c : counts) {
+    for (std::size_t j = 0; j < candidates; ++j) {
+      failing[j] += c.failing[j];
+      negative[j] += c.negative[j];
+    }
+    intrinsic += c.intrinsic;
   }
   for (std::size_t j = 0; j < candidates; ++j) {
     failing_[j] = std::max(failing_[j], failing[j]);

@@ -89,3 +89,29 @@ TEST_CASE("shown window: order 1 has nothing to window") {
   CHECK(choice.unremovable == 1);
   CHECK(choice.negative_after == 1);
 }
+
+TEST_CASE("shown window: counts over many vertices (ranges counted apart) add up exactly") {
+  // 100,003 vertices (several of the search's ranges, the last one partial): every 1000th rings
+  // as (1, 0, −3) (λ ≥ 1/18 lifts it), every 7001st is negative under the mean alone.
+  const std::size_t n = 100003;
+  std::vector<std::vector<float>> per_vertex(n, {2.f, 1.f, 0.5f});
+  std::size_t ringing = 0, intrinsic = 0;
+  for (std::size_t v = 0; v < n; ++v) {
+    if (v % 7001 == 3) {
+      per_vertex[v] = {-0.1f, 0.f, 0.05f};
+      ++intrinsic;
+    } else if (v % 1000 == 999) {
+      per_vertex[v] = {1.f, 0.f, -3.f};
+      ++ringing;
+    }
+  }
+  ShownWindowSearch search(3);
+  search.add_view_bands(grey_bands(per_vertex), n);
+  const ShownWindowChoice choice = search.choose();
+  CHECK(choice.vertices == n);
+  CHECK(choice.negative_before == ringing + intrinsic);
+  CHECK(choice.unremovable == intrinsic);
+  CHECK(choice.negative_after == intrinsic);
+  CHECK(choice.strength >= 1.0 / 18.0);
+  CHECK(choice.strength < 0.25);
+}

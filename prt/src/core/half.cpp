@@ -72,8 +72,11 @@ std::size_t find_half_overflow(const float* in, std::size_t n) noexcept {
   return n;
 }
 
+// Asked once: CPUID traps to the hypervisor in a virtual machine (tens of microseconds a call),
+// and the converters below are called once per vertex by some callers.
 bool cpu_has_f16c() noexcept {
-  return detail::cpu_supports_f16c();
+  static const bool available = detail::cpu_supports_f16c();
+  return available;
 }
 
 #if PRT_HAVE_X86_DISPATCH

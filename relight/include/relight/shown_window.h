@@ -71,6 +71,14 @@ class ShownWindowSearch {
   ShownWindowChoice choose() const;
 
  private:
+  struct RangeCounts {
+    std::vector<std::size_t> failing, negative;  // per candidate
+    std::size_t intrinsic = 0;                   // vertices no candidate lifts
+  };
+  // The counts of add_view_bands over vertices first .. end − 1.
+  RangeCounts count_range(const std::vector<float>& bands, std::size_t first,
+                          std::size_t end) const;
+
   int order_;
   std::vector<double> lambdas_;
   std::vector<double> factors_;        // h of candidate j at band l: [j·order + l]
