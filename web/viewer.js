@@ -12,6 +12,7 @@
 //   mode=transfer|unshadowed|ao|bent|ao-only|PASS  background=0|1   ui=0 (no panel)
 //   emitter=NAME=r,g,b (repeatable)             as prt relight --emitter (prt view --emitters)
 //   antialias=0                                 one sample a pixel (as prt relight --spp 1)
+//   terms=K                                     Haar files: lighting terms, as prt relight --terms
 // window.prtViewer exposes the state for tests: ready, firstFrameMs, render(), measureFrames(n).
 import * as THREE from 'three';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
@@ -19,6 +20,7 @@ import { createBackground } from './background.js';
 import { addDefaultAttributes, createRelightMaterial, halfTexture, MODES, prepareLighting, setEmitterLight, setExposure, setLighting, setMode } from './prt-relight.js';
 import { rotationFromYawPitchRoll } from './sh.js';
 import { passes } from './passes/index.js';
+import { addHaarControls, createHaarView } from './haar-view.js';
 
 const started = performance.now();
 const params = new URLSearchParams(location.search);
@@ -100,7 +102,8 @@ async function main() {
   const geometry = buildGeometry(manifest, meshBuffer);
   manifest.radius = geometry.boundingSphere.radius;
   const t = manifest.transfer;
-  const material = createRelightMaterial({
+  const haar = manifest.haar ? createHaarView(manifest, transferBuffer, geometry, params.has('terms') ? numbers(params.get('terms'), 1, 'terms')[0] : undefined) : null;
+  const material = haar ? haar.material : createRelightMaterial({
     order: manifest.order,
     channels: manifest.channels,
     albedoFolded: manifest.albedo_folded,
@@ -132,13 +135,14 @@ async function main() {
     state.emitterColors = emitterColors(emitters.list);
     setEmitterLight(geometry, emitters.responses, state.emitterColors);
   }
-  const context = { THREE, renderer, scene, camera, mesh, geometry, material, manifest, state, background };
+  const context = { THREE, renderer, scene, camera, mesh, geometry, material, manifest, state, background, haar };
 
   function render() {
     const m = rotationFromYawPitchRoll(...state.rotation);
     const builtIn = MODES.includes(state.mode);
     if (builtIn) setMode(material, state.mode);
-    setLighting(material, prepareLighting({ order: manifest.order, coefficients: manifest.lighting.coefficients, rotation: m, window: state.window }));
+    if (haar) haar.setRotation(m);
+    else setLighting(material, prepareLighting({ order: manifest.order, coefficients: manifest.lighting.coefficients, rotation: m, window: state.window }));
     setExposure(material, state.exposure);
     camera.updateMatrixWorld(); // the background reads it before renderer.render() would update it
     background.update(camera, m, state.exposure, state.background);
@@ -156,6 +160,7 @@ async function main() {
 
   const ui = setUpControls(manifest, state, render, canvas);
   if (emitters) setUpEmitterControls(emitters, state, geometry, render);
+  if (haar) addHaarControls(haar, manifest, render);
   if (params.get('ui') === '0') document.getElementById('panel').style.display = 'none';
   controls.addEventListener('change', render);
   window.addEventListener('resize', () => {
@@ -168,7 +173,7 @@ async function main() {
   waitForGpu(renderer.getContext());
   const firstFrameMs = performance.now() - started;
   const firstFrameSinceNavigationMs = performance.now();
-  status.textContent = `${manifest.vertex_count.toLocaleString()} vertices, ${manifest.kind} SH order ${manifest.order}; first frame ${firstFrameMs.toFixed(0)} ms`;
+  status.textContent = `${manifest.vertex_count.toLocaleString()} vertices, ${manifest.kind} ${manifest.haar ? 'cube' : 'SH order'} ${manifest.order}; first frame ${firstFrameMs.toFixed(0)} ms`;
   window.prtViewer = {
     ready: true,
     context,
@@ -268,7 +273,7 @@ function setUpControls(manifest, state, render, canvas) {
   const available = { transfer: true, unshadowed: true, ao: !!manifest.mesh.sections.ao, bent: !!manifest.mesh.sections.bent_normals, 'ao-only': !!manifest.mesh.sections.ao };
   const labels = { transfer: `${manifest.kind} (file)`, unshadowed: 'unshadowed (normal)', ao: 'baked AO × unshadowed', bent: 'bent normal × AO', 'ao-only': 'baked AO' };
   for (const name of MODES) {
-    if (!available[name]) continue;
+    if (!available[name] || (manifest.haar && name !== 'transfer')) continue; // Haar: the file only
     mode.add(new Option(labels[name], name));
   }
   for (const pass of passes) mode.add(new Option(pass.label, pass.name));
