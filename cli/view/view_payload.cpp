@@ -272,7 +272,9 @@ std::vector<std::uint8_t> payload_mesh_bytes(const scene::Scene& scene,
 std::vector<std::uint8_t> payload_environment_bytes(const sh::EnvMap& env, int width) {
   return environment_bytes(env, width);
 }
-sh::EnvMap payload_uniform_environment() { return uniform_environment(); }
+sh::EnvMap payload_uniform_environment() {
+  return uniform_environment();
+}
 float payload_automatic_exposure(std::vector<float> radiance, const scene::Scene& scene,
                                  bool albedo_folded) {
   return automatic_exposure(std::move(radiance), scene, albedo_folded);
