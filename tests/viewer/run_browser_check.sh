@@ -56,3 +56,16 @@ lit() { "$prt" relight "$room/room.obj" "$room/room.prt" "$sky" --max-edge 0.25 
 lit -o "$room/cpu_emitters.png"
 lit -o "$room/cpu_lamp.png" --emitter lamp=2,1,0.5
 node "$here/check_browser.mjs" "$url" "$room" emitters
+kill $server && wait $server 2>/dev/null || true
+
+# A Haar-wavelet bake of the demo (cube 16, shadowed; check_browser_haar.mjs): the page computes
+# the lighting of each rotation and the per-vertex sums in JavaScript, as prt relight does.
+haar="$out/haar" && mkdir -p "$haar"
+"$prt" bake "$scene" -o "$haar/demo_haar.prt" --basis haar --cube 16 --quiet
+start_view "$haar" "$scene" "$haar/demo_haar.prt" "$sky"
+wavelets() { "$prt" relight "$scene" "$haar/demo_haar.prt" "$sky" --size 640x360 --quiet "$@"; }
+wavelets -o "$haar/cpu_default.png"
+wavelets -o "$haar/cpu_r0.png" --exposure "$exposure" --rotate 0,0,0
+wavelets -o "$haar/cpu_r90.png" --exposure "$exposure" --rotate 90,0,0
+wavelets -o "$haar/cpu_r90_k8.png" --exposure "$exposure" --rotate 90,0,0 --terms 8
+node "$here/check_browser_haar.mjs" "$url" "$haar"
