@@ -10,7 +10,7 @@
 //       setTerms(k), terms, lastChange, lighting, radiance, onChange }
 // setRotation(m) recomputes only when m or the term count changed; lastChange holds the times
 // (ms) of the last change: cube, transform, select, shade (the upload happens at the next draw),
-// total, and the number of terms kept.
+// total, the number of terms kept and of transfer entries their lists hold (entries).
 //   addHaarControls(view, manifest, render)   the panel's term count and timing line.
 import * as THREE from 'three';
 import { TONE_MAP_GLSL } from './prt-relight.js';
@@ -93,7 +93,9 @@ export function createHaarView(manifest, transferBuffer, geometry, terms) {
       const t2 = performance.now();
       radiance.needsUpdate = true;
       view.key = key;
-      view.lastChange = { ...times, shade: t2 - t1, terms: view.lighting.index.length, total: t2 - t0 };
+      let walked = 0; // Σ over the kept terms of their list lengths: the sum's work
+      for (const i of view.lighting.index) walked += transfer.offsets[i + 1] - transfer.offsets[i];
+      view.lastChange = { ...times, shade: t2 - t1, terms: view.lighting.index.length, entries: walked, total: t2 - t0 };
       view.onChange?.();
       return true;
     },
@@ -117,7 +119,7 @@ export function addHaarControls(view, manifest, render) {
   const show = () => {
     const c = view.lastChange;
     if (c) timing.textContent = `light change ${c.total.toFixed(1)} ms: cube ${c.cube.toFixed(1)}, wavelets ${c.transform.toFixed(1)}, ` +
-      `${c.terms} terms ${c.select.toFixed(1)}, vertices ${c.shade.toFixed(1)}`;
+      `selection ${c.select.toFixed(1)} (${c.terms} terms), vertices ${c.shade.toFixed(1)}`;
   };
   input.addEventListener('change', () => {
     const k = Math.max(0, Math.min(total, Math.round(Number(input.value)) || 0));
