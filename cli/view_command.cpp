@@ -90,7 +90,8 @@ Command register_view(CLI::App& app) {
       "view", "Serve a browser page that relights the scene on the GPU (drag to turn the light)");
   cmd->add_option("scene", args->scene, "Scene (.glb, .gltf, .obj) the file was baked from")
       ->required();
-  cmd->add_option("transfer", args->transfer, "Coefficient file (.prt, SH)")->required();
+  cmd->add_option("transfer", args->transfer, "Coefficient file (.prt: SH or Haar wavelets)")
+      ->required();
   cmd->add_option("environment", args->environment,
                   "Environment map (.hdr, .exr, .pfm; default: uniform radiance 1)");
   cmd->add_option("--port", args->port, "TCP port (0: any free port; the URL printed says which)")
