@@ -2,9 +2,6 @@
 // `prt relight` uses (so the page's camera, window and exposure are the offline render's).
 #include "view_payload.h"
 
-#include "haar_payload.h"
-#include "payload_parts.h"
-
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -13,6 +10,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "haar_payload.h"
+#include "payload_parts.h"
 #include "prt/core/half.h"
 #include "prt/diffuse/relighter.h"
 #include "prt/formats/haar_transfer_file.h"
