@@ -89,7 +89,7 @@ Command register_view(CLI::App& app) {
   cmd->add_option("scene", args->scene, "Scene (.glb, .gltf, .obj) the file was baked from")
       ->required();
   cmd->add_option("transfer", args->transfer,
-                  "Coefficient file (.prt, SH) or glossy transfer (.prtg, .prtq)")
+                  "Coefficient file (.prt: SH or Haar wavelets) or glossy transfer (.prtg, .prtq)")
       ->required();
   cmd->add_option("environment", args->environment,
                   "Environment map (.hdr, .exr, .pfm; default: uniform radiance 1)");

@@ -13,6 +13,7 @@
 //   emitter=NAME=r,g,b (repeatable)             as prt relight --emitter (prt view --emitters)
 //   antialias=0                                 one sample a pixel (as prt relight --spp 1)
 //   eye=x,y,z                                   glossy files: shade toward this eye, not the camera's
+//   terms=K                                     Haar files: lighting terms, as prt relight --terms
 //   preview=0                                   no coarse first frame (preview.js) for a large scene
 // A large scene is drawn first from its coarse preview (preview.js), then, as soon as the full
 // payloads have arrived, in full; window.prtViewer appears after the full frame.
@@ -26,6 +27,7 @@ import { rotationFromYawPitchRoll } from './sh.js';
 import { createGlossyMaterial } from './glossy.js';
 import { passes } from './passes/index.js';
 import { kRefineMs, previewMesh, wantsPreview } from './preview.js';
+import { addHaarControls, createHaarView } from './haar-view.js';
 
 const started = performance.now();
 const params = new URLSearchParams(location.search);
@@ -49,11 +51,14 @@ function section(buffer, info, Type) {
 }
 
 // The relit mesh of the full payloads.
-// The relit mesh: SH transfer, or for glossy files (glossyBuffer = /api/glossy.bin) glossy.js.
+// The relit mesh: SH transfer; Haar files through haar-view.js; glossy files (glossyBuffer =
+// /api/glossy.bin) through glossy.js.
 function fullMesh(manifest, meshBuffer, transferBuffer, glossyBuffer = null) {
   const geometry = buildGeometry(manifest, meshBuffer);
   const t = manifest.transfer;
-  const material = manifest.glossy ? createGlossyMaterial(manifest, transferBuffer, glossyBuffer) : createRelightMaterial({
+  const terms = params.has('terms') ? numbers(params.get('terms'), 1, 'terms')[0] : undefined;
+  const haar = manifest.haar ? createHaarView(manifest, transferBuffer, geometry, terms) : null;
+  const material = haar ? haar.material : manifest.glossy ? createGlossyMaterial(manifest, transferBuffer, glossyBuffer) : createRelightMaterial({
     order: manifest.order,
     channels: manifest.channels,
     albedoFolded: manifest.albedo_folded,
@@ -62,6 +67,7 @@ function fullMesh(manifest, meshBuffer, transferBuffer, glossyBuffer = null) {
   if (manifest.glossy && params.has('eye')) material.userData.fixedEye = numbers(params.get('eye'), 3, 'eye');
   const mesh = new THREE.Mesh(geometry, material);
   mesh.frustumCulled = false;
+  mesh.userData.haar = haar;
   return mesh;
 }
 
@@ -170,7 +176,8 @@ async function main() {
 
   if (params.get('ui') === '0') document.getElementById('panel').style.display = 'none';
   const state = initialState(manifest);
-  const context = { THREE, renderer, scene, camera, mesh, geometry, material, manifest, state, background };
+  const haar = mesh.userData.haar ?? null; // Haar files: haar-view.js relights on the CPU
+  const context = { THREE, renderer, scene, camera, mesh, geometry, material, manifest, state, background, haar };
 
   // Draws the frame with `target` (the relit mesh, or the coarse preview while the user moves).
   function render(target = context.mesh) {
@@ -178,7 +185,8 @@ async function main() {
     const m = rotationFromYawPitchRoll(...state.rotation);
     const builtIn = MODES.includes(state.mode);
     if (builtIn) setMode(material, state.mode);
-    setLighting(material, prepareLighting({ order: manifest.order, coefficients: manifest.lighting.coefficients, rotation: m, window: state.window }));
+    if (haar) haar.setRotation(m);
+    else setLighting(material, prepareLighting({ order: manifest.order, coefficients: manifest.lighting.coefficients, rotation: m, window: state.window }));
     setExposure(material, state.exposure);
     camera.updateMatrixWorld(); // the background reads it before renderer.render() would update it
     background.update(camera, m, state.exposure, state.background);
@@ -233,6 +241,7 @@ async function main() {
 
   const ui = setUpControls(manifest, state, renderInteractive, canvas);
   if (emitters) setUpEmitterControls(emitters, state, geometry, render);
+  if (haar) addHaarControls(haar, manifest, render);
   window.addEventListener('resize', () => {
     renderer.setSize(window.innerWidth, window.innerHeight, false);
     camera.aspect = window.innerWidth / window.innerHeight;
@@ -244,7 +253,7 @@ async function main() {
   const firstFrameMs = performance.now() - started;
   const firstFrameSinceNavigationMs = performance.now();
   timings.fullFrame = firstFrameSinceNavigationMs;
-  status.textContent = `${manifest.vertex_count.toLocaleString()} vertices, ${manifest.kind} SH order ${manifest.order}; ` +
+  status.textContent = `${manifest.vertex_count.toLocaleString()} vertices, ${manifest.kind} ${manifest.haar ? 'cube' : 'SH order'} ${manifest.order}; ` +
     (previewFrameMs === null ? `first frame ${firstFrameMs.toFixed(0)} ms` : `preview ${previewFrameMs.toFixed(0)} ms, full frame ${firstFrameMs.toFixed(0)} ms`);
   window.prtViewer = {
     ready: true,
@@ -350,7 +359,7 @@ function setUpControls(manifest, state, render, canvas) {
   const available = { transfer: true, unshadowed: !manifest.glossy, ao: !!manifest.mesh.sections.ao, bent: !!manifest.mesh.sections.bent_normals, 'ao-only': !!manifest.mesh.sections.ao };
   const labels = { transfer: `${manifest.kind} (file)`, unshadowed: 'unshadowed (normal)', ao: 'baked AO × unshadowed', bent: 'bent normal × AO', 'ao-only': 'baked AO' };
   for (const name of MODES) {
-    if (!available[name]) continue;
+    if (!available[name] || (manifest.haar && name !== 'transfer')) continue; // Haar: the file only
     mode.add(new Option(labels[name], name));
   }
   for (const pass of passes) mode.add(new Option(pass.label, pass.name));

@@ -14,8 +14,11 @@
 #include <tbb/parallel_for.h>
 #include <nlohmann/json.hpp>
 
+#include "haar_payload.h"
+#include "payload_parts.h"
 #include "prt/core/half.h"
 #include "prt/diffuse/relighter.h"
+#include "prt/formats/haar_transfer_file.h"
 #include "prt/formats/transfer_data.h"
 #include "relight/auto_camera.h"
 #include "relight/auto_exposure.h"
@@ -190,13 +193,11 @@ nlohmann::json camera_manifest(const relight::CameraChoice& choice, float aspect
 
 ViewPayload build_view_payload(const ViewInputs& inputs) {
   if (is_glossy_view_file(inputs.transfer_path)) return build_glossy_view_payload(inputs);
+  if (prt::is_haar_transfer_file(inputs.transfer_path)) return build_haar_view_payload(inputs);
   scene::Scene scene = scene::load_scene(inputs.scene_path);
   if (inputs.max_edge) scene = scene::subdivide_to_edge_length(scene, *inputs.max_edge);
   const prt::TransferData data = relight::load_transfer_for_scene(inputs.transfer_path, scene);
   const prt::EmitterResponses responses = load_emitters(inputs, scene, data);
-  if (data.kind == prt::TransferKind::Haar)
-    throw std::runtime_error(inputs.transfer_path +
-                             ": holds Haar wavelets; prt view shows SH files");
   const int order = static_cast<int>(data.order);
   relight::EnvironmentUse use;
   use.sh_order = order;
@@ -280,6 +281,30 @@ ViewPayload build_view_payload(const ViewInputs& inputs) {
                     prt::transfer_kind_name(data.kind) + " SH order " + std::to_string(order) +
                     "; " + window_note + "; exposure " + std::to_string(exposure) + " EV";
   return payload;
+}
+
+}  // namespace prt::cli::view
+
+// The shared parts, for the payloads of other bases (payload_parts.h).
+namespace prt::cli::view {
+
+std::vector<std::uint8_t> payload_mesh_bytes(const scene::Scene& scene,
+                                             const prt::TransferData& data,
+                                             nlohmann::json* sections) {
+  return mesh_bytes(scene, data, sections);
+}
+std::vector<std::uint8_t> payload_environment_bytes(const sh::EnvMap& env, int width) {
+  return environment_bytes(env, width);
+}
+sh::EnvMap payload_uniform_environment() {
+  return uniform_environment();
+}
+float payload_automatic_exposure(std::vector<float> radiance, const scene::Scene& scene,
+                                 bool albedo_folded) {
+  return automatic_exposure(std::move(radiance), scene, albedo_folded);
+}
+nlohmann::json payload_camera_json(const relight::CameraChoice& choice, float aspect) {
+  return camera_json(choice, aspect);
 }
 
 }  // namespace prt::cli::view

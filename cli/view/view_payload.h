@@ -23,7 +23,8 @@
 // the same functions (relight/): the SH lighting of the map (unwindowed, unrotated, channel-
 // major radiance coefficients), the window `--window auto` chooses for it, the automatic camera
 // (relight/auto_camera.h, at `aspect`) and the automatic exposure (relight/auto_exposure.h).
-// Throws std::runtime_error "PATH: problem" for an unreadable or mismatched input.
+// A Haar-wavelet file gets the payload of haar_payload.h instead (its own transfer.bin and
+// manifest.haar). Throws std::runtime_error "PATH: problem" for an unreadable or mismatched input.
 #pragma once
 
 #include <cstdint>

@@ -82,3 +82,21 @@ for file in g.prtg g.prtq; do
   node "$here/check_browser.mjs" "$url" "$dir" glossy "$camera_a" "$camera_b"
   kill $server && wait $server 2>/dev/null || true
 done
+# A Haar-wavelet bake of the demo (cube 16, shadowed; check_browser_haar.mjs): the page computes
+# the lighting of each rotation and the per-vertex sums in JavaScript, as prt relight does.
+haar="$out/haar" && mkdir -p "$haar"
+"$prt" bake "$scene" -o "$haar/demo_haar.prt" --basis haar --cube 16 --quiet
+start_view "$haar" "$scene" "$haar/demo_haar.prt" "$sky"
+wavelets() { "$prt" relight "$scene" "$haar/demo_haar.prt" "$sky" --size 640x360 --quiet "$@"; }
+wavelets -o "$haar/cpu_default.png"
+wavelets -o "$haar/cpu_r0.png" --exposure "$exposure" --rotate 0,0,0
+wavelets -o "$haar/cpu_r90.png" --exposure "$exposure" --rotate 90,0,0
+wavelets -o "$haar/cpu_r90_k8.png" --exposure "$exposure" --rotate 90,0,0 --terms 8
+node "$here/check_browser_haar.mjs" "$url" "$haar"
+kill $server && wait $server 2>/dev/null || true
+# Options of SH files only are refused in one line, before any port is opened.
+if "$prt" view "$scene" "$haar/demo_haar.prt" --max-edge 0.5 --port 0 2>"$haar/refused.err"; then
+  echo "prt view accepted --max-edge with a Haar file"; exit 1
+fi
+grep -q "demo_haar.prt: holds Haar wavelets; --max-edge applies to SH files" "$haar/refused.err" ||
+  { echo "unexpected refusal: $(cat "$haar/refused.err")"; exit 1; }

@@ -1,0 +1,134 @@
+// The real-browser test of `prt view` on a Haar-wavelet file (run_browser_check.sh bakes the demo
+// with --basis haar and renders it with prt relight): headless Chromium, puppeteer-core, the page
+// at 640×360 against `prt relight`'s PNG of the same setting:
+//   1. defaults (the manifest's camera and exposure, 200 terms) against prt relight with none;
+//   2. rotate=0,0,0 and rotate=90,0,0 at the manifest's exposure against --rotate …;
+//   3. terms=8&rotate=90,0,0 against --terms 8 --rotate 90,0,0 (8 terms change the CPU's picture
+//      by ≥ 10%, so the page must apply the count it is given);
+//   4. the change from 0° to 90°: it must change the CPU's picture by ≥ 10%, and the page's change
+//      may differ from the CPU's by ≤ 10% of it.
+// The object's pixels, the metric and the mask are those of check_browser.mjs (the page drawn
+// without background, less a 1-pixel rim; 8-bit display values; relative RMS =
+// √(Σ(gpu − cpu)²/Σ cpu²)). Tolerance 3% a picture: the page computes the same per-vertex
+// radiance as prt relight (same cubes, transform, term selection and sparse sum, to float
+// rounding: check_haar_js.mjs), so what remains is rasterisation — Gouraud interpolation on the
+// GPU against the CPU's barycentric one, and MSAA against 3×3 samples a pixel where a pixel
+// straddles triangles whose radiance jumps, which the sharp shadows of an all-frequency light
+// have many more of than SH's. Measured 1–2% (docs/VIEWER.md); a rotation applied the wrong way,
+// a wrong face or a missing albedo gives 10% or more.
+// Usage: node check_browser_haar.mjs URL OUT_DIR   (OUT_DIR holds manifest.json, cpu_default.png,
+// cpu_r0.png, cpu_r90.png, cpu_r90_k8.png; receives the screenshots and haar_timing.json).
+import { mkdtempSync, readFileSync, writeFileSync } from 'node:fs';
+import puppeteer from 'puppeteer-core';
+import { readPng } from './png.mjs';
+
+const [url, out] = process.argv.slice(2);
+const WIDTH = 640, HEIGHT = 360;
+const TOLERANCE = 0.03, MIN_CHANGE = 0.10, CHANGE_TOLERANCE = 0.10;
+let failures = 0;
+function check(ok, message) {
+  console.log(`${ok ? 'ok  ' : 'FAIL'} ${message}`);
+  if (!ok) failures += 1;
+}
+
+const browser = await puppeteer.launch({
+  executablePath: process.env.CHROMIUM ?? '/usr/bin/chromium',
+  headless: true,
+  args: ['--no-sandbox', '--disable-gpu', '--disable-quic', '--no-first-run',
+    '--disable-background-networking', '--disable-component-update', '--disable-sync',
+    '--use-gl=angle', '--use-angle=swiftshader', '--enable-unsafe-swiftshader',
+    `--user-data-dir=${mkdtempSync(`${out}/chromium-`)}`],
+});
+
+// Loads the page with `query`, screenshots it to OUT/name.png; `evaluate` runs in the page after.
+async function shoot(query, name, width = WIDTH, height = HEIGHT, evaluate = null) {
+  const page = await browser.newPage();
+  const errors = [];
+  page.on('pageerror', (e) => errors.push(e.message));
+  page.on('console', (m) => { if (m.type() === 'error') errors.push(m.text()); });
+  await page.setViewport({ width, height });
+  await page.goto(`${url}?${query}`);
+  await page.waitForFunction('window.prtViewer !== undefined', { timeout: 120000 });
+  const state = await page.evaluate(() => ({ ready: window.prtViewer.ready, error: window.prtViewer.error }));
+  if (!state.ready) throw new Error(`the page did not load: ${state.error}`);
+  if (errors.length) throw new Error(`the page reported: ${errors.join('; ')}`);
+  const path = `${out}/${name}.png`;
+  await page.screenshot({ path });
+  const result = evaluate ? await page.evaluate(evaluate) : null;
+  await page.close();
+  return { image: readPng(readFileSync(path)), result };
+}
+
+function objectMask(black) {
+  const { width, height, rgb } = black;
+  const lit = (x, y) => rgb[3 * (y * width + x)] + rgb[3 * (y * width + x) + 1] + rgb[3 * (y * width + x) + 2] > 0;
+  const mask = new Uint8Array(width * height);
+  for (let y = 1; y < height - 1; ++y)
+    for (let x = 1; x < width - 1; ++x)
+      mask[y * width + x] = lit(x, y) && lit(x - 1, y) && lit(x + 1, y) && lit(x, y - 1) && lit(x, y + 1) ? 1 : 0;
+  return mask;
+}
+
+function relativeRms(a, b, mask, subtract = null) {
+  let num = 0, den = 0;
+  for (let i = 0; i < mask.length; ++i) {
+    if (!mask[i]) continue;
+    for (let c = 0; c < 3; ++c) {
+      const j = 3 * i + c;
+      const x = subtract ? a[j] - subtract.a[j] : a[j];
+      const y = subtract ? b[j] - subtract.b[j] : b[j];
+      num += (x - y) ** 2;
+      den += y * y;
+    }
+  }
+  return Math.sqrt(num / den);
+}
+
+const cpu = (name) => readPng(readFileSync(`${out}/${name}.png`)).rgb;
+
+// Times of light changes in the page: n rotations by 7° of yaw, each a full change.
+function timeLightChanges() {
+  const { context, state, render } = window.prtViewer;
+  const changes = [];
+  for (let i = 0; i < 10; ++i) {
+    state.rotation[0] += 7;
+    render();
+    changes.push(context.haar.lastChange);
+  }
+  return changes;
+}
+
+try {
+  const manifest = JSON.parse(readFileSync(`${out}/manifest.json`, 'utf8'));
+  check(manifest.kind === 'haar' && manifest.haar.default_terms === 200, `the manifest describes a Haar file (cube ${manifest.haar.cube_size}, ${manifest.haar.entries} entries)`);
+  const fixed = `ui=0&exposure=${manifest.exposure_ev}`;
+  const mask = objectMask((await shoot(`${fixed}&background=0`, 'gpu_mask')).image);
+  const count = mask.reduce((s, m) => s + m, 0);
+  check(count > 0.2 * WIDTH * HEIGHT, `the object covers ${count} pixels of ${WIDTH * HEIGHT}`);
+  const e0 = relativeRms((await shoot('ui=0', 'gpu_default')).image.rgb, cpu('cpu_default'), mask);
+  check(e0 <= TOLERANCE, `defaults (camera, exposure, 200 terms): relative RMS ${(100 * e0).toFixed(2)}% against prt relight (≤ ${100 * TOLERANCE}%)`);
+  const g0 = (await shoot(`${fixed}&rotate=0,0,0`, 'gpu_r0')).image.rgb;
+  const g90 = (await shoot(`${fixed}&rotate=90,0,0`, 'gpu_r90')).image.rgb;
+  const c0 = cpu('cpu_r0'), c90 = cpu('cpu_r90');
+  const e1 = relativeRms(g0, c0, mask), e2 = relativeRms(g90, c90, mask);
+  check(e1 <= TOLERANCE, `rotate 0,0,0: relative RMS ${(100 * e1).toFixed(2)}%`);
+  check(e2 <= TOLERANCE, `rotate 90,0,0: relative RMS ${(100 * e2).toFixed(2)}%`);
+  const gk = (await shoot(`${fixed}&rotate=90,0,0&terms=8`, 'gpu_r90_k8')).image.rgb, ck = cpu('cpu_r90_k8');
+  const ek = relativeRms(gk, ck, mask), termsChange = relativeRms(ck, c90, mask);
+  check(termsChange >= MIN_CHANGE, `8 terms instead of 200 change the CPU picture by ${(100 * termsChange).toFixed(1)}% (≥ ${100 * MIN_CHANGE}%)`);
+  check(ek <= TOLERANCE, `terms=8, rotate 90,0,0: relative RMS ${(100 * ek).toFixed(2)}% against --terms 8`);
+  const change = relativeRms(c90, c0, mask);
+  check(change >= MIN_CHANGE, `the rotation changes the CPU picture by ${(100 * change).toFixed(1)}% (≥ ${100 * MIN_CHANGE}%)`);
+  const changeError = relativeRms(g90, c90, mask, { a: g0, b: c0 });
+  check(changeError <= CHANGE_TOLERANCE, `the page's change differs from the CPU's by ${(100 * changeError).toFixed(2)}% of it (≤ ${100 * CHANGE_TOLERANCE}%)`);
+  const shot = await shoot('rotate=40,-20,0', 'viewer_haar', 960, 540, timeLightChanges);
+  writeFileSync(`${out}/haar_timing.json`, JSON.stringify(shot.result, null, 1));
+  const median = (key) => shot.result.map((c) => c[key]).sort((a, b) => a - b)[shot.result.length >> 1];
+  console.log(`light change (median of ${shot.result.length}): ${median('total').toFixed(1)} ms — rotated cube ${median('cube').toFixed(1)}, ` +
+    `transform ${median('transform').toFixed(1)}, selection ${median('select').toFixed(1)}, vertices ${median('shade').toFixed(1)}`);
+} catch (error) {
+  check(false, error.message);
+} finally {
+  await browser.close();
+}
+process.exit(failures === 0 ? 0 : 1);
