@@ -6,17 +6,25 @@
 # (docs/FARM.md). Use it to measure the splitting overhead and the merge's share (Amdahl), or to
 # try a farm bake without a scheduler.
 #
-# Usage: scripts/farm-sequential.sh [--single] PRT SCENE N OUT_DIR [prt bake options...]
+# Usage: scripts/farm-sequential.sh [--single] [--lock FILE] PRT SCENE N OUT_DIR [bake options...]
+#   --lock FILE: the single bake and the merge (the steps that hold the whole scene's gather)
+#          run under `flock FILE`, the shards without it (one big run at a time on a shared box)
 #   e.g. scripts/farm-sequential.sh --single build/bin/prt field.glb 4 out/farm4 \
 #          --transfer interreflected --order 5 --samples 256
 # Writes OUT_DIR/part_I.prtpart, OUT_DIR/merged.prt (and single.prt), OUT_DIR/times.tsv
 # (step, wall s, user s, sys s, peak KB). Exit status 1 when a step fails or the merged file
 # differs from the single bake.
 set -euo pipefail
-single=no
-if [[ "${1:-}" == --single ]]; then single=yes; shift; fi
+single=no lock=()
+while [[ "${1:-}" == --single || "${1:-}" == --lock ]]; do
+  if [[ "$1" == --single ]]; then single=yes; shift; continue; fi
+  (($# >= 2)) || { echo "farm-sequential.sh: --lock needs a file" >&2; exit 2; }
+  command -v flock > /dev/null || { echo "farm-sequential.sh: --lock needs flock (util-linux)" >&2; exit 2; }
+  lock=(flock "$2")
+  shift 2
+done
 if (($# < 4)); then
-  sed -n '2,16p' "$0" >&2
+  sed -n '2,18p' "$0" >&2
   exit 2
 fi
 prt="$(realpath "$1")" scene="$2" n="$3" out="$4"
@@ -30,8 +38,9 @@ printf 'step\twall_s\tuser_s\tsys_s\tpeak_kb\n' > "$times"
 # Runs a step under /usr/bin/time, appending its figures to times.tsv.
 step() {  # name command...
   local name="$1"; shift
-  local t="$out/.time"
-  /usr/bin/time -f '%e\t%U\t%S\t%M' -o "$t" "$@" > "$out/$name.log" 2>&1 ||
+  local t="$out/.time" wrap=()
+  [[ "$name" == single || "$name" == merge ]] && wrap=("${lock[@]}")  # waiting is not timed
+  "${wrap[@]}" /usr/bin/time -f '%e\t%U\t%S\t%M' -o "$t" "$@" > "$out/$name.log" 2>&1 ||
     { echo "farm-sequential.sh: $name failed:" >&2; tail -3 "$out/$name.log" >&2; exit 1; }
   printf '%s\t%s\n' "$name" "$(cat "$t")" >> "$times"
   rm -f "$t"

@@ -33,8 +33,8 @@ struct FixedVertexSampler {
         packet_sum(static_cast<std::size_t>(p.K)),
         acc(static_cast<std::size_t>(p.K)) {}
 
-  // Returns the rays cast.
-  uint64_t sample(std::size_t v) {
+  // Returns the rays cast; the sums go to row `slot` (SamplingPass::sums_by_row).
+  uint64_t sample(std::size_t v, std::size_t slot) {
     const int K = pass.K, N = pass.N;
     const bool need_sh = pass.need_sh_rays, interreflect = pass.interreflect;
     const float tfar = std::numeric_limits<float>::infinity();
@@ -84,13 +84,13 @@ struct FixedVertexSampler {
     }
     if (need_sh)
       for (int k = 0; k < K; ++k) acc[k] *= inv_n;
-    if (need_sh) pass.direct.store(v, acc.data());
-    pass.sums.ao[v] = static_cast<float>(open_sum * inv_n);
+    if (need_sh) pass.direct.store(v, acc.data(), slot);
+    pass.sums.ao[slot] = static_cast<float>(open_sum * inv_n);
     const double bl = glm::length(bent);
     const glm::vec3 bn = bl > 0 ? glm::vec3(bent / bl) : n;
-    pass.sums.bent[3 * v + 0] = bn.x;
-    pass.sums.bent[3 * v + 1] = bn.y;
-    pass.sums.bent[3 * v + 2] = bn.z;
+    pass.sums.bent[3 * slot + 0] = bn.x;
+    pass.sums.bent[3 * slot + 1] = bn.y;
+    pass.sums.bent[3 * slot + 2] = bn.z;
     if (interreflect && !pass.compact) append_row(gathered, inv_n, pass.rows[block]);
     if (interreflect && pass.compact)
       compact.lengths.push_back(static_cast<uint32_t>(compact.hits.size() - hits_before));
@@ -110,10 +110,12 @@ void sample_fixed(SamplingPass& pass) {
     const std::size_t r_begin = first + blk * kVertexBlock;
     const std::size_t r_end = std::min(end, r_begin + kVertexBlock);
     uint64_t rays = 0;
-    for (std::size_t r = r_begin; r < r_end; ++r)
-      rays += sampler.sample(pass.row_order ? (*pass.row_order)[r]
-                             : pass.compact ? pass.compact->vertex_of_row(r)
-                                            : r);
+    for (std::size_t r = r_begin; r < r_end; ++r) {
+      const std::size_t v = pass.row_order ? (*pass.row_order)[r]
+                            : pass.compact ? pass.compact->vertex_of_row(r)
+                                           : r;
+      rays += sampler.sample(v, pass.sums_by_row ? r - first : v);
+    }
     if (pass.compact) {
       CompactGather::Block& b = sampler.compact;
       if (pass.budget)

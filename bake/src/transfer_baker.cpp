@@ -277,6 +277,7 @@ void run_sampling_pass(BakeJob& job, const ShardRows* shard = nullptr) {
     pass.first_row = shard->range.first;
     pass.end_row = shard->range.end;
     pass.part_blocks = shard->blocks;
+    pass.sums_by_row = true;
     shard->blocks->resize(job.compact ? pass.blocks() : 0);
   }
   const std::size_t blocks = pass.blocks();
@@ -791,7 +792,8 @@ TransferPart bake_transfer_part(const scene::Scene& scene, const BakeOptions& op
   const uint64_t V = scene.positions.size(), K = uint64_t(options.order) * options.order;
   const bool need_sh = options.kind != prt::TransferKind::Unshadowed;
   const bool need_rays = need_sh || options.ao || options.bent_normals;
-  budget.charge(V * (need_sh ? K * sizeof(double) : 0) + (need_rays ? V * 16 : 0),
+  const uint64_t n = shard_rows(V, shard).size();  // the sums hold the shard's rows only
+  budget.charge(n * (need_sh ? K * sizeof(double) : 0) + (need_rays ? n * 16 : 0),
                 "the visibility sums");
   BakeJob job(scene, options, progress, result, channel_count(scene, options, false), false, budget,
               true);
@@ -801,21 +803,21 @@ TransferPart bake_transfer_part(const scene::Scene& scene, const BakeOptions& op
   part.rows = shard_rows(V, shard);
   part.coefficients = job.K;
   if (need_rays) {
-    job.sums.ao.assign(V, 0.f);
-    job.sums.bent.assign(3 * V, 0.f);
+    job.sums.visibility_sh.assign(need_sh ? n * K : 0, 0.0);
+    job.sums.ao.assign(n, 0.f);
+    job.sums.bent.assign(3 * n, 0.f);
     const std::vector<uint32_t> order = make_morton_order(scene.positions);
     std::vector<CompactGather::Block> blocks;
     const ShardRows rows{&order, part.rows, &blocks};
     run_sampling_pass(job, &rows);
-    for (uint64_t r = part.rows.first; r < part.rows.end; ++r) {
-      const std::size_t v = order[r];
-      if (need_sh)
-        part.direct.insert(part.direct.end(), &job.sums.visibility_sh[v * K],
-                           &job.sums.visibility_sh[v * K] + K);
-      if (options.ao) part.ao.push_back(job.sums.ao[v]);
-      if (options.bent_normals)
-        part.bent.insert(part.bent.end(), &job.sums.bent[3 * v], &job.sums.bent[3 * v] + 3);
-    }
+    // The sums are in row order already (SamplingPass::sums_by_row): moved, not copied.
+    if (need_sh) part.direct = std::move(job.sums.visibility_sh);
+    if (options.ao) part.ao = std::move(job.sums.ao);
+    if (options.bent_normals) part.bent = std::move(job.sums.bent);
+    std::size_t hits = 0;  // reserved once: no regrowth (copies and fresh pages) while appending
+    for (const CompactGather::Block& b : blocks) hits += b.hits.size();
+    part.gather_rows.reserve(job.compact ? n : 0);
+    part.gather_hits.reserve(hits);
     for (CompactGather::Block& b : blocks) {
       part.gather_rows.insert(part.gather_rows.end(), b.lengths.begin(), b.lengths.end());
       part.gather_hits.insert(part.gather_hits.end(), b.hits.begin(), b.hits.end());

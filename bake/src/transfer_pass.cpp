@@ -40,7 +40,7 @@ DirectTransfer::DirectTransfer(const scene::Scene& scene, const BakeOptions& opt
   }
   if (shard_part) rows_out = 0;
   data_.coefficients.assign(rows_out * static_cast<std::size_t>(C_ * K_), 0.f);
-  if (keep_sums_) sums_.visibility_sh.assign(V * static_cast<std::size_t>(K_), 0.0);
+  if (keep_sums_ && !shard_part) sums_.visibility_sh.assign(V * static_cast<std::size_t>(K_), 0.0);
   zonal_.resize(static_cast<std::size_t>(order_));
   for (int l = 0; l < order_; ++l)
     zonal_[static_cast<std::size_t>(l)] = sh::clamped_cosine_zonal_coefficient(l);
@@ -52,10 +52,10 @@ void DirectTransfer::unshadowed(std::size_t v, double* out) const {
   for (int k = 0; k < K_; ++k) out[k] /= kPi;
 }
 
-void DirectTransfer::store(std::size_t v, const double* s_k) {
+void DirectTransfer::store(std::size_t v, const double* s_k, std::size_t slot) {
   const std::size_t K = static_cast<std::size_t>(K_);
   if (keep_sums_) {
-    std::copy(s_k, s_k + K, &sums_.visibility_sh[v * K]);
+    std::copy(s_k, s_k + K, &sums_.visibility_sh[slot * K]);
     return;
   }
   const std::size_t row = compact_ ? row_of_[v] : v;

@@ -55,14 +55,17 @@ struct VertexSums {
 class DirectTransfer {
  public:
   // `shard_part`: a shard of a farm bake (bake/transfer_part.h) keeps every sampled S_v in
-  // sums.visibility_sh (double, for its part file) and allocates no output coefficients.
+  // sums.visibility_sh (double, for its part file) and allocates no output coefficients; the
+  // caller sizes the sums for the shard's rows (SamplingPass::sums_by_row).
   DirectTransfer(const scene::Scene& scene, const BakeOptions& options, int channels,
                  bool albedo_apart, prt::TransferData& data, VertexSums& sums,
                  bool shard_part = false);
   // The analytic unshadowed transfer of vertex v, grey: (1/π) · rotate_zonal(clamped cosine, n).
   void unshadowed(std::size_t v, double* out) const;
-  // Stores S_v (K values) as described above.
-  void store(std::size_t v, const double* s_k);
+  // Stores S_v (K values) as described above; kept sums go to row `slot` of
+  // sums.visibility_sh (the vertex itself unless a shard's pass says otherwise).
+  void store(std::size_t v, const double* s_k) { store(v, s_k, v); }
+  void store(std::size_t v, const double* s_k, std::size_t slot);
 
  private:
   const scene::Scene& scene_;
@@ -109,6 +112,9 @@ struct SamplingPass {
   const std::vector<uint32_t>* row_order = nullptr;
   std::size_t first_row = 0, end_row = ~std::size_t{0};
   std::vector<CompactGather::Block>* part_blocks = nullptr;
+  // With row_order: sums (visibility_sh, ao, bent) hold the shard's rows only, row r at
+  // r − first_row, instead of every vertex (a shard then touches none of the others' sums).
+  bool sums_by_row = false;
 
   std::size_t row_end() const { return end_row < V ? end_row : V; }
   std::size_t blocks() const { return (row_end() - first_row + kVertexBlock - 1) / kVertexBlock; }

@@ -12,6 +12,7 @@
 #include <embree3/rtcore.h>
 
 #include "scene/scene_label.h"
+#include "small_pages_scope.h"
 
 namespace prt::scene {
 namespace {
@@ -149,7 +150,10 @@ RayCaster::RayCaster(const Scene& scene) : scene_(&scene) {
     rtcAttachGeometryByID(rs, geom, 0);
     rtcReleaseGeometry(geom);
   }
-  rtcCommitScene(rs);
+  {
+    const detail::SmallPagesScope small_pages;  // the build on 4 KB pages (small_pages_scope.h)
+    rtcCommitScene(rs);
+  }
   try {
     throw_if_error(device, scene, "BVH build");
   } catch (...) {

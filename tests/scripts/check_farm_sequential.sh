@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # scripts/farm-sequential.sh on a tiny field scene (3 shards, interreflected, 16 samples): it runs,
 # prints its summary lines, writes times.tsv with every step, and the merged file is the single
-# bake's. A few seconds.
+# bake's (the single bake and the merge under --lock). A few seconds.
 # Usage: check_farm_sequential.sh PRT_BINARY SOURCE_DIR
 set -euo pipefail
 prt="$(realpath "$1")"
@@ -9,7 +9,7 @@ source_dir="$(realpath "$2")"
 scratch="$(mktemp -d)"
 trap 'rm -rf "$scratch"' EXIT
 "$prt" make-scene --scene field --vertices 600 -o "$scratch/field.glb" > /dev/null
-summary=$(bash "$source_dir/scripts/farm-sequential.sh" --single "$prt" "$scratch/field.glb" 3 \
+summary=$(bash "$source_dir/scripts/farm-sequential.sh" --single --lock "$scratch/lock" "$prt" "$scratch/field.glb" 3 \
   "$scratch/out" --transfer interreflected --samples 16)
 echo "$summary"
 failures=0
