@@ -290,7 +290,9 @@ void check_usage(BakeArguments& args, const CLI::App& cmd) {
     if (args.automatic)
       throw UsageError("--shard does not apply to --auto (shards bake the fixed recipe)");
     if (args.subsurface.given())
-      throw UsageError("--shard does not apply to --subsurface yet (docs/FARM.md)");
+      throw UsageError(
+          "--shard does not apply to --subsurface yet: the dipole gather needs every vertex's "
+          "transfer, at merge time (docs/FARM.md)");
     args.shard_spec = resolve_shard(args.shard, process_environment());
   }
   if (args.glossy) {
