@@ -2,9 +2,10 @@
 // (prt/formats/part_file.h, kind ShTransfer), and the checks that parts belong together.
 //
 // Sections (tags; docs/FORMAT.md, "Part files"):
-//   1 settings   JSON: {"generator", "prt_version", "seed", "settings": {the BakeOptions that
-//                change the output}, "scene_inputs": hex hash of normals, albedo, triangles and
-//                primitives}. Parts of one bake have equal settings sections.
+//   1 settings   JSON: {"generator", "prt_version", "seed", "settings": {the bake's canonical
+//                settings, bake/bake_settings.h: every option that changes the output},
+//                "scene_inputs": hex hash of normals, albedo, triangles and primitives}. Parts
+//                of one bake have equal settings sections.
 //   2 scene      JSON (shard 0 only): source path, skipped triangles, primitives (name, first
 //                vertex, vertex count); with sections 3–6 the scene as the bake saw it (after
 //                --albedo, --material and --max-edge), so that the merge needs no scene file.
