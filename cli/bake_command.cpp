@@ -20,9 +20,11 @@
 #include "bake/progress.h"
 #include "bake/transfer_baker.h"
 #include "bake/transfer_part_file.h"
+#include "bake_summary.h"
 #include "cli_parsing.h"
 #include "command_registry.h"
 #include "glossy_cli.h"
+#include "glossy_shard.h"
 #include "haar_cli.h"
 #include "material_option.h"
 #include "option_rules.h"
@@ -287,11 +289,10 @@ void check_usage(BakeArguments& args, const CLI::App& cmd) {
   if (!args.shard.empty()) {
     if (args.automatic)
       throw UsageError("--shard does not apply to --auto (shards bake the fixed recipe)");
-    if (args.glossy) throw UsageError("--shard does not apply to --glossy yet (docs/FARM.md)");
     if (args.subsurface.given())
-      throw UsageError("--shard does not apply to --subsurface yet (docs/FARM.md)");
-    if (args.ao_distance)  // a part's settings do not carry the obscurance distance and falloff
-      throw UsageError("--shard does not apply to --ao-distance yet (docs/FARM.md)");
+      throw UsageError(
+          "--shard does not apply to --subsurface yet: the dipole gather needs every vertex's "
+          "transfer, at merge time (docs/FARM.md)");
     args.shard_spec = resolve_shard(args.shard, process_environment());
   }
   if (args.glossy) {
@@ -303,6 +304,8 @@ void check_usage(BakeArguments& args, const CLI::App& cmd) {
 }
 
 void run_glossy(const BakeArguments& args, const CLI::App& cmd) {
+  if (args.shard_spec)
+    return run_glossy_shard(load_for_bake(args), glossy_request(args, cmd), *args.shard_spec);
   run_glossy_bake(load_for_bake(args), glossy_request(args, cmd));
 }
 
@@ -352,37 +355,13 @@ void run_auto(const BakeArguments& args, const scene::Scene& scene, const bake::
   std::printf("  wrote %s\n", args.output.c_str());
 }
 
-// The shard's first line on stderr (the scheduler's log): which rows it bakes.
-void announce_shard(const BakeArguments& args, const scene::Scene& scene, bake::ShardSpec shard) {
-  if (args.quiet) return;
-  const bake::RowRange rows = bake::shard_rows(scene.vertex_count(), shard);
-  std::fprintf(stderr, "prt bake: %s: shard %s, rows %llu..%llu of %zu (Morton order)\n",
-               args.scene.c_str(), shard_text(shard).c_str(),
-               static_cast<unsigned long long>(rows.first),
-               static_cast<unsigned long long>(rows.end), scene.vertex_count());
-}
-
-// The shard's summary on stdout.
-void summarise_shard(const BakeArguments& args, const scene::Scene& scene, bake::ShardSpec shard,
-                     uint64_t rays, double seconds_rays) {
-  if (args.quiet) return;
-  std::error_code ec;
-  const auto bytes = std::filesystem::file_size(args.output, ec);
-  std::printf(
-      "baked shard %s of %s: %llu of %zu vertices, %llu rays in %.2f s; wrote %s (%llu bytes)\n",
-      shard_text(shard).c_str(), args.scene.c_str(),
-      static_cast<unsigned long long>(bake::shard_rows(scene.vertex_count(), shard).size()),
-      scene.vertex_count(), static_cast<unsigned long long>(rays), seconds_rays,
-      args.output.c_str(), static_cast<unsigned long long>(ec ? 0 : bytes));
-}
-
 // `--shard I/N`: the shard's rows into a part file (bake/transfer_part_file.h), which
 // `prt merge` joins with the other shards' parts.
 void run_shard(const BakeArguments& args, const scene::Scene& scene,
                const bake::BakeOptions& options, ProgressReporter& progress) {
   const bake::ShardSpec shard = *args.shard_spec;
   bake::check_shardable(scene, options);
-  announce_shard(args, scene, shard);
+  announce_shard(args.scene, scene.vertex_count(), shard, args.quiet);
   const bake::TransferPart part = bake::bake_transfer_part(scene, options, shard, &progress);
   const prt::Status written = prt::write_part_file(
       args.output, bake::encode_transfer_part(part, scene, options, prt_version()));
@@ -390,7 +369,8 @@ void run_shard(const BakeArguments& args, const scene::Scene& scene,
   run_record().phase("bvh", part.stats.seconds_bvh);
   run_record().phase("rays", part.stats.seconds_rays);
   run_record().phase("bake", part.stats.seconds_total);
-  summarise_shard(args, scene, shard, part.rays, part.stats.seconds_rays);
+  summarise_shard(args.scene, args.output, scene.vertex_count(), shard, part.rays,
+                  part.stats.seconds_rays, args.quiet);
 }
 
 // `--basis haar --shard I/N`: the Haar bake's rows into a part file (bake/haar_part.h).
@@ -400,7 +380,7 @@ void run_haar_shard(const BakeArguments& args, const scene::Scene& scene,
   const bake::HaarBakeOptions options = haar_bake_options(
       sh.kind, args.haar, args.seed, args.threads, args.bounces, args.tolerance, sh.memory_limit);
   bake::check_haar_shardable(scene, options);
-  announce_shard(args, scene, shard);
+  announce_shard(args.scene, scene.vertex_count(), shard, args.quiet);
   ProgressReporter progress(args.quiet);
   const bake::HaarPart part = bake::bake_haar_part(scene, options, shard, &progress);
   const prt::Status written = prt::write_part_file(
@@ -408,7 +388,8 @@ void run_haar_shard(const BakeArguments& args, const scene::Scene& scene,
   if (!written.ok()) throw CommandError(written.message());
   run_record().phase("rays", part.stats.seconds_rays);
   run_record().phase("bake", part.stats.seconds_total);
-  summarise_shard(args, scene, shard, part.rays, part.stats.seconds_rays);
+  summarise_shard(args.scene, args.output, scene.vertex_count(), shard, part.rays,
+                  part.stats.seconds_rays, args.quiet);
 }
 
 void run(const BakeArguments& args, const CLI::App& cmd) {
@@ -450,12 +431,7 @@ void run(const BakeArguments& args, const CLI::App& cmd) {
   record_bake(result.stats);
 
   const bake::BakeStatistics& st = result.stats;
-  if (options.kind == prt::TransferKind::Interreflected && !st.solver_converged)
-    std::fprintf(stderr,
-                 "prt bake: %s: warning: interreflection solve stopped at relative residual %.3g "
-                 "(tolerance %.3g) after %d iterations\n",
-                 args.scene.c_str(), st.solver_residual, options.bounce_tolerance,
-                 st.solver_iterations);
+  warn_unconverged_solve("prt bake", args.scene, options, st);
   if (args.quiet) return;
   std::error_code ec;
   const auto bytes = std::filesystem::file_size(args.output, ec);
@@ -467,13 +443,7 @@ void run(const BakeArguments& args, const CLI::App& cmd) {
       options.order, result.data.channels, result.data.channels == 1 ? "" : "s",
       st.samples_per_vertex, static_cast<unsigned long long>(st.rays), st.seconds_rays,
       st.mrays_per_second());
-  if (options.kind == prt::TransferKind::Interreflected) {
-    if (options.bounces >= 0)
-      std::printf("; %d bounces", st.jacobi_bounces);
-    else
-      std::printf("; interreflection solved in %d+%d iterations to residual %.2g (%.2f s)",
-                  st.jacobi_bounces, st.solver_iterations, st.solver_residual, st.seconds_solve);
-  }
+  std::printf("%s", interreflection_summary(options, st).c_str());
   if (!result.data.albedo_folded) std::printf("; albedo kept apart (textures apply per pixel)");
   std::printf("; total %.2f s; wrote %s (%llu bytes, %s)", st.seconds_total, args.output.c_str(),
               static_cast<unsigned long long>(ec ? 0 : bytes), args.precision.c_str());

@@ -60,8 +60,7 @@ void check_glossy_applicable(const CLI::App& cmd) {
       throw UsageError(std::string(option) + " does not apply to --glossy");
 }
 
-void run_glossy_bake(const scene::Scene& scene, const GlossyBakeRequest& r) {
-  check_glossy_request(r);
+bake::GlossyBakeOptions glossy_bake_options(const GlossyBakeRequest& r) {
   bake::GlossyBakeOptions o;
   o.order = r.order;
   o.samples = r.samples;
@@ -71,6 +70,12 @@ void run_glossy_bake(const scene::Scene& scene, const GlossyBakeRequest& r) {
   o.threads = r.threads;
   o.memory_limit = r.memory_limit;
   o.precision = r.precision == "f16" ? prt::Precision::F16 : prt::Precision::F32;
+  return o;
+}
+
+void run_glossy_bake(const scene::Scene& scene, const GlossyBakeRequest& r) {
+  check_glossy_request(r);
+  const bake::GlossyBakeOptions o = glossy_bake_options(r);
   ProgressReporter progress(r.quiet);
   // Streamed: the matrices go to the file as they are finished (result.data holds none).
   const bake::GlossyBakeResult result =

@@ -16,6 +16,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "bake/glossy_transfer_baker.h"
 #include "output_safety.h"
 #include "scene/scene.h"
 
@@ -68,6 +69,9 @@ void check_glossy_applicable(const CLI::App& cmd);
 
 // Checks the glossy values (order, transfer, bounces, tolerance). Throws UsageError.
 void check_glossy_request(const GlossyBakeRequest& request);
+
+// The bake options the request means (--bounces, or −1 / 0 from --transfer).
+bake::GlossyBakeOptions glossy_bake_options(const GlossyBakeRequest& request);
 
 // Checks the values, bakes, writes and reports. Throws UsageError / CommandError / BakeError.
 void run_glossy_bake(const scene::Scene& scene, const GlossyBakeRequest& request);

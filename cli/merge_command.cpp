@@ -16,7 +16,9 @@
 #include <CLI/CLI.hpp>
 
 #include "bake/transfer_part_file.h"
+#include "bake_summary.h"
 #include "command_registry.h"
+#include "glossy_shard.h"
 #include "option_rules.h"
 #include "progress_reporter.h"
 #include "prt/formats/haar_transfer_file.h"
@@ -87,6 +89,8 @@ void run(const MergeArguments& args) {
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   run_record().phase("read parts", read_seconds);
   if (ordered[0]->form_factors) return merge_form_factor_parts(ordered, args.output, args.quiet);
+  if (ordered[0]->glossy)
+    return merge_glossy_parts(ordered, args.output, args.threads, args.memory_limit, args.quiet);
   check_output_file("-o", args.output, {".prt"}, "a coefficient file");
   if (ordered[0]->haar) return merge_haar(args, ordered);
   const scene::Scene& scene = *ordered[0]->scene;
@@ -103,20 +107,13 @@ void run(const MergeArguments& args) {
     run_record().phase("interreflection solve", result.stats.seconds_solve);
   run_record().phase("merge", result.stats.seconds_total);
   const bake::BakeStatistics& st = result.stats;
-  if (options.kind == prt::TransferKind::Interreflected && !st.solver_converged)
-    std::fprintf(stderr,
-                 "prt merge: %s: warning: interreflection solve stopped at relative residual %.3g "
-                 "(tolerance %.3g) after %d iterations\n",
-                 scene.source_path.c_str(), st.solver_residual, options.bounce_tolerance,
-                 st.solver_iterations);
+  warn_unconverged_solve("prt merge", scene.source_path, options, st);
   if (args.quiet) return;
-  std::printf("merged %zu parts of %s (%s transfer, %llu vertices, %llu rays)", parts.size(),
+  std::printf("merged %zu parts of %s (%s transfer, %llu vertices, %llu rays)%s", parts.size(),
               scene.source_path.c_str(), bake::transfer_kind_name(options.kind),
               static_cast<unsigned long long>(st.vertices),
-              static_cast<unsigned long long>(st.rays));
-  if (options.kind == prt::TransferKind::Interreflected)
-    std::printf("; interreflection solved in %d+%d iterations (%.2f s)", st.jacobi_bounces,
-                st.solver_iterations, st.seconds_solve);
+              static_cast<unsigned long long>(st.rays),
+              interreflection_summary(options, st).c_str());
   std::printf("; wrote %s\n", args.output.c_str());
 }
 

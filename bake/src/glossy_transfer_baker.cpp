@@ -22,6 +22,7 @@
 #include "bake/cpca/compressor.h"
 #include "bake/progress.h"
 #include "bake/sampling.h"
+#include "glossy_bake_stages.h"
 #include "hit_side.h"
 #include "prt/core/memory_budget.h"
 #include "prt/formats/geometry_check.h"
@@ -53,12 +54,8 @@ struct Frame {
   }
 };
 
-// A front-face hit of one of a vertex's samples.
-struct GlossyHit {
-  uint32_t sample;
-  uint32_t triangle;
-  float u, v;
-};
+// A front-face hit of one of a vertex's samples (bake/glossy_part.h: also a part's record).
+using GlossyHit = GlossyHitRecord;
 
 struct BlockHits {
   std::vector<GlossyHit> hits;
@@ -610,8 +607,71 @@ void charge_bake(prt::MemoryBudget& budget, const GlossyJob& job, const GlossyBa
   budget.charge(V * KK * 4 + V * C * job.K * 4, "the direct transfer and Lambert exit rows");
 }
 
+GlossyJob make_job(const scene::Scene& scene, const GlossyBakeOptions& o, ProgressSink* progress,
+                   GlossyBakeStatistics& st) {
+  return GlossyJob{scene,
+                   o,
+                   progress,
+                   scene.vertex_count(),
+                   o.order,
+                   o.order * o.order,
+                   round_up_to_packet(o.samples),
+                   1,
+                   o.bounces != 0,
+                   {},
+                   {},
+                   {},
+                   {},
+                   nullptr,
+                   {},
+                   nullptr,
+                   {},
+                   {},
+                   {},
+                   {},
+                   {},
+                   st};
+}
+
+// The frames, materials and zonal factors of `inputs` (glossy_inputs of the scene).
+void set_inputs(GlossyJob& job, const GlossyInputs& in) {
+  job.materials = in.materials;
+  job.material_of_vertex = in.material_of_vertex;
+  job.frames.resize(job.V);
+  for (std::size_t v = 0; v < job.V; ++v) {
+    const glm::vec3 n = glm::normalize(job.scene.normals[v]), t = glm::vec3(in.tangents[v]);
+    job.frames[v] = {t, in.tangents[v].w * glm::cross(n, t), n};
+  }
+  for (int l = 0; l < job.order; ++l)
+    job.zonal_over_pi.push_back(
+        static_cast<float>(sh::clamped_cosine_zonal_coefficient(l) / sh::kPi));
+}
+
+// The sampling pass's results of every vertex (`pre`, taken) where run_sampling_pass puts its own.
+void use_sampled(GlossyJob& job, detail::GlossySampled& pre) {
+  const std::size_t KK = job.KK(), per_vertex = std::size_t(job.C) * KK;
+  if (job.matrices) {
+    for (std::size_t v = 0; v < job.V; ++v)
+      for (int c = 0; c < job.C; ++c)
+        std::copy_n(&pre.direct[v * KK], KK, &(*job.matrices)[v * per_vertex + c * KK]);
+  } else {  // shadowed: one channel
+    for (std::size_t first = 0; first < job.V; first += kBlock)
+      job.sink(first, std::min(kBlock, job.V - first), &pre.direct[first * KK]);
+  }
+  if (job.budget && job.interreflect)
+    job.budget->charge(pre.hits.size() * sizeof(GlossyHit) + 8 * (job.V + 1),
+                       "the glossy bounces' ray hits");
+  job.hits = std::move(pre.hits);
+  job.hit_offset = std::move(pre.hit_offset);
+  job.st.rays = pre.rays;
+  job.st.back_face_hits = pre.back_face_hits;
+  job.st.hits = job.hits.size();
+}
+
+// The whole bake; with `pre`, its sampling pass is replaced by those results (a farm merge).
 void bake_glossy(const scene::Scene& scene, const GlossyBakeOptions& o, ProgressSink* progress,
-                 GlossyOutput& out) {
+                 GlossyOutput& out, const GlossyInputs* inputs = nullptr,
+                 detail::GlossySampled* pre = nullptr) {
   const Clock::time_point t_start = Clock::now();
   validate_glossy_options(scene, o);
   std::optional<tbb::global_control> thread_limit;
@@ -620,42 +680,15 @@ void bake_glossy(const scene::Scene& scene, const GlossyBakeOptions& o, Progress
                          static_cast<std::size_t>(o.threads));
   GlossyBakeResult& result = out.result;
   GlossyBakeStatistics& st = result.stats;
-  GlossyJob job{scene,
-                o,
-                progress,
-                scene.vertex_count(),
-                o.order,
-                o.order * o.order,
-                round_up_to_packet(o.samples),
-                1,
-                o.bounces != 0,
-                {},
-                {},
-                {},
-                {},
-                nullptr,
-                {},
-                nullptr,
-                {},
-                {},
-                {},
-                {},
-                {},
-                st};
+  GlossyJob job = make_job(scene, o, progress, st);
   prt::MemoryBudget budget(o.memory_limit, scene::scene_label(scene));
   job.budget = &budget;
-  glossy_scene_materials(scene, job.materials, job.material_of_vertex);
-  job.C = glossy_channels(scene, job.materials, job.interreflect);
+  GlossyInputs derived;  // the single bake derives them; a merge has them from its parts
+  if (!inputs) derived = glossy_inputs(scene);
+  const GlossyInputs& in = inputs ? *inputs : derived;
+  job.C = glossy_channels(scene, in.materials, job.interreflect);
   charge_bake(budget, job, o, out.writer != nullptr || !out.path.empty());
-  const std::vector<glm::vec4> tangents = scene::tangent_frames(scene);
-  job.frames.resize(job.V);
-  for (std::size_t v = 0; v < job.V; ++v) {
-    const glm::vec3 n = glm::normalize(scene.normals[v]), t = glm::vec3(tangents[v]);
-    job.frames[v] = {t, tangents[v].w * glm::cross(n, t), n};
-  }
-  for (int l = 0; l < job.order; ++l)
-    job.zonal_over_pi.push_back(
-        static_cast<float>(sh::clamped_cosine_zonal_coefficient(l) / sh::kPi));
+  set_inputs(job, in);
   st.vertices = job.V;
   st.triangles = scene.triangles.size();
   st.samples_per_vertex = job.N;
@@ -692,7 +725,10 @@ void bake_glossy(const scene::Scene& scene, const GlossyBakeOptions& o, Progress
       put_matrices(out, job, first, count, m);
     };
   }
-  run_sampling_pass(job);
+  if (pre)
+    use_sampled(job, *pre);
+  else
+    run_sampling_pass(job);
   if (job.interreflect) {
     if (!job.hits.empty()) {
       job.S.resize(job.V * job.KK());
@@ -737,5 +773,71 @@ GlossyBakeResult bake_glossy_transfer_to_file(const scene::Scene& scene, const G
   bake_glossy(scene, o, progress, out);
   return result;
 }
+
+namespace detail {
+
+GlossySampled sample_glossy_vertices(const scene::Scene& scene, const GlossyBakeOptions& o,
+                                     const GlossyInputs& inputs,
+                                     const std::vector<uint32_t>& vertices, ProgressSink* progress,
+                                     GlossyBakeStatistics& st) {
+  const Clock::time_point t0 = Clock::now();
+  validate_glossy_options(scene, o);
+  std::optional<tbb::global_control> thread_limit;
+  if (o.threads > 0)
+    thread_limit.emplace(tbb::global_control::max_allowed_parallelism,
+                         static_cast<std::size_t>(o.threads));
+  GlossyJob job = make_job(scene, o, progress, st);
+  set_inputs(job, inputs);  // one channel: S_v as the single bake's first channel
+  prt::MemoryBudget budget(o.memory_limit, scene::scene_label(scene));
+  const std::size_t R = vertices.size(), KK = job.KK(), blocks = (R + kBlock - 1) / kBlock;
+  budget.charge(job.V * (sizeof(Frame) + 8) + R * KK * 4, "the shard's frames and matrices");
+  const scene::RayCaster caster(scene);
+  GlossySampled out;
+  out.direct.resize(R * KK);
+  std::vector<BlockHits> block_hits(blocks);
+  std::vector<uint64_t> rays(blocks, 0), back(blocks, 0);
+  if (progress) progress->start("glossy bake", R);
+  tbb::parallel_for(std::size_t(0), blocks, [&](std::size_t blk) {
+    VertexSampler sampler(job, caster);
+    const std::size_t first = blk * kBlock, end = std::min(R, first + kBlock);
+    for (std::size_t r = first; r < end; ++r)
+      rays[blk] += sampler.sample(vertices[r], &out.direct[r * KK], block_hits[blk], back[blk]);
+    if (progress) progress->advance(end - first, rays[blk]);
+  });
+  if (progress) progress->finish();
+  out.hit_offset.assign(1, 0);
+  uint64_t hit_count = 0;
+  for (const BlockHits& b : block_hits) hit_count += b.hits.size();
+  budget.charge(hit_count * sizeof(GlossyHit) + 8 * (R + 1), "the shard's ray hits");
+  out.hits.reserve(hit_count);
+  for (std::size_t blk = 0; blk < blocks; ++blk) {
+    out.rays += rays[blk];
+    out.back_face_hits += back[blk];
+    for (uint32_t c : block_hits[blk].counts) out.hit_offset.push_back(out.hit_offset.back() + c);
+    out.hits.insert(out.hits.end(), block_hits[blk].hits.begin(), block_hits[blk].hits.end());
+  }
+  st.vertices = job.V;
+  st.triangles = scene.triangles.size();
+  st.samples_per_vertex = job.N;
+  st.rays = out.rays;
+  st.back_face_hits = out.back_face_hits;
+  st.hits = out.hits.size();
+  st.seconds_rays = st.seconds_total = seconds_since(t0);
+  st.peak_charged_bytes = budget.peak();
+  return out;
+}
+
+GlossyBakeResult finish_glossy_bake_to_file(const scene::Scene& scene, const GlossyBakeOptions& o,
+                                            const GlossyInputs& inputs, GlossySampled& all,
+                                            const std::string& path, ProgressSink* progress) {
+  if (path.empty()) throw BakeError(scene::scene_label(scene) + ": no output path");
+  GlossyBakeResult result;
+  std::mutex lock;
+  GlossyOutput out{result, nullptr, path, &lock};
+  bake_glossy(scene, o, progress, out, &inputs, &all);
+  return result;
+}
+
+}  // namespace detail
 
 }  // namespace prt::bake

@@ -7,6 +7,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "aggregate_fields.h"
+#include "bake/bake_settings.h"
 #include "numerics/hash.h"
 #include "prt/formats/geometry_check.h"
 #include "prt/haar/cube_map.h"
@@ -36,7 +38,13 @@ enum Tag : uint32_t {
   kHaarGatherLengths,
   kHaarGatherColumns,
   kHaarGatherWeights,
-  kFormFactors
+  kFormFactors,
+  kGlossyDirect,
+  kGlossyHitCounts,
+  kGlossyHits,
+  kGlossyTangents,
+  kGlossyMaterialOfVertex,
+  kGlossyMaterials
 };
 
 template <class T>
@@ -113,76 +121,6 @@ std::string scene_inputs_hash(const scene::Scene& scene) {
   return text;
 }
 
-prt::TransferKind kind_named(const std::string& kind) {
-  return kind == "unshadowed"       ? prt::TransferKind::Unshadowed
-         : kind == "interreflected" ? prt::TransferKind::Interreflected
-                                    : prt::TransferKind::Shadowed;
-}
-
-nlohmann::json settings_of(const BakeOptions& o) {
-  nlohmann::json s;
-  s["basis"] = "sh";
-  s["transfer"] = transfer_kind_name(o.kind);
-  s["order"] = o.order;
-  s["samples"] = o.samples;
-  s["bounces"] = o.bounces;
-  s["tolerance"] = o.bounce_tolerance;
-  s["max_solver_iterations"] = o.max_solver_iterations;
-  s["ao"] = o.ao;
-  s["bent_normals"] = o.bent_normals;
-  s["precision"] = o.precision == prt::Precision::F16 ? "f16" : "f32";
-  return s;
-}
-
-BakeOptions options_of(const nlohmann::json& s, uint64_t seed) {
-  BakeOptions o;
-  o.kind = kind_named(s.at("transfer").get<std::string>());
-  o.order = s.at("order").get<int>();
-  o.samples = s.at("samples").get<int>();
-  o.bounces = s.at("bounces").get<int>();
-  o.bounce_tolerance = s.at("tolerance").get<double>();
-  o.max_solver_iterations = s.at("max_solver_iterations").get<int>();
-  o.ao = s.at("ao").get<bool>();
-  o.bent_normals = s.at("bent_normals").get<bool>();
-  o.precision =
-      s.at("precision").get<std::string>() == "f16" ? prt::Precision::F16 : prt::Precision::F32;
-  o.seed = seed;
-  return o;
-}
-
-nlohmann::json haar_settings_of(const HaarBakeOptions& o) {
-  nlohmann::json s;
-  s["basis"] = "haar";
-  s["transfer"] = transfer_kind_name(o.transport);
-  s["cube"] = o.cube_size;
-  s["supersample"] = o.supersample;
-  s["relative_threshold"] = o.compression.relative_threshold;
-  s["max_terms_per_vertex"] = o.compression.max_terms_per_vertex;
-  s["quantization_bits"] = static_cast<int>(o.compression.quantization);
-  s["bounces"] = o.bounces;
-  s["tolerance"] = o.bounce_tolerance;
-  s["max_solver_iterations"] = o.max_solver_iterations;
-  return s;
-}
-
-HaarBakeOptions haar_options_of(const nlohmann::json& s, uint64_t seed) {
-  HaarBakeOptions o;
-  o.transport = kind_named(s.at("transfer").get<std::string>());
-  o.cube_size = s.at("cube").get<int>();
-  o.supersample = s.at("supersample").get<int>();
-  o.compression.relative_threshold = s.at("relative_threshold").get<double>();
-  o.compression.max_terms_per_vertex = s.at("max_terms_per_vertex").get<int64_t>();
-  const int bits = s.at("quantization_bits").get<int>();
-  o.compression.quantization = bits == 8    ? prt::HaarQuantization::Bits8
-                               : bits == 16 ? prt::HaarQuantization::Bits16
-                                            : prt::HaarQuantization::Float32;
-  o.bounces = s.at("bounces").get<int>();
-  o.bounce_tolerance = s.at("tolerance").get<double>();
-  o.max_solver_iterations = s.at("max_solver_iterations").get<int>();
-  o.seed = seed;
-  return o;
-}
-
 void add_scene_sections(const scene::Scene& scene, prt::PartFile& f) {
   nlohmann::json j;
   j["source_path"] = scene.source_path;
@@ -244,6 +182,95 @@ scene::Scene decode_scene(const prt::PartFile& f, const std::string& name) {
   return scene;
 }
 
+static_assert(detail::aggregate_member_count<brdf::Material>() == 12,
+              "brdf::Material changed: carry the new member in glossy parts' materials");
+
+nlohmann::json rgb_json(const brdf::Rgb& c) {
+  return {c.r, c.g, c.b};
+}
+brdf::Rgb rgb_of(const nlohmann::json& j) {
+  return {j.at(0).get<double>(), j.at(1).get<double>(), j.at(2).get<double>()};
+}
+
+// Every field of the materials (doubles round-trip exactly through nlohmann's shortest form).
+std::string materials_json(const std::vector<brdf::Material>& materials) {
+  nlohmann::json a = nlohmann::json::array();
+  for (const brdf::Material& m : materials)
+    a.push_back({{"model", static_cast<int>(m.model)},
+                 {"diffuse", rgb_json(m.diffuse)},
+                 {"specular", rgb_json(m.specular)},
+                 {"exponent", m.exponent},
+                 {"alpha_x", m.alpha_x},
+                 {"alpha_y", m.alpha_y},
+                 {"ward_form", static_cast<int>(m.ward_form)},
+                 {"distribution", static_cast<int>(m.distribution)},
+                 {"fresnel", static_cast<int>(m.fresnel)},
+                 {"eta", m.eta},
+                 {"metallic", m.metallic},
+                 {"merl_path", m.merl_path}});
+  return a.dump();
+}
+
+std::vector<brdf::Material> materials_of(const std::string& text, const std::string& name) {
+  std::vector<brdf::Material> out;
+  try {
+    for (const nlohmann::json& j : nlohmann::json::parse(text)) {
+      brdf::Material m;
+      const int model = j.at("model").get<int>(), ward = j.at("ward_form").get<int>(),
+                distribution = j.at("distribution").get<int>(),
+                fresnel = j.at("fresnel").get<int>();
+      if (model < 0 || model > static_cast<int>(brdf::MaterialModel::kGltf) || ward < 0 ||
+          ward > static_cast<int>(brdf::WardForm::kNormalized) || distribution < 0 ||
+          distribution > static_cast<int>(brdf::NormalDistribution::kBeckmann) || fresnel < 0 ||
+          fresnel > static_cast<int>(brdf::FresnelMode::kDielectric))
+        throw BakeError(name + ": materials section: an unknown enumerator");
+      m.model = static_cast<brdf::MaterialModel>(model);
+      m.diffuse = rgb_of(j.at("diffuse"));
+      m.specular = rgb_of(j.at("specular"));
+      m.exponent = j.at("exponent").get<double>();
+      m.alpha_x = j.at("alpha_x").get<double>();
+      m.alpha_y = j.at("alpha_y").get<double>();
+      m.ward_form = static_cast<brdf::WardForm>(ward);
+      m.distribution = static_cast<brdf::NormalDistribution>(distribution);
+      m.fresnel = static_cast<brdf::FresnelMode>(fresnel);
+      m.eta = j.at("eta").get<double>();
+      m.metallic = j.at("metallic").get<double>();
+      m.merl_path = j.at("merl_path").get<std::string>();
+      out.push_back(std::move(m));
+    }
+  } catch (const nlohmann::json::exception& e) {
+    throw BakeError(name + ": materials section: " + e.what());
+  }
+  return out;
+}
+
+// "/" and the hash of what a glossy bake derives from the scene besides its geometry.
+std::string glossy_inputs_hash(const GlossyInputs& in) {
+  numerics::WordHash h;
+  h.add_u64(in.tangents.size());
+  hash_bytes(h, in.tangents);
+  hash_bytes(h, in.material_of_vertex);
+  for (unsigned char c : materials_json(in.materials)) h.add_word(c);
+  char text[24];
+  std::snprintf(text, sizeof text, "/%016llx", static_cast<unsigned long long>(h.finish()));
+  return text;
+}
+
+GlossyInputs decode_glossy_inputs(const prt::PartFile& f, const std::string& name) {
+  const uint64_t V = f.total_rows;
+  GlossyInputs in;
+  const std::vector<float> t = read_array<float>(f, kGlossyTangents, 4 * V, name, "tangents");
+  in.tangents.resize(V);
+  for (uint64_t v = 0; v < V; ++v)
+    in.tangents[v] = {t[4 * v], t[4 * v + 1], t[4 * v + 2], t[4 * v + 3]};
+  in.material_of_vertex =
+      read_array<uint32_t>(f, kGlossyMaterialOfVertex, V, name, "material of each vertex");
+  in.materials = materials_of(read_text(f, kGlossyMaterials, name, "materials"), name);
+  for (uint32_t m : in.material_of_vertex)
+    if (m >= in.materials.size()) throw BakeError(name + ": a vertex names no material");
+  return in;
+}
+
 }  // namespace
 
 namespace {
@@ -251,7 +278,8 @@ namespace {
 // A part's header, settings section and (shard 0) scene sections.
 prt::PartFile part_with_settings(prt::PartKind kind, ShardSpec shard, RowRange rows,
                                  const scene::Scene& scene, const nlohmann::json& settings,
-                                 uint64_t seed, const std::string& prt_version) {
+                                 uint64_t seed, const std::string& prt_version,
+                                 const std::string& more_inputs = {}) {
   prt::PartFile f;
   f.kind = kind;
   f.index = shard.index;
@@ -268,7 +296,7 @@ prt::PartFile part_with_settings(prt::PartKind kind, ShardSpec shard, RowRange r
   j["prt_version"] = prt_version;
   j["seed"] = seed;
   j["settings"] = settings;
-  j["scene_inputs"] = scene_inputs_hash(scene);
+  j["scene_inputs"] = scene_inputs_hash(scene) + more_inputs;
   f.sections.push_back(text_section(kSettings, j.dump()));
   if (shard.index == 0) add_scene_sections(scene, f);
   return f;
@@ -319,12 +347,60 @@ void decode_haar(const prt::PartFile& f, const std::string& name, TransferPartFi
   out.part.rows = p.rows;
 }
 
+void decode_glossy(const prt::PartFile& f, const std::string& name, TransferPartFile& out) {
+  const GlossyBakeOptions& o = out.glossy_options;
+  if (o.order < 1 || o.order > kMaxGlossyBakeOrder || o.samples < 1 || o.samples > kMaxBakeSamples)
+    throw BakeError(name + ": settings out of range");
+  GlossyPart& p = out.glossy_part;
+  p.shard = {f.index, f.count};
+  p.vertices = f.total_rows;
+  p.rows = {f.first_row, f.first_row + f.row_count};
+  p.order = o.order;
+  const uint64_t n = f.row_count, KK = uint64_t(o.order) * o.order * o.order * o.order;
+  const bool interreflect = o.bounces != 0;
+  p.direct = read_array<float>(f, kGlossyDirect, n * KK, name, "direct matrices");
+  p.hit_counts =
+      read_array<uint32_t>(f, kGlossyHitCounts, interreflect ? n : 0, name, "hit counts");
+  uint64_t hits = 0;
+  for (uint32_t c : p.hit_counts) hits += c;
+  p.hits = read_array<GlossyHitRecord>(f, kGlossyHits, hits, name, "hits");
+  const std::vector<uint64_t> counters = read_array<uint64_t>(f, kCounters, 3, name, "counters");
+  p.rays = counters[0];
+  p.back_face_hits = counters[1];
+  if (f.index == 0) out.glossy_inputs = decode_glossy_inputs(f, name);
+  out.part.shard = p.shard;
+  out.part.vertices = p.vertices;
+  out.part.rows = p.rows;
+}
+
 }  // namespace
+
+prt::PartFile encode_glossy_part(const GlossyPart& part, const scene::Scene& scene,
+                                 const GlossyInputs& inputs, const GlossyBakeOptions& options,
+                                 const std::string& prt_version) {
+  prt::PartFile f = part_with_settings(prt::PartKind::GlossyTransfer, part.shard, part.rows, scene,
+                                       nlohmann::json::parse(glossy_bake_settings(options)),
+                                       options.seed, prt_version, glossy_inputs_hash(inputs));
+  f.sections.push_back(view_of(kGlossyDirect, part.direct.data(), part.direct.size()));
+  f.sections.push_back(view_of(kGlossyHitCounts, part.hit_counts.data(), part.hit_counts.size()));
+  f.sections.push_back(view_of(kGlossyHits, part.hits.data(), part.hits.size()));
+  f.sections.push_back(counters_section(part.rays, part.back_face_hits, 0.0));
+  if (part.shard.index == 0) {
+    f.sections.push_back(view_of(kGlossyTangents,
+                                 inputs.tangents.empty() ? nullptr : &inputs.tangents[0].x,
+                                 4 * inputs.tangents.size()));
+    f.sections.push_back(view_of(kGlossyMaterialOfVertex, inputs.material_of_vertex.data(),
+                                 inputs.material_of_vertex.size()));
+    f.sections.push_back(text_section(kGlossyMaterials, materials_json(inputs.materials)));
+  }
+  return f;
+}
 
 prt::PartFile encode_transfer_part(const TransferPart& part, const scene::Scene& scene,
                                    const BakeOptions& options, const std::string& prt_version) {
   prt::PartFile f = part_with_settings(prt::PartKind::ShTransfer, part.shard, part.rows, scene,
-                                       settings_of(options), options.seed, prt_version);
+                                       nlohmann::json::parse(sh_bake_settings(options)),
+                                       options.seed, prt_version);
   f.sections.push_back(view_of(kDirect, part.direct.data(), part.direct.size()));
   f.sections.push_back(view_of(kAo, part.ao.data(), part.ao.size()));
   f.sections.push_back(view_of(kBent, part.bent.data(), part.bent.size()));
@@ -337,7 +413,8 @@ prt::PartFile encode_transfer_part(const TransferPart& part, const scene::Scene&
 prt::PartFile encode_haar_part(const HaarPart& part, const scene::Scene& scene,
                                const HaarBakeOptions& options, const std::string& prt_version) {
   prt::PartFile f = part_with_settings(prt::PartKind::HaarTransfer, part.shard, part.rows, scene,
-                                       haar_settings_of(options), options.seed, prt_version);
+                                       nlohmann::json::parse(haar_bake_settings(options)),
+                                       options.seed, prt_version);
   f.sections.push_back(
       view_of(kSparseLengths, part.sparse_lengths.data(), part.sparse_lengths.size()));
   f.sections.push_back(view_of(kSparseIndex, part.sparse_index.data(), part.sparse_index.size()));
@@ -386,6 +463,7 @@ TransferPartFile decode_transfer_part(const prt::PartFile& f, const std::string&
   out.name = name;
   out.fingerprint = f.fingerprint;
   out.haar = f.kind == prt::PartKind::HaarTransfer;
+  out.glossy = f.kind == prt::PartKind::GlossyTransfer;
   try {
     const nlohmann::json j = nlohmann::json::parse(read_text(f, kSettings, name, "settings"));
     out.prt_version = j.at("prt_version").get<std::string>();
@@ -393,10 +471,13 @@ TransferPartFile decode_transfer_part(const prt::PartFile& f, const std::string&
     out.settings = j.at("settings").dump();
     out.scene_inputs = j.at("scene_inputs").get<std::string>();
     out.form_factors = f.kind == prt::PartKind::FormFactorRows;
-    if (out.haar)
-      out.haar_options = haar_options_of(j.at("settings"), out.seed);
+    if (out.glossy)
+      out.glossy_options =
+          glossy_options_from_settings(out.settings, out.seed, name + ": settings");
+    else if (out.haar)
+      out.haar_options = haar_options_from_settings(out.settings, out.seed, name + ": settings");
     else if (!out.form_factors)
-      out.options = options_of(j.at("settings"), out.seed);
+      out.options = sh_options_from_settings(out.settings, out.seed, name + ": settings");
   } catch (const nlohmann::json::exception& e) {
     throw BakeError(name + ": settings section: " + e.what());
   }
@@ -412,6 +493,11 @@ TransferPartFile decode_transfer_part(const prt::PartFile& f, const std::string&
   if (out.haar) {
     if (f.index == 0) out.scene = decode_scene(f, name);
     decode_haar(f, name, out);
+    return out;
+  }
+  if (out.glossy) {
+    if (f.index == 0) out.scene = decode_scene(f, name);
+    decode_glossy(f, name, out);
     return out;
   }
   const BakeOptions& o = out.options;
@@ -450,6 +536,8 @@ std::string shard_name(uint32_t index, uint32_t count) {
 std::string settings_difference(const std::string& a, const std::string& b,
                                 const std::string& ref) {
   const nlohmann::json ja = nlohmann::json::parse(a), jb = nlohmann::json::parse(b);
+  if (ja.contains("basis") && jb.contains("basis") && ja.at("basis") != jb.at("basis"))
+    return "basis " + ja.at("basis").dump() + " here, " + jb.at("basis").dump() + " in " + ref;
   for (auto it = ja.begin(); it != ja.end(); ++it)
     if (!jb.contains(it.key()) || jb.at(it.key()) != it.value())
       return it.key() + " " + it.value().dump() + " here, " +
@@ -462,15 +550,19 @@ std::string difference(const TransferPartFile& p, const TransferPartFile& r) {
   if (p.prt_version != r.prt_version)
     return p.name + ": written by prt " + p.prt_version + ", " + r.name + " by prt " +
            r.prt_version + " (the parts of one bake must come from one prt version)";
-  // A form-factor part's key covers its options too: name the settings first.
-  if (p.form_factors && p.settings != r.settings)
+  // A form-factor part's key covers its options too, and parts of other kinds of bake hash other
+  // scene inputs: name the settings first.
+  const bool other_kind = p.form_factors || p.haar != r.haar || p.glossy != r.glossy ||
+                          p.form_factors != r.form_factors;
+  if (other_kind && p.settings != r.settings)
     return p.name +
            ": baked with other settings: " + settings_difference(p.settings, r.settings, r.name);
   if (p.fingerprint != r.fingerprint || p.scene_inputs != r.scene_inputs ||
       p.part.vertices != r.part.vertices)
     return p.name + ": a part of another scene than " + r.name + " (" +
            (p.fingerprint != r.fingerprint ? "other positions"
-                                           : "other normals, albedo or triangles") +
+            : p.glossy ? "other normals, albedo, triangles, materials or tangent frames"
+                       : "other normals, albedo or triangles") +
            ")";
   if (p.seed != r.seed)
     return p.name + ": baked with --seed " + std::to_string(p.seed) + ", " + r.name +

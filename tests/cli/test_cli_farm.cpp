@@ -23,10 +23,11 @@ using namespace prt::test::cli;
 
 namespace {
 
-// The field scene with about `vertices` vertices, in `dir`.
-fs::path make_field(const fs::path& dir, int vertices, const std::string& name = "field.glb") {
+// The field scene (or `kind`: field-glossy) with about `vertices` vertices, in `dir`.
+fs::path make_field(const fs::path& dir, int vertices, const std::string& name = "field.glb",
+                    const std::string& kind = "field") {
   const fs::path scene = dir / name;
-  const RunResult r = run(prt_cli() + " make-scene --scene field --vertices " +
+  const RunResult r = run(prt_cli() + " make-scene --scene " + kind + " --vertices " +
                           std::to_string(vertices) + " -o " + scene.string());
   INFO(r.err);
   REQUIRE(r.exit_code == 0);
@@ -73,9 +74,12 @@ void check_merge_identical(const std::vector<fs::path>& parts, const fs::path& s
   CHECK(a == b);
 }
 
-void check_identity_for_every_n(const std::string& name, const std::string& options) {
+void check_identity_for_every_n(const std::string& name, const std::string& options,
+                                const std::string& kind = "field",
+                                const std::string& extension = ".prt") {
   const fs::path dir = scratch(name);
-  const fs::path scene = make_field(dir, 400), single = dir / "single.prt";
+  const fs::path scene = make_field(dir, 400, "field.glb", kind),
+                 single = dir / ("single" + extension);
   const RunResult s = run(bake_line(scene, options, single));
   INFO(s.err);
   REQUIRE(s.exit_code == 0);
@@ -84,7 +88,8 @@ void check_identity_for_every_n(const std::string& name, const std::string& opti
     fs::path sub = dir / "n";
     sub += std::to_string(n);
     fs::create_directories(sub);
-    check_merge_identical(bake_shards(scene, options, n, sub), single, sub / "merged.prt");
+    check_merge_identical(bake_shards(scene, options, n, sub), single,
+                          sub / ("merged" + extension));
   }
 }
 
@@ -112,10 +117,81 @@ TEST_CASE("cli farm: merged shards of an interreflected bake are the single bake
                              "--transfer interreflected --order 3 --samples 32 --ao");
 }
 
+TEST_CASE("cli farm: merged shards of an obscurance bake are the single bake, byte for byte") {
+  check_identity_for_every_n("farm_obscurance",
+                             "--transfer shadowed --order 3 --samples 32 --ao --bent-normals "
+                             "--ao-distance 0.4 --ao-falloff smoothstep");
+}
+
 TEST_CASE("cli farm: merged shards of Haar bakes are the single bake, byte for byte") {
   check_identity_for_every_n("farm_haar", "--basis haar --cube 8 --haar-supersample 2");
   check_identity_for_every_n("farm_haar_interreflected",
                              "--basis haar --cube 8 --transfer interreflected --haar-bits 8");
+}
+
+// The glossy scene's materials (glTF metallic-roughness, specular, anisotropy) and tangent frames
+// travel in shard 0's part; interreflected bakes also carry every hit for the merge's bounces.
+TEST_CASE("cli farm: merged shards of glossy bakes are the single bake, byte for byte") {
+  check_identity_for_every_n("farm_glossy", "--glossy --order 3 --samples 32", "field-glossy",
+                             ".prtg");
+  check_identity_for_every_n("farm_glossy_interreflected",
+                             "--glossy --transfer interreflected --order 3 --samples 16",
+                             "field-glossy", ".prtg");
+}
+
+TEST_CASE("cli farm: glossy bounces, f16 and material overrides merge to the single bake") {
+  const fs::path dir = scratch("farm_glossy_variants");
+  const fs::path scene = make_field(dir, 300, "field.glb", "field-glossy");
+  for (const std::string options :
+       {"--glossy --bounces 2 --order 2 --samples 16 --precision f16",
+        "--glossy --order 2 --samples 16 --material '*=ward:rho_d=0.3,rho_s=0.2,ax=0.2,ay=0.4'"}) {
+    INFO(options);
+    const fs::path single = dir / "single.prtg";
+    REQUIRE(run(bake_line(scene, options, single)).exit_code == 0);
+    check_merge_identical(bake_shards(scene, options, 3, dir), single, dir / "merged.prtg");
+    fs::remove(dir / "merged.prtg");
+    fs::remove(dir / "merged.prtg.run.json");
+  }
+}
+
+TEST_CASE("cli farm: prt merge refuses glossy parts that do not belong together") {
+  const fs::path dir = scratch("farm_glossy_refusals");
+  const fs::path scene = make_field(dir, 300, "field.glb", "field-glossy");
+  const std::string options = "--glossy --transfer interreflected --order 2 --samples 16";
+  const std::vector<fs::path> p = bake_shards(scene, options, 3, dir);
+  const fs::path out = dir / "merged.prtg";
+  const auto shard1 = [&](const std::string& o, const std::string& name) {
+    const fs::path path = dir / name;
+    const RunResult r = run(bake_line(scene, o + " --shard 1/3", path));
+    INFO(r.err);
+    REQUIRE(r.exit_code == 0);
+    return path;
+  };
+  SECTION("an SH part among glossy parts") {
+    check_refused({p[0], shard1("--transfer interreflected --samples 16", "sh.prtpart"), p[2]}, out,
+                  "sh.prtpart: baked with other settings: basis \"sh\" here, \"glossy\"");
+  }
+  SECTION("other materials") {
+    check_refused({p[0], shard1(options + " --material '*=ggx:roughness=0.4'", "m.prtpart"), p[2]},
+                  out, "m.prtpart: a part of another scene than");
+  }
+  SECTION("other glossy settings") {
+    check_refused({p[0], shard1(options + " --bounces 3", "b.prtpart"), p[2]}, out,
+                  "b.prtpart: baked with other settings: bounces 3 here, -1 in");
+  }
+  SECTION("a missing range") {
+    check_refused({p[0], p[1]}, out, "shard 2/3 is missing");
+  }
+  SECTION("a corrupt part") {
+    const fs::path c = dir / "c.prtpart";
+    std::string bytes = slurp(p[0]);
+    bytes[bytes.size() / 3] = static_cast<char>(bytes[bytes.size() / 3] ^ 0x01);
+    std::ofstream(c, std::ios::binary) << bytes;
+    check_refused({c, p[1], p[2]}, out, "c.prtpart: checksum mismatch");
+  }
+  SECTION("a glossy merge into a .prt") {
+    check_refused(p, dir / "merged.prt", "merged.prt");
+  }
 }
 
 TEST_CASE("cli farm: merged form-factor shards are the cache one prt radiosity writes") {
@@ -234,6 +310,13 @@ TEST_CASE("cli farm: prt merge refuses parts that do not belong together, in one
     check_refused({p[0], shard1("--order 4", scene, "s.prtpart"), p[2]}, out,
                   "s.prtpart: baked with other settings: order 4 here, 3 in");
   }
+  SECTION("another obscurance distance") {
+    const fs::path sub = dir / "ao";
+    fs::create_directories(sub);
+    const std::vector<fs::path> ao = bake_shards(scene, options + " --ao", 3, sub);
+    check_refused({ao[0], shard1("--ao --ao-distance 0.3", scene, "ob.prtpart"), ao[2]}, out,
+                  "ob.prtpart: baked with other settings: obscurance");
+  }
   SECTION("another seed") {
     check_refused({p[0], shard1("--seed 7", scene, "d.prtpart"), p[2]}, out,
                   "d.prtpart: baked with --seed 7");
@@ -341,8 +424,7 @@ TEST_CASE("cli farm: bad --shard values and bakes that cannot be sharded are ref
     CHECK(r.err.find("--shard") != std::string::npos);
     CHECK_FALSE(fs::exists(out));
   }
-  for (const std::string options :
-       {"--auto", "--glossy", "--subsurface marble", "--transfer shadowed"}) {
+  for (const std::string options : {"--auto", "--subsurface marble", "--transfer shadowed"}) {
     INFO(options);
     const fs::path wrong = dir / "p.prt";  // a part must be a .prtpart
     const RunResult r = run(

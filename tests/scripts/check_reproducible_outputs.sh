@@ -103,6 +103,15 @@ same "glossy shadowed" glossy.prtg
 both yes bake --quiet "$glossy" --glossy -o glossy-ir.prtg --order 2 --samples 16 --transfer \
   interreflected --bounces 1
 same "glossy interreflected" glossy-ir.prtg
+for i in 0 1; do
+  both yes bake --quiet "$glossy" --glossy -o "glossy$i.prtpart" --order 2 --samples 16 \
+    --transfer interreflected --bounces 1 --shard "$i/2"
+  same "glossy interreflected, --shard $i/2 (part)" "glossy$i.prtpart"
+done
+both yes merge --quiet glossy1.prtpart glossy0.prtpart -o glossy-merged.prtg
+cmp -s "$scratch/t1/glossy-merged.prtg" "$scratch/t1/glossy-ir.prtg" &&
+  cmp -s "$scratch/t2/glossy-merged.prtg" "$scratch/t1/glossy-ir.prtg" ||
+  { echo "FAIL: the merged glossy parts differ from the single glossy bake"; failures=$((failures + 1)); }
 both yes compress --quiet glossy-ir.prtg -o glossy-ir.prtq --clusters 2 --vectors 2 --seed 5
 same "CPCA compression" glossy-ir.prtq
 both yes radiosity --quiet "$room" --max-edge 0.25 --form-factors rays --rays 64 --seed 5 \

@@ -70,6 +70,14 @@ done
 limited 16 part.prtpart bake field.glb --transfer interreflected --samples 32 --shard 1/2 \
   -o part.prtpart --quiet
 limited 16 merged.prt merge p0.prtpart p1.prtpart -o merged.prt --quiet
+# Glossy shards (the merge streams the .prtg as the single bake does).
+for i in 0 1; do
+  "$prt" bake glossy.glb --glossy --order 3 --samples 16 --transfer interreflected --bounces 1 \
+    --shard "$i/2" -o "g$i.prtpart" --quiet
+done
+limited 16 gpart.prtpart bake glossy.glb --glossy --order 3 --samples 16 --transfer \
+  interreflected --bounces 1 --shard 0/2 -o gpart.prtpart --quiet
+limited 16 gmerged.prtg merge g0.prtpart g1.prtpart -o gmerged.prtg --quiet
 # Form-factor shards of prt radiosity, and their merge into a form-factor cache.
 for i in 0 1; do
   "$prt" radiosity room.obj --max-edge 0.1 --shard "$i/2" -o "ff$i.prtpart" --quiet

@@ -2,9 +2,10 @@
 // (prt/formats/part_file.h, kind ShTransfer), and the checks that parts belong together.
 //
 // Sections (tags; docs/FORMAT.md, "Part files"):
-//   1 settings   JSON: {"generator", "prt_version", "seed", "settings": {the BakeOptions that
-//                change the output}, "scene_inputs": hex hash of normals, albedo, triangles and
-//                primitives}. Parts of one bake have equal settings sections.
+//   1 settings   JSON: {"generator", "prt_version", "seed", "settings": {the bake's canonical
+//                settings, bake/bake_settings.h: every option that changes the output},
+//                "scene_inputs": hex hash of normals, albedo, triangles and primitives}. Parts
+//                of one bake have equal settings sections.
 //   2 scene      JSON (shard 0 only): source path, skipped triangles, primitives (name, first
 //                vertex, vertex count); with sections 3–6 the scene as the bake saw it (after
 //                --albedo, --material and --max-edge), so that the merge needs no scene file.
@@ -18,6 +19,11 @@
 //  13 sparse lengths u32 × rows, 14 sparse indices u32, 15 sparse values f32 × C per index
 //     (unshadowed, shadowed); 16 wavelets f32 × rows·6N²·C, 17 gather lengths u32 × rows,
 //  18 gather columns u32, 19 gather weights f32 (interreflected).
+// Glossy parts (kind GlossyTransfer, bake/glossy_part.h) have sections 1–6 and 12 as above, and
+//  21 direct matrices f32 × rows·K² (K = n²), 22 hit counts u32 × rows and 23 hits, 16 bytes
+//     each: u32 sample, u32 triangle, f32 u, f32 v (interreflected); shard 0 also
+//  24 tangent frames f32 × 4V, 25 material of each vertex u32 × V, 26 materials JSON (every
+//     field of brdf::Material); their hash joins scene_inputs in every part.
 // Form-factor parts (kind FormFactorRows, `prt radiosity --shard`) carry no scene: the header's
 // fingerprint is the form-factor cache key (radiosity/form_factor_cache.h), its rows the
 // senders, section 1's settings the form-factor options, and
@@ -31,6 +37,7 @@
 #include <string>
 #include <vector>
 
+#include "bake/glossy_part.h"
 #include "bake/haar_part.h"
 #include "bake/transfer_part.h"
 #include "prt/formats/part_file.h"
@@ -52,6 +59,10 @@ struct TransferPartFile {
   bool haar = false;                  // a Haar part: the two fields below
   HaarBakeOptions haar_options;
   HaarPart haar_part;
+  bool glossy = false;  // a glossy part: the three fields below
+  GlossyBakeOptions glossy_options;
+  GlossyPart glossy_part;
+  std::optional<GlossyInputs> glossy_inputs;  // shard 0
   bool form_factors = false;            // a form-factor part: `settings` holds the options
   uint64_t key = 0;                     // its cache key (= fingerprint)
   std::vector<float> form_factor_rows;  // rows × N
@@ -65,6 +76,13 @@ prt::PartFile encode_transfer_part(const TransferPart& part, const scene::Scene&
 // The part file of a Haar bake's part (referring to its arrays, as above).
 prt::PartFile encode_haar_part(const HaarPart& part, const scene::Scene& scene,
                                const HaarBakeOptions& options, const std::string& prt_version);
+
+// The part file of a glossy bake's part; `inputs` are glossy_inputs(scene) (every shard hashes
+// them into scene_inputs; shard 0 stores them). Refers to the arrays of `part`, `scene` and
+// `inputs`, as above.
+prt::PartFile encode_glossy_part(const GlossyPart& part, const scene::Scene& scene,
+                                 const GlossyInputs& inputs, const GlossyBakeOptions& options,
+                                 const std::string& prt_version);
 
 // A form-factor part: rows [first, first + rows.size()/patches) of the `patches` × `patches`
 // matrix whose cache key is `key`, computed with the options `settings` (a JSON object).

@@ -36,7 +36,8 @@ constexpr std::size_t kOffVersion = 4, kOffHeaderSize = 8, kOffKind = 12, kOffIn
 bool known_kind(uint32_t kind) {
   return kind == static_cast<uint32_t>(PartKind::ShTransfer) ||
          kind == static_cast<uint32_t>(PartKind::HaarTransfer) ||
-         kind == static_cast<uint32_t>(PartKind::FormFactorRows);
+         kind == static_cast<uint32_t>(PartKind::FormFactorRows) ||
+         kind == static_cast<uint32_t>(PartKind::GlossyTransfer);
 }
 
 constexpr unsigned char kZeros[16] = {};

@@ -27,6 +27,7 @@ enum class PartKind : uint32_t {
   ShTransfer = 1,    // diffuse SH transfer: direct transfer, AO, bent normals, compact gather rows
   HaarTransfer = 2,  // Haar transfer: truncated wavelet vectors, or D̂ and gather rows
   FormFactorRows = 3,  // radiosity: rows of senders of the form-factor matrix
+  GlossyTransfer = 4,  // glossy transfer matrices: direct matrices, front-face hits
 };
 
 // A section's bytes: its own (`bytes`), or, to write without a copy, `view_size` bytes at `view`
