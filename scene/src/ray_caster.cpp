@@ -44,17 +44,15 @@ void throw_if_error(RTCDevice device, const Scene& scene, const char* what) {
                              ")");
 }
 
-// Lane i starts at origins[i · origin_stride] (stride 0: one shared origin).
-void fill_ray16(RTCRay16& r, const glm::vec3* origins, int origin_stride, const glm::vec3* dirs,
-                int count, float tfar, int* valid) {
+void fill_ray16(RTCRay16& r, const glm::vec3& origin, const glm::vec3* dirs, int count, float tfar,
+                int* valid) {
   for (int i = 0; i < 16; ++i) {
     const bool on = i < count;
     valid[i] = on ? -1 : 0;
     const glm::vec3 d = on ? dirs[i] : glm::vec3(0.f, 0.f, 1.f);
-    const glm::vec3& o = origins[on ? i * origin_stride : 0];
-    r.org_x[i] = o.x;
-    r.org_y[i] = o.y;
-    r.org_z[i] = o.z;
+    r.org_x[i] = origin.x;
+    r.org_y[i] = origin.y;
+    r.org_z[i] = origin.z;
     r.dir_x[i] = d.x;
     r.dir_y[i] = d.y;
     r.dir_z[i] = d.z;
@@ -195,23 +193,13 @@ bool RayCaster::occluded(const glm::vec3& o, const glm::vec3& d, float tnear, fl
 
 void RayCaster::occluded_packet(const glm::vec3& origin, const glm::vec3* dirs, int count,
                                 float tfar, bool* out) const {
-  occluded16(&origin, 0, dirs, count, tfar, out);
-}
-
-void RayCaster::occluded_packet(const glm::vec3* origins, const glm::vec3* dirs, int count,
-                                float tfar, bool* out) const {
-  occluded16(origins, 1, dirs, count, tfar, out);
-}
-
-void RayCaster::occluded16(const glm::vec3* origins, int origin_stride, const glm::vec3* dirs,
-                           int count, float tfar, bool* out) const {
   count = std::clamp(count, 0, 16);
   if (count == 0) return;
   RTCIntersectContext ctx;
   rtcInitIntersectContext(&ctx);
   alignas(64) int valid[16];
   alignas(64) RTCRay16 ray;
-  fill_ray16(ray, origins, origin_stride, dirs, count, tfar, valid);
+  fill_ray16(ray, origin, dirs, count, tfar, valid);
   rtcOccluded16(valid, static_cast<RTCScene>(rtc_scene_), &ctx, &ray);
   for (int i = 0; i < count; ++i) out[i] = ray.tfar[i] < 0.f;
 }
@@ -249,23 +237,13 @@ RayCaster::Hit RayCaster::intersect(const glm::vec3& o, const glm::vec3& d, floa
 
 void RayCaster::intersect_packet(const glm::vec3& origin, const glm::vec3* dirs, int count,
                                  float tfar, Hit* out) const {
-  intersect16(&origin, 0, dirs, count, tfar, out);
-}
-
-void RayCaster::intersect_packet(const glm::vec3* origins, const glm::vec3* dirs, int count,
-                                 float tfar, Hit* out) const {
-  intersect16(origins, 1, dirs, count, tfar, out);
-}
-
-void RayCaster::intersect16(const glm::vec3* origins, int origin_stride, const glm::vec3* dirs,
-                            int count, float tfar, Hit* out) const {
   count = std::clamp(count, 0, 16);
   if (count == 0) return;
   RTCIntersectContext ctx;
   rtcInitIntersectContext(&ctx);
   alignas(64) int valid[16];
   alignas(64) RTCRayHit16 rh;
-  fill_ray16(rh.ray, origins, origin_stride, dirs, count, tfar, valid);
+  fill_ray16(rh.ray, origin, dirs, count, tfar, valid);
   for (int i = 0; i < 16; ++i) {
     rh.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
     rh.hit.instID[0][i] = RTC_INVALID_GEOMETRY_ID;

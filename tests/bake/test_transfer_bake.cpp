@@ -1,20 +1,14 @@
 // Baker plumbing: thread-count determinism, input refusal, RGB channels, metadata and a round
 // trip through the coefficient-file writer and reader.
-#include <algorithm>
 #include <cstring>
 #include <filesystem>
-#include <limits>
 #include <string>
-#include <tuple>
-#include <vector>
 
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>
 
-#include "bake/sampling.h"
 #include "bake/transfer_baker.h"
 #include "prt/formats/transfer_file.h"
-#include "scene/field_scene.h"
 #include "scene/procedural_mesh.h"
 #include "scene/ray_caster.h"
 #include "support/test_data.h"
@@ -202,66 +196,4 @@ TEST_CASE("ray caster: hits, barycentrics, faces, packets and an empty scene") {
   const prt::scene::Scene empty;
   const prt::scene::RayCaster none(empty);
   CHECK_FALSE(none.occluded({0, 0, 0}, {0, 0, 1}, 0.f, 1e30f));
-}
-
-// The fixed sampler traces a block's rays sorted by direction, in packets whose rays start at
-// different vertices; the bake stays bit-identical only if each ray's hit does not depend on
-// which rays share its packet. Checked on the benchmark field (spheres and boxes on a ground),
-// 80 vertices × 64 rays against packets of 16 rays from one vertex, shuffled into 16-ray packets
-// of mixed origins in direction order and in a scrambled order: every field must match exactly.
-TEST_CASE("a ray's hit does not depend on the rays sharing its packet", "[bake][rays]") {
-  const prt::scene::ShapeLayout layout = prt::scene::make_field_layout(false);
-  const prt::scene::Scene scene =
-      prt::scene::tessellate_layout(layout, prt::scene::cell_size_for_count(layout, 4000, true));
-  const prt::scene::RayCaster caster(scene);
-  constexpr int kVertices = 80, kRays = 64;
-  std::vector<glm::vec3> origins, dirs;
-  std::vector<prt::scene::RayCaster::Hit> reference(kVertices * kRays);
-  for (int j = 0; j < kVertices; ++j) {
-    const uint32_t v = static_cast<uint32_t>(j * 97 % scene.positions.size());
-    const glm::vec3 n = glm::normalize(scene.normals[v]);
-    const glm::vec3 o = caster.vertex_origin(v);
-    glm::vec3 d[kRays];
-    prt::bake::generate_cosine_directions(n, 7, v, 0, kRays, d);
-    for (int i = 0; i < kRays; i += 16)
-      caster.intersect_packet(o, d + i, 16, std::numeric_limits<float>::infinity(),
-                              &reference[static_cast<std::size_t>(j * kRays + i)]);
-    for (int i = 0; i < kRays; ++i) origins.push_back(o), dirs.push_back(d[i]);
-  }
-  int hits = 0;
-  for (const auto& h : reference) hits += h.hit ? 1 : 0;
-  REQUIRE(hits > 100);  // the check means something: many rays hit a sphere, a box or the ground
-  std::vector<uint32_t> order(reference.size());
-  for (uint32_t i = 0; i < order.size(); ++i) order[i] = i;
-  std::vector<std::vector<uint32_t>> orders;
-  std::sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) {
-    return std::make_tuple(dirs[a].x > 0, dirs[a].y > 0, dirs[a].z, a) <
-           std::make_tuple(dirs[b].x > 0, dirs[b].y > 0, dirs[b].z, b);
-  });
-  orders.push_back(order);
-  for (uint32_t i = 0; i < order.size(); ++i) order[i] = static_cast<uint32_t>((i * 1237u) % order.size());
-  orders.push_back(order);
-  for (const std::vector<uint32_t>& o : orders) {
-    int mismatches = 0;
-    for (std::size_t p = 0; p < o.size(); p += 16) {
-      glm::vec3 lo[16], ld[16];
-      prt::scene::RayCaster::Hit lh[16];
-      bool occ[16];
-      const int count = static_cast<int>(std::min<std::size_t>(16, o.size() - p));
-      for (int l = 0; l < count; ++l) lo[l] = origins[o[p + l]], ld[l] = dirs[o[p + l]];
-      caster.intersect_packet(lo, ld, count, std::numeric_limits<float>::infinity(), lh);
-      caster.occluded_packet(lo, ld, count, std::numeric_limits<float>::infinity(), occ);
-      for (int l = 0; l < count; ++l) {
-        const prt::scene::RayCaster::Hit& r = reference[o[p + l]];
-        const bool same =
-            lh[l].hit == r.hit && occ[l] == r.hit &&
-            (!r.hit ||
-             (std::memcmp(&lh[l].t, &r.t, sizeof(float)) == 0 && lh[l].triangle == r.triangle &&
-              std::memcmp(&lh[l].u, &r.u, sizeof(float)) == 0 &&
-              std::memcmp(&lh[l].v, &r.v, sizeof(float)) == 0 && lh[l].front_face == r.front_face));
-        mismatches += same ? 0 : 1;
-      }
-    }
-    CHECK(mismatches == 0);
-  }
 }

@@ -60,13 +60,6 @@ class RayCaster {
   // rtcIntersect16 for `count` ≤ 16 rays sharing `origin` (tnear = 0); out[i] = closest hit.
   void intersect_packet(const glm::vec3& origin, const glm::vec3* dirs, int count, float tfar,
                         Hit* out) const;
-  // The same with an origin per ray (ray i starts at origins[i]). Each ray's answer is its own:
-  // which rays share its packet changes the traversal, not the ray's result (Embree's
-  // watertight test is per ray; used by the baker to trace a block's rays in coherent order).
-  void occluded_packet(const glm::vec3* origins, const glm::vec3* dirs, int count, float tfar,
-                       bool* out) const;
-  void intersect_packet(const glm::vec3* origins, const glm::vec3* dirs, int count, float tfar,
-                        Hit* out) const;
 
   // rtcIntersect1M: `count` rays with their own origins (tnear = 0) as one stream;
   // out[i] = closest hit of ray i, as intersect(). `coherent` passes Embree's coherent-stream
@@ -98,10 +91,6 @@ class RayCaster {
  private:
   static bool monitor_memory(void* self, long bytes, bool post);
   bool front_facing(uint32_t triangle, const glm::vec3& d) const;
-  void occluded16(const glm::vec3* origins, int origin_stride, const glm::vec3* dirs, int count,
-                  float tfar, bool* out) const;
-  void intersect16(const glm::vec3* origins, int origin_stride, const glm::vec3* dirs, int count,
-                   float tfar, Hit* out) const;
 
   const Scene* scene_;
   void* device_ = nullptr;     // RTCDevice
