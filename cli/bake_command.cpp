@@ -6,6 +6,7 @@
 // --bounces -1 (interreflected: BiCGSTAB until --tolerance 1e-4), --seed 1, all threads, f32.
 #include <cmath>
 #include <cstdio>
+#include <ctime>
 #include <filesystem>
 #include <memory>
 #include <optional>
@@ -314,6 +315,17 @@ void record_bake(const bake::BakeStatistics& st) {
   run_record().phase("rays", st.seconds_rays);
   if (st.seconds_solve > 0) run_record().phase("interreflection solve", st.seconds_solve);
   run_record().phase("bake", st.seconds_total);
+  if (st.cpu_seconds_total <= 0) return;
+  RunRecord& r = run_record();
+  r.cpu_phase("bvh", st.cpu_seconds_bvh);
+  r.cpu_phase("gather setup", st.cpu_seconds_gather_setup);
+  r.cpu_phase("rays", st.cpu_seconds_rays - st.cpu_seconds_bvh - st.cpu_seconds_gather_setup);
+  if (st.cpu_seconds_solve > 0) r.cpu_phase("interreflection solve", st.cpu_seconds_solve);
+  r.cpu_phase("bake", st.cpu_seconds_total);
+}
+
+double cpu_seconds() {
+  return static_cast<double>(std::clock()) / CLOCKS_PER_SEC;
 }
 
 // `--auto`: --tolerance (default 0.01) becomes the accuracy target; without --transfer the
@@ -412,7 +424,9 @@ void run(const BakeArguments& args, const CLI::App& cmd) {
   }
   options.precision = args.precision == "f16" ? prt::Precision::F16 : prt::Precision::F32;
 
+  const double cpu_load = cpu_seconds();
   const scene::Scene scene = load_for_bake(args);
+  const double cpu_loaded = cpu_seconds();
   if (args.haar.basis == "haar" && args.shard_spec) return run_haar_shard(args, scene, options);
   if (args.haar.basis == "haar") {
     run_haar_bake(scene, args.output, options.kind, args.haar, args.seed, args.threads,
@@ -426,9 +440,12 @@ void run(const BakeArguments& args, const CLI::App& cmd) {
   if (args.shard_spec) return run_shard(args, scene, options, progress);
   if (args.automatic) return run_auto(args, scene, options, progress);
   const bake::BakeResult result = bake::bake_transfer(scene, options, &progress);
+  const double cpu_write = cpu_seconds();
   const prt::Status written = prt::write_transfer_file(args.output, result.data);
   if (!written.ok()) throw CommandError(written.message());
+  run_record().cpu_phase("scene load", cpu_loaded - cpu_load);
   record_bake(result.stats);
+  run_record().cpu_phase("write", cpu_seconds() - cpu_write);
 
   const bake::BakeStatistics& st = result.stats;
   warn_unconverged_solve("prt bake", args.scene, options, st);

@@ -62,6 +62,11 @@ void write_run_record(const std::string& output, const std::string& command_line
   nlohmann::ordered_json phases = nlohmann::ordered_json::object();
   for (const auto& [name, s] : r.phases) phases[name] = s;
   j["phase_seconds"] = phases;
+  if (!r.cpu_phases.empty()) {
+    nlohmann::ordered_json cpu = nlohmann::ordered_json::object();
+    for (const auto& [name, s] : r.cpu_phases) cpu[name] = s;
+    j["phase_cpu_seconds"] = cpu;
+  }
   j["peak_resident_bytes"] = prt::peak_resident_bytes();
   const std::string text = j.dump(2) + "\n";
   const std::string path = run_record_path(output);

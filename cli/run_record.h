@@ -7,6 +7,8 @@
 //    "host": "build-01", "finished_utc": "2026-12-04T21:30:00Z", "threads": 2,
 //    "seconds": 3.21, "phase_seconds": {"rays": 2.90, "interreflection solve": 0.25},
 //    "peak_resident_bytes": 123456789}
+// Commands that measure it add "phase_cpu_seconds": the process CPU time (every thread) of their
+// phases, when present.
 // "seconds" is the wall time from the start of the command's checks to the end of its work;
 // "threads" the worker threads the work was allowed (--threads, or every hardware thread);
 // "peak_resident_bytes" prt/core/memory_budget.h's peak_resident_bytes() at the end.
@@ -27,9 +29,13 @@ namespace prt::cli {
 
 struct RunRecord {
   int threads = 0;  // 0: not reported (the command runs on one thread or does not say)
-  std::vector<std::pair<std::string, double>> phases;  // name, wall seconds, in order
+  std::vector<std::pair<std::string, double>> phases;      // name, wall seconds, in order
+  std::vector<std::pair<std::string, double>> cpu_phases;  // name, process CPU seconds, in order
 
   void phase(const std::string& name, double seconds) { phases.emplace_back(name, seconds); }
+  void cpu_phase(const std::string& name, double seconds) {
+    cpu_phases.emplace_back(name, seconds);
+  }
 };
 
 // The record of this process's run (one command per process).

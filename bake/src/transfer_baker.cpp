@@ -28,6 +28,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <ctime>
 #include <limits>
 #include <memory>
 #include <optional>
@@ -68,6 +69,11 @@ int round_up(int n, int multiple) {
 
 double seconds_since(Clock::time_point t) {
   return std::chrono::duration<double>(Clock::now() - t).count();
+}
+
+// Process CPU seconds so far (every thread).
+double cpu_now() {
+  return static_cast<double>(std::clock()) / CLOCKS_PER_SEC;
 }
 
 std::string primitive_of(const scene::Scene& scene, std::size_t v) {
@@ -240,17 +246,21 @@ void run_sampling_pass(BakeJob& job, const ShardRows* shard = nullptr) {
   BakeStatistics& st = job.st();
   const AdaptiveSampling& ad = job.options.adaptive;
   const Clock::time_point t_rays = Clock::now();
+  const double cpu_rays = cpu_now();
   std::unique_ptr<scene::RayCaster> own_caster;
   if (!(job.adaptive && ad.caster)) own_caster = std::make_unique<scene::RayCaster>(job.scene);
   const scene::RayCaster& caster = own_caster ? *own_caster : *ad.caster;
   st.seconds_bvh = seconds_since(t_rays);
+  st.cpu_seconds_bvh = cpu_now() - cpu_rays;
   for (const float eps : caster.vertex_ray_starts().offset)
     job.ray_offset_max = std::max(job.ray_offset_max, static_cast<double>(eps));
   const int gather_channels = job.apart && job.interreflect ? job.C : 0;
+  const double cpu_setup = cpu_now();
   if (job.compact)
     job.gather = std::make_unique<CompactGather>(
         shard ? *shard->order : make_morton_order(job.scene.positions), job.scene.triangles,
         detail::kVertexBlock, 1.0 / job.N);
+  st.cpu_seconds_gather_setup = cpu_now() - cpu_setup;
   SamplingPass pass{job.scene,
                     job.options,
                     caster,
@@ -293,6 +303,7 @@ void run_sampling_pass(BakeJob& job, const ShardRows* shard = nullptr) {
   for (uint64_t r : pass.block_rays) st.rays += r;
   for (uint64_t b : pass.block_back_hits) st.back_face_hits += b;
   st.seconds_rays = seconds_since(t_rays);
+  st.cpu_seconds_rays = cpu_now() - cpu_rays;
   st.bvh_bytes = caster.embree_peak_bytes();
   if (shard) return;  // the part holds the rows; the merge assembles H
   if (job.interreflect && job.compact) {
@@ -661,6 +672,7 @@ BakeResult bake_transfer_with(const scene::Scene& scene, const BakeOptions& opti
                               ProgressSink* progress,
                               const std::vector<const TransferPart*>* parts) {
   const Clock::time_point t_start = Clock::now();
+  const double cpu_start = cpu_now();
   validate_bake_inputs(scene, options);
   std::optional<tbb::global_control> thread_limit;
   if (options.threads > 0)
@@ -718,6 +730,7 @@ BakeResult bake_transfer_with(const scene::Scene& scene, const BakeOptions& opti
   data.albedo_folded = !apart;
   detail::store_scene_geometry(scene, data);
   const Clock::time_point t_solve = Clock::now();
+  const double cpu_solve = cpu_now();
   if (job.adaptive) {
     for (std::size_t v = 0; v < V && job.interreflect; ++v)
       if (job.mode_of(v) == kSampleVertex && job.h.row_offsets[v + 1] == job.h.row_offsets[v])
@@ -728,6 +741,7 @@ BakeResult bake_transfer_with(const scene::Scene& scene, const BakeOptions& opti
   }
   if (job.interreflect) solve_interreflection_channels(job);
   st.seconds_solve = job.interreflect ? seconds_since(t_solve) : 0.0;
+  st.cpu_seconds_solve = job.interreflect ? cpu_now() - cpu_solve : 0.0;
 
   // 4. What the file says it holds: an adaptive bake that needed no rays, or no solve, stores
   // the simpler kind.
@@ -743,6 +757,7 @@ BakeResult bake_transfer_with(const scene::Scene& scene, const BakeOptions& opti
   if (options.bent_normals) data.bent_normals = std::move(job.sums.bent);
   st.budget_peak_bytes = budget.peak();
   st.seconds_total = seconds_since(t_start);
+  st.cpu_seconds_total = cpu_now() - cpu_start;
   data.metadata_json = bake_metadata(job);
   return result;
 }

@@ -40,6 +40,20 @@ TEST_CASE("cli run record: times and threads beside the bake, not in it, and prt
   CHECK(r["seconds"].get<double>() > 0.0);
   CHECK(r["phase_seconds"].contains("rays"));
   CHECK(r["phase_seconds"].contains("interreflection solve"));
+  // CPU seconds per phase: all there, none negative, and the bake's phases (the BVH, the gather
+  // setup and the rays are the sampling pass; then the solve) within the whole bake's CPU time,
+  // all read from one process clock (1e-9 s: the rounding of the differences).
+  const nlohmann::json& cpu = r["phase_cpu_seconds"];
+  double parts = 0.0;
+  for (const char* phase :
+       {"scene load", "bvh", "gather setup", "rays", "interreflection solve", "bake", "write"}) {
+    INFO(phase);
+    REQUIRE(cpu.contains(phase));
+    CHECK(cpu[phase].get<double>() >= 0.0);
+  }
+  for (const char* phase : {"bvh", "gather setup", "rays", "interreflection solve"})
+    parts += cpu[phase].get<double>();
+  CHECK(parts <= cpu["bake"].get<double>() + 1e-9);
   CHECK(r["peak_resident_bytes"].get<double>() > 1e6);  // any process holds more than 1 MB
   CHECK(r["output"] == out.string());
   CHECK(r["command"].get<std::string>().find(" bake " + box.string()) != std::string::npos);

@@ -188,6 +188,10 @@ struct BakeStatistics {
   double seconds_rays = 0;     // the per-vertex sampling pass (rays + SH accumulation)
   double seconds_solve = 0;    // interreflection solve
   double seconds_bvh = 0;      // building the BVH (part of seconds_rays)
+  // Process CPU seconds (every thread, std::clock) of the same phases: the BVH and the gather's
+  // row order and triangle table (both part of cpu_seconds_rays), the sampling pass, the solve.
+  double cpu_seconds_bvh = 0, cpu_seconds_gather_setup = 0, cpu_seconds_rays = 0;
+  double cpu_seconds_solve = 0, cpu_seconds_total = 0;
   int jacobi_bounces = 0;      // per channel
   int solver_iterations = 0;   // BiCGSTAB iterations, summed over channels
   double solver_residual = 0;  // max over channels
