@@ -9,10 +9,12 @@
 // dense matrix summed over the same patch pairs (so the kinds' errors add up to the whole).
 // Usage: hierarchical_error [--max-edge L] [--epsilon E,E,…] [--rays K] [--passes P]
 //                           [--cache FILE] [--links] [--coarse] [--worst] [--scene FILE]
+//                           [--max-rms PERCENT]
 //   default: the Cornell box of ../shared/data (white 0.73, red, green, light=20), --max-edge 30,
 //   ε = 3e-5; --cache keeps the dense form factors between runs (computed when absent);
 //   --coarse: the coarse transfer (HierarchicalOptions::fine_up_to = 0); --worst: the ceiling
-//   patches over the lamp furthest from dense.
+//   patches over the lamp furthest from dense; --max-rms: exit 1 when the area-weighted relative
+//   RMS of any solve exceeds PERCENT.
 #include <algorithm>
 #include <array>
 #include <chrono>
@@ -50,7 +52,8 @@ struct Args {
   std::string scene = std::string(PRT_SHARED_DATA_DIR) + "/meshes/cornell_box.obj";
   double max_edge = 30;
   std::vector<double> epsilons{3e-5};
-  int rays = 4, passes = 4;
+  int rays = 0, passes = 4;  // rays 0: the solver's default
+  double max_rms = 0;        // percent; 0: no bound
   std::string cache;
   bool links = false, coarse = false, worst = false;
 };
@@ -78,6 +81,8 @@ Args parse(int argc, char** argv) {
       }
     } else if (k == "--rays") {
       a.rays = std::atoi(next().c_str());
+    } else if (k == "--max-rms") {
+      a.max_rms = std::atof(next().c_str());
     } else if (k == "--passes") {
       a.passes = std::atoi(next().c_str());
     } else if (k == "--cache") {
@@ -140,8 +145,9 @@ struct Error {
   }
 };
 
-void report(const std::vector<Patch>& patches, const std::vector<std::string>& group,
-            const std::vector<glm::dvec3>& h, const std::vector<glm::dvec3>& d) {
+// Prints the error of `h` against `d`; returns the area-weighted relative RMS.
+double report(const std::vector<Patch>& patches, const std::vector<std::string>& group,
+              const std::vector<glm::dvec3>& h, const std::vector<glm::dvec3>& d) {
   Error all;
   std::map<std::string, Error> by;
   for (std::size_t i = 0; i < patches.size(); ++i) {
@@ -159,6 +165,7 @@ void report(const std::vector<Patch>& patches, const std::vector<std::string>& g
         name.c_str(), 100 * e.num / all.num, 100 * e.wnum / all.wnum,
         100 * std::sqrt(e.num / std::max(e.den, 1e-300)),
         100 * e.signed_sum / std::max(e.ref_sum, 1e-300));
+  return std::sqrt(all.wnum / all.wden);
 }
 
 // The one-step transport error of each kind of link (see the top).
@@ -290,6 +297,7 @@ int main(int argc, char** argv) {
   std::printf("dense analytic (3 points, Gauss-Seidel): %.1f s\n", since(t));
   mark_hidden_parts(&patches, caster, fo);  // as solve_scene does (the dense solve ignores it)
   const std::vector<std::string> group = groups(s, patches, a.max_edge);
+  bool failed = false;
   for (double eps : a.epsilons) {
     HierarchicalOptions ho;
     ho.links.epsilon = eps;
@@ -301,7 +309,12 @@ int main(int argc, char** argv) {
     const HierarchicalSolution h = solve_hierarchical(patches, caster, ho);
     std::printf("hierarchical eps %g: %.2f s, %zu links (%zu exact), %zu rays, %zu passes\n", eps,
                 since(t), h.stats.links, h.stats.exact_links, h.stats.rays, h.stats.passes.size());
-    report(patches, group, h.solution.radiance, dense.radiance);
+    const double rms = report(patches, group, h.solution.radiance, dense.radiance);
+    if (a.max_rms > 0 && 100 * rms > a.max_rms) {
+      std::printf("FAIL: eps %g: area-weighted relative RMS %.3f%% above --max-rms %g%%\n", eps,
+                  100 * rms, a.max_rms);
+      failed = true;
+    }
     {  // is the solution the fixed point of its own links? L = v (E + ρ H(L))
       const std::vector<glm::dvec3> hh =
           gather_irradiance(patches, h.hierarchy, h.links, h.stats.fine, h.solution.radiance);
@@ -329,5 +342,5 @@ int main(int argc, char** argv) {
       }
     }
   }
-  return 0;
+  return failed ? 1 : 0;
 }

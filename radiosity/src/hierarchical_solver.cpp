@@ -323,8 +323,8 @@ void check_options(const HierarchicalOptions& o) {
   if (!(o.links.epsilon > 0.0) || !std::isfinite(o.links.epsilon))
     throw std::invalid_argument("hierarchical radiosity: epsilon must be a finite positive number");
   if (o.max_passes < 1) throw std::invalid_argument("hierarchical radiosity: max_passes < 1");
-  if (o.links.visibility_rays < 1)
-    throw std::invalid_argument("hierarchical radiosity: visibility_rays < 1");
+  if (o.links.visibility_rays < 0 || o.fine_visibility_rays < 1 || o.coarse_visibility_rays < 1)
+    throw std::invalid_argument("hierarchical radiosity: visibility rays < 1");
 }
 
 }  // namespace
@@ -356,6 +356,9 @@ HierarchicalSolution solve_hierarchical(const std::vector<Patch>& patches,
   LinkSolver solver(patches, out.hierarchy, fine, b);
   LinkOptions link_options = options.links;
   link_options.fine = fine;
+  if (link_options.visibility_rays == 0)
+    link_options.visibility_rays =
+        fine ? options.fine_visibility_rays : options.coarse_visibility_rays;
   const LinkRefiner refiner(patches, out.hierarchy, caster, link_options, b);
   for (int pass = 0; pass < options.max_passes; ++pass) {
     HierarchicalPass record;

@@ -54,6 +54,11 @@ struct HierarchicalOptions {
   // and its links and rays grow with it: measured 3.41% → 1.41% against dense on the Cornell box
   // at 9,624 patches, but at 300k level patches 12× the time (docs/BENCHMARKS.md).
   std::size_t fine_up_to = 100000;
+  // Visibility rays a point link when links.visibility_rays is 0 (the default). The fine transfer
+  // gives a receiver's patches its links' visibility, so it needs more: on the Cornell box at 9,624
+  // patches 1.41% against dense with 4, 0.99% with 8, 0.87% with 12 for 3.7× the rays of 4
+  // (docs/BENCHMARKS.md). The coarse transfer spreads a node's irradiance over its patches anyway.
+  int fine_visibility_rays = 12, coarse_visibility_rays = 4;
   int max_passes = 4;  // refinement passes (each followed by a solve), at least 1
   SolveOptions solve;  // tolerance and max_iterations; the solver kind is ignored
 };
@@ -83,7 +88,7 @@ struct HierarchicalSolution {
 
 // Solves for `patches` (the triangles of the scene `caster` was built on). Throws
 // std::invalid_argument for options out of range (epsilon ≤ 0, max_passes < 1, visibility_rays <
-// 1) and MemoryBudgetExceeded when the budget is too small.
+// 0, fine or coarse visibility rays < 1) and MemoryBudgetExceeded when the budget is too small.
 HierarchicalSolution solve_hierarchical(const std::vector<Patch>& patches,
                                         const scene::RayCaster& caster,
                                         const HierarchicalOptions& options,

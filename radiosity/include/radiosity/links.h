@@ -53,13 +53,13 @@ struct Link {
 };
 
 struct LinkOptions {
-  double epsilon = 3e-5;  // error bound, relative to the largest emitted radiance (channel)
-  int visibility_rays = 4;
+  double epsilon = 3e-5;    // error bound, relative to the largest emitted radiance (channel)
+  int visibility_rays = 0;  // 0: HierarchicalOptions picks (fine or coarse transfer)
   uint64_t seed = 1;
   // Fine visibility (see above): split partly visible links while B_s·F̂ > ε/20 (else 2ε), links
-  // whose rays were all blocked while B_s·F̂ > ε/5 (else never), check an all-visible or
-  // all-blocked first estimate above ε/20 with 4× the rays, and refine receivers down to partly
-  // hidden patches (hierarchy.h) while B_s·F̂ > ε/20.
+  // whose rays were all blocked while B_s·F̂ > ε/5 (else never), re-sample an all-visible link
+  // that matters (above ε/20) in every later pass, and refine receivers down to partly hidden
+  // patches (hierarchy.h) while B_s·F̂ > ε/20.
   bool fine = true;
 };
 
