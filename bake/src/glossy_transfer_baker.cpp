@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <functional>
 #include <limits>
 #include <memory>
@@ -19,9 +20,11 @@
 #include <tbb/task_arena.h>
 #include <nlohmann/json.hpp>
 
+#include "bake/compact_gather.h"
 #include "bake/cpca/compressor.h"
 #include "bake/progress.h"
 #include "bake/sampling.h"
+#include "float_scratch_file.h"
 #include "hit_side.h"
 #include "prt/core/memory_budget.h"
 #include "prt/formats/geometry_check.h"
@@ -53,17 +56,34 @@ struct Frame {
   }
 };
 
-// A front-face hit of one of a vertex's samples.
-struct GlossyHit {
-  uint32_t sample;
-  uint32_t triangle;
-  float u, v;
+// The front-face hits of a block of vertices, in vertex order and, per vertex, in sample order:
+// 8 bytes a hit (bake/compact_gather.h's CompactHit: the scene's triangle and the barycentrics
+// quantised to 16 bits) and a bit per sample and vertex saying which samples are those hits, so
+// that the sample (and with it the direction) of each hit is implied by its rank.
+struct BlockHits {
+  std::vector<CompactHit> hits;
+  std::vector<uint64_t> mask;  // mask_words per vertex of the block; bit s: sample s is a hit
+  std::vector<float> exact;    // GlossyBakeOptions::exact_hits: u, v of each hit in float
+  uint64_t bytes() const {
+    return hits.size() * sizeof(CompactHit) + mask.size() * 8 + exact.size() * 4;
+  }
 };
 
-struct BlockHits {
-  std::vector<GlossyHit> hits;
-  std::vector<uint32_t> counts;  // per vertex of the block
+// A hit as the bounces read it: the triangle and its three barycentric weights.
+struct HitPoint {
+  uint32_t triangle;
+  float beta[3];
 };
+
+HitPoint decode_hit(const BlockHits& b, std::size_t i) {
+  const CompactHit& h = b.hits[i];
+  if (!b.exact.empty()) {
+    const float u = b.exact[2 * i], v = b.exact[2 * i + 1];
+    return {h.triangle, {1.f - u - v, u, v}};
+  }
+  constexpr float kStep = 1.f / 65535.f;
+  return {h.triangle, {float(65535 - h.u - h.v) * kStep, float(h.u) * kStep, float(h.v) * kStep}};
+}
 
 bool grey(const brdf::Rgb& c) {
   return c.r == c.g && c.g == c.b;
@@ -113,11 +133,10 @@ struct GlossyJob {
   std::vector<float>* matrices = nullptr;
   std::function<void(std::size_t first, std::size_t count, const float* m)> sink;
   prt::MemoryBudget* budget = nullptr;
-  std::vector<float> S;  // V · K², grey direct transfer (bounces only)
-  std::vector<BlockHits> block_hits;
-  std::vector<uint64_t> hit_offset;  // V + 1
-  std::vector<GlossyHit> hits;
-  std::vector<float> zonal_over_pi;  // z_l / π
+  std::vector<float> S;               // V · K², grey direct transfer (bounces only)
+  std::vector<BlockHits> block_hits;  // per block of kBlock vertices (bounces only)
+  std::size_t mask_words = 0;         // ⌈N / 64⌉
+  std::vector<float> zonal_over_pi;   // z_l / π
   GlossyBakeStatistics& st;
 
   std::size_t KK() const { return std::size_t(K) * K; }
@@ -189,12 +208,11 @@ struct VertexSampler {
         acc(j.KK()) {}
 
   // S_v (C · K², the channels equal) into `s`.
-  uint64_t sample(std::size_t v, float* s, BlockHits& out, uint64_t& back_hits) {
+  uint64_t sample(std::size_t v, float* s, BlockHits& out, uint64_t* mask, uint64_t& back_hits) {
     const int K = job.K, Kp = padded(K);
     const uint64_t seed = hash_seed(job.o.seed, v);
     const glm::vec3 origin = caster.vertex_origin(static_cast<uint32_t>(v));
     std::fill(acc.begin(), acc.end(), 0.0);
-    uint32_t kept = 0;
     for (int first = 0; first < job.N; first += kPacketSize) {
       for (int i = 0; i < kPacketSize; ++i)
         sample_direction(job, v, seed, static_cast<uint32_t>(first + i), local[i], dirs[i]);
@@ -208,9 +226,13 @@ struct VertexSampler {
           ++visible;
         } else if (job.interreflect && hit[i].hit) {
           if (detail::ray_hits_front_side(job.scene, hit[i].triangle, dirs[i])) {
-            out.hits.push_back(
-                {static_cast<uint32_t>(first + i), hit[i].triangle, hit[i].u, hit[i].v});
-            ++kept;
+            out.hits.push_back(quantise_hit(hit[i].triangle, hit[i].u, hit[i].v));
+            if (job.o.exact_hits) {
+              out.exact.push_back(hit[i].u);
+              out.exact.push_back(hit[i].v);
+            }
+            const unsigned sample = unsigned(first + i);
+            mask[sample / 64] |= uint64_t(1) << (sample % 64);
           } else {
             ++back_hits;
           }
@@ -224,7 +246,6 @@ struct VertexSampler {
     const std::size_t KK = job.KK();
     for (std::size_t e = 0; e < KK; ++e) s[e] = static_cast<float>(acc[e] * w);
     for (int c = 1; c < job.C; ++c) std::copy_n(s, KK, s + c * KK);
-    out.counts.push_back(kept);
     return static_cast<uint64_t>(job.N);
   }
 };
@@ -240,31 +261,28 @@ void run_sampling_pass(GlossyJob& job) {
     VertexSampler sampler(job, caster);
     const std::size_t first = blk * kBlock, end = std::min(job.V, (blk + 1) * kBlock);
     std::vector<float> block(job.matrices ? 0 : (end - first) * per_vertex);
+    BlockHits& hits = job.block_hits[blk];
+    if (job.interreflect) hits.mask.assign((end - first) * job.mask_words, 0);
     for (std::size_t v = first; v < end; ++v) {
       float* s = job.matrices ? &(*job.matrices)[v * per_vertex] : &block[(v - first) * per_vertex];
-      rays[blk] += sampler.sample(v, s, job.block_hits[blk], back[blk]);
+      uint64_t* mask = job.interreflect ? &hits.mask[(v - first) * job.mask_words] : nullptr;
+      rays[blk] += sampler.sample(v, s, hits, mask, back[blk]);
+    }
+    if (job.interreflect) {  // kept for the bounces: exactly their size, charged
+      hits.hits.shrink_to_fit();
+      hits.exact.shrink_to_fit();
+      if (job.budget) job.budget->charge(hits.bytes(), "the glossy bounces' ray hits");
     }
     if (!job.matrices) job.sink(first, end - first, block.data());
     if (job.progress) job.progress->advance(end - first, rays[blk]);
   });
   if (job.progress) job.progress->finish();
-  job.hit_offset.assign(1, 0);
-  uint64_t hit_count = 0;
-  for (const BlockHits& b : job.block_hits) hit_count += b.hits.size();
-  if (job.budget && job.interreflect)
-    job.budget->charge(hit_count * sizeof(GlossyHit) + 8 * (job.V + 1),
-                       "the glossy bounces' ray hits");
-  job.hits.reserve(hit_count);
   for (std::size_t blk = 0; blk < job.blocks(); ++blk) {
     job.st.rays += rays[blk];
     job.st.back_face_hits += back[blk];
-    for (uint32_t c : job.block_hits[blk].counts)
-      job.hit_offset.push_back(job.hit_offset.back() + c);
-    job.hits.insert(job.hits.end(), job.block_hits[blk].hits.begin(),
-                    job.block_hits[blk].hits.end());
-    job.block_hits[blk] = BlockHits{};
+    job.st.hits += job.block_hits[blk].hits.size();
+    job.st.gather_bytes += job.block_hits[blk].bytes();
   }
-  job.st.hits = job.hits.size();
   job.st.seconds_rays = seconds_since(t0);
 }
 
@@ -292,25 +310,34 @@ struct BounceGatherer {
   }
 
   // r (C × K) for one hit seen along world direction d from the receiving vertex.
-  void radiance_row(const GlossyHit& h, const glm::vec3& d, float* row) const;
+  void radiance_row(const HitPoint& h, const glm::vec3& d, float* row) const;
 
-  void gather(std::size_t p, float* out) {
+  // out (C · K²) = s (K², the grey direct transfer of p) + the gather over p's hits, which are
+  // the hits of `hits` from index *next on, their samples the set bits of `mask`; advances *next.
+  void gather(std::size_t p, const float* s, const BlockHits& hits, const uint64_t* mask,
+              std::size_t* next, float* out) {
     const int K = job.K, C = job.C, Kp = padded(K);
     const std::size_t KK = job.KK();
     for (int c = 0; c < C; ++c)
-      for (std::size_t e = 0; e < KK; ++e) acc[c * KK + e] = job.S[p * KK + e];
+      for (std::size_t e = 0; e < KK; ++e) acc[c * KK + e] = s[e];
     const uint64_t seed = hash_seed(job.o.seed, p);
     const double w = 2.0 * sh::kPi / job.N;
-    const uint64_t begin = job.hit_offset[p], end = job.hit_offset[p + 1];
-    for (uint64_t first = begin; first < end; first += kPacketSize) {
-      const int count = static_cast<int>(std::min<uint64_t>(kPacketSize, end - first));
-      for (int s = 0; s < count; ++s) {
-        const GlossyHit& h = job.hits[first + s];
+    std::size_t word = 0;
+    uint64_t bits = job.mask_words > 0 ? mask[0] : 0;
+    for (;;) {
+      int count = 0;
+      while (count < kPacketSize) {
+        while (bits == 0 && ++word < job.mask_words) bits = mask[word];
+        if (bits == 0) break;
+        const uint32_t sample = uint32_t(word * 64 + unsigned(__builtin_ctzll(bits)));
+        bits &= bits - 1;
         glm::vec3 local, world;
-        sample_direction(job, p, seed, h.sample, local, world);
-        sh::evaluate(job.order, local.x, local.y, local.z, &yl[s * Kp]);
-        radiance_row(h, world, &r[std::size_t(s) * C * K]);
+        sample_direction(job, p, seed, sample, local, world);
+        sh::evaluate(job.order, local.x, local.y, local.z, &yl[count * Kp]);
+        radiance_row(decode_hit(hits, (*next)++), world, &r[std::size_t(count) * C * K]);
+        ++count;
       }
+      if (count == 0) break;
       for (int c = 0; c < C; ++c) {
         // Channel c of the rows: stride C·K between hits; gather them contiguous first.
         for (int s = 0; s < count; ++s)
@@ -318,20 +345,21 @@ struct BounceGatherer {
         rank_update(K, count, yl.data(), rc.data(), &block[std::size_t(c) * K * Kp]);
       }
       for (int c = 0; c < C; ++c) add_block(K, &block[std::size_t(c) * K * Kp], w, &acc[c * KK]);
+      if (count < kPacketSize) break;
     }
     for (std::size_t e = 0; e < acc.size(); ++e) out[e] = static_cast<float>(acc[e]);
   }
 };
 
-void BounceGatherer::radiance_row(const GlossyHit& h, const glm::vec3& d, float* row) const {
+void BounceGatherer::radiance_row(const HitPoint& h, const glm::vec3& d, float* row) const {
   const int K = job.K, C = job.C;
   std::fill(row, row + std::size_t(C) * K, 0.f);
   const glm::uvec3 tri = job.scene.triangles[h.triangle];
-  const float beta[3] = {1.f - h.u - h.v, h.u, h.v};
+  const float* beta = h.beta;
   const uint32_t material = job.material_of_vertex[tri.x];
   if (job.materials[material].lambertian()) {
     // ρ(hit) · Σ_a β_a · (Σ_l z_l/π · row (l, 0) of M_qa): the interpolated Lambert exit.
-    const glm::vec3 rho = job.scene.albedo_at(h.triangle, h.u, h.v);
+    const glm::vec3 rho = job.scene.albedo_at(h.triangle, beta[1], beta[2]);
     for (int a = 0; a < 3; ++a)
       for (int c = 0; c < C; ++c) {
         const float k = beta[a] * rho[c];
@@ -415,16 +443,91 @@ void compressed_transfer(GlossyJob& job, const std::vector<float>& M, std::vecto
   });
 }
 
-// Jacobi bounces: data.matrices holds M⁽ᵏ⁾; returns when done. Converged means the last bounce
-// changed no entry by more than bounce_tolerance × max|S|, whether the bounces were counted or
-// solved for.
-void run_bounces(GlossyJob& job, std::vector<float>& M) {
+// Where the bounces keep the direct transfer S and the bounce they write: in memory (S and a
+// second whole bounce) or, streamed, in two scratch files, so that memory holds only the bounce
+// that is read at random (M) and the blocks in flight. Same arithmetic either way.
+struct BounceStore {
+  bool streamed = false;
+  std::vector<float> next;                     // in memory: V · C · K²
+  detail::FloatScratchFile s_file, next_file;  // streamed: V · K² and V · C · K² floats
+  float s_max = 0.f;                           // max |S|
+};
+
+void check_scratch(const GlossyJob& job, bool ok, const std::string& error) {
+  if (!ok) throw BakeError(scene::scene_label(job.scene) + ": " + error);
+}
+
+// S from the pass's matrices (channel 0 of M⁽⁰⁾) into job.S or the scratch file, and max |S|.
+void keep_direct(GlossyJob& job, const std::vector<float>& M, BounceStore& store,
+                 const std::string& scratch_directory) {
+  const std::size_t KK = job.KK(), per_vertex = std::size_t(job.C) * KK;
+  std::string error;
+  if (store.streamed) {
+    check_scratch(job,
+                  store.s_file.open(scratch_directory, job.V * KK, "the direct transfer", &error),
+                  error);
+    check_scratch(job,
+                  store.next_file.open(scratch_directory, job.V * per_vertex,
+                                       "the glossy bounce being written", &error),
+                  error);
+  } else {
+    job.S.resize(job.V * KK);
+  }
+  std::vector<float> chunk(store.streamed ? kBlock * KK : 0);
+  for (std::size_t first = 0; first < job.V; first += kBlock) {
+    const std::size_t n = std::min(kBlock, job.V - first);
+    float* s = store.streamed ? chunk.data() : &job.S[first * KK];
+    for (std::size_t i = 0; i < n; ++i) std::copy_n(&M[(first + i) * per_vertex], KK, &s[i * KK]);
+    for (std::size_t e = 0; e < n * KK; ++e) store.s_max = std::max(store.s_max, std::fabs(s[e]));
+    if (store.streamed)
+      check_scratch(job, store.s_file.write(first * KK, n * KK, s, &error), error);
+  }
+  if (!store.streamed) store.next.resize(M.size());
+}
+
+// One bounce over the vertices of block blk: next = S + G(read); returns max |next − M|.
+float bounce_block(const GlossyJob& job, const std::vector<float>& read,
+                   const std::vector<float>& exit, const std::vector<float>& M, BounceStore& store,
+                   std::size_t blk) {
+  const std::size_t KK = job.KK(), per_vertex = std::size_t(job.C) * KK;
+  const std::size_t first = blk * kBlock, n = std::min(job.V, first + kBlock) - first;
+  std::vector<float> s_buffer, out_buffer;
+  const float* s = store.streamed ? nullptr : &job.S[first * KK];
+  float* out = store.streamed ? nullptr : &store.next[first * per_vertex];
+  std::string error;
+  if (store.streamed) {
+    s_buffer.resize(n * KK);
+    out_buffer.resize(n * per_vertex);
+    check_scratch(job, store.s_file.read(first * KK, n * KK, s_buffer.data(), &error), error);
+    s = s_buffer.data();
+    out = out_buffer.data();
+  }
+  BounceGatherer g(job, read, exit);
+  const BlockHits& hits = job.block_hits[blk];
+  std::size_t at = 0;
+  float change = 0.f;
+  for (std::size_t i = 0; i < n; ++i) {
+    float* o = out + i * per_vertex;
+    g.gather(first + i, s + i * KK, hits, &hits.mask[i * job.mask_words], &at, o);
+    const float* m = &M[(first + i) * per_vertex];
+    for (std::size_t e = 0; e < per_vertex; ++e) {
+      const float d = std::fabs(o[e] - m[e]);
+      // NaN compares false: keep it, so that a non-finite bounce is seen.
+      if (!(d <= change)) change = d;
+    }
+  }
+  if (store.streamed)
+    check_scratch(job, store.next_file.write(first * per_vertex, n * per_vertex, out, &error),
+                  error);
+  return change;
+}
+
+// Jacobi bounces: M holds M⁽ᵏ⁾; returns when done. Converged means the last bounce changed no
+// entry by more than bounce_tolerance × max|S|, whether the bounces were counted or solved for.
+void run_bounces(GlossyJob& job, std::vector<float>& M, BounceStore& store) {
   const Clock::time_point t0 = Clock::now();
-  float s_max = 0.f;
-  for (float x : job.S) s_max = std::max(s_max, std::fabs(x));
+  const float s_max = store.s_max;
   const int max_bounces = job.o.bounces < 0 ? kMaxGlossyBounces : job.o.bounces;
-  std::vector<float> next(M.size());
-  const std::size_t per_vertex = std::size_t(job.C) * job.KK();
   if (job.progress) job.progress->start("glossy bounces", job.o.bounces < 0 ? 0 : max_bounces);
   job.st.converged = false;
   std::vector<float> exit(job.V * job.C * std::size_t(job.K));
@@ -437,18 +540,17 @@ void run_bounces(GlossyJob& job, std::vector<float>& M) {
     lambert_exit(job, read, exit);
     std::vector<float> block_change(job.blocks(), 0.f);
     tbb::parallel_for(std::size_t(0), job.blocks(), [&](std::size_t blk) {
-      BounceGatherer g(job, read, exit);
-      const std::size_t end = std::min(job.V, (blk + 1) * kBlock);
-      for (std::size_t p = blk * kBlock; p < end; ++p) {
-        g.gather(p, &next[p * per_vertex]);
-        for (std::size_t e = p * per_vertex; e < (p + 1) * per_vertex; ++e) {
-          const float d = std::fabs(next[e] - M[e]);
-          // NaN compares false: keep it, so that a non-finite bounce is seen.
-          if (!(d <= block_change[blk])) block_change[blk] = d;
-        }
-      }
+      block_change[blk] = bounce_block(job, read, exit, M, store, blk);
     });
-    M.swap(next);
+    if (store.streamed) {  // the bounce written becomes the one read
+      std::string error;
+      const std::size_t chunk = std::size_t(1) << 24;
+      for (std::size_t at = 0; at < M.size(); at += chunk)
+        check_scratch(job, store.next_file.read(at, std::min(chunk, M.size() - at), &M[at], &error),
+                      error);
+    } else {
+      M.swap(store.next);
+    }
     float change = 0.f;
     for (float c : block_change)
       if (!(c <= change)) change = c;
@@ -584,6 +686,12 @@ void put_matrices(const GlossyOutput& out, const GlossyJob& job, std::size_t fir
   if (!s.ok()) throw BakeError(s.message());
 }
 
+// The scratch files of streamed bounces go beside the output.
+std::string scratch_directory(const std::string& output_path) {
+  const std::string parent = std::filesystem::path(output_path).parent_path().string();
+  return parent.empty() ? std::string(".") : parent;
+}
+
 unsigned worker_threads(const GlossyBakeOptions& o) {
   return o.threads > 0
              ? unsigned(o.threads)
@@ -592,22 +700,30 @@ unsigned worker_threads(const GlossyBakeOptions& o) {
 
 // Charges what the bake will hold before it holds it: frames and the file's geometry sections;
 // shadowed, the matrices of the blocks in flight (streamed) or of every vertex (in memory);
-// interreflected, M, the next bounce, S and the Lambert exit rows (the hits when they are known).
+// interreflected, M and the Lambert exit rows, and the next bounce and S (in memory) or the
+// blocks in flight of both (streamed: the rest is in scratch files). The hits are charged block
+// by block as the ray pass keeps them.
 void charge_bake(prt::MemoryBudget& budget, const GlossyJob& job, const GlossyBakeOptions& o,
                  bool streamed) {
   const uint64_t V = job.V, KK = job.KK(), C = job.C;
   budget.charge(V * (sizeof(Frame) + 16 + 44 + 4), "the vertex frames and geometry");
   const uint64_t all = V * C * KK * 4;
+  const uint64_t in_flight = uint64_t(worker_threads(o)) * kBlock * 4;
   if (!job.interreflect) {
     if (streamed)
-      budget.charge(uint64_t(worker_threads(o)) * kBlock * KK * 4 * 2,
-                    "the glossy matrices of the vertex blocks in flight");
+      budget.charge(in_flight * KK * 2, "the glossy matrices of the vertex blocks in flight");
     else
       budget.charge(all, "the glossy transfer matrices");
     return;
   }
-  budget.charge(2 * all, "the glossy matrices of two bounces");
-  budget.charge(V * KK * 4 + V * C * job.K * 4, "the direct transfer and Lambert exit rows");
+  if (streamed) {
+    budget.charge(all, "the glossy matrices of the bounce read");
+    budget.charge(in_flight * (C + 1) * KK, "the glossy matrices of the vertex blocks in flight");
+  } else {
+    budget.charge(2 * all, "the glossy matrices of two bounces");
+    budget.charge(V * KK * 4, "the direct transfer");
+  }
+  budget.charge(V * C * job.K * 4, "the Lambert exit rows");
 }
 
 void bake_glossy(const scene::Scene& scene, const GlossyBakeOptions& o, ProgressSink* progress,
@@ -638,14 +754,14 @@ void bake_glossy(const scene::Scene& scene, const GlossyBakeOptions& o, Progress
                 nullptr,
                 {},
                 {},
-                {},
-                {},
+                0,
                 {},
                 st};
   prt::MemoryBudget budget(o.memory_limit, scene::scene_label(scene));
   job.budget = &budget;
   glossy_scene_materials(scene, job.materials, job.material_of_vertex);
   job.C = glossy_channels(scene, job.materials, job.interreflect);
+  job.mask_words = (std::size_t(job.N) + 63) / 64;
   charge_bake(budget, job, o, out.writer != nullptr || !out.path.empty());
   const std::vector<glm::vec4> tangents = scene::tangent_frames(scene);
   job.frames.resize(job.V);
@@ -694,11 +810,11 @@ void bake_glossy(const scene::Scene& scene, const GlossyBakeOptions& o, Progress
   }
   run_sampling_pass(job);
   if (job.interreflect) {
-    if (!job.hits.empty()) {
-      job.S.resize(job.V * job.KK());
-      for (std::size_t v = 0; v < job.V; ++v)
-        std::copy_n(&M[v * job.C * job.KK()], job.KK(), &job.S[v * job.KK()]);
-      run_bounces(job, M);
+    if (st.hits > 0) {
+      BounceStore store;
+      store.streamed = out.writer != nullptr;
+      keep_direct(job, M, store, scratch_directory(out.path));
+      run_bounces(job, M, store);
     }
     if (!out.writer) {
       d.matrices.swap(M);
