@@ -26,6 +26,7 @@
 #include "bake/sampling.h"
 #include "float_scratch_file.h"
 #include "hit_side.h"
+#include "prt/core/half.h"
 #include "prt/core/memory_budget.h"
 #include "prt/formats/geometry_check.h"
 #include "prt/formats/glossy_transfer_writer.h"
@@ -288,14 +289,22 @@ void run_sampling_pass(GlossyJob& job) {
 
 // One bounce at vertex p: out (C · K²) = S_p + (2π/N) Σ_hits y_local ⊗ r, r the radiance row
 // the hit point sends back (M from `prev`).
+// The bounce the gather reads: V · C · K² floats, or (GlossyBakeOptions::bounce_precision F16)
+// as many binary16 values.
+struct BounceRead {
+  const float* f32 = nullptr;
+  const uint16_t* f16 = nullptr;
+};
+
 struct BounceGatherer {
   const GlossyJob& job;
-  const std::vector<float>& prev;  // V · C · K²
+  const BounceRead prev;
   const std::vector<float>& exit;  // V · C · K: Σ_l z_l/π · row (l, 0) of prev (Lambert exit)
   std::vector<float> yl, r, rc, block;
   std::vector<double> acc;
+  mutable std::vector<float> expanded;  // one matrix of a binary16 bounce, in float
 
-  BounceGatherer(const GlossyJob& j, const std::vector<float>& p, const std::vector<float>& e)
+  BounceGatherer(const GlossyJob& j, BounceRead p, const std::vector<float>& e)
       : job(j),
         prev(p),
         exit(e),
@@ -303,23 +312,27 @@ struct BounceGatherer {
         r(kPacketSize * std::size_t(j.C) * j.K),
         rc(kPacketSize * std::size_t(padded(j.K)), 0.f),
         block(std::size_t(j.C) * j.K * padded(j.K)),
-        acc(std::size_t(j.C) * j.KK()) {}
+        acc(std::size_t(j.C) * j.KK()),
+        expanded(p.f16 ? j.KK() : 0) {}
 
   const float* matrix(std::size_t q, int c) const {
-    return &prev[(q * job.C + std::size_t(c)) * job.KK()];
+    const std::size_t at = (q * job.C + std::size_t(c)) * job.KK();
+    if (prev.f32) return prev.f32 + at;
+    prt::convert_halves_to_floats(prev.f16 + at, job.KK(), expanded.data());
+    return expanded.data();
   }
 
   // r (C × K) for one hit seen along world direction d from the receiving vertex.
   void radiance_row(const HitPoint& h, const glm::vec3& d, float* row) const;
 
-  // out (C · K²) = s (K², the grey direct transfer of p) + the gather over p's hits, which are
+  // out (C · K²) = direct (K², the grey direct transfer of p) + the gather over p's hits, which are
   // the hits of `hits` from index *next on, their samples the set bits of `mask`; advances *next.
-  void gather(std::size_t p, const float* s, const BlockHits& hits, const uint64_t* mask,
+  void gather(std::size_t p, const float* direct, const BlockHits& hits, const uint64_t* mask,
               std::size_t* next, float* out) {
     const int K = job.K, C = job.C, Kp = padded(K);
     const std::size_t KK = job.KK();
     for (int c = 0; c < C; ++c)
-      for (std::size_t e = 0; e < KK; ++e) acc[c * KK + e] = s[e];
+      for (std::size_t e = 0; e < KK; ++e) acc[c * KK + e] = direct[e];
     const uint64_t seed = hash_seed(job.o.seed, p);
     const double w = 2.0 * sh::kPi / job.N;
     std::size_t word = 0;
@@ -389,15 +402,17 @@ void BounceGatherer::radiance_row(const HitPoint& h, const glm::vec3& d, float* 
 
 // exit[(q·C + c)·K + j] = Σ_l z_l/π · M_q,c[(l, 0), j]: the Lambert exit transfer of every vertex
 // (before its albedo), read contiguously by the gather instead of n scattered rows of M_q.
-void lambert_exit(const GlossyJob& job, const std::vector<float>& M, std::vector<float>& exit) {
+void lambert_exit(const GlossyJob& job, BounceRead M, std::vector<float>& exit) {
   const int K = job.K;
   tbb::parallel_for(std::size_t(0), job.V * job.C, [&](std::size_t qc) {
     float* e = &exit[qc * K];
     std::fill(e, e + K, 0.f);
-    const float* m = &M[qc * job.KK()];
+    float row[kMaxGlossyBakeOrder * kMaxGlossyBakeOrder];
     for (int l = 0; l < job.order; ++l) {
       const float z = job.zonal_over_pi[l];
-      const float* mrow = m + std::size_t(sh::index(l, 0)) * K;
+      const std::size_t at = qc * job.KK() + std::size_t(sh::index(l, 0)) * K;
+      const float* mrow = M.f32 ? M.f32 + at : row;
+      if (!M.f32) prt::convert_halves_to_floats(M.f16 + at, std::size_t(K), row);
       for (int j = 0; j < K; ++j) e[j] += z * mrow[j];
     }
   });
@@ -444,35 +459,62 @@ void compressed_transfer(GlossyJob& job, const std::vector<float>& M, std::vecto
 }
 
 // Where the bounces keep the direct transfer S and the bounce they write: in memory (S and a
-// second whole bounce) or, streamed, in two scratch files, so that memory holds only the bounce
-// that is read at random (M) and the blocks in flight. Same arithmetic either way.
+// second whole bounce) or, streamed, in scratch files, so that memory holds only the bounce that
+// is read at random (M, or its binary16 copy H) and the blocks in flight. Same arithmetic either
+// way. With a binary16 bounce the float bounces live on two files used in turn (the previous one,
+// for the change and the output, and the one being written); the pass writes M⁽⁰⁾ there too.
 struct BounceStore {
   bool streamed = false;
-  std::vector<float> next;                     // in memory: V · C · K²
-  detail::FloatScratchFile s_file, next_file;  // streamed: V · K² and V · C · K² floats
-  float s_max = 0.f;                           // max |S|
+  bool half = false;
+  std::vector<float> next;             // in memory: V · C · K²
+  std::vector<uint16_t> H;             // half: the bounce read, V · C · K² binary16
+  detail::FloatScratchFile s_file;     // streamed: V · K²
+  detail::FloatScratchFile bounce[2];  // streamed: V · C · K² each
+  int written = 0;                     // the file the next bounce writes
+  float s_max = 0.f;                   // max |S|
+  std::mutex lock;                     // s_max, from the pass's blocks
+  BounceRead read(const std::vector<float>& M) const {
+    return half ? BounceRead{nullptr, H.data()} : BounceRead{M.data(), nullptr};
+  }
 };
 
 void check_scratch(const GlossyJob& job, bool ok, const std::string& error) {
   if (!ok) throw BakeError(scene::scene_label(job.scene) + ": " + error);
 }
 
-// S from the pass's matrices (channel 0 of M⁽⁰⁾) into job.S or the scratch file, and max |S|.
-void keep_direct(GlossyJob& job, const std::vector<float>& M, BounceStore& store,
-                 const std::string& scratch_directory) {
+void open_scratch(GlossyJob& job, BounceStore& store, const std::string& directory) {
   const std::size_t KK = job.KK(), per_vertex = std::size_t(job.C) * KK;
   std::string error;
-  if (store.streamed) {
-    check_scratch(job,
-                  store.s_file.open(scratch_directory, job.V * KK, "the direct transfer", &error),
-                  error);
-    check_scratch(job,
-                  store.next_file.open(scratch_directory, job.V * per_vertex,
-                                       "the glossy bounce being written", &error),
-                  error);
-  } else {
-    job.S.resize(job.V * KK);
-  }
+  check_scratch(job, store.s_file.open(directory, job.V * KK, "the direct transfer", &error),
+                error);
+  for (int f = 0; f < (store.half ? 2 : 1); ++f)
+    check_scratch(
+        job, store.bounce[f].open(directory, job.V * per_vertex, "a glossy bounce", &error), error);
+  if (store.half) store.written = 1;  // bounce[0] holds M⁽⁰⁾
+}
+
+// A block of the pass's matrices M⁽⁰⁾ (binary16 bounce): S to its file, M⁽⁰⁾ to bounce[0] and H.
+void keep_pass_block(GlossyJob& job, BounceStore& store, std::size_t first, std::size_t count,
+                     const float* m) {
+  const std::size_t KK = job.KK(), per_vertex = std::size_t(job.C) * KK;
+  std::vector<float> s(count * KK);
+  float s_max = 0.f;
+  for (std::size_t i = 0; i < count; ++i) std::copy_n(m + i * per_vertex, KK, &s[i * KK]);
+  for (float x : s) s_max = std::max(s_max, std::fabs(x));
+  std::string error;
+  check_scratch(job, store.s_file.write(first * KK, count * KK, s.data(), &error), error);
+  check_scratch(job, store.bounce[0].write(first * per_vertex, count * per_vertex, m, &error),
+                error);
+  prt::convert_floats_to_halves(m, count * per_vertex, &store.H[first * per_vertex]);
+  std::lock_guard<std::mutex> guard(store.lock);
+  store.s_max = std::max(store.s_max, s_max);
+}
+
+// S from the pass's matrices (channel 0 of M⁽⁰⁾, float bounce) into job.S or its file, max |S|.
+void keep_direct(GlossyJob& job, const std::vector<float>& M, BounceStore& store) {
+  const std::size_t KK = job.KK(), per_vertex = std::size_t(job.C) * KK;
+  std::string error;
+  if (!store.streamed) job.S.resize(job.V * KK);
   std::vector<float> chunk(store.streamed ? kBlock * KK : 0);
   for (std::size_t first = 0; first < job.V; first += kBlock) {
     const std::size_t n = std::min(kBlock, job.V - first);
@@ -485,15 +527,15 @@ void keep_direct(GlossyJob& job, const std::vector<float>& M, BounceStore& store
   if (!store.streamed) store.next.resize(M.size());
 }
 
-// One bounce over the vertices of block blk: next = S + G(read); returns max |next − M|.
-float bounce_block(const GlossyJob& job, const std::vector<float>& read,
-                   const std::vector<float>& exit, const std::vector<float>& M, BounceStore& store,
-                   std::size_t blk) {
+// One bounce over the vertices of block blk: next = S + G(read); returns max |next − previous|.
+float bounce_block(const GlossyJob& job, BounceRead read, const std::vector<float>& exit,
+                   const std::vector<float>& M, BounceStore& store, std::size_t blk) {
   const std::size_t KK = job.KK(), per_vertex = std::size_t(job.C) * KK;
   const std::size_t first = blk * kBlock, n = std::min(job.V, first + kBlock) - first;
-  std::vector<float> s_buffer, out_buffer;
+  std::vector<float> s_buffer, out_buffer, prev_buffer;
   const float* s = store.streamed ? nullptr : &job.S[first * KK];
   float* out = store.streamed ? nullptr : &store.next[first * per_vertex];
+  const float* prev = store.half ? nullptr : &M[first * per_vertex];
   std::string error;
   if (store.streamed) {
     s_buffer.resize(n * KK);
@@ -502,6 +544,14 @@ float bounce_block(const GlossyJob& job, const std::vector<float>& read,
     s = s_buffer.data();
     out = out_buffer.data();
   }
+  if (store.half) {  // the previous bounce in float, for the change
+    prev_buffer.resize(n * per_vertex);
+    check_scratch(job,
+                  store.bounce[1 - store.written].read(first * per_vertex, n * per_vertex,
+                                                       prev_buffer.data(), &error),
+                  error);
+    prev = prev_buffer.data();
+  }
   BounceGatherer g(job, read, exit);
   const BlockHits& hits = job.block_hits[blk];
   std::size_t at = 0;
@@ -509,7 +559,7 @@ float bounce_block(const GlossyJob& job, const std::vector<float>& read,
   for (std::size_t i = 0; i < n; ++i) {
     float* o = out + i * per_vertex;
     g.gather(first + i, s + i * KK, hits, &hits.mask[i * job.mask_words], &at, o);
-    const float* m = &M[(first + i) * per_vertex];
+    const float* m = prev + i * per_vertex;
     for (std::size_t e = 0; e < per_vertex; ++e) {
       const float d = std::fabs(o[e] - m[e]);
       // NaN compares false: keep it, so that a non-finite bounce is seen.
@@ -517,13 +567,29 @@ float bounce_block(const GlossyJob& job, const std::vector<float>& read,
     }
   }
   if (store.streamed)
-    check_scratch(job, store.next_file.write(first * per_vertex, n * per_vertex, out, &error),
-                  error);
+    check_scratch(
+        job, store.bounce[store.written].write(first * per_vertex, n * per_vertex, out, &error),
+        error);
   return change;
 }
 
-// Jacobi bounces: M holds M⁽ᵏ⁾; returns when done. Converged means the last bounce changed no
-// entry by more than bounce_tolerance × max|S|, whether the bounces were counted or solved for.
+// After a streamed bounce: the bounce written becomes the one read (M, or H in binary16).
+void load_written_bounce(const GlossyJob& job, std::vector<float>& M, BounceStore& store) {
+  std::string error;
+  const std::size_t total = job.V * job.C * job.KK(), chunk = std::size_t(1) << 22;
+  std::vector<float> buffer(store.half ? std::min(chunk, total) : 0);
+  for (std::size_t at = 0; at < total; at += chunk) {
+    const std::size_t n = std::min(chunk, total - at);
+    float* to = store.half ? buffer.data() : &M[at];
+    check_scratch(job, store.bounce[store.written].read(at, n, to, &error), error);
+    if (store.half) prt::convert_floats_to_halves(to, n, &store.H[at]);
+  }
+  if (store.half) store.written = 1 - store.written;
+}
+
+// Jacobi bounces: M (or H) holds M⁽ᵏ⁾; returns when done. Converged means the last bounce
+// changed no entry by more than bounce_tolerance × max|S|, whether the bounces were counted or
+// solved for.
 void run_bounces(GlossyJob& job, std::vector<float>& M, BounceStore& store) {
   const Clock::time_point t0 = Clock::now();
   const float s_max = store.s_max;
@@ -536,21 +602,17 @@ void run_bounces(GlossyJob& job, std::vector<float>& M, BounceStore& store) {
     job.budget->charge(M.size() * 4, "the compressed bounce's reconstruction");
   for (int k = 0; k < max_bounces; ++k) {
     if (job.o.bounce_cpca_clusters > 0) compressed_transfer(job, M, compressed);
-    const std::vector<float>& read = job.o.bounce_cpca_clusters > 0 ? compressed : M;
+    const BounceRead read =
+        job.o.bounce_cpca_clusters > 0 ? BounceRead{compressed.data(), nullptr} : store.read(M);
     lambert_exit(job, read, exit);
     std::vector<float> block_change(job.blocks(), 0.f);
     tbb::parallel_for(std::size_t(0), job.blocks(), [&](std::size_t blk) {
       block_change[blk] = bounce_block(job, read, exit, M, store, blk);
     });
-    if (store.streamed) {  // the bounce written becomes the one read
-      std::string error;
-      const std::size_t chunk = std::size_t(1) << 24;
-      for (std::size_t at = 0; at < M.size(); at += chunk)
-        check_scratch(job, store.next_file.read(at, std::min(chunk, M.size() - at), &M[at], &error),
-                      error);
-    } else {
+    if (store.streamed)
+      load_written_bounce(job, M, store);
+    else
       M.swap(store.next);
-    }
     float change = 0.f;
     for (float c : block_change)
       if (!(c <= change)) change = c;
@@ -716,7 +778,11 @@ void charge_bake(prt::MemoryBudget& budget, const GlossyJob& job, const GlossyBa
       budget.charge(all, "the glossy transfer matrices");
     return;
   }
-  if (streamed) {
+  if (streamed && o.bounce_precision == prt::Precision::F16) {
+    budget.charge(all / 2, "the binary16 glossy matrices of the bounce read");
+    budget.charge(in_flight * (2 * C + 1) * KK,
+                  "the glossy matrices of the vertex blocks in flight");
+  } else if (streamed) {
     budget.charge(all, "the glossy matrices of the bounce read");
     budget.charge(in_flight * (C + 1) * KK, "the glossy matrices of the vertex blocks in flight");
   } else {
@@ -762,6 +828,11 @@ void bake_glossy(const scene::Scene& scene, const GlossyBakeOptions& o, Progress
   glossy_scene_materials(scene, job.materials, job.material_of_vertex);
   job.C = glossy_channels(scene, job.materials, job.interreflect);
   job.mask_words = (std::size_t(job.N) + 63) / 64;
+  const bool streamed = out.writer != nullptr || !out.path.empty();
+  if (job.interreflect && o.bounce_precision == prt::Precision::F16 &&
+      (!streamed || o.bounce_cpca_clusters > 0))
+    throw BakeError(scene::scene_label(scene) +
+                    ": a binary16 bounce needs a bake streamed to a file, without bounce CPCA");
   charge_bake(budget, job, o, out.writer != nullptr || !out.path.empty());
   const std::vector<glm::vec4> tangents = scene::tangent_frames(scene);
   job.frames.resize(job.V);
@@ -798,10 +869,21 @@ void bake_glossy(const scene::Scene& scene, const GlossyBakeOptions& o, Progress
     writer = std::move(made).value();
     out.writer = writer.get();
   }
-  std::vector<float> M;  // interreflected: every vertex's matrices
+  std::vector<float> M;  // interreflected, float bounce: every vertex's matrices
+  BounceStore store;
   if (job.interreflect) {
-    M.resize(job.V * job.C * job.KK());
-    job.matrices = &M;
+    store.streamed = out.writer != nullptr;
+    store.half = o.bounce_precision == prt::Precision::F16;
+    if (store.streamed) open_scratch(job, store, scratch_directory(out.path));
+    if (store.half) {
+      store.H.resize(job.V * job.C * job.KK());
+      job.sink = [&](std::size_t first, std::size_t count, const float* m) {
+        keep_pass_block(job, store, first, count, m);
+      };
+    } else {
+      M.resize(job.V * job.C * job.KK());
+      job.matrices = &M;
+    }
   } else {
     if (!out.writer) d.matrices.resize(job.V * job.C * job.KK());
     job.sink = [&](std::size_t first, std::size_t count, const float* m) {
@@ -811,13 +893,23 @@ void bake_glossy(const scene::Scene& scene, const GlossyBakeOptions& o, Progress
   run_sampling_pass(job);
   if (job.interreflect) {
     if (st.hits > 0) {
-      BounceStore store;
-      store.streamed = out.writer != nullptr;
-      keep_direct(job, M, store, scratch_directory(out.path));
+      if (!store.half) keep_direct(job, M, store);
       run_bounces(job, M, store);
     }
     if (!out.writer) {
       d.matrices.swap(M);
+    } else if (store.half) {  // the last float bounce, from its file, in blocks
+      const std::size_t per_vertex = std::size_t(job.C) * job.KK();
+      std::vector<float> block(16 * kBlock * per_vertex);
+      std::string error;
+      for (std::size_t first = 0; first < job.V; first += 16 * kBlock) {
+        const std::size_t count = std::min(job.V - first, 16 * kBlock);
+        check_scratch(job,
+                      store.bounce[1 - store.written].read(first * per_vertex, count * per_vertex,
+                                                           block.data(), &error),
+                      error);
+        put_matrices(out, job, first, count, block.data());
+      }
     } else {  // in blocks, so that binary16 conversion holds one block
       for (std::size_t first = 0; first < job.V; first += 16 * kBlock) {
         const std::size_t count = std::min(job.V - first, 16 * kBlock);

@@ -563,3 +563,55 @@ TEST_CASE("glossy bake: streamed interreflection holds one bounce, and a limit b
   CHECK(back.value().channels == 3);
   CHECK_FALSE(scratch_left());
 }
+
+// A binary16 bounce (GlossyBakeOptions::bounce_precision F16): the gather reads M rounded to
+// 2⁻¹¹ relative. Bound: a hit's row Σ_a β_a Σ_i b_i M_ij moves by ≤ 2⁻¹¹ · K · max|b| · max|M|
+// (b ≤ 1 here), a bounce entry by 2π · max|y| times that, and two bounces add it twice (the
+// second also reads the first's error, which the same bound covers, the bounce being a
+// contraction). It must differ from the float bounce (the binary16 copy is really what is read),
+// charge less (650 vertices: the 0.5 KB a vertex saved outweigh the larger blocks in flight),
+// be the same bytes at 1 and 2 threads, and be refused in memory.
+TEST_CASE("glossy bake: a binary16 bounce stays within its rounding bound of the float one",
+          "[glossy_bake]") {
+  prt::scene::Scene s = prt::scene::make_quad({-2.f, 0.f, 2.f}, {4.f, 0.f, 0.f}, {0.f, 0.f, -4.f},
+                                              24, 24, glm::vec3(0.7f, 0.5f, 0.3f), "floor");
+  prt::scene::append_scene(s, prt::scene::make_box({-0.5f, 0.f, -0.5f}, {0.5f, 1.f, 0.5f}, 2, false,
+                                                   glm::vec3(0.6f), "box"));
+  prt::brdf::Material phong;
+  phong.model = prt::brdf::MaterialModel::kBlinnPhong;
+  phong.diffuse = prt::brdf::grey(0.3);
+  phong.specular = prt::brdf::grey(0.4);
+  phong.exponent = 20;
+  s.primitives[1].brdf = phong;
+  GlossyBakeOptions o;
+  o.order = 3;
+  o.samples = 64;
+  o.bounces = 2;
+  o.threads = 1;
+  const std::string path = prt::test::output_path("glossy_half_bounce.prtg").string();
+  const auto plain = prt::bake::bake_glossy_transfer_to_file(s, o, path);
+  const auto f32 = prt::read_glossy_transfer_file(path);
+  REQUIRE(f32.ok());
+  o.bounce_precision = prt::Precision::F16;
+  CHECK_THROWS_AS(bake_glossy_transfer(s, o), prt::bake::BakeError);
+  const auto half = prt::bake::bake_glossy_transfer_to_file(s, o, path);
+  const auto bytes_one = file_bytes(path);
+  const auto f16 = prt::read_glossy_transfer_file(path);
+  REQUIRE(f16.ok());
+  o.threads = 2;
+  prt::bake::bake_glossy_transfer_to_file(s, o, path);
+  CHECK(file_bytes(path) == bytes_one);
+  CHECK(half.stats.peak_charged_bytes < plain.stats.peak_charged_bytes);
+  const auto& a = f32.value().matrices;
+  const auto& b = f16.value().matrices;
+  REQUIRE(a.size() == b.size());
+  double worst = 0, scale = 0;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    worst = std::max(worst, double(std::fabs(a[i] - b[i])));
+    scale = std::max(scale, double(std::fabs(a[i])));
+  }
+  const double bound = 2 * std::ldexp(1.0, -11) * 9 * 2 * kPi * 1.0925484 * scale;
+  INFO("max |f16 bounce − f32 bounce| = " << worst << ", bound " << bound << ", max |M| " << scale);
+  CHECK(worst <= bound);
+  CHECK(worst > 0.0);
+}

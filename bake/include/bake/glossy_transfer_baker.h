@@ -94,6 +94,11 @@ struct GlossyBakeOptions {
   // The reference for the compact hits: also keep each hit's barycentrics in float (8 more
   // bytes a hit) and let the bounces read those instead of the 16-bit ones. For tests.
   bool exact_hits = false;
+  // F16: the bounce the gather reads is held in binary16 (half the memory of the dominant term;
+  // rounding 2⁻¹¹ relative, fed through the bounces: docs/GLOSSY.md gives the measured error).
+  // The bounces are still computed, compared and written in float. Streamed bakes only
+  // (bake_glossy_transfer_to_file), without bounce_cpca_clusters; BakeError otherwise.
+  prt::Precision bounce_precision = prt::Precision::F32;
 };
 
 struct GlossyBakeStatistics {
