@@ -54,7 +54,8 @@
 // (4·(C·K² + K²) bytes a vertex of disk) — and the hits, block by block as the ray pass keeps
 // them. It stops with MemoryBudgetExceeded (one line) when they would exceed the limit.
 // Streamed interreflected, per vertex: 4·C·K² + 4·C·K + 8·hits + N/8 bytes (order 5, C = 3,
-// N = 256: 7.8 KB + 8·hits). docs/GLOSSY.md ("Glossy bakes at scale") gives the figures.
+// N = 256: 7.8 KB + 8·hits); with bounce_precision F16 the first term is 2·C·K² (4.1 KB + 8·hits)
+// and the disk 4·(2·C·K² + K²). docs/GLOSSY.md ("Glossy bakes at scale") gives the figures.
 // Determinism: vertices in blocks, each vertex from its own samples and the previous bounce's
 // matrices in a fixed order: bit-identical for any thread count.
 #pragma once

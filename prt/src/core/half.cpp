@@ -73,7 +73,10 @@ std::size_t find_half_overflow(const float* in, std::size_t n) noexcept {
 }
 
 bool cpu_has_f16c() noexcept {
-  return detail::cpu_supports_f16c();
+  // Asked once: CPUID traps to the hypervisor in a virtual machine (microseconds a call), and the
+  // bulk conversions ask on every call (the glossy bake converts one matrix a hit).
+  static const bool has = detail::cpu_supports_f16c();
+  return has;
 }
 
 #if PRT_HAVE_X86_DISPATCH
