@@ -63,6 +63,7 @@ struct BakeArguments {
   int threads = 0;
   uint64_t memory_limit = 0;  // --memory-limit (option_rules.h); 0: not given
   std::string precision = "f32";
+  std::string bounce_precision = "f32";  // --bounce-precision: --glossy interreflection only
   bool quiet = false;
   HaarBakeArguments haar;          // --basis haar and its options (haar_cli.h)
   bool automatic = false;          // --auto (bake/adaptive/adaptive_baker.h)
@@ -274,6 +275,7 @@ GlossyBakeRequest glossy_request(const BakeArguments& args, const CLI::App& cmd)
   r.threads = args.threads;
   r.memory_limit = memory_limit_or_default(args.memory_limit);
   r.precision = args.precision;
+  r.bounce_precision = args.bounce_precision;
   r.quiet = args.quiet;
   return r;
 }
@@ -296,6 +298,8 @@ void check_usage(BakeArguments& args, const CLI::App& cmd) {
           "transfer, at merge time (docs/FARM.md)");
     args.shard_spec = resolve_shard(args.shard, process_environment());
   }
+  if (!args.glossy && cmd.count("--bounce-precision") > 0)
+    throw UsageError("--bounce-precision applies to --glossy only");
   if (args.glossy) {
     check_glossy_applicable(cmd);
     check_glossy_request(glossy_request(args, cmd));
@@ -504,6 +508,10 @@ Command register_bake(CLI::App& app) {
   cmd->add_option("--threads", args->threads, "Worker threads (0 = all)")->capture_default_str();
   add_memory_limit_option(*cmd, &args->memory_limit);
   cmd->add_option("--precision", args->precision, "Coefficient storage: f32 | f16")
+      ->capture_default_str();
+  cmd->add_option("--bounce-precision", args->bounce_precision,
+                  "--glossy interreflected: the bounce the gather reads held in f32 | f16 (half "
+                  "the memory; docs/GLOSSY.md)")
       ->capture_default_str();
   cmd->add_flag("--quiet", args->quiet, "No progress, summary or notes (warnings still print)");
   add_haar_bake_options(cmd, &args->haar);

@@ -48,6 +48,10 @@ void check_glossy_request(const GlossyBakeRequest& r) {
   if (r.bounces_given && r.bounces < -1)
     throw UsageError("--bounces " + std::to_string(r.bounces) +
                      ": must be >= 0, or -1 (until converged)");
+  if (r.bounce_precision != "f32" && r.bounce_precision != "f16")
+    throw UsageError("--bounce-precision " + r.bounce_precision + ": expected f32 or f16");
+  if (r.bounce_precision == "f16" && glossy_bounces(r) == 0)
+    throw UsageError("--bounce-precision applies to glossy interreflection only");
   if (glossy_bounces(r) >= 0 && r.tolerance_given)
     throw UsageError("--tolerance applies to a solve to convergence (--bounces -1) only");
 }
@@ -70,6 +74,7 @@ bake::GlossyBakeOptions glossy_bake_options(const GlossyBakeRequest& r) {
   o.threads = r.threads;
   o.memory_limit = r.memory_limit;
   o.precision = r.precision == "f16" ? prt::Precision::F16 : prt::Precision::F32;
+  o.bounce_precision = r.bounce_precision == "f16" ? prt::Precision::F16 : prt::Precision::F32;
   return o;
 }
 

@@ -34,6 +34,7 @@ struct GlossyBakeRequest {
   int threads = 0;
   uint64_t memory_limit = 0;  // GlossyBakeOptions::memory_limit
   std::string precision = "f32";
+  std::string bounce_precision = "f32";  // GlossyBakeOptions::bounce_precision
   bool quiet = false;
 };
 

@@ -85,7 +85,9 @@ constexpr auto kGlossyTable = std::make_tuple(
     carried("projection", &GlossyBakeOptions::projection),
     carried("precision", &GlossyBakeOptions::precision),
     carried("bounce_cpca_clusters", &GlossyBakeOptions::bounce_cpca_clusters),
-    carried("bounce_cpca_vectors", &GlossyBakeOptions::bounce_cpca_vectors));
+    carried("bounce_cpca_vectors", &GlossyBakeOptions::bounce_cpca_vectors),
+    carried("exact_hits", &GlossyBakeOptions::exact_hits),
+    carried("bounce_precision", &GlossyBakeOptions::bounce_precision));
 static_assert(std::tuple_size_v<decltype(kGlossyTable)> ==
                   detail::aggregate_member_count<GlossyBakeOptions>(),
               "GlossyBakeOptions changed: list the new member in kGlossyTable (carried or not)");

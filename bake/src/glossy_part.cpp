@@ -79,10 +79,17 @@ detail::GlossySampled gather_parts(const scene::Scene& scene, const GlossyBakeOp
     if (hits != p->hits.size())
       throw BakeError(name + ": glossy part " + std::to_string(p->shard.index) +
                       ": its hit counts do not add up to its hits");
-    for (const GlossyHitRecord& h : p->hits)
-      if (h.triangle >= scene.triangles.size() || h.sample >= N)
-        throw BakeError(name + ": glossy part " + std::to_string(p->shard.index) +
-                        ": a hit names no triangle or sample");
+    // A row's hits name distinct samples in increasing order: the merge keeps only which samples
+    // hit (a bit each) and implies each hit's sample by its rank, as the single bake does.
+    uint64_t next = 0;
+    for (uint64_t r = 0; r < p->hit_counts.size(); ++r)
+      for (uint32_t k = 0; k < p->hit_counts[r]; ++k, ++next) {
+        const GlossyHitRecord& h = p->hits[next];
+        if (h.triangle >= scene.triangles.size() || h.sample >= N ||
+            (k > 0 && h.sample <= p->hits[next - 1].sample))
+          throw BakeError(name + ": glossy part " + std::to_string(p->shard.index) +
+                          ": a hit names no triangle or sample, or repeats one");
+      }
     all.rays += p->rays;
     all.back_face_hits += p->back_face_hits;
   }

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <functional>
 #include <limits>
 #include <memory>
@@ -19,11 +20,14 @@
 #include <tbb/task_arena.h>
 #include <nlohmann/json.hpp>
 
+#include "bake/compact_gather.h"
 #include "bake/cpca/compressor.h"
 #include "bake/progress.h"
 #include "bake/sampling.h"
+#include "float_scratch_file.h"
 #include "glossy_bake_stages.h"
 #include "hit_side.h"
+#include "prt/core/half.h"
 #include "prt/core/memory_budget.h"
 #include "prt/formats/geometry_check.h"
 #include "prt/formats/glossy_transfer_writer.h"
@@ -54,13 +58,34 @@ struct Frame {
   }
 };
 
-// A front-face hit of one of a vertex's samples (bake/glossy_part.h: also a part's record).
-using GlossyHit = GlossyHitRecord;
-
+// The front-face hits of a block of vertices, in vertex order and, per vertex, in sample order:
+// 8 bytes a hit (bake/compact_gather.h's CompactHit: the scene's triangle and the barycentrics
+// quantised to 16 bits) and a bit per sample and vertex saying which samples are those hits, so
+// that the sample (and with it the direction) of each hit is implied by its rank.
 struct BlockHits {
-  std::vector<GlossyHit> hits;
-  std::vector<uint32_t> counts;  // per vertex of the block
+  std::vector<CompactHit> hits;
+  std::vector<uint64_t> mask;  // mask_words per vertex of the block; bit s: sample s is a hit
+  std::vector<float> exact;    // GlossyBakeOptions::exact_hits: u, v of each hit in float
+  uint64_t bytes() const {
+    return hits.size() * sizeof(CompactHit) + mask.size() * 8 + exact.size() * 4;
+  }
 };
+
+// A hit as the bounces read it: the triangle and its three barycentric weights.
+struct HitPoint {
+  uint32_t triangle;
+  float beta[3];
+};
+
+HitPoint decode_hit(const BlockHits& b, std::size_t i) {
+  const CompactHit& h = b.hits[i];
+  if (!b.exact.empty()) {
+    const float u = b.exact[2 * i], v = b.exact[2 * i + 1];
+    return {h.triangle, {1.f - u - v, u, v}};
+  }
+  constexpr float kStep = 1.f / 65535.f;
+  return {h.triangle, {float(65535 - h.u - h.v) * kStep, float(h.u) * kStep, float(h.v) * kStep}};
+}
 
 bool grey(const brdf::Rgb& c) {
   return c.r == c.g && c.g == c.b;
@@ -110,11 +135,10 @@ struct GlossyJob {
   std::vector<float>* matrices = nullptr;
   std::function<void(std::size_t first, std::size_t count, const float* m)> sink;
   prt::MemoryBudget* budget = nullptr;
-  std::vector<float> S;  // V · K², grey direct transfer (bounces only)
-  std::vector<BlockHits> block_hits;
-  std::vector<uint64_t> hit_offset;  // V + 1
-  std::vector<GlossyHit> hits;
-  std::vector<float> zonal_over_pi;  // z_l / π
+  std::vector<float> S;               // V · K², grey direct transfer (bounces only)
+  std::vector<BlockHits> block_hits;  // per block of kBlock vertices (bounces only)
+  std::size_t mask_words = 0;         // ⌈N / 64⌉
+  std::vector<float> zonal_over_pi;   // z_l / π
   GlossyBakeStatistics& st;
 
   std::size_t KK() const { return std::size_t(K) * K; }
@@ -176,6 +200,7 @@ struct VertexSampler {
   glm::vec3 local[kPacketSize], dirs[kPacketSize];
   bool occluded[kPacketSize];
   scene::RayCaster::Hit hit[kPacketSize];
+  bool exact;  // also keep each hit's barycentrics in float (exact_hits; a farm part's records)
 
   VertexSampler(GlossyJob& j, const scene::RayCaster& c)
       : job(j),
@@ -183,15 +208,15 @@ struct VertexSampler {
         yl(kPacketSize * std::size_t(padded(j.K)), 0.f),
         yg(kPacketSize * std::size_t(padded(j.K)), 0.f),
         packet(std::size_t(j.K) * padded(j.K)),
-        acc(j.KK()) {}
+        acc(j.KK()),
+        exact(j.o.exact_hits) {}
 
   // S_v (C · K², the channels equal) into `s`.
-  uint64_t sample(std::size_t v, float* s, BlockHits& out, uint64_t& back_hits) {
+  uint64_t sample(std::size_t v, float* s, BlockHits& out, uint64_t* mask, uint64_t& back_hits) {
     const int K = job.K, Kp = padded(K);
     const uint64_t seed = hash_seed(job.o.seed, v);
     const glm::vec3 origin = caster.vertex_origin(static_cast<uint32_t>(v));
     std::fill(acc.begin(), acc.end(), 0.0);
-    uint32_t kept = 0;
     for (int first = 0; first < job.N; first += kPacketSize) {
       for (int i = 0; i < kPacketSize; ++i)
         sample_direction(job, v, seed, static_cast<uint32_t>(first + i), local[i], dirs[i]);
@@ -205,9 +230,13 @@ struct VertexSampler {
           ++visible;
         } else if (job.interreflect && hit[i].hit) {
           if (detail::ray_hits_front_side(job.scene, hit[i].triangle, dirs[i])) {
-            out.hits.push_back(
-                {static_cast<uint32_t>(first + i), hit[i].triangle, hit[i].u, hit[i].v});
-            ++kept;
+            out.hits.push_back(quantise_hit(hit[i].triangle, hit[i].u, hit[i].v));
+            if (exact) {
+              out.exact.push_back(hit[i].u);
+              out.exact.push_back(hit[i].v);
+            }
+            const unsigned sample = unsigned(first + i);
+            mask[sample / 64] |= uint64_t(1) << (sample % 64);
           } else {
             ++back_hits;
           }
@@ -221,7 +250,6 @@ struct VertexSampler {
     const std::size_t KK = job.KK();
     for (std::size_t e = 0; e < KK; ++e) s[e] = static_cast<float>(acc[e] * w);
     for (int c = 1; c < job.C; ++c) std::copy_n(s, KK, s + c * KK);
-    out.counts.push_back(kept);
     return static_cast<uint64_t>(job.N);
   }
 };
@@ -237,44 +265,49 @@ void run_sampling_pass(GlossyJob& job) {
     VertexSampler sampler(job, caster);
     const std::size_t first = blk * kBlock, end = std::min(job.V, (blk + 1) * kBlock);
     std::vector<float> block(job.matrices ? 0 : (end - first) * per_vertex);
+    BlockHits& hits = job.block_hits[blk];
+    if (job.interreflect) hits.mask.assign((end - first) * job.mask_words, 0);
     for (std::size_t v = first; v < end; ++v) {
       float* s = job.matrices ? &(*job.matrices)[v * per_vertex] : &block[(v - first) * per_vertex];
-      rays[blk] += sampler.sample(v, s, job.block_hits[blk], back[blk]);
+      uint64_t* mask = job.interreflect ? &hits.mask[(v - first) * job.mask_words] : nullptr;
+      rays[blk] += sampler.sample(v, s, hits, mask, back[blk]);
+    }
+    if (job.interreflect) {  // kept for the bounces: exactly their size, charged
+      hits.hits.shrink_to_fit();
+      hits.exact.shrink_to_fit();
+      if (job.budget) job.budget->charge(hits.bytes(), "the glossy bounces' ray hits");
     }
     if (!job.matrices) job.sink(first, end - first, block.data());
     if (job.progress) job.progress->advance(end - first, rays[blk]);
   });
   if (job.progress) job.progress->finish();
-  job.hit_offset.assign(1, 0);
-  uint64_t hit_count = 0;
-  for (const BlockHits& b : job.block_hits) hit_count += b.hits.size();
-  if (job.budget && job.interreflect)
-    job.budget->charge(hit_count * sizeof(GlossyHit) + 8 * (job.V + 1),
-                       "the glossy bounces' ray hits");
-  job.hits.reserve(hit_count);
   for (std::size_t blk = 0; blk < job.blocks(); ++blk) {
     job.st.rays += rays[blk];
     job.st.back_face_hits += back[blk];
-    for (uint32_t c : job.block_hits[blk].counts)
-      job.hit_offset.push_back(job.hit_offset.back() + c);
-    job.hits.insert(job.hits.end(), job.block_hits[blk].hits.begin(),
-                    job.block_hits[blk].hits.end());
-    job.block_hits[blk] = BlockHits{};
+    job.st.hits += job.block_hits[blk].hits.size();
+    job.st.gather_bytes += job.block_hits[blk].bytes();
   }
-  job.st.hits = job.hits.size();
   job.st.seconds_rays = seconds_since(t0);
 }
 
 // One bounce at vertex p: out (C · K²) = S_p + (2π/N) Σ_hits y_local ⊗ r, r the radiance row
 // the hit point sends back (M from `prev`).
+// The bounce the gather reads: V · C · K² floats, or (GlossyBakeOptions::bounce_precision F16)
+// as many binary16 values.
+struct BounceRead {
+  const float* f32 = nullptr;
+  const uint16_t* f16 = nullptr;
+};
+
 struct BounceGatherer {
   const GlossyJob& job;
-  const std::vector<float>& prev;  // V · C · K²
+  const BounceRead prev;
   const std::vector<float>& exit;  // V · C · K: Σ_l z_l/π · row (l, 0) of prev (Lambert exit)
   std::vector<float> yl, r, rc, block;
   std::vector<double> acc;
+  mutable std::vector<float> expanded;  // one matrix of a binary16 bounce, in float
 
-  BounceGatherer(const GlossyJob& j, const std::vector<float>& p, const std::vector<float>& e)
+  BounceGatherer(const GlossyJob& j, BounceRead p, const std::vector<float>& e)
       : job(j),
         prev(p),
         exit(e),
@@ -282,32 +315,45 @@ struct BounceGatherer {
         r(kPacketSize * std::size_t(j.C) * j.K),
         rc(kPacketSize * std::size_t(padded(j.K)), 0.f),
         block(std::size_t(j.C) * j.K * padded(j.K)),
-        acc(std::size_t(j.C) * j.KK()) {}
+        acc(std::size_t(j.C) * j.KK()),
+        expanded(p.f16 ? j.KK() : 0) {}
 
   const float* matrix(std::size_t q, int c) const {
-    return &prev[(q * job.C + std::size_t(c)) * job.KK()];
+    const std::size_t at = (q * job.C + std::size_t(c)) * job.KK();
+    if (prev.f32) return prev.f32 + at;
+    prt::convert_halves_to_floats(prev.f16 + at, job.KK(), expanded.data());
+    return expanded.data();
   }
 
   // r (C × K) for one hit seen along world direction d from the receiving vertex.
-  void radiance_row(const GlossyHit& h, const glm::vec3& d, float* row) const;
+  void radiance_row(const HitPoint& h, const glm::vec3& d, float* row) const;
 
-  void gather(std::size_t p, float* out) {
+  // out (C · K²) = direct (K², the grey direct transfer of p) + the gather over p's hits, which are
+  // the hits of `hits` from index *next on, their samples the set bits of `mask`; advances *next.
+  void gather(std::size_t p, const float* direct, const BlockHits& hits, const uint64_t* mask,
+              std::size_t* next, float* out) {
     const int K = job.K, C = job.C, Kp = padded(K);
     const std::size_t KK = job.KK();
     for (int c = 0; c < C; ++c)
-      for (std::size_t e = 0; e < KK; ++e) acc[c * KK + e] = job.S[p * KK + e];
+      for (std::size_t e = 0; e < KK; ++e) acc[c * KK + e] = direct[e];
     const uint64_t seed = hash_seed(job.o.seed, p);
     const double w = 2.0 * sh::kPi / job.N;
-    const uint64_t begin = job.hit_offset[p], end = job.hit_offset[p + 1];
-    for (uint64_t first = begin; first < end; first += kPacketSize) {
-      const int count = static_cast<int>(std::min<uint64_t>(kPacketSize, end - first));
-      for (int s = 0; s < count; ++s) {
-        const GlossyHit& h = job.hits[first + s];
+    std::size_t word = 0;
+    uint64_t bits = job.mask_words > 0 ? mask[0] : 0;
+    for (;;) {
+      int count = 0;
+      while (count < kPacketSize) {
+        while (bits == 0 && ++word < job.mask_words) bits = mask[word];
+        if (bits == 0) break;
+        const uint32_t sample = uint32_t(word * 64 + unsigned(__builtin_ctzll(bits)));
+        bits &= bits - 1;
         glm::vec3 local, world;
-        sample_direction(job, p, seed, h.sample, local, world);
-        sh::evaluate(job.order, local.x, local.y, local.z, &yl[s * Kp]);
-        radiance_row(h, world, &r[std::size_t(s) * C * K]);
+        sample_direction(job, p, seed, sample, local, world);
+        sh::evaluate(job.order, local.x, local.y, local.z, &yl[count * Kp]);
+        radiance_row(decode_hit(hits, (*next)++), world, &r[std::size_t(count) * C * K]);
+        ++count;
       }
+      if (count == 0) break;
       for (int c = 0; c < C; ++c) {
         // Channel c of the rows: stride C·K between hits; gather them contiguous first.
         for (int s = 0; s < count; ++s)
@@ -315,20 +361,21 @@ struct BounceGatherer {
         rank_update(K, count, yl.data(), rc.data(), &block[std::size_t(c) * K * Kp]);
       }
       for (int c = 0; c < C; ++c) add_block(K, &block[std::size_t(c) * K * Kp], w, &acc[c * KK]);
+      if (count < kPacketSize) break;
     }
     for (std::size_t e = 0; e < acc.size(); ++e) out[e] = static_cast<float>(acc[e]);
   }
 };
 
-void BounceGatherer::radiance_row(const GlossyHit& h, const glm::vec3& d, float* row) const {
+void BounceGatherer::radiance_row(const HitPoint& h, const glm::vec3& d, float* row) const {
   const int K = job.K, C = job.C;
   std::fill(row, row + std::size_t(C) * K, 0.f);
   const glm::uvec3 tri = job.scene.triangles[h.triangle];
-  const float beta[3] = {1.f - h.u - h.v, h.u, h.v};
+  const float* beta = h.beta;
   const uint32_t material = job.material_of_vertex[tri.x];
   if (job.materials[material].lambertian()) {
     // ρ(hit) · Σ_a β_a · (Σ_l z_l/π · row (l, 0) of M_qa): the interpolated Lambert exit.
-    const glm::vec3 rho = job.scene.albedo_at(h.triangle, h.u, h.v);
+    const glm::vec3 rho = job.scene.albedo_at(h.triangle, beta[1], beta[2]);
     for (int a = 0; a < 3; ++a)
       for (int c = 0; c < C; ++c) {
         const float k = beta[a] * rho[c];
@@ -358,15 +405,17 @@ void BounceGatherer::radiance_row(const GlossyHit& h, const glm::vec3& d, float*
 
 // exit[(q·C + c)·K + j] = Σ_l z_l/π · M_q,c[(l, 0), j]: the Lambert exit transfer of every vertex
 // (before its albedo), read contiguously by the gather instead of n scattered rows of M_q.
-void lambert_exit(const GlossyJob& job, const std::vector<float>& M, std::vector<float>& exit) {
+void lambert_exit(const GlossyJob& job, BounceRead M, std::vector<float>& exit) {
   const int K = job.K;
   tbb::parallel_for(std::size_t(0), job.V * job.C, [&](std::size_t qc) {
     float* e = &exit[qc * K];
     std::fill(e, e + K, 0.f);
-    const float* m = &M[qc * job.KK()];
+    float row[kMaxGlossyBakeOrder * kMaxGlossyBakeOrder];
     for (int l = 0; l < job.order; ++l) {
       const float z = job.zonal_over_pi[l];
-      const float* mrow = m + std::size_t(sh::index(l, 0)) * K;
+      const std::size_t at = qc * job.KK() + std::size_t(sh::index(l, 0)) * K;
+      const float* mrow = M.f32 ? M.f32 + at : row;
+      if (!M.f32) prt::convert_halves_to_floats(M.f16 + at, std::size_t(K), row);
       for (int j = 0; j < K; ++j) e[j] += z * mrow[j];
     }
   });
@@ -412,16 +461,142 @@ void compressed_transfer(GlossyJob& job, const std::vector<float>& M, std::vecto
   });
 }
 
-// Jacobi bounces: data.matrices holds M⁽ᵏ⁾; returns when done. Converged means the last bounce
+// Where the bounces keep the direct transfer S and the bounce they write: in memory (S and a
+// second whole bounce) or, streamed, in scratch files, so that memory holds only the bounce that
+// is read at random (M, or its binary16 copy H) and the blocks in flight. Same arithmetic either
+// way. With a binary16 bounce the float bounces live on two files used in turn (the previous one,
+// for the change and the output, and the one being written); the pass writes M⁽⁰⁾ there too.
+struct BounceStore {
+  bool streamed = false;
+  bool half = false;
+  std::vector<float> next;             // in memory: V · C · K²
+  std::vector<uint16_t> H;             // half: the bounce read, V · C · K² binary16
+  detail::FloatScratchFile s_file;     // streamed: V · K²
+  detail::FloatScratchFile bounce[2];  // streamed: V · C · K² each
+  int written = 0;                     // the file the next bounce writes
+  float s_max = 0.f;                   // max |S|
+  std::mutex lock;                     // s_max, from the pass's blocks
+  BounceRead read(const std::vector<float>& M) const {
+    return half ? BounceRead{nullptr, H.data()} : BounceRead{M.data(), nullptr};
+  }
+};
+
+void check_scratch(const GlossyJob& job, bool ok, const std::string& error) {
+  if (!ok) throw BakeError(scene::scene_label(job.scene) + ": " + error);
+}
+
+void open_scratch(GlossyJob& job, BounceStore& store, const std::string& directory) {
+  const std::size_t KK = job.KK(), per_vertex = std::size_t(job.C) * KK;
+  std::string error;
+  check_scratch(job, store.s_file.open(directory, job.V * KK, "the direct transfer", &error),
+                error);
+  for (int f = 0; f < (store.half ? 2 : 1); ++f)
+    check_scratch(
+        job, store.bounce[f].open(directory, job.V * per_vertex, "a glossy bounce", &error), error);
+  if (store.half) store.written = 1;  // bounce[0] holds M⁽⁰⁾
+}
+
+// A block of the pass's matrices M⁽⁰⁾ (binary16 bounce): S to its file, M⁽⁰⁾ to bounce[0] and H.
+void keep_pass_block(GlossyJob& job, BounceStore& store, std::size_t first, std::size_t count,
+                     const float* m) {
+  const std::size_t KK = job.KK(), per_vertex = std::size_t(job.C) * KK;
+  std::vector<float> s(count * KK);
+  float s_max = 0.f;
+  for (std::size_t i = 0; i < count; ++i) std::copy_n(m + i * per_vertex, KK, &s[i * KK]);
+  for (float x : s) s_max = std::max(s_max, std::fabs(x));
+  std::string error;
+  check_scratch(job, store.s_file.write(first * KK, count * KK, s.data(), &error), error);
+  check_scratch(job, store.bounce[0].write(first * per_vertex, count * per_vertex, m, &error),
+                error);
+  prt::convert_floats_to_halves(m, count * per_vertex, &store.H[first * per_vertex]);
+  std::lock_guard<std::mutex> guard(store.lock);
+  store.s_max = std::max(store.s_max, s_max);
+}
+
+// S from the pass's matrices (channel 0 of M⁽⁰⁾, float bounce) into job.S or its file, max |S|.
+void keep_direct(GlossyJob& job, const std::vector<float>& M, BounceStore& store) {
+  const std::size_t KK = job.KK(), per_vertex = std::size_t(job.C) * KK;
+  std::string error;
+  if (!store.streamed) job.S.resize(job.V * KK);
+  std::vector<float> chunk(store.streamed ? kBlock * KK : 0);
+  for (std::size_t first = 0; first < job.V; first += kBlock) {
+    const std::size_t n = std::min(kBlock, job.V - first);
+    float* s = store.streamed ? chunk.data() : &job.S[first * KK];
+    for (std::size_t i = 0; i < n; ++i) std::copy_n(&M[(first + i) * per_vertex], KK, &s[i * KK]);
+    for (std::size_t e = 0; e < n * KK; ++e) store.s_max = std::max(store.s_max, std::fabs(s[e]));
+    if (store.streamed)
+      check_scratch(job, store.s_file.write(first * KK, n * KK, s, &error), error);
+  }
+  if (!store.streamed) store.next.resize(M.size());
+}
+
+// One bounce over the vertices of block blk: next = S + G(read); returns max |next − previous|.
+float bounce_block(const GlossyJob& job, BounceRead read, const std::vector<float>& exit,
+                   const std::vector<float>& M, BounceStore& store, std::size_t blk) {
+  const std::size_t KK = job.KK(), per_vertex = std::size_t(job.C) * KK;
+  const std::size_t first = blk * kBlock, n = std::min(job.V, first + kBlock) - first;
+  std::vector<float> s_buffer, out_buffer, prev_buffer;
+  const float* s = store.streamed ? nullptr : &job.S[first * KK];
+  float* out = store.streamed ? nullptr : &store.next[first * per_vertex];
+  const float* prev = store.half ? nullptr : &M[first * per_vertex];
+  std::string error;
+  if (store.streamed) {
+    s_buffer.resize(n * KK);
+    out_buffer.resize(n * per_vertex);
+    check_scratch(job, store.s_file.read(first * KK, n * KK, s_buffer.data(), &error), error);
+    s = s_buffer.data();
+    out = out_buffer.data();
+  }
+  if (store.half) {  // the previous bounce in float, for the change
+    prev_buffer.resize(n * per_vertex);
+    check_scratch(job,
+                  store.bounce[1 - store.written].read(first * per_vertex, n * per_vertex,
+                                                       prev_buffer.data(), &error),
+                  error);
+    prev = prev_buffer.data();
+  }
+  BounceGatherer g(job, read, exit);
+  const BlockHits& hits = job.block_hits[blk];
+  std::size_t at = 0;
+  float change = 0.f;
+  for (std::size_t i = 0; i < n; ++i) {
+    float* o = out + i * per_vertex;
+    g.gather(first + i, s + i * KK, hits, &hits.mask[i * job.mask_words], &at, o);
+    const float* m = prev + i * per_vertex;
+    for (std::size_t e = 0; e < per_vertex; ++e) {
+      const float d = std::fabs(o[e] - m[e]);
+      // NaN compares false: keep it, so that a non-finite bounce is seen.
+      if (!(d <= change)) change = d;
+    }
+  }
+  if (store.streamed)
+    check_scratch(
+        job, store.bounce[store.written].write(first * per_vertex, n * per_vertex, out, &error),
+        error);
+  return change;
+}
+
+// After a streamed bounce: the bounce written becomes the one read (M, or H in binary16).
+void load_written_bounce(const GlossyJob& job, std::vector<float>& M, BounceStore& store) {
+  std::string error;
+  const std::size_t total = job.V * job.C * job.KK(), chunk = std::size_t(1) << 22;
+  std::vector<float> buffer(store.half ? std::min(chunk, total) : 0);
+  for (std::size_t at = 0; at < total; at += chunk) {
+    const std::size_t n = std::min(chunk, total - at);
+    float* to = store.half ? buffer.data() : &M[at];
+    check_scratch(job, store.bounce[store.written].read(at, n, to, &error), error);
+    if (store.half) prt::convert_floats_to_halves(to, n, &store.H[at]);
+  }
+  if (store.half) store.written = 1 - store.written;
+}
+
+// Jacobi bounces: M (or H) holds M⁽ᵏ⁾; returns when done. Converged means the last bounce
 // changed no entry by more than bounce_tolerance × max|S|, whether the bounces were counted or
 // solved for.
-void run_bounces(GlossyJob& job, std::vector<float>& M) {
+void run_bounces(GlossyJob& job, std::vector<float>& M, BounceStore& store) {
   const Clock::time_point t0 = Clock::now();
-  float s_max = 0.f;
-  for (float x : job.S) s_max = std::max(s_max, std::fabs(x));
+  const float s_max = store.s_max;
   const int max_bounces = job.o.bounces < 0 ? kMaxGlossyBounces : job.o.bounces;
-  std::vector<float> next(M.size());
-  const std::size_t per_vertex = std::size_t(job.C) * job.KK();
   if (job.progress) job.progress->start("glossy bounces", job.o.bounces < 0 ? 0 : max_bounces);
   job.st.converged = false;
   std::vector<float> exit(job.V * job.C * std::size_t(job.K));
@@ -430,22 +605,17 @@ void run_bounces(GlossyJob& job, std::vector<float>& M) {
     job.budget->charge(M.size() * 4, "the compressed bounce's reconstruction");
   for (int k = 0; k < max_bounces; ++k) {
     if (job.o.bounce_cpca_clusters > 0) compressed_transfer(job, M, compressed);
-    const std::vector<float>& read = job.o.bounce_cpca_clusters > 0 ? compressed : M;
+    const BounceRead read =
+        job.o.bounce_cpca_clusters > 0 ? BounceRead{compressed.data(), nullptr} : store.read(M);
     lambert_exit(job, read, exit);
     std::vector<float> block_change(job.blocks(), 0.f);
     tbb::parallel_for(std::size_t(0), job.blocks(), [&](std::size_t blk) {
-      BounceGatherer g(job, read, exit);
-      const std::size_t end = std::min(job.V, (blk + 1) * kBlock);
-      for (std::size_t p = blk * kBlock; p < end; ++p) {
-        g.gather(p, &next[p * per_vertex]);
-        for (std::size_t e = p * per_vertex; e < (p + 1) * per_vertex; ++e) {
-          const float d = std::fabs(next[e] - M[e]);
-          // NaN compares false: keep it, so that a non-finite bounce is seen.
-          if (!(d <= block_change[blk])) block_change[blk] = d;
-        }
-      }
+      block_change[blk] = bounce_block(job, read, exit, M, store, blk);
     });
-    M.swap(next);
+    if (store.streamed)
+      load_written_bounce(job, M, store);
+    else
+      M.swap(store.next);
     float change = 0.f;
     for (float c : block_change)
       if (!(c <= change)) change = c;
@@ -581,6 +751,12 @@ void put_matrices(const GlossyOutput& out, const GlossyJob& job, std::size_t fir
   if (!s.ok()) throw BakeError(s.message());
 }
 
+// The scratch files of streamed bounces go beside the output.
+std::string scratch_directory(const std::string& output_path) {
+  const std::string parent = std::filesystem::path(output_path).parent_path().string();
+  return parent.empty() ? std::string(".") : parent;
+}
+
 unsigned worker_threads(const GlossyBakeOptions& o) {
   return o.threads > 0
              ? unsigned(o.threads)
@@ -589,22 +765,34 @@ unsigned worker_threads(const GlossyBakeOptions& o) {
 
 // Charges what the bake will hold before it holds it: frames and the file's geometry sections;
 // shadowed, the matrices of the blocks in flight (streamed) or of every vertex (in memory);
-// interreflected, M, the next bounce, S and the Lambert exit rows (the hits when they are known).
+// interreflected, M and the Lambert exit rows, and the next bounce and S (in memory) or the
+// blocks in flight of both (streamed: the rest is in scratch files). The hits are charged block
+// by block as the ray pass keeps them.
 void charge_bake(prt::MemoryBudget& budget, const GlossyJob& job, const GlossyBakeOptions& o,
                  bool streamed) {
   const uint64_t V = job.V, KK = job.KK(), C = job.C;
   budget.charge(V * (sizeof(Frame) + 16 + 44 + 4), "the vertex frames and geometry");
   const uint64_t all = V * C * KK * 4;
+  const uint64_t in_flight = uint64_t(worker_threads(o)) * kBlock * 4;
   if (!job.interreflect) {
     if (streamed)
-      budget.charge(uint64_t(worker_threads(o)) * kBlock * KK * 4 * 2,
-                    "the glossy matrices of the vertex blocks in flight");
+      budget.charge(in_flight * KK * 2, "the glossy matrices of the vertex blocks in flight");
     else
       budget.charge(all, "the glossy transfer matrices");
     return;
   }
-  budget.charge(2 * all, "the glossy matrices of two bounces");
-  budget.charge(V * KK * 4 + V * C * job.K * 4, "the direct transfer and Lambert exit rows");
+  if (streamed && o.bounce_precision == prt::Precision::F16) {
+    budget.charge(all / 2, "the binary16 glossy matrices of the bounce read");
+    budget.charge(in_flight * (2 * C + 1) * KK,
+                  "the glossy matrices of the vertex blocks in flight");
+  } else if (streamed) {
+    budget.charge(all, "the glossy matrices of the bounce read");
+    budget.charge(in_flight * (C + 1) * KK, "the glossy matrices of the vertex blocks in flight");
+  } else {
+    budget.charge(2 * all, "the glossy matrices of two bounces");
+    budget.charge(V * KK * 4, "the direct transfer");
+  }
+  budget.charge(V * C * job.K * 4, "the Lambert exit rows");
 }
 
 GlossyJob make_job(const scene::Scene& scene, const GlossyBakeOptions& o, ProgressSink* progress,
@@ -627,8 +815,7 @@ GlossyJob make_job(const scene::Scene& scene, const GlossyBakeOptions& o, Progre
                    nullptr,
                    {},
                    {},
-                   {},
-                   {},
+                   (std::size_t(round_up_to_packet(o.samples)) + 63) / 64,
                    {},
                    st};
 }
@@ -647,25 +834,61 @@ void set_inputs(GlossyJob& job, const GlossyInputs& in) {
         static_cast<float>(sh::clamped_cosine_zonal_coefficient(l) / sh::kPi));
 }
 
-// The sampling pass's results of every vertex (`pre`, taken) where run_sampling_pass puts its own.
+// The sampling pass's results of every vertex (`pre`, taken) where run_sampling_pass puts its own:
+// the hits, block by block, quantised as the pass quantises them (quantise_hit of the same float
+// barycentrics, the same sample bits), so that the bounces read the same BlockHits.
 void use_sampled(GlossyJob& job, detail::GlossySampled& pre) {
   const std::size_t KK = job.KK(), per_vertex = std::size_t(job.C) * KK;
   if (job.matrices) {
     for (std::size_t v = 0; v < job.V; ++v)
       for (int c = 0; c < job.C; ++c)
         std::copy_n(&pre.direct[v * KK], KK, &(*job.matrices)[v * per_vertex + c * KK]);
-  } else {  // shadowed: one channel
+  } else if (job.C == 1) {  // shadowed (one channel), or a binary16 bounce of one channel
     for (std::size_t first = 0; first < job.V; first += kBlock)
       job.sink(first, std::min(kBlock, job.V - first), &pre.direct[first * KK]);
+  } else {  // a binary16 bounce: blocks of C · K² a vertex, as the pass gives its sink
+    std::vector<float> block(kBlock * per_vertex);
+    for (std::size_t first = 0; first < job.V; first += kBlock) {
+      const std::size_t count = std::min(kBlock, job.V - first);
+      for (std::size_t i = 0; i < count; ++i)
+        for (int c = 0; c < job.C; ++c)
+          std::copy_n(&pre.direct[(first + i) * KK], KK, &block[i * per_vertex + c * KK]);
+      job.sink(first, count, block.data());
+    }
   }
-  if (job.budget && job.interreflect)
-    job.budget->charge(pre.hits.size() * sizeof(GlossyHit) + 8 * (job.V + 1),
-                       "the glossy bounces' ray hits");
-  job.hits = std::move(pre.hits);
-  job.hit_offset = std::move(pre.hit_offset);
   job.st.rays = pre.rays;
   job.st.back_face_hits = pre.back_face_hits;
-  job.st.hits = job.hits.size();
+  if (!job.interreflect) return;
+  // The parts' records are held until every block is made (charged for that time).
+  const uint64_t records = pre.hits.size() * sizeof(GlossyHitRecord) + 8 * (job.V + 1);
+  if (job.budget) job.budget->charge(records, "the glossy parts' ray hits");
+  job.block_hits.assign(job.blocks(), BlockHits{});
+  for (std::size_t blk = 0; blk < job.blocks(); ++blk) {
+    const std::size_t first = blk * kBlock, end = std::min(job.V, (blk + 1) * kBlock);
+    BlockHits& b = job.block_hits[blk];
+    b.mask.assign((end - first) * job.mask_words, 0);
+    const uint64_t begin = pre.hit_offset[first], stop = pre.hit_offset[end];
+    b.hits.reserve(stop - begin);
+    if (job.o.exact_hits) b.exact.reserve(2 * (stop - begin));
+    for (std::size_t v = first; v < end; ++v) {
+      uint64_t* mask = &b.mask[(v - first) * job.mask_words];
+      for (uint64_t i = pre.hit_offset[v]; i < pre.hit_offset[v + 1]; ++i) {
+        const GlossyHitRecord& h = pre.hits[i];
+        b.hits.push_back(quantise_hit(h.triangle, h.u, h.v));
+        if (job.o.exact_hits) {
+          b.exact.push_back(h.u);
+          b.exact.push_back(h.v);
+        }
+        mask[h.sample / 64] |= uint64_t(1) << (h.sample % 64);
+      }
+    }
+    if (job.budget) job.budget->charge(b.bytes(), "the glossy bounces' ray hits");
+    job.st.hits += b.hits.size();
+    job.st.gather_bytes += b.bytes();
+  }
+  std::vector<GlossyHitRecord>().swap(pre.hits);
+  std::vector<uint64_t>().swap(pre.hit_offset);
+  if (job.budget) job.budget->release(records);
 }
 
 // The whole bake; with `pre`, its sampling pass is replaced by those results (a farm merge).
@@ -687,7 +910,12 @@ void bake_glossy(const scene::Scene& scene, const GlossyBakeOptions& o, Progress
   if (!inputs) derived = glossy_inputs(scene);
   const GlossyInputs& in = inputs ? *inputs : derived;
   job.C = glossy_channels(scene, in.materials, job.interreflect);
-  charge_bake(budget, job, o, out.writer != nullptr || !out.path.empty());
+  const bool streamed = out.writer != nullptr || !out.path.empty();
+  if (job.interreflect && o.bounce_precision == prt::Precision::F16 &&
+      (!streamed || o.bounce_cpca_clusters > 0))
+    throw BakeError(scene::scene_label(scene) +
+                    ": a binary16 bounce needs a bake streamed to a file, without bounce CPCA");
+  charge_bake(budget, job, o, streamed);
   set_inputs(job, in);
   st.vertices = job.V;
   st.triangles = scene.triangles.size();
@@ -715,10 +943,21 @@ void bake_glossy(const scene::Scene& scene, const GlossyBakeOptions& o, Progress
     writer = std::move(made).value();
     out.writer = writer.get();
   }
-  std::vector<float> M;  // interreflected: every vertex's matrices
+  std::vector<float> M;  // interreflected, float bounce: every vertex's matrices
+  BounceStore store;
   if (job.interreflect) {
-    M.resize(job.V * job.C * job.KK());
-    job.matrices = &M;
+    store.streamed = out.writer != nullptr;
+    store.half = o.bounce_precision == prt::Precision::F16;
+    if (store.streamed) open_scratch(job, store, scratch_directory(out.path));
+    if (store.half) {
+      store.H.resize(job.V * job.C * job.KK());
+      job.sink = [&](std::size_t first, std::size_t count, const float* m) {
+        keep_pass_block(job, store, first, count, m);
+      };
+    } else {
+      M.resize(job.V * job.C * job.KK());
+      job.matrices = &M;
+    }
   } else {
     if (!out.writer) d.matrices.resize(job.V * job.C * job.KK());
     job.sink = [&](std::size_t first, std::size_t count, const float* m) {
@@ -730,14 +969,24 @@ void bake_glossy(const scene::Scene& scene, const GlossyBakeOptions& o, Progress
   else
     run_sampling_pass(job);
   if (job.interreflect) {
-    if (!job.hits.empty()) {
-      job.S.resize(job.V * job.KK());
-      for (std::size_t v = 0; v < job.V; ++v)
-        std::copy_n(&M[v * job.C * job.KK()], job.KK(), &job.S[v * job.KK()]);
-      run_bounces(job, M);
+    if (st.hits > 0) {
+      if (!store.half) keep_direct(job, M, store);
+      run_bounces(job, M, store);
     }
     if (!out.writer) {
       d.matrices.swap(M);
+    } else if (store.half) {  // the last float bounce, from its file, in blocks
+      const std::size_t per_vertex = std::size_t(job.C) * job.KK();
+      std::vector<float> block(16 * kBlock * per_vertex);
+      std::string error;
+      for (std::size_t first = 0; first < job.V; first += 16 * kBlock) {
+        const std::size_t count = std::min(job.V - first, 16 * kBlock);
+        check_scratch(job,
+                      store.bounce[1 - store.written].read(first * per_vertex, count * per_vertex,
+                                                           block.data(), &error),
+                      error);
+        put_matrices(out, job, first, count, block.data());
+      }
     } else {  // in blocks, so that binary16 conversion holds one block
       for (std::size_t first = 0; first < job.V; first += 16 * kBlock) {
         const std::size_t count = std::min(job.V - first, 16 * kBlock);
@@ -794,27 +1043,45 @@ GlossySampled sample_glossy_vertices(const scene::Scene& scene, const GlossyBake
   const scene::RayCaster caster(scene);
   GlossySampled out;
   out.direct.resize(R * KK);
-  std::vector<BlockHits> block_hits(blocks);
+  // Each block's hits as records (sample, triangle, float barycentrics), in vertex and sample
+  // order: what the merge quantises as the single bake's pass does (use_sampled).
+  std::vector<std::vector<GlossyHitRecord>> block_records(blocks);
+  std::vector<std::vector<uint32_t>> block_counts(blocks);
   std::vector<uint64_t> rays(blocks, 0), back(blocks, 0);
   if (progress) progress->start("glossy bake", R);
   tbb::parallel_for(std::size_t(0), blocks, [&](std::size_t blk) {
     VertexSampler sampler(job, caster);
+    sampler.exact = true;
     const std::size_t first = blk * kBlock, end = std::min(R, first + kBlock);
-    for (std::size_t r = first; r < end; ++r)
-      rays[blk] += sampler.sample(vertices[r], &out.direct[r * KK], block_hits[blk], back[blk]);
+    BlockHits hits;
+    std::vector<uint64_t> mask(job.interreflect ? job.mask_words : 0);
+    for (std::size_t r = first; r < end; ++r) {
+      std::fill(mask.begin(), mask.end(), 0);
+      const std::size_t before = hits.hits.size();
+      rays[blk] += sampler.sample(vertices[r], &out.direct[r * KK], hits, mask.data(), back[blk]);
+      if (!job.interreflect) continue;
+      std::size_t i = before;
+      for (std::size_t w = 0; w < job.mask_words; ++w)
+        for (uint64_t bits = mask[w]; bits != 0; bits &= bits - 1, ++i)
+          block_records[blk].push_back({uint32_t(w * 64 + __builtin_ctzll(bits)),
+                                        hits.hits[i].triangle, hits.exact[2 * i],
+                                        hits.exact[2 * i + 1]});
+      block_counts[blk].push_back(static_cast<uint32_t>(hits.hits.size() - before));
+    }
     if (progress) progress->advance(end - first, rays[blk]);
   });
   if (progress) progress->finish();
   out.hit_offset.assign(1, 0);
   uint64_t hit_count = 0;
-  for (const BlockHits& b : block_hits) hit_count += b.hits.size();
-  budget.charge(hit_count * sizeof(GlossyHit) + 8 * (R + 1), "the shard's ray hits");
+  for (const std::vector<GlossyHitRecord>& b : block_records) hit_count += b.size();
+  budget.charge(hit_count * sizeof(GlossyHitRecord) + 8 * (R + 1), "the shard's ray hits");
   out.hits.reserve(hit_count);
   for (std::size_t blk = 0; blk < blocks; ++blk) {
     out.rays += rays[blk];
     out.back_face_hits += back[blk];
-    for (uint32_t c : block_hits[blk].counts) out.hit_offset.push_back(out.hit_offset.back() + c);
-    out.hits.insert(out.hits.end(), block_hits[blk].hits.begin(), block_hits[blk].hits.end());
+    for (uint32_t c : block_counts[blk]) out.hit_offset.push_back(out.hit_offset.back() + c);
+    out.hits.insert(out.hits.end(), block_records[blk].begin(), block_records[blk].end());
+    std::vector<GlossyHitRecord>().swap(block_records[blk]);
   }
   st.vertices = job.V;
   st.triangles = scene.triangles.size();

@@ -19,7 +19,7 @@ namespace {
 // Another valid value for the setting `key` holding `v`.
 json changed(const std::string& key, const json& v) {
   if (key == "transfer") return v == "interreflected" ? "unshadowed" : "interreflected";
-  if (key == "precision") return v == "f16" ? "f32" : "f16";
+  if (key == "precision" || key == "bounce_precision") return v == "f16" ? "f32" : "f16";
   if (key == "falloff") return v == "smoothstep" ? "linear" : "smoothstep";
   if (key == "quantization_bits") return v == 8 ? 16 : 8;
   if (v.is_boolean()) return !v.get<bool>();

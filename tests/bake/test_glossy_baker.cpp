@@ -476,3 +476,142 @@ TEST_CASE("glossy bake: bounces over compressed transfer converge to the plain o
   o.bounce_cpca_vectors = 1;
   CHECK(max_difference(bake_glossy_transfer(s, o).data) > 1e-4);
 }
+
+// The compact hits (8 bytes: triangle and 16-bit barycentrics, the sample implied by a bit mask)
+// against the same rays with float barycentrics. Per hit a weight moves by ≤ 1/131070 (β₀ by
+// ≤ 1/65535), so a radiance row by ≤ 3.1e-5 · max|M| · max|b| (b ≤ 1 here: ρ and the Phong lobe
+// are below 1); a bounce entry (2π/N) Σ y_i r_j by ≤ 3.1e-5 · 2π · max|y_i| · max|M|, and two
+// bounces add that twice. The difference must also be non-zero: the quantised path is the one in
+// use. The gather is exactly 8 bytes a hit + N/8 bytes a vertex (16 a hit with float copies).
+TEST_CASE("glossy bake: compact hits give the float hits' solution within the quantisation bound",
+          "[glossy_bake]") {
+  prt::scene::Scene s = floor_and_box(glm::vec3(0.7f, 0.5f, 0.3f));
+  prt::brdf::Material phong;
+  phong.model = prt::brdf::MaterialModel::kBlinnPhong;
+  phong.diffuse = prt::brdf::grey(0.3);
+  phong.specular = prt::brdf::grey(0.4);
+  phong.exponent = 20;
+  s.primitives[1].brdf = phong;
+  GlossyBakeOptions o;
+  o.order = 3;
+  o.samples = 128;
+  o.bounces = 2;
+  const auto compact = bake_glossy_transfer(s, o);
+  o.exact_hits = true;
+  const auto exact = bake_glossy_transfer(s, o);
+  REQUIRE(compact.stats.hits == exact.stats.hits);
+  REQUIRE(compact.stats.hits > 1000);
+  const uint64_t V = s.positions.size();
+  CHECK(compact.stats.gather_bytes == 8 * compact.stats.hits + V * 128 / 8);
+  CHECK(exact.stats.gather_bytes == 16 * exact.stats.hits + V * 128 / 8);
+  double worst = 0, scale = 0;
+  for (std::size_t i = 0; i < exact.data.matrices.size(); ++i) {
+    worst = std::max(worst, double(std::fabs(compact.data.matrices[i] - exact.data.matrices[i])));
+    scale = std::max(scale, double(std::fabs(exact.data.matrices[i])));
+  }
+  const double y_max = 1.0925484;  // max |y_i| over the sphere, bands 0..2 (Y₂,±₁ and Y₂,−₂)
+  const double bound = 2 * 3.1e-5 * 2 * kPi * y_max * scale;
+  INFO("max |compact − float| = " << worst << ", bound " << bound << ", max |M| " << scale);
+  CHECK(worst <= bound);
+  CHECK(worst > 0.0);
+}
+
+// Streamed interreflected bakes hold one bounce of matrices: a limit below it is refused in one
+// line with no file and no temporary; a limit that the in-memory bake (two bounces and S) exceeds
+// but the streamed one does not lets only the streamed one run, within the limit, and the
+// scratch files are gone after. A 31 × 31 floor and a box, order 5, 3 channels: 7.5 KB a vertex
+// per bounce, 8.0 MB for M, 18.3 MB for the in-memory bake's matrices.
+TEST_CASE("glossy bake: streamed interreflection holds one bounce, and a limit below it is refused",
+          "[glossy_bake]") {
+  prt::scene::Scene s = prt::scene::make_quad({-2.f, 0.f, 2.f}, {4.f, 0.f, 0.f}, {0.f, 0.f, -4.f},
+                                              30, 30, glm::vec3(0.7f, 0.5f, 0.3f), "floor");
+  prt::scene::append_scene(s, prt::scene::make_box({-0.5f, 0.f, -0.5f}, {0.5f, 1.f, 0.5f}, 4, false,
+                                                   glm::vec3(0.6f), "box"));
+  GlossyBakeOptions o;
+  o.order = 5;
+  o.samples = 16;
+  o.bounces = 1;
+  o.threads = 2;
+  const std::string path = prt::test::output_path("glossy_ir_refused.prtg").string();
+  std::filesystem::remove(path);
+  const auto scratch_left = [&] {
+    for (const auto& e :
+         std::filesystem::directory_iterator(std::filesystem::path(path).parent_path()))
+      if (e.path().filename().string().rfind("prt-glossy-scratch-", 0) == 0) return true;
+    return false;
+  };
+  o.memory_limit = 6 << 20;
+  try {
+    prt::bake::bake_glossy_transfer_to_file(s, o, path);
+    FAIL("a 6 MB limit was accepted");
+  } catch (const prt::MemoryBudgetExceeded& e) {
+    const std::string what = e.what();
+    INFO(what);
+    CHECK(what.find('\n') == std::string::npos);
+    CHECK(what.find("the glossy matrices of the bounce read") != std::string::npos);
+  }
+  CHECK_FALSE(std::filesystem::exists(path));
+  CHECK_FALSE(temporaries_left(path));
+  o.memory_limit = 12 << 20;
+  CHECK_THROWS_AS(bake_glossy_transfer(s, o), prt::MemoryBudgetExceeded);
+  const auto r = prt::bake::bake_glossy_transfer_to_file(s, o, path);
+  CHECK(r.stats.hits > 0);
+  CHECK(r.stats.peak_charged_bytes < o.memory_limit);
+  CHECK(r.stats.peak_charged_bytes > s.positions.size() * 3 * 625 * 4);
+  const auto back = prt::read_glossy_transfer_file(path);
+  REQUIRE(back.ok());
+  CHECK(back.value().channels == 3);
+  CHECK_FALSE(scratch_left());
+}
+
+// A binary16 bounce (GlossyBakeOptions::bounce_precision F16): the gather reads M rounded to
+// 2⁻¹¹ relative. Bound: a hit's row Σ_a β_a Σ_i b_i M_ij moves by ≤ 2⁻¹¹ · K · max|b| · max|M|
+// (b ≤ 1 here), a bounce entry by 2π · max|y| times that, and two bounces add it twice (the
+// second also reads the first's error, which the same bound covers, the bounce being a
+// contraction). It must differ from the float bounce (the binary16 copy is really what is read),
+// charge less (650 vertices: the 0.5 KB a vertex saved outweigh the larger blocks in flight),
+// be the same bytes at 1 and 2 threads, and be refused in memory.
+TEST_CASE("glossy bake: a binary16 bounce stays within its rounding bound of the float one",
+          "[glossy_bake]") {
+  prt::scene::Scene s = prt::scene::make_quad({-2.f, 0.f, 2.f}, {4.f, 0.f, 0.f}, {0.f, 0.f, -4.f},
+                                              24, 24, glm::vec3(0.7f, 0.5f, 0.3f), "floor");
+  prt::scene::append_scene(s, prt::scene::make_box({-0.5f, 0.f, -0.5f}, {0.5f, 1.f, 0.5f}, 2, false,
+                                                   glm::vec3(0.6f), "box"));
+  prt::brdf::Material phong;
+  phong.model = prt::brdf::MaterialModel::kBlinnPhong;
+  phong.diffuse = prt::brdf::grey(0.3);
+  phong.specular = prt::brdf::grey(0.4);
+  phong.exponent = 20;
+  s.primitives[1].brdf = phong;
+  GlossyBakeOptions o;
+  o.order = 3;
+  o.samples = 64;
+  o.bounces = 2;
+  o.threads = 1;
+  const std::string path = prt::test::output_path("glossy_half_bounce.prtg").string();
+  const auto plain = prt::bake::bake_glossy_transfer_to_file(s, o, path);
+  const auto f32 = prt::read_glossy_transfer_file(path);
+  REQUIRE(f32.ok());
+  o.bounce_precision = prt::Precision::F16;
+  CHECK_THROWS_AS(bake_glossy_transfer(s, o), prt::bake::BakeError);
+  const auto half = prt::bake::bake_glossy_transfer_to_file(s, o, path);
+  const auto bytes_one = file_bytes(path);
+  const auto f16 = prt::read_glossy_transfer_file(path);
+  REQUIRE(f16.ok());
+  o.threads = 2;
+  prt::bake::bake_glossy_transfer_to_file(s, o, path);
+  CHECK(file_bytes(path) == bytes_one);
+  CHECK(half.stats.peak_charged_bytes < plain.stats.peak_charged_bytes);
+  const auto& a = f32.value().matrices;
+  const auto& b = f16.value().matrices;
+  REQUIRE(a.size() == b.size());
+  double worst = 0, scale = 0;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    worst = std::max(worst, double(std::fabs(a[i] - b[i])));
+    scale = std::max(scale, double(std::fabs(a[i])));
+  }
+  const double bound = 2 * std::ldexp(1.0, -11) * 9 * 2 * kPi * 1.0925484 * scale;
+  INFO("max |f16 bounce − f32 bounce| = " << worst << ", bound " << bound << ", max |M| " << scale);
+  CHECK(worst <= bound);
+  CHECK(worst > 0.0);
+}

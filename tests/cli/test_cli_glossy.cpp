@@ -54,7 +54,9 @@ TEST_CASE("cli: prt bake --glossy refuses what does not apply, prt info refuses 
   const std::string out = (dir / "x.prtg").string();
   for (const std::string& extra :
        {std::string("--ao"), std::string("--order 11"), std::string("--transfer unshadowed"),
-        std::string("--bounces 2 --tolerance 0.01"), std::string("--auto")}) {
+        std::string("--bounces 2 --tolerance 0.01"), std::string("--auto"),
+        std::string("--transfer shadowed --bounce-precision f16"),
+        std::string("--bounces 1 --bounce-precision f64")}) {
     RunResult r = run(prt_cli() + " bake " + scene + " --glossy -o " + out + " " + extra);
     INFO(extra << ": " << r.err);
     CHECK(r.exit_code == 2);

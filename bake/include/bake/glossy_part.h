@@ -8,7 +8,8 @@
 // barycentrics, in sample order) on its own rays only; so a shard computes the values the single
 // bake's sampling pass computes for those vertices, for any thread count and any N. The merge
 // puts them where that pass puts them (shadowed: the file's matrices, block by block;
-// interreflected: M⁽⁰⁾ in every channel, S, and the hits in vertex order) and runs the same
+// interreflected: M⁽⁰⁾ in every channel, S, and the hits in vertex order, quantised into the
+// same per-block compact hits and sample masks by the same quantise_hit) and runs the same
 // bounces, metadata and streamed writer. Ray and back-face-hit counts are the parts' sums.
 //
 // What the merge needs besides the rows, carried by shard 0 (no scene file, no Embree at merge
@@ -42,7 +43,8 @@ struct GlossyInputs {
 // scene::tangent_frames and glossy_scene_materials of `scene`.
 GlossyInputs glossy_inputs(const scene::Scene& scene);
 
-// One front-face hit of a vertex's sample (16 bytes, as stored in part files).
+// One front-face hit of a vertex's sample (16 bytes, as stored in part files; float barycentrics,
+// which the merge quantises as the single bake does). A row's hits are in increasing sample order.
 struct GlossyHitRecord {
   uint32_t sample = 0, triangle = 0;
   float u = 0.f, v = 0.f;  // Embree barycentrics

@@ -35,16 +35,27 @@
 // solved by Jacobi bounces M⁽ᵏ⁺¹⁾ = S + G(M⁽ᵏ⁾) from M⁽⁰⁾ = S: `bounces` of them, or (−1) until
 // a bounce changes no entry by more than bounce_tolerance × max|S| (at most kMaxGlossyBounces).
 // Back faces occlude but reflect nothing (bake/src/hit_side.h, as the diffuse bake).
+// Hits: a front-face hit is kept in 8 bytes (bake/compact_gather.h's CompactHit: the triangle and
+// β₁, β₂ quantised to 16 bits, the three weights integers summing to 65535), its sample implied
+// by a bit per sample and vertex (N/8 bytes a vertex): 8·hits + N/8 bytes a vertex. A weight
+// moves by ≤ 1/131070 (β₀ by ≤ 1/65535), so a hit's radiance row by ≤ 3.1e-5 of the largest
+// row of its three vertices, and a bounce's gathered part by ≤ 3.1e-5 of its size.
 // Channels: 1 for shadowed transfer (M carries no albedo); interreflected: 3 when some vertex
 // albedo or some material is coloured (MERL counts as coloured), else 1.
 // Materials: ScenePrimitive::brdf, or Lambert with the primitive's albedo; equal materials are
 // stored once.
 // Memory (GlossyBakeOptions::memory_limit, prt/core/memory_budget.h): before it allocates them
-// the bake charges its large buffers — shadowed and streamed to a file, the frames and geometry
-// (about 100 bytes a vertex) and the matrices of the blocks in flight; shadowed in memory, every
-// vertex's matrices; interreflected, the matrices of two bounces, the direct transfer, the
-// Lambert exit rows and the hits — and stops with MemoryBudgetExceeded (one line) when they would
-// exceed the limit. docs/GLOSSY.md ("Glossy bakes at scale") gives the figures.
+// the bake charges its large buffers — the frames and geometry (about 100 bytes a vertex); then
+// shadowed and streamed to a file, the matrices of the blocks in flight; shadowed in memory,
+// every vertex's matrices; interreflected in memory, the matrices of two bounces, the direct
+// transfer and the Lambert exit rows; interreflected and streamed, ONE bounce of matrices (the
+// one the gather reads at random), the Lambert exit rows and the blocks in flight, the direct
+// transfer and the bounce being written going to two unlinked scratch files beside the output
+// (4·(C·K² + K²) bytes a vertex of disk) — and the hits, block by block as the ray pass keeps
+// them. It stops with MemoryBudgetExceeded (one line) when they would exceed the limit.
+// Streamed interreflected, per vertex: 4·C·K² + 4·C·K + 8·hits + N/8 bytes (order 5, C = 3,
+// N = 256: 7.8 KB + 8·hits); with bounce_precision F16 the first term is 2·C·K² (4.1 KB + 8·hits)
+// and the disk 4·(2·C·K² + K²). docs/GLOSSY.md ("Glossy bakes at scale") gives the figures.
 // Determinism: vertices in blocks, each vertex from its own samples and the previous bounce's
 // matrices in a fixed order: bit-identical for any thread count.
 #pragma once
@@ -81,6 +92,14 @@ struct GlossyBakeOptions {
   // measures the error, it does not save the memory). 0: off.
   uint32_t bounce_cpca_clusters = 0;
   uint32_t bounce_cpca_vectors = 8;
+  // The reference for the compact hits: also keep each hit's barycentrics in float (8 more
+  // bytes a hit) and let the bounces read those instead of the 16-bit ones. For tests.
+  bool exact_hits = false;
+  // F16: the bounce the gather reads is held in binary16 (half the memory of the dominant term;
+  // rounding 2⁻¹¹ relative, fed through the bounces: docs/GLOSSY.md gives the measured error).
+  // The bounces are still computed, compared and written in float. Streamed bakes only
+  // (bake_glossy_transfer_to_file), without bounce_cpca_clusters; BakeError otherwise.
+  prt::Precision bounce_precision = prt::Precision::F32;
 };
 
 struct GlossyBakeStatistics {
@@ -99,6 +118,7 @@ struct GlossyBakeStatistics {
   double seconds_rays = 0;  // sampling pass: rays + accumulation
   double seconds_projection = 0;
   double seconds_bounces = 0;
+  uint64_t gather_bytes = 0;  // interreflected: the hits and sample masks kept for the bounces
   uint64_t peak_charged_bytes = 0;  // the most the bake held at once of what it charged
   uint64_t bounce_cpca_bytes = 0;   // bounce_cpca_clusters > 0: the compressed transfer's payload
 
@@ -126,7 +146,8 @@ GlossyBakeResult bake_glossy_transfer(const scene::Scene& scene, const GlossyBak
 
 // The same bake written to PATH as it goes (prt/formats/glossy_transfer_writer.h): a shadowed
 // bake hands each block of vertices' matrices to the file when it is finished and never holds
-// more than the blocks in flight; an interreflected one writes its last bounce block by block.
+// more than the blocks in flight; an interreflected one holds one bounce (the rest in scratch
+// files in PATH's directory, removed whatever happens) and writes its last bounce block by block.
 // The file is byte for byte write_glossy_transfer_file(PATH, bake_glossy_transfer(...).data)
 // (same options, same seed, any thread count). Returns everything but the matrices
 // (result.data.matrices is empty). On any error — those of bake_glossy_transfer, a file that
