@@ -1,7 +1,7 @@
-// `prt view SCENE FILE.prt|.prtg|.prtq [ENV] [--port N] [--listen ADDR]`: serve a browser page that
-// relights the scene on the GPU (web/, docs/VIEWER.md). The page, the payloads and the server's
-// refusals are cli/view/ (view_payload.h, view_server.h, request_target.h); this file maps the
-// arguments.
+// `prt view SCENE FILE.prt|.prtg|.prtq [ENV] [--also OTHER.prt]... [--port N] [--listen ADDR]`:
+// serve a browser page that relights the scene on the GPU (web/, docs/VIEWER.md). The page, the
+// payloads and the server's refusals are cli/view/ (view_payload.h, view_server.h,
+// request_target.h); this file maps the arguments.
 #include <pthread.h>
 #include <csignal>
 #include <cstdio>
@@ -10,6 +10,7 @@
 #include <optional>
 #include <string>
 #include <thread>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
@@ -27,6 +28,7 @@ struct ViewArguments {
   std::string listen = "127.0.0.1";
   std::string emitters;            // --emitters R.prte
   std::optional<double> max_edge;  // --max-edge L
+  std::vector<std::string> also;   // --also OTHER.prt (repeatable)
   bool quiet = false;
 };
 
@@ -62,6 +64,7 @@ void run(const ViewArguments& args) {
   inputs.environment_path = args.environment;
   inputs.emitters_path = args.emitters;
   inputs.max_edge = args.max_edge;
+  inputs.also_paths = args.also;
   if (args.max_edge && !(*args.max_edge > 0))
     throw UsageError("--max-edge: must be a positive length");
   view::ViewPayload payload = view::build_view_payload(inputs);
@@ -105,6 +108,11 @@ Command register_view(CLI::App& app) {
                   "a colour and intensity slider per emitter (as prt relight --emitters)");
   cmd->add_option("--max-edge", args->max_edge,
                   "Subdivide the scene as prt bake --max-edge did (the vertices of --emitters)");
+  cmd->add_option("--also", args->also,
+                  "Another SH file of the scene (repeatable; e.g. interreflected beside a "
+                  "shadowed FILE), of FILE's order, channels and albedo folding: one more "
+                  "display each, at FILE's camera, exposure and window")
+      ->allow_extra_args(false);
   cmd->add_flag("--quiet", args->quiet, "Print the URL only");
   const auto files = [args] {
     CommandFiles f;
@@ -112,6 +120,7 @@ Command register_view(CLI::App& app) {
     f.add_input("coefficient file", args->transfer);
     if (!args->environment.empty()) f.add_environment(args->environment);
     if (!args->emitters.empty()) f.add_input("emitter responses", args->emitters);
+    for (const std::string& other : args->also) f.add_input("coefficient file", other);
     return f;
   };
   return {cmd, {}, files, [args] { run(*args); }};

@@ -9,7 +9,8 @@
 //                                              manifest's automatic exposure)
 //   window=none|hanning|lanczos|laplacian|auto  and window_strength=S, as prt relight --window
 //                                              (auto: the manifest's choice for the unrotated light)
-//   mode=transfer|unshadowed|ao|bent|ao-only|PASS  background=0|1   ui=0 (no panel)
+//   mode=transfer|unshadowed|ao|bent|ao-only|alsoI|PASS  background=0|1   ui=0 (no panel)
+//                                              (alsoI: the I-th file of prt view --also, from 0)
 //   emitter=NAME=r,g,b (repeatable)             as prt relight --emitter (prt view --emitters)
 //   antialias=0                                 one sample a pixel (as prt relight --spp 1)
 //   eye=x,y,z                                   glossy files: shade toward this eye, not the camera's
@@ -69,6 +70,23 @@ function fullMesh(manifest, meshBuffer, transferBuffer, glossyBuffer = null) {
   mesh.frustumCulled = false;
   mesh.userData.haar = haar;
   return mesh;
+}
+
+// The meshes of prt view --also: the same geometry, each with a material reading its file's
+// transfer texture (manifest.also[i], buffers[i] = /api/also<i>.bin).
+function alsoMeshes(manifest, geometry, buffers) {
+  return buffers.map((buffer, i) => {
+    const t = manifest.also[i].transfer;
+    const material = createRelightMaterial({
+      order: manifest.order,
+      channels: manifest.channels,
+      albedoFolded: manifest.albedo_folded,
+      transfer: { texture: halfTexture(new Uint16Array(buffer), t.width, t.height), width: t.width, texelsPerVertex: t.texels_per_vertex },
+    });
+    const mesh = new THREE.Mesh(geometry, material);
+    mesh.frustumCulled = false;
+    return mesh;
+  });
 }
 
 function buildGeometry(manifest, meshBuffer) {
@@ -144,6 +162,7 @@ async function main() {
     timings.fullBytes = performance.now();
     return buffers;
   });
+  const alsoBytes = Promise.all((manifest.also ?? []).map((a) => fetchBytes(a.transfer.url)));
   const environmentBuffer = await environmentBytes;
   let emittersBuffer = null;
   let mesh;
@@ -181,10 +200,13 @@ async function main() {
 
   // Draws the frame with `target` (the relit mesh, or the coarse preview while the user moves).
   function render(target = context.mesh) {
+    const also = /^also\d+$/.test(state.mode) ? context.also?.[Number(state.mode.slice(4))] : undefined;
+    if (also && target === context.mesh) target = also;
     const material = target.material;
     const m = rotationFromYawPitchRoll(...state.rotation);
     const builtIn = MODES.includes(state.mode);
     if (builtIn) setMode(material, state.mode);
+    else if (also) setMode(material, 'transfer');
     if (haar) haar.setRotation(m);
     else setLighting(material, prepareLighting({ order: manifest.order, coefficients: manifest.lighting.coefficients, rotation: m, window: state.window }));
     setExposure(material, state.exposure);
@@ -232,6 +254,9 @@ async function main() {
     mesh = full;
     coarse = preview;
   }
+  context.also = alsoMeshes(manifest, geometry, await alsoBytes);
+  if (/^also\d+$/.test(state.mode) && !context.also[Number(state.mode.slice(4))])
+    throw new Error(`mode=${state.mode}: prt view was given ${context.also.length} --also file(s)`);
   const emitters = manifest.emitters ? { responses: new Float32Array(emittersBuffer), list: manifest.emitters.emitters } : null;
   if (emitters) {
     state.emitterColors = emitterColors(emitters.list);
@@ -362,6 +387,7 @@ function setUpControls(manifest, state, render, canvas) {
     if (!available[name] || (manifest.haar && name !== 'transfer')) continue; // Haar: the file only
     mode.add(new Option(labels[name], name));
   }
+  (manifest.also ?? []).forEach((a, i) => mode.add(new Option(`${a.kind} (${a.file})`, `also${i}`)));
   for (const pass of passes) mode.add(new Option(pass.label, pass.name));
   mode.value = state.mode;
   mode.addEventListener('change', () => { state.mode = mode.value; render(); });

@@ -8,6 +8,7 @@
 #include <array>
 #include <cmath>
 #include <cstring>
+#include <filesystem>
 #include <stdexcept>
 
 #include <tbb/blocked_range.h>
@@ -181,23 +182,63 @@ nlohmann::json emitters_json(const prt::EmitterResponses& responses) {
           {"layout", "float32 (e*V + v)*3 + c, per unit emission"}};
 }
 
+// The --also files: each loaded for `scene` and checked against `data` (the first file); their
+// transfer payloads go to payload->also, their entries to the returned manifest array.
+nlohmann::json add_also_files(const ViewInputs& inputs, const scene::Scene& scene,
+                              const prt::TransferData& data, ViewPayload* payload) {
+  nlohmann::json list = nlohmann::json::array();
+  for (std::size_t i = 0; i < inputs.also_paths.size(); ++i) {
+    const std::string& path = inputs.also_paths[i];
+    if (is_glossy_view_file(path) || prt::is_haar_transfer_file(path))
+      throw std::runtime_error(path + ": --also takes SH coefficient files only");
+    const prt::TransferData other = relight::load_transfer_for_scene(path, scene);
+    const auto differ = [&](const std::string& what, const std::string& a, const std::string& b) {
+      throw std::runtime_error(path + ": " + what + " " + b + ", but " + inputs.transfer_path +
+                               " has " + a + " (--also files must match it)");
+    };
+    if (other.order != data.order)
+      differ("SH order", std::to_string(data.order), std::to_string(other.order));
+    if (other.channels != data.channels)
+      differ("channels", std::to_string(data.channels), std::to_string(other.channels));
+    if (other.albedo_folded != data.albedo_folded)
+      differ("albedo", data.albedo_folded ? "folded" : "apart",
+             other.albedo_folded ? "folded" : "apart");
+    nlohmann::json layout;
+    payload->also.push_back(transfer_bytes(other, &layout));
+    layout["url"] = "/api/also" + std::to_string(i) + ".bin";
+    const std::string name = std::filesystem::path(path).filename().string();
+    list.push_back(
+        {{"kind", prt::transfer_kind_name(other.kind)}, {"file", name}, {"transfer", layout}});
+  }
+  return list;
+}
+
 }  // namespace
 
 std::vector<std::uint8_t> environment_payload(const sh::EnvMap& env, int width) {
   return environment_bytes(env, width);
 }
-sh::EnvMap uniform_environment_map() { return uniform_environment(); }
+sh::EnvMap uniform_environment_map() {
+  return uniform_environment();
+}
 nlohmann::json camera_manifest(const relight::CameraChoice& choice, float aspect) {
   return camera_json(choice, aspect);
 }
 
 ViewPayload build_view_payload(const ViewInputs& inputs) {
-  if (is_glossy_view_file(inputs.transfer_path)) return build_glossy_view_payload(inputs);
+  const bool glossy = is_glossy_view_file(inputs.transfer_path);
+  if ((glossy || prt::is_haar_transfer_file(inputs.transfer_path)) && !inputs.also_paths.empty())
+    throw std::runtime_error(inputs.transfer_path + ": holds " +
+                             (glossy ? "glossy transfer" : "Haar wavelets") +
+                             "; --also applies to SH files");
+  if (glossy) return build_glossy_view_payload(inputs);
   if (prt::is_haar_transfer_file(inputs.transfer_path)) return build_haar_view_payload(inputs);
   scene::Scene scene = scene::load_scene(inputs.scene_path);
   if (inputs.max_edge) scene = scene::subdivide_to_edge_length(scene, *inputs.max_edge);
   const prt::TransferData data = relight::load_transfer_for_scene(inputs.transfer_path, scene);
   const prt::EmitterResponses responses = load_emitters(inputs, scene, data);
+  ViewPayload payload;
+  const nlohmann::json also = add_also_files(inputs, scene, data, &payload);
   const int order = static_cast<int>(data.order);
   relight::EnvironmentUse use;
   use.sh_order = order;
@@ -228,7 +269,6 @@ ViewPayload build_view_payload(const ViewInputs& inputs) {
   const scene::RayCaster caster(scene);
   const relight::CameraChoice camera = relight::choose_camera("auto", scene, caster, inputs.aspect);
 
-  ViewPayload payload;
   nlohmann::json manifest;
   manifest["format"] = "prt-view 1";
   manifest["sh_basis"] =
@@ -250,6 +290,7 @@ ViewPayload build_view_payload(const ViewInputs& inputs) {
   payload.transfer = transfer_bytes(data, &layout);
   layout["url"] = "/api/transfer.bin";
   manifest["transfer"] = layout;
+  if (!also.empty()) manifest["also"] = also;
   if (scene.vertex_count() > kPreviewMinVertices && responses.emitters.empty()) {
     nlohmann::json preview;
     payload.preview =

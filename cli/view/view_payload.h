@@ -7,9 +7,10 @@
 //                 scene's per-vertex albedo), "ao" (V) and "bent_normals" (3·V) when the file
 //                 has them, then uint32 "indices" (3·T); offsets in bytes, counts in elements.
 //   transfer.bin  float16 (IEEE binary16) texels of an RGBA texture `transfer.width` texels
-//                 wide, a multiple of P (whole vertices per row): vertex v owns texels v·P .. v·P+P−1 (P = transfer.texels_per_vertex =
-//                 ⌈channels·order²/4⌉), holding its coefficients in the file's order
-//                 (c·order² + k for channel c, SH index k), zero-padded; rows follow each other.
+//                 wide, a multiple of P (whole vertices per row): vertex v owns texels v·P ..
+//                 v·P+P−1 (P = transfer.texels_per_vertex = ⌈channels·order²/4⌉), holding its
+//                 coefficients in the file's order (c·order² + k for channel c, SH index k),
+//                 zero-padded; rows follow each other.
 //   emitters.bin  (with emitter responses) float32 responses of each emitter at each vertex per
 //                 unit emission, (e·V + v)·3 + c (prt/emitters/emitter_responses.h); the page adds
 //                 Σ_e c_e ⊙ R_e,v to the exit radiance, as prt relight --emitters does
@@ -48,14 +49,19 @@ struct ViewInputs {
   // the vertices of the scene subdivided to L (the bake's --max-edge).
   std::string emitters_path;
   std::optional<double> max_edge;
+  // prt view --also: further SH files of the same scene, order, channels and albedo folding as
+  // transfer_path, each served as its own transfer payload (also[i] at /api/also<i>.bin, the
+  // layout of transfer.bin) and listed in the manifest's "also" (url, kind, file, layout).
+  std::vector<std::string> also_paths;
 };
 
 struct ViewPayload {
   std::string manifest_json;
   std::vector<std::uint8_t> mesh, transfer, environment, emitters;  // emitters: maybe empty
-  std::vector<std::uint8_t> glossy;  // glossy files only (glossy_payload.h)
-  std::vector<std::uint8_t> preview;                                // maybe empty
-  std::string summary;                                              // one line for the terminal
+  std::vector<std::uint8_t> glossy;             // glossy files only (glossy_payload.h)
+  std::vector<std::uint8_t> preview;            // maybe empty
+  std::vector<std::vector<std::uint8_t>> also;  // one per also_paths
+  std::string summary;                          // one line for the terminal
 };
 
 ViewPayload build_view_payload(const ViewInputs& inputs);

@@ -75,6 +75,9 @@ void add_payload_routes(ViewPayload payload, std::map<std::string, Route>* route
   (*routes)["/api/transfer.bin"] = {"application/octet-stream", share(std::move(payload.transfer))};
   (*routes)["/api/environment.bin"] = {"application/octet-stream",
                                        share(std::move(payload.environment))};
+  for (std::size_t i = 0; i < payload.also.size(); ++i)
+    (*routes)["/api/also" + std::to_string(i) + ".bin"] = {"application/octet-stream",
+                                                           share(std::move(payload.also[i]))};
   if (!payload.glossy.empty())
     (*routes)["/api/glossy.bin"] = {"application/octet-stream", share(std::move(payload.glossy))};
   if (!payload.preview.empty())

@@ -8,6 +8,8 @@
 //   /api/mesh.bin, /api/transfer.bin, /api/environment.bin   the payloads of view_payload.h
 //   /api/glossy.bin        glossy files only: frames, CPCA weights, b nodes (glossy_payload.h)
 //   (and /api/preview.bin, /api/emitters.bin when the payload has them)
+//   /api/also0.bin, /api/also1.bin, ...   prt view --also: the transfer payload of each further
+//                          file, in the order given (a number, never a name, picks one)
 // The table is built once, at start-up, from the payload and the asset files read into memory;
 // no request reaches the file system. Bodies are streamed from memory (binary payloads are sent
 // as they are, never turned into JSON). Requests whose Host header names neither the bound

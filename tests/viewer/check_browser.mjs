@@ -20,6 +20,7 @@
 // tolerance; one sample a pixel on both sides (antialias=0, --spp 1), as the room's emitting
 // patches make hard edges inside the object that the two antialiasing schemes draw apart.
 // With `glossy CAMERA_A CAMERA_B`: a glossy file, see checkGlossy() below.
+// With `also`: prt view shadowed.prt --also interreflected.prt, see checkAlso() below.
 // Usage: node check_browser.mjs URL OUT_DIR [emitters | glossy CAMERA_A CAMERA_B]   (OUT_DIR holds cpu_default.png,
 // cpu_r0.png, cpu_r90.png — or cpu_emitters.png, cpu_lamp.png — and receives the screenshots;
 // exit 0 when every check passes).
@@ -29,7 +30,7 @@ import { readPng } from './png.mjs';
 
 const [url, out, emitterCase] = process.argv.slice(2);
 const WIDTH = 640, HEIGHT = 360;
-const TOLERANCE = 0.03, MIN_CHANGE = 0.10, CHANGE_TOLERANCE = 0.10, MIN_VIEW_CHANGE = 0.06;
+const TOLERANCE = 0.03, MIN_CHANGE = 0.10, CHANGE_TOLERANCE = 0.10, MIN_VIEW_CHANGE = 0.06, MIN_ALSO_CHANGE = 0.05;
 let failures = 0;
 function check(ok, message) {
   console.log(`${ok ? 'ok  ' : 'FAIL'} ${message}`);
@@ -132,7 +133,36 @@ async function checkGlossy(cameraA, cameraB) {
   await shoot(`camera=${cameraB}`, 'viewer_glossy', 960, 540);  // with the panel, for docs/images
 }
 
+// prt view shadowed.prt --also interreflected.prt: the file (mode=transfer) and the extra display
+// (mode=also0), at rotate=30,0,0, FILE's exposure and window none, each against prt relight of
+// its file (cpu_shadowed.png, cpu_interreflected.png) within TOLERANCE; the two displays must
+// differ by at least MIN_ALSO_CHANGE and interreflection must brighten the picture.
+async function checkAlso() {
+  const manifest = JSON.parse(readFileSync(`${out}/manifest.json`, 'utf8'));
+  check(manifest.also?.length === 1 && manifest.also[0].kind === 'interreflected' && manifest.also[0].file === 'interreflected.prt',
+    `the manifest lists the --also file: ${JSON.stringify(manifest.also?.map((a) => [a.kind, a.file]))}`);
+  const fixed = `ui=0&exposure=${manifest.exposure_ev}&window=none&rotate=30,0,0`;
+  const mask = objectMask((await shoot(`${fixed}&background=0`, 'gpu_mask')).image);
+  const shadowed = (await shoot(`${fixed}&mode=transfer`, 'gpu_shadowed')).image.rgb;
+  const inter = (await shoot(`${fixed}&mode=also0`, 'gpu_interreflected')).image.rgb;
+  const e0 = relativeRms(shadowed, cpu('cpu_shadowed').rgb, mask);
+  check(e0 <= TOLERANCE, `shadowed (the file): relative RMS ${(100 * e0).toFixed(2)}% against prt relight`);
+  const e1 = relativeRms(inter, cpu('cpu_interreflected').rgb, mask);
+  check(e1 <= TOLERANCE, `interreflected (mode=also0): relative RMS ${(100 * e1).toFixed(2)}% against prt relight of the --also file`);
+  const change = relativeRms(inter, shadowed, mask);
+  let sumInter = 0, sumShadowed = 0;
+  for (let i = 0; i < mask.length; ++i) if (mask[i]) for (let c = 0; c < 3; ++c) { sumInter += inter[3 * i + c]; sumShadowed += shadowed[3 * i + c]; }
+  check(change >= MIN_ALSO_CHANGE && sumInter > sumShadowed,
+    `the two displays differ by ${(100 * change).toFixed(1)}% (≥ ${100 * MIN_ALSO_CHANGE}%), interreflected ${(100 * (sumInter / sumShadowed - 1)).toFixed(1)}% brighter`);
+  await shoot('mode=also0', 'viewer_also', 960, 540);  // with the panel: the display's label
+}
+
 try {
+  if (emitterCase === 'also') {
+    await checkAlso();
+    await browser.close();
+    process.exit(failures === 0 ? 0 : 1);
+  }
   if (emitterCase === 'glossy') {
     await checkGlossy(process.argv[5], process.argv[6]);
     await browser.close();

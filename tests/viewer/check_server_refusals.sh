@@ -19,7 +19,24 @@ if [ "$status" != 1 ] || [ "$(wc -l <"$out/noweb.err")" != 1 ] || ! grep -q "web
   echo "FAIL: without the page: status $status, stderr: $(cat "$out/noweb.err"), stdout: $(cat "$out/noweb.out")"; exit 1
 fi
 echo "ok   without the page: $(cat "$out/noweb.err")"
-"$prt" view "$root/data/demo.glb" "$out/demo.prt" --port 0 --quiet >"$out/view.out" 2>"$out/view.err" &
+# --also files that do not match FILE: one line naming the file and the difference, status 1,
+# nothing printed on stdout (no port was opened: the URL is printed once the port is bound).
+"$prt" bake "$root/data/demo.glb" -o "$out/demo3.prt" --order 3 --samples 16 --quiet
+cp "$root/tests/scripts/fixtures/room.obj" "$root/tests/scripts/fixtures/room.mtl" "$out/"
+"$prt" bake "$out/room.obj" -o "$out/room.prt" --order 2 --samples 4 --quiet
+refuse_also() {  # refuse_also DESCRIPTION EXPECTED_TEXT ARGS...
+  local what="$1" want="$2" status=0; shift 2
+  "$prt" view "$@" --port 0 >"$out/also.out" 2>"$out/also.err" || status=$?
+  if [ "$status" = 0 ] || [ "$(wc -l <"$out/also.err")" != 1 ] || ! grep -qF -- "$want" "$out/also.err" || [ -s "$out/also.out" ]; then
+    echo "FAIL: --also $what: status $status, stderr: $(cat "$out/also.err"), stdout: $(cat "$out/also.out")"; exit 1
+  fi
+  echo "ok   --also $what: $(cat "$out/also.err")"
+}
+refuse_also "of another order" "demo3.prt: SH order 3, but $out/demo.prt has 2" \
+  "$root/data/demo.glb" "$out/demo.prt" --also "$out/demo3.prt"
+refuse_also "of another scene" "room.prt" "$root/data/demo.glb" "$out/demo.prt" --also "$out/room.prt"
+"$prt" view "$root/data/demo.glb" "$out/demo.prt" --also "$out/demo.prt" --port 0 --quiet \
+  >"$out/view.out" 2>"$out/view.err" &
 server=$!
 trap 'kill $server 2>/dev/null || true' EXIT
 url=""
@@ -54,6 +71,9 @@ expect 200 "the page" "$base/"
 expect 200 "the page with a query" "$base/?rotate=90,0,0&exposure=-1"
 expect 200 "the manifest" "$base/api/manifest.json"
 expect 200 "the transfer" "$base/api/transfer.bin"
+expect 200 "the --also file's transfer, by number" "$base/api/also0.bin"
+expect 404 "no second --also file" "$base/api/also1.bin"
+expect 404 "nor an --also file by name" "$base/api/demo.prt"
 for method in POST PUT DELETE OPTIONS PATCH TRACE; do
   expect 405 "method $method" -X "$method" "$base/api/manifest.json"
 done

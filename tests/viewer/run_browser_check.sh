@@ -44,6 +44,20 @@ relight -o "$out/cpu_r90.png" --exposure "$exposure" --window none --rotate 90,0
 node "$here/check_browser.mjs" "$url" "$out"
 kill $server && wait $server 2>/dev/null || true
 
+# Two transfer kinds of the demo in one page (prt view --also): shadowed as FILE, interreflected
+# as the extra display mode=also0, each against prt relight of its file at FILE's exposure.
+also="$out/also" && mkdir -p "$also"
+for kind in shadowed interreflected; do
+  "$prt" bake "$scene" -o "$also/$kind.prt" --order 4 --samples 16 --transfer "$kind" --quiet
+done
+start_view "$also" "$scene" "$also/shadowed.prt" "$sky" --also "$also/interreflected.prt"
+for kind in shadowed interreflected; do
+  "$prt" relight "$scene" "$also/$kind.prt" "$sky" --size 640x360 --quiet -o "$also/cpu_$kind.png" \
+    --exposure "$exposure" --window none --rotate 30,0,0
+done
+node "$here/check_browser.mjs" "$url" "$also" also
+kill $server && wait $server 2>/dev/null || true
+
 # A room lit by its lamps (tests/scripts/fixtures/room.obj): emitter responses on the bake's
 # vertices (--max-edge), added to the sky's light as prt relight --emitters adds them.
 room="$out/room"
