@@ -2,6 +2,8 @@
 // `prt relight` runs for a glossy file (relight/glossy_relight.h).
 #include "glossy_payload.h"
 
+#include "payload_parts.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -284,7 +286,7 @@ ViewPayload build_glossy_view_payload(const ViewInputs& inputs) {
   use.sh_order = order;
   const sh::EnvMap env =
       inputs.environment_path.empty()
-          ? uniform_environment_map()
+          ? payload_uniform_environment()
           : relight::read_checked_environment(inputs.environment_path, std::nullopt, use).env;
   relight::LightingOptions options;
   options.window = sh::Window::None;  // auto: chosen on the vertices below, as prt relight does
@@ -341,8 +343,8 @@ ViewPayload build_glossy_view_payload(const ViewInputs& inputs) {
                         {"strength", choice.strength},
                         {"note", window_note}};
   manifest["exposure_ev"] = exposure;
-  manifest["camera"] = camera_manifest(camera, inputs.aspect);
-  payload.environment = environment_payload(env, inputs.background_width);
+  manifest["camera"] = payload_camera_json(camera, inputs.aspect);
+  payload.environment = payload_environment_bytes(env, inputs.background_width);
   manifest["background"] = {{"url", "/api/environment.bin"},
                             {"width", inputs.background_width},
                             {"height", inputs.background_width / 2},

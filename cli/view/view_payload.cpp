@@ -215,16 +215,6 @@ nlohmann::json add_also_files(const ViewInputs& inputs, const scene::Scene& scen
 
 }  // namespace
 
-std::vector<std::uint8_t> environment_payload(const sh::EnvMap& env, int width) {
-  return environment_bytes(env, width);
-}
-sh::EnvMap uniform_environment_map() {
-  return uniform_environment();
-}
-nlohmann::json camera_manifest(const relight::CameraChoice& choice, float aspect) {
-  return camera_json(choice, aspect);
-}
-
 ViewPayload build_view_payload(const ViewInputs& inputs) {
   const bool glossy = is_glossy_view_file(inputs.transfer_path);
   if ((glossy || prt::is_haar_transfer_file(inputs.transfer_path)) && !inputs.also_paths.empty())

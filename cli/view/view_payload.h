@@ -66,10 +66,4 @@ struct ViewPayload {
 
 ViewPayload build_view_payload(const ViewInputs& inputs);
 
-// Parts shared with glossy_payload.cpp: environment.bin of `env`, the uniform environment used
-// without a map, and the manifest's camera object.
-std::vector<std::uint8_t> environment_payload(const sh::EnvMap& env, int width);
-sh::EnvMap uniform_environment_map();
-nlohmann::json camera_manifest(const relight::CameraChoice& choice, float aspect);
-
 }  // namespace prt::cli::view
