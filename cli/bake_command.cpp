@@ -42,6 +42,7 @@
 #include "sh/projection.h"
 #include "shard_cli.h"
 #include "subsurface_cli.h"
+#include "subsurface_shard.h"
 
 namespace prt::cli {
 namespace {
@@ -292,10 +293,6 @@ void check_usage(BakeArguments& args, const CLI::App& cmd) {
   if (!args.shard.empty()) {
     if (args.automatic)
       throw UsageError("--shard does not apply to --auto (shards bake the fixed recipe)");
-    if (args.subsurface.given())
-      throw UsageError(
-          "--shard does not apply to --subsurface yet: the dipole gather needs every vertex's "
-          "transfer, at merge time (docs/FARM.md)");
     args.shard_spec = resolve_shard(args.shard, process_environment());
   }
   if (!args.glossy && cmd.count("--bounce-precision") > 0)
@@ -438,6 +435,9 @@ void run(const BakeArguments& args, const CLI::App& cmd) {
     return;
   }
 
+  if (args.subsurface.given() && args.shard_spec)
+    return run_subsurface_shard(args.scene, scene, args.output, options, args.subsurface,
+                                *args.shard_spec, args.quiet);
   if (args.subsurface.given())
     return run_subsurface_bake(scene, args.output, options, args.subsurface, args.quiet);
   ProgressReporter progress(args.quiet);

@@ -26,6 +26,7 @@
 #include "prt/formats/transfer_file.h"
 #include "radiosity_shard.h"
 #include "run_record.h"
+#include "subsurface_shard.h"
 
 namespace prt::cli {
 namespace {
@@ -93,6 +94,9 @@ void run(const MergeArguments& args) {
     return merge_glossy_parts(ordered, args.output, args.threads, args.memory_limit, args.quiet);
   check_output_file("-o", args.output, {".prt"}, "a coefficient file");
   if (ordered[0]->haar) return merge_haar(args, ordered);
+  if (ordered[0]->subsurface)
+    return merge_subsurface_parts(ordered, args.output, args.threads, args.memory_limit,
+                                  args.quiet);
   const scene::Scene& scene = *ordered[0]->scene;
   bake::BakeOptions options = ordered[0]->options;
   options.threads = args.threads;

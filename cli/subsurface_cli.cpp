@@ -185,9 +185,8 @@ void check_subsurface_usage(const SubsurfaceArguments& a, const CLI::App& cmd,
     throw UsageError("--subsurface-epsilon does not apply to --subsurface-reference");
 }
 
-void run_subsurface_bake(const scene::Scene& scene, const std::string& output,
-                         const bake::BakeOptions& options, const SubsurfaceArguments& a,
-                         bool quiet) {
+bake::SubsurfaceBakeOptions subsurface_bake_options(const scene::Scene& scene,
+                                                    const SubsurfaceArguments& a) {
   bake::SubsurfaceBakeOptions ss;
   ss.vertex_material.assign(scene.positions.size(), -1);
   for (const std::string& text : a.subsurface) {
@@ -222,6 +221,13 @@ void run_subsurface_bake(const scene::Scene& scene, const std::string& output,
   ss.mm_per_unit = a.scale.value_or(0.0);
   if (a.epsilon) ss.gather.epsilon = *a.epsilon;
   ss.gather.reference = a.reference;
+  return ss;
+}
+
+void run_subsurface_bake(const scene::Scene& scene, const std::string& output,
+                         const bake::BakeOptions& options, const SubsurfaceArguments& a,
+                         bool quiet) {
+  const bake::SubsurfaceBakeOptions ss = subsurface_bake_options(scene, a);
   const bake::SubsurfaceBakeResult r = bake::bake_subsurface_transfer(scene, options, ss);
   const prt::Status written = prt::write_transfer_file(output, r.bake.data);
   if (!written.ok()) throw CommandError(written.message());

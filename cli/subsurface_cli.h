@@ -21,6 +21,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "bake/subsurface/subsurface_baker.h"
 #include "bake/transfer_baker.h"
 #include "scene/scene.h"
 
@@ -41,6 +42,11 @@ void add_subsurface_options(CLI::App* command, SubsurfaceArguments* args);
 // "--auto" when one of them is given, else empty).
 void check_subsurface_usage(const SubsurfaceArguments& args, const CLI::App& cmd,
                             const std::string& other);
+
+// The subsurface options the arguments give for `scene` (materials resolved against its
+// primitives and glTF extensions). Throws UsageError, CommandError.
+bake::SubsurfaceBakeOptions subsurface_bake_options(const scene::Scene& scene,
+                                                    const SubsurfaceArguments& args);
 
 // Bakes, writes `output` and reports; phases to the run record. Throws UsageError (a material
 // name the scene does not have), CommandError, BakeError.

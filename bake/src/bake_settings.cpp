@@ -94,6 +94,21 @@ static_assert(std::tuple_size_v<decltype(kGlossyTable)> ==
 static_assert(detail::aggregate_member_count<prt::BrdfProjectionOptions>() == 9,
               "BrdfProjectionOptions changed: update its encoding below");
 
+// Every member of SubsurfaceBakeOptions (the options of bake/subsurface/subsurface_baker.h).
+constexpr auto kSubsurfaceTable = std::make_tuple(
+    carried("materials", &SubsurfaceBakeOptions::materials),
+    not_carried("vertex_material", &SubsurfaceBakeOptions::vertex_material,
+                "one value per vertex: shard 0's part stores it, every part hashes it"),
+    carried("mm_per_unit", &SubsurfaceBakeOptions::mm_per_unit),
+    carried("gather", &SubsurfaceBakeOptions::gather));
+static_assert(std::tuple_size_v<decltype(kSubsurfaceTable)> ==
+                  detail::aggregate_member_count<SubsurfaceBakeOptions>(),
+              "SubsurfaceBakeOptions changed: list the new member in kSubsurfaceTable");
+static_assert(detail::aggregate_member_count<SubsurfaceGatherOptions>() == 3,
+              "SubsurfaceGatherOptions changed: update its encoding below");
+static_assert(detail::aggregate_member_count<subsurface::DipoleCoefficients>() == 3,
+              "DipoleCoefficients changed: update its encoding below");
+
 // --- encodings of the members' types ---
 
 nlohmann::json encode(int v) {
@@ -132,6 +147,16 @@ nlohmann::json encode(const prt::BrdfProjectionOptions& v) {
           {"inner_phi", v.inner_phi},
           {"outer_theta", v.outer_theta},
           {"outer_phi", v.outer_phi}};
+}
+
+nlohmann::json encode(const std::vector<subsurface::DipoleCoefficients>& v) {
+  nlohmann::json a = nlohmann::json::array();
+  for (const subsurface::DipoleCoefficients& c : v)
+    a.push_back({{"sigma_a", c.sigma_a}, {"sigma_s_prime", c.sigma_s_prime}, {"eta", c.eta}});
+  return a;
+}
+nlohmann::json encode(const SubsurfaceGatherOptions& v) {
+  return {{"epsilon", v.epsilon}, {"reference", v.reference}, {"energy_clamp", v.energy_clamp}};
 }
 
 void decode(const nlohmann::json& j, int& v) {
@@ -191,6 +216,22 @@ void decode(const nlohmann::json& j, prt::BrdfProjectionOptions& v) {
   v.outer_phi = j.at("outer_phi").get<int>();
 }
 
+void decode(const nlohmann::json& j, std::vector<subsurface::DipoleCoefficients>& v) {
+  v.clear();
+  for (const nlohmann::json& m : j) {
+    subsurface::DipoleCoefficients c;
+    c.sigma_a = m.at("sigma_a").get<subsurface::Rgb>();
+    c.sigma_s_prime = m.at("sigma_s_prime").get<subsurface::Rgb>();
+    c.eta = m.at("eta").get<double>();
+    v.push_back(c);
+  }
+}
+void decode(const nlohmann::json& j, SubsurfaceGatherOptions& v) {
+  v.epsilon = j.at("epsilon").get<double>();
+  v.reference = j.at("reference").get<bool>();
+  v.energy_clamp = j.at("energy_clamp").get<bool>();
+}
+
 template <class S, class M>
 void write_entry(const S& o, const Carried<S, M>& e, nlohmann::json& j) {
   j[e.key] = encode(o.*e.member);
@@ -216,6 +257,7 @@ template <class S, class Table>
 S read_settings(const std::string& text, const Table& table, uint64_t seed,
                 const std::string& what) {
   S o;
+  if constexpr (requires { o.seed; }) o.seed = seed;
   try {
     const nlohmann::json j = nlohmann::json::parse(text);
     std::apply([&](const auto&... e) { (read_entry(o, e, j), ...); }, table);
@@ -224,7 +266,6 @@ S read_settings(const std::string& text, const Table& table, uint64_t seed,
   } catch (const BakeError& e) {
     throw BakeError(what + ": " + e.what());
   }
-  o.seed = seed;
   return o;
 }
 
@@ -258,12 +299,23 @@ GlossyBakeOptions glossy_options_from_settings(const std::string& s, uint64_t se
   return read_settings<GlossyBakeOptions>(s, kGlossyTable, seed, what);
 }
 
+std::string subsurface_bake_settings(const SubsurfaceBakeOptions& o) {
+  nlohmann::json j;
+  std::apply([&](const auto&... e) { (write_entry(o, e, j), ...); }, kSubsurfaceTable);
+  return j.dump();
+}
+SubsurfaceBakeOptions subsurface_options_from_settings(const std::string& s,
+                                                       const std::string& what) {
+  return read_settings<SubsurfaceBakeOptions>(s, kSubsurfaceTable, 0, what);
+}
+
 std::vector<std::string> settings_not_carried() {
   std::vector<std::string> out;
   const auto list = [&out](const auto&... e) { (list_not_carried(e, out), ...); };
   std::apply(list, kShTable);
   std::apply(list, kHaarTable);
   std::apply(list, kGlossyTable);
+  std::apply(list, kSubsurfaceTable);
   return out;
 }
 

@@ -855,7 +855,10 @@ TransferPart bake_transfer_part(const scene::Scene& scene, const BakeOptions& op
 BakeResult merge_transfer_parts(const scene::Scene& scene, const BakeOptions& options,
                                 const std::vector<const TransferPart*>& parts,
                                 ProgressSink* progress) {
-  check_shardable(scene, options);
+  // A shadowed or unshadowed part holds S alone: the merge may keep the albedo apart.
+  BakeOptions checked = options;
+  if (options.kind != prt::TransferKind::Interreflected) checked.keep_albedo_apart = false;
+  check_shardable(scene, checked);
   const std::string name = scene::scene_label(scene);
   const uint64_t V = scene.positions.size(), K = uint64_t(options.order) * options.order;
   const bool need_sh = options.kind != prt::TransferKind::Unshadowed;

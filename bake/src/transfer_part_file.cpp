@@ -44,7 +44,8 @@ enum Tag : uint32_t {
   kGlossyHits,
   kGlossyTangents,
   kGlossyMaterialOfVertex,
-  kGlossyMaterials
+  kGlossyMaterials,
+  kSubsurfaceMaterialOfVertex
 };
 
 template <class T>
@@ -271,6 +272,22 @@ GlossyInputs decode_glossy_inputs(const prt::PartFile& f, const std::string& nam
   return in;
 }
 
+// The material of each vertex of a subsurface bake (empty in the options: every vertex 0).
+std::vector<int32_t> subsurface_materials_of_vertices(const SubsurfaceBakeOptions& ss,
+                                                      std::size_t vertices) {
+  return ss.vertex_material.empty() ? std::vector<int32_t>(vertices, 0) : ss.vertex_material;
+}
+
+// "/s" and the hash of the subsurface material of every vertex.
+std::string subsurface_inputs_hash(const std::vector<int32_t>& material) {
+  numerics::WordHash h;
+  h.add_u64(material.size());
+  hash_bytes(h, material);
+  char text[24];
+  std::snprintf(text, sizeof text, "/s%016llx", static_cast<unsigned long long>(h.finish()));
+  return text;
+}
+
 }  // namespace
 
 namespace {
@@ -397,10 +414,20 @@ prt::PartFile encode_glossy_part(const GlossyPart& part, const scene::Scene& sce
 }
 
 prt::PartFile encode_transfer_part(const TransferPart& part, const scene::Scene& scene,
-                                   const BakeOptions& options, const std::string& prt_version) {
+                                   const BakeOptions& options, const std::string& prt_version,
+                                   const SubsurfaceBakeOptions* subsurface) {
+  nlohmann::json settings = nlohmann::json::parse(sh_bake_settings(options));
+  std::vector<int32_t> materials;
+  if (subsurface) {
+    settings["subsurface"] = nlohmann::json::parse(subsurface_bake_settings(*subsurface));
+    materials = subsurface_materials_of_vertices(*subsurface, scene.positions.size());
+  }
   prt::PartFile f = part_with_settings(prt::PartKind::ShTransfer, part.shard, part.rows, scene,
-                                       nlohmann::json::parse(sh_bake_settings(options)),
-                                       options.seed, prt_version);
+                                       settings, options.seed, prt_version,
+                                       subsurface ? subsurface_inputs_hash(materials) : "");
+  if (subsurface && part.shard.index == 0)
+    f.sections.push_back(
+        section_of(kSubsurfaceMaterialOfVertex, materials.data(), materials.size()));
   f.sections.push_back(view_of(kDirect, part.direct.data(), part.direct.size()));
   f.sections.push_back(view_of(kAo, part.ao.data(), part.ao.size()));
   f.sections.push_back(view_of(kBent, part.bent.data(), part.bent.size()));
@@ -478,6 +505,9 @@ TransferPartFile decode_transfer_part(const prt::PartFile& f, const std::string&
       out.haar_options = haar_options_from_settings(out.settings, out.seed, name + ": settings");
     else if (!out.form_factors)
       out.options = sh_options_from_settings(out.settings, out.seed, name + ": settings");
+    if (!out.form_factors && !out.haar && !out.glossy && j.at("settings").contains("subsurface"))
+      out.subsurface = subsurface_options_from_settings(j.at("settings").at("subsurface").dump(),
+                                                        name + ": settings: subsurface");
   } catch (const nlohmann::json::exception& e) {
     throw BakeError(name + ": settings section: " + e.what());
   }
@@ -523,6 +553,17 @@ TransferPartFile decode_transfer_part(const prt::PartFile& f, const std::string&
   p.rays = counters[0];
   p.back_face_hits = counters[1];
   std::memcpy(&p.ray_offset_max, &counters[2], sizeof(double));
+  if (out.subsurface && f.index == 0) {
+    const uint64_t materials = out.subsurface->materials.size();
+    out.subsurface->vertex_material = read_array<int32_t>(
+        f, kSubsurfaceMaterialOfVertex, f.total_rows, name, "subsurface material of each vertex");
+    for (int32_t m : out.subsurface->vertex_material)
+      if (m < -1 || (m >= 0 && static_cast<uint64_t>(m) >= materials))
+        throw BakeError(name + ": a vertex names no subsurface material");
+    if (subsurface_inputs_hash(out.subsurface->vertex_material) !=
+        out.scene_inputs.substr(std::min(out.scene_inputs.size(), std::size_t{16})))
+      throw BakeError(name + ": the subsurface materials of the vertices do not match their hash");
+  }
   return out;
 }
 
@@ -538,6 +579,17 @@ std::string settings_difference(const std::string& a, const std::string& b,
   const nlohmann::json ja = nlohmann::json::parse(a), jb = nlohmann::json::parse(b);
   if (ja.contains("basis") && jb.contains("basis") && ja.at("basis") != jb.at("basis"))
     return "basis " + ja.at("basis").dump() + " here, " + jb.at("basis").dump() + " in " + ref;
+  if (ja.contains("subsurface") != jb.contains("subsurface"))
+    return std::string(ja.contains("subsurface") ? "--subsurface here, none"
+                                                 : "no --subsurface here, --subsurface") +
+           " in " + ref;
+  if (ja.contains("subsurface") && ja.at("subsurface") != jb.at("subsurface")) {
+    const nlohmann::json &sa = ja.at("subsurface"), &sb = jb.at("subsurface");
+    for (auto it = sa.begin(); it != sa.end(); ++it)
+      if (!sb.contains(it.key()) || sb.at(it.key()) != it.value())
+        return "subsurface " + it.key() + " " + it.value().dump() + " here, " +
+               (sb.contains(it.key()) ? sb.at(it.key()).dump() : "none") + " in " + ref;
+  }
   for (auto it = ja.begin(); it != ja.end(); ++it)
     if (!jb.contains(it.key()) || jb.at(it.key()) != it.value())
       return it.key() + " " + it.value().dump() + " here, " +
@@ -553,7 +605,8 @@ std::string difference(const TransferPartFile& p, const TransferPartFile& r) {
   // A form-factor part's key covers its options too, and parts of other kinds of bake hash other
   // scene inputs: name the settings first.
   const bool other_kind = p.form_factors || p.haar != r.haar || p.glossy != r.glossy ||
-                          p.form_factors != r.form_factors;
+                          p.form_factors != r.form_factors ||
+                          p.subsurface.has_value() != r.subsurface.has_value();
   if (other_kind && p.settings != r.settings)
     return p.name +
            ": baked with other settings: " + settings_difference(p.settings, r.settings, r.name);
@@ -562,7 +615,9 @@ std::string difference(const TransferPartFile& p, const TransferPartFile& r) {
     return p.name + ": a part of another scene than " + r.name + " (" +
            (p.fingerprint != r.fingerprint ? "other positions"
             : p.glossy ? "other normals, albedo, triangles, materials or tangent frames"
-                       : "other normals, albedo or triangles") +
+            : p.subsurface
+                ? "other normals, albedo, triangles or subsurface materials of the vertices"
+                : "other normals, albedo or triangles") +
            ")";
   if (p.seed != r.seed)
     return p.name + ": baked with --seed " + std::to_string(p.seed) + ", " + r.name +

@@ -12,6 +12,7 @@
 
 #include "bake/subsurface/dipole_gather.h"
 #include "bake/subsurface/subsurface_baker.h"
+#include "bake/subsurface/subsurface_part.h"
 #include "numerics/constants.h"
 #include "scene/procedural_mesh.h"
 #include "sh/basis.h"
@@ -238,6 +239,43 @@ TEST_CASE("subsurface light from behind crosses a thin part (straight-line dista
   // the thin front returns 58%): the thin front must beat it severalfold.
   REQUIRE(thin[0] > 4.0 * thick[0]);
   REQUIRE(thick[0] < 0.1 * thick[1]);
+}
+
+// A farm bake (bake/subsurface/subsurface_part.h): three shards' rows merged give the single
+// bake's transfer, bit for bit (every coefficient, AO and the metadata), shadowed (the inner bake
+// keeps the albedo apart and reads S back from floats) and interreflected (R_total as the solve's
+// albedo); half the vertices translucent, so a merge that ran the gather on other inputs differs.
+TEST_CASE("subsurface bake: merged shards give the single bake's transfer exactly") {
+  const scene::Scene scene = scene::make_demo_scene();
+  SubsurfaceBakeOptions ss;
+  ss.materials = {marble(), subsurface::find_subsurface_preset("skin1")->coefficients};
+  ss.vertex_material.assign(scene.positions.size(), -1);
+  for (std::size_t v = 0; v < scene.positions.size(); ++v)
+    if (v % 3 != 2) ss.vertex_material[v] = static_cast<int32_t>(v % 3);
+  for (const TransferKind kind : {TransferKind::Shadowed, TransferKind::Interreflected}) {
+    INFO("kind " << static_cast<int>(kind));
+    BakeOptions o;
+    o.kind = kind;
+    o.order = 2;
+    o.samples = 16;
+    o.ao = true;
+    const SubsurfaceBakeResult single = bake_subsurface_transfer(scene, o, ss);
+    std::vector<TransferPart> parts;
+    for (uint32_t i = 0; i < 3; ++i) parts.push_back(bake_subsurface_part(scene, o, ss, {i, 3}));
+    std::vector<const TransferPart*> pointers;
+    for (const TransferPart& p : parts) pointers.push_back(&p);
+    const SubsurfaceBakeResult merged = merge_subsurface_parts(scene, o, ss, pointers);
+    CHECK(merged.bake.data.channels == 3);
+    CHECK(merged.bake.data.coefficients == single.bake.data.coefficients);
+    CHECK(merged.bake.data.ao == single.bake.data.ao);
+    CHECK(merged.bake.data.metadata_json == single.bake.data.metadata_json);
+    CHECK(merged.subsurface.translucent_vertices == single.subsurface.translucent_vertices);
+    // The parts are needed: a merge of other materials differs.
+    SubsurfaceBakeOptions other = ss;
+    other.materials[1] = marble();
+    CHECK(merge_subsurface_parts(scene, o, other, pointers).bake.data.coefficients !=
+          single.bake.data.coefficients);
+  }
 }
 
 TEST_CASE("subsurface bake refuses what it cannot do with one line") {

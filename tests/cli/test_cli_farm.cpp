@@ -1,6 +1,6 @@
 // tests/cli/test_cli_farm.cpp — farm bakes (docs/FARM.md): `prt bake --shard I/N` parts merged by
 // `prt merge` give the bytes of one `prt bake` (SH shadowed and interreflected, Haar shadowed and
-// interreflected), for N = 1, 2, 7 and 64; the merge refuses parts
+// interreflected, glossy, subsurface), for N = 1, 2, 7 and 64; the merge refuses parts
 // that do not belong together in one line, writing nothing; --shard reads the Slurm and
 // Kubernetes variables and refuses bad values.
 //
@@ -194,6 +194,63 @@ TEST_CASE("cli farm: prt merge refuses glossy parts that do not belong together"
   }
   SECTION("a glossy merge into a .prt") {
     check_refused(p, dir / "merged.prt", "merged.prt");
+  }
+}
+
+// Subsurface bakes: the shards carry S and the gather rows, shard 0 the material of every vertex;
+// the merge runs the dipole gather over every vertex (then, interreflected, the solve with R_total
+// as the translucent vertices' albedo). Two materials and an opaque ground: a merge that lost the
+// vertices' materials, a material's coefficients or the scale would not give the same bytes.
+TEST_CASE("cli farm: merged shards of subsurface bakes are the single bake, byte for byte") {
+  check_identity_for_every_n(
+      "farm_subsurface",
+      "--subsurface red=skin1 --subsurface grey=marble --transfer shadowed --order 3 --samples 32");
+  check_identity_for_every_n("farm_subsurface_interreflected",
+                             "--subsurface red=ketchup --subsurface-scale 2 --transfer "
+                             "interreflected --order 3 --samples 16 --ao");
+}
+
+TEST_CASE("cli farm: prt merge refuses subsurface parts that do not belong together") {
+  const fs::path dir = scratch("farm_subsurface_refusals");
+  const fs::path scene = make_field(dir, 300);
+  const std::string options = "--transfer interreflected --samples 16";
+  const std::string subsurface = options + " --subsurface red=marble";
+  const std::vector<fs::path> p = bake_shards(scene, subsurface, 3, dir);
+  const fs::path out = dir / "merged.prt";
+  const auto shard1 = [&](const std::string& o, const std::string& name) {
+    const fs::path path = dir / name;
+    const RunResult r = run(bake_line(scene, o + " --shard 1/3", path));
+    INFO(r.err);
+    REQUIRE(r.exit_code == 0);
+    return path;
+  };
+  SECTION("a plain part among subsurface parts") {
+    check_refused({p[0], shard1(options, "plain.prtpart"), p[2]}, out,
+                  "plain.prtpart: baked with other settings: no --subsurface here, --subsurface");
+  }
+  SECTION("a subsurface part among plain parts") {
+    const fs::path sub = dir / "plain";
+    fs::create_directories(sub);
+    const std::vector<fs::path> q = bake_shards(scene, options, 3, sub);
+    check_refused({q[0], p[1], q[2]}, out,
+                  "part_1.prtpart: baked with other settings: --subsurface here, none");
+  }
+  SECTION("another subsurface material") {
+    check_refused({p[0], shard1(options + " --subsurface red=skin1", "m.prtpart"), p[2]}, out,
+                  "m.prtpart: baked with other settings: subsurface materials");
+  }
+  SECTION("another subsurface scale") {
+    check_refused({p[0], shard1(subsurface + " --subsurface-scale 3", "sc.prtpart"), p[2]}, out,
+                  "sc.prtpart: baked with other settings: subsurface mm_per_unit 3.0 here, 0.0 in");
+  }
+  SECTION("the material on other vertices") {
+    const fs::path v = dir / "v";
+    fs::create_directories(v);
+    const std::vector<fs::path> q = bake_shards(scene, options + " --subsurface grey=marble", 3, v);
+    check_refused({p[0], q[1], p[2]}, out, "part_1.prtpart: a part of another scene than");
+  }
+  SECTION("a missing range") {
+    check_refused({p[0], p[1]}, out, "shard 2/3 is missing");
   }
 }
 
@@ -427,7 +484,8 @@ TEST_CASE("cli farm: bad --shard values and bakes that cannot be sharded are ref
     CHECK(r.err.find("--shard") != std::string::npos);
     CHECK_FALSE(fs::exists(out));
   }
-  for (const std::string options : {"--auto", "--subsurface marble", "--transfer shadowed"}) {
+  for (const std::string options :
+       {"--auto", "--subsurface marble --transfer unshadowed", "--transfer shadowed"}) {
     INFO(options);
     const fs::path wrong = dir / "p.prt";  // a part must be a .prtpart
     const RunResult r = run(

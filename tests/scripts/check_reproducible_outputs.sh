@@ -2,7 +2,7 @@
 # Every file kind prt writes is the same, byte for byte, whether it was made with one thread or
 # two: SH bakes (shadowed with AO and bent normals, interreflected, interreflected with a texture
 # kept apart, --auto with and without --env, obscurance, --subsurface, the parts of --shard and
-# their merge), Haar (shadowed, interreflected textured), glossy
+# their merge, with --subsurface too), Haar (shadowed, interreflected textured), glossy
 # shadowed and interreflected (.prtg), CPCA (.prtq), radiosity (.prte with --per-emitter, the
 # form-factor cache, --csv, --vertex-colors .glb, the EXR image; Gauss-Seidel, Jacobi,
 # progressive, --adaptive), export-gltf, make-scene (the demo and the translucent scene) and
@@ -80,6 +80,15 @@ both yes merge --quiet shard1.prtpart shard0.prtpart -o merged.prt
 same "merge of the interreflected parts" merged.prt
 cmp -s "$scratch/t1/merged.prt" "$scratch/t1/interreflected.prt" ||
   { echo "FAIL: the merged parts differ from the single interreflected bake"; failures=$((failures + 1)); }
+for i in 0 1; do
+  both yes bake --quiet "$demo" -o "subsurface$i.prtpart" --transfer interreflected --order 3 \
+    --samples 16 --subsurface marble --shard "$i/2"
+  same "interreflected, --subsurface marble --shard $i/2 (part)" "subsurface$i.prtpart"
+done
+both yes merge --quiet subsurface1.prtpart subsurface0.prtpart -o subsurface-merged.prt
+same "merge of the subsurface parts" subsurface-merged.prt
+cmp -s "$scratch/t1/subsurface-merged.prt" "$scratch/t1/subsurface.prt" ||
+  { echo "FAIL: the merged subsurface parts differ from the single subsurface bake"; failures=$((failures + 1)); }
 both yes bake --quiet "$tex" -o textured.prt --transfer interreflected --order 2 --samples 16
 same "interreflected, textured (albedo kept apart)" textured.prt
 both yes bake --quiet "$demo" -o auto.prt --auto --tolerance 0.3

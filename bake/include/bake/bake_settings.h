@@ -17,6 +17,7 @@
 
 #include "bake/glossy_transfer_baker.h"
 #include "bake/haar_baker.h"
+#include "bake/subsurface/subsurface_baker.h"
 #include "bake/transfer_baker.h"
 
 namespace prt::bake {
@@ -35,6 +36,14 @@ HaarBakeOptions haar_options_from_settings(const std::string& settings, uint64_t
 std::string glossy_bake_settings(const GlossyBakeOptions& o);  // "basis": "glossy"
 GlossyBakeOptions glossy_options_from_settings(const std::string& settings, uint64_t seed,
                                                const std::string& what);
+
+// {"materials": [{"sigma_a", "sigma_s_prime", "eta"}, …], "mm_per_unit", "gather": {…}}: the
+// carried members of a subsurface bake's options (SH parts of `--subsurface` hold it under the
+// key "subsurface" of their settings). vertex_material is not carried here: one value per
+// vertex, shard 0 stores it and every part hashes it (bake/transfer_part_file.h).
+std::string subsurface_bake_settings(const SubsurfaceBakeOptions& o);
+SubsurfaceBakeOptions subsurface_options_from_settings(const std::string& settings,
+                                                       const std::string& what);
 
 // The names of the members the tables do not carry, "member: why", for the tests and docs.
 std::vector<std::string> settings_not_carried();

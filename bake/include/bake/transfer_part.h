@@ -67,7 +67,9 @@ TransferPart bake_transfer_part(const scene::Scene& scene, const BakeOptions& op
 
 // The single bake's result from every part of one split, in shard order (parts[i].shard.index
 // = i, ranges as shard_rows gives them, sizes consistent: the caller has checked that they
-// belong together). Throws BakeError when they do not fit the scene or each other.
+// belong together). Throws BakeError when they do not fit the scene or each other. `options` may
+// keep the albedo apart when the bake is not interreflected (the parts hold S without albedo):
+// the subsurface merge's shadowed bake does (bake/subsurface/subsurface_part.h).
 BakeResult merge_transfer_parts(const scene::Scene& scene, const BakeOptions& options,
                                 const std::vector<const TransferPart*>& parts,
                                 ProgressSink* progress = nullptr);

@@ -24,6 +24,10 @@
 //     each: u32 sample, u32 triangle, f32 u, f32 v (interreflected); shard 0 also
 //  24 tangent frames f32 × 4V, 25 material of each vertex u32 × V, 26 materials JSON (every
 //     field of brdf::Material); their hash joins scene_inputs in every part.
+// Subsurface parts (`prt bake --subsurface --shard`, bake/subsurface/subsurface_part.h) are SH
+// parts whose settings also hold "subsurface" (bake_settings.h: materials, scale, gather), and
+//  27 subsurface material of each vertex i32 × V (shard 0; −1 opaque); its hash joins
+//     scene_inputs in every part.
 // Form-factor parts (kind FormFactorRows, `prt radiosity --shard`) carry no scene: the header's
 // fingerprint is the form-factor cache key (radiosity/form_factor_cache.h), its rows the
 // senders, section 1's settings the form-factor options, and
@@ -39,6 +43,7 @@
 
 #include "bake/glossy_part.h"
 #include "bake/haar_part.h"
+#include "bake/subsurface/subsurface_baker.h"
 #include "bake/transfer_part.h"
 #include "prt/formats/part_file.h"
 #include "scene/scene.h"
@@ -54,6 +59,8 @@ struct TransferPartFile {
   std::string settings;      // the settings object, canonical JSON (compared between parts)
   std::string scene_inputs;  // hex hash of the scene's normals, albedo, triangles, primitives
   BakeOptions options;       // rebuilt from the settings (threads and memory limit not set)
+  // A subsurface bake's part: its options (vertex_material: shard 0 only, else empty).
+  std::optional<SubsurfaceBakeOptions> subsurface;
   std::optional<scene::Scene> scene;  // shard 0
   TransferPart part;                  // SH parts; for Haar parts only shard, vertices and rows
   bool haar = false;                  // a Haar part: the two fields below
@@ -70,8 +77,10 @@ struct TransferPartFile {
 
 // The part file of `part`, baked from `scene` with `options` by prt `prt_version`. Its large
 // sections refer to the arrays of `part` and `scene` (no copy): keep them until it is written.
+// With `subsurface`: the part of a subsurface bake (its settings, and the vertices' materials).
 prt::PartFile encode_transfer_part(const TransferPart& part, const scene::Scene& scene,
-                                   const BakeOptions& options, const std::string& prt_version);
+                                   const BakeOptions& options, const std::string& prt_version,
+                                   const SubsurfaceBakeOptions* subsurface = nullptr);
 
 // The part file of a Haar bake's part (referring to its arrays, as above).
 prt::PartFile encode_haar_part(const HaarPart& part, const scene::Scene& scene,

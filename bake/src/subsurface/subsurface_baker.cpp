@@ -18,6 +18,8 @@ using Clock = std::chrono::steady_clock;
 
 constexpr double kMaxTranslucentAlbedo = 0.999;  // the solve's ρ < 1 rule
 
+}  // namespace
+
 void validate_subsurface(const scene::Scene& scene, const BakeOptions& options,
                          const SubsurfaceBakeOptions& ss) {
   const std::string name = scene::scene_label(scene);
@@ -46,6 +48,8 @@ void validate_subsurface(const scene::Scene& scene, const BakeOptions& options,
   if (!(ss.gather.epsilon > 0) || !std::isfinite(ss.gather.epsilon))
     throw BakeError(name + ": the subsurface epsilon must be finite and > 0");
 }
+
+namespace {
 
 // The samples without their transfer: positions, areas and materials per vertex.
 SubsurfaceSamples make_samples(const scene::Scene& scene, const SubsurfaceBakeOptions& ss, int K) {
@@ -139,6 +143,16 @@ std::vector<double> vertex_areas(const scene::Scene& scene) {
 SubsurfaceBakeResult bake_subsurface_transfer(const scene::Scene& scene, const BakeOptions& options,
                                               const SubsurfaceBakeOptions& ss,
                                               ProgressSink* progress) {
+  return bake_subsurface_transfer_with(scene, options, ss,
+                                       [progress](const scene::Scene& s, const BakeOptions& o) {
+                                         return bake_transfer(s, o, progress);
+                                       });
+}
+
+SubsurfaceBakeResult bake_subsurface_transfer_with(const scene::Scene& scene,
+                                                   const BakeOptions& options,
+                                                   const SubsurfaceBakeOptions& ss,
+                                                   const TransferBakeFunction& bake) {
   validate_subsurface(scene, options, ss);
   const Clock::time_point t_start = Clock::now();
   SubsurfaceBakeResult result;
@@ -156,7 +170,7 @@ SubsurfaceBakeResult bake_subsurface_transfer(const scene::Scene& scene, const B
     BakeOptions o = options;
     o.keep_albedo_apart = true;  // S alone, one channel
     o.precision = prt::Precision::F32;
-    result.bake = bake_transfer(scene, o, progress);
+    result.bake = bake(scene, o);
     samples.transfer.assign(result.bake.data.coefficients.begin(),
                             result.bake.data.coefficients.end());
     const std::vector<double> x = exit_transfer(scene, samples, materials, ss.gather, st);
@@ -182,7 +196,7 @@ SubsurfaceBakeResult bake_subsurface_transfer(const scene::Scene& scene, const B
       samples.transfer = s;
       return exit_transfer(scene, samples, materials, ss.gather, st);
     };
-    result.bake = bake_transfer(solve_scene, o, progress);
+    result.bake = bake(solve_scene, o);
   }
   add_metadata(result.bake.data, ss, st);
   result.bake.stats.seconds_total = std::chrono::duration<double>(Clock::now() - t_start).count();

@@ -24,6 +24,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "bake/subsurface/dipole_gather.h"
@@ -58,8 +59,25 @@ double default_mm_per_unit(const scene::Scene& scene);
 // Per-vertex areas (a third of each adjacent triangle's area).
 std::vector<double> vertex_areas(const scene::Scene& scene);
 
+// Throws the BakeError above when (scene, options, subsurface) cannot be baked.
+void validate_subsurface(const scene::Scene& scene, const BakeOptions& options,
+                         const SubsurfaceBakeOptions& subsurface);
+
 SubsurfaceBakeResult bake_subsurface_transfer(const scene::Scene& scene, const BakeOptions& options,
                                               const SubsurfaceBakeOptions& subsurface,
                                               ProgressSink* progress = nullptr);
+
+// The transfer bake a subsurface bake runs: what bake_transfer(scene, options) returns, by
+// whatever means (bake_subsurface_transfer: bake_transfer; the farm merge,
+// bake/subsurface/subsurface_part.h: merge_transfer_parts of the parts' rows).
+using TransferBakeFunction =
+    std::function<BakeResult(const scene::Scene& scene, const BakeOptions& options)>;
+
+// bake_subsurface_transfer with the inner transfer bake given: the one code path of the single
+// bake and the merge, so both write the same bytes.
+SubsurfaceBakeResult bake_subsurface_transfer_with(const scene::Scene& scene,
+                                                   const BakeOptions& options,
+                                                   const SubsurfaceBakeOptions& subsurface,
+                                                   const TransferBakeFunction& bake);
 
 }  // namespace prt::bake
