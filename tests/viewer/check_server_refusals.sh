@@ -35,17 +35,8 @@ refuse_also() {  # refuse_also DESCRIPTION EXPECTED_TEXT ARGS...
 refuse_also "of another order" "demo3.prt: SH order 3, but $out/demo.prt has 2" \
   "$root/data/demo.glb" "$out/demo.prt" --also "$out/demo3.prt"
 refuse_also "of another scene" "room.prt" "$root/data/demo.glb" "$out/demo.prt" --also "$out/room.prt"
-"$prt" view "$root/data/demo.glb" "$out/demo.prt" --also "$out/demo.prt" --port 0 --quiet \
-  >"$out/view.out" 2>"$out/view.err" &
-server=$!
-trap 'kill $server 2>/dev/null || true' EXIT
-url=""
-for _ in $(seq 1 300); do
-  url="$(grep -o 'http://[^ ]*' "$out/view.out" || true)"
-  [ -n "$url" ] && break
-  kill -0 $server 2>/dev/null || { cat "$out/view.err"; exit 1; }
-  sleep 0.1
-done
+. "$root/tests/viewer/view_server.sh"
+start_view "$out" "$root/data/demo.glb" "$out/demo.prt" --also "$out/demo.prt" --quiet
 case "$url" in http://127.0.0.1:*/) ;; *) echo "FAIL: not on loopback by default: '$url'"; exit 1 ;; esac
 port="${url#http://127.0.0.1:}" port="${port%/}"
 failures=0
