@@ -1,4 +1,5 @@
-// `prt view SCENE FILE.prt|.prtg|.prtq [ENV] [--also OTHER.prt]... [--port N] [--listen ADDR]`:
+// `prt view SCENE FILE.prt|.prtg|.prtq [ENV] [--also OTHER.prt]... [--port N] [--listen ADDR]
+// [--memory-limit SIZE]`:
 // serve a browser page that relights the scene on the GPU (web/, docs/VIEWER.md). The page, the
 // payloads and the server's refusals are cli/view/ (view_payload.h, view_server.h,
 // request_target.h); this file maps the arguments.
@@ -15,6 +16,7 @@
 #include <CLI/CLI.hpp>
 
 #include "command_registry.h"
+#include "option_rules.h"
 #include "output_safety.h"
 #include "view/view_payload.h"
 #include "view/view_server.h"
@@ -29,6 +31,7 @@ struct ViewArguments {
   std::string emitters;            // --emitters R.prte
   std::optional<double> max_edge;  // --max-edge L
   std::vector<std::string> also;   // --also OTHER.prt (repeatable)
+  uint64_t memory_limit = 0;       // --memory-limit (option_rules.h); 0: not given
   bool quiet = false;
 };
 
@@ -65,6 +68,10 @@ void run(const ViewArguments& args) {
   inputs.emitters_path = args.emitters;
   inputs.max_edge = args.max_edge;
   inputs.also_paths = args.also;
+  // The payloads are held for as long as the server runs: charged as they are built, so that a
+  // scene too large for the limit is refused in one line before the port is opened.
+  prt::MemoryBudget budget(memory_limit_or_default(args.memory_limit), args.transfer);
+  inputs.budget = &budget;
   if (args.max_edge && !(*args.max_edge > 0))
     throw UsageError("--max-edge: must be a positive length");
   view::ViewPayload payload = view::build_view_payload(inputs);
@@ -113,6 +120,7 @@ Command register_view(CLI::App& app) {
                   "shadowed FILE), of FILE's order, channels and albedo folding: one more "
                   "display each, at FILE's camera, exposure and window")
       ->allow_extra_args(false);
+  add_memory_limit_option(*cmd, &args->memory_limit);
   cmd->add_flag("--quiet", args->quiet, "Print the URL only");
   const auto files = [args] {
     CommandFiles f;
