@@ -335,7 +335,9 @@ function setUpEmitterControls(emitters, state, geometry, render) {
     row.textContent = `${e.name} `;
     const intensity = Object.assign(document.createElement('input'), { type: 'range', min: 0, max: 4, step: 0.05, value: 1 });
     const tint = Object.assign(document.createElement('input'), { type: 'color', value: '#ffffff' });
+    const shown = document.createElement('span');
     const update = () => {
+      shown.textContent = ` ×${Number(intensity.value).toFixed(2)}`;
       const hex = tint.value;
       const linear = [1, 3, 5].map((k) => {
         const c = parseInt(hex.slice(k, k + 2), 16) / 255;
@@ -347,9 +349,15 @@ function setUpEmitterControls(emitters, state, geometry, render) {
     };
     intensity.addEventListener('input', update);
     tint.addEventListener('input', update);
-    row.append(intensity, tint);
+    shown.textContent = ' ×1.00';
+    row.append(intensity, shown, tint);
     panel.append(row);
   });
+}
+
+// A number for the panel: three significant digits, no trailing zeros (0.0251, 1.91, 12.5).
+function shownNumber(value) {
+  return Number(value.toPrecision(3)).toString();
 }
 
 // Blocks until the GPU has drawn the frame: reading one pixel back waits for it (Chromium's
@@ -370,13 +378,15 @@ function setUpControls(manifest, state, render, canvas) {
   showExposure();
   exposure.addEventListener('input', () => { state.exposure = Number(exposure.value); showExposure(); render(); });
   windowSelect.value = state.windowChoice;
-  strength.value = state.window.strength;
+  strength.value = shownNumber(state.window.strength);
   const applyWindow = () => {
     state.windowChoice = windowSelect.value;
+    // auto keeps the manifest's exact strength (the picture prt relight draws); the field shows
+    // it rounded, and a strength typed in is used as typed.
     state.window = state.windowChoice === 'auto'
       ? { name: manifest.window.name, strength: manifest.window.strength }
       : { name: state.windowChoice, strength: Number(strength.value) };
-    if (state.windowChoice === 'auto') strength.value = manifest.window.strength;
+    if (state.windowChoice === 'auto') strength.value = shownNumber(manifest.window.strength);
     render();
   };
   windowSelect.addEventListener('change', applyWindow);
