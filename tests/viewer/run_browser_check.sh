@@ -69,10 +69,12 @@ stop_view
 
 # Glossy files (`prt make-scene --scene glossy`, baked at order 4, and its CPCA compression):
 # view-dependent shading at two cameras, camera B orbited 50° about the vertical through the
-# target (check_browser.mjs, checkGlossy).
+# target (check_browser.mjs, checkGlossy). 1024 rays a vertex (a few seconds): the .prtq's
+# screenshot with the panel is the README's docs/images/viewer_glossy.png, and at 32 or 256 the
+# Monte Carlo noise of the matrices shows as blotches on the floor, the sphere and the cube.
 glossy="$out/glossy" && mkdir -p "$glossy"
 "$prt" make-scene --scene glossy -o "$glossy/glossy.glb" >/dev/null
-"$prt" bake "$glossy/glossy.glb" --glossy -o "$glossy/g.prtg" --order 4 --samples 32 --quiet
+"$prt" bake "$glossy/glossy.glb" --glossy -o "$glossy/g.prtg" --order 4 --samples 1024 --quiet
 "$prt" compress "$glossy/g.prtg" -o "$glossy/g.prtq" --clusters 8 --vectors 4 --quiet
 for file in g.prtg g.prtq; do
   dir="$glossy/${file/./_}" && mkdir -p "$dir"
