@@ -4,6 +4,7 @@
 // payloads and the server's refusals are cli/view/ (view_payload.h, view_server.h,
 // request_target.h); this file maps the arguments.
 #include <pthread.h>
+#include <atomic>
 #include <csignal>
 #include <cstdio>
 #include <cstdlib>
@@ -18,6 +19,7 @@
 #include "command_registry.h"
 #include "option_rules.h"
 #include "output_safety.h"
+#include "prt/core/memory_budget.h"
 #include "view/view_payload.h"
 #include "view/view_server.h"
 
@@ -36,9 +38,16 @@ struct ViewArguments {
 };
 
 #ifdef PRT_VIEW_WEB_DIR
-// Blocks SIGINT and SIGTERM in every thread and stops the server from a thread that waits for
-// them, so Ctrl-C ends `prt view` with status 0 after the server has closed its socket.
-std::thread stop_on_signal(view::ViewServer* server) {
+// Blocks SIGINT and SIGTERM in this thread and in every thread started after it (the payload
+// builders' worker threads too, so that none of them takes the default action) and waits for
+// them in a thread of its own: before *server is set (the payloads being built), a signal ends
+// prt view at once with status 128 + signal (nothing was written); after, it stops the server,
+// and Ctrl-C ends `prt view` with status 0 once the socket is closed. Their dispositions are
+// reset first: a shell starts a background job (`prt view … &` in a script) with SIGINT ignored,
+// and an ignored signal is discarded, never delivered to sigwait.
+std::thread stop_on_signal(const std::atomic<view::ViewServer*>* server) {
+  std::signal(SIGINT, SIG_DFL);
+  std::signal(SIGTERM, SIG_DFL);
   sigset_t set;
   sigemptyset(&set);
   sigaddset(&set, SIGINT);
@@ -47,7 +56,9 @@ std::thread stop_on_signal(view::ViewServer* server) {
   return std::thread([server, set] {
     int signal = 0;
     sigwait(&set, &signal);
-    server->stop();
+    view::ViewServer* serving = server->load();
+    if (serving == nullptr) std::_Exit(128 + signal);
+    serving->stop();
   });
 }
 #endif
@@ -61,6 +72,14 @@ void run(const ViewArguments& args) {
   const char* web_dir = std::getenv("PRT_VIEW_WEB_DIR");
   std::map<std::string, view::Route> routes =
       view::asset_routes(web_dir && *web_dir ? web_dir : PRT_VIEW_WEB_DIR);
+  std::atomic<view::ViewServer*> serving{nullptr};
+  std::thread waiter = stop_on_signal(&serving);
+  struct Join {  // the waiter outlives every exit of this function, thrown or returned
+    std::thread* thread;
+    ~Join() {
+      if (thread->joinable()) thread->detach();
+    }
+  } join{&waiter};
   view::ViewInputs inputs;
   inputs.scene_path = args.scene;
   inputs.transfer_path = args.transfer;
@@ -75,7 +94,8 @@ void run(const ViewArguments& args) {
   if (args.max_edge && !(*args.max_edge > 0))
     throw UsageError("--max-edge: must be a positive length");
   view::ViewPayload payload = view::build_view_payload(inputs);
-  const std::string summary = payload.summary;
+  const std::string summary =
+      payload.summary + "; payloads " + prt::format_memory_size(budget.used()) + " held";
   view::add_payload_routes(std::move(payload), &routes);
   view::ViewServer server(std::move(routes));
   const int port = server.bind(args.listen, args.port);
@@ -84,7 +104,7 @@ void run(const ViewArguments& args) {
   if (!args.quiet) std::printf("%s\n", summary.c_str());
   std::printf("serving http://%s:%d/ (Ctrl-C stops)\n", host.c_str(), port);
   std::fflush(stdout);
-  std::thread waiter = stop_on_signal(&server);
+  serving = &server;
   server.serve([&args](const std::string& line) {
     if (!args.quiet) std::fprintf(stderr, "prt view: refused %s\n", line.c_str());
   });
