@@ -100,5 +100,12 @@ expect 404 "nor is the scene" "$base/demo.glb"
 expect 404 "nor index.html by name" "$base/index.html"
 expect 404 "/api/ itself" "$base/api/"
 kill -0 $server 2>/dev/null || { echo "FAIL: the server died"; exit 1; }
+# Ctrl-C stops the server with status 0 (a script's background job starts with SIGINT ignored;
+# prt view resets it, and its worker threads have it blocked).
+kill -INT "$server"
+status=0
+wait "$server" || status=$?
+server=""
+if [ "$status" = 0 ]; then echo "ok   SIGINT stops the server, status 0"; else echo "FAIL SIGINT: status $status"; failures=$((failures + 1)); fi
 [ "$failures" -eq 0 ] || { echo "$failures refusal checks failed"; exit 1; }
 echo "every refusal held"
