@@ -51,20 +51,13 @@ function section(buffer, info, Type) {
   return new Type(buffer, info.offset, info.count);
 }
 
-// The relit mesh of the full payloads.
-// The relit mesh: SH transfer; Haar files through haar-view.js; glossy files (glossyBuffer =
-// /api/glossy.bin) through glossy.js.
+// The relit mesh of the full payloads: SH transfer; Haar files through haar-view.js; glossy
+// files (glossyBuffer = /api/glossy.bin) through glossy.js.
 function fullMesh(manifest, meshBuffer, transferBuffer, glossyBuffer = null) {
   const geometry = buildGeometry(manifest, meshBuffer);
-  const t = manifest.transfer;
   const terms = params.has('terms') ? numbers(params.get('terms'), 1, 'terms')[0] : undefined;
   const haar = manifest.haar ? createHaarView(manifest, transferBuffer, geometry, terms) : null;
-  const material = haar ? haar.material : manifest.glossy ? createGlossyMaterial(manifest, transferBuffer, glossyBuffer) : createRelightMaterial({
-    order: manifest.order,
-    channels: manifest.channels,
-    albedoFolded: manifest.albedo_folded,
-    transfer: { texture: halfTexture(new Uint16Array(transferBuffer), t.width, t.height), width: t.width, texelsPerVertex: t.texels_per_vertex },
-  });
+  const material = haar ? haar.material : manifest.glossy ? createGlossyMaterial(manifest, transferBuffer, glossyBuffer) : shMaterial(manifest, transferBuffer, manifest.transfer);
   if (manifest.glossy && params.has('eye')) material.userData.fixedEye = numbers(params.get('eye'), 3, 'eye');
   const mesh = new THREE.Mesh(geometry, material);
   mesh.frustumCulled = false;
@@ -72,18 +65,21 @@ function fullMesh(manifest, meshBuffer, transferBuffer, glossyBuffer = null) {
   return mesh;
 }
 
+// The material of an SH transfer payload (transfer.bin or an also<i>.bin, layout `t`).
+function shMaterial(manifest, buffer, t) {
+  return createRelightMaterial({
+    order: manifest.order,
+    channels: manifest.channels,
+    albedoFolded: manifest.albedo_folded,
+    transfer: { texture: halfTexture(new Uint16Array(buffer), t.width, t.height), width: t.width, texelsPerVertex: t.texels_per_vertex },
+  });
+}
+
 // The meshes of prt view --also: the same geometry, each with a material reading its file's
 // transfer texture (manifest.also[i], buffers[i] = /api/also<i>.bin).
 function alsoMeshes(manifest, geometry, buffers) {
   return buffers.map((buffer, i) => {
-    const t = manifest.also[i].transfer;
-    const material = createRelightMaterial({
-      order: manifest.order,
-      channels: manifest.channels,
-      albedoFolded: manifest.albedo_folded,
-      transfer: { texture: halfTexture(new Uint16Array(buffer), t.width, t.height), width: t.width, texelsPerVertex: t.texels_per_vertex },
-    });
-    const mesh = new THREE.Mesh(geometry, material);
+    const mesh = new THREE.Mesh(geometry, shMaterial(manifest, buffer, manifest.also[i].transfer));
     mesh.frustumCulled = false;
     return mesh;
   });
