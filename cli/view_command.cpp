@@ -1,8 +1,10 @@
-// `prt view SCENE FILE.prt|.prtg|.prtq [ENV] [--also OTHER.prt]... [--port N] [--listen ADDR]`:
+// `prt view SCENE FILE.prt|.prtg|.prtq [ENV] [--also OTHER.prt]... [--port N] [--listen ADDR]
+// [--memory-limit SIZE]`:
 // serve a browser page that relights the scene on the GPU (web/, docs/VIEWER.md). The page, the
 // payloads and the server's refusals are cli/view/ (view_payload.h, view_server.h,
 // request_target.h); this file maps the arguments.
 #include <pthread.h>
+#include <atomic>
 #include <csignal>
 #include <cstdio>
 #include <cstdlib>
@@ -15,7 +17,9 @@
 #include <CLI/CLI.hpp>
 
 #include "command_registry.h"
+#include "option_rules.h"
 #include "output_safety.h"
+#include "prt/core/memory_budget.h"
 #include "view/view_payload.h"
 #include "view/view_server.h"
 
@@ -29,13 +33,21 @@ struct ViewArguments {
   std::string emitters;            // --emitters R.prte
   std::optional<double> max_edge;  // --max-edge L
   std::vector<std::string> also;   // --also OTHER.prt (repeatable)
+  uint64_t memory_limit = 0;       // --memory-limit (option_rules.h); 0: not given
   bool quiet = false;
 };
 
 #ifdef PRT_VIEW_WEB_DIR
-// Blocks SIGINT and SIGTERM in every thread and stops the server from a thread that waits for
-// them, so Ctrl-C ends `prt view` with status 0 after the server has closed its socket.
-std::thread stop_on_signal(view::ViewServer* server) {
+// Blocks SIGINT and SIGTERM in this thread and in every thread started after it (the payload
+// builders' worker threads too, so that none of them takes the default action) and waits for
+// them in a thread of its own: before *server is set (the payloads being built), a signal ends
+// prt view at once with status 128 + signal (nothing was written); after, it stops the server,
+// and Ctrl-C ends `prt view` with status 0 once the socket is closed. Their dispositions are
+// reset first: a shell starts a background job (`prt view … &` in a script) with SIGINT ignored,
+// and an ignored signal is discarded, never delivered to sigwait.
+std::thread stop_on_signal(const std::atomic<view::ViewServer*>* server) {
+  std::signal(SIGINT, SIG_DFL);
+  std::signal(SIGTERM, SIG_DFL);
   sigset_t set;
   sigemptyset(&set);
   sigaddset(&set, SIGINT);
@@ -44,7 +56,9 @@ std::thread stop_on_signal(view::ViewServer* server) {
   return std::thread([server, set] {
     int signal = 0;
     sigwait(&set, &signal);
-    server->stop();
+    view::ViewServer* serving = server->load();
+    if (serving == nullptr) std::_Exit(128 + signal);
+    serving->stop();
   });
 }
 #endif
@@ -58,6 +72,14 @@ void run(const ViewArguments& args) {
   const char* web_dir = std::getenv("PRT_VIEW_WEB_DIR");
   std::map<std::string, view::Route> routes =
       view::asset_routes(web_dir && *web_dir ? web_dir : PRT_VIEW_WEB_DIR);
+  std::atomic<view::ViewServer*> serving{nullptr};
+  std::thread waiter = stop_on_signal(&serving);
+  struct Join {  // the waiter outlives every exit of this function, thrown or returned
+    std::thread* thread;
+    ~Join() {
+      if (thread->joinable()) thread->detach();
+    }
+  } join{&waiter};
   view::ViewInputs inputs;
   inputs.scene_path = args.scene;
   inputs.transfer_path = args.transfer;
@@ -65,10 +87,15 @@ void run(const ViewArguments& args) {
   inputs.emitters_path = args.emitters;
   inputs.max_edge = args.max_edge;
   inputs.also_paths = args.also;
+  // The payloads are held for as long as the server runs: charged as they are built, so that a
+  // scene too large for the limit is refused in one line before the port is opened.
+  prt::MemoryBudget budget(memory_limit_or_default(args.memory_limit), args.transfer);
+  inputs.budget = &budget;
   if (args.max_edge && !(*args.max_edge > 0))
     throw UsageError("--max-edge: must be a positive length");
   view::ViewPayload payload = view::build_view_payload(inputs);
-  const std::string summary = payload.summary;
+  const std::string summary =
+      payload.summary + "; payloads " + prt::format_memory_size(budget.used()) + " held";
   view::add_payload_routes(std::move(payload), &routes);
   view::ViewServer server(std::move(routes));
   const int port = server.bind(args.listen, args.port);
@@ -77,7 +104,7 @@ void run(const ViewArguments& args) {
   if (!args.quiet) std::printf("%s\n", summary.c_str());
   std::printf("serving http://%s:%d/ (Ctrl-C stops)\n", host.c_str(), port);
   std::fflush(stdout);
-  std::thread waiter = stop_on_signal(&server);
+  serving = &server;
   server.serve([&args](const std::string& line) {
     if (!args.quiet) std::fprintf(stderr, "prt view: refused %s\n", line.c_str());
   });
@@ -113,6 +140,7 @@ Command register_view(CLI::App& app) {
                   "shadowed FILE), of FILE's order, channels and albedo folding: one more "
                   "display each, at FILE's camera, exposure and window")
       ->allow_extra_args(false);
+  add_memory_limit_option(*cmd, &args->memory_limit);
   cmd->add_flag("--quiet", args->quiet, "Print the URL only");
   const auto files = [args] {
     CommandFiles f;

@@ -24,7 +24,7 @@
 //   shadeGlossyVertex(glossy, v, position, lighting, eye)   one vertex on the CPU (tests)
 //   createGlossyMaterial(manifest, transferBuffer, glossyBuffer)   the RawShaderMaterial
 import * as THREE from 'three';
-import { MAX_ORDER, TONE_MAP_GLSL } from './prt-relight.js';
+import { floatTexture, halfTexture, MAX_ORDER, shRecurrenceGlsl, TONE_MAPPED_FRAGMENT_SHADER } from './prt-relight.js';
 import { evaluateBasis } from './sh.js';
 
 export const MAX_MATERIALS = 64;
@@ -213,22 +213,6 @@ function viewNormalisation() {
   return out;
 }
 
-function floatTexture(data, width, height) {
-  const texture = new THREE.DataTexture(data, width, height, THREE.RGBAFormat, THREE.FloatType);
-  texture.minFilter = texture.magFilter = THREE.NearestFilter;
-  texture.generateMipmaps = false;
-  texture.needsUpdate = true;
-  return texture;
-}
-
-function halfTexture(data, width, height) {
-  const texture = new THREE.DataTexture(data, width, height, THREE.RGBAFormat, THREE.HalfFloatType);
-  texture.minFilter = texture.magFilter = THREE.NearestFilter;
-  texture.generateMipmaps = false;
-  texture.needsUpdate = true;
-  return texture;
-}
-
 // GLSL written out for the file's order, channels and K (constant indices, no loops over
 // coefficients: SwiftShader runs such code several times faster, as prt-relight.js's sum).
 function lines(count, f) {
@@ -261,25 +245,7 @@ ${rotation.join('\n')}
 // prt-relight.js's irradiance() (loops: the view order is per material).
 const MATRIX_GLSL = `
   for (int i = 0; i < N2; ++i) b[i] = vec3(0.0);
-  int M = info.z;
-  float re = 1.0, im = 0.0, qmm = 1.0;
-  for (int m = 0; m < MAX_VIEW_ORDER; ++m) {
-    if (m >= M) break;
-    if (m > 0) {
-      float r = re * wo.x - im * wo.y;
-      im = re * wo.y + im * wo.x;
-      re = r;
-      qmm *= float(2 * m - 1);
-    }
-    float qPrev = 0.0, q = qmm;
-    for (int l = m; l < MAX_VIEW_ORDER; ++l) {
-      if (l >= M) break;
-      if (l > m) {
-        float next = l == m + 1 ? wo.z * float(2 * m + 1) * qmm
-                                : (float(2 * l - 1) * wo.z * q - float(l + m - 1) * qPrev) / float(l - m);
-        qPrev = q;
-        q = next;
-      }
+  int M = info.z;${shRecurrenceGlsl('wo', 'MAX_VIEW_ORDER', 'M', `
       if (((l + m) & 1) == 1) continue;
       int kIndex = l * (l + 1) / 2 + m;
       float kq = uViewK[kIndex / 4][kIndex % 4] * q;
@@ -291,9 +257,7 @@ const MATRIX_GLSL = `
         ivec2 ap = nodeAt(e + (l + m) / 2), an = nodeAt(e + (l - m) / 2);
         for (int i = 0; i < N2; ++i)
           b[i] += kq * (re * texelFetch(uBrdf, ap + ivec2(i, 0), 0).rgb + im * texelFetch(uBrdf, an + ivec2(i, 0), 0).rgb);
-      }
-    }
-  }`;
+      }`)}`;
 
 // Σ_i b_i ⊙ y_i, y from the CPCA products: y_i = P_q,0,i + Σ_k w_k P_q,k,i.
 function cpcaGlsl(n2, K, texelsPerVertex) {
@@ -389,17 +353,6 @@ ${glossy.cpca ? cpcaGlsl(n2, K, texelsPerVertex) : matricesGlsl(n2, glossy.chann
 `;
 }
 
-const FRAGMENT_SHADER = /* glsl */ `
-precision highp float;
-in vec3 vRadiance;
-uniform float uExposure;
-out vec4 outColor;
-${TONE_MAP_GLSL}
-void main() {
-  vec3 radiance = gl_FrontFacing ? vRadiance : vec3(0.0);
-  outColor = vec4(prtToneMap(radiance, uExposure), 1.0);
-}
-`;
 
 // The material of a glossy payload; prt-relight.js's setLighting and setExposure drive it.
 // For CPCA the cluster products are recomputed before a draw whenever uLight has changed.
@@ -448,7 +401,7 @@ export function createGlossyMaterial(manifest, transferBuffer, glossyBuffer) {
   const material = new THREE.RawShaderMaterial({
     glslVersion: THREE.GLSL3,
     vertexShader: vertexShader(glossy),
-    fragmentShader: FRAGMENT_SHADER,
+    fragmentShader: TONE_MAPPED_FRAGMENT_SHADER,
     side: THREE.DoubleSide,
     uniforms,
   });

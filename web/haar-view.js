@@ -13,7 +13,7 @@
 // total, the number of terms kept and of transfer entries their lists hold (entries).
 //   addHaarControls(view, manifest, render)   the panel's term count and timing line.
 import * as THREE from 'three';
-import { TONE_MAP_GLSL } from './prt-relight.js';
+import { TONE_MAPPED_FRAGMENT_SHADER } from './prt-relight.js';
 import { HaarLight, shadeSparse } from './haar.js';
 
 const TYPES = { uint32: Uint32Array, int16: Int16Array, int8: Int8Array, float32: Float32Array };
@@ -39,16 +39,6 @@ void main() {
 }
 `;
 
-const FRAGMENT_SHADER = /* glsl */ `
-precision highp float;
-in vec3 vRadiance;
-uniform float uExposure;
-out vec4 outColor;
-${TONE_MAP_GLSL}
-void main() {
-  outColor = vec4(prtToneMap(gl_FrontFacing ? vRadiance : vec3(0.0), uExposure), 1.0);
-}
-`;
 
 export function createHaarView(manifest, transferBuffer, geometry, terms) {
   const h = manifest.haar, s = h.sections;
@@ -68,7 +58,7 @@ export function createHaarView(manifest, transferBuffer, geometry, terms) {
   const material = new THREE.RawShaderMaterial({
     glslVersion: THREE.GLSL3,
     vertexShader: VERTEX_SHADER,
-    fragmentShader: FRAGMENT_SHADER,
+    fragmentShader: TONE_MAPPED_FRAGMENT_SHADER,
     side: THREE.DoubleSide,
     uniforms: {
       uAlbedoFolded: { value: manifest.albedo_folded ? 1 : 0 },

@@ -71,12 +71,45 @@ export function transferTextureFromGeometry(geometry, prt, maxWidth = 4096) {
   return { texture: halfTexture(data, width, height), width, height, texelsPerVertex };
 }
 
-export function halfTexture(data, width, height) {
-  const texture = new THREE.DataTexture(data, width, height, THREE.RGBAFormat, THREE.HalfFloatType);
+// An RGBA data texture read texel by texel (nearest, no mipmaps): float16 (Uint16Array) or
+// float32 (Float32Array) texels.
+function dataTexture(data, width, height, type) {
+  const texture = new THREE.DataTexture(data, width, height, THREE.RGBAFormat, type);
   texture.minFilter = texture.magFilter = THREE.NearestFilter;
   texture.generateMipmaps = false;
   texture.needsUpdate = true;
   return texture;
+}
+export const halfTexture = (data, width, height) => dataTexture(data, width, height, THREE.HalfFloatType);
+export const floatTexture = (data, width, height) => dataTexture(data, width, height, THREE.FloatType);
+
+// GLSL: the loops over m and l (l < `order`, at most `maxOrder`) of the SH recurrence of
+// web/sh.js (no Condon–Shortley phase) at the unit vector `dir`; `body` runs for each (l, m)
+// with q = P_l^m(dir.z)·(its normalisation left out) and (re, im) = the real and imaginary
+// parts of (dir.x + i·dir.y)^m.
+export function shRecurrenceGlsl(dir, maxOrder, order, body) {
+  return `
+  float re = 1.0, im = 0.0, qmm = 1.0;
+  for (int m = 0; m < ${maxOrder}; ++m) {
+    if (m >= ${order}) break;
+    if (m > 0) {
+      float r = re * ${dir}.x - im * ${dir}.y;
+      im = re * ${dir}.y + im * ${dir}.x;
+      re = r;
+      qmm *= float(2 * m - 1);
+    }
+    float qPrev = 0.0, q = qmm;
+    for (int l = m; l < ${maxOrder}; ++l) {
+      if (l >= ${order}) break;
+      if (l > m) {
+        float next = l == m + 1 ? ${dir}.z * float(2 * m + 1) * qmm
+                                : (float(2 * l - 1) * ${dir}.z * q - float(l + m - 1) * qPrev) / float(l - m);
+        qPrev = q;
+        q = next;
+      }
+${body}
+    }
+  }`;
 }
 
 // K_lm (√2·K_lm for m ≠ 0) at k = l(l+1)±m: the normalisation web/sh.js's evaluateBasis uses.
@@ -145,29 +178,10 @@ ${transferSumGlsl(order, channels, texelsPerVertex)}
 // E(n) = Σ_l A_l Σ_m L_lm Y_lm(n), Y by the recurrence of web/sh.js (no Condon–Shortley phase).
 vec3 irradiance(vec3 n) {
   vec3 e = vec3(0.0);
-  float re = 1.0, im = 0.0, qmm = 1.0;
-  for (int m = 0; m < ${MAX_ORDER}; ++m) {
-    if (m >= uOrder) break;
-    if (m > 0) {
-      float r = re * n.x - im * n.y;
-      im = re * n.y + im * n.x;
-      re = r;
-      qmm *= float(2 * m - 1);
-    }
-    float qPrev = 0.0, q = qmm;
-    for (int l = m; l < ${MAX_ORDER}; ++l) {
-      if (l >= uOrder) break;
-      if (l > m) {
-        float next = l == m + 1 ? n.z * float(2 * m + 1) * qmm
-                                : (float(2 * l - 1) * n.z * q - float(l + m - 1) * qPrev) / float(l - m);
-        qPrev = q;
-        q = next;
-      }
+${shRecurrenceGlsl('n', MAX_ORDER, 'uOrder', `
       int k0 = l * (l + 1);
       if (m == 0) e += uCosine[l] * uBasisK[k0] * q * uLight[k0];
-      else e += uCosine[l] * uBasisK[k0 + m] * q * (re * uLight[k0 + m] + im * uLight[k0 - m]);
-    }
-  }
+      else e += uCosine[l] * uBasisK[k0 + m] * q * (re * uLight[k0 + m] + im * uLight[k0 - m]);`)}
   return e;
 }
 
@@ -196,6 +210,19 @@ float prtSrgb(float x) {
 vec3 prtToneMap(vec3 linear, float exposureEv) {
   vec3 x = linear * exp2(exposureEv);
   return vec3(prtSrgb(prtAces(x.r)), prtSrgb(prtAces(x.g)), prtSrgb(prtAces(x.b)));
+}
+`;
+
+// The fragment shader of the materials that shade per vertex without display modes (glossy.js,
+// haar-view.js): vRadiance tone-mapped, backs of surfaces black.
+export const TONE_MAPPED_FRAGMENT_SHADER = /* glsl */ `
+precision highp float;
+in vec3 vRadiance;
+uniform float uExposure;
+out vec4 outColor;
+${TONE_MAP_GLSL}
+void main() {
+  outColor = vec4(prtToneMap(gl_FrontFacing ? vRadiance : vec3(0.0), uExposure), 1.0);
 }
 `;
 

@@ -51,20 +51,13 @@ function section(buffer, info, Type) {
   return new Type(buffer, info.offset, info.count);
 }
 
-// The relit mesh of the full payloads.
-// The relit mesh: SH transfer; Haar files through haar-view.js; glossy files (glossyBuffer =
-// /api/glossy.bin) through glossy.js.
+// The relit mesh of the full payloads: SH transfer; Haar files through haar-view.js; glossy
+// files (glossyBuffer = /api/glossy.bin) through glossy.js.
 function fullMesh(manifest, meshBuffer, transferBuffer, glossyBuffer = null) {
   const geometry = buildGeometry(manifest, meshBuffer);
-  const t = manifest.transfer;
   const terms = params.has('terms') ? numbers(params.get('terms'), 1, 'terms')[0] : undefined;
   const haar = manifest.haar ? createHaarView(manifest, transferBuffer, geometry, terms) : null;
-  const material = haar ? haar.material : manifest.glossy ? createGlossyMaterial(manifest, transferBuffer, glossyBuffer) : createRelightMaterial({
-    order: manifest.order,
-    channels: manifest.channels,
-    albedoFolded: manifest.albedo_folded,
-    transfer: { texture: halfTexture(new Uint16Array(transferBuffer), t.width, t.height), width: t.width, texelsPerVertex: t.texels_per_vertex },
-  });
+  const material = haar ? haar.material : manifest.glossy ? createGlossyMaterial(manifest, transferBuffer, glossyBuffer) : shMaterial(manifest, transferBuffer, manifest.transfer);
   if (manifest.glossy && params.has('eye')) material.userData.fixedEye = numbers(params.get('eye'), 3, 'eye');
   const mesh = new THREE.Mesh(geometry, material);
   mesh.frustumCulled = false;
@@ -72,18 +65,21 @@ function fullMesh(manifest, meshBuffer, transferBuffer, glossyBuffer = null) {
   return mesh;
 }
 
+// The material of an SH transfer payload (transfer.bin or an also<i>.bin, layout `t`).
+function shMaterial(manifest, buffer, t) {
+  return createRelightMaterial({
+    order: manifest.order,
+    channels: manifest.channels,
+    albedoFolded: manifest.albedo_folded,
+    transfer: { texture: halfTexture(new Uint16Array(buffer), t.width, t.height), width: t.width, texelsPerVertex: t.texels_per_vertex },
+  });
+}
+
 // The meshes of prt view --also: the same geometry, each with a material reading its file's
 // transfer texture (manifest.also[i], buffers[i] = /api/also<i>.bin).
 function alsoMeshes(manifest, geometry, buffers) {
   return buffers.map((buffer, i) => {
-    const t = manifest.also[i].transfer;
-    const material = createRelightMaterial({
-      order: manifest.order,
-      channels: manifest.channels,
-      albedoFolded: manifest.albedo_folded,
-      transfer: { texture: halfTexture(new Uint16Array(buffer), t.width, t.height), width: t.width, texelsPerVertex: t.texels_per_vertex },
-    });
-    const mesh = new THREE.Mesh(geometry, material);
+    const mesh = new THREE.Mesh(geometry, shMaterial(manifest, buffer, manifest.also[i].transfer));
     mesh.frustumCulled = false;
     return mesh;
   });
@@ -335,7 +331,9 @@ function setUpEmitterControls(emitters, state, geometry, render) {
     row.textContent = `${e.name} `;
     const intensity = Object.assign(document.createElement('input'), { type: 'range', min: 0, max: 4, step: 0.05, value: 1 });
     const tint = Object.assign(document.createElement('input'), { type: 'color', value: '#ffffff' });
+    const shown = document.createElement('span');
     const update = () => {
+      shown.textContent = ` ×${Number(intensity.value).toFixed(2)}`;
       const hex = tint.value;
       const linear = [1, 3, 5].map((k) => {
         const c = parseInt(hex.slice(k, k + 2), 16) / 255;
@@ -347,9 +345,15 @@ function setUpEmitterControls(emitters, state, geometry, render) {
     };
     intensity.addEventListener('input', update);
     tint.addEventListener('input', update);
-    row.append(intensity, tint);
+    shown.textContent = ' ×1.00';
+    row.append(intensity, shown, tint);
     panel.append(row);
   });
+}
+
+// A number for the panel: three significant digits, no trailing zeros (0.0251, 1.91, 12.5).
+function shownNumber(value) {
+  return Number(value.toPrecision(3)).toString();
 }
 
 // Blocks until the GPU has drawn the frame: reading one pixel back waits for it (Chromium's
@@ -370,13 +374,15 @@ function setUpControls(manifest, state, render, canvas) {
   showExposure();
   exposure.addEventListener('input', () => { state.exposure = Number(exposure.value); showExposure(); render(); });
   windowSelect.value = state.windowChoice;
-  strength.value = state.window.strength;
+  strength.value = shownNumber(state.window.strength);
   const applyWindow = () => {
     state.windowChoice = windowSelect.value;
+    // auto keeps the manifest's exact strength (the picture prt relight draws); the field shows
+    // it rounded, and a strength typed in is used as typed.
     state.window = state.windowChoice === 'auto'
       ? { name: manifest.window.name, strength: manifest.window.strength }
       : { name: state.windowChoice, strength: Number(strength.value) };
-    if (state.windowChoice === 'auto') strength.value = manifest.window.strength;
+    if (state.windowChoice === 'auto') strength.value = shownNumber(manifest.window.strength);
     render();
   };
   windowSelect.addEventListener('change', applyWindow);

@@ -9,33 +9,19 @@
 //   background      the mesh hidden;
 // and times the CPCA products alone in the page (clusterProducts, median of N calls).
 // Prints one JSON line. Usage: node measure_glossy_viewer.mjs URL FRAMES [ROOT]
-import { mkdtempSync } from 'node:fs';
-import { createRequire } from 'node:module';
-import { tmpdir } from 'node:os';
+import { resolve } from 'node:path';
 import { pathToFileURL } from 'node:url';
 
 const [url, framesText, root = process.cwd()] = process.argv.slice(2);
-const require = createRequire(`${root}/tests/viewer/package.json`);
-const puppeteer = (await import(pathToFileURL(require.resolve('puppeteer-core')).href)).default;
+// tests/viewer/browser.mjs: Chromium as the viewer's tests launch it (puppeteer-core from there).
+const { launchBrowser, median, openViewer } = await import(pathToFileURL(resolve(root, 'tests/viewer/browser.mjs')).href);
 const frames = Number(framesText);
-const browser = await puppeteer.launch({
-  executablePath: process.env.CHROMIUM ?? '/usr/bin/chromium',
-  headless: true,
-  protocolTimeout: 600000,
-  args: ['--no-sandbox', '--disable-gpu', '--disable-quic', '--no-first-run',
-    '--disable-background-networking', '--disable-component-update', '--disable-sync',
-    '--use-gl=angle', '--use-angle=swiftshader', '--enable-unsafe-swiftshader',
-    `--user-data-dir=${mkdtempSync(`${tmpdir()}/prt-chromium-`)}`],
-});
-const median = (v) => [...v].sort((a, b) => a - b)[Math.floor(v.length / 2)];
+const browser = await launchBrowser();
 try {
   const page = await browser.newPage();
-  await page.setViewport({ width: 960, height: 540 });
-  await page.goto(`${url}?ui=0`, { timeout: 600000 });
-  await page.waitForFunction('window.prtViewer !== undefined', { timeout: 600000 });
+  await openViewer(page, url, 'ui=0', 960, 540);
   const result = await page.evaluate(async (n) => {
     const v = window.prtViewer;
-    if (!v.ready) return { error: v.error };
     const { clusterProducts } = await import('./glossy.js');
     const lightTurning = v.measureFrames(n);
     const { camera, renderer } = v.context;
@@ -69,7 +55,6 @@ try {
       clusters: m.transfer.clusters ?? null, vectors: m.transfer.vectors ?? null,
       firstFrameMs: v.firstFrameSinceNavigationMs, lightTurning, cameraMoving, background, products };
   }, frames);
-  if (result.error) throw new Error(result.error);
   const frame = median(result.lightTurning), empty = median(result.background);
   console.log(JSON.stringify({ kind: result.kind, vertices: result.vertices, triangles: result.triangles, order: result.order,
     channels: result.channels, clusters: result.clusters, vectors: result.vectors,

@@ -4,28 +4,18 @@
 // sparse sum) and with the frame drawn and waited for (a pixel read back). Prints one JSON line
 // of medians (ms) and saves a screenshot to OUT/haar_view.png.
 // Usage: node measure_haar_view.mjs URL CHANGES TERMS REPOSITORY_ROOT OUT
-import { createRequire } from 'node:module';
-import { mkdtempSync } from 'node:fs';
 import { resolve } from 'node:path';
 import { pathToFileURL } from 'node:url';
 
 const [url, changes, terms, root, out] = process.argv.slice(2);
-const require = createRequire(resolve(root, 'tests/viewer/package.json'));
-const puppeteer = (await import(pathToFileURL(require.resolve('puppeteer-core')).href)).default;
-const browser = await puppeteer.launch({
-  executablePath: process.env.CHROMIUM ?? '/usr/bin/chromium',
-  headless: true,
-  args: ['--no-sandbox', '--disable-gpu', '--use-gl=angle', '--use-angle=swiftshader',
-    '--enable-unsafe-swiftshader', `--user-data-dir=${mkdtempSync(`${out}/chromium-`)}`],
-});
+// tests/viewer/browser.mjs: Chromium as the viewer's tests launch it (puppeteer-core from there).
+const { launchBrowser, openViewer } = await import(pathToFileURL(resolve(root, 'tests/viewer/browser.mjs')).href);
+const browser = await launchBrowser(out);
 try {
   const page = await browser.newPage();
-  await page.setViewport({ width: 960, height: 540 });
-  await page.goto(`${url}?terms=${terms}`);
-  await page.waitForFunction('window.prtViewer !== undefined', { timeout: 600000 });
+  await openViewer(page, url, `terms=${terms}`, 960, 540);
   const result = await page.evaluate((n) => {
-    const { context, state, render, ready, error, firstFrameMs } = window.prtViewer;
-    if (!ready) return { error };
+    const { context, state, render, firstFrameMs } = window.prtViewer;
     const gl = context.renderer.getContext();
     const rows = [];
     for (let i = 0; i < n; ++i) {

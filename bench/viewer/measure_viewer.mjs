@@ -12,33 +12,19 @@
 // from the preview while the user moves. Prints one JSON line.
 // Usage: node measure_viewer.mjs URL FRAMES [ROOT]   (ROOT: the repository, for puppeteer-core)
 // PRT_VIEW_QUERY=preview=0 (for instance) adds URL parameters.
-import { mkdtempSync } from 'node:fs';
-import { createRequire } from 'node:module';
-import { tmpdir } from 'node:os';
+import { resolve } from 'node:path';
 import { pathToFileURL } from 'node:url';
 
 const [url, framesText, root = process.cwd()] = process.argv.slice(2);
-const require = createRequire(`${root}/tests/viewer/package.json`);
-const puppeteer = (await import(pathToFileURL(require.resolve('puppeteer-core')).href)).default;
+// tests/viewer/browser.mjs: Chromium as the viewer's tests launch it (puppeteer-core from there).
+const { launchBrowser, median, openViewer } = await import(pathToFileURL(resolve(root, 'tests/viewer/browser.mjs')).href);
 const frames = Number(framesText);
-const browser = await puppeteer.launch({
-  executablePath: process.env.CHROMIUM ?? '/usr/bin/chromium',
-  headless: true,
-  protocolTimeout: 600000,
-  args: ['--no-sandbox', '--disable-gpu', '--disable-quic', '--no-first-run',
-    '--disable-background-networking', '--disable-component-update', '--disable-sync',
-    '--use-gl=angle', '--use-angle=swiftshader', '--enable-unsafe-swiftshader',
-    `--user-data-dir=${mkdtempSync(`${tmpdir()}/prt-chromium-`)}`],
-});
-const median = (v) => [...v].sort((a, b) => a - b)[Math.floor(v.length / 2)];
+const browser = await launchBrowser();
 try {
   const page = await browser.newPage();
-  await page.setViewport({ width: 960, height: 540 });
-  await page.goto(`${url}?ui=0${process.env.PRT_VIEW_QUERY ? `&${process.env.PRT_VIEW_QUERY}` : ''}`, { timeout: 600000 });
-  await page.waitForFunction('window.prtViewer !== undefined', { timeout: 600000 });
+  await openViewer(page, url, `ui=0${process.env.PRT_VIEW_QUERY ? `&${process.env.PRT_VIEW_QUERY}` : ''}`, 960, 540);
   const result = await page.evaluate((n) => {
     const v = window.prtViewer;
-    if (!v.ready) return { error: v.error };
     const withMesh = v.measureFrames(n);
     const moving = v.coarse ? v.measureFrames(n, v.coarse) : null;  // the preview, while moving
     v.state.mode = 'ao-only';  // the vertex shader without the transfer sum
@@ -50,7 +36,6 @@ try {
       firstFrameMs: v.firstFrameSinceNavigationMs, previewFrameMs: v.previewFrameSinceNavigationMs, timings: v.timings,
       previewVertices: v.manifest.preview?.vertex_count ?? null, moving, withMesh, plain, background };
   }, frames);
-  if (result.error) throw new Error(result.error);
   const frame = median(result.withMesh), plain = median(result.plain), empty = median(result.background);
   console.log(JSON.stringify({ vertices: result.vertices, triangles: result.triangles, order: result.order, channels: result.channels,
     first_frame_ms: Math.round(result.firstFrameMs),

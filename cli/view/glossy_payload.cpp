@@ -65,11 +65,14 @@ nlohmann::json layout_json(std::size_t width, std::size_t height, std::size_t pe
 }
 
 // .prtg: the matrices as float16 RGBA texels, P = ⌈C·n⁴/4⌉ a vertex.
-std::vector<std::uint8_t> matrix_texture(const prt::GlossyTransferData& data,
-                                         const std::string& path, nlohmann::json* layout) {
+std::vector<std::uint8_t> matrix_texture(const ViewInputs& inputs,
+                                         const prt::GlossyTransferData& data,
+                                         nlohmann::json* layout) {
   const std::size_t per_vertex = std::size_t(data.channels) * data.matrix_floats();
   const std::size_t texels = (per_vertex + 3) / 4;
-  const auto [width, height] = texture_size(texels, data.vertex_count, path + ": the matrices");
+  const auto [width, height] =
+      texture_size(texels, data.vertex_count, inputs.transfer_path + ": the matrices");
+  charge_payload(inputs, std::uint64_t(width) * height * 4 * sizeof(std::uint16_t), "the matrices");
   std::vector<std::uint16_t> halves(width * height * 4, 0);
   for (std::size_t v = 0; v < data.vertex_count; ++v)
     convert_floats_to_halves(&data.matrices[v * per_vertex], per_vertex, &halves[v * texels * 4]);
@@ -80,9 +83,11 @@ std::vector<std::uint8_t> matrix_texture(const prt::GlossyTransferData& data,
 }
 
 // .prtq: per cluster the mean, then the K vectors, float32.
-std::vector<std::uint8_t> cpca_arrays(const prt::CpcaTransfer& cpca, nlohmann::json* layout) {
+std::vector<std::uint8_t> cpca_arrays(const ViewInputs& inputs, const prt::CpcaTransfer& cpca,
+                                      nlohmann::json* layout) {
   const std::size_t d = cpca.dimension(), k = cpca.vector_count;
   std::vector<std::uint8_t> out;
+  charge_payload(inputs, cpca.cluster_count * (k + 1) * d * sizeof(float), "the CPCA clusters");
   out.reserve(cpca.cluster_count * (k + 1) * d * sizeof(float));
   for (std::size_t q = 0; q < cpca.cluster_count; ++q) {
     append(&out, &cpca.means[q * d], d);
@@ -274,20 +279,16 @@ ViewPayload build_glossy_view_payload(const ViewInputs& inputs) {
   const int order = int(data.order);
   ViewPayload payload;
   nlohmann::json manifest, transfer_layout, glossy;
-  payload.transfer = cpca ? cpca_arrays(*cpca, &transfer_layout)
-                          : matrix_texture(data, inputs.transfer_path, &transfer_layout);
+  payload.transfer = cpca ? cpca_arrays(inputs, *cpca, &transfer_layout)
+                          : matrix_texture(inputs, data, &transfer_layout);
   payload.glossy = glossy_bytes(data, cpca, inputs.transfer_path, &glossy);
+  charge_payload(inputs, payload.glossy.size(), "the vertex frames and BRDF tables");
   glossy["form"] = cpca ? "cpca" : "matrices";
   const uint32_t channels = data.channels;
   const prt::GlossyRelighter relighter =
       relight::make_glossy_relighter(std::move(loaded), inputs.transfer_path, {});
 
-  relight::EnvironmentUse use;
-  use.sh_order = order;
-  const sh::EnvMap env =
-      inputs.environment_path.empty()
-          ? payload_uniform_environment()
-          : relight::read_checked_environment(inputs.environment_path, std::nullopt, use).env;
+  const sh::EnvMap env = payload_environment(inputs, order);
   relight::LightingOptions options;
   options.window = sh::Window::None;  // auto: chosen on the vertices below, as prt relight does
   const prt::ShLighting unwindowed = relight::project_lighting(env, order, options);
@@ -304,19 +305,10 @@ ViewPayload build_glossy_view_payload(const ViewInputs& inputs) {
   const float exposure =
       relight::choose_auto_exposure(relight::shade_glossy_vertices(relighter, windowed, eye));
 
-  manifest["format"] = "prt-view 1";
+  manifest = payload_manifest_head(inputs, scene, cpca ? "glossy-cpca" : "glossy", order,
+                                   int(channels), true);
   manifest["sh_basis"] =
       "real orthonormal SH, no Condon-Shortley phase, k = l(l+1)+m, polar axis +z, glTF frame";
-  manifest["scene"] = inputs.scene_path;
-  manifest["transfer_file"] = inputs.transfer_path;
-  manifest["environment"] =
-      inputs.environment_path.empty() ? "uniform radiance 1" : inputs.environment_path;
-  manifest["kind"] = cpca ? "glossy-cpca" : "glossy";
-  manifest["order"] = order;
-  manifest["channels"] = channels;
-  manifest["albedo_folded"] = true;
-  manifest["vertex_count"] = scene.vertex_count();
-  manifest["triangle_count"] = scene.triangles.size();
   nlohmann::json sections;
   const std::size_t v = scene.vertex_count();
   std::vector<std::uint8_t>& mesh = payload.mesh;
@@ -333,26 +325,12 @@ ViewPayload build_glossy_view_payload(const ViewInputs& inputs) {
   transfer_layout["url"] = "/api/transfer.bin";
   manifest["transfer"] = transfer_layout;
   manifest["glossy"] = glossy;
-  std::vector<double> lighting;
-  for (int c = 0; c < 3; ++c)
-    lighting.insert(lighting.end(), unwindowed.coefficients_double(c),
-                    unwindowed.coefficients_double(c) + unwindowed.coefficient_count());
-  manifest["lighting"] = {{"coefficients", lighting},
-                          {"layout", "channel-major radiance, 3 x order^2"}};
-  manifest["window"] = {{"name", sh::window_name(choice.window)},
-                        {"strength", choice.strength},
-                        {"note", window_note}};
-  manifest["exposure_ev"] = exposure;
-  manifest["camera"] = payload_camera_json(camera, inputs.aspect);
-  payload.environment = payload_environment_bytes(env, inputs.background_width);
-  manifest["background"] = {{"url", "/api/environment.bin"},
-                            {"width", inputs.background_width},
-                            {"height", inputs.background_width / 2},
-                            {"type", "float16 RGBA lat-long"}};
+  add_payload_lighting(unwindowed, choice, window_note, &manifest);
+  add_payload_view(inputs, env, exposure, camera, &manifest, &payload);
   payload.manifest_json = manifest.dump(1);
   payload.summary = std::to_string(v) + " vertices, " + manifest["kind"].get<std::string>() +
                     " order " + std::to_string(order) + "; " + window_note + "; exposure " +
-                    std::to_string(exposure) + " EV";
+                    payload_exposure_text(exposure);
   return payload;
 }
 

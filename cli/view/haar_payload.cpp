@@ -36,8 +36,16 @@ void add_section(nlohmann::json* sections, std::vector<std::uint8_t>* out, const
   (*sections)[name] = {{"offset", at}, {"count", count}, {"type", type}};
 }
 
-std::vector<std::uint8_t> transfer_bytes(const prt::HaarTransfer& t, const prt::CubeMap& cube,
-                                         const prt::CubeMap& fine, nlohmann::json* sections) {
+std::vector<std::uint8_t> transfer_bytes(const ViewInputs& inputs, const prt::HaarTransfer& t,
+                                         const prt::CubeMap& cube, const prt::CubeMap& fine,
+                                         nlohmann::json* sections) {
+  const std::uint64_t values =
+      t.values_i16.size() * 2 + t.values_i8.size() + t.values_f32.size() * 4;
+  charge_payload(inputs,
+                 4 * (t.offsets.size() + t.vertices.size() + std::size_t(t.vertex_count) +
+                      cube.rgb.size() + fine.rgb.size()) +
+                     values,
+                 "the wavelet transfer");
   std::vector<std::uint8_t> out;
   std::vector<std::uint32_t> offsets(t.offsets.begin(), t.offsets.end());
   add_section(sections, &out, "offsets", offsets.data(), offsets.size(), "uint32");
@@ -78,10 +86,7 @@ ViewPayload build_haar_view_payload(const ViewInputs& inputs) {
   if (transfer.entry_count() > std::numeric_limits<std::uint32_t>::max())
     throw std::runtime_error(inputs.transfer_path + ": " + std::to_string(transfer.entry_count()) +
                              " transfer entries, more than the page's 32-bit offsets hold");
-  const sh::EnvMap env =
-      inputs.environment_path.empty()
-          ? payload_uniform_environment()
-          : relight::read_checked_environment(inputs.environment_path, std::nullopt).env;
+  const sh::EnvMap env = payload_environment(inputs, 0);
   const int size = transfer.size, fine_size = std::min(prt::kMaxCubeSize, 2 * size);
   const prt::CubeMap cube = relight::make_rotated_cube(env, size, kIdentity);
   prt::Result<prt::CubeMap> fine = prt::resample_to_cube(env, fine_size);
@@ -101,24 +106,15 @@ ViewPayload build_haar_view_payload(const ViewInputs& inputs) {
   const relight::CameraChoice camera = relight::choose_camera("auto", scene, caster, inputs.aspect);
 
   ViewPayload payload;
-  nlohmann::json manifest;
-  manifest["format"] = "prt-view 1";
+  nlohmann::json manifest =
+      payload_manifest_head(inputs, scene, prt::transfer_kind_name(file->info.kind), size,
+                            int(transfer.channels), folded);
   manifest["haar_basis"] = prt::kHaarBasisConvention;
-  manifest["scene"] = inputs.scene_path;
-  manifest["transfer_file"] = inputs.transfer_path;
-  manifest["environment"] =
-      inputs.environment_path.empty() ? "uniform radiance 1" : inputs.environment_path;
-  manifest["kind"] = prt::transfer_kind_name(file->info.kind);
-  manifest["order"] = size;
-  manifest["channels"] = transfer.channels;
-  manifest["albedo_folded"] = folded;
-  manifest["vertex_count"] = scene.vertex_count();
-  manifest["triangle_count"] = scene.triangles.size();
   nlohmann::json mesh_sections;
-  payload.mesh = payload_mesh_bytes(scene, file->info, &mesh_sections);
+  payload.mesh = payload_mesh_bytes(inputs, scene, file->info, &mesh_sections);
   manifest["mesh"] = {{"url", "/api/mesh.bin"}, {"sections", mesh_sections}};
   nlohmann::json sections;
-  payload.transfer = transfer_bytes(transfer, cube, *fine, &sections);
+  payload.transfer = transfer_bytes(inputs, transfer, cube, *fine, &sections);
   const int bits = static_cast<int>(transfer.quantization);
   manifest["haar"] = {{"url", "/api/transfer.bin"},         {"cube_size", size},
                       {"fine_cube_size", fine_size},        {"channels", transfer.channels},
@@ -126,19 +122,13 @@ ViewPayload build_haar_view_payload(const ViewInputs& inputs) {
                       {"default_terms", kHaarDefaultTerms}, {"sections", sections}};
   manifest["transfer"] = {{"url", "/api/transfer.bin"}};
   manifest["window"] = {{"name", "none"}, {"strength", 0.0}, {"note", "Haar: no window"}};
-  manifest["exposure_ev"] = exposure;
-  manifest["camera"] = payload_camera_json(camera, inputs.aspect);
-  payload.environment = payload_environment_bytes(env, inputs.background_width);
-  manifest["background"] = {{"url", "/api/environment.bin"},
-                            {"width", inputs.background_width},
-                            {"height", inputs.background_width / 2},
-                            {"type", "float16 RGBA lat-long"}};
+  add_payload_view(inputs, env, exposure, camera, &manifest, &payload);
   payload.manifest_json = manifest.dump(1);
   payload.summary = std::to_string(scene.vertex_count()) + " vertices, Haar cube " +
                     std::to_string(size) + ", " + std::to_string(transfer.entry_count()) +
                     " entries (" + std::to_string(bits) + "-bit); non-linear lighting, " +
                     std::to_string(kHaarDefaultTerms) + " terms; exposure " +
-                    std::to_string(exposure) + " EV";
+                    payload_exposure_text(exposure);
   return payload;
 }
 

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <stdexcept>
@@ -56,12 +57,15 @@ void add_section(nlohmann::json* sections, std::vector<std::uint8_t>* out, const
   append(out, data, count);
 }
 
-std::vector<std::uint8_t> mesh_bytes(const scene::Scene& scene, const prt::TransferData& data,
-                                     nlohmann::json* sections) {
+std::vector<std::uint8_t> mesh_bytes(const ViewInputs& inputs, const scene::Scene& scene,
+                                     const prt::TransferData& data, nlohmann::json* sections) {
   std::vector<std::uint8_t> out;
   const std::size_t v = scene.vertex_count();
-  out.reserve(4 * (9 * v + (data.ao.empty() ? 0 : v) + (data.bent_normals.empty() ? 0 : 3 * v) +
-                   3 * scene.triangles.size()));  // one allocation, no copies as it grows
+  const std::size_t bytes =
+      4 * (9 * v + (data.ao.empty() ? 0 : v) + (data.bent_normals.empty() ? 0 : 3 * v) +
+           3 * scene.triangles.size());
+  charge_payload(inputs, bytes, "the mesh");
+  out.reserve(bytes);  // one allocation, no copies as it grows
   add_section(sections, &out, "positions", &scene.positions[0].x, 3 * v, "float32");
   add_section(sections, &out, "normals", &scene.normals[0].x, 3 * v, "float32");
   add_section(sections, &out, "albedo", &scene.albedo[0].x, 3 * v, "float32");
@@ -73,7 +77,8 @@ std::vector<std::uint8_t> mesh_bytes(const scene::Scene& scene, const prt::Trans
   return out;
 }
 
-std::vector<std::uint8_t> transfer_bytes(const prt::TransferData& data, nlohmann::json* layout) {
+std::vector<std::uint8_t> transfer_bytes(const ViewInputs& inputs, const prt::TransferData& data,
+                                         const std::string& what, nlohmann::json* layout) {
   const std::size_t per_vertex = std::size_t(data.channels) * data.coefficients_per_channel();
   const std::size_t texels_per_vertex = (per_vertex + 3) / 4;
   const std::size_t texels = texels_per_vertex * data.vertex_count;
@@ -86,6 +91,7 @@ std::vector<std::uint8_t> transfer_bytes(const prt::TransferData& data, nlohmann
     throw std::runtime_error("the transfer takes " + std::to_string(texels) +
                              " texels, more than a " + std::to_string(kMaxTextureSide) +
                              "² texture");
+  charge_payload(inputs, rows * width * 4 * sizeof(std::uint16_t), what);
   // Written in place, in parallel ranges of vertices (the halves do not depend on the split).
   std::vector<std::uint8_t> out(rows * width * 4 * sizeof(std::uint16_t), 0);
   auto* halves = reinterpret_cast<std::uint16_t*>(out.data());
@@ -129,35 +135,6 @@ std::vector<std::uint8_t> environment_bytes(const sh::EnvMap& env, int width) {
   std::vector<std::uint8_t> out;
   append(&out, halves.data(), halves.size());
   return out;
-}
-
-sh::EnvMap uniform_environment() {
-  sh::EnvMap env;
-  env.layout = sh::EnvLayout::LatLong;
-  env.width = 16;
-  env.height = 8;
-  env.rgb.assign(3 * 16 * 8, 1.f);
-  return env;
-}
-
-// The automatic exposure as `prt relight` chooses it on its first frame (exit radiance: the
-// vertex's albedo times the value when the file keeps the albedo apart).
-float automatic_exposure(std::vector<float> radiance, const scene::Scene& scene,
-                         bool albedo_folded) {
-  if (!albedo_folded)
-    for (std::size_t v = 0; v < scene.vertex_count(); ++v)
-      for (int c = 0; c < 3; ++c) radiance[3 * v + c] *= scene.albedo[v][c];
-  return relight::choose_auto_exposure(radiance);
-}
-
-nlohmann::json camera_json(const relight::CameraChoice& choice, float aspect) {
-  const relight::Camera& c = choice.camera;
-  return {{"eye", {c.eye.x, c.eye.y, c.eye.z}},
-          {"target", {c.target.x, c.target.y, c.target.z}},
-          {"up", {c.up.x, c.up.y, c.up.z}},
-          {"yfov_degrees", double(c.yfov_radians) * 180.0 / 3.14159265358979323846},
-          {"aspect", aspect},
-          {"origin", choice.origin}};
 }
 
 // The responses of inputs.emitters_path, checked against the scene (empty without one).
@@ -204,7 +181,7 @@ nlohmann::json add_also_files(const ViewInputs& inputs, const scene::Scene& scen
       differ("albedo", data.albedo_folded ? "folded" : "apart",
              other.albedo_folded ? "folded" : "apart");
     nlohmann::json layout;
-    payload->also.push_back(transfer_bytes(other, &layout));
+    payload->also.push_back(transfer_bytes(inputs, other, "the --also file " + path, &layout));
     layout["url"] = "/api/also" + std::to_string(i) + ".bin";
     const std::string name = std::filesystem::path(path).filename().string();
     list.push_back(
@@ -230,12 +207,7 @@ ViewPayload build_view_payload(const ViewInputs& inputs) {
   ViewPayload payload;
   const nlohmann::json also = add_also_files(inputs, scene, data, &payload);
   const int order = static_cast<int>(data.order);
-  relight::EnvironmentUse use;
-  use.sh_order = order;
-  const sh::EnvMap env =
-      inputs.environment_path.empty()
-          ? uniform_environment()
-          : relight::read_checked_environment(inputs.environment_path, std::nullopt, use).env;
+  const sh::EnvMap env = payload_environment(inputs, order);
   relight::LightingOptions options;  // --window auto: chosen on the shaded vertices, as relight
   const prt::ShLighting unwindowed = relight::project_lighting(env, order, options);
   prt::Result<prt::Relighter> relighter = prt::Relighter::create(data);
@@ -255,29 +227,19 @@ ViewPayload build_view_payload(const ViewInputs& inputs) {
         relight::emitter_radiance(responses, inputs.emitters_path, {});
     for (std::size_t i = 0; i < radiance.size(); ++i) radiance[i] += emitted[i];
   }
-  const float exposure = automatic_exposure(std::move(radiance), scene, data.albedo_folded);
+  const float exposure = payload_automatic_exposure(std::move(radiance), scene, data.albedo_folded);
   const scene::RayCaster caster(scene);
   const relight::CameraChoice camera = relight::choose_camera("auto", scene, caster, inputs.aspect);
 
-  nlohmann::json manifest;
-  manifest["format"] = "prt-view 1";
+  nlohmann::json manifest = payload_manifest_head(inputs, scene, prt::transfer_kind_name(data.kind),
+                                                  order, int(data.channels), data.albedo_folded);
   manifest["sh_basis"] =
       "real orthonormal SH, no Condon-Shortley phase, k = l(l+1)+m, polar axis +z, glTF frame";
-  manifest["scene"] = inputs.scene_path;
-  manifest["transfer_file"] = inputs.transfer_path;
-  manifest["environment"] =
-      inputs.environment_path.empty() ? "uniform radiance 1" : inputs.environment_path;
-  manifest["kind"] = prt::transfer_kind_name(data.kind);
-  manifest["order"] = order;
-  manifest["channels"] = data.channels;
-  manifest["albedo_folded"] = data.albedo_folded;
-  manifest["vertex_count"] = scene.vertex_count();
-  manifest["triangle_count"] = scene.triangles.size();
   nlohmann::json sections;
-  payload.mesh = mesh_bytes(scene, data, &sections);
+  payload.mesh = mesh_bytes(inputs, scene, data, &sections);
   manifest["mesh"] = {{"url", "/api/mesh.bin"}, {"sections", sections}};
   nlohmann::json layout;
-  payload.transfer = transfer_bytes(data, &layout);
+  payload.transfer = transfer_bytes(inputs, data, "the transfer", &layout);
   layout["url"] = "/api/transfer.bin";
   manifest["transfer"] = layout;
   if (!also.empty()) manifest["also"] = also;
@@ -285,32 +247,20 @@ ViewPayload build_view_payload(const ViewInputs& inputs) {
     nlohmann::json preview;
     payload.preview =
         preview_bytes(scene, data, build_preview_mesh(scene, kPreviewVertices), &preview);
+    charge_payload(inputs, payload.preview.size(), "the preview");
     manifest["preview"] = preview;
   }
-  std::vector<double> lighting;
-  for (int c = 0; c < 3; ++c)
-    lighting.insert(lighting.end(), unwindowed.coefficients_double(c),
-                    unwindowed.coefficients_double(c) + unwindowed.coefficient_count());
-  manifest["lighting"] = {{"coefficients", lighting},
-                          {"layout", "channel-major radiance, 3 x order^2"}};
-  manifest["window"] = {{"name", sh::window_name(choice.window)},
-                        {"strength", choice.strength},
-                        {"note", window_note}};
-  manifest["exposure_ev"] = exposure;
-  manifest["camera"] = camera_json(camera, inputs.aspect);
-  payload.environment = environment_bytes(env, inputs.background_width);
-  manifest["background"] = {{"url", "/api/environment.bin"},
-                            {"width", inputs.background_width},
-                            {"height", inputs.background_width / 2},
-                            {"type", "float16 RGBA lat-long"}};
+  add_payload_lighting(unwindowed, choice, window_note, &manifest);
+  add_payload_view(inputs, env, exposure, camera, &manifest, &payload);
   if (!responses.emitters.empty()) {
     manifest["emitters"] = emitters_json(responses);
+    charge_payload(inputs, responses.responses.size() * sizeof(float), "the emitter responses");
     append(&payload.emitters, responses.responses.data(), responses.responses.size());
   }
   payload.manifest_json = manifest.dump(1);
   payload.summary = std::to_string(scene.vertex_count()) + " vertices, " +
                     prt::transfer_kind_name(data.kind) + " SH order " + std::to_string(order) +
-                    "; " + window_note + "; exposure " + std::to_string(exposure) + " EV";
+                    "; " + window_note + "; exposure " + payload_exposure_text(exposure);
   return payload;
 }
 
@@ -319,23 +269,97 @@ ViewPayload build_view_payload(const ViewInputs& inputs) {
 // The shared parts, for the payloads of other bases (payload_parts.h).
 namespace prt::cli::view {
 
-std::vector<std::uint8_t> payload_mesh_bytes(const scene::Scene& scene,
+void charge_payload(const ViewInputs& inputs, std::uint64_t bytes, const std::string& what) {
+  if (inputs.budget) inputs.budget->charge(bytes, what + " payload");
+}
+
+std::vector<std::uint8_t> payload_mesh_bytes(const ViewInputs& inputs, const scene::Scene& scene,
                                              const prt::TransferData& data,
                                              nlohmann::json* sections) {
-  return mesh_bytes(scene, data, sections);
+  return mesh_bytes(inputs, scene, data, sections);
 }
-std::vector<std::uint8_t> payload_environment_bytes(const sh::EnvMap& env, int width) {
-  return environment_bytes(env, width);
+
+sh::EnvMap payload_environment(const ViewInputs& inputs, int sh_order) {
+  if (inputs.environment_path.empty()) {  // uniform radiance 1
+    sh::EnvMap env;
+    env.layout = sh::EnvLayout::LatLong;
+    env.width = 16;
+    env.height = 8;
+    env.rgb.assign(3 * 16 * 8, 1.f);
+    return env;
+  }
+  relight::EnvironmentUse use;
+  use.sh_order = sh_order;
+  return relight::read_checked_environment(inputs.environment_path, std::nullopt, use).env;
 }
-sh::EnvMap payload_uniform_environment() {
-  return uniform_environment();
-}
+
+// The automatic exposure as `prt relight` chooses it on its first frame (exit radiance: the
+// vertex's albedo times the value when the file keeps the albedo apart).
 float payload_automatic_exposure(std::vector<float> radiance, const scene::Scene& scene,
                                  bool albedo_folded) {
-  return automatic_exposure(std::move(radiance), scene, albedo_folded);
+  if (!albedo_folded)
+    for (std::size_t v = 0; v < scene.vertex_count(); ++v)
+      for (int c = 0; c < 3; ++c) radiance[3 * v + c] *= scene.albedo[v][c];
+  return relight::choose_auto_exposure(radiance);
 }
-nlohmann::json payload_camera_json(const relight::CameraChoice& choice, float aspect) {
-  return camera_json(choice, aspect);
+
+nlohmann::json payload_manifest_head(const ViewInputs& inputs, const scene::Scene& scene,
+                                     const std::string& kind, int order, int channels,
+                                     bool albedo_folded) {
+  nlohmann::json manifest;
+  manifest["format"] = "prt-view 1";
+  manifest["scene"] = inputs.scene_path;
+  manifest["transfer_file"] = inputs.transfer_path;
+  manifest["environment"] =
+      inputs.environment_path.empty() ? "uniform radiance 1" : inputs.environment_path;
+  manifest["kind"] = kind;
+  manifest["order"] = order;
+  manifest["channels"] = channels;
+  manifest["albedo_folded"] = albedo_folded;
+  manifest["vertex_count"] = scene.vertex_count();
+  manifest["triangle_count"] = scene.triangles.size();
+  return manifest;
+}
+
+void add_payload_lighting(const prt::ShLighting& unwindowed,
+                          const relight::ShownWindowChoice& choice, const std::string& note,
+                          nlohmann::json* manifest) {
+  std::vector<double> lighting;
+  for (int c = 0; c < 3; ++c)
+    lighting.insert(lighting.end(), unwindowed.coefficients_double(c),
+                    unwindowed.coefficients_double(c) + unwindowed.coefficient_count());
+  (*manifest)["lighting"] = {{"coefficients", lighting},
+                             {"layout", "channel-major radiance, 3 x order^2"}};
+  (*manifest)["window"] = {
+      {"name", sh::window_name(choice.window)}, {"strength", choice.strength}, {"note", note}};
+}
+
+void add_payload_view(const ViewInputs& inputs, const sh::EnvMap& env, float exposure,
+                      const relight::CameraChoice& choice, nlohmann::json* manifest,
+                      ViewPayload* payload) {
+  const relight::Camera& c = choice.camera;
+  (*manifest)["exposure_ev"] = exposure;
+  (*manifest)["camera"] = {
+      {"eye", {c.eye.x, c.eye.y, c.eye.z}},
+      {"target", {c.target.x, c.target.y, c.target.z}},
+      {"up", {c.up.x, c.up.y, c.up.z}},
+      {"yfov_degrees", double(c.yfov_radians) * 180.0 / 3.14159265358979323846},
+      {"aspect", inputs.aspect},
+      {"origin", choice.origin}};
+  const int width = inputs.background_width;
+  charge_payload(inputs, std::uint64_t(width) * (width / 2) * 4 * sizeof(std::uint16_t),
+                 "the background");
+  payload->environment = environment_bytes(env, width);
+  (*manifest)["background"] = {{"url", "/api/environment.bin"},
+                               {"width", width},
+                               {"height", width / 2},
+                               {"type", "float16 RGBA lat-long"}};
+}
+
+std::string payload_exposure_text(float ev) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%+.2f EV", double(ev));
+  return text;
 }
 
 }  // namespace prt::cli::view

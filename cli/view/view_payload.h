@@ -25,7 +25,9 @@
 // major radiance coefficients), the window `--window auto` chooses for it, the automatic camera
 // (relight/auto_camera.h, at `aspect`) and the automatic exposure (relight/auto_exposure.h).
 // A Haar-wavelet file gets the payload of haar_payload.h instead (its own transfer.bin and
-// manifest.haar). Throws std::runtime_error "PATH: problem" for an unreadable or mismatched input.
+// manifest.haar). Throws std::runtime_error "PATH: problem" for an unreadable or mismatched input,
+// and prt::MemoryBudgetExceeded when the payloads (held for as long as the server runs) would
+// take more than inputs.budget allows: each part is charged before it is built.
 #pragma once
 
 #include <cstdint>
@@ -35,6 +37,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "prt/core/memory_budget.h"
 #include "relight/auto_camera.h"
 #include "sh/env_map.h"
 
@@ -53,6 +56,8 @@ struct ViewInputs {
   // transfer_path, each served as its own transfer payload (also[i] at /api/also<i>.bin, the
   // layout of transfer.bin) and listed in the manifest's "also" (url, kind, file, layout).
   std::vector<std::string> also_paths;
+  // What the payloads may take (prt view --memory-limit); none: no limit.
+  prt::MemoryBudget* budget = nullptr;
 };
 
 struct ViewPayload {

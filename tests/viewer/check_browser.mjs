@@ -24,77 +24,22 @@
 // Usage: node check_browser.mjs URL OUT_DIR [emitters | glossy CAMERA_A CAMERA_B]   (OUT_DIR holds cpu_default.png,
 // cpu_r0.png, cpu_r90.png — or cpu_emitters.png, cpu_lamp.png — and receives the screenshots;
 // exit 0 when every check passes).
-import { mkdtempSync, readFileSync, writeFileSync } from 'node:fs';
-import puppeteer from 'puppeteer-core';
-import { readPng } from './png.mjs';
+import { readFileSync } from 'node:fs';
+import { launchBrowser, makeChecks, makeShooter, maskCount, objectMask, readRgb, relativeRms } from './browser.mjs';
 
 const [url, out, emitterCase] = process.argv.slice(2);
 const WIDTH = 640, HEIGHT = 360;
 const TOLERANCE = 0.03, MIN_CHANGE = 0.10, CHANGE_TOLERANCE = 0.10, MIN_VIEW_CHANGE = 0.06, MIN_ALSO_CHANGE = 0.05;
-let failures = 0;
-function check(ok, message) {
-  console.log(`${ok ? 'ok  ' : 'FAIL'} ${message}`);
-  if (!ok) failures += 1;
-}
-
-const browser = await puppeteer.launch({
-  executablePath: process.env.CHROMIUM ?? '/usr/bin/chromium',
-  headless: true,
-  args: ['--no-sandbox', '--disable-gpu', '--disable-quic', '--no-first-run',
-    '--disable-background-networking', '--disable-component-update', '--disable-sync',
-    '--use-gl=angle', '--use-angle=swiftshader', '--enable-unsafe-swiftshader',
-    `--user-data-dir=${mkdtempSync(`${out}/chromium-`)}`],
-});
-
-async function shoot(query, name, width = WIDTH, height = HEIGHT) {
-  const page = await browser.newPage();
-  const errors = [];
-  page.on('pageerror', (e) => errors.push(e.message));
-  page.on('console', (m) => { if (m.type() === 'error') errors.push(m.text()); });
-  await page.setViewport({ width, height });
-  await page.goto(`${url}?${query}`);
-  await page.waitForFunction('window.prtViewer !== undefined', { timeout: 120000 });
-  const state = await page.evaluate(() => ({ ready: window.prtViewer.ready, error: window.prtViewer.error, firstFrameMs: window.prtViewer.firstFrameMs }));
-  if (!state.ready) throw new Error(`the page did not load: ${state.error}`);
-  if (errors.length) throw new Error(`the page reported: ${errors.join('; ')}`);
-  const path = `${out}/${name}.png`;
-  await page.screenshot({ path });
-  await page.close();
-  return { image: readPng(readFileSync(path)), firstFrameMs: state.firstFrameMs };
-}
-
-function objectMask(black) {
-  const { width, height, rgb } = black;
-  const lit = (x, y) => rgb[3 * (y * width + x)] + rgb[3 * (y * width + x) + 1] + rgb[3 * (y * width + x) + 2] > 0;
-  const mask = new Uint8Array(width * height);
-  for (let y = 1; y < height - 1; ++y)
-    for (let x = 1; x < width - 1; ++x)
-      mask[y * width + x] = lit(x, y) && lit(x - 1, y) && lit(x + 1, y) && lit(x, y - 1) && lit(x, y + 1) ? 1 : 0;
-  return mask;
-}
-
-function relativeRms(a, b, mask, subtract = null) {
-  let num = 0, den = 0;
-  for (let i = 0; i < mask.length; ++i) {
-    if (!mask[i]) continue;
-    for (let c = 0; c < 3; ++c) {
-      const j = 3 * i + c;
-      const x = subtract ? (a[j] - subtract.a[j]) : a[j];
-      const y = subtract ? (b[j] - subtract.b[j]) : b[j];
-      num += (x - y) ** 2;
-      den += y * y;
-    }
-  }
-  return Math.sqrt(num / den);
-}
-
-const cpu = (name) => readPng(readFileSync(`${out}/${name}.png`));
+const { check, failures } = makeChecks();
+const browser = await launchBrowser(out);
+const shoot = makeShooter(browser, url, out, WIDTH, HEIGHT);
+const cpu = (name) => ({ rgb: readRgb(out, name) });
 
 async function checkEmitters() {
   const exposure = JSON.parse(readFileSync(`${out}/manifest.json`, 'utf8')).exposure_ev;
   const fixed = `ui=0&exposure=${exposure}&window=none&antialias=0`;
   const mask = objectMask((await shoot(`${fixed}&background=0`, 'gpu_mask')).image);
-  const count = mask.reduce((s, m) => s + m, 0);
+  const count = maskCount(mask);
   check(count > 0.2 * WIDTH * HEIGHT, `the room covers ${count} pixels of ${WIDTH * HEIGHT}`);
   const stored = relativeRms((await shoot(fixed, 'gpu_emitters')).image.rgb, cpu('cpu_emitters').rgb, mask);
   check(stored <= TOLERANCE, `emitters at their stored colours: relative RMS ${(100 * stored).toFixed(2)}% against prt relight --emitters`);
@@ -102,6 +47,38 @@ async function checkEmitters() {
   check(lamp <= TOLERANCE, `emitter=lamp=2,1,0.5: relative RMS ${(100 * lamp).toFixed(2)}% against prt relight --emitter lamp=2,1,0.5`);
   const change = relativeRms(cpu('cpu_lamp').rgb, cpu('cpu_emitters').rgb, mask);
   check(change >= MIN_CHANGE, `recolouring the lamp changes the CPU picture by ${(100 * change).toFixed(1)}%`);
+  if (JSON.parse(readFileSync(`${out}/manifest.json`, 'utf8')).also) await checkEmittersAlso(fixed, mask);
+}
+
+// prt view room.prt --also room_ir.prt --emitters: the emitters' sliders moved as a user moves
+// them (SLIDERS: lamp intensity ×0.5; panel intensity ×3, tint #ff0000, i.e. linear (1, 0, 0)),
+// then the interreflected display (mode=also0) against prt relight of the --also file with the
+// same emitter colours (cpu_sliders_interreflected.png) within TOLERANCE, and the shadowed
+// display (the file) against its own render; the two displays must differ by MIN_ALSO_CHANGE.
+const SLIDERS = { lamp: { intensity: 0.5, tint: '#ffffff' }, panel: { intensity: 3, tint: '#ff0000' } };
+function moveSliders(sliders) {
+  for (const row of document.querySelectorAll('#emitters label')) {
+    const setting = sliders[row.firstChild.textContent.trim()];
+    if (!setting) throw new Error(`no slider setting for emitter ${row.textContent}`);
+    const [intensity, tint] = row.querySelectorAll('input');
+    intensity.value = setting.intensity;
+    intensity.dispatchEvent(new Event('input'));
+    tint.value = setting.tint;
+    tint.dispatchEvent(new Event('input'));
+  }
+}
+async function checkEmittersAlso(fixed, mask) {
+  const moved = { before: moveSliders, arg: SLIDERS };
+  const inter = (await shoot(`${fixed}&mode=also0`, 'gpu_sliders_interreflected', moved)).image.rgb;
+  const shadowed = (await shoot(`${fixed}&mode=transfer`, 'gpu_sliders_shadowed', moved)).image.rgb;
+  const e1 = relativeRms(inter, cpu('cpu_sliders_interreflected').rgb, mask);
+  check(e1 <= TOLERANCE, `sliders set, interreflected (mode=also0): relative RMS ${(100 * e1).toFixed(2)}% against prt relight of the --also file with the same --emitter colours`);
+  const e0 = relativeRms(shadowed, cpu('cpu_sliders_shadowed').rgb, mask);
+  check(e0 <= TOLERANCE, `sliders set, shadowed (the file): relative RMS ${(100 * e0).toFixed(2)}% against prt relight`);
+  const apart = relativeRms(inter, shadowed, mask);
+  check(apart >= MIN_ALSO_CHANGE, `with the sliders set, the interreflected display differs from the shadowed one by ${(100 * apart).toFixed(1)}% (≥ ${100 * MIN_ALSO_CHANGE}%)`);
+  const moves = relativeRms(cpu('cpu_sliders_interreflected').rgb, cpu('cpu_emitters_interreflected').rgb, mask);
+  check(moves >= MIN_CHANGE, `the slider settings change prt relight's interreflected picture by ${(100 * moves).toFixed(1)}% (≥ ${100 * MIN_CHANGE}%)`);
 }
 
 // A glossy file (glossy, CAMERA_A, CAMERA_B): view-dependent shading. The defaults; then at
@@ -115,7 +92,7 @@ async function checkGlossy(cameraA, cameraB) {
   const fixed = `ui=0&exposure=${manifest.exposure_ev}&window=none&rotate=30,0,0`;
   const maskA = objectMask((await shoot(`${fixed}&camera=${cameraA}&background=0`, 'gpu_mask_a')).image);
   const maskB = objectMask((await shoot(`${fixed}&camera=${cameraB}&background=0`, 'gpu_mask_b')).image);
-  const count = maskB.reduce((s, m) => s + m, 0);
+  const count = maskCount(maskB);
   check(count > 0.2 * WIDTH * HEIGHT, `the scene covers ${count} pixels of ${WIDTH * HEIGHT} at camera B`);
   const e0 = relativeRms((await shoot('ui=0', 'gpu_default')).image.rgb, cpu('cpu_default').rgb, maskA);
   check(e0 <= TOLERANCE, `${manifest.kind} defaults: relative RMS ${(100 * e0).toFixed(2)}% against prt relight (≤ ${100 * TOLERANCE}%)`);
@@ -130,7 +107,7 @@ async function checkGlossy(cameraA, cameraB) {
   check(viewChange >= MIN_VIEW_CHANGE, `camera B shaded toward A's eye differs from prt relight's B by ${(100 * viewChange).toFixed(1)}% (≥ ${100 * MIN_VIEW_CHANGE}%: the shading depends on the view)`);
   const changeError = relativeRms(gB, cB, maskB, { a: pinned, b: pinned });
   check(changeError <= CHANGE_TOLERANCE, `the page's change from eye A to eye B differs from the CPU's by ${(100 * changeError).toFixed(1)}% of it (≤ ${100 * CHANGE_TOLERANCE}%)`);
-  await shoot(`camera=${cameraB}`, 'viewer_glossy', 960, 540);  // with the panel, for docs/images
+  await shoot(`camera=${cameraB}`, 'viewer_glossy', { width: 960, height: 540 });  // with the panel, for docs/images
 }
 
 // prt view shadowed.prt --also interreflected.prt: the file (mode=transfer) and the extra display
@@ -154,29 +131,15 @@ async function checkAlso() {
   for (let i = 0; i < mask.length; ++i) if (mask[i]) for (let c = 0; c < 3; ++c) { sumInter += inter[3 * i + c]; sumShadowed += shadowed[3 * i + c]; }
   check(change >= MIN_ALSO_CHANGE && sumInter > sumShadowed,
     `the two displays differ by ${(100 * change).toFixed(1)}% (≥ ${100 * MIN_ALSO_CHANGE}%), interreflected ${(100 * (sumInter / sumShadowed - 1)).toFixed(1)}% brighter`);
-  await shoot('mode=also0', 'viewer_also', 960, 540);  // with the panel: the display's label
+  await shoot('mode=also0', 'viewer_also', { width: 960, height: 540 });  // with the panel: the display's label
 }
 
-try {
-  if (emitterCase === 'also') {
-    await checkAlso();
-    await browser.close();
-    process.exit(failures === 0 ? 0 : 1);
-  }
-  if (emitterCase === 'glossy') {
-    await checkGlossy(process.argv[5], process.argv[6]);
-    await browser.close();
-    process.exit(failures === 0 ? 0 : 1);
-  }
-  if (emitterCase === 'emitters') {
-    await checkEmitters();
-    await browser.close();
-    process.exit(failures === 0 ? 0 : 1);
-  }
+// The demo: the defaults, then rotate=0,0,0 and rotate=90,0,0 and the change between them.
+async function checkDemo() {
   const exposure = JSON.parse(readFileSync(`${out}/manifest.json`, 'utf8')).exposure_ev;
   const fixed = `ui=0&exposure=${exposure}&window=none`;
   const mask = objectMask((await shoot(`${fixed}&background=0`, 'gpu_mask')).image);
-  const count = mask.reduce((s, m) => s + m, 0);
+  const count = maskCount(mask);
   check(count > 0.2 * WIDTH * HEIGHT, `the object covers ${count} pixels of ${WIDTH * HEIGHT}`);
   const defaults = await shoot('ui=0', 'gpu_default');
   const e0 = relativeRms(defaults.image.rgb, cpu('cpu_default').rgb, mask);
@@ -191,11 +154,16 @@ try {
   check(change >= MIN_CHANGE, `the rotation changes the CPU picture by ${(100 * change).toFixed(1)}% (≥ ${100 * MIN_CHANGE}%)`);
   const changeError = relativeRms(g90, c90, mask, { a: g0, b: c0 });
   check(changeError <= CHANGE_TOLERANCE, `the GPU's change differs from the CPU's by ${(100 * changeError).toFixed(2)}% of it (≤ ${100 * CHANGE_TOLERANCE}%)`);
-  const shot = await shoot('', 'viewer', 960, 540);
+  const shot = await shoot('', 'viewer', { width: 960, height: 540 });
   console.log(`first frame ${shot.firstFrameMs.toFixed(0)} ms after the page started (software WebGL)`);
+}
+
+const cases = { also: checkAlso, emitters: checkEmitters, glossy: () => checkGlossy(process.argv[5], process.argv[6]) };
+try {
+  await (cases[emitterCase] ?? checkDemo)();
 } catch (error) {
   check(false, error.message);
 } finally {
   await browser.close();
 }
-process.exit(failures === 0 ? 0 : 1);
+process.exit(failures() === 0 ? 0 : 1);

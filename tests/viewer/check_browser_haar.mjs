@@ -18,73 +18,16 @@
 // a wrong face or a missing albedo gives 10% or more.
 // Usage: node check_browser_haar.mjs URL OUT_DIR   (OUT_DIR holds manifest.json, cpu_default.png,
 // cpu_r0.png, cpu_r90.png, cpu_r90_k8.png; receives the screenshots and haar_timing.json).
-import { mkdtempSync, readFileSync, writeFileSync } from 'node:fs';
-import puppeteer from 'puppeteer-core';
-import { readPng } from './png.mjs';
+import { readFileSync, writeFileSync } from 'node:fs';
+import { launchBrowser, makeChecks, makeShooter, maskCount, median as middle, objectMask, readRgb, relativeRms } from './browser.mjs';
 
 const [url, out] = process.argv.slice(2);
 const WIDTH = 640, HEIGHT = 360;
 const TOLERANCE = 0.03, MIN_CHANGE = 0.10, CHANGE_TOLERANCE = 0.10;
-let failures = 0;
-function check(ok, message) {
-  console.log(`${ok ? 'ok  ' : 'FAIL'} ${message}`);
-  if (!ok) failures += 1;
-}
-
-const browser = await puppeteer.launch({
-  executablePath: process.env.CHROMIUM ?? '/usr/bin/chromium',
-  headless: true,
-  args: ['--no-sandbox', '--disable-gpu', '--disable-quic', '--no-first-run',
-    '--disable-background-networking', '--disable-component-update', '--disable-sync',
-    '--use-gl=angle', '--use-angle=swiftshader', '--enable-unsafe-swiftshader',
-    `--user-data-dir=${mkdtempSync(`${out}/chromium-`)}`],
-});
-
-// Loads the page with `query`, screenshots it to OUT/name.png; `evaluate` runs in the page after.
-async function shoot(query, name, width = WIDTH, height = HEIGHT, evaluate = null) {
-  const page = await browser.newPage();
-  const errors = [];
-  page.on('pageerror', (e) => errors.push(e.message));
-  page.on('console', (m) => { if (m.type() === 'error') errors.push(m.text()); });
-  await page.setViewport({ width, height });
-  await page.goto(`${url}?${query}`);
-  await page.waitForFunction('window.prtViewer !== undefined', { timeout: 120000 });
-  const state = await page.evaluate(() => ({ ready: window.prtViewer.ready, error: window.prtViewer.error }));
-  if (!state.ready) throw new Error(`the page did not load: ${state.error}`);
-  if (errors.length) throw new Error(`the page reported: ${errors.join('; ')}`);
-  const path = `${out}/${name}.png`;
-  await page.screenshot({ path });
-  const result = evaluate ? await page.evaluate(evaluate) : null;
-  await page.close();
-  return { image: readPng(readFileSync(path)), result };
-}
-
-function objectMask(black) {
-  const { width, height, rgb } = black;
-  const lit = (x, y) => rgb[3 * (y * width + x)] + rgb[3 * (y * width + x) + 1] + rgb[3 * (y * width + x) + 2] > 0;
-  const mask = new Uint8Array(width * height);
-  for (let y = 1; y < height - 1; ++y)
-    for (let x = 1; x < width - 1; ++x)
-      mask[y * width + x] = lit(x, y) && lit(x - 1, y) && lit(x + 1, y) && lit(x, y - 1) && lit(x, y + 1) ? 1 : 0;
-  return mask;
-}
-
-function relativeRms(a, b, mask, subtract = null) {
-  let num = 0, den = 0;
-  for (let i = 0; i < mask.length; ++i) {
-    if (!mask[i]) continue;
-    for (let c = 0; c < 3; ++c) {
-      const j = 3 * i + c;
-      const x = subtract ? a[j] - subtract.a[j] : a[j];
-      const y = subtract ? b[j] - subtract.b[j] : b[j];
-      num += (x - y) ** 2;
-      den += y * y;
-    }
-  }
-  return Math.sqrt(num / den);
-}
-
-const cpu = (name) => readPng(readFileSync(`${out}/${name}.png`)).rgb;
+const { check, failures } = makeChecks();
+const browser = await launchBrowser(out);
+const shoot = makeShooter(browser, url, out, WIDTH, HEIGHT);
+const cpu = (name) => readRgb(out, name);
 
 // Times of light changes in the page: n rotations by 7° of yaw, each a full change.
 function timeLightChanges() {
@@ -103,7 +46,7 @@ try {
   check(manifest.kind === 'haar' && manifest.haar.default_terms === 200, `the manifest describes a Haar file (cube ${manifest.haar.cube_size}, ${manifest.haar.entries} entries)`);
   const fixed = `ui=0&exposure=${manifest.exposure_ev}`;
   const mask = objectMask((await shoot(`${fixed}&background=0`, 'gpu_mask')).image);
-  const count = mask.reduce((s, m) => s + m, 0);
+  const count = maskCount(mask);
   check(count > 0.2 * WIDTH * HEIGHT, `the object covers ${count} pixels of ${WIDTH * HEIGHT}`);
   const e0 = relativeRms((await shoot('ui=0', 'gpu_default')).image.rgb, cpu('cpu_default'), mask);
   check(e0 <= TOLERANCE, `defaults (camera, exposure, 200 terms): relative RMS ${(100 * e0).toFixed(2)}% against prt relight (≤ ${100 * TOLERANCE}%)`);
@@ -121,9 +64,9 @@ try {
   check(change >= MIN_CHANGE, `the rotation changes the CPU picture by ${(100 * change).toFixed(1)}% (≥ ${100 * MIN_CHANGE}%)`);
   const changeError = relativeRms(g90, c90, mask, { a: g0, b: c0 });
   check(changeError <= CHANGE_TOLERANCE, `the page's change differs from the CPU's by ${(100 * changeError).toFixed(2)}% of it (≤ ${100 * CHANGE_TOLERANCE}%)`);
-  const shot = await shoot('rotate=40,-20,0', 'viewer_haar', 960, 540, timeLightChanges);
+  const shot = await shoot('rotate=40,-20,0', 'viewer_haar', { width: 960, height: 540, after: timeLightChanges });
   writeFileSync(`${out}/haar_timing.json`, JSON.stringify(shot.result, null, 1));
-  const median = (key) => shot.result.map((c) => c[key]).sort((a, b) => a - b)[shot.result.length >> 1];
+  const median = (key) => middle(shot.result.map((c) => c[key]));
   console.log(`light change (median of ${shot.result.length}): ${median('total').toFixed(1)} ms — rotated cube ${median('cube').toFixed(1)}, ` +
     `transform ${median('transform').toFixed(1)}, selection ${median('select').toFixed(1)}, vertices ${median('shade').toFixed(1)}`);
 } catch (error) {
@@ -131,4 +74,4 @@ try {
 } finally {
   await browser.close();
 }
-process.exit(failures === 0 ? 0 : 1);
+process.exit(failures() === 0 ? 0 : 1);

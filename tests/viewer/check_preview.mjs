@@ -4,47 +4,24 @@
 // what it is. The preview itself (drawn while the user moves) must look like the full frame:
 // relative RMS over the picture within kPreviewRms.
 // Usage: node check_preview.mjs URL OUT_DIR
-import { mkdtempSync, readFileSync } from 'node:fs';
-import { tmpdir } from 'node:os';
-import puppeteer from 'puppeteer-core';
+import { readFileSync } from 'node:fs';
+import { launchBrowser, makeChecks, openViewer, relativeRms } from './browser.mjs';
 import { readPng } from './png.mjs';
 
 const [url, out] = process.argv.slice(2);
 const kSameRms = 0.005;    // the full frame with and without the preview: the same draw
 const kPreviewRms = 0.06;  // the preview against the full frame (2.1% measured): coarser triangles
-let failed = false;
-const check = (ok, text) => {
-  console.log(`${ok ? 'ok  ' : 'FAIL'} ${text}`);
-  if (!ok) failed = true;
-};
-const relativeRms = (a, b) => {
-  let num = 0, den = 0;
-  for (let i = 0; i < a.rgb.length; ++i) {
-    num += (a.rgb[i] - b.rgb[i]) ** 2;
-    den += b.rgb[i] ** 2;
-  }
-  return Math.sqrt(num / den);
-};
-
-const browser = await puppeteer.launch({
-  executablePath: process.env.CHROMIUM ?? '/usr/bin/chromium',
-  headless: true,
-  protocolTimeout: 300000,
-  args: ['--no-sandbox', '--disable-gpu', '--use-gl=angle', '--use-angle=swiftshader', '--enable-unsafe-swiftshader',
-    `--user-data-dir=${mkdtempSync(`${tmpdir()}/prt-chromium-`)}`],
-});
+const { check, failures } = makeChecks();
+const browser = await launchBrowser(undefined, 300000);
 try {
   const page = await browser.newPage();
-  await page.setViewport({ width: 640, height: 360 });
   const load = async (query, name) => {
-    await page.goto(`${url}?ui=0${query}`);
-    await page.waitForFunction('window.prtViewer !== undefined', { timeout: 240000 });
+    await openViewer(page, url, `ui=0${query}`, 640, 360, 240000);
     const state = await page.evaluate(() => {
       const v = window.prtViewer;
-      return { ready: v.ready, error: v.error, preview: v.previewFrameMs, full: v.firstFrameMs, coarse: !!v.coarse,
+      return { preview: v.previewFrameMs, full: v.firstFrameMs, coarse: !!v.coarse,
         previewVertices: v.manifest?.preview?.vertex_count, vertices: v.manifest?.vertex_count };
     });
-    if (!state.ready) throw new Error(state.error);
     await page.screenshot({ path: `${out}/${name}.png` });
     return { ...state, image: readPng(readFileSync(`${out}/${name}.png`)) };
   };
@@ -57,11 +34,11 @@ try {
   const preview = readPng(readFileSync(`${out}/preview.png`));
   const without = await load('&preview=0', 'full_without_preview');
   check(without.preview === null && !without.coarse, 'preview=0: no preview');
-  const same = relativeRms(withPreview.image, without.image);
+  const same = relativeRms(withPreview.image.rgb, without.image.rgb);
   check(same <= kSameRms, `full frame after the preview against without it: relative RMS ${(100 * same).toFixed(3)}% (≤ ${100 * kSameRms}%)`);
-  const close = relativeRms(preview, without.image);
+  const close = relativeRms(preview.rgb, without.image.rgb);
   check(close > 0 && close <= kPreviewRms, `the preview against the full frame: relative RMS ${(100 * close).toFixed(2)}% (> 0, ≤ ${100 * kPreviewRms}%)`);
 } finally {
   await browser.close();
 }
-process.exit(failed ? 1 : 0);
+process.exit(failures() === 0 ? 0 : 1);

@@ -14,6 +14,7 @@ here="$root/tests/viewer"
 command -v node >/dev/null 2>&1 || { echo "skipping: node is not installed"; exit 77; }
 [ -d "$here/node_modules/three" ] || { echo "skipping: $here/node_modules/three is missing (scripts/install-deps.sh --for test)"; exit 77; }
 [ -f "$web/index.html" ] || { echo "skipping: the viewer's page was not built ($web/index.html)"; exit 77; }
+. "$here/view_server.sh"
 rm -rf "$out" && mkdir -p "$out/web"
 cp "$root"/web/*.js "$out/web/"
 ln -s "$here/node_modules" "$out/node_modules"
@@ -38,24 +39,12 @@ refuse() {  # refuse WHAT FILE ARGS...
 refuse "a truncated .prtg" truncated.prtg "$scene" "$out/truncated.prtg" "$sky"
 refuse "a .prtq of another scene" g4.prtq "$root/data/demo.glb" "$out/g4.prtq" "$sky"
 refuse "emitters with a glossy file" g4.prtg "$scene" "$out/g4.prtg" "$sky" --emitters "$out/none.prte"
-server=""
-trap '[ -z "$server" ] || kill $server 2>/dev/null || true' EXIT
 eye="-1.5,2.2,3.4" rotate="40,10,0"
 for file in g4.prtg g4.prtq g3rgb.prtg; do
   dir="$out/${file/./_}" && mkdir -p "$dir"
-  "$prt" view "$scene" "$out/$file" "$sky" --port 0 --quiet >"$dir/view.out" 2>"$dir/view.err" &
-  server=$!
-  url=""
-  for _ in $(seq 1 300); do
-    url="$(grep -o 'http://[^ ]*' "$dir/view.out" || true)"
-    [ -n "$url" ] && break
-    kill -0 $server 2>/dev/null || { cat "$dir/view.err"; exit 1; }
-    sleep 0.1
-  done
-  [ -n "$url" ] || { echo "prt view printed no URL"; exit 1; }
+  start_view "$dir" "$scene" "$out/$file" "$sky" --quiet
   for name in manifest.json mesh.bin transfer.bin glossy.bin; do curl -sf "${url}api/$name" -o "$dir/$name"; done
-  kill $server && wait $server 2>/dev/null || true
-  server=""
+  stop_view
   "$prt" relight "$scene" "$out/$file" "$sky" -o "$dir/tiny.png" --size 32x18 --spp 1 --window none \
     --rotate "$rotate" --csv "$dir/vertices.csv" --eye "$eye" --quiet
   node "$out/check_glossy_js.mjs" "$dir" "$dir/vertices.csv" "$eye" "$rotate" "$out/web"
