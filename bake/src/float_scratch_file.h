@@ -4,6 +4,9 @@
 // written here, so that memory holds only the bounce that is read at random. The file is
 // unlinked at once: it disappears with the process whatever happens, and nothing is left beside
 // the output. The pages are the page cache's (not the process's), dropped under pressure.
+// The file's blocks are reserved when it is opened (fallocate, where the file system has it), so
+// that a disk too small for the bake fails at once, before its ray pass, and not at a write hours
+// later; where the file system cannot reserve, a full disk fails the first write that finds it.
 #pragma once
 
 #include <fcntl.h>
@@ -37,7 +40,8 @@ class FloatScratchFile {
       return false;
     }
     unlink(buffer.data());
-    if (ftruncate(fd_, static_cast<off_t>(count * sizeof(float))) != 0) {
+    const off_t bytes = static_cast<off_t>(count * sizeof(float));
+    if (ftruncate(fd_, bytes) != 0 || !reserve(bytes)) {
       *error = what + ": cannot size a scratch file in " + dir + ": " + std::strerror(errno);
       return false;
     }
@@ -59,6 +63,21 @@ class FloatScratchFile {
   }
 
  private:
+  // Reserves the blocks of [0, bytes); true when done or when the file system cannot reserve.
+  bool reserve(off_t bytes) const {
+#if defined(__linux__)
+    if (bytes == 0) return true;
+    int r;
+    do {
+      r = fallocate(fd_, 0, 0, bytes);
+    } while (r != 0 && errno == EINTR);
+    return r == 0 || errno == EOPNOTSUPP || errno == ENOSYS;
+#else
+    (void)bytes;
+    return true;
+#endif
+  }
+
   bool transfer(uint64_t first, uint64_t count, float* data, bool writing,
                 std::string* error) const {
     char* p = reinterpret_cast<char*>(data);

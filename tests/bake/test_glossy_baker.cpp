@@ -564,6 +564,56 @@ TEST_CASE("glossy bake: streamed interreflection holds one bounce, and a limit b
   CHECK_FALSE(scratch_left());
 }
 
+// The last charge of a streamed interreflected bake is the last block's hits, during the ray
+// pass, when the output's temporary and the scratch files already exist: a limit one byte below
+// the unlimited bake's peak must stop it there, in one line naming the hits, with no file, no
+// temporary and no scratch file left; at the peak it runs. Float and binary16 bounces.
+TEST_CASE(
+    "glossy bake: a streamed interreflected bake over its limit in the ray pass leaves nothing",
+    "[glossy_bake]") {
+  prt::scene::Scene s = prt::scene::make_quad({-2.f, 0.f, 2.f}, {4.f, 0.f, 0.f}, {0.f, 0.f, -4.f},
+                                              16, 16, glm::vec3(0.7f, 0.5f, 0.3f), "floor");
+  prt::scene::append_scene(s, prt::scene::make_box({-0.5f, 0.f, -0.5f}, {0.5f, 1.f, 0.5f}, 2, false,
+                                                   glm::vec3(0.6f), "box"));
+  const std::string path = prt::test::output_path("glossy_ir_pass_refused.prtg").string();
+  const auto nothing_left = [&] {
+    if (std::filesystem::exists(path) || temporaries_left(path)) return false;
+    for (const auto& e :
+         std::filesystem::directory_iterator(std::filesystem::path(path).parent_path()))
+      if (e.path().filename().string().rfind("prt-glossy-scratch-", 0) == 0) return false;
+    return true;
+  };
+  for (const prt::Precision bounce : {prt::Precision::F32, prt::Precision::F16}) {
+    INFO("bounce precision " << (bounce == prt::Precision::F16 ? "f16" : "f32"));
+    GlossyBakeOptions o;
+    o.order = 3;
+    o.samples = 32;
+    o.bounces = 1;
+    o.threads = 2;
+    o.bounce_precision = bounce;
+    o.memory_limit = 0;
+    std::filesystem::remove(path);
+    const uint64_t peak =
+        prt::bake::bake_glossy_transfer_to_file(s, o, path).stats.peak_charged_bytes;
+    std::filesystem::remove(path);
+    o.memory_limit = peak - 1;
+    try {
+      prt::bake::bake_glossy_transfer_to_file(s, o, path);
+      FAIL("a limit one byte below the peak was accepted");
+    } catch (const prt::MemoryBudgetExceeded& e) {
+      const std::string what = e.what();
+      INFO(what);
+      CHECK(what.find('\n') == std::string::npos);
+      CHECK(what.find("the glossy bounces' ray hits") != std::string::npos);
+    }
+    CHECK(nothing_left());
+    o.memory_limit = peak;
+    CHECK(prt::bake::bake_glossy_transfer_to_file(s, o, path).stats.peak_charged_bytes == peak);
+    CHECK(std::filesystem::exists(path));
+    std::filesystem::remove(path);
+  }
+}
+
 // A binary16 bounce (GlossyBakeOptions::bounce_precision F16): the gather reads M rounded to
 // 2⁻¹¹ relative. Bound: a hit's row Σ_a β_a Σ_i b_i M_ij moves by ≤ 2⁻¹¹ · K · max|b| · max|M|
 // (b ≤ 1 here), a bounce entry by 2π · max|y| times that, and two bounces add it twice (the

@@ -5,6 +5,7 @@
 # leave neither the output, nor its temporary (OUT.tmp-*), nor its run record (OUT.run.json).
 # The same for `--memory-limit 1K`: the bake stops before anything is written (status 1, one
 # line naming the scene and the limit), and a value that is not a size is a usage error (status 2).
+# And a full disk (a small tmpfs) under an interreflected glossy bake and its scratch files.
 # Covers bake (SH), bake --glossy, compress, radiosity --per-emitter / --csv / --vertex-colors /
 # --form-factor-cache, make-scene, export-gltf, bake --shard and radiosity --shard (part files)
 # and merge. A few seconds.
@@ -113,6 +114,43 @@ for solver in gauss-seidel progressive hierarchical; do
     --max-edge 0.25 \
     --csv room.csv
 done
+# A full disk: a small tmpfs in a private mount namespace (skipped where the system allows none).
+# An interreflected glossy bake keeps scratch files beside its output and reserves their blocks
+# before its ray pass, so a disk too small for them stops it there ("cannot size a scratch
+# file"), not at a write after the pass; a disk with room for them but not for the output fails
+# at the output's write. Either way: status 1, one line, and nothing left on the disk.
+# glossy.glb at order 3: the output is 7.9 MB (0.5 MB before the matrices), the scratch files
+# 10.5 MB (float bounce) or 18.3 MB (binary16 bounce).
+full_disk() {  # megabytes problem named args...
+  local megabytes="$1" problem="$2" named="$3" before=$failures
+  shift 3
+  rm -rf disk left.txt status.txt
+  mkdir disk
+  unshare -m bash -c 'mount -t tmpfs -o "size=$1M" tmpfs disk || exit 9
+    cp glossy.glb disk/ && cd disk && shift && status=0
+    "$@" --quiet >/dev/null 2>../err.txt || status=$?
+    echo "$status" >../status.txt
+    ls -A | grep -v -x glossy.glb >../left.txt || true' _ "$megabytes" "$prt" "$@"
+  local label="prt $* (a disk of $megabytes MB)" status
+  status=$(cat status.txt)
+  [[ $status == 1 ]] || fail "$label: exit status $status, expected 1"
+  [[ $(wc -l < err.txt) == 1 ]] || fail "$label: stderr: $(cat err.txt)"
+  grep -q -- "$named" err.txt || fail "$label: the message does not name $named: $(cat err.txt)"
+  grep -q -- "$problem" err.txt || fail "$label: the message does not say '$problem': $(cat err.txt)"
+  [[ ! -s left.txt ]] || fail "$label: left behind: $(cat left.txt)"
+  ((failures > before)) || echo "ok: $label: $(cat err.txt)"
+}
+mkdir probe
+if unshare -m bash -c 'mount -t tmpfs -o size=1M tmpfs probe' 2>/dev/null; then
+  interreflected=(bake glossy.glb --glossy --order 3 --samples 16 --bounces 1 -o full.prtg)
+  full_disk 4 "a scratch file in .: No space left on device" glossy.glb "${interreflected[@]}"
+  full_disk 14 "a scratch file in .: No space left on device" glossy.glb "${interreflected[@]}" \
+    --bounce-precision f16
+  full_disk 14 "No space left on device" full.prtg "${interreflected[@]}"
+else
+  echo "skipped: full-disk checks (no private mount namespace with a tmpfs here)"
+fi
+
 status=0
 "$prt" bake glossy.glb -o small.prt --memory-limit 8Q --quiet >/dev/null 2>err.txt || status=$?
 [[ $status == 2 ]] || fail "bake --memory-limit 8Q: exit status $status, expected 2"
