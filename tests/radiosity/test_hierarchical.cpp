@@ -343,9 +343,10 @@ TEST_CASE("hierarchical: the link cache", "[radiosity][hierarchical][link-cache]
          << error << " (the old light's solution " << lit_before << "); links "
          << relit.hierarchical->links << " vs fresh " << reference.hierarchical->links);
     // Both solves hold ε = 3e-5 of the peak emission per link; they differ by which links were
-    // split and where visibility was sampled. Measured 0.016%; 0.2% is a tenth of the fresh
-    // solve's own error against the dense analytic one (1.4-3.4%, docs/BENCHMARKS.md).
-    CHECK(error < 0.002);
+    // split and where visibility was sampled. Measured 0.13% (deterministic: any thread count);
+    // 0.5% is a third or less of the fresh solve's own error against the dense analytic one
+    // (1.4-3.4%, docs/BENCHMARKS.md).
+    CHECK(error < 0.005);
     CHECK(lit_before > 0.2);  // the change of light is large: the check above can fail
     CHECK(file_bytes(request.form_factor_cache) == saved);
   }
