@@ -390,10 +390,12 @@ void run(const RadiosityArguments& args) {
   if (!s.solver_choice.empty()) std::printf("%s\n", s.solver_choice.c_str());
   if (s.hierarchical) print_hierarchy(*s.hierarchical);
   if (!s.form_factor_choice.empty()) std::printf("%s\n", s.form_factor_choice.c_str());
-  if (s.cache == radiosity::SceneSolution::Cache::Loaded)
+  if (!s.cache_message.empty())
+    std::printf("%s\n", s.cache_message.c_str());
+  else if (s.cache == radiosity::SceneSolution::Cache::Loaded)
     std::printf("form factors loaded from %s (%.2f s)\n", args.form_factor_cache.c_str(),
                 s.cache_seconds);
-  if (s.cache == radiosity::SceneSolution::Cache::Saved)
+  else if (s.cache == radiosity::SceneSolution::Cache::Saved)
     std::printf("form factors saved to %s (%.2f s)\n", args.form_factor_cache.c_str(),
                 s.cache_seconds);
   if (!args.moves.empty() && s.cache != radiosity::SceneSolution::Cache::None)
@@ -440,9 +442,11 @@ Command register_radiosity(CLI::App& app) {
   cmd->add_option("--albedo", args->albedo,
                   "NAME=r,g,b: albedo of a material, a primitive (glTF mesh, OBJ object) or * for "
                   "all, each below 1 (repeatable)");
-  cmd->add_option("--form-factor-cache", args->form_factor_cache,
-                  "Form factors of the scene as loaded: saved here when absent, reused when "
-                  "present (refused if made for another scene or other options)");
+  cmd->add_option(
+      "--form-factor-cache", args->form_factor_cache,
+      "Form factors of the scene as loaded: saved here when absent, reused when "
+      "present (refused if made for another scene or other options); with the hierarchical "
+      "solver its links (reused for other emission or albedo, refined where needed)");
   cmd->add_option("--move", args->moves,
                   "OBJECT=dx,dy,dz: translate an object before solving; with a cache only the "
                   "form factors the move can change are recomputed (repeatable)");

@@ -69,6 +69,17 @@ class LinkSolver {
 
   const std::vector<float>& bmax() const { return bmax_; }
 
+  // The patches' leaf radiance (the state an iteration starts from; all else follows by pull).
+  std::vector<glm::dvec3> leaf_radiance() const {
+    std::vector<glm::dvec3> out(patches_.size());
+    for (std::size_t p = 0; p < patches_.size(); ++p) out[p] = radiance_[h_.leaf_of[p]];
+    return out;
+  }
+  void set_leaf_radiance(const std::vector<glm::dvec3>& radiance) {
+    for (std::size_t p = 0; p < patches_.size(); ++p) radiance_[h_.leaf_of[p]] = radiance[p];
+    pull();
+  }
+
   // gather_irradiance (hierarchical_solver.h): radiance of the visible parts at the leaves, one
   // gather (and push); the patches' irradiance.
   std::vector<glm::dvec3> irradiance_from(const std::vector<glm::dvec3>& radiance) {
@@ -329,6 +340,96 @@ void check_options(const HierarchicalOptions& o) {
 
 }  // namespace
 
+namespace {
+
+// The statistics of the hierarchy, the oracle's absolute ε, the transfer and the link options
+// as the solve resolves them.
+LinkOptions prepare(const std::vector<Patch>& patches, const HierarchicalOptions& options,
+                    HierarchicalSolution* out) {
+  HierarchicalStats& st = out->stats;
+  st.patches = patches.size();
+  st.nodes = out->hierarchy.nodes.size();
+  st.planar_nodes = out->hierarchy.planar_nodes;
+  st.clusters = out->hierarchy.clusters;
+  double emission_max = 0.0;
+  for (const Patch& p : patches) emission_max = std::max(emission_max, max_channel(p.emission));
+  if (!(emission_max > 0.0)) throw std::invalid_argument("hierarchical radiosity: nothing emits");
+  st.epsilon_absolute = options.links.epsilon * emission_max;
+  st.fine = patches.size() <= options.fine_up_to;
+  return resolved_link_options(patches.size(), options);
+}
+
+// Solves on out->links (set_links) from the solver's state; records the pass and the state the
+// solve started from.
+void solve_pass(LinkSolver& solver, const HierarchicalOptions& options, HierarchicalPass record,
+                HierarchicalSolution* out) {
+  HierarchicalStats& st = out->stats;
+  const Clock::time_point t = Clock::now();
+  out->last_start = solver.leaf_radiance();
+  solver.set_links(&out->links);
+  Solution solution;
+  solver.iterate(options.solve, &solution);
+  record.solve_seconds = since(t);
+  record.iterations = solution.iterations;
+  solution.iterations += out->solution.iterations;
+  out->solution = std::move(solution);
+  st.passes.push_back(record);
+  st.link_seconds += record.link_seconds;
+  st.solve_seconds += record.solve_seconds;
+  st.rays += record.rays;
+}
+
+// Refinement passes, each followed by a solve: the first from the root's self-link (`resume`
+// false) or from out->links (true), every later one from the links before it, until a later pass
+// splits nothing or max_passes.
+void refine_and_solve(const std::vector<Patch>& patches, const scene::RayCaster& caster,
+                      const HierarchicalOptions& options, bool resume, MemoryBudget* b,
+                      HierarchicalSolution* out) {
+  HierarchicalStats& st = out->stats;
+  const LinkOptions link_options = prepare(patches, options, out);
+  LinkSolver solver(patches, out->hierarchy, st.fine, b);
+  const LinkRefiner refiner(patches, out->hierarchy, caster, link_options, b);
+  for (int pass = 0; pass < options.max_passes; ++pass) {
+    HierarchicalPass record;
+    const Clock::time_point t = Clock::now();
+    LinkStats ls;
+    std::vector<Link> links =
+        pass == 0 && !resume ? refiner.initial(solver.bmax(), st.epsilon_absolute, &ls)
+                             : refiner.refine(out->links, solver.bmax(), st.epsilon_absolute, &ls);
+    if (pass > 0 && ls.refined == 0) {
+      b->release(links.size() * sizeof(Link));
+      break;
+    }
+    if (pass > 0 || resume) b->release(out->links.size() * sizeof(Link));
+    out->links = std::move(links);
+    record.link_seconds = since(t);
+    record.links = ls.links, record.exact_links = ls.exact_links, record.rays = ls.rays;
+    record.refined = ls.refined;
+    solve_pass(solver, options, record, out);
+  }
+  solver.radiance_out(&out->solution);
+}
+
+void finish(const MemoryBudget* b, uint64_t used_before, HierarchicalSolution* out) {
+  HierarchicalStats& st = out->stats;
+  st.links = out->links.size();
+  st.exact_links = st.passes.back().exact_links;
+  st.link_bytes = out->links.size() * sizeof(Link);
+  st.budget_peak = b->peak() > used_before ? b->peak() - used_before : 0;
+}
+
+}  // namespace
+
+LinkOptions resolved_link_options(std::size_t patches, const HierarchicalOptions& options) {
+  const bool fine = patches <= options.fine_up_to;
+  LinkOptions link_options = options.links;
+  link_options.fine = fine;
+  if (link_options.visibility_rays == 0)
+    link_options.visibility_rays =
+        fine ? options.fine_visibility_rays : options.coarse_visibility_rays;
+  return link_options;
+}
+
 HierarchicalSolution solve_hierarchical(const std::vector<Patch>& patches,
                                         const scene::RayCaster& caster,
                                         const HierarchicalOptions& options, MemoryBudget* budget) {
@@ -337,63 +438,45 @@ HierarchicalSolution solve_hierarchical(const std::vector<Patch>& patches,
   MemoryBudget* b = budget ? budget : &unlimited;
   const uint64_t used_before = b->used();
   HierarchicalSolution out;
-  HierarchicalStats& st = out.stats;
-  Clock::time_point t = Clock::now();
+  const Clock::time_point t = Clock::now();
   b->charge(hierarchy_bytes(patches.size()), "the radiosity hierarchy");
   out.hierarchy = build_hierarchy(patches);
-  st.hierarchy_seconds = since(t);
-  st.patches = patches.size();
-  st.nodes = out.hierarchy.nodes.size();
-  st.planar_nodes = out.hierarchy.planar_nodes;
-  st.clusters = out.hierarchy.clusters;
-  double emission_max = 0.0;
-  for (const Patch& p : patches) emission_max = std::max(emission_max, max_channel(p.emission));
-  if (!(emission_max > 0.0)) throw std::invalid_argument("hierarchical radiosity: nothing emits");
-  st.epsilon_absolute = options.links.epsilon * emission_max;
+  out.stats.hierarchy_seconds = since(t);
+  refine_and_solve(patches, caster, options, false, b, &out);
+  finish(b, used_before, &out);
+  return out;
+}
 
-  const bool fine = patches.size() <= options.fine_up_to;
-  st.fine = fine;
-  LinkSolver solver(patches, out.hierarchy, fine, b);
-  LinkOptions link_options = options.links;
-  link_options.fine = fine;
-  if (link_options.visibility_rays == 0)
-    link_options.visibility_rays =
-        fine ? options.fine_visibility_rays : options.coarse_visibility_rays;
-  const LinkRefiner refiner(patches, out.hierarchy, caster, link_options, b);
-  for (int pass = 0; pass < options.max_passes; ++pass) {
+HierarchicalSolution resume_hierarchical(const std::vector<Patch>& patches,
+                                         const scene::RayCaster& caster,
+                                         const HierarchicalOptions& options, Hierarchy hierarchy,
+                                         std::vector<Link> links,
+                                         const std::vector<glm::dvec3>* start,
+                                         MemoryBudget* budget) {
+  check_options(options);
+  if (hierarchy.order.size() != patches.size() || (start && start->size() != patches.size()))
+    throw std::invalid_argument("resume_hierarchical: hierarchy or start of other patches");
+  MemoryBudget unlimited;
+  MemoryBudget* b = budget ? budget : &unlimited;
+  const uint64_t used_before = b->used();
+  b->charge(hierarchy_bytes(patches.size()), "the radiosity hierarchy");
+  b->charge(links.size() * sizeof(Link), "the hierarchical radiosity links");
+  HierarchicalSolution out;
+  out.hierarchy = std::move(hierarchy);
+  out.links = std::move(links);
+  if (!start) {
+    refine_and_solve(patches, caster, options, true, b, &out);
+  } else {  // the links as they are, the last solve of the run that made them
+    prepare(patches, options, &out);
+    LinkSolver solver(patches, out.hierarchy, out.stats.fine, b);
+    solver.set_leaf_radiance(*start);
     HierarchicalPass record;
-    t = Clock::now();
-    LinkStats ls;
-    std::vector<Link> links =
-        pass == 0 ? refiner.initial(solver.bmax(), st.epsilon_absolute, &ls)
-                  : refiner.refine(out.links, solver.bmax(), st.epsilon_absolute, &ls);
-    if (pass > 0 && ls.refined == 0) {
-      if (b) b->release(links.size() * sizeof(Link));
-      break;
-    }
-    if (pass > 0) b->release(out.links.size() * sizeof(Link));
-    out.links = std::move(links);
-    record.link_seconds = since(t);
-    record.links = ls.links, record.exact_links = ls.exact_links, record.rays = ls.rays;
-    record.refined = ls.refined;
-    t = Clock::now();
-    solver.set_links(&out.links);
-    Solution solution;
-    solver.iterate(options.solve, &solution);
-    record.solve_seconds = since(t);
-    record.iterations = solution.iterations;
-    solution.iterations += out.solution.iterations;
-    out.solution = std::move(solution);
-    st.passes.push_back(record);
-    st.link_seconds += record.link_seconds;
-    st.solve_seconds += record.solve_seconds;
-    st.rays += record.rays;
+    record.links = out.links.size();
+    for (const Link& l : out.links) record.exact_links += l.exact();
+    solve_pass(solver, options, record, &out);
+    solver.radiance_out(&out.solution);
   }
-  solver.radiance_out(&out.solution);
-  st.links = out.links.size();
-  st.exact_links = st.passes.back().exact_links;
-  st.link_bytes = out.links.size() * sizeof(Link);
-  st.budget_peak = b->peak() > used_before ? b->peak() - used_before : 0;
+  finish(b, used_before, &out);
   return out;
 }
 

@@ -14,6 +14,7 @@
 #include "prt/emitters/emitter_responses.h"
 #include "radiosity/form_factor_cache.h"
 #include "radiosity/hidden_patches.h"
+#include "radiosity/link_cache.h"
 #include "radiosity/materials.h"
 #include "radiosity/patches.h"
 #include "scene/output_path.h"
@@ -191,6 +192,54 @@ void check_patch_count(const SceneSolveRequest& r, const scene::Scene& scene) {
   throw std::runtime_error(message);
 }
 
+// The hierarchical solve with a link cache (link_cache.h): loaded and its links used as they are
+// (the same emission and albedo) or re-checked for the new light; absent: solved and saved; made
+// for other geometry or settings: refused, as the dense cache is.
+HierarchicalSolution cached_hierarchy(const SceneSolveRequest& r, const std::vector<Patch>& patches,
+                                      const scene::RayCaster& caster,
+                                      const HierarchicalOptions& options, MemoryBudget* budget,
+                                      SceneSolution* out) {
+  const std::string& path = r.form_factor_cache;
+  const LinkCacheKeys keys = link_cache_keys(patches, options);
+  Clock::time_point t = Clock::now();
+  if (!std::filesystem::exists(path)) {
+    HierarchicalSolution solved = solve_hierarchical(patches, caster, options, budget);
+    t = Clock::now();
+    save_link_cache(path, keys, options, solved);
+    out->cache_seconds = since(t);
+    out->cache = SceneSolution::Cache::Saved;
+    char text[48];
+    std::snprintf(text, sizeof text, " (%.2f s)", out->cache_seconds);
+    out->cache_message = "links saved to " + path + text;
+    out->files_written.push_back(path);
+    return solved;
+  }
+  const std::string mismatch =
+      link_cache_mismatch(path, read_link_cache_info(path), keys, options, patches.size());
+  if (!mismatch.empty()) throw std::runtime_error(mismatch);
+  LinkCache cache = load_link_cache(path, budget);
+  out->cache_seconds = since(t);
+  out->cache = SceneSolution::Cache::Loaded;
+  t = Clock::now();
+  Hierarchy hierarchy = build_hierarchy(patches);
+  const double hierarchy_seconds = since(t);
+  if (hierarchy.order != cache.order)
+    throw std::runtime_error(path + ": link cache of another hierarchy (its leaf order differs)");
+  std::vector<uint32_t>().swap(cache.order);
+  const bool same = cache.info.keys.lighting == keys.lighting;
+  char text[96];
+  std::snprintf(text, sizeof text, " (%.2f s): %zu links, ", out->cache_seconds,
+                cache.links.size());
+  out->cache_message = "links loaded from " + path + text +
+                       (same ? "the same emission and albedo: used as they are"
+                             : "other emission or albedo: re-checked for them");
+  HierarchicalSolution solved =
+      resume_hierarchical(patches, caster, options, std::move(hierarchy), std::move(cache.links),
+                          same ? &cache.start : nullptr, budget);
+  solved.stats.hierarchy_seconds = hierarchy_seconds;
+  return solved;
+}
+
 // The hierarchical solve, and with per_emitter_path one gather solve per emitter on its links.
 void solve_hierarchy(const SceneSolveRequest& r, const scene::Scene& scene,
                      std::vector<Patch>* patches, SceneSolution* out) {
@@ -200,7 +249,9 @@ void solve_hierarchy(const SceneSolveRequest& r, const scene::Scene& scene,
   HierarchicalOptions options = r.hierarchy;
   options.solve.tolerance = r.solve.tolerance;
   options.solve.max_iterations = r.solve.max_iterations;
-  const HierarchicalSolution solved = solve_hierarchical(*patches, caster, options, &budget);
+  const HierarchicalSolution solved =
+      r.form_factor_cache.empty() ? solve_hierarchical(*patches, caster, options, &budget)
+                                  : cached_hierarchy(r, *patches, caster, options, &budget, out);
   out->solution = solved.solution;
   out->hierarchical = solved.stats;
   out->form_factor_seconds = solved.stats.hierarchy_seconds + solved.stats.link_seconds;
@@ -215,10 +266,10 @@ void solve_hierarchy(const SceneSolveRequest& r, const scene::Scene& scene,
   out->files_written.push_back(r.per_emitter_path);
 }
 
-constexpr const char* kHierarchicalNoCache =
-    ": not with the hierarchical solver (its links are refined against the solved radiosity, "
-    "so they depend on emission and albedo as well as geometry; it computes no dense form "
-    "factors to cache)";
+constexpr const char* kHierarchicalCacheMove =
+    "--move: not with --form-factor-cache and the hierarchical solver (a move changes the "
+    "patches its hierarchy and links are built on, which cannot be updated in part as dense form "
+    "factors are); solve the moved scene without the cache";
 
 void check_unit_albedo(const SceneSolveRequest& r, const scene::Scene& scene,
                        const std::vector<Patch>& patches, SceneSolution* out) {
@@ -328,9 +379,8 @@ void check_scene_solve(const SceneSolveRequest& r, const std::vector<std::string
           "(progressive shoots raw hemicube rows, which alias on refined patches)");
   }
   if (r.hierarchical) {
-    if (!r.form_factor_cache.empty())
-      throw std::invalid_argument("--form-factor-cache " + r.form_factor_cache +
-                                  kHierarchicalNoCache);
+    if (!r.form_factor_cache.empty() && !r.moves.empty())
+      throw std::invalid_argument(kHierarchicalCacheMove);
     if (r.refinement)
       throw std::invalid_argument(
           "--adaptive: not with the hierarchical solver (it refines its own links)");
@@ -348,10 +398,8 @@ SceneSolution solve_scene(const SceneSolveRequest& request,
   scene::Scene scene = r.moves.empty() ? before : prepare_scene(r, true);
   SceneSolution out;
   if (!r.hierarchical && r.choose_solver && !r.refinement && scene.triangles.size() > kMaxPatches) {
-    if (!r.form_factor_cache.empty())
-      throw RequestError("--form-factor-cache " + r.form_factor_cache + kHierarchicalNoCache +
-                         "; the dense solvers take at most " + std::to_string(kMaxPatches) +
-                         " patches");
+    if (!r.form_factor_cache.empty() && !r.moves.empty())
+      throw RequestError(kHierarchicalCacheMove);
     r.hierarchical = true;
     out.solver_choice = "solver: hierarchical (" + std::to_string(scene.triangles.size()) +
                         " patches, more than the " + std::to_string(kMaxPatches) +

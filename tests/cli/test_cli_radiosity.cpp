@@ -248,7 +248,7 @@ TEST_CASE("prt radiosity prints its choice of form factors in one line, --quiet 
 }
 
 TEST_CASE(
-    "prt radiosity --solver hierarchical: links, passes and memory printed, the cache and "
+    "prt radiosity --solver hierarchical: links, passes and memory printed, the link cache, "
     "dense-only options refused",
     "[radiosity][cli][hierarchical]") {
   const fs::path dir = scratch("hierarchical");
@@ -264,11 +264,33 @@ TEST_CASE(
   CHECK(r.out.find("charged at the peak") != std::string::npos);
   CHECK(r.out.find("per-emitter responses: 1 emitter") != std::string::npos);
   CHECK(fs::exists(dir / "out.prte"));
+  // The link cache: saved, then used as it is for the same light (the same CSV, byte for byte),
+  // re-checked for another lamp colour; refused with --move.
+  const std::string cached = room + " --solver hierarchical --max-edge 0.1 --form-factor-cache " +
+                             (dir / "room.links").string() + " --csv ";
+  const RunResult saved = run(cached + (dir / "saved.csv").string());
+  INFO(saved.out << saved.err);
+  REQUIRE(saved.exit_code == 0);
+  CHECK(saved.out.find("links saved to " + (dir / "room.links").string()) != std::string::npos);
+  const RunResult reused = run(cached + (dir / "reused.csv").string());
+  INFO(reused.out << reused.err);
+  REQUIRE(reused.exit_code == 0);
+  CHECK(reused.out.find("the same emission and albedo: used as they are") != std::string::npos);
+  const auto bytes = [](const fs::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  };
+  CHECK(bytes(dir / "reused.csv") == bytes(dir / "saved.csv"));
+  const RunResult relit = run(cached + (dir / "relit.csv").string() + " --emission lamp=2,4,8");
+  INFO(relit.out << relit.err);
+  REQUIRE(relit.exit_code == 0);
+  CHECK(relit.out.find("other emission or albedo: re-checked") != std::string::npos);
   const fs::path refused = scratch("hierarchical_refused");
   check_refused(refused,
                 room + " --solver hierarchical --form-factor-cache " +
-                    (refused / "ff.bin").string() + " --csv " + (refused / "out.csv").string(),
-                "not with the hierarchical solver");
+                    (refused / "ff.bin").string() + " --move lamp=0,0,0.1 --csv " +
+                    (refused / "out.csv").string(),
+                "--move: not with --form-factor-cache and the hierarchical solver");
   CHECK_FALSE(fs::exists(refused / "ff.bin"));
   check_refused(
       refused,

@@ -5,7 +5,8 @@
 # their merge, with --subsurface too), Haar (shadowed, interreflected textured), glossy
 # shadowed and interreflected (.prtg), CPCA (.prtq), radiosity (.prte with --per-emitter, the
 # form-factor cache, --csv, --vertex-colors .glb, the EXR image; Gauss-Seidel, Jacobi,
-# progressive, --adaptive), export-gltf, make-scene (the demo and the translucent scene) and
+# progressive, --adaptive; the hierarchical link cache), export-gltf, make-scene (the demo and
+# the translucent scene) and
 # make-sky.
 # Nothing that changes from run to run (wall times, thread counts, the host) may be in them: that
 # goes to the OUT.run.json beside each output, which is checked to exist and is not compared.
@@ -140,6 +141,9 @@ same "radiosity analytic, progressive" progressive.csv
 both yes radiosity --quiet "$room" --max-edge 0.5 --adaptive 0.05 --max-patches 300 \
   --csv adaptive.csv
 same "radiosity --adaptive" adaptive.csv
+both yes radiosity --quiet "$room" --max-edge 0.25 --solver hierarchical \
+  --form-factor-cache room.links --csv hierarchical.csv
+same "radiosity hierarchical link cache" room.links no
 both no export-gltf --quiet "$demo" shadowed.prt ../in/sky.hdr -o export.glb
 same "export-gltf" export.glb no
 both no make-scene -o scene.glb

@@ -7,8 +7,8 @@
 # line naming the scene and the limit), and a value that is not a size is a usage error (status 2).
 # And a full disk (a small tmpfs) under an interreflected glossy bake and its scratch files.
 # Covers bake (SH), bake --glossy, compress, radiosity --per-emitter / --csv / --vertex-colors /
-# --form-factor-cache, make-scene, export-gltf, bake --shard and radiosity --shard (part files)
-# and merge. A few seconds.
+# --form-factor-cache (dense and the hierarchical link cache), make-scene, export-gltf, bake
+# --shard and radiosity --shard (part files) and merge. A few seconds.
 # Usage: check_write_failures.sh PRT_BINARY
 set -euo pipefail
 prt="$(realpath "$1")"
@@ -59,6 +59,10 @@ limited 4 room.glb radiosity room.obj --max-edge 0.25 --vertex-colors room.glb -
 limited 64 room.ffc radiosity room.obj --max-edge 0.1 --form-factor-cache room.ffc \
   -o room.png --size 8x6 --quiet
 rm -f room.png room.png.run.json
+# The hierarchical solver's link cache, written before the CSV.
+limited 64 room.links radiosity room.obj --max-edge 0.1 --solver hierarchical \
+  --form-factor-cache room.links --csv room.csv --quiet
+rm -f room.csv room.csv.run.json
 limited 64 scene.glb make-scene -o scene.glb
 "$prt" bake glossy.glb -o sh.prt --order 3 --samples 16 --quiet
 limited 16 export.glb export-gltf glossy.glb sh.prt -o export.glb --quiet

@@ -84,7 +84,15 @@ struct HierarchicalSolution {
   std::vector<Link> links;
   Solution solution;  // per patch; display_radiance = radiance
   HierarchicalStats stats;
+  // The patches' radiance the last solve started from (per patch, as the solver holds it: the
+  // visible part's radiance): with `links` and `hierarchy`, what resume_hierarchical needs to
+  // repeat that solve bit for bit (radiosity/link_cache.h).
+  std::vector<glm::dvec3> last_start;
 };
+
+// The link options solve_hierarchical uses for `patches` patches: fine by fine_up_to, and the
+// visibility rays when options.links.visibility_rays is 0.
+LinkOptions resolved_link_options(std::size_t patches, const HierarchicalOptions& options);
 
 // Solves for `patches` (the triangles of the scene `caster` was built on). Throws
 // std::invalid_argument for options out of range (epsilon ≤ 0, max_passes < 1, visibility_rays <
@@ -93,6 +101,20 @@ HierarchicalSolution solve_hierarchical(const std::vector<Patch>& patches,
                                         const scene::RayCaster& caster,
                                         const HierarchicalOptions& options,
                                         MemoryBudget* budget = nullptr);
+
+// The solve from given links (of a solve of the same patches with the same options, e.g. from a
+// link cache), on `hierarchy` (build_hierarchy of `patches`). With `start` (that solve's
+// last_start; the same emission and albedo): no refinement, one solve from `start` on the links
+// as they are — the radiance of that solve, bit for bit. Without: the refinement passes of
+// solve_hierarchical with the first one re-checking `links` (against the emission) instead of
+// refining the root's self-link: links are only split where this emission and albedo need it,
+// never merged. Stats count this solve's passes, rays and iterations only.
+HierarchicalSolution resume_hierarchical(const std::vector<Patch>& patches,
+                                         const scene::RayCaster& caster,
+                                         const HierarchicalOptions& options, Hierarchy hierarchy,
+                                         std::vector<Link> links,
+                                         const std::vector<glm::dvec3>* start,
+                                         MemoryBudget* budget = nullptr);
 
 // Gather / push–pull iterations on given links (any emission and albedo of the same patches),
 // from L = E; `fine` as the solve that made the links (HierarchicalStats::fine).

@@ -87,7 +87,9 @@ struct SceneSolveRequest {
   bool choose_method = false;
   SolveOptions solve;
   // Form-factor cache (form_factor_cache.h) of the scene as loaded (before `moves`): absent →
-  // computed and saved; present → loaded when its key matches, refused otherwise.
+  // computed and saved; present → loaded when its key matches, refused otherwise. With the
+  // hierarchical solver a link cache (link_cache.h) of the same path, by the same rules on its
+  // geometry and settings keys; other emission or albedo re-check its links. Not with `moves`.
   std::string form_factor_cache;
   std::vector<ObjectMove> moves;  // form factors updated partially when a cache is loaded
   // Optional: per-emitter responses (emitter_solve.h), one more solve per emitter on the same
@@ -99,7 +101,7 @@ struct SceneSolveRequest {
   // Bytes the solve may hold (prt/core/memory_budget.h); 0: none.
   uint64_t memory_limit = 0;
   // Hierarchical radiosity (hierarchical_solver.h) in place of dense form factors and `solve`'s
-  // solver (its tolerance and max_iterations apply); not with a cache or refinement. With
+  // solver (its tolerance and max_iterations apply); not with refinement. With
   // choose_solver it is chosen when the patches exceed kMaxPatches (dense below).
   bool hierarchical = false;
   bool choose_solver = false;
@@ -116,8 +118,9 @@ struct SceneSolution {
   double update_seconds = 0;  // the partial update after the moves
   double gather_seconds = 0;  // K from F (part of solve_seconds)
   enum class Cache { None, Loaded, Saved } cache = Cache::None;
-  FormFactorUpdate update;   // counts of the partial update
-  double escape_probe = -1;  // escape fraction measured for albedo-1 scenes (else −1)
+  std::string cache_message;  // hierarchical solver: what the link cache did (one line)
+  FormFactorUpdate update;    // counts of the partial update
+  double escape_probe = -1;   // escape fraction measured for albedo-1 scenes (else −1)
   std::vector<RefinementPass> refinement_passes;    // with `refinement`: one per solve
   double per_emitter_seconds = 0;                   // the per-emitter solves
   std::vector<EmitterSolveReport> emitter_reports;  // one per emitter
@@ -128,11 +131,11 @@ struct SceneSolution {
 };
 
 // Checks the request before any file is read: the responses file (.prte, a full-matrix
-// solver), max_edge, the cache (a full-matrix solver; none of `other_outputs` — the caller's
-// own output files — may be it), refinement (not with a cache, moves or per-emitter responses,
-// nor with hemicube form factors and the progressive solver, whose raw rows alias on refined
-// patches: radiosity/hemicube.h) and the tolerance. Outputs may not be the scene file
-// (scene/output_path.h).
+// solver), max_edge, the cache (a full-matrix solver, no moves with the hierarchical one; none of
+// `other_outputs` — the caller's own output files — may be it), refinement (not with a cache, moves
+// or per-emitter responses, nor with hemicube form factors and the progressive solver, whose raw
+// rows alias on refined patches: radiosity/hemicube.h) and the tolerance. Outputs may not be the
+// scene file (scene/output_path.h).
 void check_scene_solve(const SceneSolveRequest& request,
                        const std::vector<std::string>& other_outputs);
 
