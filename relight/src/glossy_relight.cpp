@@ -14,7 +14,6 @@
 #include "prt/formats/cpca_file.h"
 #include "prt/formats/geometry_check.h"
 #include "prt/formats/glossy_transfer_file.h"
-#include "relight/environment_input.h"
 #include "relight/glossy_material_override.h"
 #include "relight/shown_window.h"
 #include "relight_frames.h"
@@ -168,18 +167,11 @@ RelightSummary run_glossy_relight(const RelightRequest& request,
   const std::optional<GlossyEmitterLight> emitters =
       prepare_glossy_emitters(request, scene, loaded.data, options.gather_emitters);
   const prt::GlossyTransferData& data = loaded.data;
-  EnvironmentUse use;
-  use.sh_order = static_cast<int>(data.order);
-  EnvironmentInput input = read_checked_environment(request.environment_path, request.layout, use);
-  const sh::EnvMap env = std::move(input.env);
-  summary.layout_note = input.layout_note;
-  summary.vertex_count = scene.vertex_count();
-  summary.order = static_cast<int>(data.order);
-  LightingOptions lighting_options = request.lighting;
-  const bool window_on_vertices = lighting_options.window == sh::Window::Auto;
-  if (window_on_vertices) lighting_options.window = sh::Window::None;
-  prt::ShLighting base =
-      project_lighting(env, summary.order, lighting_options, &summary.window_note);
+  detail::ShEnvironment lit = detail::read_sh_environment(request, static_cast<int>(data.order),
+                                                          scene.vertex_count(), &summary);
+  const sh::EnvMap& env = lit.env;
+  prt::ShLighting& base = lit.base;
+  const bool window_on_vertices = lit.window_on_vertices;
   const prt::GlossyRelighter relighter =
       make_glossy_relighter(std::move(loaded), request.transfer_path, options.projection);
 

@@ -18,6 +18,7 @@
 #include "relight/auto_camera.h"
 #include "relight/auto_exposure.h"
 #include "relight/camera.h"
+#include "relight/environment_input.h"
 #include "relight/relight_pipeline.h"
 #include "relight/renderer.h"
 #include "relight/tone_map.h"
@@ -50,6 +51,34 @@ inline std::vector<glm::vec3> vertex_colors(const std::vector<float>& radiance, 
     }
   }
   return colors;
+}
+
+// The environment of an SH relight (run_relight, run_glossy_relight): request.environment_path
+// read and screened for SH order `order`, and projected at that order with request.lighting,
+// except that --window auto is left for the vertices as shaded (relight/shown_window.h): then
+// `base` is unwindowed and `window_on_vertices` is set. Fills summary->layout_note,
+// vertex_count, order and window_note.
+struct ShEnvironment {
+  sh::EnvMap env;
+  prt::ShLighting base;
+  bool window_on_vertices = false;
+};
+
+inline ShEnvironment read_sh_environment(const RelightRequest& request, int order,
+                                         std::size_t vertex_count, RelightSummary* summary) {
+  EnvironmentUse use;
+  use.sh_order = order;
+  EnvironmentInput input = read_checked_environment(request.environment_path, request.layout, use);
+  ShEnvironment out;
+  out.env = std::move(input.env);
+  summary->layout_note = input.layout_note;
+  summary->vertex_count = vertex_count;
+  summary->order = order;
+  LightingOptions lighting_options = request.lighting;
+  out.window_on_vertices = lighting_options.window == sh::Window::Auto;
+  if (out.window_on_vertices) lighting_options.window = sh::Window::None;
+  out.base = project_lighting(out.env, order, lighting_options, &summary->window_note);
+  return out;
 }
 
 // Resolves the camera (relight/auto_camera.h), then for each frame: lighting = light_for(M_i)

@@ -19,7 +19,6 @@
 #include "prt/formats/transfer_file.h"
 #include "relight/auto_exposure.h"
 #include "relight/emitter_relight.h"
-#include "relight/environment_input.h"
 #include "relight/image_io.h"
 #include "relight/shown_window.h"
 #include "relight/tone_map.h"
@@ -261,19 +260,12 @@ RelightSummary run_relight(const RelightRequest& request) {
   if (request.max_edge) scene = scene::subdivide_to_edge_length(scene, *request.max_edge);
   const prt::TransferData data = load_transfer_for_scene(request.transfer_path, scene);
   const std::vector<float> emitted = emitters_for_scene(request, scene, data);
-  EnvironmentUse use;
-  use.sh_order = static_cast<int>(data.order);
-  EnvironmentInput input = read_checked_environment(request.environment_path, request.layout, use);
-  const sh::EnvMap env = std::move(input.env);
-  summary.layout_note = input.layout_note;
-  summary.vertex_count = scene.vertex_count();
-  summary.order = static_cast<int>(data.order);
   // --window auto is chosen on the vertices as shaded in every frame (relight/shown_window.h).
-  LightingOptions lighting_options = request.lighting;
-  const bool window_on_vertices = lighting_options.window == sh::Window::Auto;
-  if (window_on_vertices) lighting_options.window = sh::Window::None;
-  prt::ShLighting base =
-      project_lighting(env, static_cast<int>(data.order), lighting_options, &summary.window_note);
+  detail::ShEnvironment lit = detail::read_sh_environment(request, static_cast<int>(data.order),
+                                                          scene.vertex_count(), &summary);
+  const sh::EnvMap& env = lit.env;
+  prt::ShLighting& base = lit.base;
+  const bool window_on_vertices = lit.window_on_vertices;
   prt::Result<prt::Relighter> relighter = prt::Relighter::create(data);
   if (!relighter.ok())
     throw std::runtime_error(request.transfer_path + ": " + relighter.status().message());

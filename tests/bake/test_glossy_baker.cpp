@@ -368,6 +368,23 @@ bool temporaries_left(const std::string& path) {
   return false;
 }
 
+// Bakes `s` with `o` to `path` and checks that o.memory_limit refuses it: one line naming
+// `reason`, and neither the file nor a temporary left behind.
+void check_refused_with_no_file(const prt::scene::Scene& s, const GlossyBakeOptions& o,
+                                const std::string& path, const std::string& reason) {
+  try {
+    prt::bake::bake_glossy_transfer_to_file(s, o, path);
+    FAIL("a limit of " << o.memory_limit << " bytes was accepted");
+  } catch (const prt::MemoryBudgetExceeded& e) {
+    const std::string what = e.what();
+    INFO(what);
+    CHECK(what.find('\n') == std::string::npos);
+    CHECK(what.find(reason) != std::string::npos);
+  }
+  CHECK_FALSE(std::filesystem::exists(path));
+  CHECK_FALSE(temporaries_left(path));
+}
+
 }  // namespace
 
 // The streamed file against the in-memory bake written whole: every byte but the metadata's
@@ -421,17 +438,7 @@ TEST_CASE("glossy bake: a too-small memory limit is refused in one line with no 
   const std::string path = prt::test::output_path("glossy_refused_bake.prtg").string();
   std::filesystem::remove(path);
   o.memory_limit = 64 * 1024;
-  try {
-    prt::bake::bake_glossy_transfer_to_file(s, o, path);
-    FAIL("a 64 KB limit was accepted");
-  } catch (const prt::MemoryBudgetExceeded& e) {
-    const std::string what = e.what();
-    INFO(what);
-    CHECK(what.find('\n') == std::string::npos);
-    CHECK(what.find("the memory limit is 64.0 KB") != std::string::npos);
-  }
-  CHECK_FALSE(std::filesystem::exists(path));
-  CHECK_FALSE(temporaries_left(path));
+  check_refused_with_no_file(s, o, path, "the memory limit is 64.0 KB");
   o.memory_limit = 4 << 20;
   CHECK_THROWS_AS(bake_glossy_transfer(s, o), prt::MemoryBudgetExceeded);
   const auto r = prt::bake::bake_glossy_transfer_to_file(s, o, path);
@@ -541,17 +548,7 @@ TEST_CASE("glossy bake: streamed interreflection holds one bounce, and a limit b
     return false;
   };
   o.memory_limit = 6 << 20;
-  try {
-    prt::bake::bake_glossy_transfer_to_file(s, o, path);
-    FAIL("a 6 MB limit was accepted");
-  } catch (const prt::MemoryBudgetExceeded& e) {
-    const std::string what = e.what();
-    INFO(what);
-    CHECK(what.find('\n') == std::string::npos);
-    CHECK(what.find("the glossy matrices of the bounce read") != std::string::npos);
-  }
-  CHECK_FALSE(std::filesystem::exists(path));
-  CHECK_FALSE(temporaries_left(path));
+  check_refused_with_no_file(s, o, path, "the glossy matrices of the bounce read");
   o.memory_limit = 12 << 20;
   CHECK_THROWS_AS(bake_glossy_transfer(s, o), prt::MemoryBudgetExceeded);
   const auto r = prt::bake::bake_glossy_transfer_to_file(s, o, path);

@@ -16,6 +16,7 @@
 #include "cli_run.h"
 #include "relight/image_io.h"
 #include "support/test_data.h"
+#include "support/text_lines.h"
 
 namespace fs = std::filesystem;
 
@@ -45,18 +46,8 @@ fs::path scratch(const std::string& name) {
   return dir;
 }
 
-std::vector<std::string> lines_of(const std::string& text) {
-  std::vector<std::string> lines;
-  std::stringstream in(text);
-  for (std::string line; std::getline(in, line);) lines.push_back(line);
-  return lines;
-}
-
-std::size_t count_containing(const std::string& text, const std::string& needle) {
-  std::size_t n = 0;
-  for (const std::string& line : lines_of(text)) n += line.find(needle) != std::string::npos;
-  return n;
-}
+using prt::test::count_containing;
+using prt::test::lines_of;
 
 void write_env(const fs::path& path, int width, int height) {
   std::vector<float> pixels(static_cast<std::size_t>(3 * width * height));

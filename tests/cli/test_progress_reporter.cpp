@@ -14,6 +14,7 @@
 
 #include "progress_reporter.h"
 #include "support/test_data.h"
+#include "support/text_lines.h"
 
 namespace fs = std::filesystem;
 
@@ -33,18 +34,8 @@ std::string read_all(const fs::path& p) {
   return text.str();
 }
 
-std::vector<std::string> lines_of(const std::string& text) {
-  std::vector<std::string> lines;
-  std::stringstream in(text);
-  for (std::string line; std::getline(in, line);) lines.push_back(line);
-  return lines;
-}
-
-std::size_t count_containing(const std::string& text, const std::string& needle) {
-  std::size_t n = 0;
-  for (const std::string& line : lines_of(text)) n += line.find(needle) != std::string::npos;
-  return n;
-}
+using prt::test::count_containing;
+using prt::test::lines_of;
 
 }  // namespace
 

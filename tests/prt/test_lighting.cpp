@@ -7,6 +7,7 @@
 
 #include <catch2/catch.hpp>
 
+#include "lighting_fixtures.h"
 #include "prt/lighting/sh_lighting.h"
 #include "sh/constants.h"
 
@@ -27,15 +28,7 @@ std::array<double, 9> transpose(const std::array<double, 9>& m) {
   return {m[0], m[3], m[6], m[1], m[4], m[7], m[2], m[5], m[8]};
 }
 
-ShLighting random_lighting(int order, uint32_t seed) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> unit(-1.0, 1.0);
-  std::vector<double> c(3 * order * order);
-  for (double& x : c) x = unit(rng);
-  auto light = ShLighting::from_coefficients(order, c.data());
-  REQUIRE(light.ok());
-  return *light;
-}
+using prt::test::random_lighting;
 
 }  // namespace
 

@@ -8,6 +8,7 @@
 
 #include <catch2/catch.hpp>
 
+#include "lighting_fixtures.h"
 #include "prt/core/half.h"
 #include "prt/diffuse/relighter.h"
 #include "prt/formats/transfer_file.h"
@@ -24,15 +25,7 @@ using prt::sh::kPi;
 
 namespace {
 
-ShLighting random_lighting(int order, uint32_t seed) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> unit(-1.0, 1.0);
-  std::vector<double> c(3 * order * order);
-  for (double& x : c) x = unit(rng);
-  auto light = ShLighting::from_coefficients(order, c.data());
-  REQUIRE(light.ok());
-  return *light;
-}
+using prt::test::random_lighting;
 
 // The data as the kernel stores it: binary16 storage rounds every coefficient.
 TransferData as_stored(TransferData d, Precision storage) {
