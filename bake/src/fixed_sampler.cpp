@@ -7,6 +7,7 @@
 
 #include "bake/obscurance_falloff.h"
 #include "bake/sampling.h"
+#include "hit_records.h"
 #include "prt/core/memory_budget.h"
 #include "sh/basis.h"
 #include "transfer_pass.h"
@@ -32,6 +33,20 @@ struct FixedVertexSampler {
         y(static_cast<std::size_t>(p.K)),
         packet_sum(static_cast<std::size_t>(p.K)),
         acc(static_cast<std::size_t>(p.K)) {}
+
+  // The packet's hits into the vertex's row of H; back faces are counted only.
+  void gather_hits() {
+    for (int i = 0; i < kPacketSize; ++i) {
+      if (!hits[i].hit) continue;
+      const bool front =
+          pass.hit_records ? gather_front_hit_record(pass.hit_records, hits[i].triangle, hits[i].u,
+                                                     hits[i].v, dirs[i], compact.hits)
+          : pass.compact
+              ? gather_front_hit_compact(pass.scene, hits[i], dirs[i], *pass.compact, compact.hits)
+              : gather_front_hit(pass.scene, hits[i], dirs[i], 1.f, pass.gather_channels, gathered);
+      if (!front) ++pass.block_back_hits[block];
+    }
+  }
 
   // Returns the rays cast; the sums go to row `slot` (SamplingPass::sums_by_row).
   uint64_t sample(std::size_t v, std::size_t slot) {
@@ -74,13 +89,7 @@ struct FixedVertexSampler {
       }
       if (any)
         for (int k = 0; k < K; ++k) acc[k] += static_cast<double>(packet_sum[k]);
-      if (interreflect)
-        for (int i = 0; i < kPacketSize; ++i)
-          if (hits[i].hit && !(pass.compact ? gather_front_hit_compact(pass.scene, hits[i], dirs[i],
-                                                                       *pass.compact, compact.hits)
-                                            : gather_front_hit(pass.scene, hits[i], dirs[i], 1.f,
-                                                               pass.gather_channels, gathered)))
-            ++pass.block_back_hits[block];
+      if (interreflect) gather_hits();
     }
     if (need_sh)
       for (int k = 0; k < K; ++k) acc[k] *= inv_n;

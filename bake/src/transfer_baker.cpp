@@ -47,6 +47,7 @@
 #include "scene/ray_caster.h"
 #include "scene/scene_label.h"
 #include "sh/basis.h"
+#include "hit_records.h"
 #include "transfer_geometry.h"
 #include "transfer_pass.h"
 
@@ -282,6 +283,17 @@ void run_sampling_pass(BakeJob& job, const ShardRows* shard = nullptr) {
                     {}};
   pass.compact = job.gather.get();
   pass.budget = &job.budget;
+  // The hit test's per-triangle records (fixed recipe): charged now, freed after the pass.
+  std::vector<detail::HitRecord> hit_records;
+  const uint64_t record_bytes =
+      job.compact && !job.adaptive ? job.scene.triangles.size() * sizeof(detail::HitRecord) : 0;
+  if (record_bytes > 0) {
+    job.budget.charge(record_bytes, "the hit test's triangle records");
+    const double cpu_records = cpu_now();
+    hit_records = detail::make_hit_records(job.scene, *job.gather);
+    st.cpu_seconds_gather_setup += cpu_now() - cpu_records;
+    pass.hit_records = hit_records.data();
+  }
   if (shard) {
     pass.row_order = shard->order;
     pass.first_row = shard->range.first;
@@ -305,6 +317,8 @@ void run_sampling_pass(BakeJob& job, const ShardRows* shard = nullptr) {
   st.seconds_rays = seconds_since(t_rays);
   st.cpu_seconds_rays = cpu_now() - cpu_rays;
   st.bvh_bytes = caster.embree_peak_bytes();
+  std::vector<detail::HitRecord>().swap(hit_records);
+  job.budget.release(record_bytes);
   if (shard) return;  // the part holds the rows; the merge assembles H
   if (job.interreflect && job.compact) {
     st.matrix_entries = job.gather->hits();

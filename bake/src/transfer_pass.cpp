@@ -70,7 +70,7 @@ void DirectTransfer::store(std::size_t v, const double* s_k, std::size_t slot) {
 void cast_packet(const scene::RayCaster& caster, const glm::vec3& origin, const glm::vec3* dirs,
                  int count, float tfar, scene::RayCaster::Hit* hits, bool* occluded) {
   if (hits != nullptr) {
-    caster.intersect_packet(origin, dirs, count, tfar, hits);
+    caster.intersect_packet(origin, dirs, count, tfar, hits, /*face_side=*/false);
     for (int i = 0; i < count; ++i) occluded[i] = hits[i].hit;
   } else {
     caster.occluded_packet(origin, dirs, count, tfar, occluded);

@@ -31,6 +31,8 @@ class MemoryBudget;
 
 namespace prt::bake::detail {
 
+struct HitRecord;  // hit_records.h
+
 inline constexpr std::size_t kVertexBlock = 64;  // vertices per parallel task (fixed: determinism)
 inline constexpr std::size_t kAuditStride = 8;   // adaptive: every 8th sampled vertex audits
 
@@ -105,6 +107,9 @@ struct SamplingPass {
   // null) before the block is stored.
   CompactGather* compact = nullptr;
   MemoryBudget* budget = nullptr;
+  // With compact: the per-triangle records of the hit test (hit_records.h), when made; the fixed
+  // sampler then judges sides and renumbers triangles through them.
+  const HitRecord* hit_records = nullptr;
   // A shard of a farm bake (bake/transfer_part.h, fixed recipe only): the rows [first_row,
   // end_row) of `row_order` (the Morton order of compact_gather.h) instead of every vertex; block
   // b covers rows first_row + 64b onwards, and a compact gather's blocks go to part_blocks[b]
@@ -131,7 +136,8 @@ void sample_fixed(SamplingPass& pass);
 void sample_adaptive(SamplingPass& pass);
 
 // Casts `count` ≤ kPacketSize rays from `origin`: closest hits into `hits` (occluded[i] = a hit)
-// when `hits` is not null, occlusion only otherwise.
+// when `hits` is not null, occlusion only otherwise. Hit::front_face is not filled in (the
+// samplers judge the side with hit_side.h).
 void cast_packet(const scene::RayCaster& caster, const glm::vec3& origin, const glm::vec3* dirs,
                  int count, float tfar, scene::RayCaster::Hit* hits, bool* occluded);
 

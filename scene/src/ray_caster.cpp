@@ -240,7 +240,7 @@ RayCaster::Hit RayCaster::intersect(const glm::vec3& o, const glm::vec3& d, floa
 }
 
 void RayCaster::intersect_packet(const glm::vec3& origin, const glm::vec3* dirs, int count,
-                                 float tfar, Hit* out) const {
+                                 float tfar, Hit* out, bool face_side) const {
   count = std::clamp(count, 0, 16);
   if (count == 0) return;
   RTCIntersectContext ctx;
@@ -261,7 +261,7 @@ void RayCaster::intersect_packet(const glm::vec3& origin, const glm::vec3* dirs,
       h.triangle = rh.hit.primID[i];
       h.u = rh.hit.u[i];
       h.v = rh.hit.v[i];
-      h.front_face = front_facing(h.triangle, dirs[i]);
+      if (face_side) h.front_face = front_facing(h.triangle, dirs[i]);
     }
     out[i] = h;
   }

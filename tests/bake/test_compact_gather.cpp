@@ -10,6 +10,9 @@
 
 #include <catch2/catch.hpp>
 
+#include "../../bake/src/hit_records.h"
+#include "../../bake/src/hit_side.h"
+#include "../../bake/src/transfer_pass.h"
 #include "bake/compact_gather.h"
 #include "bake/transfer_baker.h"
 #include "numerics/rng.h"
@@ -160,6 +163,60 @@ TEST_CASE("compact gather: the bounce count is bounded independently of the mesh
   const int bound = static_cast<int>(std::ceil(std::log(1e-4) / std::log(0.8)));
   for (int b : bounces) CHECK(b <= bound);
   CHECK(std::abs(bounces[2] - bounces[0]) <= 8);
+}
+
+TEST_CASE("hit records judge the side and renumber the triangle as the scene-based test") {
+  // The sampling pass's one-read hit test (hit_records.h) must agree with hit_side.h on every
+  // triangle and direction, including a degenerate triangle (no front) and one whose winding
+  // disagrees with its vertex normals; and give the same CompactHit as gather_front_hit_compact.
+  prt::scene::Scene s = small_scene();
+  const auto V = static_cast<uint32_t>(s.positions.size());
+  s.positions.push_back({0.f, 2.f, 0.f});
+  s.positions.push_back({1.f, 2.f, 0.f});
+  s.positions.push_back({2.f, 2.f, 0.f});  // collinear: n_g = 0
+  for (int i = 0; i < 3; ++i) s.normals.push_back({0.f, 1.f, 0.f});
+  s.triangles.push_back({V, V + 1, V + 2});
+  const glm::uvec3 flipped = s.triangles[0];
+  s.triangles.push_back({flipped.x, flipped.z, flipped.y});  // same facet, other winding
+  s.albedo.resize(s.positions.size(), glm::vec3(0.5f));
+  const prt::bake::CompactGather gather(prt::bake::make_morton_order(s.positions), s.triangles, 64,
+                                        1.0 / 64);
+  const std::vector<prt::bake::detail::HitRecord> records =
+      prt::bake::detail::make_hit_records(s, gather);
+  REQUIRE(records.size() == s.triangles.size());
+  prt::numerics::SplitMix64 rng{11};
+  int fronts = 0, backs = 0;
+  for (uint32_t t = 0; t < s.triangles.size(); ++t) {
+    for (int i = 0; i < 64; ++i) {
+      const glm::vec3 d(static_cast<float>(2 * rng.uniform() - 1),
+                        static_cast<float>(2 * rng.uniform() - 1),
+                        static_cast<float>(2 * rng.uniform() - 1));
+      const float u = static_cast<float>(0.5 * rng.uniform()),
+                  v = static_cast<float>(0.5 * rng.uniform());
+      prt::scene::RayCaster::Hit hit;
+      hit.hit = true;
+      hit.triangle = t;
+      hit.u = u;
+      hit.v = v;
+      std::vector<CompactHit> by_scene, by_record;
+      const bool a = prt::bake::detail::gather_front_hit_compact(s, hit, d, gather, by_scene);
+      const bool b =
+          prt::bake::detail::gather_front_hit_record(records.data(), t, u, v, d, by_record);
+      REQUIRE(a == prt::bake::detail::ray_hits_front_side(s, t, d));
+      REQUIRE(a == b);
+      REQUIRE(by_scene.size() == by_record.size());
+      if (a) {
+        REQUIRE(by_scene[0].triangle == by_record[0].triangle);
+        REQUIRE(by_scene[0].u == by_record[0].u);
+        REQUIRE(by_scene[0].v == by_record[0].v);
+      }
+      (a ? fronts : backs) += 1;
+    }
+  }
+  CHECK(records[s.triangles.size() - 2].front == glm::vec3(0.f));  // degenerate
+  CHECK(records.back().front == records[0].front);  // the orientation follows the normals
+  CHECK(fronts > 1000);
+  CHECK(backs > 1000);
 }
 
 TEST_CASE("a bake over its memory limit stops before it allocates, with one line") {

@@ -187,6 +187,19 @@ TEST_CASE("ray caster: hits, barycentrics, faces, packets and an empty scene") {
     INFO("ray " << i);
     CHECK(occ[i] == inside);
     CHECK(hits[i].hit == inside);
+    CHECK(hits[i].front_face == inside);  // from +Z: the front
+  }
+  // Without the side (face_side = false): the same hits, front_face left false.
+  prt::scene::RayCaster::Hit bare[16];
+  caster.intersect_packet({0.f, 0.25f, 1.f}, dirs, 16, 100.f, bare, false);
+  for (int i = 0; i < 16; ++i) {
+    INFO("ray " << i);
+    CHECK(bare[i].hit == hits[i].hit);
+    CHECK(bare[i].t == hits[i].t);
+    CHECK(bare[i].triangle == hits[i].triangle);
+    CHECK(bare[i].u == hits[i].u);
+    CHECK(bare[i].v == hits[i].v);
+    CHECK_FALSE(bare[i].front_face);
   }
   // ε_v = 4·2^-23·max|p| + 2^-18·(longest edge) (scene/ray_offset.h): vertex 0 sits at the origin
   // (no ulp term), the others at 1; every vertex touches the √2 edge.

@@ -58,8 +58,10 @@ class RayCaster {
   // Closest hit on (tnear, tfar).
   Hit intersect(const glm::vec3& o, const glm::vec3& d, float tnear, float tfar) const;
   // rtcIntersect16 for `count` ≤ 16 rays sharing `origin` (tnear = 0); out[i] = closest hit.
+  // With face_side = false, Hit::front_face is left false: no read of the hit triangle's
+  // positions, for callers that judge the side themselves (the bakers' hit_side.h).
   void intersect_packet(const glm::vec3& origin, const glm::vec3* dirs, int count, float tfar,
-                        Hit* out) const;
+                        Hit* out, bool face_side = true) const;
 
   // rtcIntersect1M: `count` rays with their own origins (tnear = 0) as one stream;
   // out[i] = closest hit of ray i, as intersect(). `coherent` passes Embree's coherent-stream
