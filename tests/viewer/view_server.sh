@@ -31,7 +31,8 @@ start_view() {
   server=$!
   url=""
   for _ in $(seq 1 6000); do
-    url="$(grep -so 'http://[^ ]*' "$dir/view.out" || true)"
+    # the whole "serving URL (Ctrl-C stops)" line, not a URL still being written
+    url="$(sed -n 's|^serving \(http://[^ ]*/\) .*|\1|p' "$dir/view.out" 2>/dev/null || true)"
     [ -n "$url" ] && return 0
     kill -0 "$server" 2>/dev/null || { cat "$dir/view.err"; server=""; exit 1; }
     sleep 0.1
