@@ -342,18 +342,25 @@ void fill_from_parts(BakeJob& job, const std::vector<const TransferPart*>& parts
   };
   for (const TransferPart* part : parts) {
     std::size_t hit = 0;
+    const double* direct = part->direct_values();
+    const CompactHit* hits = part->hit_values();
     for (std::size_t i = 0; i < part->rows.size(); ++i) {
       const std::size_t r = part->rows.first + i, v = order[r];
-      if (job.need_sh_rays) job.direct.store(v, &part->direct[i * K]);
+      if (job.need_sh_rays) job.direct.store(v, direct + i * K);
       if (job.options.ao) job.sums.ao[v] = part->ao[i];
       if (job.options.bent_normals)
         for (std::size_t a = 0; a < 3; ++a) job.sums.bent[3 * v + a] = part->bent[3 * i + a];
       if (!job.compact) continue;
       const uint32_t len = part->gather_rows[i];
+      if (block.lengths.empty()) {  // sized once: no regrowth while the block's rows come in
+        const std::size_t end = std::min<std::size_t>(i + detail::kVertexBlock, part->rows.size());
+        std::size_t block_hits = 0;
+        for (std::size_t j = i; j < end; ++j) block_hits += part->gather_rows[j];
+        block.lengths.reserve(detail::kVertexBlock);
+        block.hits.reserve(block_hits);
+      }
       block.lengths.push_back(len);
-      block.hits.insert(block.hits.end(),
-                        part->gather_hits.begin() + static_cast<std::ptrdiff_t>(hit),
-                        part->gather_hits.begin() + static_cast<std::ptrdiff_t>(hit + len));
+      block.hits.insert(block.hits.end(), hits + hit, hits + hit + len);
       hit += len;
       if (block.lengths.size() == detail::kVertexBlock || r + 1 == job.V) store_block();
     }
@@ -606,8 +613,9 @@ void validate_bake_inputs(const scene::Scene& scene, const BakeOptions& o) {
   if (o.threads < 0) throw BakeError(name + ": thread count must be >= 0");
   if (o.direct_override && (o.kind != prt::TransferKind::Interreflected || o.adaptive.enabled ||
                             o.keep_albedo_apart || scene.textured()))
-    throw BakeError(name + ": a direct term of the caller's is for interreflected, fixed-recipe "
-                           "bakes with the albedo folded");
+    throw BakeError(name +
+                    ": a direct term of the caller's is for interreflected, fixed-recipe "
+                    "bakes with the albedo folded");
   if (o.obscurance.distance != 0.0 &&
       !(o.obscurance.distance > 0.0 && std::isfinite(o.obscurance.distance)))
     throw BakeError(name + ": obscurance distance must be a finite length > 0");
@@ -870,9 +878,9 @@ BakeResult merge_transfer_parts(const scene::Scene& scene, const BakeOptions& op
     for (uint32_t len : p.gather_rows) hits += len;
     if (p.vertices != V || p.shard.index != i || p.shard.count != parts.size() ||
         p.rows.first != want.first || p.rows.end != want.end || p.rows.first != next ||
-        p.direct.size() != (need_sh ? n * K : 0) || p.ao.size() != (options.ao ? n : 0) ||
+        p.direct_size() != (need_sh ? n * K : 0) || p.ao.size() != (options.ao ? n : 0) ||
         p.bent.size() != (options.bent_normals ? 3 * n : 0) ||
-        p.gather_rows.size() != (interreflect ? n : 0) || hits != p.gather_hits.size())
+        p.gather_rows.size() != (interreflect ? n : 0) || hits != p.hit_size())
       throw BakeError(name + ": part " + std::to_string(i) + " of " + std::to_string(parts.size()) +
                       " does not fit the scene or the split");
     next = p.rows.end;

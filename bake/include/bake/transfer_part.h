@@ -52,9 +52,20 @@ struct TransferPart {
   std::vector<float> bent;              // 3 × rows (BakeOptions::bent_normals)
   std::vector<uint32_t> gather_rows;    // interreflected: hits per row
   std::vector<CompactHit> gather_hits;  // interreflected: the rows' hits, as the shard cast them
+  // A part decoded from a file (bake/transfer_part_file.h) leaves `direct` and `gather_hits`
+  // empty and points into the file's mapping instead: read both through the accessors below.
+  const double* direct_view = nullptr;
+  uint64_t direct_count = 0;
+  const CompactHit* hits_view = nullptr;
+  uint64_t hit_count = 0;
   uint64_t rays = 0, back_face_hits = 0;
   double ray_offset_max = 0.0;  // the scene's largest ray offset (the same in every part)
   BakeStatistics stats;         // of the shard's run (times; not part of the file)
+
+  const double* direct_values() const { return direct_view ? direct_view : direct.data(); }
+  uint64_t direct_size() const { return direct_view ? direct_count : direct.size(); }
+  const CompactHit* hit_values() const { return hits_view ? hits_view : gather_hits.data(); }
+  uint64_t hit_size() const { return hits_view ? hit_count : gather_hits.size(); }
 };
 
 // Throws BakeError "SCENE: a sharded bake needs ..." when (scene, options) cannot be sharded.
