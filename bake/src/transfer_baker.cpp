@@ -341,9 +341,9 @@ void fill_from_parts(BakeJob& job, const std::vector<const TransferPart*>& parts
     block = CompactGather::Block{};
   };
   for (const TransferPart* part : parts) {
-    std::size_t hit = 0;
     const double* direct = part->direct_values();
-    const CompactHit* hits = part->hit_values();
+    const std::vector<TransferPart::HitRun> runs = part->hit_runs();
+    std::size_t run = 0, hit = 0;  // the next row's hits: runs[run].data + hit
     for (std::size_t i = 0; i < part->rows.size(); ++i) {
       const std::size_t r = part->rows.first + i, v = order[r];
       if (job.need_sh_rays) job.direct.store(v, direct + i * K);
@@ -360,7 +360,12 @@ void fill_from_parts(BakeJob& job, const std::vector<const TransferPart*>& parts
         block.hits.reserve(block_hits);
       }
       block.lengths.push_back(len);
-      block.hits.insert(block.hits.end(), hits + hit, hits + hit + len);
+      while (len > 0 && run < runs.size() && hit == runs[run].size) ++run, hit = 0;
+      if (len > 0 && (run == runs.size() || runs[run].size - hit < len))
+        throw BakeError(scene::scene_label(job.scene) +
+                        ": a part's gather rows and hits do not agree");
+      if (len > 0)
+        block.hits.insert(block.hits.end(), runs[run].data + hit, runs[run].data + hit + len);
       hit += len;
       if (block.lengths.size() == detail::kVertexBlock || r + 1 == job.V) store_block();
     }
@@ -798,6 +803,21 @@ void check_shardable(const scene::Scene& scene, const BakeOptions& options) {
     throw BakeError(name + ": a sharded interreflected bake needs the compact gather");
 }
 
+std::vector<TransferPart::HitRun> TransferPart::hit_runs() const {
+  if (hits_view) return {{hits_view, static_cast<std::size_t>(hit_count)}};
+  std::vector<HitRun> runs;
+  for (const CompactGather::Block& b : gather_blocks)
+    if (!b.hits.empty()) runs.push_back({b.hits.data(), b.hits.size()});
+  return runs;
+}
+
+uint64_t TransferPart::hit_size() const {
+  if (hits_view) return hit_count;
+  uint64_t n = 0;
+  for (const CompactGather::Block& b : gather_blocks) n += b.hits.size();
+  return n;
+}
+
 TransferPart bake_transfer_part(const scene::Scene& scene, const BakeOptions& options,
                                 ShardSpec shard, ProgressSink* progress) {
   const Clock::time_point t_start = Clock::now();
@@ -837,15 +857,13 @@ TransferPart bake_transfer_part(const scene::Scene& scene, const BakeOptions& op
     if (need_sh) part.direct = std::move(job.sums.visibility_sh);
     if (options.ao) part.ao = std::move(job.sums.ao);
     if (options.bent_normals) part.bent = std::move(job.sums.bent);
-    std::size_t hits = 0;  // reserved once: no regrowth (copies and fresh pages) while appending
-    for (const CompactGather::Block& b : blocks) hits += b.hits.size();
+    // The blocks are kept as they are (the part file writes their hits one after another: no
+    // copy into one array, whose fresh pages cost more than the copy); only the row lengths
+    // are gathered into one array.
     part.gather_rows.reserve(job.compact ? n : 0);
-    part.gather_hits.reserve(hits);
-    for (CompactGather::Block& b : blocks) {
+    for (const CompactGather::Block& b : blocks)
       part.gather_rows.insert(part.gather_rows.end(), b.lengths.begin(), b.lengths.end());
-      part.gather_hits.insert(part.gather_hits.end(), b.hits.begin(), b.hits.end());
-      b = CompactGather::Block{};
-    }
+    part.gather_blocks = std::move(blocks);
   }
   part.rays = result.stats.rays;
   part.back_face_hits = result.stats.back_face_hits;
@@ -853,7 +871,7 @@ TransferPart bake_transfer_part(const scene::Scene& scene, const BakeOptions& op
   result.stats.vertices = part.rows.size();
   result.stats.triangles = scene.triangles.size();
   result.stats.samples_per_vertex = need_rays ? job.N : 0;
-  result.stats.matrix_entries = part.gather_hits.size();
+  result.stats.matrix_entries = part.hit_size();
   result.stats.budget_peak_bytes = budget.peak();
   result.stats.seconds_total = seconds_since(t_start);
   part.stats = result.stats;

@@ -423,7 +423,11 @@ prt::PartFile encode_transfer_part(const TransferPart& part, const scene::Scene&
   f.sections.push_back(view_of(kAo, part.ao.data(), part.ao.size()));
   f.sections.push_back(view_of(kBent, part.bent.data(), part.bent.size()));
   f.sections.push_back(view_of(kGatherRows, part.gather_rows.data(), part.gather_rows.size()));
-  f.sections.push_back(view_of(kGatherHits, part.gather_hits.data(), part.gather_hits.size()));
+  prt::PartSection hits;  // the hits' runs (the shard's blocks), written one after another
+  hits.tag = kGatherHits;
+  for (const TransferPart::HitRun& run : part.hit_runs())
+    hits.pieces.push_back({run.data, run.size * sizeof(CompactHit)});
+  f.sections.push_back(std::move(hits));
   f.sections.push_back(counters_section(part.rays, part.back_face_hits, part.ray_offset_max));
   return f;
 }

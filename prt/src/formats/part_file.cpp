@@ -135,7 +135,7 @@ Status write_part_file(const std::string& path, const PartFile& part) {
     uint32_t crc = crc32c(b, head.size());
     for (uint32_t s = 0; s < sections; ++s) {
       const uint64_t n = part.sections[s].size();
-      crc = crc32c(part.sections[s].data(), n, crc);
+      for (const PartPiece& run : part.sections[s].runs()) crc = crc32c(run.data, run.size, crc);
       crc = crc32c(kZeros, align_up(offsets[s] + n) - (offsets[s] + n), crc);
     }
     store_u32(b + kPartChecksumOffset, crc);
@@ -147,8 +147,9 @@ Status write_part_file(const std::string& path, const PartFile& part) {
       for (uint32_t s = 0; s < sections && ok; ++s) {
         const uint64_t n = part.sections[s].size(),
                        pad = align_up(offsets[s] + n) - (offsets[s] + n);
-        ok = std::fwrite(part.sections[s].data(), 1, n, f) == n &&
-             std::fwrite(kZeros, 1, pad, f) == pad;
+        for (const PartPiece& run : part.sections[s].runs())
+          ok = ok && std::fwrite(run.data, 1, run.size, f) == run.size;
+        ok = ok && std::fwrite(kZeros, 1, pad, f) == pad;
       }
       int saved_errno = errno;
       ok = (std::fflush(f) == 0) && ok;

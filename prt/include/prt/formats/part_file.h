@@ -33,19 +33,38 @@ enum class PartKind : uint32_t {
   GlossyTransfer = 4,  // glossy transfer matrices: direct matrices, front-face hits
 };
 
-// A section's bytes: its own (`bytes`), or `view_size` bytes at `view` owned by someone else (set
+// A section's bytes: its own (`bytes`); or `view_size` bytes at `view` owned by someone else (set
 // view non-null; `bytes` is then ignored): the writer writes views without a copy, and the reader
-// gives views into the file's mapping (PartFile::mapping keeps it alive).
+// gives views into the file's mapping (PartFile::mapping keeps it alive); or, for the writer
+// only, the caller's `pieces` one after another (a section held in several arrays, written
+// without joining them; data() is then null).
+struct PartPiece {
+  const void* data;
+  uint64_t size;
+};
+
 struct PartSection {
   uint32_t tag = 0;
   std::vector<unsigned char> bytes;
   const void* view = nullptr;
   uint64_t view_size = 0;
+  std::vector<PartPiece> pieces;
 
   const unsigned char* data() const {
+    if (!pieces.empty()) return nullptr;
     return view ? static_cast<const unsigned char*>(view) : bytes.data();
   }
-  uint64_t size() const { return view ? view_size : bytes.size(); }
+  uint64_t size() const {
+    if (pieces.empty()) return view ? view_size : bytes.size();
+    uint64_t n = 0;
+    for (const PartPiece& p : pieces) n += p.size;
+    return n;
+  }
+  // The section's bytes as runs, in order (one run unless `pieces` are set).
+  std::vector<PartPiece> runs() const {
+    if (!pieces.empty()) return pieces;
+    return {{data(), size()}};
+  }
 };
 
 struct PartFile {
