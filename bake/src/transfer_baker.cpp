@@ -355,19 +355,31 @@ void fill_from_parts(BakeJob& job, const std::vector<const TransferPart*>& parts
     block = CompactGather::Block{};
   };
   for (const TransferPart* part : parts) {
-    std::size_t hit = 0;
+    const double* direct = part->direct_values();
+    const std::vector<TransferPart::HitRun> runs = part->hit_runs();
+    std::size_t run = 0, hit = 0;  // the next row's hits: runs[run].data + hit
     for (std::size_t i = 0; i < part->rows.size(); ++i) {
       const std::size_t r = part->rows.first + i, v = order[r];
-      if (job.need_sh_rays) job.direct.store(v, &part->direct[i * K]);
+      if (job.need_sh_rays) job.direct.store(v, direct + i * K);
       if (job.options.ao) job.sums.ao[v] = part->ao[i];
       if (job.options.bent_normals)
         for (std::size_t a = 0; a < 3; ++a) job.sums.bent[3 * v + a] = part->bent[3 * i + a];
       if (!job.compact) continue;
       const uint32_t len = part->gather_rows[i];
+      if (block.lengths.empty()) {  // sized once: no regrowth while the block's rows come in
+        const std::size_t end = std::min<std::size_t>(i + detail::kVertexBlock, part->rows.size());
+        std::size_t block_hits = 0;
+        for (std::size_t j = i; j < end; ++j) block_hits += part->gather_rows[j];
+        block.lengths.reserve(detail::kVertexBlock);
+        block.hits.reserve(block_hits);
+      }
       block.lengths.push_back(len);
-      block.hits.insert(block.hits.end(),
-                        part->gather_hits.begin() + static_cast<std::ptrdiff_t>(hit),
-                        part->gather_hits.begin() + static_cast<std::ptrdiff_t>(hit + len));
+      while (len > 0 && run < runs.size() && hit == runs[run].size) ++run, hit = 0;
+      if (len > 0 && (run == runs.size() || runs[run].size - hit < len))
+        throw BakeError(scene::scene_label(job.scene) +
+                        ": a part's gather rows and hits do not agree");
+      if (len > 0)
+        block.hits.insert(block.hits.end(), runs[run].data + hit, runs[run].data + hit + len);
       hit += len;
       if (block.lengths.size() == detail::kVertexBlock || r + 1 == job.V) store_block();
     }
@@ -620,8 +632,9 @@ void validate_bake_inputs(const scene::Scene& scene, const BakeOptions& o) {
   if (o.threads < 0) throw BakeError(name + ": thread count must be >= 0");
   if (o.direct_override && (o.kind != prt::TransferKind::Interreflected || o.adaptive.enabled ||
                             o.keep_albedo_apart || scene.textured()))
-    throw BakeError(name + ": a direct term of the caller's is for interreflected, fixed-recipe "
-                           "bakes with the albedo folded");
+    throw BakeError(name +
+                    ": a direct term of the caller's is for interreflected, fixed-recipe "
+                    "bakes with the albedo folded");
   if (o.obscurance.distance != 0.0 &&
       !(o.obscurance.distance > 0.0 && std::isfinite(o.obscurance.distance)))
     throw BakeError(name + ": obscurance distance must be a finite length > 0");
@@ -804,6 +817,21 @@ void check_shardable(const scene::Scene& scene, const BakeOptions& options) {
     throw BakeError(name + ": a sharded interreflected bake needs the compact gather");
 }
 
+std::vector<TransferPart::HitRun> TransferPart::hit_runs() const {
+  if (hits_view) return {{hits_view, static_cast<std::size_t>(hit_count)}};
+  std::vector<HitRun> runs;
+  for (const CompactGather::Block& b : gather_blocks)
+    if (!b.hits.empty()) runs.push_back({b.hits.data(), b.hits.size()});
+  return runs;
+}
+
+uint64_t TransferPart::hit_size() const {
+  if (hits_view) return hit_count;
+  uint64_t n = 0;
+  for (const CompactGather::Block& b : gather_blocks) n += b.hits.size();
+  return n;
+}
+
 TransferPart bake_transfer_part(const scene::Scene& scene, const BakeOptions& options,
                                 ShardSpec shard, ProgressSink* progress) {
   const Clock::time_point t_start = Clock::now();
@@ -843,15 +871,13 @@ TransferPart bake_transfer_part(const scene::Scene& scene, const BakeOptions& op
     if (need_sh) part.direct = std::move(job.sums.visibility_sh);
     if (options.ao) part.ao = std::move(job.sums.ao);
     if (options.bent_normals) part.bent = std::move(job.sums.bent);
-    std::size_t hits = 0;  // reserved once: no regrowth (copies and fresh pages) while appending
-    for (const CompactGather::Block& b : blocks) hits += b.hits.size();
+    // The blocks are kept as they are (the part file writes their hits one after another: no
+    // copy into one array, whose fresh pages cost more than the copy); only the row lengths
+    // are gathered into one array.
     part.gather_rows.reserve(job.compact ? n : 0);
-    part.gather_hits.reserve(hits);
-    for (CompactGather::Block& b : blocks) {
+    for (const CompactGather::Block& b : blocks)
       part.gather_rows.insert(part.gather_rows.end(), b.lengths.begin(), b.lengths.end());
-      part.gather_hits.insert(part.gather_hits.end(), b.hits.begin(), b.hits.end());
-      b = CompactGather::Block{};
-    }
+    part.gather_blocks = std::move(blocks);
   }
   part.rays = result.stats.rays;
   part.back_face_hits = result.stats.back_face_hits;
@@ -859,7 +885,7 @@ TransferPart bake_transfer_part(const scene::Scene& scene, const BakeOptions& op
   result.stats.vertices = part.rows.size();
   result.stats.triangles = scene.triangles.size();
   result.stats.samples_per_vertex = need_rays ? job.N : 0;
-  result.stats.matrix_entries = part.gather_hits.size();
+  result.stats.matrix_entries = part.hit_size();
   result.stats.budget_peak_bytes = budget.peak();
   result.stats.seconds_total = seconds_since(t_start);
   part.stats = result.stats;
@@ -887,9 +913,9 @@ BakeResult merge_transfer_parts(const scene::Scene& scene, const BakeOptions& op
     for (uint32_t len : p.gather_rows) hits += len;
     if (p.vertices != V || p.shard.index != i || p.shard.count != parts.size() ||
         p.rows.first != want.first || p.rows.end != want.end || p.rows.first != next ||
-        p.direct.size() != (need_sh ? n * K : 0) || p.ao.size() != (options.ao ? n : 0) ||
+        p.direct_size() != (need_sh ? n * K : 0) || p.ao.size() != (options.ao ? n : 0) ||
         p.bent.size() != (options.bent_normals ? 3 * n : 0) ||
-        p.gather_rows.size() != (interreflect ? n : 0) || hits != p.gather_hits.size())
+        p.gather_rows.size() != (interreflect ? n : 0) || hits != p.hit_size())
       throw BakeError(name + ": part " + std::to_string(i) + " of " + std::to_string(parts.size()) +
                       " does not fit the scene or the split");
     next = p.rows.end;

@@ -72,25 +72,32 @@ prt::PartSection text_section(uint32_t tag, const std::string& text) {
   return section_of(tag, text.data(), text.size());
 }
 
-// The section `tag` as `count` values of T; BakeError when absent or of another size.
+// The section `tag` as `count` values of T at their place in the file's mapping; BakeError when
+// absent or of another size. (Sections are 16-byte aligned in the file, the mapping on a page.)
 template <class T>
-std::vector<T> read_array(const prt::PartFile& f, uint32_t tag, uint64_t count,
-                          const std::string& name, const char* what) {
+const T* section_values(const prt::PartFile& f, uint32_t tag, uint64_t count,
+                        const std::string& name, const char* what) {
   const prt::PartSection* s = f.find(tag);
-  const uint64_t bytes = s ? s->bytes.size() : 0;
+  const uint64_t bytes = s ? s->size() : 0;
   if (count > (uint64_t{1} << 40) / sizeof(T) || bytes != count * sizeof(T))
     throw BakeError(name + ": " + what + " section holds " + std::to_string(bytes) +
                     " bytes, expected " + std::to_string(count * sizeof(T)));
-  std::vector<T> out(count);
-  if (count) std::memcpy(out.data(), s->bytes.data(), bytes);
-  return out;
+  return count ? reinterpret_cast<const T*>(s->data()) : nullptr;
+}
+
+// The same values copied into an array of their own (no zero-filling first).
+template <class T>
+std::vector<T> read_array(const prt::PartFile& f, uint32_t tag, uint64_t count,
+                          const std::string& name, const char* what) {
+  const T* p = section_values<T>(f, tag, count, name, what);
+  return p ? std::vector<T>(p, p + count) : std::vector<T>();
 }
 
 std::string read_text(const prt::PartFile& f, uint32_t tag, const std::string& name,
                       const char* what) {
   const prt::PartSection* s = f.find(tag);
   if (!s) throw BakeError(name + ": no " + std::string(what) + " section");
-  return std::string(s->bytes.begin(), s->bytes.end());
+  return std::string(reinterpret_cast<const char*>(s->data()), s->size());
 }
 
 template <class T>
@@ -288,6 +295,16 @@ std::string subsurface_inputs_hash(const std::vector<int32_t>& material) {
   return text;
 }
 
+// The shape of a settings object: its keys (nested objects' too) and their JSON types, in order.
+void hash_shape(numerics::WordHash& h, const nlohmann::json& j) {
+  h.add_word(static_cast<uint32_t>(j.type()));
+  if (!j.is_object()) return;
+  for (auto it = j.begin(); it != j.end(); ++it) {
+    for (unsigned char c : it.key()) h.add_word(c);
+    hash_shape(h, it.value());
+  }
+}
+
 }  // namespace
 
 namespace {
@@ -298,6 +315,7 @@ prt::PartFile part_with_settings(prt::PartKind kind, ShardSpec shard, RowRange r
                                  uint64_t seed, const std::string& prt_version,
                                  const std::string& more_inputs = {}) {
   prt::PartFile f;
+  f.layout = part_layout_id();
   f.kind = kind;
   f.index = shard.index;
   f.count = shard.count;
@@ -342,10 +360,10 @@ void decode_haar(const prt::PartFile& f, const std::string& name, TransferPartFi
   for (uint32_t len : p.sparse_lengths) entries += len;
   p.sparse_index = read_array<uint32_t>(f, kSparseIndex, entries, name, "sparse index");
   const prt::PartSection* values = f.find(kSparseValues);
-  p.channels = entries > 0 && values ? static_cast<int>(values->bytes.size() / 4 / entries) : 1;
+  p.channels = entries > 0 && values ? static_cast<int>(values->size() / 4 / entries) : 1;
   if (interreflect) {
     const prt::PartSection* w = f.find(kWavelets);
-    p.channels = n > 0 && w ? static_cast<int>(w->bytes.size() / 4 / (n * W)) : 1;
+    p.channels = n > 0 && w ? static_cast<int>(w->size() / 4 / (n * W)) : 1;
   }
   if (p.channels != 1 && p.channels != 3) throw BakeError(name + ": bad channel count");
   p.sparse_values =
@@ -432,7 +450,11 @@ prt::PartFile encode_transfer_part(const TransferPart& part, const scene::Scene&
   f.sections.push_back(view_of(kAo, part.ao.data(), part.ao.size()));
   f.sections.push_back(view_of(kBent, part.bent.data(), part.bent.size()));
   f.sections.push_back(view_of(kGatherRows, part.gather_rows.data(), part.gather_rows.size()));
-  f.sections.push_back(view_of(kGatherHits, part.gather_hits.data(), part.gather_hits.size()));
+  prt::PartSection hits;  // the hits' runs (the shard's blocks), written one after another
+  hits.tag = kGatherHits;
+  for (const TransferPart::HitRun& run : part.hit_runs())
+    hits.pieces.push_back({run.data, run.size * sizeof(CompactHit)});
+  f.sections.push_back(std::move(hits));
   f.sections.push_back(counters_section(part.rays, part.back_face_hits, part.ray_offset_max));
   return f;
 }
@@ -463,6 +485,7 @@ prt::PartFile encode_form_factor_part(ShardSpec shard, uint64_t key, uint64_t pa
                                       const std::string& settings, uint64_t seed,
                                       const std::string& prt_version) {
   prt::PartFile f;
+  f.layout = part_layout_id();
   f.kind = prt::PartKind::FormFactorRows;
   f.index = shard.index;
   f.count = shard.count;
@@ -485,7 +508,30 @@ prt::PartFile encode_form_factor_part(ShardSpec shard, uint64_t key, uint64_t pa
   return f;
 }
 
+uint64_t part_layout_id() {
+  static const uint64_t id = [] {
+    numerics::WordHash h;
+    h.add_word(prt::kPartFileVersion);
+    h.add_word(kSubsurfaceMaterialOfVertex);  // the last section tag
+    hash_shape(h, nlohmann::json::parse(sh_bake_settings(BakeOptions{})));
+    hash_shape(h, nlohmann::json::parse(haar_bake_settings(HaarBakeOptions{})));
+    hash_shape(h, nlohmann::json::parse(glossy_bake_settings(GlossyBakeOptions{})));
+    hash_shape(h, nlohmann::json::parse(subsurface_bake_settings(SubsurfaceBakeOptions{})));
+    return h.finish();
+  }();
+  return id;
+}
+
 TransferPartFile decode_transfer_part(const prt::PartFile& f, const std::string& name) {
+  if (f.layout != part_layout_id()) {
+    char text[160];
+    std::snprintf(text, sizeof text,
+                  ": written by another prt version (part layout %016llx, this prt's %016llx): "
+                  "bake it again with this prt",
+                  static_cast<unsigned long long>(f.layout),
+                  static_cast<unsigned long long>(part_layout_id()));
+    throw BakeError(name + text);
+  }
   TransferPartFile out;
   out.name = name;
   out.fingerprint = f.fingerprint;
@@ -542,13 +588,18 @@ TransferPartFile decode_transfer_part(const prt::PartFile& f, const std::string&
   const uint64_t n = f.row_count, K = static_cast<uint64_t>(p.coefficients);
   const bool need_sh = o.kind != prt::TransferKind::Unshadowed;
   const bool interreflect = o.kind == prt::TransferKind::Interreflected;
-  p.direct = read_array<double>(f, kDirect, need_sh ? n * K : 0, name, "direct transfer");
+  // The two large arrays stay where the mapping has them (the merge copies them once, into the
+  // single bake's stores); out.mapping keeps them.
+  p.direct_count = need_sh ? n * K : 0;
+  p.direct_view = section_values<double>(f, kDirect, p.direct_count, name, "direct transfer");
   p.ao = read_array<float>(f, kAo, o.ao ? n : 0, name, "ao");
   p.bent = read_array<float>(f, kBent, o.bent_normals ? 3 * n : 0, name, "bent normal");
   p.gather_rows = read_array<uint32_t>(f, kGatherRows, interreflect ? n : 0, name, "gather rows");
   uint64_t hits = 0;
   for (uint32_t len : p.gather_rows) hits += len;
-  p.gather_hits = read_array<CompactHit>(f, kGatherHits, hits, name, "gather hits");
+  p.hit_count = hits;
+  p.hits_view = section_values<CompactHit>(f, kGatherHits, hits, name, "gather hits");
+  out.mapping = f.mapping;
   const std::vector<uint64_t> counters = read_array<uint64_t>(f, kCounters, 3, name, "counters");
   p.rays = counters[0];
   p.back_face_hits = counters[1];
@@ -672,8 +723,9 @@ std::vector<const TransferPartFile*> check_parts_fit(const std::vector<TransferP
   if (!ordered[0]->scene) return ordered;  // form-factor parts carry no scene
   const uint64_t T = ordered[0]->scene->triangles.size();
   for (const TransferPartFile* p : ordered)
-    for (const CompactHit& h : p->part.gather_hits)
-      if (h.triangle >= T) throw BakeError(p->name + ": a gather hit names no triangle");
+    for (uint64_t i = 0; i < p->part.hit_count; ++i)
+      if (p->part.hits_view[i].triangle >= T)
+        throw BakeError(p->name + ": a gather hit names no triangle");
   return ordered;
 }
 

@@ -392,14 +392,39 @@ TEST_CASE("cli farm: prt merge refuses parts that do not belong together, in one
     REQUIRE(prt::read_part_file(p[1].string(), &f).ok());
     for (prt::PartSection& s : f.sections) {
       if (s.tag != 1) continue;
-      nlohmann::json j = nlohmann::json::parse(std::string(s.bytes.begin(), s.bytes.end()));
+      nlohmann::json j = nlohmann::json::parse(
+          std::string(reinterpret_cast<const char*>(s.data()), static_cast<std::size_t>(s.size())));
       j["prt_version"] = "0.0.1";
       const std::string text = j.dump();
+      s.view = nullptr;  // the read section is a view into the mapped file: own bytes instead
       s.bytes.assign(text.begin(), text.end());
     }
     const fs::path v = dir / "v.prtpart";
     REQUIRE(prt::write_part_file(v.string(), f).ok());
     check_refused({p[0], v, p[2]}, out, "v.prtpart: written by prt 0.0.1");
+  }
+  SECTION("a part of another part layout or settings table") {
+    // What a prt with another settings table (or section layout) writes: the same part with
+    // another layout id in its header, its checksum valid. Refused as another version, not as
+    // other settings.
+    prt::PartFile f;
+    REQUIRE(prt::read_part_file(p[1].string(), &f).ok());
+    f.layout ^= 1;
+    const fs::path v = dir / "layout.prtpart";
+    REQUIRE(prt::write_part_file(v.string(), f).ok());
+    check_refused({p[0], v, p[2]}, out, "layout.prtpart: written by another prt version");
+    check_refused({v}, out, "layout.prtpart: written by another prt version");
+  }
+  SECTION("a part of another part file format") {
+    // A part whose header says format 1 (as written before the layout field): refused by name
+    // before its checksum, its settings or its sections are looked at.
+    std::string bytes = slurp(p[1]);
+    REQUIRE(bytes.size() > 8);
+    bytes[4] = 1, bytes[5] = bytes[6] = bytes[7] = 0;
+    const fs::path o = dir / "old.prtpart";
+    std::ofstream(o, std::ios::binary) << bytes;
+    check_refused({p[0], o, p[2]}, out,
+                  "old.prtpart: written by another prt version (part file format 1");
   }
   SECTION("a truncated part") {
     const fs::path t = dir / "t.prtpart";

@@ -46,15 +46,33 @@ struct TransferPart {
   ShardSpec shard;
   uint64_t vertices = 0;  // V of the scene (the rows of every shard)
   RowRange rows;
-  int coefficients = 0;                 // K = order²
-  std::vector<double> direct;           // rows × K: S_v (shadowed and interreflected)
-  std::vector<float> ao;                // rows (BakeOptions::ao)
-  std::vector<float> bent;              // 3 × rows (BakeOptions::bent_normals)
-  std::vector<uint32_t> gather_rows;    // interreflected: hits per row
-  std::vector<CompactHit> gather_hits;  // interreflected: the rows' hits, as the shard cast them
+  int coefficients = 0;               // K = order²
+  std::vector<double> direct;         // rows × K: S_v (shadowed and interreflected)
+  std::vector<float> ao;              // rows (BakeOptions::ao)
+  std::vector<float> bent;            // 3 × rows (BakeOptions::bent_normals)
+  std::vector<uint32_t> gather_rows;  // interreflected: hits per row
+  // The rows' hits, as the shard cast them: a shard keeps them in its sampling pass's blocks
+  // (whole rows each, in row order: no copy into one array before they are written); a part
+  // decoded from a file (bake/transfer_part_file.h) points into the file's mapping instead, as
+  // it does for `direct` (left empty then). Read both through the accessors below.
+  std::vector<CompactGather::Block> gather_blocks;
+  const double* direct_view = nullptr;
+  uint64_t direct_count = 0;
+  const CompactHit* hits_view = nullptr;
+  uint64_t hit_count = 0;
   uint64_t rays = 0, back_face_hits = 0;
   double ray_offset_max = 0.0;  // the scene's largest ray offset (the same in every part)
   BakeStatistics stats;         // of the shard's run (times; not part of the file)
+
+  const double* direct_values() const { return direct_view ? direct_view : direct.data(); }
+  uint64_t direct_size() const { return direct_view ? direct_count : direct.size(); }
+  // The hits as runs of whole rows, in row order (one run for a decoded part).
+  struct HitRun {
+    const CompactHit* data;
+    std::size_t size;
+  };
+  std::vector<HitRun> hit_runs() const;
+  uint64_t hit_size() const;
 };
 
 // Throws BakeError "SCENE: a sharded bake needs ..." when (scene, options) cannot be sharded.

@@ -37,6 +37,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -61,18 +62,19 @@ struct TransferPartFile {
   BakeOptions options;       // rebuilt from the settings (threads and memory limit not set)
   // A subsurface bake's part: its options (vertex_material: shard 0 only, else empty).
   std::optional<SubsurfaceBakeOptions> subsurface;
-  std::optional<scene::Scene> scene;  // shard 0
-  TransferPart part;                  // SH parts; for Haar parts only shard, vertices and rows
-  bool haar = false;                  // a Haar part: the two fields below
+  std::optional<scene::Scene> scene;    // shard 0
+  TransferPart part;                    // SH parts; for Haar parts only shard, vertices and rows
+  std::shared_ptr<const void> mapping;  // the file's mapping, which `part`'s views point into
+  bool haar = false;                    // a Haar part: the two fields below
   HaarBakeOptions haar_options;
   HaarPart haar_part;
   bool glossy = false;  // a glossy part: the three fields below
   GlossyBakeOptions glossy_options;
   GlossyPart glossy_part;
   std::optional<GlossyInputs> glossy_inputs;  // shard 0
-  bool form_factors = false;            // a form-factor part: `settings` holds the options
-  uint64_t key = 0;                     // its cache key (= fingerprint)
-  std::vector<float> form_factor_rows;  // rows × N
+  bool form_factors = false;                  // a form-factor part: `settings` holds the options
+  uint64_t key = 0;                           // its cache key (= fingerprint)
+  std::vector<float> form_factor_rows;        // rows × N
 };
 
 // The part file of `part`, baked from `scene` with `options` by prt `prt_version`. Its large
@@ -100,8 +102,15 @@ prt::PartFile encode_form_factor_part(ShardSpec shard, uint64_t key, uint64_t pa
                                       const std::string& settings, uint64_t seed,
                                       const std::string& prt_version);
 
-// Decodes a part file read by prt::read_part_file; throws BakeError "NAME: problem" when its
-// sections do not hold what its header and settings say.
+// The layout id every part this prt writes carries in its header (prt::PartFile::layout): a hash
+// of the container's format version, the section tags and the shape (keys, nesting, JSON types)
+// of the three settings tables' JSON. A part from a prt whose part layout or settings tables
+// differ is refused by decode_transfer_part as "written by another prt version", before its
+// settings are compared.
+uint64_t part_layout_id();
+
+// Decodes a part file read by prt::read_part_file (first: its layout id, above); throws BakeError
+// "NAME: problem" when its sections do not hold what its header and settings say.
 TransferPartFile decode_transfer_part(const prt::PartFile& file, const std::string& name);
 
 // Checks that `parts` (any order) are the whole of one bake: the same prt version, scene

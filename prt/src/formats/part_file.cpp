@@ -1,10 +1,14 @@
 // part_file.cpp — the part container of prt/formats/part_file.h (layout in docs/FORMAT.md).
 #include "prt/formats/part_file.h"
 
+#include <fcntl.h>
+#include <sys/mman.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
-#include <filesystem>
 #include <new>
 
 #include "formats/binary_layout.h"
@@ -30,8 +34,8 @@ constexpr unsigned char kMagic[4] = {'P', 'R', 'T', 'P'};
 // Header field offsets.
 constexpr std::size_t kOffVersion = 4, kOffHeaderSize = 8, kOffKind = 12, kOffIndex = 16,
                       kOffCount = 20, kOffFingerprint = 24, kOffTotalRows = 32, kOffFirstRow = 40,
-                      kOffRowCount = 48, kOffFileSize = 56, kOffSectionCount = 68,
-                      kOffReserved = 72;
+                      kOffRowCount = 48, kOffFileSize = 56, kOffSectionCount = 68, kOffLayout = 72,
+                      kOffReserved = 80;
 
 bool known_kind(uint32_t kind) {
   return kind == static_cast<uint32_t>(PartKind::ShTransfer) ||
@@ -51,9 +55,7 @@ uint64_t table_end(uint32_t sections) {
 // table_end bytes are `head`: magic, version, header size, recorded size, the section table's
 // places (each section right after the previous, aligned, inside the file, the last ending the
 // file) and unique tags.
-Status check_structure(const std::vector<unsigned char>& head, uint64_t size,
-                       const std::string& name) {
-  const unsigned char* b = head.data();
+Status check_structure(const unsigned char* b, uint64_t size, const std::string& name) {
   const Status recorded = detail::check_recorded_size(name, load_u64(b + kOffFileSize), size);
   if (!recorded.ok()) return recorded;
   const uint32_t sections = load_u32(b + kOffSectionCount);
@@ -89,13 +91,6 @@ Status check_fields(const unsigned char* b, const std::string& name) {
   return Status::Ok();
 }
 
-Status read_failure(const std::string& name, std::FILE* f) {
-  const bool eof = std::feof(f) != 0;
-  std::fclose(f);
-  return fail(
-      name, eof ? "truncated while reading" : std::string("cannot read: ") + std::strerror(errno));
-}
-
 }  // namespace
 
 const PartSection* PartFile::find(uint32_t tag) const {
@@ -129,6 +124,7 @@ Status write_part_file(const std::string& path, const PartFile& part) {
     store_u64(b + kOffRowCount, part.row_count);
     store_u64(b + kOffFileSize, size);
     store_u32(b + kOffSectionCount, sections);
+    store_u64(b + kOffLayout, part.layout);
     for (uint32_t s = 0; s < sections; ++s) {
       unsigned char* rec = b + kPartHeaderSize + s * kSectionRecordSize;
       store_u32(rec, part.sections[s].tag);
@@ -139,7 +135,7 @@ Status write_part_file(const std::string& path, const PartFile& part) {
     uint32_t crc = crc32c(b, head.size());
     for (uint32_t s = 0; s < sections; ++s) {
       const uint64_t n = part.sections[s].size();
-      crc = crc32c(part.sections[s].data(), n, crc);
+      for (const PartPiece& run : part.sections[s].runs()) crc = crc32c(run.data, run.size, crc);
       crc = crc32c(kZeros, align_up(offsets[s] + n) - (offsets[s] + n), crc);
     }
     store_u32(b + kPartChecksumOffset, crc);
@@ -151,8 +147,9 @@ Status write_part_file(const std::string& path, const PartFile& part) {
       for (uint32_t s = 0; s < sections && ok; ++s) {
         const uint64_t n = part.sections[s].size(),
                        pad = align_up(offsets[s] + n) - (offsets[s] + n);
-        ok = std::fwrite(part.sections[s].data(), 1, n, f) == n &&
-             std::fwrite(kZeros, 1, pad, f) == pad;
+        for (const PartPiece& run : part.sections[s].runs())
+          ok = ok && std::fwrite(run.data, 1, run.size, f) == run.size;
+        ok = ok && std::fwrite(kZeros, 1, pad, f) == pad;
       }
       int saved_errno = errno;
       ok = (std::fflush(f) == 0) && ok;
@@ -166,64 +163,73 @@ Status write_part_file(const std::string& path, const PartFile& part) {
   }
 }
 
+namespace {
+
+// A whole file mapped read-only, unmapped when the last PartFile holding it goes.
+std::shared_ptr<const void> map_file(const std::string& path, uint64_t* size, Status* st) {
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) {
+    *st = fail(path, std::string("cannot open: ") + std::strerror(errno));
+    return nullptr;
+  }
+  struct stat info {};
+  if (fstat(fd, &info) != 0 || !S_ISREG(info.st_mode)) {
+    *st = fail(path, "cannot read: not a regular file");
+    close(fd);
+    return nullptr;
+  }
+  *size = static_cast<uint64_t>(info.st_size);
+  if (*size < kPartHeaderSize) {
+    *st = fail(path, "truncated: " + std::to_string(*size) + " bytes, not a part file");
+    close(fd);
+    return nullptr;
+  }
+  // MAP_POPULATE: the pages are read ahead and mapped in one go (every byte is read: checksum).
+  void* map = mmap(nullptr, *size, PROT_READ, MAP_PRIVATE | MAP_POPULATE, fd, 0);
+  const int saved = errno;
+  close(fd);
+  if (map == MAP_FAILED) {
+    *st = fail(path, std::string("cannot map: ") + std::strerror(saved));
+    return nullptr;
+  }
+  const std::size_t bytes = *size;
+  return std::shared_ptr<const void>(
+      map, [bytes](const void* p) { munmap(const_cast<void*>(p), bytes); });
+}
+
+// Magic, version, header size and the section table's extent, on the mapped header.
+Status check_header(const unsigned char* b, uint64_t size, const std::string& path) {
+  if (std::memcmp(b, kMagic, 4) != 0) return fail(path, "bad magic (not a .prtpart part file)");
+  if (load_u32(b + kOffVersion) != kPartFileVersion)
+    return fail(path, "written by another prt version (part file format " +
+                          std::to_string(load_u32(b + kOffVersion)) + ", this prt reads format " +
+                          std::to_string(kPartFileVersion) + "): bake it again with this prt");
+  if (load_u32(b + kOffHeaderSize) != kPartHeaderSize) return fail(path, "bad header size");
+  if (load_u32(b + kOffSectionCount) > kMaxSections) return fail(path, "too many sections");
+  if (table_end(load_u32(b + kOffSectionCount)) > size)
+    return fail(path, "section table outside the file");
+  return check_structure(b, size, path);
+}
+
+}  // namespace
+
 Status read_part_file(const std::string& path, PartFile* out) {
-  std::error_code ec;
-  const uint64_t size = std::filesystem::file_size(path, ec);
-  if (ec) return fail(path, "cannot read: " + ec.message());
-  if (size < kPartHeaderSize)
-    return fail(path, "truncated: " + std::to_string(size) + " bytes, not a part file");
-  std::FILE* f = std::fopen(path.c_str(), "rb");
-  if (f == nullptr) return fail(path, std::string("cannot open: ") + std::strerror(errno));
   try {
-    std::vector<unsigned char> head(kPartHeaderSize);
-    if (std::fread(head.data(), 1, head.size(), f) != head.size()) return read_failure(path, f);
-    const unsigned char* b = head.data();
+    uint64_t size = 0;
     Status st = Status::Ok();
-    if (std::memcmp(b, kMagic, 4) != 0)
-      st = fail(path, "bad magic (not a .prtpart part file)");
-    else if (load_u32(b + kOffVersion) != kPartFileVersion)
-      st = fail(path, "part file version " + std::to_string(load_u32(b + kOffVersion)) +
-                          " (this prt reads version " + std::to_string(kPartFileVersion) + ")");
-    else if (load_u32(b + kOffHeaderSize) != kPartHeaderSize)
-      st = fail(path, "bad header size");
-    else if (load_u32(b + kOffSectionCount) > kMaxSections)
-      st = fail(path, "too many sections");
-    else if (table_end(load_u32(b + kOffSectionCount)) > size)
-      st = fail(path, "section table outside the file");
-    if (st.ok()) {
-      const uint32_t sections = load_u32(b + kOffSectionCount);
-      head.resize(table_end(sections));
-      if (std::fread(head.data() + kPartHeaderSize, 1, head.size() - kPartHeaderSize, f) !=
-          head.size() - kPartHeaderSize)
-        return read_failure(path, f);
-      st = check_structure(head, size, path);
-    }
-    if (!st.ok()) {
-      std::fclose(f);
-      return st;
-    }
-    b = head.data();
-    PartFile p;
+    std::shared_ptr<const void> mapping = map_file(path, &size, &st);
+    if (!mapping) return st;
+    const unsigned char* b = static_cast<const unsigned char*>(mapping.get());
+    st = check_header(b, size, path);
+    if (!st.ok()) return st;
     const uint32_t sections = load_u32(b + kOffSectionCount);
+    // The checksum in one pass over the mapped bytes: the header and table with the checksum
+    // field taken as zero, then every section and its padding (they fill the rest of the file).
     const uint32_t stored = load_u32(b + kPartChecksumOffset);
-    std::vector<unsigned char> zeroed = head;
-    store_u32(zeroed.data() + kPartChecksumOffset, 0);
-    uint32_t crc = crc32c(zeroed.data(), zeroed.size());
-    unsigned char pad[16];
-    for (uint32_t s = 0; s < sections; ++s) {
-      const unsigned char* rec = b + kPartHeaderSize + s * kSectionRecordSize;
-      const uint64_t offset = load_u64(rec + 8), bytes = load_u64(rec + 16);
-      PartSection section;
-      section.tag = load_u32(rec);
-      section.bytes.resize(bytes);
-      const uint64_t n = align_up(offset + bytes) - (offset + bytes);
-      if (std::fread(section.bytes.data(), 1, bytes, f) != bytes || std::fread(pad, 1, n, f) != n)
-        return read_failure(path, f);
-      crc = crc32c(section.bytes.data(), bytes, crc);
-      crc = crc32c(pad, n, crc);
-      p.sections.push_back(std::move(section));
-    }
-    std::fclose(f);
+    std::vector<unsigned char> head(b, b + table_end(sections));
+    store_u32(head.data() + kPartChecksumOffset, 0);
+    uint32_t crc = crc32c(head.data(), head.size());
+    crc = crc32c(b + head.size(), size - head.size(), crc);
     if (crc != stored) {
       char text[96];
       std::snprintf(text, sizeof text, "checksum mismatch (stored 0x%08x, computed 0x%08x)", stored,
@@ -232,6 +238,15 @@ Status read_part_file(const std::string& path, PartFile* out) {
     }
     const Status fields = check_fields(b, path);
     if (!fields.ok()) return fields;
+    PartFile p;
+    for (uint32_t s = 0; s < sections; ++s) {
+      const unsigned char* rec = b + kPartHeaderSize + s * kSectionRecordSize;
+      PartSection section;
+      section.tag = load_u32(rec);
+      section.view = b + load_u64(rec + 8);
+      section.view_size = load_u64(rec + 16);
+      p.sections.push_back(std::move(section));
+    }
     p.kind = static_cast<PartKind>(load_u32(b + kOffKind));
     p.index = load_u32(b + kOffIndex);
     p.count = load_u32(b + kOffCount);
@@ -239,10 +254,11 @@ Status read_part_file(const std::string& path, PartFile* out) {
     p.total_rows = load_u64(b + kOffTotalRows);
     p.first_row = load_u64(b + kOffFirstRow);
     p.row_count = load_u64(b + kOffRowCount);
+    p.layout = load_u64(b + kOffLayout);
+    p.mapping = std::move(mapping);
     *out = std::move(p);
     return Status::Ok();
   } catch (const std::bad_alloc&) {
-    std::fclose(f);
     return fail(path, "out of memory");
   }
 }

@@ -13,6 +13,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -20,7 +21,9 @@
 
 namespace prt {
 
-inline constexpr uint32_t kPartFileVersion = 1;
+// The container's format (2: the layout field; a part of another format is refused as written by
+// another prt version).
+inline constexpr uint32_t kPartFileVersion = 2;
 
 // What a part holds (the header's kind field).
 enum class PartKind : uint32_t {
@@ -30,18 +33,38 @@ enum class PartKind : uint32_t {
   GlossyTransfer = 4,  // glossy transfer matrices: direct matrices, front-face hits
 };
 
-// A section's bytes: its own (`bytes`), or, to write without a copy, `view_size` bytes at `view`
-// owned by the caller (set view non-null; `bytes` is then ignored). The reader fills `bytes`.
+// A section's bytes: its own (`bytes`); or `view_size` bytes at `view` owned by someone else (set
+// view non-null; `bytes` is then ignored): the writer writes views without a copy, and the reader
+// gives views into the file's mapping (PartFile::mapping keeps it alive); or, for the writer
+// only, the caller's `pieces` one after another (a section held in several arrays, written
+// without joining them; data() is then null).
+struct PartPiece {
+  const void* data;
+  uint64_t size;
+};
+
 struct PartSection {
   uint32_t tag = 0;
   std::vector<unsigned char> bytes;
   const void* view = nullptr;
   uint64_t view_size = 0;
+  std::vector<PartPiece> pieces;
 
   const unsigned char* data() const {
+    if (!pieces.empty()) return nullptr;
     return view ? static_cast<const unsigned char*>(view) : bytes.data();
   }
-  uint64_t size() const { return view ? view_size : bytes.size(); }
+  uint64_t size() const {
+    if (pieces.empty()) return view ? view_size : bytes.size();
+    uint64_t n = 0;
+    for (const PartPiece& p : pieces) n += p.size;
+    return n;
+  }
+  // The section's bytes as runs, in order (one run unless `pieces` are set).
+  std::vector<PartPiece> runs() const {
+    if (!pieces.empty()) return pieces;
+    return {{data(), size()}};
+  }
 };
 
 struct PartFile {
@@ -49,7 +72,12 @@ struct PartFile {
   uint32_t index = 0, count = 1;  // shard `index` (0-based) of `count`
   uint64_t fingerprint = 0;       // geometry_fingerprint of the scene's positions
   uint64_t total_rows = 0, first_row = 0, row_count = 0;
+  // The 8 bytes after the magic's version field that say which layout of the sections and which
+  // settings table the writer used (the caller's choice, e.g. a hash of its section tags and
+  // settings keys): written as given, read back, compared by the caller.
+  uint64_t layout = 0;
   std::vector<PartSection> sections;
+  std::shared_ptr<const void> mapping;  // read parts: the file's read-only mapping
 
   // The section with `tag`, or null.
   const PartSection* find(uint32_t tag) const;
@@ -59,7 +87,8 @@ struct PartFile {
 // file in memory; the checksum is computed first). Errors name `path`.
 Status write_part_file(const std::string& path, const PartFile& part);
 
-// Reads and checks a part (section by section into their `bytes`): size, magic, version, recorded
+// Reads and checks a part: maps the file read-only (its sections are views into the mapping,
+// which `out->mapping` holds; no copy) and checks size, magic, version, recorded
 // size ("truncated"), checksum, header fields (index < count, the row range inside total_rows, a
 // known kind) and the section table (inside the file, aligned, in order without overlap, unique
 // tags). Errors: one line naming `path`.
