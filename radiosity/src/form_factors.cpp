@@ -187,6 +187,19 @@ void reciprocal_row(const std::vector<Patch>& patches, const scene::RayCaster& c
   detail::normalise_row(row, patches.size());
 }
 
+// Whether a reciprocal row's sum S_r matches the front-face hit fraction S_h of the emitter's
+// own `rays` rays (the sum of its ray row): |S_r − S_h| ≤ max(0.1·S_h, 4·√(S_h(1 − S_h)/N)), the
+// second term four standard errors of S_h with independent samples (Sobol' samples do better).
+bool reciprocal_row_agrees(const float* reciprocal, const float* rays, std::size_t n, int count) {
+  double s_r = 0.0, s_h = 0.0;
+  for (std::size_t j = 0; j < n; ++j) {
+    s_r += reciprocal[j];
+    s_h += rays[j];
+  }
+  const double margin = std::max(0.1 * s_h, 4.0 * std::sqrt(s_h * (1.0 - s_h) / count));
+  return std::abs(s_r - s_h) <= margin;
+}
+
 }  // namespace
 
 void detail::row_into(const std::vector<Patch>& patches, const scene::RayCaster& caster, uint32_t i,
@@ -209,6 +222,13 @@ void detail::row_into(const std::vector<Patch>& patches, const scene::RayCaster&
       if (options.quadrature_points != 1 && options.quadrature_points != 3)
         throw std::invalid_argument("form factors: quadrature_points must be 1 or 3");
       reciprocal_row(patches, caster, i, options.quadrature_points, row);
+      // The receivers' quadrature points can miss most of the light of an emitter close to
+      // receivers far larger than that distance; the row is then the emitter's own rays.
+      std::vector<float> rays(patches.size(), 0.f);
+      ray_row(patches, caster, i, options, rays.data());
+      if (!reciprocal_row_agrees(row, rays.data(), patches.size(),
+                                 detail::rays_of(patches[i], options)))
+        std::copy(rays.begin(), rays.end(), row);
     } else {
       ray_row(patches, caster, i, options, row);
     }

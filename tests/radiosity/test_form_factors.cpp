@@ -384,3 +384,39 @@ TEST_CASE("ray streams find the same closest hits as single rays", "[radiosity][
       }
     }
 }
+
+TEST_CASE(
+    "reciprocal emitter rows fall back to rays when receivers are far larger than their "
+    "distance to the emitter",
+    "[radiosity][form_factors]") {
+  // A 0.2 m lamp facing down 0.1 m above a 100 m floor of two triangles: F(lamp → floor) is
+  // 1 − (0.1/50)² ≈ 1 (rays that miss it leave within 0.06° of the horizon), but the floor's
+  // three quadrature points lie ~20 m away, where F(x → lamp) ≈ 1e-9: the reciprocal row alone
+  // sums to ~1e-4 and the lamp's light would be lost. The lamp's 256 rays all hit the floor.
+  prt::scene::Scene scene;
+  prt::test::append(scene,
+                    prt::scene::make_quad({-50, -50, 0}, {100, 0, 0}, {0, 100, 0}, 1, 1,
+                                          glm::vec3(0.5f), "floor"),
+                    "floor");
+  prt::test::append(scene,
+                    prt::scene::make_quad({-0.1, -0.1, 0.1}, {0, 0.2, 0}, {0.2, 0, 0}, 1, 1,
+                                          glm::vec3(0.5f), "lamp"),
+                    "lamp");
+  scene.primitives[1].emission = glm::vec3(1.f);
+  const prt::scene::RayCaster caster(scene);
+  const std::vector<Patch> patches = make_patches(scene);
+  REQUIRE(patches.size() == 4);
+  REQUIRE(patches[0].normal.z > 0.99);
+  REQUIRE(patches[2].normal.z < -0.99);
+  REQUIRE(patches[2].emission != glm::dvec3(0.0));
+  FormFactorOptions o;
+  o.method = FormFactorMethod::Rays;
+  o.emitter_rows = EmitterRows::Reciprocal;
+  o.rays_per_patch = 256;
+  const FormFactorMatrix f = compute_form_factors(patches, caster, o);
+  for (std::size_t e : {2, 3}) {
+    INFO("lamp patch " << e << ": row sum " << f.row_sum(e));
+    CHECK(f.row_sum(e) > 0.999);  // every ray hits the floor (1 − 4e-6 of them on average)
+    CHECK(f.at(e, 0) + f.at(e, 1) > 0.999);
+  }
+}

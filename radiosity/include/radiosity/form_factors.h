@@ -75,7 +75,12 @@ enum class EmitterRows {
   Rays,        // like every other row, with emitter_rays_per_patch rays when that is > 0
   Reciprocal,  // F_ej = A_j · F_je / A_e, F_je the analytic value (quadrature_points points of
                // receiver j, one visibility ray each; as the analytic method): no ray noise in
-               // the direct light. The row is then scaled to sum to at most 1.
+               // the direct light. The row is then scaled to sum to at most 1. It is checked
+               // against the emitter's own ray row (rays_of: emitter_rays_per_patch or
+               // rays_per_patch rays), which replaces it when the sums differ by more than
+               // max(10%, 4 standard errors of the ray sum): a few points per receiver miss
+               // most of an emitter's light when receivers are much larger than their distance
+               // to it (coarse patches next to a lamp; docs/RADIOSITY.md, "Coarse patches").
 };
 
 struct FormFactorOptions {
