@@ -1,7 +1,8 @@
 // The fixed cost of one shard of a farm bake (`prt bake --shard I/N`, docs/FARM.md): the work
 // every shard repeats whatever its share of the rows, step by step in the order a shard takes
 // them — load the scene (glTF parse, mesh build and normals), the Morton order of the rows, the
-// ray starts and the Embree BVH over every triangle, the compact gather's renumbering tables,
+// ray starts of its rows and the Embree BVH over every triangle (and, apart, the single bake's
+// RayCaster with every vertex's starts), the compact gather's renumbering tables,
 // the part's fingerprint and scene hash — and, for comparison, the sampling of a few rows.
 // Prints, per step, the CPU seconds of the whole process (user + sys, every thread) and the wall
 // seconds, so that the per-shard overhead (Σ shards − one bake) can be told apart step by step.
@@ -54,9 +55,10 @@ struct Step {
 
 double total_cpu = 0.0;
 
-void report(const char* what, const Step& s) {
+// `in_shard`: the step is one a shard takes (counted in the total), not a comparison.
+void report(const char* what, const Step& s, bool in_shard = true) {
   const double cpu = cpu_seconds() - s.cpu;
-  total_cpu += cpu;
+  if (in_shard) total_cpu += cpu;
   std::printf("%-44s CPU %7.2f s (sys %5.2f)  wall %7.2f s  peak %7.0f MB\n", what, cpu,
               sys_seconds() - s.sys, std::chrono::duration<double>(Clock::now() - s.wall).count(),
               double(prt::peak_resident_bytes()) / 1e6);
@@ -79,8 +81,7 @@ int main(int argc, char** argv) {
         std::string(argv[1]).substr(std::string(argv[1]).size() - 4) == ".glb")
       loader.LoadBinaryFromFile(&model, &error, &warning, argv[1]);
   }
-  report("tinygltf LoadBinaryFromFile (parse only)", s);
-  total_cpu = 0.0;  // the parse is part of load_scene below
+  report("tinygltf LoadBinaryFromFile (parse only)", s, false);  // load_scene parses again
   s = Step{};
   const prt::scene::Scene scene = prt::scene::load_scene(argv[1]);
   report("load_scene (parse, meshes, normals)", s);
@@ -97,20 +98,30 @@ int main(int argc, char** argv) {
 
   s = Step{};
   const prt::scene::VertexRayStarts starts = prt::scene::compute_vertex_ray_starts(scene);
-  report("compute_vertex_ray_starts (alone)", s);
+  report("compute_vertex_ray_starts (alone)", s, false);
 
   s = Step{};
-  const prt::scene::RayCaster caster(scene);
-  report("RayCaster (starts, nudges, Embree BVH)", s);
+  const double max_offset = prt::scene::max_vertex_ray_offset(scene);
+  report("max_vertex_ray_offset (alone)", s, false);
 
   s = Step{};
-  std::vector<double> sums(V * std::size_t(order) * std::size_t(order), 0.0);
-  std::vector<float> ao(V, 0.f), bent(3 * V, 0.f);
-  report("sums of every vertex (a shard: its rows now)", s);
+  { const prt::scene::RayCaster all(scene); }
+  report("RayCaster, every vertex (single bake)", s, false);
+
+  // A shard's (1 of 8): the starts and nudges of its rows, the whole scene's largest ε.
+  const prt::bake::RowRange share = prt::bake::shard_rows(V, {0, 8});
+  s = Step{};
+  const prt::scene::RayCaster caster(scene, rows.data() + share.first, share.size());
+  report("RayCaster, shard 0/8's rows (starts, BVH)", s);
 
   s = Step{};
-  const prt::bake::CompactGather gather(rows, scene.triangles, 64, 1.0 / 256);
-  report("CompactGather tables (every row)", s);
+  std::vector<double> sums(share.size() * std::size_t(order) * std::size_t(order), 0.0);
+  std::vector<float> ao(share.size(), 0.f), bent(3 * share.size(), 0.f);
+  report("sums of shard 0/8's rows", s);
+
+  s = Step{};
+  const prt::bake::CompactGather gather(rows, scene.triangles, 64, 1.0 / 256, false);
+  report("CompactGather tables (a shard's: no solve)", s);
 
   s = Step{};
   {  // the header of a part that holds no rows (not shard 0: no scene sections), written
@@ -131,8 +142,9 @@ int main(int argc, char** argv) {
   report("part header (fingerprint, scene hash), written", s);
 
   std::printf(
-      "fixed steps from load_scene on: CPU %.2f s (fingerprint %016llx, %zu starts, %zu sums)\n",
+      "fixed steps from load_scene on: CPU %.2f s (fingerprint %016llx, %zu starts, %zu sums, "
+      "largest offset %.9g, %.9g)\n",
       total_cpu, static_cast<unsigned long long>(fingerprint), starts.offset.size(),
-      sums.size() + ao.size() + bent.size());
+      sums.size() + ao.size() + bent.size(), max_offset, caster.max_ray_offset());
   return 0;
 }

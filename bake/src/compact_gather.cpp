@@ -176,7 +176,7 @@ std::vector<uint32_t> make_morton_order(const std::vector<glm::vec3>& positions)
 }
 
 CompactGather::CompactGather(std::vector<uint32_t> order, const std::vector<glm::uvec3>& triangles,
-                             std::size_t block_rows, double row_scale)
+                             std::size_t block_rows, double row_scale, bool for_solve)
     : order_(std::move(order)), block_rows_(block_rows), row_scale_(row_scale) {
   const std::size_t V = order_.size(), T = triangles.size();
   rank_.assign(V, 0);
@@ -186,12 +186,12 @@ CompactGather::CompactGather(std::vector<uint32_t> order, const std::vector<glm:
   for (const glm::uvec3& t : triangles) ++first_count[rank_[t.x] + 1];
   std::partial_sum(first_count.begin(), first_count.end(), first_count.begin());
   triangle_rank_.assign(T, 0);
-  resize_huge(triangle_rows_, T);
+  if (for_solve) resize_huge(triangle_rows_, T);
   for (std::size_t i = 0; i < T; ++i) {
     const glm::uvec3 t = triangles[i];
     const uint32_t slot = first_count[rank_[t.x]]++;
     triangle_rank_[i] = slot;
-    triangle_rows_[slot] = glm::uvec3(rank_[t.x], rank_[t.y], rank_[t.z]);
+    if (for_solve) triangle_rows_[slot] = glm::uvec3(rank_[t.x], rank_[t.y], rank_[t.z]);
   }
   blocks_.resize(blocks());
 }

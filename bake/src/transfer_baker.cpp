@@ -249,18 +249,21 @@ void run_sampling_pass(BakeJob& job, const ShardRows* shard = nullptr) {
   const Clock::time_point t_rays = Clock::now();
   const double cpu_rays = cpu_now();
   std::unique_ptr<scene::RayCaster> own_caster;
-  if (!(job.adaptive && ad.caster)) own_caster = std::make_unique<scene::RayCaster>(job.scene);
+  if (shard && !job.adaptive)  // the ray starts of the shard's rows only
+    own_caster = std::make_unique<scene::RayCaster>(
+        job.scene, shard->order->data() + shard->range.first, shard->range.size());
+  else if (!(job.adaptive && ad.caster))
+    own_caster = std::make_unique<scene::RayCaster>(job.scene);
   const scene::RayCaster& caster = own_caster ? *own_caster : *ad.caster;
   st.seconds_bvh = seconds_since(t_rays);
   st.cpu_seconds_bvh = cpu_now() - cpu_rays;
-  for (const float eps : caster.vertex_ray_starts().offset)
-    job.ray_offset_max = std::max(job.ray_offset_max, static_cast<double>(eps));
+  job.ray_offset_max = std::max(job.ray_offset_max, caster.max_ray_offset());
   const int gather_channels = job.apart && job.interreflect ? job.C : 0;
   const double cpu_setup = cpu_now();
   if (job.compact)
     job.gather = std::make_unique<CompactGather>(
         shard ? *shard->order : make_morton_order(job.scene.positions), job.scene.triangles,
-        detail::kVertexBlock, 1.0 / job.N);
+        detail::kVertexBlock, 1.0 / job.N, /*for_solve=*/shard == nullptr);
   st.cpu_seconds_gather_setup = cpu_now() - cpu_setup;
   SamplingPass pass{job.scene,
                     job.options,

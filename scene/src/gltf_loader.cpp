@@ -284,12 +284,13 @@ class GltfReader {
     return texture;
   }
 
-  std::vector<uint64_t> read_indices(int accessor_index, const std::string& what) {
+  // Indices are at most 32-bit in glTF (unsigned byte, short or int).
+  std::vector<uint32_t> read_indices(int accessor_index, const std::string& what) {
     const tinygltf::Accessor& accessor =
         model_.accessors.at(static_cast<std::size_t>(accessor_index));
     if (accessor.type != TINYGLTF_TYPE_SCALAR) fail(path_, what + ": indices must be SCALAR");
     const AccessorView view = view_accessor(accessor_index, what);
-    std::vector<uint64_t> out(view.count, 0);
+    std::vector<uint32_t> out(view.count, 0);
     if (view.data == nullptr) return out;
     for (std::size_t i = 0; i < view.count; ++i) {
       const unsigned char* p = view.data + i * view.stride;
@@ -314,6 +315,13 @@ class GltfReader {
       }
     }
     return out;
+  }
+
+  // Room for `more` elements at the end of v, growing geometrically (no copy per primitive).
+  template <class T>
+  static void reserve_more(std::vector<T>& v, std::size_t more) {
+    const std::size_t need = v.size() + more;
+    if (need > v.capacity()) v.reserve(std::max(need, 2 * v.capacity()));
   }
 
   void add_mesh(int mesh_index, const glm::dmat4& world) {
@@ -343,12 +351,12 @@ class GltfReader {
           fail(path_, "mesh '" + name + "': NORMAL and POSITION counts differ");
         }
       }
-      std::vector<uint64_t> indices;
+      std::vector<uint32_t> indices;
       if (primitive.indices >= 0) {
         indices = read_indices(primitive.indices, name + " indices");
       } else {
         indices.resize(positions.size());
-        for (std::size_t i = 0; i < indices.size(); ++i) indices[i] = i;
+        for (std::size_t i = 0; i < indices.size(); ++i) indices[i] = static_cast<uint32_t>(i);
       }
       if (indices.size() % 3 != 0) {
         fail(path_, "mesh '" + name + "': index count " + std::to_string(indices.size()) +
@@ -394,6 +402,9 @@ class GltfReader {
         if (uv.size() != positions.size()) uv.clear();
       }
 
+      reserve_more(scene_.positions, positions.size());
+      reserve_more(scene_.normals, positions.size());
+      reserve_more(scene_.triangles, indices.size() / 3);
       for (std::size_t v = 0; v < positions.size(); ++v) {
         scene_.positions.emplace_back(glm::vec3(glm::dvec3(world * glm::dvec4(positions[v], 1.0))));
         glm::vec3 n(0.f);  // zero marks "missing": computed by load_scene

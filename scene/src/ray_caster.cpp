@@ -77,8 +77,104 @@ bool RayCaster::monitor_memory(void* self, long bytes, bool /*post*/) {
   return true;
 }
 
+namespace {
+
+// The tangential nudge of vertex v (see vertex_origin): toward the mean centroid of its
+// triangles, by min(ε_v, half the way).
+glm::vec3 inward_nudge(const glm::vec3& position, const glm::vec3& normal,
+                       const glm::dvec3& centroid_sum, uint32_t count, float offset) {
+  if (count == 0) return glm::vec3(0.f);
+  const glm::dvec3 p(position);
+  const glm::dvec3 n = glm::normalize(glm::dvec3(normal));
+  glm::dvec3 to = centroid_sum / static_cast<double>(count) - p;
+  to -= n * glm::dot(n, to);
+  const double len = glm::length(to);
+  if (!(len > 0.0) || !std::isfinite(len)) return glm::vec3(0.f);
+  return glm::vec3(to / len * std::min(static_cast<double>(offset), 0.5 * len));
+}
+
+glm::dvec3 centroid(const Scene& scene, const glm::uvec3& t) {
+  return (glm::dvec3(scene.positions[t.x]) + glm::dvec3(scene.positions[t.y]) +
+          glm::dvec3(scene.positions[t.z])) /
+         3.0;
+}
+
+void check_indices(const Scene& scene) {
+  const std::size_t nv = scene.positions.size();
+  // Only triangles whose indices are in range reach Embree (a loader bug must not crash it).
+  for (const glm::uvec3& t : scene.triangles)
+    if (t.x >= nv || t.y >= nv || t.z >= nv)
+      throw std::runtime_error(scene_label(scene) + ": triangle index out of range");
+}
+
+}  // namespace
+
 RayCaster::RayCaster(const Scene& scene) : scene_(&scene) {
+  check_indices(scene);
   starts_ = compute_vertex_ray_starts(scene);
+  for (const float eps : starts_.offset) max_offset_ = std::max(max_offset_, double(eps));
+  const std::size_t nv = scene.positions.size();
+  if (scene.normals.size() == nv) {
+    std::vector<glm::dvec3> centroid_sum(nv, glm::dvec3(0.0));
+    std::vector<uint32_t> count(nv, 0);
+    for (const glm::uvec3& t : scene.triangles) {
+      const glm::dvec3 c = centroid(scene, t);
+      for (const uint32_t v : {t.x, t.y, t.z}) {
+        centroid_sum[v] += c;
+        ++count[v];
+      }
+    }
+    inward_.resize(nv);
+    for (std::size_t v = 0; v < nv; ++v)
+      inward_[v] = inward_nudge(scene.positions[v], scene.normals[v], centroid_sum[v], count[v],
+                                starts_.offset[v]);
+  }
+  offset_ = starts_.offset.data();
+  build_bvh(scene);
+}
+
+RayCaster::RayCaster(const Scene& scene, const uint32_t* starts_of, std::size_t count)
+    : scene_(&scene) {
+  check_indices(scene);
+  max_offset_ = max_vertex_ray_offset(scene);
+  const std::size_t nv = scene.positions.size();
+  constexpr uint32_t kNone = ~0u;
+  slot_.assign(nv, kNone);
+  for (std::size_t i = 0; i < count; ++i)
+    if (starts_of[i] < nv) slot_[starts_of[i]] = static_cast<uint32_t>(i);
+  // As compute_vertex_ray_starts and the nudges above, for the listed vertices only: the same
+  // sums in the same (triangle) order, so the same bits.
+  std::vector<double> edge(count, 0.0);
+  std::vector<glm::dvec3> centroid_sum(count, glm::dvec3(0.0));
+  std::vector<uint32_t> triangles(count, 0);
+  for (const glm::uvec3& t : scene.triangles) {
+    const uint32_t sx = slot_[t.x], sy = slot_[t.y], sz = slot_[t.z];
+    if (sx == kNone && sy == kNone && sz == kNone) continue;
+    const glm::dvec3 a(scene.positions[t.x]), b(scene.positions[t.y]), c(scene.positions[t.z]);
+    const double L = longest_edge(a, b, c);
+    const glm::dvec3 mid = centroid(scene, t);
+    for (const uint32_t s : {sx, sy, sz}) {
+      if (s == kNone) continue;
+      edge[s] = std::max(edge[s], L);
+      centroid_sum[s] += mid;
+      ++triangles[s];
+    }
+  }
+  own_offset_.resize(count);
+  offset_ = own_offset_.data();
+  const bool nudge = scene.normals.size() == nv;
+  if (nudge) inward_.resize(count);
+  for (std::size_t i = 0; i < count; ++i) {
+    const uint32_t v = starts_of[i];
+    own_offset_[i] = offset_as_float(ray_offset(glm::dvec3(scene.positions[v]), edge[i]));
+    if (nudge)
+      inward_[i] = inward_nudge(scene.positions[v], scene.normals[v], centroid_sum[i], triangles[i],
+                                own_offset_[i]);
+  }
+  build_bvh(scene);
+}
+
+void RayCaster::build_bvh(const Scene& scene) {
   RTCDevice device = rtcNewDevice(nullptr);
   if (!device)
     throw std::runtime_error(scene_label(scene) + ": cannot create the Embree device (" +
@@ -93,48 +189,13 @@ RayCaster::RayCaster(const Scene& scene) : scene_(&scene) {
   rtcSetSceneBuildQuality(rs, RTC_BUILD_QUALITY_HIGH);
 
   const std::size_t nv = scene.positions.size();
-  // Only triangles whose indices are in range reach Embree (a loader bug must not crash it).
-  std::vector<glm::uvec3> tris;
-  tris.reserve(scene.triangles.size());
-  for (const glm::uvec3& t : scene.triangles)
-    if (t.x < nv && t.y < nv && t.z < nv) tris.push_back(t);
-  if (tris.size() != scene.triangles.size())
-    throw std::runtime_error(scene_label(scene) + ": triangle index out of range");
-  triangle_count_ = tris.size();
-
-  // Per-vertex nudge toward the mean centroid of the vertex's triangles, tangentially.
-  if (scene.normals.size() == nv) {
-    std::vector<glm::dvec3> centroid_sum(nv, glm::dvec3(0.0));
-    std::vector<uint32_t> count(nv, 0);
-    for (const glm::uvec3& t : tris) {
-      const glm::dvec3 c = (glm::dvec3(scene.positions[t.x]) + glm::dvec3(scene.positions[t.y]) +
-                            glm::dvec3(scene.positions[t.z])) /
-                           3.0;
-      for (const uint32_t v : {t.x, t.y, t.z}) {
-        centroid_sum[v] += c;
-        ++count[v];
-      }
-    }
-    inward_.assign(nv, glm::vec3(0.f));
-    for (std::size_t v = 0; v < nv; ++v) {
-      if (count[v] == 0) continue;
-      const glm::dvec3 p(scene.positions[v]);
-      const glm::dvec3 n = glm::normalize(glm::dvec3(scene.normals[v]));
-      glm::dvec3 to = centroid_sum[v] / static_cast<double>(count[v]) - p;
-      to -= n * glm::dot(n, to);
-      const double len = glm::length(to);
-      if (!(len > 0.0) || !std::isfinite(len)) continue;
-      inward_[v] =
-          glm::vec3(to / len * std::min(static_cast<double>(starts_.offset[v]), 0.5 * len));
-    }
-  }
-
-  if (!tris.empty()) {
+  triangle_count_ = scene.triangles.size();
+  if (triangle_count_ > 0) {
     RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
     auto* vb = static_cast<float*>(rtcSetNewGeometryBuffer(
         geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), nv));
     auto* ib = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
-        geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), tris.size()));
+        geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), triangle_count_));
     if (!vb || !ib) {
       rtcReleaseGeometry(geom);
       throw_if_error(device, scene, "buffer allocation");
@@ -145,7 +206,7 @@ RayCaster::RayCaster(const Scene& scene) : scene_(&scene) {
       vb[3 * i + 1] = scene.positions[i].y;
       vb[3 * i + 2] = scene.positions[i].z;
     }
-    std::memcpy(ib, tris.data(), tris.size() * sizeof(glm::uvec3));
+    std::memcpy(ib, scene.triangles.data(), triangle_count_ * sizeof(glm::uvec3));
     rtcCommitGeometry(geom);
     rtcAttachGeometryByID(rs, geom, 0);
     rtcReleaseGeometry(geom);

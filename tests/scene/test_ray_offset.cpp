@@ -3,6 +3,7 @@
 // form (wall, well, tangent sphere, spherical cavity) must hold at contact with rays from the
 // vertex origins the bakers use. The bakers themselves at contact: tests/bake/
 // test_bake_mixed_scale.cpp.
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <string>
@@ -200,4 +201,40 @@ TEST_CASE("vertices of huge tilted triangles see their whole hemisphere") {
       REQUIRE(occluded_fraction(caster, plane, vtx, 4096) == 0.0);
     }
   }
+}
+
+TEST_CASE("a RayCaster for some vertices starts their rays where the whole one does, bit for bit") {
+  // Sharp box edges (nudged starts), a far ground 1e4 across (the largest ε is its vertices'),
+  // and a vertex on no triangle (ε = 4·U alone).
+  Scene s = make_box({0.f, 0.f, 0.f}, {1.f, 1.f, 1.f}, 3, false, glm::vec3(0.5f), "box");
+  append_scene(s, make_quad({-5e3f, -1, -5e3f}, {0, 0, 1e4f}, {1e4f, 0, 0}, 3, 3, glm::vec3(0.5f),
+                            "ground"));
+  s.positions.push_back({7e3f, 2.f, 0.f});
+  s.normals.push_back({0.f, 1.f, 0.f});
+  s.albedo.push_back(glm::vec3(0.5f));
+  const RayCaster all(s);
+  const VertexRayStarts& starts = all.vertex_ray_starts();
+  float largest = 0.f;
+  for (const float eps : starts.offset) largest = std::max(largest, eps);
+  // Exact: the same float, found without per-vertex arrays.
+  CHECK(max_vertex_ray_offset(s) == static_cast<double>(largest));
+  CHECK(all.max_ray_offset() == static_cast<double>(largest));
+  // Every other vertex, backwards (a shard's rows are a permutation's slice).
+  std::vector<uint32_t> some;
+  for (uint32_t v = static_cast<uint32_t>(s.positions.size()); v-- > 0;)
+    if (v % 2 == 0) some.push_back(v);
+  const RayCaster part(s, some.data(), some.size());
+  CHECK(part.max_ray_offset() == all.max_ray_offset());
+  CHECK(part.vertex_ray_starts().offset.empty());
+  int nudged = 0;
+  for (const uint32_t v : some) {
+    const glm::vec3 a = all.vertex_origin(v), b = part.vertex_origin(v);
+    INFO("vertex " << v);
+    CHECK(a.x == b.x);
+    CHECK(a.y == b.y);
+    CHECK(a.z == b.z);
+    const glm::vec3 straight = s.positions[v] + starts.offset[v] * glm::normalize(s.normals[v]);
+    nudged += a != straight;
+  }
+  CHECK(nudged > 0);  // the comparison covers the tangential nudge, not only ε·n
 }

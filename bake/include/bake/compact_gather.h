@@ -58,9 +58,10 @@ class CompactGather {
 
   CompactGather() = default;
   // Rows follow `order` (a permutation of the vertices); triangles index the vertices. The
-  // gather's weight per hit is row_scale (1/N for N cosine-distributed rays).
+  // gather's weight per hit is row_scale (1/N for N cosine-distributed rays). With
+  // `for_solve` false the tables are those that encode hits only (a farm shard's: no apply()).
   CompactGather(std::vector<uint32_t> order, const std::vector<glm::uvec3>& triangles,
-                std::size_t block_rows, double row_scale);
+                std::size_t block_rows, double row_scale, bool for_solve = true);
 
   std::size_t rows() const { return order_.size(); }
   std::size_t block_rows() const { return block_rows_; }

@@ -38,6 +38,11 @@ class RayCaster {
   // Builds the BVH (high quality, robust mode) over every triangle of `scene`.
   // The scene must outlive the RayCaster (positions are read by intersect()).
   explicit RayCaster(const Scene& scene);
+  // The same BVH, with the ray starts of `count` vertices `starts_of[i]` only (a farm shard's
+  // rows): vertex_origin(v) is then defined for those vertices alone, bit for bit as the
+  // RayCaster above computes it, and vertex_ray_starts() is empty; max_ray_offset() is still
+  // the whole scene's.
+  RayCaster(const Scene& scene, const uint32_t* starts_of, std::size_t count);
   ~RayCaster();
   RayCaster(const RayCaster&) = delete;
   RayCaster& operator=(const RayCaster&) = delete;
@@ -69,14 +74,16 @@ class RayCaster {
   void intersect_stream(const glm::vec3* origins, const glm::vec3* dirs, int count, float tfar,
                         bool coherent, Hit* out) const;
 
-  // ε_v and τ_v of every vertex (scene/ray_offset.h).
+  // ε_v and τ_v of every vertex (scene/ray_offset.h); empty when built for some vertices only.
   const VertexRayStarts& vertex_ray_starts() const { return starts_; }
+  // The largest ε_v over every vertex of the scene, as a float (rounded up, as ε_v is stored).
+  double max_ray_offset() const { return max_offset_; }
 
   // Ray origin for scene vertex v: ε_v along its normal, nudged into its own triangles.
   glm::vec3 vertex_origin(uint32_t v) const {
+    const uint32_t s = slot_.empty() ? v : slot_[v];
     const glm::vec3 n = glm::normalize(scene_->normals[v]);
-    return scene_->positions[v] + starts_.offset[v] * n +
-           (inward_.empty() ? glm::vec3(0.f) : inward_[v]);
+    return scene_->positions[v] + offset_[s] * n + (inward_.empty() ? glm::vec3(0.f) : inward_[s]);
   }
 
   // Ray origin for a point p on `triangle` (a hit point) leaving along the unit normal n of the
@@ -93,13 +100,18 @@ class RayCaster {
  private:
   static bool monitor_memory(void* self, long bytes, bool post);
   bool front_facing(uint32_t triangle, const glm::vec3& d) const;
+  void build_bvh(const Scene& scene);
 
   const Scene* scene_;
   void* device_ = nullptr;     // RTCDevice
   void* rtc_scene_ = nullptr;  // RTCScene
   std::size_t triangle_count_ = 0;
   VertexRayStarts starts_;
-  std::vector<glm::vec3> inward_;  // per-vertex tangential nudge (see vertex_origin)
+  double max_offset_ = 0.0;
+  std::vector<uint32_t> slot_;     // vertex → its entry below (empty: the vertex itself)
+  std::vector<float> own_offset_;  // ε of the listed vertices (else starts_.offset is used)
+  const float* offset_ = nullptr;  // ε of each vertex with a ray start
+  std::vector<glm::vec3> inward_;  // tangential nudge of each such vertex (see vertex_origin)
   std::atomic<long long> bytes_now_{0};
   std::atomic<long long> bytes_peak_{0};
 };

@@ -54,4 +54,15 @@ struct VertexRayStarts {
 // ε_v and τ_v for every vertex of `scene`, in one pass over its triangles.
 VertexRayStarts compute_vertex_ray_starts(const Scene& scene);
 
+// The longest edge of triangle (a, b, c).
+double longest_edge(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c);
+
+// ε rounded up to float, as VertexRayStarts::offset stores it (the origin stands ≥ ε off).
+float offset_as_float(double eps);
+
+// The largest VertexRayStarts::offset of `scene`, equal to the maximum of
+// compute_vertex_ray_starts(scene).offset, in one pass over the triangles and no per-vertex
+// array: ray_offset is non-decreasing in U(p) and in L, and so is their rounded sum.
+double max_vertex_ray_offset(const Scene& scene);
+
 }  // namespace prt::scene
