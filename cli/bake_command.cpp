@@ -64,7 +64,7 @@ struct BakeArguments {
   int threads = 0;
   uint64_t memory_limit = 0;  // --memory-limit (option_rules.h); 0: not given
   std::string precision = "f32";
-  std::string bounce_precision = "f32";  // --bounce-precision: --glossy interreflection only
+  std::string bounce_precision = "f32";  // --bounce-precision: interreflection only
   bool quiet = false;
   HaarBakeArguments haar;          // --basis haar and its options (haar_cli.h)
   bool automatic = false;          // --auto (bake/adaptive/adaptive_baker.h)
@@ -295,8 +295,15 @@ void check_usage(BakeArguments& args, const CLI::App& cmd) {
       throw UsageError("--shard does not apply to --auto (shards bake the fixed recipe)");
     args.shard_spec = resolve_shard(args.shard, process_environment());
   }
-  if (!args.glossy && cmd.count("--bounce-precision") > 0)
-    throw UsageError("--bounce-precision applies to --glossy only");
+  if (!args.glossy && cmd.count("--bounce-precision") > 0) {
+    if (args.bounce_precision != "f32" && args.bounce_precision != "f16")
+      throw UsageError("--bounce-precision " + args.bounce_precision + ": expected f32 or f16");
+    if (args.haar.basis == "haar" || args.automatic || args.subsurface.given() ||
+        parse_kind(args.transfer) != prt::TransferKind::Interreflected)
+      throw UsageError(
+          "--bounce-precision applies to --transfer interreflected (SH, fixed "
+          "recipe) and --glossy interreflection only");
+  }
   if (args.glossy) {
     check_glossy_applicable(cmd);
     check_glossy_request(glossy_request(args, cmd));
@@ -424,6 +431,8 @@ void run(const BakeArguments& args, const CLI::App& cmd) {
     options.obscurance.falloff = *bake::parse_obscurance_falloff(args.ao_falloff);
   }
   options.precision = args.precision == "f16" ? prt::Precision::F16 : prt::Precision::F32;
+  options.bounce_precision =
+      args.bounce_precision == "f16" ? prt::Precision::F16 : prt::Precision::F32;
 
   const double cpu_load = cpu_seconds();
   const scene::Scene scene = load_for_bake(args);
@@ -510,8 +519,8 @@ Command register_bake(CLI::App& app) {
   cmd->add_option("--precision", args->precision, "Coefficient storage: f32 | f16")
       ->capture_default_str();
   cmd->add_option("--bounce-precision", args->bounce_precision,
-                  "--glossy interreflected: the bounce the gather reads held in f32 | f16 (half "
-                  "the memory; docs/GLOSSY.md)")
+                  "Interreflected (SH or --glossy): the bounce the gather reads held in f32 | "
+                  "f16 (half the memory; docs/GLOSSY.md, docs/BENCHMARKS.md)")
       ->capture_default_str();
   cmd->add_flag("--quiet", args->quiet, "No progress, summary or notes (warnings still print)");
   add_haar_bake_options(cmd, &args->haar);

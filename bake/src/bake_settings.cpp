@@ -46,6 +46,7 @@ constexpr auto kShTable = std::make_tuple(
     not_carried("memory_limit", &BakeOptions::memory_limit, kRun), carried("ao", &BakeOptions::ao),
     carried("bent_normals", &BakeOptions::bent_normals),
     carried("obscurance", &BakeOptions::obscurance), carried("precision", &BakeOptions::precision),
+    carried("bounce_precision", &BakeOptions::bounce_precision),
     not_carried("adaptive", &BakeOptions::adaptive, "a sharded bake refuses it (check_shardable)"),
     not_carried("keep_albedo_apart", &BakeOptions::keep_albedo_apart,
                 "a sharded bake refuses it (check_shardable)"),

@@ -2,12 +2,15 @@
 #include "bake/compact_gather.h"
 
 #include "huge_pages.h"
+#include "prt/core/half.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <limits>
 #include <numeric>
+#include <stdexcept>
+#include <string>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -19,6 +22,7 @@ namespace {
 using detail::resize_huge;
 
 constexpr double kQuantum = 65535.0;
+constexpr int kMaxGatherChannels = 4;  // colour channels a row's ρ scales (C = 1 or 3)
 
 // Spreads the low 21 bits of x to every third bit.
 uint64_t spread_bits(uint64_t x) {
@@ -51,23 +55,48 @@ inline void prefetch_bytes(const void* p, std::size_t bytes) {
 #endif
 }
 
-// Rows [first, first + count) of one block: y = rho·scale·Σ_hits (q_0 x_a + q_u x_b + q_v x_c).
-// The block's hits are one stream: the triangle table is prefetched 2·kPrefetchHits hits ahead
-// and the three x rows kPrefetchHits ahead (the reads are scattered over the scene; without
-// this the loop waits on memory). Cloned for AVX2 where the CPU has it (ISO C++, no
-// contraction: every clone adds the same products in the same order, so the results are
-// bit-identical across CPUs).
+// x rows as the gather reads them: float as stored, binary16 converted (bulk, F16C where the CPU
+// has it) into `scratch` first. half -> float is exact, so the sums below are the same either way
+// for the same values.
+inline const float* row_as_float(const float* x, int, float*) {
+  return x;
+}
+inline const float* row_as_float(const uint16_t* x, int k, float* scratch) {
+  convert_halves_to_floats(x, static_cast<std::size_t>(k), scratch);
+  return scratch;
+}
+
+// A finished row: y_c = f_c·acc_c, rounded once to the output's type.
 template <class Out>
+inline void store_row(const double* acc, const double* f, int channels, int kc, Out* out, float*) {
+  for (int ch = 0; ch < channels; ++ch)
+    for (int c = ch * kc; c < (ch + 1) * kc; ++c) out[c] = static_cast<Out>(f[ch] * acc[c]);
+}
+inline void store_row(const double* acc, const double* f, int channels, int kc, uint16_t* out,
+                      float* scratch) {
+  store_row(acc, f, channels, kc, scratch, nullptr);
+  convert_floats_to_halves(scratch, static_cast<std::size_t>(channels * kc), out);
+}
+
+// Rows [first, first + count) of one block: y = rho·scale·Σ_hits (q_0 x_a + q_u x_b + q_v x_c),
+// x and y rows `ld` elements apart. The block's hits are one stream: the triangle table is
+// prefetched 2·kPrefetchHits hits ahead and the three x rows kPrefetchHits ahead (the reads are
+// scattered over the scene; without this the loop waits on memory). Cloned for AVX2 where the
+// CPU has it (ISO C++, no contraction: every clone adds the same products in the same order, so
+// the results are bit-identical across CPUs). scratch: 4·k floats.
+template <class In, class Out>
 #if defined(__GNUC__)
 __attribute__((always_inline))
 #endif
 inline void
 gather_block(const uint32_t* lengths, const CompactHit* hits, std::size_t n_hits, std::size_t first,
              std::size_t count, const glm::uvec3* tri_rows, const double* rho, int channels,
-             double scale, const float* x, int k, double* acc, Out* y) {
+             double scale, const In* x, int k, std::size_t ld, double* acc, float* scratch,
+             Out* y) {
   const int kc = k / channels;
   const double inv_q = 1.0 / kQuantum;
-  const std::size_t row_bytes = static_cast<std::size_t>(k) * sizeof(float);
+  const std::size_t row_bytes = static_cast<std::size_t>(k) * sizeof(In);
+  double f[kMaxGatherChannels];
   std::size_t at = 0;
   for (std::size_t i = 0; i < count; ++i) {
     const std::size_t row = first + i;
@@ -77,26 +106,25 @@ gather_block(const uint32_t* lengths, const CompactHit* hits, std::size_t n_hits
         prefetch_bytes(&tri_rows[hits[at + 2 * kPrefetchHits].triangle], sizeof(glm::uvec3));
       if (at + kPrefetchHits < n_hits) {
         const glm::uvec3 ahead = tri_rows[hits[at + kPrefetchHits].triangle];
-        prefetch_bytes(x + static_cast<std::size_t>(ahead.x) * k, row_bytes);
-        prefetch_bytes(x + static_cast<std::size_t>(ahead.y) * k, row_bytes);
-        prefetch_bytes(x + static_cast<std::size_t>(ahead.z) * k, row_bytes);
+        prefetch_bytes(x + static_cast<std::size_t>(ahead.x) * ld, row_bytes);
+        prefetch_bytes(x + static_cast<std::size_t>(ahead.y) * ld, row_bytes);
+        prefetch_bytes(x + static_cast<std::size_t>(ahead.z) * ld, row_bytes);
       }
       const CompactHit& hit = hits[at];
       const glm::uvec3 t = tri_rows[hit.triangle];
       const double wu = hit.u * inv_q, wv = hit.v * inv_q;
       const double w0 = (kQuantum - hit.u - hit.v) * inv_q;
-      const float* __restrict xa = x + static_cast<std::size_t>(t.x) * k;
-      const float* __restrict xb = x + static_cast<std::size_t>(t.y) * k;
-      const float* __restrict xc = x + static_cast<std::size_t>(t.z) * k;
+      const float* __restrict xa = row_as_float(x + static_cast<std::size_t>(t.x) * ld, k, scratch);
+      const float* __restrict xb =
+          row_as_float(x + static_cast<std::size_t>(t.y) * ld, k, scratch + k);
+      const float* __restrict xc =
+          row_as_float(x + static_cast<std::size_t>(t.z) * ld, k, scratch + 2 * k);
       for (int c = 0; c < k; ++c)
         acc[c] += w0 * static_cast<double>(xa[c]) + wu * static_cast<double>(xb[c]) +
                   wv * static_cast<double>(xc[c]);
     }
-    Out* __restrict out = y + row * k;
-    for (int ch = 0; ch < channels; ++ch) {
-      const double f = rho[row * channels + ch] * scale;
-      for (int c = ch * kc; c < (ch + 1) * kc; ++c) out[c] = static_cast<Out>(f * acc[c]);
-    }
+    for (int ch = 0; ch < channels; ++ch) f[ch] = rho[row * channels + ch] * scale;
+    store_row(acc, f, channels, kc, y + row * ld, scratch + 3 * k);
   }
 }
 
@@ -106,37 +134,20 @@ gather_block(const uint32_t* lengths, const CompactHit* hits, std::size_t n_hits
 #define PRT_GATHER_CLONES
 #endif
 
-PRT_GATHER_CLONES
-void gather_block_to_double(const uint32_t* lengths, const CompactHit* hits, std::size_t n_hits,
-                            std::size_t first, std::size_t count, const glm::uvec3* tri_rows,
-                            const double* rho, int channels, double scale, const float* x, int k,
-                            double* acc, double* y) {
-  gather_block(lengths, hits, n_hits, first, count, tri_rows, rho, channels, scale, x, k, acc, y);
-}
+#define PRT_GATHER_VARIANT(NAME, IN, OUT)                                                        \
+  PRT_GATHER_CLONES                                                                              \
+  void NAME(const uint32_t* lengths, const CompactHit* hits, std::size_t n_hits,                 \
+            std::size_t first, std::size_t count, const glm::uvec3* tri_rows, const double* rho, \
+            int channels, double scale, const IN* x, int k, std::size_t ld, double* acc,         \
+            float* scratch, OUT* y) {                                                            \
+    gather_block(lengths, hits, n_hits, first, count, tri_rows, rho, channels, scale, x, k, ld,  \
+                 acc, scratch, y);                                                               \
+  }
 
-PRT_GATHER_CLONES
-void gather_block_to_float(const uint32_t* lengths, const CompactHit* hits, std::size_t n_hits,
-                           std::size_t first, std::size_t count, const glm::uvec3* tri_rows,
-                           const double* rho, int channels, double scale, const float* x, int k,
-                           double* acc, float* y) {
-  gather_block(lengths, hits, n_hits, first, count, tri_rows, rho, channels, scale, x, k, acc, y);
-}
-
-void call_gather_block(const uint32_t* lengths, const CompactHit* hits, std::size_t n_hits,
-                       std::size_t first, std::size_t count, const glm::uvec3* tri_rows,
-                       const double* rho, int channels, double scale, const float* x, int k,
-                       double* acc, double* y) {
-  gather_block_to_double(lengths, hits, n_hits, first, count, tri_rows, rho, channels, scale, x, k,
-                         acc, y);
-}
-
-void call_gather_block(const uint32_t* lengths, const CompactHit* hits, std::size_t n_hits,
-                       std::size_t first, std::size_t count, const glm::uvec3* tri_rows,
-                       const double* rho, int channels, double scale, const float* x, int k,
-                       double* acc, float* y) {
-  gather_block_to_float(lengths, hits, n_hits, first, count, tri_rows, rho, channels, scale, x, k,
-                        acc, y);
-}
+PRT_GATHER_VARIANT(gather_block_variant, float, double)
+PRT_GATHER_VARIANT(gather_block_variant, float, float)
+PRT_GATHER_VARIANT(gather_block_variant, uint16_t, uint16_t)
+#undef PRT_GATHER_VARIANT
 
 }  // namespace
 
@@ -229,30 +240,45 @@ double CompactGather::max_weighted_row_sum(const std::vector<double>& rho, int c
   return q;
 }
 
-template <class Out>
-void CompactGather::multiply_into(const std::vector<double>& rho, int channels, const float* x,
-                                  int k, Out* y) const {
+template <class In, class Out>
+void CompactGather::multiply_into(const std::vector<double>& rho, int channels, const In* x, int k,
+                                  std::size_t ld, Out* y) const {
+  if (channels < 1 || channels > kMaxGatherChannels || k % channels != 0)
+    throw std::invalid_argument("CompactGather::multiply: channels must be in [1, " +
+                                std::to_string(kMaxGatherChannels) + "] and divide the columns");
   tbb::parallel_for(std::size_t(0), blocks_.size(), [&](std::size_t b) {
     std::vector<double> acc(static_cast<std::size_t>(k));
+    std::vector<float> scratch(4 * static_cast<std::size_t>(k));
     const Block& blk = blocks_[b];
     const std::size_t first = b * block_rows_;
     const std::size_t count = std::min(block_rows_, rows() - first);
     const std::size_t filled = std::min(count, blk.lengths.size());
-    call_gather_block(blk.lengths.data(), blk.hits.data(), blk.hits.size(), first, filled,
-                      triangle_rows_.data(), rho.data(), channels, row_scale_, x, k, acc.data(), y);
+    gather_block_variant(blk.lengths.data(), blk.hits.data(), blk.hits.size(), first, filled,
+                         triangle_rows_.data(), rho.data(), channels, row_scale_, x, k, ld,
+                         acc.data(), scratch.data(), y);
     // Rows of a block never filled (no sampling pass ran) gather nothing.
-    std::fill(y + (first + filled) * k, y + (first + count) * k, Out(0));
+    for (std::size_t r = first + filled; r < first + count; ++r) std::fill_n(y + r * ld, k, Out(0));
   });
 }
 
 void CompactGather::multiply(const std::vector<double>& rho, int channels, const float* x,
                              int columns, double* y) const {
-  multiply_into(rho, channels, x, columns, y);
+  multiply_into(rho, channels, x, columns, static_cast<std::size_t>(columns), y);
 }
 
 void CompactGather::multiply(const std::vector<double>& rho, int channels, const float* x,
-                             int columns, float* y) const {
-  multiply_into(rho, channels, x, columns, y);
+                             int columns, float* y, std::size_t ld) const {
+  multiply_into(rho, channels, x, columns, ld == 0 ? static_cast<std::size_t>(columns) : ld, y);
+}
+
+void CompactGather::multiply(const std::vector<double>& rho, int channels, const uint16_t* x,
+                             int columns, uint16_t* y, std::size_t ld) const {
+  multiply_into(rho, channels, x, columns, ld == 0 ? static_cast<std::size_t>(columns) : ld, y);
+}
+
+std::size_t padded_row_elements(int columns) {
+  const std::size_t c = static_cast<std::size_t>(columns);
+  return (c + 15) / 16 * 16;
 }
 
 void CompactGatherOperator::apply(const double* x, int columns, double* y) const {

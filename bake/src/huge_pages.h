@@ -41,4 +41,16 @@ inline void resize_huge(std::vector<T>& v, std::size_t n) {
   v.resize(n);
 }
 
+// Sizes v for n elements from an `align`-byte boundary (align a power of two, a multiple of
+// sizeof(T)), huge pages hinted, every element zero; returns the aligned start. The vector holds
+// align / sizeof(T) elements more than n.
+template <class T>
+inline T* resize_huge_aligned(std::vector<T>& v, std::size_t n, std::size_t align) {
+  const std::size_t extra = align / sizeof(T);
+  resize_huge(v, n + extra);
+  const auto at = reinterpret_cast<std::uintptr_t>(v.data());
+  const std::uintptr_t aligned = (at + align - 1) & ~(static_cast<std::uintptr_t>(align) - 1);
+  return v.data() + (aligned - at) / sizeof(T);
+}
+
 }  // namespace prt::bake::detail

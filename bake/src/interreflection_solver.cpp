@@ -11,12 +11,15 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
 #include "bake/progress.h"
 #include "huge_pages.h"
+#include "prt/core/half.h"
 #include "prt/core/memory_budget.h"
 
 namespace prt::bake {
@@ -372,6 +375,83 @@ void GatherOperator::apply_float(const float* x, int columns, float* y) const {
   for (std::size_t i = 0; i < n; ++i) y[i] = static_cast<float>(yd[i]);
 }
 
+void GatherOperator::apply_half(const uint16_t* x, int columns, uint16_t* y) const {
+  const std::size_t n = rows() * bounce_stride(columns);
+  std::vector<float> xf(n), yf(n);
+  convert_halves_to_floats(x, n, xf.data());
+  apply_float(xf.data(), columns, yf.data());
+  convert_floats_to_halves(yf.data(), n, y);
+}
+
+namespace {
+
+// A bounce block: rows `stride` elements apart, in float or binary16.
+void store_row(const double* in, int k, float* out, float*) {
+  for (int c = 0; c < k; ++c) out[c] = static_cast<float>(in[c]);
+}
+void store_row(const double* in, int k, uint16_t* out, float* scratch) {
+  for (int c = 0; c < k; ++c) scratch[c] = static_cast<float>(in[c]);
+  convert_floats_to_halves(scratch, static_cast<std::size_t>(k), out);
+}
+const float* load_row(const float* in, int, float*) {
+  return in;
+}
+const float* load_row(const uint16_t* in, int k, float* scratch) {
+  convert_halves_to_floats(in, static_cast<std::size_t>(k), scratch);
+  return scratch;
+}
+void apply_bounce(const GatherOperator& a, const float* x, int k, float* y) {
+  a.apply_float(x, k, y);
+}
+void apply_bounce(const GatherOperator& a, const uint16_t* x, int k, uint16_t* y) {
+  a.apply_half(x, k, y);
+}
+
+// Runs the bounces of solve_by_bounces with the bounce held in T (float or binary16): adds
+// them to t, returns the bound e_n·q.
+template <class T>
+double run_bounces(const GatherOperator& a, double q, int k, double* t, double d_max, int limit,
+                   bool fixed, double tolerance, SolveReport& report, ProgressSink* progress) {
+  const std::size_t rows = a.rows(), ld = a.bounce_stride(k);
+  std::vector<T> term_store, next_store;  // read at random by the gather: 2 MB pages asked for
+  T* term = detail::resize_huge_aligned(term_store, rows * ld, 64);
+  T* next = detail::resize_huge_aligned(next_store, rows * ld, 64);
+  const auto rows_loop = [&](auto&& f) {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, rows, 256),
+                      [&](const tbb::blocked_range<std::size_t>& r) {
+                        std::vector<float> scratch(static_cast<std::size_t>(k));
+                        for (std::size_t v = r.begin(); v != r.end(); ++v) f(v, scratch.data());
+                      });
+  };
+  rows_loop(
+      [&](std::size_t v, float* scratch) { store_row(t + v * k, k, term + v * ld, scratch); });
+  double e = d_max, bound = e * q;
+  for (int i = 0; i < limit; ++i) {
+    if (!fixed && e * q <= tolerance * d_max) break;
+    apply_bounce(a, term, k, next);
+    std::swap(term, next);
+    std::vector<double> row_max(rows, 0.0);
+    rows_loop([&](std::size_t v, float* scratch) {
+      const float* x = load_row(term + v * ld, k, scratch);
+      double m = 0.0;
+      for (int c = 0; c < k; ++c) {
+        t[v * k + c] += static_cast<double>(x[c]);
+        m = std::max(m, static_cast<double>(std::fabs(x[c])));
+      }
+      row_max[v] = m;
+    });
+    e = 0.0;
+    for (double m : row_max) e = std::max(e, m);
+    report.bounce_energy.push_back(e);
+    ++report.jacobi_bounces;
+    bound = e * q;
+    if (progress && fixed) progress->advance(1, 0);
+  }
+  return bound;
+}
+
+}  // namespace
+
 SolveReport solve_by_bounces(const GatherOperator& a, double q,
                              const std::function<void(double*)>& fill_direct, int columns,
                              double* t, const SolveOptions& options, int max_bounces,
@@ -383,31 +463,18 @@ SolveReport solve_by_bounces(const GatherOperator& a, double q,
   fill_direct(t);
   const double d_max = max_abs_of(t, n);
   if (n == 0 || d_max == 0.0) return report;
+  if (options.half_bounces && !(d_max <= kHalfMax))
+    throw std::domain_error("the direct transfer reaches " + std::to_string(d_max) +
+                            ", beyond binary16's largest value 65504: bounce in f32");
   const bool fixed = options.bounces >= 0;
   const int limit = fixed ? options.bounces : max_bounces;
-  double bound = 0.0;  // e_n·q: bounds the max-norm residual of T_n
-  {
-    std::vector<float> term, next;  // read at random by the gather: 2 MB pages asked for
-    detail::resize_huge(term, n);
-    detail::resize_huge(next, n);
-    std::copy(t, t + n, term.begin());
-    double e = d_max;
-    bound = e * q;
-    if (progress && fixed) progress->start("bounces", limit);
-    for (int i = 0; i < limit; ++i) {
-      if (!fixed && e * q <= options.tolerance * d_max) break;
-      a.apply_float(term.data(), k, next.data());
-      term.swap(next);
-      e = 0.0;
-      for (float x : term) e = std::max(e, static_cast<double>(std::fabs(x)));
-      for_each_entry(rows, k, [&](std::size_t x, int) { t[x] += static_cast<double>(term[x]); });
-      report.bounce_energy.push_back(e);
-      ++report.jacobi_bounces;
-      bound = e * q;
-      if (progress && fixed) progress->advance(1, 0);
-    }
-    if (progress && fixed) progress->finish();
-  }
+  if (progress && fixed) progress->start("bounces", limit);
+  const double bound = options.half_bounces
+                           ? run_bounces<uint16_t>(a, q, k, t, d_max, limit, fixed,
+                                                   options.tolerance, report, progress)
+                           : run_bounces<float>(a, q, k, t, d_max, limit, fixed, options.tolerance,
+                                                report, progress);
+  if (progress && fixed) progress->finish();
   report.relative_residual = bound / d_max;
   report.converged = report.relative_residual <= options.tolerance;
   if (fixed || report.converged) return report;

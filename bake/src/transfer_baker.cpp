@@ -32,6 +32,7 @@
 #include <limits>
 #include <memory>
 #include <optional>
+#include <stdexcept>
 #include <utility>
 
 #include <tbb/global_control.h>
@@ -43,11 +44,11 @@
 #include "bake/interreflection_solver.h"
 #include "bake/progress.h"
 #include "bake/sampling.h"
+#include "hit_records.h"
 #include "prt/core/memory_budget.h"
 #include "scene/ray_caster.h"
 #include "scene/scene_label.h"
 #include "sh/basis.h"
-#include "hit_records.h"
 #include "transfer_geometry.h"
 #include "transfer_pass.h"
 
@@ -416,10 +417,14 @@ void charge_bake_buffers(const scene::Scene& scene, const BakeOptions& o, int ch
     budget.charge(V * (interreflect ? K * sizeof(double) : 0) + V * 4 * sizeof(float),
                   "the visibility sums");
   if (!interreflect) return;
-  // Compact: every channel at once, T in double and two bounces in float (16 bytes per
-  // coefficient) and ρ per row and channel; dense: per channel, kDenseSolverBlocks V × K blocks.
+  // Compact: every channel at once, T in double, two bounces in float or binary16 with rows
+  // padded (padded_row_elements) and ρ per row and channel; dense: per channel,
+  // kDenseSolverBlocks V × K blocks.
   const uint64_t C = static_cast<uint64_t>(channels);
-  budget.charge(compact ? V * C * (K * (sizeof(double) + 2 * sizeof(float)) + sizeof(double))
+  const uint64_t bounce_row =
+      padded_row_elements(static_cast<int>(C * K)) *
+      (o.bounce_precision == prt::Precision::F16 ? sizeof(uint16_t) : sizeof(float));
+  budget.charge(compact ? V * (C * K * sizeof(double) + 2 * bounce_row + C * sizeof(double))
                         : kDenseSolverBlocks * V * K * sizeof(double) + V * sizeof(double),
                 "the interreflection solver's blocks");
   if (compact)
@@ -471,10 +476,15 @@ void solve_compact_channels(BakeJob& job) {
   so.bounces = job.options.bounces;
   so.tolerance = job.options.bounce_tolerance;
   so.max_iterations = job.options.max_solver_iterations;
+  so.half_bounces = job.options.bounce_precision == prt::Precision::F16;
   const CompactGatherOperator a(g, rho, job.C);
-  const SolveReport rep =
-      solve_by_bounces(a, g.max_weighted_row_sum(rho, job.C), fill_direct, static_cast<int>(CK),
-                       solved.data(), so, kMaxCompactBounces, &job.budget, job.progress);
+  SolveReport rep;
+  try {
+    rep = solve_by_bounces(a, g.max_weighted_row_sum(rho, job.C), fill_direct, static_cast<int>(CK),
+                           solved.data(), so, kMaxCompactBounces, &job.budget, job.progress);
+  } catch (const std::domain_error& e) {
+    throw BakeError(scene::scene_label(job.scene) + ": " + e.what());
+  }
   add_solve_report(rep, st);
   prt::TransferData& data = job.result.data;
   tbb::parallel_for(std::size_t(0), V, [&](std::size_t v) {
@@ -608,6 +618,7 @@ std::string bake_metadata(const BakeJob& job) {
     s["gather"] = st.compact_gather ? "compact: 8 bytes per hit, Morton order, Neumann bounces"
                                     : "dense: merged CSR entries, BiCGSTAB";
     s["gather_bytes"] = st.matrix_bytes;
+    if (options.bounce_precision == prt::Precision::F16) s["bounce_precision"] = "f16";
     s["back_face_hits"] = st.back_face_hits;
     meta["interreflection"] = s;
   }
@@ -663,6 +674,12 @@ void validate_bake_inputs(const scene::Scene& scene, const BakeOptions& o) {
         a.lighting.size() < static_cast<std::size_t>(a.lighting_order) * a.lighting_order)
       throw BakeError(name + ": adaptive lighting has fewer than order² coefficients");
   }
+  if (o.bounce_precision == prt::Precision::F16 &&
+      (o.kind != prt::TransferKind::Interreflected || o.adaptive.enabled || o.keep_albedo_apart ||
+       o.dense_gather || scene.textured()))
+    throw BakeError(name +
+                    ": bounce precision f16 is for interreflected bakes through the compact "
+                    "gather (not adaptive, textured, albedo apart or dense)");
   if (scene.positions.empty()) throw BakeError(name + ": the scene has no vertices");
   if (scene.normals.size() != scene.positions.size())
     throw BakeError(name + ": " + std::to_string(scene.normals.size()) + " normals for " +

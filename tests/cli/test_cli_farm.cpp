@@ -311,11 +311,15 @@ TEST_CASE("cli farm: merged form-factor shards are the cache one prt radiosity w
   }
 }
 
-TEST_CASE("cli farm: f16, fixed bounces and unshadowed AO merge to the single bake's bytes") {
+TEST_CASE(
+    "cli farm: f16, f16 bounces, fixed bounces and unshadowed AO merge to the single bake's "
+    "bytes") {
   const fs::path dir = scratch("farm_variants");
   const fs::path scene = make_field(dir, 300);
   for (const std::string options :
        {"--transfer interreflected --bounces 2 --order 4 --samples 16 --precision f16",
+        "--transfer interreflected --bounces 2 --order 4 --samples 16 --bounce-precision f16",
+        "--transfer interreflected --order 3 --samples 16 --bounce-precision f16",
         "--transfer unshadowed --ao --samples 16"}) {
     INFO(options);
     const fs::path single = dir / "single.prt";

@@ -1,12 +1,12 @@
 #!/usr/bin/env bash
 # Every file kind prt writes is the same, byte for byte, whether it was made with one thread or
-# two: SH bakes (shadowed with AO and bent normals, interreflected, interreflected with a texture
-# kept apart, --auto with and without --env, obscurance, --subsurface, the parts of --shard and
-# their merge, with --subsurface too), Haar (shadowed, interreflected textured), glossy
-# shadowed and interreflected (.prtg), CPCA (.prtq), radiosity (.prte with --per-emitter, the
-# form-factor cache, --csv, --vertex-colors .glb, the EXR image; Gauss-Seidel, Jacobi,
-# progressive, --adaptive; the hierarchical link cache), export-gltf, make-scene (the demo and
-# the translucent scene) and
+# two: SH bakes (shadowed with AO and bent normals, interreflected with f32 and f16 bounces,
+# interreflected with a texture kept apart, --auto with and without --env, obscurance,
+# --subsurface, the parts of --shard and their merge, with --subsurface too), Haar (shadowed,
+# interreflected textured), glossy shadowed and interreflected (.prtg), CPCA (.prtq), radiosity
+# (.prte with --per-emitter, the form-factor cache, --csv, --vertex-colors .glb, the EXR image;
+# Gauss-Seidel, Jacobi, progressive, --adaptive; the hierarchical link cache), export-gltf,
+# make-scene (the demo and the translucent scene) and
 # make-sky.
 # Nothing that changes from run to run (wall times, thread counts, the host) may be in them: that
 # goes to the OUT.run.json beside each output, which is checked to exist and is not compared.
@@ -69,6 +69,9 @@ both yes bake --quiet "$demo" -o obscurance.prt --order 2 --samples 32 --ao --be
 same "shadowed, obscurance (--ao-distance)" obscurance.prt
 both yes bake --quiet "$demo" -o interreflected.prt --transfer interreflected --order 3 --samples 16
 same "interreflected" interreflected.prt
+both yes bake --quiet "$demo" -o interreflected_f16.prt --transfer interreflected --order 3 \
+  --samples 16 --bounce-precision f16
+same "interreflected, --bounce-precision f16" interreflected_f16.prt
 both yes bake --quiet "$demo" -o subsurface.prt --transfer interreflected --order 3 --samples 16 \
   --subsurface marble
 same "interreflected, --subsurface marble" subsurface.prt

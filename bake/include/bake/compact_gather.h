@@ -87,16 +87,21 @@ class CompactGather {
   // y = diag(ρ)·H·x for blocks of `columns` = C × K columns in row order (x, y: rows() × C·K,
   // channel-major within a row; rho: rows() × C, channel c's ρ scaling columns [cK, (c+1)K)).
   // All channels share one pass over the hits and one scattered read per hit vertex. x is read
-  // in float (half the bytes of the scattered reads); each row's sums are double, then stored.
+  // in float (half the bytes of the scattered reads) or binary16 (a quarter; converted to float,
+  // exactly, before the products); each row's sums are double, then rounded once to y's type.
+  // The float and half forms take rows `ld` elements apart in x and y (0: `columns`; entries
+  // past `columns` are neither read nor written). C ≤ 4 and C divides `columns`.
   void multiply(const std::vector<double>& rho, int channels, const float* x, int columns,
                 double* y) const;
-  void multiply(const std::vector<double>& rho, int channels, const float* x, int columns,
-                float* y) const;
+  void multiply(const std::vector<double>& rho, int channels, const float* x, int columns, float* y,
+                std::size_t ld = 0) const;
+  void multiply(const std::vector<double>& rho, int channels, const uint16_t* x, int columns,
+                uint16_t* y, std::size_t ld = 0) const;
 
  private:
-  template <class Out>
-  void multiply_into(const std::vector<double>& rho, int channels, const float* x, int k,
-                     Out* y) const;
+  template <class In, class Out>
+  void multiply_into(const std::vector<double>& rho, int channels, const In* x, int k,
+                     std::size_t ld, Out* y) const;
 
   std::vector<uint32_t> order_, rank_;
   std::vector<uint32_t> triangle_rank_;
@@ -106,18 +111,30 @@ class CompactGather {
   std::vector<Block> blocks_;
 };
 
+// The bounce rows' stride: `columns` rounded up to 16 elements, so that a float row is a whole
+// number of 64-byte cache lines (C·K = 75 → 80 floats, 320 bytes: 5 lines instead of 5 or 6
+// when rows straddle lines) and a binary16 row a whole number of 32-byte halves of one (75 → 80
+// halfs, 160 bytes: always 3 lines instead of 3 or 4). solve_by_bounces aligns the blocks to 64.
+std::size_t padded_row_elements(int columns);
+
 // diag(ρ)·H of a compact gather as the solver's operator (ρ: rows() × C, in row order; columns
 // C × K). apply() rounds x to float once (a V × C·K float block it keeps), then gathers;
-// apply_float() gathers float to float with no copy. Either way a bounce changes by ≤ 2^-24
-// relative, far below the quantisation's 3.1e-5. Not for use by two threads at once.
+// apply_float() and apply_half() gather float to float and binary16 to binary16 with no copy,
+// rows padded_row_elements(columns) apart. A float bounce changes by ≤ 2^-24 relative, far
+// below the quantisation's 3.1e-5; a binary16 bounce by ≤ 2^-11 relative (2^-25 absolute below
+// 2^-14). Not for use by two threads at once.
 class CompactGatherOperator final : public GatherOperator {
  public:
   CompactGatherOperator(const CompactGather& h, const std::vector<double>& rho, int channels)
       : h_(h), rho_(rho), channels_(channels) {}
   std::size_t rows() const override { return h_.rows(); }
   void apply(const double* x, int columns, double* y) const override;
+  std::size_t bounce_stride(int columns) const override { return padded_row_elements(columns); }
   void apply_float(const float* x, int columns, float* y) const override {
-    h_.multiply(rho_, channels_, x, columns, y);
+    h_.multiply(rho_, channels_, x, columns, y, bounce_stride(columns));
+  }
+  void apply_half(const uint16_t* x, int columns, uint16_t* y) const override {
+    h_.multiply(rho_, channels_, x, columns, y, bounce_stride(columns));
   }
 
  private:

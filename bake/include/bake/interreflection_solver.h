@@ -54,6 +54,8 @@ struct SolveOptions {
   // `t` already holds an iterate (for example the end of a bounce loop): no copy of D, no
   // warm-up; BiCGSTAB starts from it.
   bool start_from_t = false;
+  // solve_by_bounces: the bounce the gather reads held in binary16 (apply_half) instead of float.
+  bool half_bounces = false;
 };
 
 struct SolveReport {
@@ -79,8 +81,14 @@ class GatherOperator {
   virtual ~GatherOperator() = default;
   virtual std::size_t rows() const = 0;
   virtual void apply(const double* x, int columns, double* y) const = 0;
+  // Row stride, in elements, of the x and y blocks of apply_float and apply_half (≥ columns; a
+  // row's entries past `columns` are padding: not read in x, not written in y).
+  virtual std::size_t bounce_stride(int columns) const { return static_cast<std::size_t>(columns); }
   // The same with x and y in float (sums still in double); by default through apply().
   virtual void apply_float(const float* x, int columns, float* y) const;
+  // The same with x and y in binary16 (prt/core/half.h; sums in double, each y rounded to the
+  // nearest half once); by default through apply_float().
+  virtual void apply_half(const uint16_t* x, int columns, uint16_t* y) const;
 };
 
 // The CSR matrix with its row albedo (multiply_gather).
@@ -113,8 +121,12 @@ SolveReport solve_interreflection(const GatherOperator& a, const double* d, int 
 // iterate (its 9 V × K blocks charged to `budget` first when it is not null). fill_direct(block)
 // writes D (V × K) into a block; `t` receives the solution. Holds T (double) and the current and
 // next bounce in float (apply_float: each bounce rounded to float, 2^-24 relative; T sums them
-// in double): 16 bytes per coefficient. The report's relative_residual is the bound
-// e_n·q/‖D‖_max (after BiCGSTAB: its own 2-norm residual).
+// in double), rows a.bounce_stride(K) apart, 64-byte aligned: 8 + 2·4·stride/K bytes per
+// coefficient. With options.half_bounces the two bounces are binary16 (apply_half: each bounce
+// rounded to half, ≤ 2^-11 relative, or 2^-25 absolute below 2^-14; docs/BENCHMARKS.md derives
+// the bound on T): 8 + 2·2·stride/K bytes; it throws std::domain_error when ‖D‖_max exceeds the
+// largest half (65504; the bounces only shrink: ‖A‖_max ≤ q < 1). The report's relative_residual
+// is the bound e_n·q/‖D‖_max (after BiCGSTAB: its own 2-norm residual).
 SolveReport solve_by_bounces(const GatherOperator& a, double q,
                              const std::function<void(double*)>& fill_direct, int columns,
                              double* t, const SolveOptions& options, int max_bounces,

@@ -164,6 +164,10 @@ struct BakeOptions {
   bool bent_normals = false;
   ObscuranceOptions obscurance;  // distance > 0: AO and bent normals as obscurance (above)
   prt::Precision precision = prt::Precision::F32;
+  // Interreflected through the compact gather: the bounce the gather reads held in binary16 (half
+  // the bytes of its scattered reads; interreflection_solver.h solve_by_bounces). BakeError on
+  // any other path.
+  prt::Precision bounce_precision = prt::Precision::F32;
   AdaptiveSampling adaptive;  // off by default
   // Keep the albedo apart (above) although the scene is not textured (textured scenes always do).
   bool keep_albedo_apart = false;
