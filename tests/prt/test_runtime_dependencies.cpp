@@ -16,19 +16,22 @@ namespace fs = std::filesystem;
 namespace {
 
 // The C++17 standard headers the runtime may use, and the system headers of its CPU dispatch
-// and atomic file write, and the memory budget's reading of peak memory (sys/resource.h). <thread>,
+// and atomic file write, the memory budget's reading of peak memory (sys/resource.h) and the
+// part file reader's read-only mapping (POSIX; a plain read on Windows). <thread>,
 // <mutex>, <future> and <condition_variable> are left out on purpose: the runtime starts no
 // threads.
 const std::set<std::string>& allowed_system_headers() {
   static const std::set<std::string> headers = {
-      "algorithm",     "array",         "cassert",     "cerrno",   "cfloat",    "climits",
-      "cmath",         "cstddef",       "cstdint",     "cstdio",   "cstdlib",   "cstring",
-      "filesystem",    "fstream",       "functional",  "iterator", "limits",    "memory",
-      "new",           "numeric",       "optional",    "set",      "sstream",   "stdexcept",
-      "string",        "string_view",   "type_traits", "utility",  "variant",   "vector",
-      "map",           "unordered_map", "tuple",       "bit",      "atomic",    "immintrin.h",
-      "cpuid.h",       "unistd.h",      "process.h",   "io.h",     "windows.h", "cctype",
-      "sys/resource.h"};
+      "algorithm",   "array",         "cassert",        "cerrno",     "cfloat",
+      "climits",     "cmath",         "cstddef",        "cstdint",    "cstdio",
+      "cstdlib",     "cstring",       "filesystem",     "fstream",    "functional",
+      "iterator",    "limits",        "memory",         "new",        "numeric",
+      "optional",    "set",           "sstream",        "stdexcept",  "string",
+      "string_view", "type_traits",   "utility",        "variant",    "vector",
+      "map",         "unordered_map", "tuple",          "bit",        "atomic",
+      "immintrin.h", "cpuid.h",       "unistd.h",       "process.h",  "io.h",
+      "windows.h",   "cctype",        "sys/resource.h", "sys/mman.h", "sys/stat.h",
+      "fcntl.h"};
   return headers;
 }
 

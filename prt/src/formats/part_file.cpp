@@ -1,10 +1,12 @@
 // part_file.cpp — the part container of prt/formats/part_file.h (layout in docs/FORMAT.md).
 #include "prt/formats/part_file.h"
 
+#if !defined(_WIN32)
 #include <fcntl.h>
 #include <sys/mman.h>
 #include <sys/stat.h>
 #include <unistd.h>
+#endif
 
 #include <cerrno>
 #include <cstdio>
@@ -165,6 +167,34 @@ Status write_part_file(const std::string& path, const PartFile& part) {
 
 namespace {
 
+#if defined(_WIN32)
+// Without POSIX mmap: the whole file read into one heap buffer, freed with the last PartFile.
+std::shared_ptr<const void> map_file(const std::string& path, uint64_t* size, Status* st) {
+  std::FILE* f = std::fopen(path.c_str(), "rb");
+  if (f == nullptr) {
+    *st = fail(path, std::string("cannot open: ") + std::strerror(errno));
+    return nullptr;
+  }
+  std::fseek(f, 0, SEEK_END);
+  const long end = std::ftell(f);
+  std::fseek(f, 0, SEEK_SET);
+  *size = end > 0 ? static_cast<uint64_t>(end) : 0;
+  if (*size < kPartHeaderSize) {
+    *st = fail(path, "truncated: " + std::to_string(*size) + " bytes, not a part file");
+    std::fclose(f);
+    return nullptr;
+  }
+  std::shared_ptr<unsigned char> bytes(new (std::nothrow) unsigned char[*size],
+                                       std::default_delete<unsigned char[]>());
+  const bool read = bytes && std::fread(bytes.get(), 1, *size, f) == *size;
+  std::fclose(f);
+  if (!read) {
+    *st = fail(path, bytes ? "cannot read" : "out of memory");
+    return nullptr;
+  }
+  return bytes;
+}
+#else
 // A whole file mapped read-only, unmapped when the last PartFile holding it goes.
 std::shared_ptr<const void> map_file(const std::string& path, uint64_t* size, Status* st) {
   const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
@@ -196,6 +226,7 @@ std::shared_ptr<const void> map_file(const std::string& path, uint64_t* size, St
   return std::shared_ptr<const void>(
       map, [bytes](const void* p) { munmap(const_cast<void*>(p), bytes); });
 }
+#endif
 
 // Magic, version, header size and the section table's extent, on the mapped header.
 Status check_header(const unsigned char* b, uint64_t size, const std::string& path) {
