@@ -1,7 +1,8 @@
 // `prt info FILE.prt [--json | --csv]`: describe a coefficient file of any kind
 // (prt/formats/coefficient_file.h), a glossy transfer file or its CPCA compression
-// (cli/glossy_cli.h, cli/cpca_info.h), emitter responses (cli/emitter_cli.h), or a form-factor
-// cache (radiosity/form_factor_cache.h: patches, method and settings, key, size; no --csv).
+// (cli/glossy_cli.h, cli/cpca_info.h), emitter responses (cli/emitter_cli.h), a form-factor
+// cache (radiosity/form_factor_cache.h: patches, method and settings, key, size; no --csv) or a
+// link cache (radiosity/link_cache.h: patches, links, settings, keys; no --csv).
 // `prt info SCENE (.glb, .gltf, .obj) [--material NAME=MODEL:...]`: the scene's size and one line
 // per primitive with its material (prt::brdf::describe; scene/material_override.h for the
 // overrides, applied as prt bake applies them).
@@ -32,6 +33,7 @@
 #include "prt/formats/transfer_data.h"
 #include "prt/haar/transform.h"
 #include "radiosity/form_factor_cache.h"
+#include "radiosity/link_cache.h"
 #include "run_record.h"
 #include "scene/scene_loader.h"
 #include "sh/basis.h"
@@ -272,11 +274,67 @@ void print_form_factor_cache(const InfoArguments& args) {
   std::printf("key           %s (patches' corners and the method's settings)\n", key);
 }
 
+// `prt info` of a link cache (radiosity/link_cache.h, the hierarchical solver's
+// `--form-factor-cache`): patches, links, the settings that shaped them and the three keys.
+void print_link_cache(const InfoArguments& args) {
+  if (args.csv)
+    throw UsageError("--csv: " + args.file +
+                     " is a link cache; --csv prints the per-vertex rows of .prt, .prtg, "
+                     ".prtq and .prte files");
+  radiosity::LinkCacheInfo info;
+  try {
+    info = radiosity::read_link_cache_info(args.file);
+  } catch (const std::runtime_error& e) {
+    throw CommandError(e.what());
+  }
+  auto hex = [](uint64_t v) {
+    char text[24];
+    std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(v));
+    return std::string(text);
+  };
+  nlohmann::json j;
+  j["file"] = args.file;
+  j["bytes"] = info.file_size;
+  j["kind"] = "link cache";
+  j["version"] = info.version;
+  j["patches"] = info.patches;
+  j["links"] = info.links;
+  j["transfer"] = info.fine ? "fine" : "coarse";
+  j["link_epsilon"] = info.epsilon;
+  j["visibility_rays"] = info.visibility_rays;
+  j["seed"] = info.seed;
+  j["keys"] = {{"geometry", hex(info.keys.geometry)},
+               {"settings", hex(info.keys.settings)},
+               {"lighting", hex(info.keys.lighting)}};
+  if (args.json) {
+    add_run_record_json(j, args.file);
+    std::printf("%s\n", j.dump(2).c_str());
+    return;
+  }
+  std::printf("file          %s (%llu bytes)\n", args.file.c_str(),
+              static_cast<unsigned long long>(info.file_size));
+  std::printf(
+      "kind          link cache (saved by prt radiosity --solver hierarchical), version %u\n",
+      info.version);
+  std::printf("patches       %llu\n", static_cast<unsigned long long>(info.patches));
+  std::printf("links         %llu\n", static_cast<unsigned long long>(info.links));
+  std::printf("settings      %s transfer, link epsilon %g, %u visibility rays a link, seed %llu\n",
+              info.fine ? "fine" : "coarse", info.epsilon, info.visibility_rays,
+              static_cast<unsigned long long>(info.seed));
+  std::printf("keys          geometry %s, settings %s, lighting %s\n",
+              hex(info.keys.geometry).c_str(), hex(info.keys.settings).c_str(),
+              hex(info.keys.lighting).c_str());
+}
+
 // A file of any kind but a scene, as its kind's printer describes it.
 void describe_file(const InfoArguments& args) {
   if (radiosity::is_form_factor_cache(args.file)) {
     if (!args.materials.empty()) throw UsageError("--material applies to scenes only");
     return print_form_factor_cache(args);
+  }
+  if (radiosity::is_link_cache(args.file)) {
+    if (!args.materials.empty()) throw UsageError("--material applies to scenes only");
+    return print_link_cache(args);
   }
   if (!args.materials.empty()) throw UsageError("--material applies to scenes only");
   if (is_glossy_file(args.file)) return describe_glossy_file(args.file, args.json, args.csv);
@@ -312,13 +370,15 @@ Command register_info(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand(
       "info",
       "Describe a coefficient file (.prt: SH or Haar), a glossy transfer file (.prtg), its CPCA "
-      "compression (.prtq), emitter responses (.prte), a form-factor cache, or a scene's "
+      "compression (.prtq), emitter responses (.prte), a form-factor cache, a link cache, or a "
+      "scene's "
       "materials");
-  cmd->add_option("file", args->file,
-                  "Coefficient file (.prt, SH or Haar wavelets), glossy transfer file (.prtg), "
-                  "CPCA file (.prtq, prt compress: error, metric, the source bake's settings), "
-                  "emitter responses (.prte), form-factor cache (saved by prt radiosity: "
-                  "patches, method, settings), or a scene (.glb, .gltf, .obj)")
+  cmd->add_option(
+         "file", args->file,
+         "Coefficient file (.prt, SH or Haar wavelets), glossy transfer file (.prtg), "
+         "CPCA file (.prtq, prt compress: error, metric, the source bake's settings), "
+         "emitter responses (.prte), form-factor cache or link cache (saved by prt radiosity: "
+         "patches, method or links, settings), or a scene (.glb, .gltf, .obj)")
       ->required();
   add_material_option(*cmd, args->materials);
   CLI::Option* json = cmd->add_flag("--json", args->json, "Print the header and metadata as JSON");

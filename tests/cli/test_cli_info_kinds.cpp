@@ -107,7 +107,7 @@ TEST_CASE("cli info: a form-factor cache states its patches, method, settings an
 TEST_CASE("cli info: --help names every kind of file info reads") {
   const RunResult help = run(prt_cli() + " info --help");
   REQUIRE(help.exit_code == 0);
-  for (const char* kind :
-       {".prt", "Haar", ".prtg", ".prtq", ".prte", "form-factor cache", ".glb", ".gltf", ".obj"})
+  for (const char* kind : {".prt", "Haar", ".prtg", ".prtq", ".prte", "form-factor cache",
+                           "link cache", ".glb", ".gltf", ".obj"})
     CHECK(help.out.find(kind) != std::string::npos);
 }

@@ -8,6 +8,7 @@
 #include <string>
 
 #include <catch2/catch.hpp>
+#include <nlohmann/json.hpp>
 
 #include "cli_test_support.h"
 
@@ -281,6 +282,16 @@ TEST_CASE(
     return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
   };
   CHECK(bytes(dir / "reused.csv") == bytes(dir / "saved.csv"));
+  // `prt info` describes the link cache: its kind, patch and link counts and the three keys.
+  const RunResult info = prt::test::cli::run(prt::test::cli::prt_cli() + " info " +
+                                             (dir / "room.links").string() + " --json");
+  INFO(info.out << info.err);
+  REQUIRE(info.exit_code == 0);
+  const nlohmann::json described = nlohmann::json::parse(info.out);
+  CHECK(described.at("kind") == "link cache");
+  CHECK(described.at("links").get<uint64_t>() > 0);
+  CHECK(described.at("patches").get<uint64_t>() > 0);
+  CHECK(described.at("keys").at("lighting").get<std::string>().size() == 16);
   const RunResult relit = run(cached + (dir / "relit.csv").string() + " --emission lamp=2,4,8");
   INFO(relit.out << relit.err);
   REQUIRE(relit.exit_code == 0);
