@@ -232,21 +232,33 @@ std::string describe_form_factor_method(const radiosity::FormFactorOptions& o) {
          (reciprocal ? ", quadrature " + std::to_string(o.quadrature_points) : "");
 }
 
-// `prt info` of a form-factor cache (radiosity/form_factor_cache.h): patches, method and
-// settings (version 2), key and size.
-void print_form_factor_cache(const InfoArguments& args) {
+// The header of a cache file: refuses --csv (a cache has no per-vertex rows) and turns the
+// reader's one-line std::runtime_error into a CommandError (exit 1).
+template <class Read>
+auto read_cache_header(const InfoArguments& args, const char* kind, Read read) {
   if (args.csv)
-    throw UsageError("--csv: " + args.file +
-                     " is a form-factor cache; --csv prints the per-vertex rows of .prt, .prtg, "
-                     ".prtq and .prte files");
-  radiosity::FormFactorCacheInfo info;
+    throw UsageError("--csv: " + args.file + " is a " + kind +
+                     "; --csv prints the per-vertex rows of .prt, .prtg, .prtq and .prte files");
   try {
-    info = radiosity::read_form_factor_cache_info(args.file);
+    return read(args.file);
   } catch (const std::runtime_error& e) {
     throw CommandError(e.what());
   }
-  char key[24];
-  std::snprintf(key, sizeof key, "%016llx", static_cast<unsigned long long>(info.key));
+}
+
+// A 64-bit key as 16 hexadecimal digits.
+std::string hex_key(uint64_t v) {
+  char text[24];
+  std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(v));
+  return text;
+}
+
+// `prt info` of a form-factor cache (radiosity/form_factor_cache.h): patches, method and
+// settings (version 2), key and size.
+void print_form_factor_cache(const InfoArguments& args) {
+  const radiosity::FormFactorCacheInfo info =
+      read_cache_header(args, "form-factor cache", radiosity::read_form_factor_cache_info);
+  const std::string key = hex_key(info.key);
   const std::string method = info.settings_recorded ? describe_form_factor_method(info.options)
                                                     : "not recorded (a version-1 cache)";
   nlohmann::json j;
@@ -271,27 +283,14 @@ void print_form_factor_cache(const InfoArguments& args) {
               static_cast<unsigned long long>(info.patches),
               j["matrix"].get<std::string>().c_str());
   std::printf("method        %s\n", method.c_str());
-  std::printf("key           %s (patches' corners and the method's settings)\n", key);
+  std::printf("key           %s (patches' corners and the method's settings)\n", key.c_str());
 }
 
 // `prt info` of a link cache (radiosity/link_cache.h, the hierarchical solver's
 // `--form-factor-cache`): patches, links, the settings that shaped them and the three keys.
 void print_link_cache(const InfoArguments& args) {
-  if (args.csv)
-    throw UsageError("--csv: " + args.file +
-                     " is a link cache; --csv prints the per-vertex rows of .prt, .prtg, "
-                     ".prtq and .prte files");
-  radiosity::LinkCacheInfo info;
-  try {
-    info = radiosity::read_link_cache_info(args.file);
-  } catch (const std::runtime_error& e) {
-    throw CommandError(e.what());
-  }
-  auto hex = [](uint64_t v) {
-    char text[24];
-    std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(v));
-    return std::string(text);
-  };
+  const radiosity::LinkCacheInfo info =
+      read_cache_header(args, "link cache", radiosity::read_link_cache_info);
   nlohmann::json j;
   j["file"] = args.file;
   j["bytes"] = info.file_size;
@@ -303,9 +302,9 @@ void print_link_cache(const InfoArguments& args) {
   j["link_epsilon"] = info.epsilon;
   j["visibility_rays"] = info.visibility_rays;
   j["seed"] = info.seed;
-  j["keys"] = {{"geometry", hex(info.keys.geometry)},
-               {"settings", hex(info.keys.settings)},
-               {"lighting", hex(info.keys.lighting)}};
+  j["keys"] = {{"geometry", hex_key(info.keys.geometry)},
+               {"settings", hex_key(info.keys.settings)},
+               {"lighting", hex_key(info.keys.lighting)}};
   if (args.json) {
     add_run_record_json(j, args.file);
     std::printf("%s\n", j.dump(2).c_str());
@@ -322,8 +321,8 @@ void print_link_cache(const InfoArguments& args) {
               info.fine ? "fine" : "coarse", info.epsilon, info.visibility_rays,
               static_cast<unsigned long long>(info.seed));
   std::printf("keys          geometry %s, settings %s, lighting %s\n",
-              hex(info.keys.geometry).c_str(), hex(info.keys.settings).c_str(),
-              hex(info.keys.lighting).c_str());
+              hex_key(info.keys.geometry).c_str(), hex_key(info.keys.settings).c_str(),
+              hex_key(info.keys.lighting).c_str());
 }
 
 // A file of any kind but a scene, as its kind's printer describes it.
