@@ -16,6 +16,7 @@
 #include "bake/compact_gather.h"
 #include "bake/transfer_baker.h"
 #include "numerics/rng.h"
+#include "prt/core/half.h"
 #include "prt/core/memory_budget.h"
 #include "scene/procedural_mesh.h"
 
@@ -199,11 +200,12 @@ TEST_CASE("compact gather: binary16 bounces within their rounding bound, far bel
   CHECK(rms < 0.01 * noise);
 }
 
-TEST_CASE("compact gather: padded bounce rows give the unpadded products, padding untouched") {
-  const prt::scene::Scene s = small_scene();
+namespace {
+
+// A gather over scene s with random hits (0–11 a row, anywhere in the scene) in 64-row blocks.
+prt::bake::CompactGather random_gather(const prt::scene::Scene& s, prt::numerics::SplitMix64& rng) {
   const auto V = s.positions.size();
   prt::bake::CompactGather g(prt::bake::make_morton_order(s.positions), s.triangles, 64, 1.0 / 32);
-  prt::numerics::SplitMix64 rng{5};
   for (std::size_t b = 0; b < g.blocks(); ++b) {
     prt::bake::CompactGather::Block blk;
     for (std::size_t r = b * 64; r < std::min(V, (b + 1) * 64); ++r) {
@@ -215,6 +217,16 @@ TEST_CASE("compact gather: padded bounce rows give the unpadded products, paddin
     }
     g.set_block(b, std::move(blk));
   }
+  return g;
+}
+
+}  // namespace
+
+TEST_CASE("compact gather: padded bounce rows give the unpadded products, padding untouched") {
+  const prt::scene::Scene s = small_scene();
+  const auto V = s.positions.size();
+  prt::numerics::SplitMix64 rng{5};
+  const prt::bake::CompactGather g = random_gather(s, rng);
   const int C = 3, k = 3 * 9;
   const std::size_t ld = prt::bake::padded_row_elements(k);
   REQUIRE(ld == 32);
@@ -232,6 +244,42 @@ TEST_CASE("compact gather: padded bounce rows give the unpadded products, paddin
   }
   CHECK(same == static_cast<int>(V) * k);
   CHECK(padding_kept == static_cast<int>(V * (ld - k)));
+}
+
+TEST_CASE("compact gather: binary16 rows give the float rows' products, rounded once to half") {
+  // half -> float is exact and both kernels sum the same doubles in the same order, so the
+  // binary16 product (inline F16C where the CPU has it) is the float product of the same values,
+  // rounded to half: bit for bit. Columns 27 (3 vectors of 8 and a tail of 3) and 75 (C·K of an
+  // order-5 colour bake: 9 vectors and a tail of 3), rows packed (ld = k) and padded.
+  const prt::scene::Scene s = small_scene();
+  const auto V = s.positions.size();
+  prt::numerics::SplitMix64 rng{11};
+  const prt::bake::CompactGather g = random_gather(s, rng);
+  const int C = 3;
+  const int k = GENERATE(27, 75);
+  const bool padded = GENERATE(false, true);
+  const std::size_t ld = padded ? prt::bake::padded_row_elements(k) : static_cast<std::size_t>(k);
+  std::vector<double> rho(V * C);
+  for (double& r : rho) r = 0.9 * rng.uniform();
+  std::vector<uint16_t> xh(V * ld, 0), yh(V * ld, 0);
+  std::vector<float> xf(V * ld, 0.f), yf(V * ld, 0.f);
+  for (std::size_t i = 0; i < xh.size(); ++i) {
+    // Values over 12 binades, signed, so rounding and the subnormal-free range are both exercised.
+    const double m = (rng.uniform() - 0.3) * std::exp2(-12.0 * rng.uniform());
+    xh[i] = prt::float_to_half(static_cast<float>(m));
+    xf[i] = prt::half_to_float(xh[i]);
+  }
+  g.multiply(rho, C, xh.data(), k, yh.data(), ld);
+  g.multiply(rho, C, xf.data(), k, yf.data(), ld);
+  int same = 0, nonzero = 0;
+  for (std::size_t r = 0; r < V; ++r)
+    for (int c = 0; c < k; ++c) {
+      same += yh[r * ld + c] == prt::float_to_half(yf[r * ld + c]);
+      nonzero += yf[r * ld + c] != 0.f;
+    }
+  INFO("k " << k << ", ld " << ld << ", F16C " << prt::cpu_has_f16c());
+  CHECK(same == static_cast<int>(V) * k);
+  CHECK(nonzero > static_cast<int>(V) * k / 2);  // the products are not trivially zero
 }
 
 TEST_CASE("compact gather: the bounce count is bounded independently of the mesh") {
