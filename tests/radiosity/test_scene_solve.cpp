@@ -54,6 +54,14 @@ std::string write_room(const fs::path& dir) {
   return (dir / "room.obj").string();
 }
 
+// A request to solve write_room's room, written in `dir`, subdivided to `max_edge`.
+SceneSolveRequest room_request(const fs::path& dir, double max_edge) {
+  SceneSolveRequest request;
+  request.scene_path = write_room(dir);
+  request.max_edge = max_edge;
+  return request;
+}
+
 // The patches solve_scene makes of `request` (no moves): the scene loaded, its materials
 // overridden and subdivided.
 std::vector<Patch> patches_of(const SceneSolveRequest& request) {
@@ -202,9 +210,7 @@ TEST_CASE("solve_scene refuses before writing: a bad request, a caller's check, 
 TEST_CASE("solve_scene writes the cache, then loads it, and the per-emitter responses",
           "[radiosity][scene-solve]") {
   const fs::path dir = scratch("files");
-  SceneSolveRequest request;
-  request.scene_path = write_room(dir);
-  request.max_edge = 0.4;
+  SceneSolveRequest request = room_request(dir, 0.4);
   request.form_factor_cache = (dir / "cache.ff").string();
   request.per_emitter_path = (dir / "responses.prte").string();
   const SceneSolution saved = solve_scene(request);
@@ -227,9 +233,7 @@ TEST_CASE("solve_scene writes the cache, then loads it, and the per-emitter resp
 TEST_CASE("solve_scene recomputes a cache of an earlier algorithm revision and saves over it",
           "[radiosity][scene-solve][cache]") {
   const fs::path dir = scratch("stale_cache");
-  SceneSolveRequest request;
-  request.scene_path = write_room(dir);
-  request.max_edge = 0.4;
+  SceneSolveRequest request = room_request(dir, 0.4);
   request.solve.tolerance = 1e-8;
   request.form_factors.method = FormFactorMethod::Rays;
   request.form_factors.rays_per_patch = 64;
@@ -298,9 +302,7 @@ TEST_CASE("the default above the patch limit stays within its stated error of an
   // The room of write_room at max edge 0.11: more patches than kAnalyticPatchLimit, so the
   // default is rays; analytic on the same patches is still cheap here (a few CPU seconds).
   const fs::path dir = scratch("choice");
-  SceneSolveRequest request;
-  request.scene_path = write_room(dir);
-  request.max_edge = 0.11;
+  SceneSolveRequest request = room_request(dir, 0.11);
   request.choose_method = true;
   request.solve.tolerance = 1e-6;
   const SceneSolution chosen = solve_scene(request);
