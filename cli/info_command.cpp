@@ -1,10 +1,10 @@
 // `prt info FILE.prt [--json | --csv]`: describe a coefficient file of any kind
 // (prt/formats/coefficient_file.h), a glossy transfer file or its CPCA compression
 // (cli/glossy_cli.h, cli/cpca_info.h), emitter responses (cli/emitter_cli.h), a form-factor
-// cache (radiosity/form_factor_cache.h: patches, method and settings, key, size; no --csv) or a
-// link cache (radiosity/link_cache.h: patches, links, settings, keys; no --csv).
-// `prt info SCENE (.glb, .gltf, .obj) [--material NAME=MODEL:...]`: the scene's size and one line
-// per primitive with its material (prt::brdf::describe; scene/material_override.h for the
+// cache (radiosity/form_factor_cache.h: patches, method and settings, revision, key, size; no
+// --csv) or a link cache (radiosity/link_cache.h: patches, links, settings, revision, keys; no
+// --csv). `prt info SCENE (.glb, .gltf, .obj) [--material NAME=MODEL:...]`: the scene's size and
+// one line per primitive with its material (prt::brdf::describe; scene/material_override.h for the
 // overrides, applied as prt bake applies them).
 //   default  the header (kind, order or cube size, channels, precision, vertices, primitives,
 //            fingerprint, sections) and the metadata JSON, as text;
@@ -253,19 +253,36 @@ std::string hex_key(uint64_t v) {
   return text;
 }
 
+// A cache's algorithm revision against this prt's: "2 (current)", "1 (earlier than this prt's
+// 2: prt radiosity recomputes the cache and saves over it)" or "3 (later than this prt's 2:
+// refused)".
+std::string describe_revision(uint32_t cached, uint32_t current) {
+  const std::string now = "this prt's " + std::to_string(current);
+  if (cached == current) return std::to_string(cached) + " (current)";
+  if (cached < current)
+    return std::to_string(cached) + " (earlier than " + now +
+           ": prt radiosity recomputes the cache and saves over it)";
+  return std::to_string(cached) + " (later than " + now + ": refused)";
+}
+
 // `prt info` of a form-factor cache (radiosity/form_factor_cache.h): patches, method and
-// settings (version 2), key and size.
+// settings (versions 2 and 3), the algorithms' revision, key and size.
 void print_form_factor_cache(const InfoArguments& args) {
   const radiosity::FormFactorCacheInfo info =
       read_cache_header(args, "form-factor cache", radiosity::read_form_factor_cache_info);
   const std::string key = hex_key(info.key);
-  const std::string method = info.settings_recorded ? describe_form_factor_method(info.options)
-                                                    : "not recorded (a version-1 cache)";
+  const std::string method =
+      info.settings_recorded
+          ? describe_form_factor_method(info.options)
+          : "not recorded (" +
+                std::string(info.version == 1 ? "a version-1 cache" : "saved without") + ")";
   nlohmann::json j;
   j["file"] = args.file;
   j["bytes"] = info.file_size;
   j["kind"] = "form-factor cache";
   j["version"] = info.version;
+  j["revision"] = info.revision;
+  j["current_revision"] = radiosity::kFormFactorRevision;
   j["patches"] = info.patches;
   j["matrix"] = std::to_string(info.patches) + "x" + std::to_string(info.patches) + " f32";
   j["key"] = key;
@@ -283,7 +300,10 @@ void print_form_factor_cache(const InfoArguments& args) {
               static_cast<unsigned long long>(info.patches),
               j["matrix"].get<std::string>().c_str());
   std::printf("method        %s\n", method.c_str());
-  std::printf("key           %s (patches' corners and the method's settings)\n", key.c_str());
+  std::printf("revision      %s\n",
+              describe_revision(info.revision, radiosity::kFormFactorRevision).c_str());
+  std::printf("key           %s (patches' corners, the method's settings and the revision)\n",
+              key.c_str());
 }
 
 // `prt info` of a link cache (radiosity/link_cache.h, the hierarchical solver's
@@ -296,6 +316,8 @@ void print_link_cache(const InfoArguments& args) {
   j["bytes"] = info.file_size;
   j["kind"] = "link cache";
   j["version"] = info.version;
+  j["revision"] = info.revision;
+  j["current_revision"] = radiosity::kLinkCacheRevision;
   j["patches"] = info.patches;
   j["links"] = info.links;
   j["transfer"] = info.fine ? "fine" : "coarse";
@@ -320,6 +342,8 @@ void print_link_cache(const InfoArguments& args) {
   std::printf("settings      %s transfer, link epsilon %g, %u visibility rays a link, seed %llu\n",
               info.fine ? "fine" : "coarse", info.epsilon, info.visibility_rays,
               static_cast<unsigned long long>(info.seed));
+  std::printf("revision      %s\n",
+              describe_revision(info.revision, radiosity::kLinkCacheRevision).c_str());
   std::printf("keys          geometry %s, settings %s, lighting %s\n",
               hex_key(info.keys.geometry).c_str(), hex_key(info.keys.settings).c_str(),
               hex_key(info.keys.lighting).c_str());

@@ -308,8 +308,11 @@ RadiosityRun solve_and_render(const RadiosityArguments& args) {
   return run;
 }
 
-// An unconverged solve is a warning on stderr, which --quiet does not silence.
-void warn_unconverged(const RadiosityArguments& args, const radiosity::SceneSolution& s) {
+// An unconverged solve and a stale cache recomputed are warnings on stderr, which --quiet does
+// not silence.
+void print_warnings(const RadiosityArguments& args, const radiosity::SceneSolution& s) {
+  if (!s.cache_notice.empty())
+    std::fprintf(stderr, "prt radiosity: warning: %s\n", s.cache_notice.c_str());
   if (!s.solution.converged)
     std::fprintf(stderr,
                  "prt radiosity: %s: warning: the solve stopped after %zu %s with %.3g of the "
@@ -367,7 +370,7 @@ void run(const RadiosityArguments& args) {
     return run_radiosity_shard(make_solve_request(args), *args.shard_spec, args.output, args.quiet);
   const RadiosityRun result = solve_and_render(args);
   record_phases(args, result);
-  warn_unconverged(args, result.solution);
+  print_warnings(args, result.solution);
   if (args.quiet) return;
   const radiosity::SceneSolution& s = result.solution;
   const radiosity::Solution& solution = s.solution;
@@ -445,8 +448,9 @@ Command register_radiosity(CLI::App& app) {
   cmd->add_option(
       "--form-factor-cache", args->form_factor_cache,
       "Form factors of the scene as loaded: saved here when absent, reused when "
-      "present (refused if made for another scene or other options); with the hierarchical "
-      "solver its links (reused for other emission or albedo, refined where needed)");
+      "present (refused if made for another scene or other options; recomputed and saved over "
+      "if made by an earlier algorithm); with the hierarchical solver its links (reused for "
+      "other emission or albedo, refined where needed)");
   cmd->add_option("--move", args->moves,
                   "OBJECT=dx,dy,dz: translate an object before solving; with a cache only the "
                   "form factors the move can change are recomputed (repeatable)");

@@ -1,6 +1,7 @@
 // cli/radiosity_shard.cpp — form-factor shards and their merge (radiosity_shard.h).
 #include "radiosity_shard.h"
 
+#include <algorithm>
 #include <cstdio>
 
 #include <CLI/CLI.hpp>
@@ -26,7 +27,17 @@ std::string options_json(const radiosity::FormFactorOptions& o) {
   j["sampling"] = static_cast<int>(o.sampling);
   j["emitter_rows"] = static_cast<int>(o.emitter_rows);
   j["hemicube_resolution"] = o.hemicube_resolution;
+  j["revision"] = radiosity::kFormFactorRevision;
   return j.dump();
+}
+
+// The algorithms' revision the rows were computed with: 1 for parts written before it was
+// recorded (their merge is then a stale cache, recomputed where it is used).
+uint32_t revision_of(const std::string& text) {
+  const nlohmann::json j = nlohmann::json::parse(text, nullptr, false);
+  return j.is_object() && j.contains("revision") && j["revision"].is_number_unsigned()
+             ? std::max<uint32_t>(1, j["revision"].get<uint32_t>())
+             : 1;
 }
 
 radiosity::FormFactorOptions options_of(const std::string& text, const std::string& name) {
@@ -100,7 +111,7 @@ void merge_form_factor_parts(const std::vector<const bake::TransferPartFile*>& p
   if (f.f.size() != f.size * f.size)
     throw CommandError(parts[0]->name + ": the parts do not make a square matrix");
   const radiosity::FormFactorOptions options = options_of(parts[0]->settings, parts[0]->name);
-  radiosity::save_form_factors(output, f, parts[0]->key, &options);
+  radiosity::save_form_factors(output, f, parts[0]->key, &options, revision_of(parts[0]->settings));
   if (!quiet)
     std::printf("merged %zu parts: form factors of %zu patches; wrote %s\n", parts.size(), f.size,
                 output.c_str());

@@ -2,7 +2,8 @@
 // (radiosity/form_factor_cache.h) on arbitrary bytes, from a scratch file (the reader takes a
 // path), as they are and with their checksum resealed (fuzz_checksum.h). The caller's key is
 // taken from the file's own key field (bytes 16..23), so that mutations get past the key check
-// (a wrong key is one comparison, tested in tests/radiosity).
+// (a wrong key is one comparison, tested in tests/radiosity; so is a revision other than this
+// prt's, which the seeds, written by save_form_factors, carry).
 //
 // load_form_factors must refuse a malformed file with a one-line std::runtime_error "PATH: …" and
 // never crash, over-read, hang, allocate what a header merely claims, or hit undefined behaviour.

@@ -20,11 +20,11 @@ namespace prt::radiosity {
 namespace {
 
 constexpr char kMagic[8] = {'P', 'R', 'T', 'F', 'F', 'M', '1', '\n'};
-// Version 2 (written when the options are given) adds the form-factor settings (offsets 64..95)
-// and sets the method at 40; version 1 (64-byte header, method 0) is written without options and
-// still loads.
-constexpr uint32_t kVersion = 2;
-constexpr std::size_t kHeaderSizeV1 = 64, kHeaderSize = 96;
+// Version 3 (what save_form_factors writes) adds the algorithms' revision at 96 to version 2,
+// which added the form-factor settings (offsets 64..95, recorded when the options are given) and
+// the method at 40 to version 1 (64-byte header, method 0). Versions 1 and 2 are revision 1.
+constexpr uint32_t kVersion = 3;
+constexpr std::size_t kHeaderSizeV1 = 64, kHeaderSizeV2 = 96, kHeaderSize = 104;
 constexpr std::size_t kChecksumOffset = 48;
 constexpr uint32_t kFlagSettings = 1;  // offset 44: the settings at 64..95 are recorded
 
@@ -32,10 +32,12 @@ struct Header {
   uint32_t version = kVersion, header_size = kHeaderSize;
   uint64_t key = 0, n = 0, file_size = 0;
   uint32_t method = 0, flags = 0, checksum = 0;
-  // Version 2 (valid with kFlagSettings).
+  // Versions 2 and 3 (valid with kFlagSettings).
   uint32_t quadrature_points = 0, rays_per_patch = 0, emitter_rays_per_patch = 0, sampling = 0,
            emitter_rows = 0, hemicube_resolution = 0;
   uint64_t seed = 0;
+  // Version 3; 1 for the earlier versions.
+  uint32_t revision = 1, reserved = 0;
 };
 
 // The header bytes (h.header_size of them), little-endian (the machines prt runs on;
@@ -51,11 +53,14 @@ void encode(const Header& h, unsigned char* out) {
   std::memcpy(out + 40, &h.method, 4);
   std::memcpy(out + 44, &h.flags, 4);
   std::memcpy(out + kChecksumOffset, &h.checksum, 4);
-  if (h.header_size < kHeaderSize) return;
+  if (h.header_size < kHeaderSizeV2) return;
   const uint32_t words[6] = {h.quadrature_points, h.rays_per_patch, h.emitter_rays_per_patch,
                              h.sampling,          h.emitter_rows,   h.hemicube_resolution};
   std::memcpy(out + 64, words, sizeof words);
   std::memcpy(out + 88, &h.seed, 8);
+  if (h.header_size < kHeaderSize) return;
+  std::memcpy(out + 96, &h.revision, 4);
+  std::memcpy(out + 100, &h.reserved, 4);
 }
 
 void decode(const unsigned char* in, Header* h) {
@@ -67,7 +72,7 @@ void decode(const unsigned char* in, Header* h) {
   std::memcpy(&h->method, in + 40, 4);
   std::memcpy(&h->flags, in + 44, 4);
   std::memcpy(&h->checksum, in + kChecksumOffset, 4);
-  if (h->header_size < kHeaderSize) return;
+  if (h->header_size < kHeaderSizeV2) return;
   uint32_t words[6];
   std::memcpy(words, in + 64, sizeof words);
   h->quadrature_points = words[0];
@@ -77,6 +82,9 @@ void decode(const unsigned char* in, Header* h) {
   h->emitter_rows = words[4];
   h->hemicube_resolution = words[5];
   std::memcpy(&h->seed, in + 88, 8);
+  if (h->header_size < kHeaderSize) return;
+  std::memcpy(&h->revision, in + 96, 4);
+  std::memcpy(&h->reserved, in + 100, 4);
 }
 
 std::string hex(uint64_t v) {
@@ -125,21 +133,21 @@ uint64_t form_factor_key(const std::vector<Patch>& patches, const FormFactorOpti
       h.add_word(static_cast<uint32_t>(options.hemicube_resolution));
       break;
   }
+  // Revision 1 added nothing (the keys of the caches written before revisions were recorded);
+  // every later revision is a word of its own, so no earlier cache has a current key.
+  if (kFormFactorRevision != 1) h.add_word(0x52000000u + kFormFactorRevision);
   return h.finish();
 }
 
 void save_form_factors(const std::string& path, const FormFactorMatrix& f, uint64_t key,
-                       const FormFactorOptions* options) {
+                       const FormFactorOptions* options, uint32_t revision) {
   if (f.f.size() != f.size * f.size)
     throw std::invalid_argument(path + ": form-factor matrix is not N×N");
   Header h;
   h.key = key;
   h.n = f.size;
-  h.version = 1;  // without options: the version-1 layout, byte for byte
-  h.header_size = static_cast<uint32_t>(kHeaderSizeV1);
+  h.revision = revision;
   if (options) {
-    h.version = kVersion;
-    h.header_size = static_cast<uint32_t>(kHeaderSize);
     h.method = static_cast<uint32_t>(options->method);
     h.flags = kFlagSettings;
     h.quadrature_points = static_cast<uint32_t>(options->quadrature_points);
@@ -180,6 +188,7 @@ File open_cache(const std::string& path, Header* h, unsigned char* header) {
   File file(std::fopen(path.c_str(), "rb"));
   if (!file)
     throw std::runtime_error(path + ": cannot open form-factor cache: " + std::strerror(errno));
+  std::memset(header, 0, kHeaderSize);
   const std::size_t got = std::fread(header, 1, kHeaderSizeV1, file.get());
   if (got >= 8 && std::memcmp(header, kMagic, 8) != 0)
     throw std::runtime_error(path + ": not a prt form-factor cache (bad magic)");
@@ -188,20 +197,24 @@ File open_cache(const std::string& path, Header* h, unsigned char* header) {
   h->header_size = static_cast<uint32_t>(kHeaderSizeV1);
   decode(header, h);
   const bool v1 = h->version == 1 && h->header_size == kHeaderSizeV1;
-  const bool v2 = h->version == 2 && h->header_size == kHeaderSize;
-  if (!v1 && !v2)
+  const bool v2 = h->version == 2 && h->header_size == kHeaderSizeV2;
+  const bool v3 = h->version == 3 && h->header_size == kHeaderSize;
+  if (!v1 && !v2 && !v3)
     throw std::runtime_error(path + ": form-factor cache version " + std::to_string(h->version) +
-                             " (this prt reads versions 1 and " + std::to_string(kVersion) + ")");
-  if (v2) {
-    if (std::fread(header + kHeaderSizeV1, 1, kHeaderSize - kHeaderSizeV1, file.get()) !=
-        kHeaderSize - kHeaderSizeV1)
+                             " (this prt reads versions 1 to " + std::to_string(kVersion) + ")");
+  if (!v1) {
+    const std::size_t rest = h->header_size - kHeaderSizeV1;
+    if (std::fread(header + kHeaderSizeV1, 1, rest, file.get()) != rest)
       throw std::runtime_error(path + ": truncated form-factor cache (header)");
     decode(header, h);
   }
   // N is bounded before any size arithmetic, so a hostile count cannot overflow it.
   if (h->n > (uint64_t(1) << 20) || h->file_size != h->header_size + h->n * h->n * sizeof(float) ||
-      (v1 && h->flags != 0) || (v2 && (h->flags & ~kFlagSettings) != 0) || h->method > 2)
+      (v1 && h->flags != 0) || (h->flags & ~kFlagSettings) != 0 || h->method > 2)
     throw std::runtime_error(path + ": corrupt form-factor cache (size fields disagree)");
+  if (h->revision == 0 || h->reserved != 0)
+    throw std::runtime_error(path +
+                             ": corrupt form-factor cache (revision 0 or reserved bytes set)");
   if (std::fseek(file.get(), 0, SEEK_END) != 0)
     throw std::runtime_error(path + ": cannot seek: " + std::strerror(errno));
   const long present = std::ftell(file.get());
@@ -217,10 +230,22 @@ File open_cache(const std::string& path, Header* h, unsigned char* header) {
 
 }  // namespace
 
+uint32_t form_factor_cache_revision(const std::string& path) {
+  Header h;
+  unsigned char header[kHeaderSize];
+  open_cache(path, &h, header);
+  return h.revision;
+}
+
 FormFactorMatrix load_form_factors(const std::string& path, uint64_t key) {
   Header h;
   unsigned char header[kHeaderSize];
   File file = open_cache(path, &h, header);
+  if (h.revision != kFormFactorRevision)
+    throw std::runtime_error(path + ": form factors of algorithm revision " +
+                             std::to_string(h.revision) + ", this prt computes revision " +
+                             std::to_string(kFormFactorRevision) +
+                             "; give another --form-factor-cache or delete this one");
   if (h.key != key)
     throw std::runtime_error(path + ": made for another scene or other form-factor options (key " +
                              hex(h.key) + ", expected " + hex(key) +
@@ -259,6 +284,7 @@ FormFactorCacheInfo read_form_factor_cache_info(const std::string& path) {
     throw std::runtime_error(path + ": corrupt form-factor cache (checksum mismatch)");
   FormFactorCacheInfo info;
   info.version = h.version;
+  info.revision = h.revision;
   info.patches = h.n;
   info.key = h.key;
   info.file_size = h.file_size;

@@ -59,6 +59,7 @@ void encode(const LinkCacheInfo& h, uint32_t checksum, unsigned char* out) {
   put(out, 92, &h.max_passes, 4);
   put(out, 96, &h.tolerance, 8);
   put(out, 104, &h.max_iterations, 8);
+  put(out, 112, &h.revision, 4);
 }
 
 uint64_t payload_bytes(uint64_t patches, uint64_t links) {
@@ -106,6 +107,8 @@ File open_cache(const std::string& path, LinkCacheInfo* info, unsigned char* hea
   h.max_passes = get<uint32_t>(header, 92);
   h.tolerance = get<double>(header, 96);
   h.max_iterations = get<uint64_t>(header, 104);
+  h.revision = get<uint32_t>(header, 112);
+  if (h.revision == 0) h.revision = 1;  // written before the revision was recorded
   // The counts are bounded before any size arithmetic, so hostile ones cannot overflow it.
   if (h.patches == 0 || h.patches > (uint64_t(1) << 31) || h.links > (uint64_t(1) << 40) ||
       (flags & ~kFlagFine) != 0 || h.file_size != kHeaderSize + payload_bytes(h.patches, h.links))
@@ -175,6 +178,9 @@ LinkCacheKeys link_cache_keys(const std::vector<Patch>& patches,
   settings.add_word(static_cast<uint32_t>(options.max_passes));
   hash_double(settings, options.solve.tolerance);
   settings.add_u64(options.solve.max_iterations);
+  // Revision 1 adds nothing (the keys of the caches written before revisions were recorded);
+  // every later revision is a word of its own, so no earlier cache has a current key.
+  if (kLinkCacheRevision != 1) settings.add_word(0x52000000u + kLinkCacheRevision);
   keys.geometry = geometry.finish();
   keys.settings = settings.finish();
   keys.lighting = lighting.finish();
@@ -189,6 +195,7 @@ void save_link_cache(const std::string& path, const LinkCacheKeys& keys,
   const LinkOptions links = resolved_link_options(n, options);
   LinkCacheInfo h;
   h.version = kVersion;
+  h.revision = kLinkCacheRevision;
   h.keys = keys;
   h.patches = n;
   h.links = solved.links.size();
@@ -255,6 +262,9 @@ std::string link_cache_mismatch(const std::string& path, const LinkCacheInfo& ca
                                 const LinkCacheKeys& keys, const HierarchicalOptions& options,
                                 std::size_t patches) {
   const std::string advice = "; give another --form-factor-cache or delete this one";
+  if (cached.revision != kLinkCacheRevision)
+    return path + ": link cache of algorithm revision " + std::to_string(cached.revision) +
+           ", this prt computes revision " + std::to_string(kLinkCacheRevision) + advice;
   if (cached.keys.geometry != keys.geometry)
     return path + ": link cache made for another scene or subdivision (geometry key " +
            hex(cached.keys.geometry) + " of " + std::to_string(cached.patches) +

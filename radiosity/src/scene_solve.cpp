@@ -109,7 +109,8 @@ scene::Scene prepare_scene(const SceneSolveRequest& r, bool moved) {
 }
 
 // The form factors of `after`. With a cache: those of the scene as loaded (`before`), loaded
-// when the cache exists, else computed and saved, then brought up to date for the moves.
+// when the cache exists and is of the current algorithms, else computed and saved (over a cache of
+// an earlier revision, with a notice), then brought up to date for the moves.
 FormFactorMatrix form_factors(const SceneSolveRequest& r, const scene::Scene& before,
                               const std::vector<Patch>& after, const scene::RayCaster& caster,
                               SceneSolution* out) {
@@ -125,12 +126,18 @@ FormFactorMatrix form_factors(const SceneSolveRequest& r, const scene::Scene& be
                              std::to_string(unmoved.size()) + " patches before, " +
                              std::to_string(after.size()) + " after); use it without a cache");
   const uint64_t key = form_factor_key(unmoved, r.form_factors);
+  const bool present = std::filesystem::exists(r.form_factor_cache);
+  const uint32_t revision = present ? form_factor_cache_revision(r.form_factor_cache) : 0;
   FormFactorMatrix f;
-  if (std::filesystem::exists(r.form_factor_cache)) {
+  if (present && revision >= kFormFactorRevision) {  // a later revision is refused by the load
     f = load_form_factors(r.form_factor_cache, key);
     out->cache_seconds = since(t);
     out->cache = SceneSolution::Cache::Loaded;
   } else {
+    if (present)
+      out->cache_notice = r.form_factor_cache + ": form factors of algorithm revision " +
+                          std::to_string(revision) + ", earlier than this prt's " +
+                          std::to_string(kFormFactorRevision) + ": recomputed and saved over it";
     if (r.moves.empty()) {
       f = compute_form_factors(after, caster, r.form_factors);
     } else {
@@ -193,8 +200,9 @@ void check_patch_count(const SceneSolveRequest& r, const scene::Scene& scene) {
 }
 
 // The hierarchical solve with a link cache (link_cache.h): loaded and its links used as they are
-// (the same emission and albedo) or re-checked for the new light; absent: solved and saved; made
-// for other geometry or settings: refused, as the dense cache is.
+// (the same emission and albedo) or re-checked for the new light; absent or of an earlier
+// revision: solved and saved (over it, with a notice); made for other geometry or settings or by
+// a later revision: refused, as the dense cache is.
 HierarchicalSolution cached_hierarchy(const SceneSolveRequest& r, const std::vector<Patch>& patches,
                                       const scene::RayCaster& caster,
                                       const HierarchicalOptions& options, MemoryBudget* budget,
@@ -202,7 +210,13 @@ HierarchicalSolution cached_hierarchy(const SceneSolveRequest& r, const std::vec
   const std::string& path = r.form_factor_cache;
   const LinkCacheKeys keys = link_cache_keys(patches, options);
   Clock::time_point t = Clock::now();
-  if (!std::filesystem::exists(path)) {
+  const bool present = std::filesystem::exists(path);
+  const LinkCacheInfo cached = present ? read_link_cache_info(path) : LinkCacheInfo{};
+  if (!present || cached.revision < kLinkCacheRevision) {
+    if (present)
+      out->cache_notice = path + ": links of algorithm revision " +
+                          std::to_string(cached.revision) + ", earlier than this prt's " +
+                          std::to_string(kLinkCacheRevision) + ": recomputed and saved over them";
     HierarchicalSolution solved = solve_hierarchical(patches, caster, options, budget);
     t = Clock::now();
     save_link_cache(path, keys, options, solved);
@@ -214,8 +228,7 @@ HierarchicalSolution cached_hierarchy(const SceneSolveRequest& r, const std::vec
     out->files_written.push_back(path);
     return solved;
   }
-  const std::string mismatch =
-      link_cache_mismatch(path, read_link_cache_info(path), keys, options, patches.size());
+  const std::string mismatch = link_cache_mismatch(path, cached, keys, options, patches.size());
   if (!mismatch.empty()) throw std::runtime_error(mismatch);
   LinkCache cache = load_link_cache(path, budget);
   out->cache_seconds = since(t);

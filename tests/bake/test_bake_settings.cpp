@@ -5,6 +5,7 @@
 // is a static_assert in bake/src/bake_settings.cpp: a new member without a line does not compile.
 #include <functional>
 #include <string>
+#include <utility>
 
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>
@@ -29,33 +30,48 @@ json changed(const std::string& key, const json& v) {
   return v;
 }
 
+using CheckChanged = std::function<void(const json& modified, const std::string& name)>;
+
+// Hands `check` a copy of `base` with one leaf under its key `key` changed (changed()), for each
+// leaf: the value itself, or each member of an object, named "key" or "key.member".
+void for_each_changed_leaf(const json& base, const std::string& key, const CheckChanged& check) {
+  const json& value = base.at(key);
+  if (!value.is_object()) {
+    json modified = base;
+    modified[key] = changed(key, value);
+    check(modified, key);
+    return;
+  }
+  for (auto sub = value.begin(); sub != value.end(); ++sub) {
+    json modified = base;
+    modified[key][sub.key()] = changed(sub.key(), sub.value());
+    check(modified, key + "." + sub.key());
+  }
+}
+
+using RoundTrip = std::function<std::string(const std::string&)>;
+
+// The check of one changed setting (`base` with a leaf changed, named `name`): it differs from
+// `base` and comes back through `round_trip` as it is. Counts the leaves checked in *leaves.
+CheckChanged carried_check(const json& base, RoundTrip round_trip, int* leaves) {
+  return [&base, round_trip = std::move(round_trip), leaves](const json& modified,
+                                                             const std::string& name) {
+    INFO("setting " << name);
+    ++*leaves;
+    CHECK(modified != base);
+    CHECK(json::parse(round_trip(modified.dump())) == modified);
+  };
+}
+
 // Every leaf of `settings` but "basis", changed one at a time, must come back changed through
 // `read` and `write` (the reader reads every key the writer writes).
-void check_every_key_carried(const std::string& settings,
-                             const std::function<std::string(const std::string&)>& round_trip) {
+void check_every_key_carried(const std::string& settings, const RoundTrip& round_trip) {
   const json base = json::parse(settings);
   CHECK(json::parse(round_trip(settings)) == base);
   int leaves = 0;
-  for (auto it = base.begin(); it != base.end(); ++it) {
-    if (it.key() == "basis") continue;
-    const auto check = [&](json modified, const std::string& name) {
-      INFO("setting " << name);
-      ++leaves;
-      CHECK(modified != base);
-      CHECK(json::parse(round_trip(modified.dump())) == modified);
-    };
-    if (it.value().is_object()) {
-      for (auto sub = it.value().begin(); sub != it.value().end(); ++sub) {
-        json modified = base;
-        modified[it.key()][sub.key()] = changed(sub.key(), sub.value());
-        check(modified, it.key() + "." + sub.key());
-      }
-    } else {
-      json modified = base;
-      modified[it.key()] = changed(it.key(), it.value());
-      check(modified, it.key());
-    }
-  }
+  const CheckChanged check = carried_check(base, round_trip, &leaves);
+  for (auto it = base.begin(); it != base.end(); ++it)
+    if (it.key() != "basis") for_each_changed_leaf(base, it.key(), check);
   CHECK(leaves >= 6);
 }
 
@@ -120,12 +136,7 @@ TEST_CASE("bake settings: every key of a subsurface bake's settings is read back
   CHECK(subsurface_options_from_settings(s, "test").vertex_material.empty());
   const json base = json::parse(s);
   int leaves = 0;
-  const auto check = [&](const json& modified, const std::string& name) {
-    INFO("setting " << name);
-    ++leaves;
-    CHECK(modified != base);
-    CHECK(json::parse(round_trip(modified.dump())) == modified);
-  };
+  const CheckChanged check = carried_check(base, round_trip, &leaves);
   for (auto it = base.begin(); it != base.end(); ++it) {
     if (it.key() == "materials") {
       for (std::size_t m = 0; m < 2; ++m)
@@ -140,16 +151,8 @@ TEST_CASE("bake settings: every key of a subsurface bake's settings is read back
         modified["materials"][m]["eta"] = 1.7;
         check(modified, "eta");
       }
-    } else if (it.value().is_object()) {
-      for (auto sub = it.value().begin(); sub != it.value().end(); ++sub) {
-        json modified = base;
-        modified[it.key()][sub.key()] = changed(sub.key(), sub.value());
-        check(modified, it.key() + "." + sub.key());
-      }
     } else {
-      json modified = base;
-      modified[it.key()] = changed(it.key(), it.value());
-      check(modified, it.key());
+      for_each_changed_leaf(base, it.key(), check);
     }
   }
   CHECK(leaves == 2 * 6 + 2 + 1 + 3);  // coefficients, η, mm per unit, gather

@@ -37,6 +37,15 @@ prt::scene::Scene small_scene() {
   return s;
 }
 
+// Interreflected transfer of SH order `order` with `samples` rays a vertex, the rest default.
+BakeOptions interreflected(int order, int samples) {
+  BakeOptions o;
+  o.kind = prt::TransferKind::Interreflected;
+  o.order = order;
+  o.samples = samples;
+  return o;
+}
+
 double max_abs(const std::vector<float>& x) {
   double m = 0.0;
   for (float e : x) m = std::max(m, static_cast<double>(std::fabs(e)));
@@ -91,10 +100,7 @@ TEST_CASE("Morton order is a permutation that keeps neighbours together") {
 
 TEST_CASE("compact gather: the reference path's solution within the quantisation bound") {
   const prt::scene::Scene s = small_scene();
-  BakeOptions o;
-  o.kind = prt::TransferKind::Interreflected;
-  o.order = 3;
-  o.samples = 128;
+  BakeOptions o = interreflected(3, 128);
   o.bounce_tolerance = 1e-10;
   const auto compact = bake_transfer(s, o);
   o.dense_gather = true;
@@ -128,10 +134,7 @@ TEST_CASE("compact gather: the reference path's solution within the quantisation
 
 TEST_CASE("compact gather: bit-identical for any thread count") {
   const prt::scene::Scene s = small_scene();
-  BakeOptions o;
-  o.kind = prt::TransferKind::Interreflected;
-  o.order = 2;
-  o.samples = 64;
+  BakeOptions o = interreflected(2, 64);
   o.bounce_precision = GENERATE(prt::Precision::F32, prt::Precision::F16);
   o.threads = 1;
   const auto one = bake_transfer(s, o);
@@ -166,10 +169,7 @@ double rms_diff(const std::vector<float>& a, const std::vector<float>& b) {
 
 TEST_CASE("compact gather: binary16 bounces within their rounding bound, far below the noise") {
   const prt::scene::Scene s = small_scene();
-  BakeOptions o;
-  o.kind = prt::TransferKind::Interreflected;
-  o.order = 3;
-  o.samples = 128;
+  BakeOptions o = interreflected(3, 128);
   o.bounces = 40;  // the same terms on both paths
   const auto f32 = bake_transfer(s, o);
   o.bounce_precision = prt::Precision::F16;
@@ -292,10 +292,7 @@ TEST_CASE("compact gather: the bounce count is bounded independently of the mesh
                                                 2 * seg, 2 * seg, glm::vec3(0.7f), "ground");
     prt::scene::append_scene(s, prt::scene::make_uv_sphere({0.f, 1.f, 0.f}, 1.f, seg, 2 * seg,
                                                            false, glm::vec3(0.8f), "sphere"));
-    BakeOptions o;
-    o.kind = prt::TransferKind::Interreflected;
-    o.order = 2;
-    o.samples = 64;
+    BakeOptions o = interreflected(2, 64);
     const auto r = bake_transfer(s, o);
     REQUIRE(r.stats.solver_converged);
     REQUIRE(r.stats.solver_iterations == 0);  // no Krylov fallback
@@ -364,10 +361,7 @@ TEST_CASE("hit records judge the side and renumber the triangle as the scene-bas
 TEST_CASE("a bake over its memory limit stops before it allocates, with one line") {
   prt::scene::Scene s = small_scene();
   s.source_path = "small.glb";
-  BakeOptions o;
-  o.kind = prt::TransferKind::Interreflected;
-  o.order = 5;
-  o.samples = 64;
+  BakeOptions o = interreflected(5, 64);
   // The coefficients alone: V × 3 channels × 25 × 4 bytes; a limit below that fails first.
   const uint64_t coefficients = s.positions.size() * 3 * 25 * 4;
   o.memory_limit = coefficients / 2;

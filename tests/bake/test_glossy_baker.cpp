@@ -116,6 +116,32 @@ prt::scene::Scene floor_and_box(glm::vec3 albedo) {
   return s;
 }
 
+// The Blinn-Phong material of the glossy cases: diffuse 0.3, specular 0.4, exponent 20.
+prt::brdf::Material test_phong() {
+  prt::brdf::Material phong;
+  phong.model = prt::brdf::MaterialModel::kBlinnPhong;
+  phong.diffuse = prt::brdf::grey(0.3);
+  phong.specular = prt::brdf::grey(0.4);
+  phong.exponent = 20;
+  return phong;
+}
+
+// floor_and_box of albedo (0.7, 0.5, 0.3), the box Blinn-Phong (test_phong).
+prt::scene::Scene phong_floor_and_box() {
+  prt::scene::Scene s = floor_and_box(glm::vec3(0.7f, 0.5f, 0.3f));
+  s.primitives[1].brdf = test_phong();
+  return s;
+}
+
+// Two bounces at order 3 with `samples` directions a vertex, the rest default.
+GlossyBakeOptions two_bounces(int samples) {
+  GlossyBakeOptions o;
+  o.order = 3;
+  o.samples = samples;
+  o.bounces = 2;
+  return o;
+}
+
 }  // namespace
 
 TEST_CASE("glossy bake: an unoccluded vertex's matrix is the SH rotation on the hemisphere",
@@ -235,17 +261,8 @@ TEST_CASE("glossy bake: Lambert interreflection equals the diffuse interreflecte
 }
 
 TEST_CASE("glossy bake: bit-identical for any thread count, seed-dependent", "[glossy_bake]") {
-  prt::scene::Scene s = floor_and_box(glm::vec3(0.7f, 0.5f, 0.3f));
-  prt::brdf::Material phong;
-  phong.model = prt::brdf::MaterialModel::kBlinnPhong;
-  phong.diffuse = prt::brdf::grey(0.3);
-  phong.specular = prt::brdf::grey(0.4);
-  phong.exponent = 20;
-  s.primitives[1].brdf = phong;
-  GlossyBakeOptions o;
-  o.order = 3;
-  o.samples = 64;
-  o.bounces = 2;
+  prt::scene::Scene s = phong_floor_and_box();
+  GlossyBakeOptions o = two_bounces(64);
   o.threads = 1;
   const auto one = bake_glossy_transfer(s, o);
   o.threads = 2;
@@ -385,6 +402,26 @@ void check_refused_with_no_file(const prt::scene::Scene& s, const GlossyBakeOpti
   CHECK_FALSE(temporaries_left(path));
 }
 
+// True when a streamed bake's scratch file (prt-glossy-scratch-*) is left in PATH's folder.
+bool scratch_left(const std::string& path) {
+  for (const auto& e :
+       std::filesystem::directory_iterator(std::filesystem::path(path).parent_path()))
+    if (e.path().filename().string().rfind("prt-glossy-scratch-", 0) == 0) return true;
+  return false;
+}
+
+// At o.memory_limit the in-memory bake is over the limit and the streamed one to `path` runs
+// within it, its file read back whole; returns the streamed bake's statistics.
+prt::bake::GlossyBakeStatistics check_only_streamed_fits(const prt::scene::Scene& s,
+                                                         const GlossyBakeOptions& o,
+                                                         const std::string& path) {
+  CHECK_THROWS_AS(bake_glossy_transfer(s, o), prt::MemoryBudgetExceeded);
+  const auto r = prt::bake::bake_glossy_transfer_to_file(s, o, path);
+  CHECK(r.stats.peak_charged_bytes < o.memory_limit);
+  REQUIRE(prt::read_glossy_transfer_file(path).ok());
+  return r.stats;
+}
+
 }  // namespace
 
 // The streamed file against the in-memory bake written whole: every byte but the metadata's
@@ -392,13 +429,7 @@ void check_refused_with_no_file(const prt::scene::Scene& s, const GlossyBakeOpti
 // metadata and the two files must then be identical.
 TEST_CASE("glossy bake: the streamed file is byte-identical to the in-memory bake's",
           "[glossy_bake]") {
-  prt::scene::Scene s = floor_and_box(glm::vec3(0.7f, 0.5f, 0.3f));
-  prt::brdf::Material phong;
-  phong.model = prt::brdf::MaterialModel::kBlinnPhong;
-  phong.diffuse = prt::brdf::grey(0.3);
-  phong.specular = prt::brdf::grey(0.4);
-  phong.exponent = 20;
-  s.primitives[1].brdf = phong;
+  prt::scene::Scene s = phong_floor_and_box();
   for (const int bounces : {0, 2}) {
     for (const int threads : {1, 2}) {
       GlossyBakeOptions o;
@@ -440,11 +471,8 @@ TEST_CASE("glossy bake: a too-small memory limit is refused in one line with no 
   o.memory_limit = 64 * 1024;
   check_refused_with_no_file(s, o, path, "the memory limit is 64.0 KB");
   o.memory_limit = 4 << 20;
-  CHECK_THROWS_AS(bake_glossy_transfer(s, o), prt::MemoryBudgetExceeded);
-  const auto r = prt::bake::bake_glossy_transfer_to_file(s, o, path);
-  CHECK(r.stats.peak_charged_bytes < o.memory_limit);
+  check_only_streamed_fits(s, o, path);
   CHECK(std::filesystem::file_size(path) > 9 * 1000 * 1000);
-  CHECK(prt::read_glossy_transfer_file(path).ok());
 }
 
 // Bounces that read a CPCA compression of the previous bounce: with one cluster and as many
@@ -454,17 +482,8 @@ TEST_CASE("glossy bake: a too-small memory limit is refused in one line with no 
 // must differ by more (the compressed transfer is really what the gather reads).
 TEST_CASE("glossy bake: bounces over compressed transfer converge to the plain ones at full rank",
           "[glossy_bake]") {
-  prt::scene::Scene s = floor_and_box(glm::vec3(0.7f, 0.5f, 0.3f));
-  prt::brdf::Material phong;
-  phong.model = prt::brdf::MaterialModel::kBlinnPhong;
-  phong.diffuse = prt::brdf::grey(0.3);
-  phong.specular = prt::brdf::grey(0.4);
-  phong.exponent = 20;
-  s.primitives[1].brdf = phong;
-  GlossyBakeOptions o;
-  o.order = 3;
-  o.samples = 64;
-  o.bounces = 2;
+  prt::scene::Scene s = phong_floor_and_box();
+  GlossyBakeOptions o = two_bounces(64);
   const auto plain = bake_glossy_transfer(s, o);
   REQUIRE(plain.data.channels == 3);
   const auto max_difference = [&](const prt::GlossyTransferData& d) {
@@ -492,17 +511,8 @@ TEST_CASE("glossy bake: bounces over compressed transfer converge to the plain o
 // use. The gather is exactly 8 bytes a hit + N/8 bytes a vertex (16 a hit with float copies).
 TEST_CASE("glossy bake: compact hits give the float hits' solution within the quantisation bound",
           "[glossy_bake]") {
-  prt::scene::Scene s = floor_and_box(glm::vec3(0.7f, 0.5f, 0.3f));
-  prt::brdf::Material phong;
-  phong.model = prt::brdf::MaterialModel::kBlinnPhong;
-  phong.diffuse = prt::brdf::grey(0.3);
-  phong.specular = prt::brdf::grey(0.4);
-  phong.exponent = 20;
-  s.primitives[1].brdf = phong;
-  GlossyBakeOptions o;
-  o.order = 3;
-  o.samples = 128;
-  o.bounces = 2;
+  prt::scene::Scene s = phong_floor_and_box();
+  GlossyBakeOptions o = two_bounces(128);
   const auto compact = bake_glossy_transfer(s, o);
   o.exact_hits = true;
   const auto exact = bake_glossy_transfer(s, o);
@@ -541,24 +551,14 @@ TEST_CASE("glossy bake: streamed interreflection holds one bounce, and a limit b
   o.threads = 2;
   const std::string path = prt::test::output_path("glossy_ir_refused.prtg").string();
   std::filesystem::remove(path);
-  const auto scratch_left = [&] {
-    for (const auto& e :
-         std::filesystem::directory_iterator(std::filesystem::path(path).parent_path()))
-      if (e.path().filename().string().rfind("prt-glossy-scratch-", 0) == 0) return true;
-    return false;
-  };
   o.memory_limit = 6 << 20;
   check_refused_with_no_file(s, o, path, "the glossy matrices of the bounce read");
   o.memory_limit = 12 << 20;
-  CHECK_THROWS_AS(bake_glossy_transfer(s, o), prt::MemoryBudgetExceeded);
-  const auto r = prt::bake::bake_glossy_transfer_to_file(s, o, path);
-  CHECK(r.stats.hits > 0);
-  CHECK(r.stats.peak_charged_bytes < o.memory_limit);
-  CHECK(r.stats.peak_charged_bytes > s.positions.size() * 3 * 625 * 4);
-  const auto back = prt::read_glossy_transfer_file(path);
-  REQUIRE(back.ok());
-  CHECK(back.value().channels == 3);
-  CHECK_FALSE(scratch_left());
+  const prt::bake::GlossyBakeStatistics stats = check_only_streamed_fits(s, o, path);
+  CHECK(stats.hits > 0);
+  CHECK(stats.peak_charged_bytes > s.positions.size() * 3 * 625 * 4);
+  CHECK(prt::read_glossy_transfer_file(path).value().channels == 3);
+  CHECK_FALSE(scratch_left(path));
 }
 
 // The last charge of a streamed interreflected bake is the last block's hits, during the ray
@@ -573,13 +573,6 @@ TEST_CASE(
   prt::scene::append_scene(s, prt::scene::make_box({-0.5f, 0.f, -0.5f}, {0.5f, 1.f, 0.5f}, 2, false,
                                                    glm::vec3(0.6f), "box"));
   const std::string path = prt::test::output_path("glossy_ir_pass_refused.prtg").string();
-  const auto nothing_left = [&] {
-    if (std::filesystem::exists(path) || temporaries_left(path)) return false;
-    for (const auto& e :
-         std::filesystem::directory_iterator(std::filesystem::path(path).parent_path()))
-      if (e.path().filename().string().rfind("prt-glossy-scratch-", 0) == 0) return false;
-    return true;
-  };
   for (const prt::Precision bounce : {prt::Precision::F32, prt::Precision::F16}) {
     INFO("bounce precision " << (bounce == prt::Precision::F16 ? "f16" : "f32"));
     GlossyBakeOptions o;
@@ -593,17 +586,9 @@ TEST_CASE(
     const uint64_t peak =
         prt::bake::bake_glossy_transfer_to_file(s, o, path).stats.peak_charged_bytes;
     std::filesystem::remove(path);
-    o.memory_limit = peak - 1;
-    try {
-      prt::bake::bake_glossy_transfer_to_file(s, o, path);
-      FAIL("a limit one byte below the peak was accepted");
-    } catch (const prt::MemoryBudgetExceeded& e) {
-      const std::string what = e.what();
-      INFO(what);
-      CHECK(what.find('\n') == std::string::npos);
-      CHECK(what.find("the glossy bounces' ray hits") != std::string::npos);
-    }
-    CHECK(nothing_left());
+    o.memory_limit = peak - 1;  // one byte below the peak
+    check_refused_with_no_file(s, o, path, "the glossy bounces' ray hits");
+    CHECK_FALSE(scratch_left(path));
     o.memory_limit = peak;
     CHECK(prt::bake::bake_glossy_transfer_to_file(s, o, path).stats.peak_charged_bytes == peak);
     CHECK(std::filesystem::exists(path));
@@ -624,16 +609,8 @@ TEST_CASE("glossy bake: a binary16 bounce stays within its rounding bound of the
                                               24, 24, glm::vec3(0.7f, 0.5f, 0.3f), "floor");
   prt::scene::append_scene(s, prt::scene::make_box({-0.5f, 0.f, -0.5f}, {0.5f, 1.f, 0.5f}, 2, false,
                                                    glm::vec3(0.6f), "box"));
-  prt::brdf::Material phong;
-  phong.model = prt::brdf::MaterialModel::kBlinnPhong;
-  phong.diffuse = prt::brdf::grey(0.3);
-  phong.specular = prt::brdf::grey(0.4);
-  phong.exponent = 20;
-  s.primitives[1].brdf = phong;
-  GlossyBakeOptions o;
-  o.order = 3;
-  o.samples = 64;
-  o.bounces = 2;
+  s.primitives[1].brdf = test_phong();
+  GlossyBakeOptions o = two_bounces(64);
   o.threads = 1;
   const std::string path = prt::test::output_path("glossy_half_bounce.prtg").string();
   const auto plain = prt::bake::bake_glossy_transfer_to_file(s, o, path);

@@ -93,6 +93,32 @@ void check_identity_for_every_n(const std::string& name, const std::string& opti
   }
 }
 
+// For each line of `options`: the single bake to dir/single.EXT and 3 shards merged to
+// dir/merged.EXT give the same bytes (`extension` with its dot: ".prt", ".prtg").
+void check_each_merges_identical(const fs::path& dir, const fs::path& scene,
+                                 const std::vector<std::string>& options,
+                                 const std::string& extension) {
+  for (const std::string& o : options) {
+    INFO(o);
+    const fs::path single = dir / ("single" + extension), merged = dir / ("merged" + extension);
+    REQUIRE(run(bake_line(scene, o, single)).exit_code == 0);
+    check_merge_identical(bake_shards(scene, o, 3, dir), single, merged);
+    fs::remove(merged);
+    fs::remove(merged.string() + ".run.json");
+  }
+}
+
+// Bakes shard 1/3 of `options` to dir/NAME (a part to slip among another bake's); returns its
+// path.
+fs::path bake_shard1(const fs::path& scene, const fs::path& dir, const std::string& options,
+                     const std::string& name) {
+  const fs::path path = dir / name;
+  const RunResult r = run(bake_line(scene, options + " --shard 1/3", path));
+  INFO(r.err);
+  REQUIRE(r.exit_code == 0);
+  return path;
+}
+
 // A refused merge: a non-zero exit, one line naming `expected`, neither OUT nor its record.
 void check_refused(const std::vector<fs::path>& parts, const fs::path& out,
                    const std::string& expected) {
@@ -144,17 +170,12 @@ TEST_CASE("cli farm: merged shards of glossy bakes are the single bake, byte for
 TEST_CASE("cli farm: glossy bounces, f16 and material overrides merge to the single bake") {
   const fs::path dir = scratch("farm_glossy_variants");
   const fs::path scene = make_field(dir, 300, "field.glb", "field-glossy");
-  for (const std::string options :
-       {"--glossy --bounces 2 --order 2 --samples 16 --precision f16",
-        "--glossy --bounces 2 --order 2 --samples 16 --bounce-precision f16",
-        "--glossy --order 2 --samples 16 --material '*=ward:rho_d=0.3,rho_s=0.2,ax=0.2,ay=0.4'"}) {
-    INFO(options);
-    const fs::path single = dir / "single.prtg";
-    REQUIRE(run(bake_line(scene, options, single)).exit_code == 0);
-    check_merge_identical(bake_shards(scene, options, 3, dir), single, dir / "merged.prtg");
-    fs::remove(dir / "merged.prtg");
-    fs::remove(dir / "merged.prtg.run.json");
-  }
+  check_each_merges_identical(
+      dir, scene,
+      {"--glossy --bounces 2 --order 2 --samples 16 --precision f16",
+       "--glossy --bounces 2 --order 2 --samples 16 --bounce-precision f16",
+       "--glossy --order 2 --samples 16 --material '*=ward:rho_d=0.3,rho_s=0.2,ax=0.2,ay=0.4'"},
+      ".prtg");
 }
 
 TEST_CASE("cli farm: prt merge refuses glossy parts that do not belong together") {
@@ -163,23 +184,20 @@ TEST_CASE("cli farm: prt merge refuses glossy parts that do not belong together"
   const std::string options = "--glossy --transfer interreflected --order 2 --samples 16";
   const std::vector<fs::path> p = bake_shards(scene, options, 3, dir);
   const fs::path out = dir / "merged.prtg";
-  const auto shard1 = [&](const std::string& o, const std::string& name) {
-    const fs::path path = dir / name;
-    const RunResult r = run(bake_line(scene, o + " --shard 1/3", path));
-    INFO(r.err);
-    REQUIRE(r.exit_code == 0);
-    return path;
-  };
   SECTION("an SH part among glossy parts") {
-    check_refused({p[0], shard1("--transfer interreflected --samples 16", "sh.prtpart"), p[2]}, out,
-                  "sh.prtpart: baked with other settings: basis \"sh\" here, \"glossy\"");
+    check_refused(
+        {p[0], bake_shard1(scene, dir, "--transfer interreflected --samples 16", "sh.prtpart"),
+         p[2]},
+        out, "sh.prtpart: baked with other settings: basis \"sh\" here, \"glossy\"");
   }
   SECTION("other materials") {
-    check_refused({p[0], shard1(options + " --material '*=ggx:roughness=0.4'", "m.prtpart"), p[2]},
-                  out, "m.prtpart: a part of another scene than");
+    check_refused(
+        {p[0], bake_shard1(scene, dir, options + " --material '*=ggx:roughness=0.4'", "m.prtpart"),
+         p[2]},
+        out, "m.prtpart: a part of another scene than");
   }
   SECTION("other glossy settings") {
-    check_refused({p[0], shard1(options + " --bounces 3", "b.prtpart"), p[2]}, out,
+    check_refused({p[0], bake_shard1(scene, dir, options + " --bounces 3", "b.prtpart"), p[2]}, out,
                   "b.prtpart: baked with other settings: bounces 3 here, -1 in");
   }
   SECTION("a missing range") {
@@ -217,15 +235,8 @@ TEST_CASE("cli farm: prt merge refuses subsurface parts that do not belong toget
   const std::string subsurface = options + " --subsurface red=marble";
   const std::vector<fs::path> p = bake_shards(scene, subsurface, 3, dir);
   const fs::path out = dir / "merged.prt";
-  const auto shard1 = [&](const std::string& o, const std::string& name) {
-    const fs::path path = dir / name;
-    const RunResult r = run(bake_line(scene, o + " --shard 1/3", path));
-    INFO(r.err);
-    REQUIRE(r.exit_code == 0);
-    return path;
-  };
   SECTION("a plain part among subsurface parts") {
-    check_refused({p[0], shard1(options, "plain.prtpart"), p[2]}, out,
+    check_refused({p[0], bake_shard1(scene, dir, options, "plain.prtpart"), p[2]}, out,
                   "plain.prtpart: baked with other settings: no --subsurface here, --subsurface");
   }
   SECTION("a subsurface part among plain parts") {
@@ -236,12 +247,14 @@ TEST_CASE("cli farm: prt merge refuses subsurface parts that do not belong toget
                   "part_1.prtpart: baked with other settings: --subsurface here, none");
   }
   SECTION("another subsurface material") {
-    check_refused({p[0], shard1(options + " --subsurface red=skin1", "m.prtpart"), p[2]}, out,
-                  "m.prtpart: baked with other settings: subsurface materials");
+    check_refused(
+        {p[0], bake_shard1(scene, dir, options + " --subsurface red=skin1", "m.prtpart"), p[2]},
+        out, "m.prtpart: baked with other settings: subsurface materials");
   }
   SECTION("another subsurface scale") {
-    check_refused({p[0], shard1(subsurface + " --subsurface-scale 3", "sc.prtpart"), p[2]}, out,
-                  "sc.prtpart: baked with other settings: subsurface mm_per_unit 3.0 here, 0.0 in");
+    check_refused(
+        {p[0], bake_shard1(scene, dir, subsurface + " --subsurface-scale 3", "sc.prtpart"), p[2]},
+        out, "sc.prtpart: baked with other settings: subsurface mm_per_unit 3.0 here, 0.0 in");
   }
   SECTION("the material on other vertices") {
     const fs::path v = dir / "v";
@@ -316,18 +329,13 @@ TEST_CASE(
     "bytes") {
   const fs::path dir = scratch("farm_variants");
   const fs::path scene = make_field(dir, 300);
-  for (const std::string options :
-       {"--transfer interreflected --bounces 2 --order 4 --samples 16 --precision f16",
-        "--transfer interreflected --bounces 2 --order 4 --samples 16 --bounce-precision f16",
-        "--transfer interreflected --order 3 --samples 16 --bounce-precision f16",
-        "--transfer unshadowed --ao --samples 16"}) {
-    INFO(options);
-    const fs::path single = dir / "single.prt";
-    REQUIRE(run(bake_line(scene, options, single)).exit_code == 0);
-    check_merge_identical(bake_shards(scene, options, 3, dir), single, dir / "merged.prt");
-    fs::remove(dir / "merged.prt");
-    fs::remove(dir / "merged.prt.run.json");
-  }
+  check_each_merges_identical(
+      dir, scene,
+      {"--transfer interreflected --bounces 2 --order 4 --samples 16 --precision f16",
+       "--transfer interreflected --bounces 2 --order 4 --samples 16 --bounce-precision f16",
+       "--transfer interreflected --order 3 --samples 16 --bounce-precision f16",
+       "--transfer unshadowed --ao --samples 16"},
+      ".prt");
 }
 
 TEST_CASE("cli farm: a shard baked again writes the same part bytes") {
@@ -348,11 +356,7 @@ TEST_CASE("cli farm: prt merge refuses parts that do not belong together, in one
   const std::vector<fs::path> p = bake_shards(scene, options, 3, dir);
   const fs::path out = dir / "merged.prt";
   const auto shard1 = [&](const std::string& extra, const fs::path& s, const std::string& name) {
-    const fs::path path = dir / name;
-    const RunResult r = run(bake_line(s, options + " " + extra + " --shard 1/3", path));
-    INFO(r.err);
-    REQUIRE(r.exit_code == 0);
-    return path;
+    return bake_shard1(s, dir, options + " " + extra, name);
   };
   SECTION("a missing range") {
     check_refused({p[0], p[2]}, out, "shard 1/3 is missing");

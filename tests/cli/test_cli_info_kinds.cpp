@@ -1,6 +1,6 @@
 // tests/cli/test_cli_info_kinds.cpp — `prt info` of the files it reads besides coefficient files:
-// a form-factor cache (radiosity/form_factor_cache.h: patches, method, settings, size; version 1
-// still read) and its --help, which names every kind.
+// a form-factor cache (radiosity/form_factor_cache.h: patches, method, settings, revision, size;
+// version 1 still read) and its --help, which names every kind.
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
@@ -63,16 +63,19 @@ TEST_CASE("cli info: a form-factor cache states its patches, method, settings an
     INFO(text.out << text.err);
     REQUIRE(text.exit_code == 0);
     CHECK(text.out.find("form-factor cache") != std::string::npos);
-    CHECK(text.out.find("version 2") != std::string::npos);
+    CHECK(text.out.find("version 3") != std::string::npos);
     CHECK(text.out.find("method        " + c.method) != std::string::npos);
+    CHECK(text.out.find("revision      2 (current)") != std::string::npos);
     const RunResult json = run(prt_cli() + " info --json " + cache.string());
     REQUIRE(json.exit_code == 0);
     const nlohmann::json j = nlohmann::json::parse(json.out);
-    // The size is the header's 96 bytes and N² floats: the patch count it states is the file's.
+    // The size is the header's 104 bytes and N² floats: the patch count it states is the file's.
     const uint64_t n = j["patches"].get<uint64_t>();
     CHECK(n > 6);
-    CHECK(j["bytes"].get<uint64_t>() == 96 + 4 * n * n);
-    CHECK(fs::file_size(cache) == 96 + 4 * n * n);
+    CHECK(j["bytes"].get<uint64_t>() == 104 + 4 * n * n);
+    CHECK(fs::file_size(cache) == 104 + 4 * n * n);
+    CHECK(j["revision"] == 2);
+    CHECK(j["current_revision"] == 2);
     CHECK(j["method"].get<std::string>().rfind(c.method, 0) == 0);
     // The cache it describes is still the one radiosity reuses.
     const RunResult again =
@@ -94,6 +97,7 @@ TEST_CASE("cli info: a form-factor cache states its patches, method, settings an
   CHECK(v1.out.find("version 1") != std::string::npos);
   CHECK(v1.out.find("patches       2 ") != std::string::npos);
   CHECK(v1.out.find("not recorded") != std::string::npos);
+  CHECK(v1.out.find("revision      1 (earlier than this prt's 2") != std::string::npos);
   // A corrupt one is refused with one line naming the file.
   std::string bytes = slurp(old);
   bytes[70] ^= 0x10;

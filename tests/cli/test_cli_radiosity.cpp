@@ -1,7 +1,9 @@
 // `prt radiosity` as a user runs it: bad emission, albedo and --max-edge refused with one line
 // on stderr and nothing written (exit 2 for the command line, 1 for the scene file's own
 // problems, README "Exit status"); a small lit room written and lit.
+#include <cstdint>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -11,6 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli_test_support.h"
+#include "prt/formats/crc32c.h"
 
 namespace fs = std::filesystem;
 
@@ -59,6 +62,30 @@ void check_refused(const fs::path& dir, const std::string& args, const std::stri
   CHECK(line_count(r.err) == 1);
   CHECK(r.err.find(expected) != std::string::npos);
   for (const char* name : {"out.png", "out.glb", "out.csv"}) CHECK_FALSE(fs::exists(dir / name));
+}
+
+// A form-factor cache's bytes (version 3, docs/FORMAT.md) with its algorithm revision set to
+// `revision`, every factor times `scale`, and the checksum resealed.
+std::string with_revision(std::string bytes, uint32_t revision, float scale) {
+  std::memcpy(&bytes[96], &revision, 4);
+  for (std::size_t at = 104; at + 4 <= bytes.size(); at += 4) {
+    float f;
+    std::memcpy(&f, &bytes[at], 4);
+    f *= scale;
+    std::memcpy(&bytes[at], &f, 4);
+  }
+  std::memset(&bytes[48], 0, 4);
+  const uint32_t crc = prt::crc32c(bytes.data(), bytes.size());
+  std::memcpy(&bytes[48], &crc, 4);
+  return bytes;
+}
+
+// `prt info FILE`'s standard output.
+std::string info_of(const std::string& file) {
+  const RunResult r = prt::test::cli::run(prt::test::cli::prt_cli() + " info " + file);
+  INFO(r.err);
+  CHECK(r.exit_code == 0);
+  return r.out;
 }
 
 }  // namespace
@@ -193,6 +220,48 @@ TEST_CASE("prt radiosity --form-factor-cache: saved, reused, refused for another
   CHECK(r.err.find("--move chair") != std::string::npos);
 }
 
+// A cache of an earlier revision of the form-factor algorithms (here its revision field set back
+// to 1 and its factors halved, so that loading them would show) is recomputed and saved over,
+// with one warning line on stderr that --quiet does not silence: the CSV is a run without
+// cache's and the file the one a fresh run saves. A later revision is refused with one line,
+// nothing written. `prt info` names the revision of each.
+TEST_CASE("prt radiosity --form-factor-cache: a cache of earlier algorithms is recomputed",
+          "[radiosity][cli][cache]") {
+  const fs::path dir = scratch("stale_cache");
+  const std::string room = write_room(dir, "5 5 5", "0.7 0.7 0.7", false).string();
+  const std::string cache = (dir / "room.ffm").string();
+  const std::string common = room +
+                             " --max-edge 0.25 --form-factors rays --rays 200 --emitter-rows "
+                             "reciprocal --tolerance 1e-8 --quiet --csv ";
+  RunResult r = run(common + (dir / "a.csv").string() + " --form-factor-cache " + cache);
+  INFO(r.err);
+  REQUIRE(r.exit_code == 0);
+  const std::string saved = slurp(cache);
+  CHECK(info_of(cache).find("revision      2 (current)") != std::string::npos);
+  REQUIRE(run(common + (dir / "none.csv").string()).exit_code == 0);
+  CHECK(slurp(dir / "a.csv") == slurp(dir / "none.csv"));
+
+  std::ofstream(cache, std::ios::binary) << with_revision(saved, 1, 0.5f);
+  CHECK(info_of(cache).find("revision      1 (earlier than this prt's 2") != std::string::npos);
+  r = run(common + (dir / "b.csv").string() + " --form-factor-cache " + cache);
+  INFO(r.err);
+  REQUIRE(r.exit_code == 0);
+  CHECK(line_count(r.err) == 1);
+  CHECK(r.err.find("prt radiosity: warning: " + cache +
+                   ": form factors of algorithm revision 1, earlier than this prt's 2: "
+                   "recomputed and saved over it") != std::string::npos);
+  CHECK(slurp(dir / "b.csv") == slurp(dir / "none.csv"));
+  CHECK(slurp(cache) == saved);
+
+  const std::string later = with_revision(saved, 3, 1.f);
+  std::ofstream(cache, std::ios::binary) << later;
+  CHECK(info_of(cache).find("revision      3 (later than this prt's 2: refused)") !=
+        std::string::npos);
+  check_refused(dir, common + (dir / "out.csv").string() + " --form-factor-cache " + cache,
+                cache + ": form factors of algorithm revision 3, this prt computes revision 2", 1);
+  CHECK(slurp(cache) == later);
+}
+
 TEST_CASE("prt radiosity --adaptive: refines in passes to the budget, bad values refused",
           "[radiosity][cli]") {
   const fs::path dir = scratch("adaptive");
@@ -292,6 +361,21 @@ TEST_CASE(
   CHECK(described.at("links").get<uint64_t>() > 0);
   CHECK(described.at("patches").get<uint64_t>() > 0);
   CHECK(described.at("keys").at("lighting").get<std::string>().size() == 16);
+  CHECK(described.at("revision") == 1);
+  CHECK(described.at("current_revision") == 1);
+  // A link cache of a later revision of the link algorithms (the header's revision field, which
+  // the reader checks before the checksum) is refused with one line naming it.
+  {
+    std::string later = bytes(dir / "room.links");
+    later[112] = 2;
+    const fs::path later_dir = scratch("hierarchical_later");
+    std::ofstream(later_dir / "later.links", std::ios::binary) << later;
+    check_refused(
+        later_dir,
+        room + " --solver hierarchical --max-edge 0.1 --form-factor-cache " +
+            (later_dir / "later.links").string() + " --csv " + (later_dir / "out.csv").string(),
+        "later.links: link cache of algorithm revision 2, this prt computes revision 1", 1);
+  }
   const RunResult relit = run(cached + (dir / "relit.csv").string() + " --emission lamp=2,4,8");
   INFO(relit.out << relit.err);
   REQUIRE(relit.exit_code == 0);

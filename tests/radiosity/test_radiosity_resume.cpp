@@ -82,7 +82,8 @@ TEST_CASE("form-factor cache: round trip gives the same matrix and a bit-identic
   const fs::path path = scratch("round_trip") / "room.ffm";
   const uint64_t key = form_factor_key(patches, ff);
   save_form_factors(path.string(), f, key);
-  REQUIRE(fs::file_size(path) == 64 + 4 * f.f.size());
+  REQUIRE(fs::file_size(path) == 104 + 4 * f.f.size());
+  CHECK(form_factor_cache_revision(path.string()) == kFormFactorRevision);
   const FormFactorMatrix loaded = load_form_factors(path.string(), key);
   REQUIRE(loaded.size == f.size);
   CHECK(loaded.f == f.f);
@@ -179,6 +180,17 @@ TEST_CASE("form-factor cache: another scene, other options, truncation and corru
   CHECK(load_error(write("magic.ffm", magic), key).find("bad magic") != std::string::npos);
   CHECK(load_error(write("long.ffm", bytes + "x"), key).find("unexpected bytes") !=
         std::string::npos);
+  // A cache of an earlier (or a later) revision of the algorithms is refused under any key,
+  // with one line naming its revision; its revision is read without the matrix.
+  for (uint32_t revision : {1u, kFormFactorRevision + 1}) {
+    const std::string other = (dir / ("revision" + std::to_string(revision) + ".ffm")).string();
+    save_form_factors(other, f, key, &ff, revision);
+    CHECK(form_factor_cache_revision(other) == revision);
+    const std::string error = load_error(other, key);
+    CHECK(error.find(other + ": form factors of algorithm revision " + std::to_string(revision) +
+                     ", this prt computes revision " + std::to_string(kFormFactorRevision)) == 0);
+    CHECK(error.find('\n') == std::string::npos);
+  }
   // The untouched file still loads.
   CHECK(load_form_factors(path, key).f == f.f);
 }

@@ -2,6 +2,8 @@
 // radiance as its steps run by hand, the patch scene handed to the caller before any ray, its
 // refusals before anything is written, and the files it writes.
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <stdexcept>
@@ -10,6 +12,9 @@
 
 #include <catch2/catch.hpp>
 
+#include "numerics/hash.h"
+#include "prt/formats/crc32c.h"
+#include "radiosity/form_factor_cache.h"
 #include "radiosity/form_factors.h"
 #include "radiosity/patches.h"
 #include "radiosity/scene_solve.h"
@@ -47,6 +52,69 @@ std::string write_room(const fs::path& dir) {
          "o lamp\nusemtl lamp\nf 9 10 11 12\n"
          "o panel\nusemtl panel\nf 13 14 15 16\n";
   return (dir / "room.obj").string();
+}
+
+// A request to solve write_room's room, written in `dir`, subdivided to `max_edge`.
+SceneSolveRequest room_request(const fs::path& dir, double max_edge) {
+  SceneSolveRequest request;
+  request.scene_path = write_room(dir);
+  request.max_edge = max_edge;
+  return request;
+}
+
+// The patches solve_scene makes of `request` (no moves): the scene loaded, its materials
+// overridden and subdivided.
+std::vector<Patch> patches_of(const SceneSolveRequest& request) {
+  prt::scene::Scene scene = prt::scene::load_scene(request.scene_path);
+  prt::scene::apply_emission(scene, request.emission);
+  prt::scene::apply_albedo(scene, request.albedo);
+  if (request.max_edge) scene = prt::scene::subdivide_to_edge_length(scene, *request.max_edge);
+  return make_patches(scene);
+}
+
+// The key of ray form factors with Sobol' samples and reciprocal emitter rows as docs/FORMAT.md
+// ("Key") gives it: without the revision word (`revision1`), the key a prt before revisions
+// were recorded computed; with it, form_factor_key's.
+uint64_t ray_reciprocal_key(const std::vector<Patch>& patches, const FormFactorOptions& o,
+                            bool revision1) {
+  prt::numerics::WordHash h;
+  h.add_u64(patches.size());
+  for (const Patch& p : patches)
+    for (const glm::dvec3& c : p.corners)
+      for (int k = 0; k < 3; ++k) h.add_float(static_cast<float>(c[k]));
+  h.add_word(1);  // rays
+  h.add_word(static_cast<uint32_t>(o.rays_per_patch));
+  h.add_u64(o.seed);
+  h.add_word(static_cast<uint32_t>(o.emitter_rays_per_patch));
+  for (std::size_t i = 0; i < patches.size(); ++i)
+    if (patches[i].emission != glm::dvec3(0.0)) h.add_u64(i);
+  h.add_word(0x50000000u + 1);  // Sobol'
+  h.add_word(0x45000000u + 1);  // reciprocal
+  h.add_word(static_cast<uint32_t>(o.quadrature_points));
+  if (!revision1) h.add_word(0x52000000u + kFormFactorRevision);
+  return h.finish();
+}
+
+// A version-2 cache (revision 1, the layout before revisions were recorded) of N × N factors
+// all `value`, under `key`: what an earlier prt wrote and would load again.
+void write_version2_cache(const std::string& path, uint64_t key, uint64_t n, float value) {
+  std::vector<unsigned char> bytes(96 + 4 * n * n, 0);
+  const char magic[8] = {'P', 'R', 'T', 'F', 'F', 'M', '1', '\n'};
+  std::memcpy(bytes.data(), magic, 8);
+  const uint32_t version = 2, header = 96, method = 1, flags = 0;
+  const uint64_t size = bytes.size();
+  std::memcpy(&bytes[8], &version, 4);
+  std::memcpy(&bytes[12], &header, 4);
+  std::memcpy(&bytes[16], &key, 8);
+  std::memcpy(&bytes[24], &n, 8);
+  std::memcpy(&bytes[32], &size, 8);
+  std::memcpy(&bytes[40], &method, 4);
+  std::memcpy(&bytes[44], &flags, 4);
+  for (uint64_t k = 0; k < n * n; ++k) std::memcpy(&bytes[96 + 4 * k], &value, 4);
+  const uint32_t crc = prt::crc32c(bytes.data(), bytes.size());
+  std::memcpy(&bytes[48], &crc, 4);
+  std::ofstream(path, std::ios::binary)
+      .write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
 }
 
 }  // namespace
@@ -142,9 +210,7 @@ TEST_CASE("solve_scene refuses before writing: a bad request, a caller's check, 
 TEST_CASE("solve_scene writes the cache, then loads it, and the per-emitter responses",
           "[radiosity][scene-solve]") {
   const fs::path dir = scratch("files");
-  SceneSolveRequest request;
-  request.scene_path = write_room(dir);
-  request.max_edge = 0.4;
+  SceneSolveRequest request = room_request(dir, 0.4);
   request.form_factor_cache = (dir / "cache.ff").string();
   request.per_emitter_path = (dir / "responses.prte").string();
   const SceneSolution saved = solve_scene(request);
@@ -157,6 +223,54 @@ TEST_CASE("solve_scene writes the cache, then loads it, and the per-emitter resp
   CHECK(loaded.cache == SceneSolution::Cache::Loaded);
   CHECK(loaded.form_factor_seconds == 0.0);  // nothing computed
   CHECK(loaded.vertex_radiance == saved.vertex_radiance);
+}
+
+// Reciprocal emitter rows changed (revision 2: checked against the emitter's rays), so a cache
+// an earlier prt saved for the same patches and options, under the key it computed, holds other
+// rows. It must be recomputed and saved over, with a notice, not loaded: the radiance then
+// equals a run without a cache, and the file is a current one that the next run loads. (The
+// stale rows here are all 1/(2N), far from any room's F, so loading them would show.)
+TEST_CASE("solve_scene recomputes a cache of an earlier algorithm revision and saves over it",
+          "[radiosity][scene-solve][cache]") {
+  const fs::path dir = scratch("stale_cache");
+  SceneSolveRequest request = room_request(dir, 0.4);
+  request.solve.tolerance = 1e-8;
+  request.form_factors.method = FormFactorMethod::Rays;
+  request.form_factors.rays_per_patch = 64;
+  request.form_factors.emitter_rows = EmitterRows::Reciprocal;
+  const std::vector<Patch> patches = patches_of(request);
+  const uint64_t n = patches.size();
+  // The key replayed here is form_factor_key's, so the one without the revision word is the
+  // earlier prt's.
+  REQUIRE(ray_reciprocal_key(patches, request.form_factors, false) ==
+          form_factor_key(patches, request.form_factors));
+  const uint64_t old_key = ray_reciprocal_key(patches, request.form_factors, true);
+  CHECK(old_key != form_factor_key(patches, request.form_factors));
+  const SceneSolution fresh = solve_scene(request);  // no cache
+
+  request.form_factor_cache = (dir / "room.ffm").string();
+  write_version2_cache(request.form_factor_cache, old_key, n, 0.5f / float(n));
+  const FormFactorCacheInfo stale = read_form_factor_cache_info(request.form_factor_cache);
+  REQUIRE(stale.key == old_key);  // a well-formed file an earlier prt would have loaded
+  REQUIRE(stale.revision == 1);
+  REQUIRE(stale.patches == n);
+
+  const SceneSolution recomputed = solve_scene(request);
+  CHECK(recomputed.cache == SceneSolution::Cache::Saved);
+  CHECK(recomputed.cache_notice.find(request.form_factor_cache +
+                                     ": form factors of algorithm "
+                                     "revision 1, earlier than this prt's 2") == 0);
+  CHECK(recomputed.cache_notice.find('\n') == std::string::npos);
+  CHECK(recomputed.files_written == std::vector<std::string>{request.form_factor_cache});
+  CHECK(recomputed.vertex_radiance == fresh.vertex_radiance);
+  const FormFactorCacheInfo saved = read_form_factor_cache_info(request.form_factor_cache);
+  CHECK(saved.revision == kFormFactorRevision);
+  CHECK(saved.key == form_factor_key(patches, request.form_factors));
+
+  const SceneSolution loaded = solve_scene(request);
+  CHECK(loaded.cache == SceneSolution::Cache::Loaded);
+  CHECK(loaded.cache_notice.empty());
+  CHECK(loaded.vertex_radiance == fresh.vertex_radiance);
 }
 
 TEST_CASE("the default form factors: analytic up to the patch limit, rays above",
@@ -188,9 +302,7 @@ TEST_CASE("the default above the patch limit stays within its stated error of an
   // The room of write_room at max edge 0.11: more patches than kAnalyticPatchLimit, so the
   // default is rays; analytic on the same patches is still cheap here (a few CPU seconds).
   const fs::path dir = scratch("choice");
-  SceneSolveRequest request;
-  request.scene_path = write_room(dir);
-  request.max_edge = 0.11;
+  SceneSolveRequest request = room_request(dir, 0.11);
   request.choose_method = true;
   request.solve.tolerance = 1e-6;
   const SceneSolution chosen = solve_scene(request);

@@ -14,14 +14,15 @@
 //     iteration limit;
 //   lighting: every patch's emission and albedo (double bit patterns): the "BF" oracle refined
 //     against the radiosity they give.
-// A loaded file must have the caller's geometry and settings keys (else one line naming the key
-// that differs); its lighting key tells whether the links are used as they are (the same light:
-// the last solve repeated, bit for bit) or re-checked for the new light
-// (hierarchical_solver.h, resume_hierarchical). Its CRC-32C (prt/formats/crc32c.h) must hold, the
-// order must be a permutation, the links in range and sorted, every number finite. Errors throw
-// std::runtime_error with one line that names the file; saving is atomic (prt/core/atomic_file.h),
-// so a failed save leaves no file behind. The bytes depend only on the solve's result, which does
-// not depend on the thread count.
+// The header also records the revision of the link algorithms (kLinkCacheRevision), which the
+// settings key covers from revision 2 on. A loaded file must be of the current revision and have
+// the caller's geometry and settings keys (else one line naming what differs); its lighting key
+// tells whether the links are used as they are (the same light: the last solve repeated, bit for
+// bit) or re-checked for the new light (hierarchical_solver.h, resume_hierarchical). Its CRC-32C
+// (prt/formats/crc32c.h) must hold, the order must be a permutation, the links in range and sorted,
+// every number finite. Errors throw std::runtime_error with one line that names the file; saving is
+// atomic (prt/core/atomic_file.h), so a failed save leaves no file behind. The bytes depend only on
+// the solve's result, which does not depend on the thread count.
 #pragma once
 
 #include <cstdint>
@@ -37,6 +38,13 @@
 
 namespace prt::radiosity {
 
+// The revision of the link algorithms (refinement, link values and visibility,
+// radiosity/links.h), raised whenever the same patches and settings give other links: 1, the
+// first (the caches written before revisions were recorded hold 0 there and are revision 1). A
+// cache of an earlier revision is stale: `prt radiosity` solves afresh and saves over it
+// (radiosity/scene_solve.h); one of a later revision is refused (link_cache_mismatch).
+constexpr uint32_t kLinkCacheRevision = 1;
+
 struct LinkCacheKeys {
   uint64_t geometry = 0, settings = 0, lighting = 0;
 };
@@ -47,7 +55,7 @@ LinkCacheKeys link_cache_keys(const std::vector<Patch>& patches,
 
 // What the header records (also for `prt info`).
 struct LinkCacheInfo {
-  uint32_t version = 0;
+  uint32_t version = 0, revision = 0;
   LinkCacheKeys keys;
   uint64_t patches = 0, links = 0, file_size = 0;
   bool fine = false;
@@ -74,8 +82,10 @@ LinkCacheInfo read_link_cache_info(const std::string& path);
 // and the rest are charged to `budget` (may be null) before they are read.
 LinkCache load_link_cache(const std::string& path, MemoryBudget* budget = nullptr);
 
-// "PATH: link cache made for another scene (geometry key …)" or "… with other hierarchical
-// settings (cache: …; asked: …)" when a key other than lighting differs; empty when they match.
+// "PATH: link cache of algorithm revision R, this prt computes revision …" when its revision is
+// not kLinkCacheRevision, "PATH: link cache made for another scene (geometry key …)" or "… with
+// other hierarchical settings (cache: …; asked: …)" when a key other than lighting differs; empty
+// when they match.
 std::string link_cache_mismatch(const std::string& path, const LinkCacheInfo& cached,
                                 const LinkCacheKeys& keys, const HierarchicalOptions& options,
                                 std::size_t patches);

@@ -87,9 +87,11 @@ struct SceneSolveRequest {
   bool choose_method = false;
   SolveOptions solve;
   // Form-factor cache (form_factor_cache.h) of the scene as loaded (before `moves`): absent →
-  // computed and saved; present → loaded when its key matches, refused otherwise. With the
-  // hierarchical solver a link cache (link_cache.h) of the same path, by the same rules on its
-  // geometry and settings keys; other emission or albedo re-check its links. Not with `moves`.
+  // computed and saved; present → loaded when its key matches, refused otherwise; of an earlier
+  // algorithm revision (kFormFactorRevision) → computed and saved over it, with
+  // SceneSolution::cache_notice. With the hierarchical solver a link cache (link_cache.h) of the
+  // same path, by the same rules on its revision and its geometry and settings keys; other
+  // emission or albedo re-check its links. Not with `moves`.
   std::string form_factor_cache;
   std::vector<ObjectMove> moves;  // form factors updated partially when a cache is loaded
   // Optional: per-emitter responses (emitter_solve.h), one more solve per emitter on the same
@@ -119,6 +121,7 @@ struct SceneSolution {
   double gather_seconds = 0;  // K from F (part of solve_seconds)
   enum class Cache { None, Loaded, Saved } cache = Cache::None;
   std::string cache_message;  // hierarchical solver: what the link cache did (one line)
+  std::string cache_notice;   // a cache of earlier algorithms recomputed and saved over (one line)
   FormFactorUpdate update;    // counts of the partial update
   double escape_probe = -1;   // escape fraction measured for albedo-1 scenes (else −1)
   std::vector<RefinementPass> refinement_passes;    // with `refinement`: one per solve
