@@ -6,7 +6,8 @@
 // load_link_cache must refuse a malformed file with a one-line std::runtime_error "PATH: …" and
 // never crash, over-read, hang, allocate what a header merely claims, or hit undefined behaviour.
 // What it accepts must hold what the solver resumed from it indexes blindly
-// (link_cache_invariants.h), and read_link_cache_info must agree with it.
+// (link_cache_invariants.h), read_link_cache_info must agree with it, and link_cache_mismatch
+// must describe a key that differs in one line naming the file.
 #include <cstddef>
 #include <cstdint>
 #include <cstdlib>
@@ -38,6 +39,21 @@ void check(const unsigned char* bytes, std::size_t size) {
   if (info.patches != cache.info.patches || info.links != cache.info.links ||
       info.file_size != cache.info.file_size)
     std::abort();
+  // The refusals a solve prints for another scene or other settings (the header's doubles and
+  // counts formatted, whatever they hold): one line naming the file; none for the file's keys.
+  const prt::radiosity::LinkCacheKeys keys = cache.info.keys;
+  const prt::radiosity::HierarchicalOptions options;
+  const std::size_t patches = static_cast<std::size_t>(cache.info.patches);
+  if (!prt::radiosity::link_cache_mismatch(path, info, keys, options, patches).empty())
+    std::abort();
+  prt::fuzz::check_one_line_error(
+      prt::radiosity::link_cache_mismatch(path, info, {~keys.geometry, keys.settings, 0}, options,
+                                          patches),
+      path);
+  prt::fuzz::check_one_line_error(
+      prt::radiosity::link_cache_mismatch(path, info, {keys.geometry, ~keys.settings, 0}, options,
+                                          patches),
+      path);
 }
 
 }  // namespace
