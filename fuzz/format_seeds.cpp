@@ -1,6 +1,7 @@
 // fuzz/format_seeds.cpp — the seeds of format_seeds.h.
 #include "format_seeds.h"
 
+#include <algorithm>
 #include <cstdint>
 #include <cstring>
 #include <fstream>
@@ -9,11 +10,13 @@
 #include <string>
 #include <vector>
 
+#include "bake/transfer_part_file.h"
 #include "prt/emitters/emitter_responses.h"
 #include "prt/formats/cpca_file.h"
 #include "prt/formats/glossy_transfer_file.h"
 #include "prt/formats/haar_transfer_file.h"
 #include "radiosity/form_factor_cache.h"
+#include "radiosity/link_cache.h"
 #include "scene/image_codec.h"
 
 namespace prt::fuzz {
@@ -179,6 +182,181 @@ void write_form_factor_seeds(const fs::path& dir) {
   }
 }
 
+// Link caches of N = 1, 3 and 4 patches, as save_link_cache writes a solve's: a leaf order,
+// the starting radiance and links sorted by (receiver, sender) between nodes of the 2N − 1 node
+// tree, exact ones among them; coarse and fine transfer.
+void write_link_cache_seeds(const fs::path& dir) {
+  for (uint32_t n : {1u, 3u, 4u}) {
+    radiosity::HierarchicalSolution solved;
+    for (uint32_t p = 0; p < n; ++p) solved.hierarchy.order.push_back((p + 1) % n);
+    for (uint32_t p = 0; p < n; ++p) solved.last_start.push_back({wave(p) + 1.0, 0.5, 0.25 * p});
+    const uint32_t nodes = 2 * n - 1;
+    for (uint32_t r = 0; r < nodes; ++r)
+      for (uint32_t s = 0; s < nodes; s += 2) {
+        if (r == s && n > 1) continue;
+        const uint32_t exact = (r + s) % 3 == 0 ? radiosity::Link::kExact : 0u;
+        solved.links.push_back({r, s | exact, 0.01f * float(1 + r + s)});
+      }
+    std::sort(solved.links.begin(), solved.links.end(),
+              [](const radiosity::Link& a, const radiosity::Link& b) {
+                return a.receiver != b.receiver ? a.receiver < b.receiver : a.source < b.source;
+              });
+    solved.stats.fine = n != 3;
+    radiosity::HierarchicalOptions options;
+    options.max_passes = 2 + static_cast<int>(n);
+    radiosity::LinkCacheKeys keys{0x1111u * n, 0x2222u * n, 0x3333u * n};
+    radiosity::save_link_cache((dir / ("seed_" + std::to_string(n) + ".links")).string(), keys,
+                               options, solved);
+  }
+}
+
+// A quad of 4 vertices (2 triangles, 1 primitive): the scene of the part seeds.
+scene::Scene part_scene() {
+  scene::Scene s;
+  s.positions = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+  s.normals.assign(4, {0, 0, 1});
+  s.albedo = {{0.5f, 0.5f, 0.5f}, {0.8f, 0.2f, 0.2f}, {0.2f, 0.8f, 0.2f}, {0.2f, 0.2f, 0.8f}};
+  s.triangles = {{0, 1, 2}, {0, 2, 3}};
+  scene::ScenePrimitive quad;
+  quad.name = "quad";
+  quad.vertex_count = 4;
+  quad.triangle_count = 2;
+  s.primitives = {quad};
+  s.source_path = "quad.obj";
+  return s;
+}
+
+void write_part(const fs::path& path, const PartFile& part) {
+  const Status s = write_part_file(path.string(), part);
+  if (!s.ok()) throw std::runtime_error(s.message());
+}
+
+// SH parts: shadowed with AO and bent normals (shard 0 of 2: the scene sections), interreflected
+// with gather rows and hits (shard 1 of 2), and a subsurface bake's part (shard 0 of 1).
+void write_sh_part_seeds(const fs::path& dir, const scene::Scene& scene) {
+  bake::BakeOptions options;
+  options.order = 2;
+  options.samples = 16;
+  options.ao = true;
+  options.bent_normals = true;
+  bake::TransferPart part;
+  part.shard = {0, 2};
+  part.vertices = 4;
+  part.rows = bake::shard_rows(4, part.shard);
+  part.coefficients = 4;
+  for (std::size_t i = 0; i < part.rows.size() * 4; ++i) part.direct.push_back(wave(i));
+  part.ao.assign(part.rows.size(), 0.75f);
+  for (std::size_t i = 0; i < part.rows.size(); ++i) part.bent.insert(part.bent.end(), {0, 0, 1});
+  part.rays = 32;
+  part.ray_offset_max = 1e-4;
+  write_part(dir / "sh_shadowed.prtpart", bake::encode_transfer_part(part, scene, options, "seed"));
+
+  options.kind = TransferKind::Interreflected;
+  options.ao = options.bent_normals = false;
+  part.shard = {1, 2};
+  part.rows = bake::shard_rows(4, part.shard);
+  part.ao.clear();
+  part.bent.clear();
+  part.gather_rows = {2, 1};
+  const std::vector<bake::CompactHit> hits = {{0, 100, 200}, {1, 65535, 0}, {0, 0, 30000}};
+  part.hits_view = hits.data();
+  part.hit_count = hits.size();
+  part.back_face_hits = 1;
+  write_part(dir / "sh_interreflected.prtpart",
+             bake::encode_transfer_part(part, scene, options, "seed"));
+
+  bake::SubsurfaceBakeOptions subsurface;
+  subsurface.materials = {{{0.01, 0.02, 0.03}, {1.0, 1.5, 2.0}, 1.3}};
+  subsurface.vertex_material = {0, -1, 0, 0};
+  subsurface.mm_per_unit = 100;
+  options.kind = TransferKind::Shadowed;
+  bake::TransferPart whole;
+  whole.shard = {0, 1};
+  whole.vertices = 4;
+  whole.rows = bake::shard_rows(4, whole.shard);
+  whole.coefficients = 4;
+  whole.direct.assign(16, 0.125);
+  write_part(dir / "sh_subsurface.prtpart",
+             bake::encode_transfer_part(whole, scene, options, "seed", &subsurface));
+}
+
+// Haar parts: shadowed sparse vectors (shard 0 of 1), interreflected wavelets and gather rows
+// (shard 1 of 2, one row of an 8 × 8 cube).
+void write_haar_part_seeds(const fs::path& dir, const scene::Scene& scene) {
+  bake::HaarBakeOptions options;
+  options.cube_size = 8;
+  bake::HaarPart part;
+  part.shard = {0, 1};
+  part.vertices = 4;
+  part.rows = bake::shard_rows(4, part.shard);
+  part.sparse_lengths = {2, 0, 1, 3};
+  part.sparse_index = {0, 7, 383, 1, 2, 3};
+  for (std::size_t i = 0; i < part.sparse_index.size(); ++i) part.sparse_values.push_back(wave(i));
+  part.rays = 64;
+  write_part(dir / "haar_shadowed.prtpart", bake::encode_haar_part(part, scene, options, "seed"));
+
+  options.transport = TransferKind::Interreflected;
+  bake::HaarPart bounce;
+  bounce.shard = {1, 4};
+  bounce.vertices = 4;
+  bounce.rows = bake::shard_rows(4, bounce.shard);
+  for (std::size_t i = 0; i < bounce.rows.size() * 6 * 8 * 8; ++i)
+    bounce.wavelets.push_back(0.01f * wave(i));
+  bounce.gather_lengths.assign(bounce.rows.size(), 2);
+  for (std::size_t i = 0; i < 2 * bounce.rows.size(); ++i) {
+    bounce.gather_columns.push_back(static_cast<uint32_t>(i % 4));
+    bounce.gather_weights.push_back(0.25f);
+  }
+  bounce.rays = 64;
+  write_part(dir / "haar_interreflected.prtpart",
+             bake::encode_haar_part(bounce, scene, options, "seed"));
+}
+
+// A glossy part with one bounce (shard 0 of 1: the scene and the glossy inputs, a Lambert and a
+// Ward material).
+void write_glossy_part_seeds(const fs::path& dir, const scene::Scene& scene) {
+  bake::GlossyBakeOptions options;
+  options.order = 2;
+  options.samples = 16;
+  options.bounces = 1;
+  bake::GlossyInputs inputs;
+  inputs.tangents.assign(4, {1, 0, 0, 1});
+  brdf::Material ward;
+  ward.model = brdf::MaterialModel::kWard;
+  ward.specular = brdf::grey(0.25);
+  ward.alpha_x = 0.2;
+  ward.alpha_y = 0.2;
+  inputs.materials = {brdf::Material{}, ward};
+  inputs.material_of_vertex = {0, 1, 1, 0};
+  bake::GlossyPart part;
+  part.shard = {0, 1};
+  part.vertices = 4;
+  part.rows = bake::shard_rows(4, part.shard);
+  part.order = 2;
+  for (std::size_t i = 0; i < 4 * 16; ++i) part.direct.push_back(0.1f * wave(i));
+  part.hit_counts = {1, 0, 2, 0};
+  part.hits = {{3, 1, 0.25f, 0.5f}, {0, 0, 0.1f, 0.1f}, {9, 1, 0.6f, 0.3f}};
+  part.rays = 64;
+  write_part(dir / "glossy.prtpart",
+             bake::encode_glossy_part(part, scene, inputs, options, "seed"));
+}
+
+// A form-factor part: rows [1, 3) of a 3 × 3 matrix (shard 1 of 2).
+void write_form_factor_part_seeds(const fs::path& dir) {
+  const std::vector<float> rows = {0.0f, 0.5f, 0.25f, 0.5f, 0.0f, 0.125f};
+  write_part(dir / "form_factors.prtpart",
+             bake::encode_form_factor_part({1, 2}, 0x0123456789abcdefull, 3, 1, rows,
+                                           R"({"resolution":64})", 7, "seed"));
+}
+
+void write_part_seeds(const fs::path& dir) {
+  const scene::Scene scene = part_scene();
+  write_sh_part_seeds(dir, scene);
+  write_haar_part_seeds(dir, scene);
+  write_glossy_part_seeds(dir, scene);
+  write_form_factor_part_seeds(dir);
+}
+
 // Selector byte (fuzz_merl_brdf.cpp) + file: a bare header (refused: truncated), and the
 // table-sized expansion of a header and a few doubles (accepted: byte 1 of the remainder is 0,
 // an exact size; one with a negative value, which evaluates as 0).
@@ -239,9 +417,9 @@ void write_texture_seeds(const fs::path& dir) {
 }  // namespace
 
 void write_format_seeds(const fs::path& out) {
-  const char* names[] = {"fuzz_glossy_file", "fuzz_cpca_file", "fuzz_emitter_responses",
-                         "fuzz_haar_file",   "fuzz_merl_brdf", "fuzz_form_factor_cache",
-                         "fuzz_texture"};
+  const char* names[] = {"fuzz_glossy_file", "fuzz_cpca_file",  "fuzz_emitter_responses",
+                         "fuzz_haar_file",   "fuzz_merl_brdf",  "fuzz_form_factor_cache",
+                         "fuzz_texture",     "fuzz_link_cache", "fuzz_part_file"};
   for (const char* name : names) fs::create_directories(out / name);
   write_glossy_seeds(out / "fuzz_glossy_file");
   write_cpca_seeds(out / "fuzz_cpca_file");
@@ -250,6 +428,8 @@ void write_format_seeds(const fs::path& out) {
   write_merl_seeds(out / "fuzz_merl_brdf");
   write_form_factor_seeds(out / "fuzz_form_factor_cache");
   write_texture_seeds(out / "fuzz_texture");
+  write_link_cache_seeds(out / "fuzz_link_cache");
+  write_part_seeds(out / "fuzz_part_file");
 }
 
 }  // namespace prt::fuzz

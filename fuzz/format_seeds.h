@@ -8,7 +8,8 @@
 namespace prt::fuzz {
 
 // Writes OUT/fuzz_glossy_file, fuzz_cpca_file, fuzz_emitter_responses, fuzz_haar_file,
-// fuzz_form_factor_cache, fuzz_merl_brdf and fuzz_texture (creating the folders). Throws
+// fuzz_form_factor_cache, fuzz_merl_brdf, fuzz_texture, fuzz_link_cache and fuzz_part_file
+// (creating the folders). Throws
 // std::runtime_error when a writer fails.
 void write_format_seeds(const std::filesystem::path& out);
 

@@ -7,7 +7,8 @@
 //   corpus/fuzz_env_map/        selector byte + small .hdr and .pfm maps of each layout;
 //   corpus/fuzz_env_map_exr/    selector byte + small .exr maps of each layout (its regression_*
 //                               files are kept findings of the target, not written here);
-//   corpus/fuzz_glossy_file/ … fuzz_texture/: the binary formats and textures (format_seeds.h).
+//   corpus/fuzz_glossy_file/ … fuzz_texture/, fuzz_link_cache/, fuzz_part_file/: the binary
+//                               formats, textures, link caches and farm parts (format_seeds.h).
 // Usage: make_fuzz_corpus OUT_DIR   (scripts/fuzz.sh runs it when a corpus folder is empty).
 #include <cstdio>
 #include <cstring>

@@ -11,8 +11,9 @@
 #   -j JOBS     worker processes per target sharing its corpus (RUNS split between them), default 1
 #   -l BYTES    largest input (libFuzzer -max_len), default per target (max_len_of below)
 #   TARGET      fuzz_transfer_file fuzz_glossy_file fuzz_cpca_file fuzz_emitter_responses
-#               fuzz_haar_file fuzz_form_factor_cache fuzz_merl_brdf fuzz_texture fuzz_scene_obj
-#               fuzz_scene_gltf fuzz_env_map fuzz_env_map_exr (default: all)
+#               fuzz_haar_file fuzz_form_factor_cache fuzz_link_cache fuzz_part_file
+#               fuzz_merl_brdf fuzz_texture fuzz_scene_obj fuzz_scene_gltf fuzz_env_map
+#               fuzz_env_map_exr (default: all)
 # Environment: BUILD_DIR (default <repo>/build-fuzz), REGENERATE_CORPUS=1 rewrites the seeds,
 # PRT_FUZZ_NO_INSTALL=1 fails instead of installing clang when it is missing (the ctest smoke run,
 # tests/scripts/check_fuzz_smoke.sh, skips before calling this). The build uses ccache when present.
@@ -36,8 +37,8 @@ while getopts "n:t:j:l:" opt; do
 done
 shift $((OPTIND - 1))
 ALL_TARGETS=(fuzz_transfer_file fuzz_glossy_file fuzz_cpca_file fuzz_emitter_responses
-  fuzz_haar_file fuzz_form_factor_cache fuzz_merl_brdf fuzz_texture fuzz_scene_obj fuzz_scene_gltf
-  fuzz_env_map fuzz_env_map_exr)
+  fuzz_haar_file fuzz_form_factor_cache fuzz_link_cache fuzz_part_file fuzz_merl_brdf
+  fuzz_texture fuzz_scene_obj fuzz_scene_gltf fuzz_env_map fuzz_env_map_exr)
 TARGETS=("$@")
 if [ ${#TARGETS[@]} -eq 0 ]; then TARGETS=("${ALL_TARGETS[@]}"); fi
 

@@ -85,6 +85,17 @@ const T* section_values(const prt::PartFile& f, uint32_t tag, uint64_t count,
   return count ? reinterpret_cast<const T*>(s->data()) : nullptr;
 }
 
+// a · b values, computed without wrapping: BakeError "NAME: WHAT section: …" when the product
+// passes what section_values accepts (2⁴⁰ bytes), so that counts a hostile header gives (rows,
+// vertices, triangles) cannot wrap to the size of a small section.
+uint64_t count_of(uint64_t a, uint64_t b, const std::string& name, const char* what) {
+  constexpr uint64_t kLimit = uint64_t{1} << 40;
+  if (a != 0 && b > kLimit / a)
+    throw BakeError(name + ": " + what + " section: " + std::to_string(a) + " x " +
+                    std::to_string(b) + " values, more than a part holds");
+  return a * b;
+}
+
 // The same values copied into an array of their own (no zero-filling first).
 template <class T>
 std::vector<T> read_array(const prt::PartFile& f, uint32_t tag, uint64_t count,
@@ -157,7 +168,8 @@ scene::Scene decode_scene(const prt::PartFile& f, const std::string& name) {
     scene.skipped_degenerate_triangles = j.at("skipped_degenerate_triangles").get<std::size_t>();
     const uint64_t T = j.at("triangles").get<uint64_t>();
     const auto vec3s = [&](uint32_t tag, const char* what) {
-      const std::vector<float> raw = read_array<float>(f, tag, 3 * V, name, what);
+      const std::vector<float> raw =
+          read_array<float>(f, tag, count_of(3, V, name, what), name, what);
       std::vector<glm::vec3> out(V);
       for (uint64_t v = 0; v < V; ++v) out[v] = {raw[3 * v], raw[3 * v + 1], raw[3 * v + 2]};
       return out;
@@ -166,7 +178,7 @@ scene::Scene decode_scene(const prt::PartFile& f, const std::string& name) {
     scene.normals = vec3s(kNormals, "normals");
     scene.albedo = vec3s(kAlbedo, "albedo");
     const std::vector<uint32_t> tris =
-        read_array<uint32_t>(f, kTriangles, 3 * T, name, "triangles");
+        read_array<uint32_t>(f, kTriangles, count_of(3, T, name, "triangles"), name, "triangles");
     scene.triangles.resize(T);
     for (uint64_t t = 0; t < T; ++t) {
       scene.triangles[t] = {tris[3 * t], tris[3 * t + 1], tris[3 * t + 2]};
@@ -185,7 +197,8 @@ scene::Scene decode_scene(const prt::PartFile& f, const std::string& name) {
   } catch (const nlohmann::json::exception& e) {
     throw BakeError(name + ": scene section: " + e.what());
   }
-  if (prt::geometry_fingerprint(&scene.positions[0].x, V) != f.fingerprint)
+  const float* xyz = scene.positions.empty() ? nullptr : &scene.positions[0].x;
+  if (prt::geometry_fingerprint(xyz, V) != f.fingerprint)
     throw BakeError(name + ": the scene's positions do not match the header's fingerprint");
   return scene;
 }
@@ -267,7 +280,8 @@ std::string glossy_inputs_hash(const GlossyInputs& in) {
 GlossyInputs decode_glossy_inputs(const prt::PartFile& f, const std::string& name) {
   const uint64_t V = f.total_rows;
   GlossyInputs in;
-  const std::vector<float> t = read_array<float>(f, kGlossyTangents, 4 * V, name, "tangents");
+  const std::vector<float> t =
+      read_array<float>(f, kGlossyTangents, count_of(4, V, name, "tangents"), name, "tangents");
   in.tangents.resize(V);
   for (uint64_t v = 0; v < V; ++v)
     in.tangents[v] = {t[4 * v], t[4 * v + 1], t[4 * v + 2], t[4 * v + 3]};
@@ -354,6 +368,7 @@ void decode_haar(const prt::PartFile& f, const std::string& name, TransferPartFi
   p.rows = {f.first_row, f.first_row + f.row_count};
   const uint64_t n = f.row_count, W = uint64_t{6} * o.cube_size * o.cube_size;
   const bool interreflect = o.transport == prt::TransferKind::Interreflected;
+  const uint64_t texels = interreflect ? count_of(n, W, name, "wavelets") : 0;
   p.sparse_lengths =
       read_array<uint32_t>(f, kSparseLengths, interreflect ? 0 : n, name, "sparse lengths");
   uint64_t entries = 0;
@@ -363,13 +378,13 @@ void decode_haar(const prt::PartFile& f, const std::string& name, TransferPartFi
   p.channels = entries > 0 && values ? static_cast<int>(values->size() / 4 / entries) : 1;
   if (interreflect) {
     const prt::PartSection* w = f.find(kWavelets);
-    p.channels = n > 0 && w ? static_cast<int>(w->size() / 4 / (n * W)) : 1;
+    p.channels = texels > 0 && w ? static_cast<int>(w->size() / 4 / texels) : 1;
   }
   if (p.channels != 1 && p.channels != 3) throw BakeError(name + ": bad channel count");
   p.sparse_values =
       read_array<float>(f, kSparseValues, entries * p.channels, name, "sparse values");
-  p.wavelets =
-      read_array<float>(f, kWavelets, interreflect ? n * W * p.channels : 0, name, "wavelets");
+  p.wavelets = read_array<float>(f, kWavelets, count_of(texels, p.channels, name, "wavelets"), name,
+                                 "wavelets");
   p.gather_lengths =
       read_array<uint32_t>(f, kHaarGatherLengths, interreflect ? n : 0, name, "gather lengths");
   uint64_t gathered = 0;
@@ -393,7 +408,8 @@ void decode_glossy(const prt::PartFile& f, const std::string& name, TransferPart
   p.order = o.order;
   const uint64_t n = f.row_count, KK = uint64_t(o.order) * o.order * o.order * o.order;
   const bool interreflect = o.bounces != 0;
-  p.direct = read_array<float>(f, kGlossyDirect, n * KK, name, "direct matrices");
+  p.direct = read_array<float>(f, kGlossyDirect, count_of(n, KK, name, "direct matrices"), name,
+                               "direct matrices");
   p.hit_counts =
       read_array<uint32_t>(f, kGlossyHitCounts, interreflect ? n : 0, name, "hit counts");
   uint64_t hits = 0;
@@ -559,8 +575,9 @@ TransferPartFile decode_transfer_part(const prt::PartFile& f, const std::string&
   }
   if (out.form_factors) {
     out.key = f.fingerprint;
-    out.form_factor_rows =
-        read_array<float>(f, kFormFactors, f.row_count * f.total_rows, name, "form factors");
+    out.form_factor_rows = read_array<float>(
+        f, kFormFactors, count_of(f.row_count, f.total_rows, name, "form factors"), name,
+        "form factors");
     out.part.shard = {f.index, f.count};
     out.part.vertices = f.total_rows;
     out.part.rows = {f.first_row, f.first_row + f.row_count};
@@ -590,10 +607,11 @@ TransferPartFile decode_transfer_part(const prt::PartFile& f, const std::string&
   const bool interreflect = o.kind == prt::TransferKind::Interreflected;
   // The two large arrays stay where the mapping has them (the merge copies them once, into the
   // single bake's stores); out.mapping keeps them.
-  p.direct_count = need_sh ? n * K : 0;
+  p.direct_count = need_sh ? count_of(n, K, name, "direct transfer") : 0;
   p.direct_view = section_values<double>(f, kDirect, p.direct_count, name, "direct transfer");
   p.ao = read_array<float>(f, kAo, o.ao ? n : 0, name, "ao");
-  p.bent = read_array<float>(f, kBent, o.bent_normals ? 3 * n : 0, name, "bent normal");
+  p.bent = read_array<float>(f, kBent, o.bent_normals ? count_of(3, n, name, "bent normal") : 0,
+                             name, "bent normal");
   p.gather_rows = read_array<uint32_t>(f, kGatherRows, interreflect ? n : 0, name, "gather rows");
   uint64_t hits = 0;
   for (uint32_t len : p.gather_rows) hits += len;

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The fuzz smoke run: scripts/fuzz.sh builds every libFuzzer target of fuzz/ (clang,
-# -fsanitize=fuzzer,address,undefined; a standalone build of sh, prt, scene, radiosity and
+# -fsanitize=fuzzer,address,undefined; a standalone build of sh, prt, scene, bake, radiosity and
 # relight in BUILD_DIR) and runs each for RUNS executions (at most 8 s) from its committed corpus
 # fuzz/corpus/<target>/, which replays every kept regression input. Fails when the build breaks
 # or any target finds a crash, leak, timeout or broken invariant. Skips (exit 77) only when clang

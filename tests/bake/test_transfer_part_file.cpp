@@ -1,0 +1,154 @@
+// tests/bake/test_transfer_part_file.cpp — decode_transfer_part (bake/transfer_part_file.h) on
+// parts whose header counts are hostile: every array a part holds is counted from its rows,
+// vertices or triangles times a per-row size, and those products must not wrap to the size of a
+// small section (a part that decodes with 2⁶² rows and no values; a division by zero in Haar
+// parts; a std::length_error escaping instead of a BakeError). Each is refused with one line
+// that names the part. The parts are built in memory (prt::PartFile with owned sections): the
+// container's own checks (read_part_file) are the CLI farm tests' and the fuzzer's.
+#include <cstdint>
+#include <cstring>
+#include <string>
+#include <vector>
+
+#include <catch2/catch.hpp>
+#include <nlohmann/json.hpp>
+
+#include "bake/bake_settings.h"
+#include "bake/transfer_part_file.h"
+#include "prt/formats/geometry_check.h"
+
+using namespace prt::bake;
+
+namespace {
+
+const std::string kName = "hostile.prtpart";
+
+prt::PartSection section(uint32_t tag, const std::string& bytes) {
+  prt::PartSection s;
+  s.tag = tag;
+  s.bytes.assign(bytes.begin(), bytes.end());
+  return s;
+}
+
+std::string settings_section(const std::string& settings) {
+  nlohmann::json j;
+  j["generator"] = "test";
+  j["prt_version"] = "test";
+  j["seed"] = 1;
+  j["settings"] = nlohmann::json::parse(settings);
+  j["scene_inputs"] = "0000000000000000";
+  return j.dump();
+}
+
+// Zero counters (section 12): three u64.
+std::string counters() {
+  return std::string(24, '\0');
+}
+
+prt::PartFile part(prt::PartKind kind, uint32_t index, uint32_t count, uint64_t total,
+                   uint64_t rows, const std::string& settings) {
+  prt::PartFile f;
+  f.layout = part_layout_id();
+  f.kind = kind;
+  f.index = index;
+  f.count = count;
+  f.total_rows = total;
+  f.first_row = 0;
+  f.row_count = rows;
+  f.sections.push_back(section(1, settings_section(settings)));
+  f.sections.push_back(section(12, counters()));
+  return f;
+}
+
+BakeOptions sh_options() {
+  BakeOptions o;
+  o.order = 2;  // K = 4 coefficients a row
+  o.samples = 16;
+  return o;
+}
+
+// decode_transfer_part(f) throws a BakeError of one line that names the part and says `what`.
+void check_refused(const prt::PartFile& f, const std::string& what) {
+  try {
+    (void)decode_transfer_part(f, kName);
+    FAIL("decoded a part with wrapping counts");
+  } catch (const BakeError& e) {
+    const std::string message = e.what();
+    INFO(message);
+    CHECK(message.rfind(kName + ": ", 0) == 0);
+    CHECK(message.find('\n') == std::string::npos);
+    CHECK(message.find(what) != std::string::npos);
+  }
+}
+
+std::string scene_json(uint64_t triangles) {
+  nlohmann::json j;
+  j["source_path"] = "quad.obj";
+  j["skipped_degenerate_triangles"] = 0;
+  j["triangles"] = triangles;
+  j["primitives"] = nlohmann::json::array();
+  return j.dump();
+}
+
+}  // namespace
+
+TEST_CASE("part decode: row counts that wrap a section's size are refused",
+          "[bake][farm][part-file]") {
+  SECTION("SH: 2^62 rows of 4 coefficients (4 * 2^62 wraps to 0: no direct section needed)") {
+    check_refused(part(prt::PartKind::ShTransfer, 1, 2, uint64_t{1} << 62, uint64_t{1} << 62,
+                       sh_bake_settings(sh_options())),
+                  "direct transfer section");
+  }
+  SECTION("Haar: 2^57 rows of an 8 x 8 cube (384 * 2^57 wraps to 0: was a division by zero)") {
+    HaarBakeOptions o;
+    o.cube_size = 8;
+    o.transport = prt::TransferKind::Interreflected;
+    prt::PartFile f = part(prt::PartKind::HaarTransfer, 1, 2, uint64_t{1} << 57, uint64_t{1} << 57,
+                           haar_bake_settings(o));
+    f.sections.push_back(section(16, std::string(16, '\0')));  // the wavelets
+    check_refused(f, "wavelets section");
+  }
+  SECTION("glossy: 2^60 rows of order-2 matrices (16 * 2^60 wraps to 0)") {
+    GlossyBakeOptions o;
+    o.order = 2;
+    o.samples = 16;
+    check_refused(part(prt::PartKind::GlossyTransfer, 1, 2, uint64_t{1} << 60, uint64_t{1} << 60,
+                       glossy_bake_settings(o)),
+                  "direct matrices section");
+  }
+  SECTION("form factors: 2^32 rows of 2^32 patches (the product wraps to 0)") {
+    check_refused(part(prt::PartKind::FormFactorRows, 0, 1, uint64_t{1} << 32, uint64_t{1} << 32,
+                       R"({"basis":"form factors"})"),
+                  "form factors section");
+  }
+}
+
+TEST_CASE("part decode: shard 0's scene with counts that wrap is refused, an empty one decoded",
+          "[bake][farm][part-file]") {
+  const std::string settings = sh_bake_settings(sh_options());
+  const std::string two_floats(8, '\0');
+  SECTION("0x5555555555555556 vertices (3 V wraps to 2: was a std::length_error)") {
+    prt::PartFile f = part(prt::PartKind::ShTransfer, 0, 1, 0x5555555555555556ull, 0, settings);
+    f.sections.push_back(section(2, scene_json(0)));
+    for (uint32_t tag : {3u, 4u, 5u}) f.sections.push_back(section(tag, two_floats));
+    check_refused(f, "positions section");
+  }
+  SECTION("0x5555555555555556 triangles (3 T wraps to 2: was a std::length_error)") {
+    prt::PartFile f = part(prt::PartKind::ShTransfer, 0, 1, 1, 0, settings);
+    const float xyz[3] = {0.f, 0.f, 1.f};
+    const std::string vertex(reinterpret_cast<const char*>(xyz), sizeof xyz);
+    f.sections.push_back(section(2, scene_json(0x5555555555555556ull)));
+    for (uint32_t tag : {3u, 4u, 5u}) f.sections.push_back(section(tag, vertex));
+    f.sections.push_back(section(6, two_floats));
+    check_refused(f, "triangles section");
+  }
+  SECTION("no vertices: decoded (the fingerprint of no positions, formed without indexing)") {
+    prt::PartFile f = part(prt::PartKind::ShTransfer, 0, 1, 0, 0, settings);
+    f.fingerprint = prt::geometry_fingerprint(nullptr, 0);
+    f.sections.push_back(section(2, scene_json(0)));
+    const TransferPartFile d = decode_transfer_part(f, kName);
+    REQUIRE(d.scene);
+    CHECK(d.scene->positions.empty());
+    CHECK(d.part.rows.size() == 0);
+  }
+}
