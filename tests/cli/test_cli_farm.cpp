@@ -232,7 +232,7 @@ TEST_CASE("cli farm: merged shards of subsurface bakes are the single bake, byte
 // takes the material's R_total (clamped to 0.999) as its albedo. So a base colour of 1, which an
 // opaque material may not have, is accepted by the single bake, and must be by its shards: a
 // shard that checked the base colour refused it. Also a material whose R_total reaches 1
-// (σa ≈ 0: R_total ≈ 1 − 10⁻⁵), clamped alike. The same colour on an opaque material is refused
+// (σa ≈ 0: R_total above 0.999), clamped alike. The same colour on an opaque material is refused
 // by both, with the same line. A slab of `white` (base colour 1) over a ground of `grey`.
 TEST_CASE("cli farm: subsurface shards accept the translucent base colours the single bake does") {
   const fs::path dir = scratch("farm_subsurface_albedo");
