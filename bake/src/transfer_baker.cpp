@@ -46,6 +46,7 @@
 #include "bake/sampling.h"
 #include "hit_records.h"
 #include "prt/core/memory_budget.h"
+#include "prt/formats/part_file.h"
 #include "scene/ray_caster.h"
 #include "scene/scene_label.h"
 #include "sh/basis.h"
@@ -390,6 +391,12 @@ void fill_from_parts(BakeJob& job, const std::vector<const TransferPart*>& parts
     st.rays += part->rays;
     st.back_face_hits += part->back_face_hits;
     job.ray_offset_max = std::max(job.ray_offset_max, part->ray_offset_max);
+    // A part read from a file: its rows are copied, so its pages go now, not with the file
+    // (the merge's peak is the single bake's stores plus one part, not plus every part).
+    if (part->direct_view)
+      prt::release_part_pages(part->direct_view, part->direct_count * sizeof(double));
+    if (part->hits_view)
+      prt::release_part_pages(part->hits_view, part->hit_count * sizeof(CompactHit));
   }
   if (job.compact) {
     st.matrix_entries = job.gather->hits();

@@ -740,10 +740,13 @@ std::vector<const TransferPartFile*> check_parts_fit(const std::vector<TransferP
     }
   if (!ordered[0]->scene) return ordered;  // form-factor parts carry no scene
   const uint64_t T = ordered[0]->scene->triangles.size();
-  for (const TransferPartFile* p : ordered)
+  for (const TransferPartFile* p : ordered) {
     for (uint64_t i = 0; i < p->part.hit_count; ++i)
       if (p->part.hits_view[i].triangle >= T)
         throw BakeError(p->name + ": a gather hit names no triangle");
+    // Read again, one part at a time, when the merge copies them (prt::release_part_pages).
+    prt::release_part_pages(p->part.hits_view, p->part.hit_count * sizeof(CompactHit));
+  }
   return ordered;
 }
 

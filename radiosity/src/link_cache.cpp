@@ -19,6 +19,7 @@ namespace {
 constexpr char kMagic[8] = {'P', 'R', 'T', 'H', 'R', 'L', '1', '\n'};
 constexpr uint32_t kVersion = 1;
 constexpr std::size_t kHeaderSize = 128;
+constexpr std::size_t kReservedOffset = 116;  // bytes 116-127: zero
 constexpr std::size_t kChecksumOffset = 68;
 constexpr uint32_t kFlagFine = 1;
 static_assert(sizeof(Link) == 12, "a link is three 32-bit words on disk");
@@ -109,6 +110,10 @@ File open_cache(const std::string& path, LinkCacheInfo* info, unsigned char* hea
   h.max_iterations = get<uint64_t>(header, 104);
   h.revision = get<uint32_t>(header, 112);
   if (h.revision == 0) h.revision = 1;  // written before the revision was recorded
+  for (std::size_t at = kReservedOffset; at < kHeaderSize; ++at)
+    if (header[at] != 0)
+      throw std::runtime_error(path + ": corrupt link cache (reserved header byte " +
+                               std::to_string(at) + " is not zero)");
   // The counts are bounded before any size arithmetic, so hostile ones cannot overflow it.
   if (h.patches == 0 || h.patches > (uint64_t(1) << 31) || h.links > (uint64_t(1) << 40) ||
       (flags & ~kFlagFine) != 0 || h.file_size != kHeaderSize + payload_bytes(h.patches, h.links))

@@ -228,6 +228,40 @@ TEST_CASE("cli farm: merged shards of subsurface bakes are the single bake, byte
                              "interreflected --order 3 --samples 16 --ao");
 }
 
+// An interreflected subsurface bake does not use a translucent vertex's base colour: the solve
+// takes the material's R_total (clamped to 0.999) as its albedo. So a base colour of 1, which an
+// opaque material may not have, is accepted by the single bake, and must be by its shards: a
+// shard that checked the base colour refused it. Also a material whose R_total reaches 1
+// (σa ≈ 0: R_total above 0.999), clamped alike. The same colour on an opaque material is refused
+// by both, with the same line. A slab of `white` (base colour 1) over a ground of `grey`.
+TEST_CASE("cli farm: subsurface shards accept the translucent base colours the single bake does") {
+  const fs::path dir = scratch("farm_subsurface_albedo");
+  const fs::path scene = dir / "slab.obj";
+  std::ofstream(scene) << "mtllib slab.mtl\n"
+                          "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0.5 0.5 0.3\n"
+                          "v -2 -0.01 -2\nv 2 -0.01 -2\nv 2 -0.01 2\nv -2 -0.01 2\n"
+                          "o slab\nusemtl white\nf 1 2 5\nf 2 3 5\nf 3 4 5\nf 4 1 5\n"
+                          "o ground\nusemtl grey\nf 6 9 8\nf 6 8 7\n";
+  std::ofstream(dir / "slab.mtl") << "newmtl white\nKd 1 1 1\nnewmtl grey\nKd 0.5 0.5 0.5\n";
+  const std::string base = "--transfer interreflected --order 2 --samples 16 ";
+  check_each_merges_identical(
+      dir, scene,
+      {base + "--subsurface white=marble",
+       base + "--subsurface white=custom --sigma-a 1e-9,1e-9,1e-9 --sigma-s 1000,1000,1000"},
+      ".prt");
+  const std::string opaque = base + "--subsurface grey=marble";
+  const RunResult single = run(bake_line(scene, opaque, dir / "opaque.prt"));
+  const RunResult shard = run(bake_line(scene, opaque + " --shard 0/2", dir / "opaque.prtpart"));
+  INFO(single.err << shard.err);
+  CHECK(single.exit_code != 0);
+  CHECK(shard.exit_code != 0);
+  CHECK(single.err.find("albedo (1, 1, 1) of primitive 'slab' is outside [0, 1)") !=
+        std::string::npos);
+  CHECK(shard.err == single.err);
+  CHECK_FALSE(fs::exists(dir / "opaque.prt"));
+  CHECK_FALSE(fs::exists(dir / "opaque.prtpart"));
+}
+
 TEST_CASE("cli farm: prt merge refuses subsurface parts that do not belong together") {
   const fs::path dir = scratch("farm_subsurface_refusals");
   const fs::path scene = make_field(dir, 300);

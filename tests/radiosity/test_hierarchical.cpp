@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <vector>
@@ -13,6 +14,7 @@
 
 #include "fixtures/radiosity/radiosity_fixtures.h"
 #include "prt/core/memory_budget.h"
+#include "prt/formats/crc32c.h"
 #include "radiosity/form_factors.h"
 #include "radiosity/hidden_patches.h"
 #include "radiosity/hierarchical_solver.h"
@@ -376,5 +378,24 @@ TEST_CASE("hierarchical: the link cache", "[radiosity][hierarchical][link-cache]
     CHECK_THROWS_WITH(solve_scene(request), Catch::Contains("truncated link cache"));
     std::ofstream(request.form_factor_cache, std::ios::binary) << "PRTFFM1\n" << saved.substr(8);
     CHECK_THROWS_WITH(solve_scene(request), Catch::Contains("not a prt link cache"));
+  }
+  SECTION("reserved header bytes that are not zero: refused, though the checksum agrees") {
+    // Header bytes 116-127 are reserved (docs/FORMAT.md). The checksum (bytes 68-71, taken as
+    // zero) is recomputed, so only the reserved-byte check can refuse the file.
+    for (const std::size_t at : {std::size_t(116), std::size_t(127)}) {
+      std::string bytes = saved;
+      bytes[at] = 1;
+      std::fill(bytes.begin() + 68, bytes.begin() + 72, '\0');
+      const uint32_t crc = prt::crc32c(bytes.data(), bytes.size());
+      std::memcpy(&bytes[68], &crc, 4);
+      std::ofstream(request.form_factor_cache, std::ios::binary) << bytes;
+      const std::string why = "reserved header byte " + std::to_string(at) + " is not zero";
+      CHECK_THROWS_WITH(read_link_cache_info(request.form_factor_cache),
+                        Catch::Contains(request.form_factor_cache) && Catch::Contains(why));
+      CHECK_THROWS_WITH(solve_scene(request), Catch::Contains(why));
+    }
+    // The same rewrite with the byte left zero is read: the checksum arithmetic above is right.
+    std::ofstream(request.form_factor_cache, std::ios::binary) << saved;
+    CHECK(read_link_cache_info(request.form_factor_cache).links == info.links);
   }
 }

@@ -54,7 +54,8 @@ struct TransferPart {
   // The rows' hits, as the shard cast them: a shard keeps them in its sampling pass's blocks
   // (whole rows each, in row order: no copy into one array before they are written); a part
   // decoded from a file (bake/transfer_part_file.h) points into the file's mapping instead, as
-  // it does for `direct` (left empty then). Read both through the accessors below.
+  // it does for `direct` (left empty then). Read both through the accessors below. The merge
+  // releases a decoded part's pages once it has copied its rows (prt::release_part_pages).
   std::vector<CompactGather::Block> gather_blocks;
   const double* direct_view = nullptr;
   uint64_t direct_count = 0;

@@ -66,6 +66,30 @@ SubsurfaceSamples make_samples(const scene::Scene& scene, const SubsurfaceBakeOp
   return s;
 }
 
+// The dipoles of the materials at the scale in use (mm per scene unit).
+std::vector<subsurface::DipoleMaterial> make_dipoles(const SubsurfaceBakeOptions& ss,
+                                                     double mm_per_unit) {
+  std::vector<subsurface::DipoleMaterial> materials;
+  for (const subsurface::DipoleCoefficients& c : ss.materials)
+    materials.push_back(*subsurface::make_dipole(subsurface::scale_coefficients(c, mm_per_unit)));
+  return materials;
+}
+
+// subsurface_solve_scene with the vertices' materials (−1 opaque) and the dipoles given.
+scene::Scene with_translucent_albedo(const scene::Scene& scene,
+                                     const std::vector<int32_t>& material,
+                                     const std::vector<subsurface::DipoleMaterial>& materials) {
+  scene::Scene solve_scene = scene;
+  for (std::size_t v = 0; v < scene.positions.size(); ++v) {
+    if (material[v] < 0) continue;
+    const subsurface::DipoleMaterial& m = materials[static_cast<std::size_t>(material[v])];
+    for (int c = 0; c < 3; ++c)
+      solve_scene.albedo[v][c] =
+          static_cast<float>(std::min(m.channels[c].total(), kMaxTranslucentAlbedo));
+  }
+  return solve_scene;
+}
+
 // The exit transfer of every vertex, V × 3 × K: the subsurface sum for translucent vertices,
 // ρ_c·S for the others.
 std::vector<double> exit_transfer(const scene::Scene& scene, SubsurfaceSamples& samples,
@@ -140,6 +164,12 @@ std::vector<double> vertex_areas(const scene::Scene& scene) {
   return areas;
 }
 
+scene::Scene subsurface_solve_scene(const scene::Scene& scene, const SubsurfaceBakeOptions& ss) {
+  const double mm_per_unit = ss.mm_per_unit > 0 ? ss.mm_per_unit : default_mm_per_unit(scene);
+  return with_translucent_albedo(scene, make_samples(scene, ss, 1).material,
+                                 make_dipoles(ss, mm_per_unit));
+}
+
 SubsurfaceBakeResult bake_subsurface_transfer(const scene::Scene& scene, const BakeOptions& options,
                                               const SubsurfaceBakeOptions& ss,
                                               ProgressSink* progress) {
@@ -158,10 +188,7 @@ SubsurfaceBakeResult bake_subsurface_transfer_with(const scene::Scene& scene,
   SubsurfaceBakeResult result;
   SubsurfaceBakeStatistics& st = result.subsurface;
   st.mm_per_unit = ss.mm_per_unit > 0 ? ss.mm_per_unit : default_mm_per_unit(scene);
-  std::vector<subsurface::DipoleMaterial> materials;
-  for (const subsurface::DipoleCoefficients& c : ss.materials)
-    materials.push_back(
-        *subsurface::make_dipole(subsurface::scale_coefficients(c, st.mm_per_unit)));
+  const std::vector<subsurface::DipoleMaterial> materials = make_dipoles(ss, st.mm_per_unit);
   const int K = options.order * options.order;
   SubsurfaceSamples samples = make_samples(scene, ss, K);
   for (int32_t m : samples.material) st.translucent_vertices += m >= 0 ? 1 : 0;
@@ -182,15 +209,7 @@ SubsurfaceBakeResult bake_subsurface_transfer_with(const scene::Scene& scene,
   } else {
     // The solve's albedo: R_total for translucent vertices (their local response to bounce
     // light), the scene's for the others.
-    scene::Scene solve_scene = scene;
-    for (std::size_t v = 0; v < scene.positions.size(); ++v) {
-      if (samples.material[v] < 0) continue;
-      const subsurface::DipoleMaterial& m =
-          materials[static_cast<std::size_t>(samples.material[v])];
-      for (int c = 0; c < 3; ++c)
-        solve_scene.albedo[v][c] =
-            static_cast<float>(std::min(m.channels[c].total(), kMaxTranslucentAlbedo));
-    }
+    const scene::Scene solve_scene = with_translucent_albedo(scene, samples.material, materials);
     BakeOptions o = options;
     o.direct_override = [&](const std::vector<double>& s) {
       samples.transfer = s;

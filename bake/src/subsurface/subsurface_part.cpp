@@ -13,6 +13,10 @@ TransferPart bake_subsurface_part(const scene::Scene& scene, const BakeOptions& 
                                   const SubsurfaceBakeOptions& subsurface, ShardSpec shard,
                                   ProgressSink* progress) {
   check_subsurface_shardable(scene, options, subsurface);
+  // Interreflected: the scene the single bake's inner bake sees (translucent vertices' albedo
+  // R_total), so that a shard accepts what it accepts; the rows do not depend on the albedo.
+  if (options.kind == prt::TransferKind::Interreflected)
+    return bake_transfer_part(subsurface_solve_scene(scene, subsurface), options, shard, progress);
   return bake_transfer_part(scene, options, shard, progress);
 }
 

@@ -269,6 +269,7 @@ Status read_part_file(const std::string& path, PartFile* out) {
     }
     const Status fields = check_fields(b, path);
     if (!fields.ok()) return fields;
+    release_part_pages(b, size);  // read again when the sections are used
     PartFile p;
     for (uint32_t s = 0; s < sections; ++s) {
       const unsigned char* rec = b + kPartHeaderSize + s * kSectionRecordSize;
@@ -292,6 +293,21 @@ Status read_part_file(const std::string& path, PartFile* out) {
   } catch (const std::bad_alloc&) {
     return fail(path, "out of memory");
   }
+}
+
+void release_part_pages(const void* data, uint64_t size) {
+#if defined(_WIN32)
+  (void)data;
+  (void)size;
+#else
+  if (data == nullptr || size == 0) return;
+  const long page_size = sysconf(_SC_PAGESIZE);
+  const uintptr_t page = page_size > 0 ? static_cast<uintptr_t>(page_size) : 4096;
+  const uintptr_t begin = reinterpret_cast<uintptr_t>(data);
+  const uintptr_t first = (begin + page - 1) / page * page, end = (begin + size) / page * page;
+  if (end > first)
+    madvise(reinterpret_cast<void*>(first), end - first, MADV_DONTNEED);  // advice: may fail
+#endif
 }
 
 }  // namespace prt

@@ -75,7 +75,8 @@ struct LinkCache {
 void save_link_cache(const std::string& path, const LinkCacheKeys& keys,
                      const HierarchicalOptions& options, const HierarchicalSolution& solved);
 
-// Reads and checks the header (magic, version, sizes, the bytes present); not the checksum.
+// Reads and checks the header (magic, version, sizes, reserved bytes 116-127 zero, the bytes
+// present); not the checksum.
 LinkCacheInfo read_link_cache_info(const std::string& path);
 
 // Reads PATH whole with every check above except the keys, which the caller compares; the links

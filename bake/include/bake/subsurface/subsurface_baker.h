@@ -59,6 +59,13 @@ double default_mm_per_unit(const scene::Scene& scene);
 // Per-vertex areas (a third of each adjacent triangle's area).
 std::vector<double> vertex_areas(const scene::Scene& scene);
 
+// The scene an interreflected subsurface bake's inner bake (sampling and solve) sees: every
+// translucent vertex's albedo replaced by its material's R_total per channel, clamped to 0.999
+// (the solve's ρ < 1 rule: the vertex's own base colour is not used, so any is accepted); the
+// other vertices as given (checked by the inner bake). The single bake and its shards
+// (bake/subsurface/subsurface_part.h) both bake on it, so they accept the same scenes.
+scene::Scene subsurface_solve_scene(const scene::Scene& scene, const SubsurfaceBakeOptions& ss);
+
 // Throws the BakeError above when (scene, options, subsurface) cannot be baked.
 void validate_subsurface(const scene::Scene& scene, const BakeOptions& options,
                          const SubsurfaceBakeOptions& subsurface);

@@ -25,7 +25,8 @@ namespace prt::bake {
 void check_subsurface_shardable(const scene::Scene& scene, const BakeOptions& options,
                                 const SubsurfaceBakeOptions& subsurface);
 
-// The rows of `shard`: bake_transfer_part with `options` (shadowed or interreflected).
+// The rows of `shard`: bake_transfer_part with `options` (shadowed or interreflected; the
+// interreflected on subsurface_solve_scene, as the single bake).
 TransferPart bake_subsurface_part(const scene::Scene& scene, const BakeOptions& options,
                                   const SubsurfaceBakeOptions& subsurface, ShardSpec shard,
                                   ProgressSink* progress = nullptr);

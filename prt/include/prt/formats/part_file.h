@@ -92,6 +92,15 @@ Status write_part_file(const std::string& path, const PartFile& part);
 // size ("truncated"), checksum, header fields (index < count, the row range inside total_rows, a
 // known kind) and the section table (inside the file, aligned, in order without overlap, unique
 // tags). Errors: one line naming `path`.
+// The pages are released after the checksum pass (release_part_pages): the sections' bytes are
+// read again from the file when used, so that the parts a merge reads are not all held at once.
 Status read_part_file(const std::string& path, PartFile* out);
+
+// Releases the pages wholly inside [data, data + size) of a read part's mapping from this
+// process's memory (POSIX: madvise MADV_DONTNEED; the mapping is read-only and private, so the
+// bytes are unchanged and a later read brings them back from the file): for bytes that have been
+// copied or checked and are not needed again soon. A no-op for a null or empty range and where
+// parts are read into a heap buffer. `data` must point into a mapping read_part_file made.
+void release_part_pages(const void* data, uint64_t size);
 
 }  // namespace prt
