@@ -82,21 +82,41 @@ inline void store_row(const double* acc, const double* f, int channels, int kc, 
   convert_floats_to_halves(scratch, static_cast<std::size_t>(channels * kc), out);
 }
 
+// One hit's terms added to acc in the order every kernel uses: acc_c += (w0·a_c + wu·b_c) + wv·c_c,
+// in double, from the three x rows as stored (float, or binary16 widened through scratch).
+struct PortableHitSum {
+  template <class In>
+#if defined(__GNUC__)
+  __attribute__((always_inline))
+#endif
+  inline void
+  operator()(const In* a, const In* b, const In* c, double w0, double wu, double wv, int k,
+             double* acc, float* scratch) const {
+    const float* __restrict xa = row_as_float(a, k, scratch);
+    const float* __restrict xb = row_as_float(b, k, scratch + k);
+    const float* __restrict xc = row_as_float(c, k, scratch + 2 * k);
+    for (int j = 0; j < k; ++j)
+      acc[j] += w0 * static_cast<double>(xa[j]) + wu * static_cast<double>(xb[j]) +
+                wv * static_cast<double>(xc[j]);
+  }
+};
+
 // Rows [first, first + count) of one block: y = rho·scale·Σ_hits (q_0 x_a + q_u x_b + q_v x_c),
 // x and y rows `ld` elements apart. The block's hits are one stream: the triangle table is
 // prefetched 2·kPrefetchHits hits ahead and the three x rows kPrefetchHits ahead (the reads are
 // scattered over the scene; without this the loop waits on memory). Cloned for AVX2 where the
 // CPU has it (ISO C++, no contraction: every clone adds the same products in the same order, so
-// the results are bit-identical across CPUs). scratch: 4·k floats.
-template <class In, class Out>
+// the results are bit-identical across CPUs). add_hit adds one hit's terms (PortableHitSum's
+// contract). scratch: 4·k floats.
+template <class In, class Out, class HitSum>
 #if defined(__GNUC__)
 __attribute__((always_inline))
 #endif
 inline void
 gather_block(const uint32_t* lengths, const CompactHit* hits, std::size_t n_hits, std::size_t first,
              std::size_t count, const glm::uvec3* tri_rows, const double* rho, int channels,
-             double scale, const In* x, int k, std::size_t ld, double* acc, float* scratch,
-             Out* y) {
+             double scale, const In* x, int k, std::size_t ld, double* acc, float* scratch, Out* y,
+             HitSum add_hit) {
   const int kc = k / channels;
   const double inv_q = 1.0 / kQuantum;
   const std::size_t row_bytes = static_cast<std::size_t>(k) * sizeof(In);
@@ -118,14 +138,8 @@ gather_block(const uint32_t* lengths, const CompactHit* hits, std::size_t n_hits
       const glm::uvec3 t = tri_rows[hit.triangle];
       const double wu = hit.u * inv_q, wv = hit.v * inv_q;
       const double w0 = (kQuantum - hit.u - hit.v) * inv_q;
-      const float* __restrict xa = row_as_float(x + static_cast<std::size_t>(t.x) * ld, k, scratch);
-      const float* __restrict xb =
-          row_as_float(x + static_cast<std::size_t>(t.y) * ld, k, scratch + k);
-      const float* __restrict xc =
-          row_as_float(x + static_cast<std::size_t>(t.z) * ld, k, scratch + 2 * k);
-      for (int c = 0; c < k; ++c)
-        acc[c] += w0 * static_cast<double>(xa[c]) + wu * static_cast<double>(xb[c]) +
-                  wv * static_cast<double>(xc[c]);
+      add_hit(x + static_cast<std::size_t>(t.x) * ld, x + static_cast<std::size_t>(t.y) * ld,
+              x + static_cast<std::size_t>(t.z) * ld, w0, wu, wv, k, acc, scratch);
     }
     for (int ch = 0; ch < channels; ++ch) f[ch] = rho[row * channels + ch] * scale;
     store_row(acc, f, channels, kc, y + row * ld, scratch + 3 * k);
@@ -141,69 +155,50 @@ gather_block(const uint32_t* lengths, const CompactHit* hits, std::size_t n_hits
 #if defined(__GNUC__) && defined(__x86_64__)
 #define PRT_F16C_GATHER 1
 
-// gather_block for binary16 rows with the F16C loads inline: 8 halves of a row become 8 floats
+// PortableHitSum for binary16 rows with the F16C loads inline: 8 halves of a row become 8 floats
 // in one instruction, then two vectors of 4 doubles, instead of each row going through the bulk
-// converter into scratch. The three rows' terms are added in gather_block's order, acc +
-// ((w0·a + wu·b) + wv·c), with separate multiplies and adds (no FMA is enabled here), so the sums
-// are bit-identical to it; columns past the last multiple of 8 take the scalar F16C conversion.
+// converter into scratch. Separate multiplies and adds in PortableHitSum's order (no FMA is
+// enabled here), so the sums are bit-identical to it; columns past the last multiple of 8 take
+// the scalar F16C conversion.
+struct F16cHitSum {
+  __attribute__((target("avx2,f16c"))) inline void operator()(const uint16_t* xa,
+                                                              const uint16_t* xb,
+                                                              const uint16_t* xc, double w0,
+                                                              double wu, double wv, int k,
+                                                              double* acc, float*) const {
+    const __m256d v0 = _mm256_set1_pd(w0), vu = _mm256_set1_pd(wu), vv = _mm256_set1_pd(wv);
+    int c = 0;
+    for (; c + 8 <= k; c += 8) {
+      const __m256 fa = _mm256_cvtph_ps(_mm_loadu_si128(reinterpret_cast<const __m128i*>(xa + c)));
+      const __m256 fb = _mm256_cvtph_ps(_mm_loadu_si128(reinterpret_cast<const __m128i*>(xb + c)));
+      const __m256 fc = _mm256_cvtph_ps(_mm_loadu_si128(reinterpret_cast<const __m128i*>(xc + c)));
+      const __m256d a[2] = {_mm256_cvtps_pd(_mm256_castps256_ps128(fa)),
+                            _mm256_cvtps_pd(_mm256_extractf128_ps(fa, 1))};
+      const __m256d b[2] = {_mm256_cvtps_pd(_mm256_castps256_ps128(fb)),
+                            _mm256_cvtps_pd(_mm256_extractf128_ps(fb, 1))};
+      const __m256d d[2] = {_mm256_cvtps_pd(_mm256_castps256_ps128(fc)),
+                            _mm256_cvtps_pd(_mm256_extractf128_ps(fc, 1))};
+      for (int half = 0; half < 2; ++half) {
+        __m256d s = _mm256_add_pd(_mm256_mul_pd(v0, a[half]), _mm256_mul_pd(vu, b[half]));
+        s = _mm256_add_pd(s, _mm256_mul_pd(vv, d[half]));
+        double* out = acc + c + 4 * half;
+        _mm256_storeu_pd(out, _mm256_add_pd(_mm256_loadu_pd(out), s));
+      }
+    }
+    for (; c < k; ++c)
+      acc[c] += w0 * static_cast<double>(_cvtsh_ss(xa[c])) +
+                wu * static_cast<double>(_cvtsh_ss(xb[c])) +
+                wv * static_cast<double>(_cvtsh_ss(xc[c]));
+  }
+};
+
+// gather_block with F16cHitSum, compiled for AVX2 and F16C (dispatched at run time below).
 __attribute__((target("avx2,f16c"))) void gather_block_f16c(
     const uint32_t* lengths, const CompactHit* hits, std::size_t n_hits, std::size_t first,
     std::size_t count, const glm::uvec3* tri_rows, const double* rho, int channels, double scale,
     const uint16_t* x, int k, std::size_t ld, double* acc, float* scratch, uint16_t* y) {
-  const int kc = k / channels;
-  const double inv_q = 1.0 / kQuantum;
-  const std::size_t row_bytes = static_cast<std::size_t>(k) * sizeof(uint16_t);
-  double f[kMaxGatherChannels];
-  std::size_t at = 0;
-  for (std::size_t i = 0; i < count; ++i) {
-    const std::size_t row = first + i;
-    for (int c = 0; c < k; ++c) acc[c] = 0.0;
-    for (uint32_t h = 0; h < lengths[i]; ++h, ++at) {
-      if (at + 2 * kPrefetchHits < n_hits)
-        prefetch_bytes(&tri_rows[hits[at + 2 * kPrefetchHits].triangle], sizeof(glm::uvec3));
-      if (at + kPrefetchHits < n_hits) {
-        const glm::uvec3 ahead = tri_rows[hits[at + kPrefetchHits].triangle];
-        prefetch_bytes(x + static_cast<std::size_t>(ahead.x) * ld, row_bytes);
-        prefetch_bytes(x + static_cast<std::size_t>(ahead.y) * ld, row_bytes);
-        prefetch_bytes(x + static_cast<std::size_t>(ahead.z) * ld, row_bytes);
-      }
-      const CompactHit& hit = hits[at];
-      const glm::uvec3 t = tri_rows[hit.triangle];
-      const double wu = hit.u * inv_q, wv = hit.v * inv_q;
-      const double w0 = (kQuantum - hit.u - hit.v) * inv_q;
-      const uint16_t* xa = x + static_cast<std::size_t>(t.x) * ld;
-      const uint16_t* xb = x + static_cast<std::size_t>(t.y) * ld;
-      const uint16_t* xc = x + static_cast<std::size_t>(t.z) * ld;
-      const __m256d v0 = _mm256_set1_pd(w0), vu = _mm256_set1_pd(wu), vv = _mm256_set1_pd(wv);
-      int c = 0;
-      for (; c + 8 <= k; c += 8) {
-        const __m256 fa =
-            _mm256_cvtph_ps(_mm_loadu_si128(reinterpret_cast<const __m128i*>(xa + c)));
-        const __m256 fb =
-            _mm256_cvtph_ps(_mm_loadu_si128(reinterpret_cast<const __m128i*>(xb + c)));
-        const __m256 fc =
-            _mm256_cvtph_ps(_mm_loadu_si128(reinterpret_cast<const __m128i*>(xc + c)));
-        const __m256d a[2] = {_mm256_cvtps_pd(_mm256_castps256_ps128(fa)),
-                              _mm256_cvtps_pd(_mm256_extractf128_ps(fa, 1))};
-        const __m256d b[2] = {_mm256_cvtps_pd(_mm256_castps256_ps128(fb)),
-                              _mm256_cvtps_pd(_mm256_extractf128_ps(fb, 1))};
-        const __m256d d[2] = {_mm256_cvtps_pd(_mm256_castps256_ps128(fc)),
-                              _mm256_cvtps_pd(_mm256_extractf128_ps(fc, 1))};
-        for (int half = 0; half < 2; ++half) {
-          __m256d s = _mm256_add_pd(_mm256_mul_pd(v0, a[half]), _mm256_mul_pd(vu, b[half]));
-          s = _mm256_add_pd(s, _mm256_mul_pd(vv, d[half]));
-          double* out = acc + c + 4 * half;
-          _mm256_storeu_pd(out, _mm256_add_pd(_mm256_loadu_pd(out), s));
-        }
-      }
-      for (; c < k; ++c)
-        acc[c] += w0 * static_cast<double>(_cvtsh_ss(xa[c])) +
-                  wu * static_cast<double>(_cvtsh_ss(xb[c])) +
-                  wv * static_cast<double>(_cvtsh_ss(xc[c]));
-    }
-    for (int ch = 0; ch < channels; ++ch) f[ch] = rho[row * channels + ch] * scale;
-    store_row(acc, f, channels, kc, y + row * ld, scratch + 3 * k);
-  }
+  gather_block(lengths, hits, n_hits, first, count, tri_rows, rho, channels, scale, x, k, ld, acc,
+               scratch, y, F16cHitSum{});
 }
 #endif
 
@@ -214,7 +209,7 @@ __attribute__((target("avx2,f16c"))) void gather_block_f16c(
             int channels, double scale, const IN* x, int k, std::size_t ld, double* acc,         \
             float* scratch, OUT* y) {                                                            \
     gather_block(lengths, hits, n_hits, first, count, tri_rows, rho, channels, scale, x, k, ld,  \
-                 acc, scratch, y);                                                               \
+                 acc, scratch, y, PortableHitSum{});                                             \
   }
 
 PRT_GATHER_VARIANT(gather_block_variant, float, double)
