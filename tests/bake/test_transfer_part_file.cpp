@@ -165,18 +165,27 @@ namespace {
 
 // This process's resident file-backed memory in kB (Linux: RssFile of /proc/self/status), or
 // -1 where it is not reported.
-long resident_file_kb() {
+long status_kb(const std::string& wanted) {
   std::ifstream status("/proc/self/status");
   std::string key;
   long kb = -1;
   while (status >> key) {
-    if (key == "RssFile:") {
+    if (key == wanted) {
       status >> kb;
       return kb;
     }
     status.ignore(1 << 20, '\n');
   }
   return -1;
+}
+
+long resident_file_kb() {
+  return status_kb("RssFile:");
+}
+
+// All of this process's resident memory in kB (VmRSS: anonymous and file-backed), or -1.
+long resident_kb() {
+  return status_kb("VmRSS:");
 }
 
 }  // namespace
@@ -297,9 +306,10 @@ TEST_CASE("glossy parts: read without keeping their pages, released by the merge
     }
     merge_glossy_parts_to_file(scene, inputs, o, in_memory, reference);
   }
-  const long before = resident_file_kb();
+  const long before = resident_file_kb(), all_before = resident_kb();
   const std::vector<TransferPartFile> read = read_parts(paths);
   CHECK(resident_file_kb() - before < 8 * 1024);
+  CHECK(resident_kb() - all_before < 8 * 1024);  // nor copied into memory of their own
   std::vector<const GlossyPart*> parts;
   for (const TransferPartFile& f : read) {
     REQUIRE(f.glossy);
@@ -358,9 +368,10 @@ TEST_CASE("Haar parts: read without keeping their pages, released by the merge",
     REQUIRE(
         prt::write_haar_transfer_file(reference, merge_haar_parts(scene, o, in_memory).file).ok());
   }
-  const long before = resident_file_kb();
+  const long before = resident_file_kb(), all_before = resident_kb();
   const std::vector<TransferPartFile> read = read_parts(paths);
   CHECK(resident_file_kb() - before < 8 * 1024);
+  CHECK(resident_kb() - all_before < 8 * 1024);  // nor copied into memory of their own
   std::vector<const HaarPart*> parts;
   for (const TransferPartFile& f : read) {
     REQUIRE(f.haar);
