@@ -55,7 +55,7 @@ GlossyPart bake_glossy_part(const scene::Scene& scene, const GlossyBakeOptions& 
 namespace {
 
 // A part read from a file: its pages go once its rows are copied, not with the file (the merge's
-// peak is the single bake's arrays plus one part, not plus every part). In-memory parts: nothing.
+// peak is its own arrays plus one part, not plus every part). In-memory parts: nothing.
 void release_pages(const GlossyPart& p) {
   if (p.direct_view) prt::release_part_pages(p.direct_view, p.direct_count * sizeof(float));
   if (p.hits_view) prt::release_part_pages(p.hits_view, p.hit_count * sizeof(GlossyHitRecord));
