@@ -79,28 +79,39 @@ inline void check_sh_part(const prt::bake::TransferPartFile& d, const unsigned c
   }
 }
 
-inline void check_haar_part(const prt::bake::TransferPartFile& d) {
+inline void check_haar_part(const prt::bake::TransferPartFile& d, const unsigned char* begin,
+                            std::size_t size) {
   const prt::bake::HaarPart& p = d.haar_part;
   const Exact n = p.rows.size(), w = Exact(6) * d.haar_options.cube_size * d.haar_options.cube_size;
   const bool interreflected = d.haar_options.transport == prt::TransferKind::Interreflected;
   if (p.channels != 1 && p.channels != 3) std::abort();
   const Exact entries = sum_of(p.sparse_lengths);
-  if (p.sparse_lengths.size() != (interreflected ? 0 : n) || p.sparse_index.size() != entries ||
-      p.sparse_values.size() != entries * p.channels ||
-      p.wavelets.size() != (interreflected ? n * w * p.channels : 0) ||
+  if (p.sparse_lengths.size() != (interreflected ? 0 : n) || p.index_size() != entries ||
+      p.values_size() != entries * p.channels ||
+      p.wavelet_size() != (interreflected ? n * w * p.channels : 0) ||
       p.gather_lengths.size() != (interreflected ? n : 0))
     std::abort();
   const Exact gathered = sum_of(p.gather_lengths);
-  if (p.gather_columns.size() != gathered || p.gather_weights.size() != gathered) std::abort();
+  if (p.column_size() != gathered || p.weight_size() != gathered) std::abort();
+  if (!p.mapped || !inside(p.index_data(), Exact(p.index_size()) * 4, begin, size) ||
+      !inside(p.values_data(), Exact(p.values_size()) * 4, begin, size) ||
+      !inside(p.wavelet_data(), Exact(p.wavelet_size()) * 4, begin, size) ||
+      !inside(p.column_data(), Exact(p.column_size()) * 4, begin, size) ||
+      !inside(p.weight_data(), Exact(p.weight_size()) * 4, begin, size))
+    std::abort();
 }
 
-inline void check_glossy_part(const prt::bake::TransferPartFile& d) {
+inline void check_glossy_part(const prt::bake::TransferPartFile& d, const unsigned char* begin,
+                              std::size_t size) {
   const prt::bake::GlossyPart& p = d.glossy_part;
   const Exact n = p.rows.size(), order = d.glossy_options.order;
   if (p.order != d.glossy_options.order) std::abort();
-  if (p.direct.size() != n * order * order * order * order ||
+  if (p.direct_size() != n * order * order * order * order ||
       p.hit_counts.size() != (d.glossy_options.bounces != 0 ? n : 0) ||
-      p.hits.size() != sum_of(p.hit_counts))
+      p.hit_size() != sum_of(p.hit_counts))
+    std::abort();
+  if (!inside(p.direct_view, Exact(p.direct_count) * sizeof(float), begin, size) ||
+      !inside(p.hits_view, Exact(p.hit_count) * sizeof(prt::bake::GlossyHitRecord), begin, size))
     std::abort();
   if (p.shard.index == 0) {
     if (!d.glossy_inputs) std::abort();
@@ -126,9 +137,9 @@ inline void check_decoded_part(const prt::bake::TransferPartFile& d, const prt::
   if (f.index == 0 && !d.scene) std::abort();
   if (d.scene) check_scene(*d.scene, f.total_rows);
   if (d.haar)
-    check_haar_part(d);
+    check_haar_part(d, begin, size);
   else if (d.glossy)
-    check_glossy_part(d);
+    check_glossy_part(d, begin, size);
   else
     check_sh_part(d, begin, size);
 }

@@ -5,6 +5,7 @@
 
 #include "bake/sampling.h"
 #include "glossy_bake_stages.h"
+#include "prt/formats/part_file.h"
 #include "scene/scene_label.h"
 #include "scene/tangent_frames.h"
 
@@ -53,6 +54,13 @@ GlossyPart bake_glossy_part(const scene::Scene& scene, const GlossyBakeOptions& 
 
 namespace {
 
+// A part read from a file: its pages go once its rows are copied, not with the file (the merge's
+// peak is its own arrays plus one part, not plus every part). In-memory parts: nothing.
+void release_pages(const GlossyPart& p) {
+  if (p.direct_view) prt::release_part_pages(p.direct_view, p.direct_count * sizeof(float));
+  if (p.hits_view) prt::release_part_pages(p.hits_view, p.hit_count * sizeof(GlossyHitRecord));
+}
+
 // The parts' rows in vertex order; BakeError when a part does not fit the scene or options.
 detail::GlossySampled gather_parts(const scene::Scene& scene, const GlossyBakeOptions& o,
                                    const std::vector<const GlossyPart*>& parts) {
@@ -66,43 +74,48 @@ detail::GlossySampled gather_parts(const scene::Scene& scene, const GlossyBakeOp
   std::vector<uint32_t> count(V, 0);
   for (const GlossyPart* p : parts) {
     const uint64_t R = p->rows.size();
-    if (p->vertices != V || p->rows.end > V || p->order != o.order || p->direct.size() != R * KK ||
+    if (p->vertices != V || p->rows.end > V || p->order != o.order || p->direct_size() != R * KK ||
         p->hit_counts.size() != (interreflect ? R : 0))
       throw BakeError(name + ": glossy part " + std::to_string(p->shard.index) +
                       " does not fit the scene or the settings");
+    const float* direct = p->direct_values();
     uint64_t hits = 0;
     for (uint64_t r = 0; r < R; ++r) {
       const uint32_t v = order[p->rows.first + r];
-      std::copy_n(&p->direct[r * KK], KK, &all.direct[v * KK]);
+      std::copy_n(direct + r * KK, KK, &all.direct[v * KK]);
       if (interreflect) count[v] = p->hit_counts[r], hits += count[v];
     }
-    if (hits != p->hits.size())
+    if (hits != p->hit_size())
       throw BakeError(name + ": glossy part " + std::to_string(p->shard.index) +
                       ": its hit counts do not add up to its hits");
     // A row's hits name distinct samples in increasing order: the merge keeps only which samples
     // hit (a bit each) and implies each hit's sample by its rank, as the single bake does.
+    const GlossyHitRecord* part_hits = p->hit_values();
     uint64_t next = 0;
     for (uint64_t r = 0; r < p->hit_counts.size(); ++r)
       for (uint32_t k = 0; k < p->hit_counts[r]; ++k, ++next) {
-        const GlossyHitRecord& h = p->hits[next];
+        const GlossyHitRecord& h = part_hits[next];
         if (h.triangle >= scene.triangles.size() || h.sample >= N ||
-            (k > 0 && h.sample <= p->hits[next - 1].sample))
+            (k > 0 && h.sample <= part_hits[next - 1].sample))
           throw BakeError(name + ": glossy part " + std::to_string(p->shard.index) +
                           ": a hit names no triangle or sample, or repeats one");
       }
     all.rays += p->rays;
     all.back_face_hits += p->back_face_hits;
+    release_pages(*p);  // copied and checked: read again below, one part at a time
   }
   all.hit_offset.assign(V + 1, 0);
   for (uint64_t v = 0; v < V; ++v) all.hit_offset[v + 1] = all.hit_offset[v] + count[v];
   all.hits.resize(all.hit_offset[V]);
   for (const GlossyPart* p : parts) {
+    const GlossyHitRecord* part_hits = p->hit_values();
     uint64_t next = 0;
     for (uint64_t r = 0; r < p->hit_counts.size(); ++r) {
       const uint32_t v = order[p->rows.first + r];
-      std::copy_n(p->hits.begin() + next, p->hit_counts[r], all.hits.begin() + all.hit_offset[v]);
+      std::copy_n(part_hits + next, p->hit_counts[r], all.hits.begin() + all.hit_offset[v]);
       next += p->hit_counts[r];
     }
+    release_pages(*p);
   }
   return all;
 }

@@ -22,6 +22,7 @@
 #include "bake/sampling.h"
 #include "bake/transfer_baker.h"
 #include "prt/core/memory_budget.h"
+#include "prt/formats/part_file.h"
 #include "prt/haar/cube_map.h"
 #include "prt/haar/transform.h"
 #include "scene/ray_caster.h"
@@ -423,29 +424,36 @@ void fill_haar_from_parts(HaarBakeContext& ctx, prt::HaarTransferBuilder& builde
         first += p->sparse_lengths[i];
       }
     }
+    // Vertex order takes rows from every part in turn (Morton rows): the parts' pages go at the
+    // end, when every vector is in the builder.
     for (std::size_t v = 0; v < V; ++v) {
       const HaarPart& p = *at[v].part;
       const uint64_t first = at[v].first, n = p.sparse_lengths[at[v].row];
+      const uint32_t* index = p.index_data() + first;
+      const float* values = p.values_data() + first * ctx.C;
       prt::SparseVertexTransfer s;
-      s.index.assign(p.sparse_index.begin() + first, p.sparse_index.begin() + first + n);
-      s.values.assign(p.sparse_values.begin() + first * ctx.C,
-                      p.sparse_values.begin() + (first + n) * ctx.C);
+      s.index.assign(index, index + n);
+      s.values.assign(values, values + n * ctx.C);
       const prt::Status added = builder.add_vertex(s);
       if (!added.ok()) throw BakeError(ctx.scene.source_path + ": " + added.message());
     }
+    for (const HaarPart* p : parts) release_haar_part_pages(*p);
     return;
   }
   std::vector<float> coeffs(V * WC);
   std::vector<GatherRow> rows(V);
   for (const HaarPart* p : parts) {
+    const float* wavelets = p->wavelet_data();
+    const uint32_t* columns = p->column_data();
+    const float* weights = p->weight_data();
     uint64_t entry = 0;
     for (std::size_t i = 0; i < p->rows.size(); ++i) {
       const std::size_t v = order[p->rows.first + i];
-      std::copy(p->wavelets.begin() + i * WC, p->wavelets.begin() + (i + 1) * WC,
-                coeffs.begin() + v * WC);
+      std::copy(wavelets + i * WC, wavelets + (i + 1) * WC, coeffs.begin() + v * WC);
       for (uint32_t k = 0; k < p->gather_lengths[i]; ++k, ++entry)
-        rows[v].emplace_back(p->gather_columns[entry], p->gather_weights[entry]);
+        rows[v].emplace_back(columns[entry], weights[entry]);
     }
+    release_haar_part_pages(*p);  // its rows copied: one part's pages at a time
   }
   finish_interreflected_haar(ctx, builder, st, coeffs, rows);
 }
@@ -649,6 +657,16 @@ HaarPart bake_haar_part(const scene::Scene& scene, const HaarBakeOptions& option
   return part;
 }
 
+void release_haar_part_pages(const HaarPart& p) {
+  if (!p.mapped) return;
+  const HaarPart::Mapped& m = p.view;
+  prt::release_part_pages(m.sparse_index, m.entries * sizeof(uint32_t));
+  prt::release_part_pages(m.sparse_values, m.entries * p.channels * sizeof(float));
+  prt::release_part_pages(m.wavelets, m.texels * sizeof(float));
+  prt::release_part_pages(m.gather_columns, m.gathered * sizeof(uint32_t));
+  prt::release_part_pages(m.gather_weights, m.gathered * sizeof(float));
+}
+
 HaarBakeResult merge_haar_parts(const scene::Scene& scene, const HaarBakeOptions& options,
                                 const std::vector<const HaarPart*>& parts, ProgressSink* progress) {
   check_haar_shardable(scene, options);
@@ -668,15 +686,16 @@ HaarBakeResult merge_haar_parts(const scene::Scene& scene, const HaarBakeOptions
     for (uint32_t len : p.gather_lengths) gathered += len;
     bool ok = p.vertices == V && p.channels == C && p.rows.first == want.first &&
               p.rows.end == want.end && p.rows.first == next &&
-              p.sparse_lengths.size() == (interreflect ? 0 : n) &&
-              p.sparse_index.size() == entries && p.sparse_values.size() == entries * C &&
-              p.wavelets.size() == (interreflect ? n * WC : 0) &&
-              p.gather_lengths.size() == (interreflect ? n : 0) &&
-              p.gather_columns.size() == gathered && p.gather_weights.size() == gathered;
-    for (uint32_t col : p.gather_columns) ok = ok && col < V;
+              p.sparse_lengths.size() == (interreflect ? 0 : n) && p.index_size() == entries &&
+              p.values_size() == entries * C && p.wavelet_size() == (interreflect ? n * WC : 0) &&
+              p.gather_lengths.size() == (interreflect ? n : 0) && p.column_size() == gathered &&
+              p.weight_size() == gathered;
+    const uint32_t* columns = p.column_data();
+    for (uint64_t k = 0; ok && k < gathered; ++k) ok = columns[k] < V;
     if (!ok)
       throw BakeError(name + ": part " + std::to_string(i) + " of " + std::to_string(parts.size()) +
                       " does not fit the scene or the split");
+    release_haar_part_pages(p);  // checked: read again, one part at a time, when copied
     next = p.rows.end;
   }
   if (next != V) throw BakeError(name + ": the parts do not cover every vertex");

@@ -369,28 +369,33 @@ void decode_haar(const prt::PartFile& f, const std::string& name, TransferPartFi
   const uint64_t n = f.row_count, W = uint64_t{6} * o.cube_size * o.cube_size;
   const bool interreflect = o.transport == prt::TransferKind::Interreflected;
   const uint64_t texels = interreflect ? count_of(n, W, name, "wavelets") : 0;
+  // The large arrays stay where the mapping has them, as an SH part's do (the merge copies them
+  // once and releases each part's pages); out.mapping keeps them.
+  HaarPart::Mapped& m = p.view;
+  p.mapped = true;
   p.sparse_lengths =
       read_array<uint32_t>(f, kSparseLengths, interreflect ? 0 : n, name, "sparse lengths");
-  uint64_t entries = 0;
-  for (uint32_t len : p.sparse_lengths) entries += len;
-  p.sparse_index = read_array<uint32_t>(f, kSparseIndex, entries, name, "sparse index");
+  for (uint32_t len : p.sparse_lengths) m.entries += len;
+  m.sparse_index = section_values<uint32_t>(f, kSparseIndex, m.entries, name, "sparse index");
   const prt::PartSection* values = f.find(kSparseValues);
-  p.channels = entries > 0 && values ? static_cast<int>(values->size() / 4 / entries) : 1;
+  p.channels = m.entries > 0 && values ? static_cast<int>(values->size() / 4 / m.entries) : 1;
   if (interreflect) {
     const prt::PartSection* w = f.find(kWavelets);
     p.channels = texels > 0 && w ? static_cast<int>(w->size() / 4 / texels) : 1;
   }
   if (p.channels != 1 && p.channels != 3) throw BakeError(name + ": bad channel count");
-  p.sparse_values =
-      read_array<float>(f, kSparseValues, entries * p.channels, name, "sparse values");
-  p.wavelets = read_array<float>(f, kWavelets, count_of(texels, p.channels, name, "wavelets"), name,
-                                 "wavelets");
+  m.sparse_values =
+      section_values<float>(f, kSparseValues, m.entries * p.channels, name, "sparse values");
+  m.texels = count_of(texels, p.channels, name, "wavelets");
+  m.wavelets = section_values<float>(f, kWavelets, m.texels, name, "wavelets");
   p.gather_lengths =
       read_array<uint32_t>(f, kHaarGatherLengths, interreflect ? n : 0, name, "gather lengths");
-  uint64_t gathered = 0;
-  for (uint32_t len : p.gather_lengths) gathered += len;
-  p.gather_columns = read_array<uint32_t>(f, kHaarGatherColumns, gathered, name, "gather columns");
-  p.gather_weights = read_array<float>(f, kHaarGatherWeights, gathered, name, "gather weights");
+  for (uint32_t len : p.gather_lengths) m.gathered += len;
+  m.gather_columns =
+      section_values<uint32_t>(f, kHaarGatherColumns, m.gathered, name, "gather columns");
+  m.gather_weights =
+      section_values<float>(f, kHaarGatherWeights, m.gathered, name, "gather weights");
+  out.mapping = f.mapping;
   p.rays = read_array<uint64_t>(f, kCounters, 3, name, "counters")[0];
   out.part.shard = p.shard;
   out.part.vertices = p.vertices;
@@ -408,13 +413,17 @@ void decode_glossy(const prt::PartFile& f, const std::string& name, TransferPart
   p.order = o.order;
   const uint64_t n = f.row_count, KK = uint64_t(o.order) * o.order * o.order * o.order;
   const bool interreflect = o.bounces != 0;
-  p.direct = read_array<float>(f, kGlossyDirect, count_of(n, KK, name, "direct matrices"), name,
-                               "direct matrices");
+  // The two large arrays stay where the mapping has them, as an SH part's do (the merge copies
+  // them once and releases each part's pages); out.mapping keeps them.
+  p.direct_count = count_of(n, KK, name, "direct matrices");
+  p.direct_view = section_values<float>(f, kGlossyDirect, p.direct_count, name, "direct matrices");
   p.hit_counts =
       read_array<uint32_t>(f, kGlossyHitCounts, interreflect ? n : 0, name, "hit counts");
   uint64_t hits = 0;
   for (uint32_t c : p.hit_counts) hits += c;
-  p.hits = read_array<GlossyHitRecord>(f, kGlossyHits, hits, name, "hits");
+  p.hit_count = hits;
+  p.hits_view = section_values<GlossyHitRecord>(f, kGlossyHits, hits, name, "hits");
+  out.mapping = f.mapping;
   const std::vector<uint64_t> counters = read_array<uint64_t>(f, kCounters, 3, name, "counters");
   p.rays = counters[0];
   p.back_face_hits = counters[1];

@@ -110,7 +110,8 @@ scene::Scene prepare_scene(const SceneSolveRequest& r, bool moved) {
 
 // The form factors of `after`. With a cache: those of the scene as loaded (`before`), loaded
 // when the cache exists and is of the current algorithms, else computed and saved (over a cache of
-// an earlier revision, with a notice), then brought up to date for the moves.
+// an earlier revision, with a notice; one that cannot be replaced is left, with a notice), then
+// brought up to date for the moves.
 FormFactorMatrix form_factors(const SceneSolveRequest& r, const scene::Scene& before,
                               const std::vector<Patch>& after, const scene::RayCaster& caster,
                               SceneSolution* out) {
@@ -134,10 +135,11 @@ FormFactorMatrix form_factors(const SceneSolveRequest& r, const scene::Scene& be
     out->cache_seconds = since(t);
     out->cache = SceneSolution::Cache::Loaded;
   } else {
-    if (present)
-      out->cache_notice = r.form_factor_cache + ": form factors of algorithm revision " +
-                          std::to_string(revision) + ", earlier than this prt's " +
-                          std::to_string(kFormFactorRevision) + ": recomputed and saved over it";
+    const std::string stale = present
+                                  ? r.form_factor_cache + ": form factors of algorithm revision " +
+                                        std::to_string(revision) + ", earlier than this prt's " +
+                                        std::to_string(kFormFactorRevision) + ": recomputed"
+                                  : std::string();
     if (r.moves.empty()) {
       f = compute_form_factors(after, caster, r.form_factors);
     } else {
@@ -146,10 +148,21 @@ FormFactorMatrix form_factors(const SceneSolveRequest& r, const scene::Scene& be
     }
     out->form_factor_seconds = since(t);
     t = Clock::now();
-    save_form_factors(r.form_factor_cache, f, key, &r.form_factors);
+    std::string not_saved;
+    try {
+      save_form_factors(r.form_factor_cache, f, key, &r.form_factors);
+    } catch (const std::runtime_error& e) {
+      if (!present) throw;   // a cache asked for and not written fails the run, as any output
+      not_saved = e.what();  // a stale one: the run goes on (scene_solve.h)
+    }
     out->cache_seconds = since(t);
-    out->cache = SceneSolution::Cache::Saved;
-    out->files_written.push_back(r.form_factor_cache);
+    if (not_saved.empty()) {
+      out->cache = SceneSolution::Cache::Saved;
+      out->files_written.push_back(r.form_factor_cache);
+      if (present) out->cache_notice = stale + " and saved over it";
+    } else {
+      out->cache_notice = stale + "; the cache could not be updated (" + not_saved + ")";
+    }
   }
   if (!r.moves.empty()) {
     t = Clock::now();

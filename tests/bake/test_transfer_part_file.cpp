@@ -5,11 +5,13 @@
 // parts; a std::length_error escaping instead of a BakeError). Each is refused with one line
 // that names the part. The parts are built in memory (prt::PartFile with owned sections): the
 // container's own checks (read_part_file) are the CLI farm tests' and the fuzzer's; here only
-// that a read part does not keep its pages resident (prt::release_part_pages).
+// that a read part does not keep its pages resident (prt::release_part_pages), and that the
+// glossy and Haar merges release each part's pages once they have copied its rows.
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <string>
 #include <vector>
 
@@ -19,7 +21,9 @@
 #include "bake/bake_settings.h"
 #include "bake/transfer_part_file.h"
 #include "prt/formats/geometry_check.h"
+#include "prt/formats/haar_transfer_file.h"
 #include "prt/formats/part_file.h"
+#include "scene/procedural_mesh.h"
 
 using namespace prt::bake;
 
@@ -161,18 +165,27 @@ namespace {
 
 // This process's resident file-backed memory in kB (Linux: RssFile of /proc/self/status), or
 // -1 where it is not reported.
-long resident_file_kb() {
+long status_kb(const std::string& wanted) {
   std::ifstream status("/proc/self/status");
   std::string key;
   long kb = -1;
   while (status >> key) {
-    if (key == "RssFile:") {
+    if (key == wanted) {
       status >> kb;
       return kb;
     }
     status.ignore(1 << 20, '\n');
   }
   return -1;
+}
+
+long resident_file_kb() {
+  return status_kb("RssFile:");
+}
+
+// All of this process's resident memory in kB (VmRSS: anonymous and file-backed), or -1.
+long resident_kb() {
+  return status_kb("VmRSS:");
 }
 
 }  // namespace
@@ -218,4 +231,158 @@ TEST_CASE("part file: a read part's pages are released after the checksum, and o
   CHECK(resident_file_kb() - before < 8 * 1024);
   CHECK(std::memcmp(s->data(), values.data(), bytes) == 0);
   prt::release_part_pages(nullptr, 0);  // nothing to release: no effect
+}
+
+namespace {
+
+std::string file_bytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+// A flat grid of (segments + 1)² vertices, grey (one Haar channel; glossy inputs from its UVs).
+prt::scene::Scene grid(int segments) {
+  return prt::scene::make_quad({0, 0, 0}, {1, 0, 0}, {0, 0, 1}, segments, segments,
+                               {0.5f, 0.5f, 0.5f});
+}
+
+// Shard i of n's values of a row: distinct, deterministic, in a range the bakes' files keep.
+float row_value(uint64_t row, uint64_t k) {
+  return 0.001f * static_cast<float>((row * 7919 + k * 104729) % 1000);
+}
+
+// Reads and decodes the parts at `paths`, in shard order.
+std::vector<TransferPartFile> read_parts(const std::vector<std::string>& paths) {
+  std::vector<TransferPartFile> parts;
+  for (const std::string& path : paths) {
+    prt::PartFile f;
+    const prt::Status read = prt::read_part_file(path, &f);
+    REQUIRE(read.ok());
+    parts.push_back(decode_transfer_part(f, path));
+  }
+  return parts;
+}
+
+}  // namespace
+
+// The glossy merge, as the SH one: a part's direct matrices stay in its file's mapping when
+// decoded (not copied, not resident), and the merge releases each part's pages once it has copied
+// its rows, so that after the merge its parts are not resident; the file is the one the parts
+// held in memory merge to, byte for byte. Two parts of about 17 MB of direct matrices each
+// (13 456 vertices × 625 floats); the slack of 8 MB is the other test's.
+TEST_CASE("glossy parts: read without keeping their pages, released by the merge",
+          "[part-file][glossy]") {
+  if (resident_file_kb() < 0) {
+    WARN("RssFile is not reported here: skipped");
+    return;
+  }
+  const std::filesystem::path dir = std::filesystem::path(PRT_TEST_OUTPUT_DIR) / "glossy_pages";
+  std::filesystem::create_directories(dir);
+  const prt::scene::Scene scene = grid(115);
+  const uint64_t V = scene.vertex_count();
+  GlossyBakeOptions o;
+  o.order = 5;
+  o.samples = 16;
+  const uint64_t KK = 625;
+  const GlossyInputs inputs = glossy_inputs(scene);
+  const std::vector<std::string> paths = {(dir / "g0.prtpart").string(),
+                                          (dir / "g1.prtpart").string()};
+  const std::string reference = (dir / "reference.prtg").string();
+  const std::string merged = (dir / "merged.prtg").string();
+  {
+    std::vector<GlossyPart> parts(2);
+    std::vector<const GlossyPart*> in_memory;
+    for (uint32_t i = 0; i < 2; ++i) {
+      GlossyPart& p = parts[i];
+      p.shard = {i, 2};
+      p.vertices = V;
+      p.rows = shard_rows(V, p.shard);
+      p.order = o.order;
+      p.direct.resize(p.rows.size() * KK);
+      for (uint64_t r = 0; r < p.rows.size(); ++r)
+        for (uint64_t k = 0; k < KK; ++k) p.direct[r * KK + k] = row_value(p.rows.first + r, k);
+      REQUIRE(prt::write_part_file(paths[i], encode_glossy_part(p, scene, inputs, o, "test")).ok());
+      in_memory.push_back(&p);
+    }
+    merge_glossy_parts_to_file(scene, inputs, o, in_memory, reference);
+  }
+  const long before = resident_file_kb(), all_before = resident_kb();
+  const std::vector<TransferPartFile> read = read_parts(paths);
+  CHECK(resident_file_kb() - before < 8 * 1024);
+  CHECK(resident_kb() - all_before < 8 * 1024);  // nor copied into memory of their own
+  std::vector<const GlossyPart*> parts;
+  for (const TransferPartFile& f : read) {
+    REQUIRE(f.glossy);
+    CHECK(f.glossy_part.direct.empty());  // a view into the mapping, not a copy
+    CHECK(f.glossy_part.direct_size() == f.glossy_part.rows.size() * KK);
+    parts.push_back(&f.glossy_part);
+  }
+  REQUIRE(read[0].scene);
+  REQUIRE(read[0].glossy_inputs);
+  merge_glossy_parts_to_file(*read[0].scene, *read[0].glossy_inputs, read[0].glossy_options, parts,
+                             merged);
+  CHECK(resident_file_kb() - before < 8 * 1024);
+  const std::string bytes = file_bytes(merged);
+  REQUIRE(!bytes.empty());
+  CHECK(bytes == file_bytes(reference));
+  // The values come back from the file after the release.
+  CHECK(parts[1]->direct_values()[KK + 3] == row_value(parts[1]->rows.first + 1, 3));
+}
+
+// The Haar merge (interreflected: each row's dense D̂), as the glossy one above: decoded without
+// copying, released once copied; the result is the in-memory parts' merge. Two parts of about
+// 16 MB of wavelets each (21 316 vertices × 6·8² floats).
+TEST_CASE("Haar parts: read without keeping their pages, released by the merge",
+          "[part-file][haar]") {
+  if (resident_file_kb() < 0) {
+    WARN("RssFile is not reported here: skipped");
+    return;
+  }
+  const std::filesystem::path dir = std::filesystem::path(PRT_TEST_OUTPUT_DIR) / "haar_pages";
+  std::filesystem::create_directories(dir);
+  const prt::scene::Scene scene = grid(145);
+  const uint64_t V = scene.vertex_count();
+  HaarBakeOptions o;
+  o.transport = prt::TransferKind::Interreflected;
+  o.cube_size = 8;
+  const uint64_t W = 6 * 8 * 8;
+  const std::vector<std::string> paths = {(dir / "h0.prtpart").string(),
+                                          (dir / "h1.prtpart").string()};
+  const std::string reference = (dir / "reference.prth").string();
+  const std::string merged = (dir / "merged.prth").string();
+  {
+    std::vector<HaarPart> parts(2);
+    std::vector<const HaarPart*> in_memory;
+    for (uint32_t i = 0; i < 2; ++i) {
+      HaarPart& p = parts[i];
+      p.shard = {i, 2};
+      p.vertices = V;
+      p.rows = shard_rows(V, p.shard);
+      p.wavelets.resize(p.rows.size() * W);
+      for (uint64_t r = 0; r < p.rows.size(); ++r)
+        for (uint64_t k = 0; k < W; ++k) p.wavelets[r * W + k] = row_value(p.rows.first + r, k);
+      p.gather_lengths.assign(p.rows.size(), 0);  // no bounce light: D̂ is the answer
+      REQUIRE(prt::write_part_file(paths[i], encode_haar_part(p, scene, o, "test")).ok());
+      in_memory.push_back(&p);
+    }
+    REQUIRE(
+        prt::write_haar_transfer_file(reference, merge_haar_parts(scene, o, in_memory).file).ok());
+  }
+  const long before = resident_file_kb(), all_before = resident_kb();
+  const std::vector<TransferPartFile> read = read_parts(paths);
+  CHECK(resident_file_kb() - before < 8 * 1024);
+  CHECK(resident_kb() - all_before < 8 * 1024);  // nor copied into memory of their own
+  std::vector<const HaarPart*> parts;
+  for (const TransferPartFile& f : read) {
+    REQUIRE(f.haar);
+    CHECK(f.haar_part.wavelets.empty());  // a view into the mapping, not a copy
+    CHECK(f.haar_part.wavelet_size() == f.haar_part.rows.size() * W);
+    parts.push_back(&f.haar_part);
+  }
+  REQUIRE(read[0].scene);
+  const HaarBakeResult result = merge_haar_parts(*read[0].scene, read[0].haar_options, parts);
+  CHECK(resident_file_kb() - before < 8 * 1024);
+  REQUIRE(prt::write_haar_transfer_file(merged, result.file).ok());
+  CHECK(file_bytes(merged) == file_bytes(reference));
+  CHECK(parts[1]->wavelet_data()[W + 3] == row_value(parts[1]->rows.first + 1, 3));
 }

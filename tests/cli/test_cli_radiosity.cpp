@@ -253,6 +253,27 @@ TEST_CASE("prt radiosity --form-factor-cache: a cache of earlier algorithms is r
   CHECK(slurp(dir / "b.csv") == slurp(dir / "none.csv"));
   CHECK(slurp(cache) == saved);
 
+  // The same stale cache where it cannot be replaced (a read-only folder; a name so long that
+  // the temporary's name passes NAME_MAX, which stops root too): the run goes on, exit 0, the
+  // CSV a run without cache's, one warning naming the file and why; the file is left as it was.
+  const fs::path shared = dir / "shared";
+  fs::create_directories(shared);
+  const std::string stuck = (shared / (std::string(246, 'c') + ".ffm")).string();
+  const std::string stale = with_revision(saved, 1, 0.5f);
+  std::ofstream(stuck, std::ios::binary) << stale;
+  fs::permissions(shared, fs::perms(0555));
+  r = run(common + (dir / "c.csv").string() + " --form-factor-cache " + stuck);
+  fs::permissions(shared, fs::perms(0755));
+  INFO(r.err);
+  CHECK(r.exit_code == 0);
+  CHECK(line_count(r.err) == 1);
+  CHECK(r.err.find("prt radiosity: warning: " + stuck +
+                   ": form factors of algorithm revision 1, earlier than this prt's 2: "
+                   "recomputed; the cache could not be updated (" +
+                   stuck + ": cannot create ") != std::string::npos);
+  CHECK(slurp(dir / "c.csv") == slurp(dir / "none.csv"));
+  CHECK(slurp(stuck) == stale);
+
   const std::string later = with_revision(saved, 3, 1.f);
   std::ofstream(cache, std::ios::binary) << later;
   CHECK(info_of(cache).find("revision      3 (later than this prt's 2: refused)") !=

@@ -6,6 +6,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -35,6 +36,19 @@ fs::path scratch(const std::string& name) {
   fs::create_directories(dir);
   return dir;
 }
+
+std::string slurp_bytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+// A folder made read-only (0555) for the guard's life, writable again after (so that a failed
+// check does not leave a folder the next run cannot clear).
+struct ReadOnlyFolder {
+  explicit ReadOnlyFolder(const fs::path& p) : path(p) { fs::permissions(path, fs::perms(0555)); }
+  ~ReadOnlyFolder() { fs::permissions(path, fs::perms(0755)); }
+  fs::path path;
+};
 
 // A room open at the front (z = 0), 1 unit wide: white walls, a lamp under the ceiling
 // (material `lamp`, Ke 5) and a panel on the back wall (material `panel`, no emission).
@@ -271,6 +285,58 @@ TEST_CASE("solve_scene recomputes a cache of an earlier algorithm revision and s
   CHECK(loaded.cache == SceneSolution::Cache::Loaded);
   CHECK(loaded.cache_notice.empty());
   CHECK(loaded.vertex_radiance == fresh.vertex_radiance);
+}
+
+// A stale cache whose folder cannot be written (a shared, read-only cache folder): the run goes
+// on with the recomputed factors (radiance equal to a run without a cache), its notice names the
+// file and why it could not be updated, and the old file is left as it was. The folder is
+// read-only (0555) and the cache's name so long that its temporary's name passes NAME_MAX, so
+// that the save fails for root too (tests may run as root, for whom 0555 does not stop writes).
+// A cache that was absent is an output: its failed save still fails the run (scene_solve.h).
+TEST_CASE("solve_scene goes on when a stale cache cannot be updated, with a notice",
+          "[radiosity][scene-solve][cache]") {
+  const fs::path dir = scratch("stale_read_only");
+  SceneSolveRequest request = room_request(dir, 0.4);
+  request.form_factors.method = FormFactorMethod::Rays;
+  request.form_factors.rays_per_patch = 64;
+  request.form_factors.emitter_rows = EmitterRows::Reciprocal;
+  const std::vector<Patch> patches = patches_of(request);
+  const uint64_t n = patches.size();
+  const uint64_t old_key = ray_reciprocal_key(patches, request.form_factors, true);
+  const SceneSolution fresh = solve_scene(request);  // no cache
+
+  const fs::path shared = dir / "shared";
+  fs::create_directories(shared);
+  request.form_factor_cache = (shared / (std::string(246, 'c') + ".ffm")).string();
+  write_version2_cache(request.form_factor_cache, old_key, n, 0.5f / float(n));
+  const std::string before = slurp_bytes(request.form_factor_cache);
+  SceneSolution recomputed;
+  {
+    const ReadOnlyFolder read_only(shared);
+    REQUIRE_NOTHROW(recomputed = solve_scene(request));
+  }
+  CHECK(recomputed.cache == SceneSolution::Cache::None);
+  CHECK(recomputed.files_written.empty());
+  CHECK(recomputed.vertex_radiance == fresh.vertex_radiance);
+  INFO(recomputed.cache_notice);
+  CHECK(recomputed.cache_notice.find(request.form_factor_cache +
+                                     ": form factors of algorithm revision 1, earlier than this "
+                                     "prt's 2: recomputed; the cache could not be updated (" +
+                                     request.form_factor_cache + ": cannot create ") == 0);
+  CHECK(recomputed.cache_notice.find('\n') == std::string::npos);
+  CHECK(slurp_bytes(request.form_factor_cache) == before);
+  std::size_t files = 0;
+  for (const auto& e : fs::directory_iterator(shared)) files += e.is_regular_file();
+  CHECK(files == 1);  // no temporary left
+
+  // Absent, in the same folder: an output not written, so the run fails naming it.
+  request.form_factor_cache = (shared / (std::string(246, 'd') + ".ffm")).string();
+  {
+    const ReadOnlyFolder read_only(shared);
+    CHECK_THROWS_WITH(solve_scene(request),
+                      Catch::Contains(request.form_factor_cache + ": cannot create "));
+  }
+  CHECK_FALSE(fs::exists(request.form_factor_cache));
 }
 
 TEST_CASE("the default form factors: analytic up to the patch limit, rays above",

@@ -61,6 +61,19 @@ struct GlossyPart {
   std::vector<GlossyHitRecord> hits;  // interreflected: the rows' hits, in row order
   uint64_t rays = 0, back_face_hits = 0;
   GlossyBakeStatistics stats;  // of the shard's run (times; not part of the file)
+  // A part read from a file (bake/transfer_part_file.h): the direct matrices and the hits stay
+  // in the file's mapping (these views; `direct` and `hits` empty), which the decoded part
+  // holds. The merge copies each part's rows and then releases its pages
+  // (prt::release_part_pages), so that it holds one part at a time, not every part.
+  const float* direct_view = nullptr;
+  uint64_t direct_count = 0;
+  const GlossyHitRecord* hits_view = nullptr;
+  uint64_t hit_count = 0;
+
+  const float* direct_values() const { return direct_view ? direct_view : direct.data(); }
+  uint64_t direct_size() const { return direct_view ? direct_count : direct.size(); }
+  const GlossyHitRecord* hit_values() const { return hits_view ? hits_view : hits.data(); }
+  uint64_t hit_size() const { return hits_view ? hit_count : hits.size(); }
 };
 
 // Throws BakeError "SCENE: a sharded glossy bake needs ..." when it cannot be sharded.
@@ -74,6 +87,7 @@ GlossyPart bake_glossy_part(const scene::Scene& scene, const GlossyBakeOptions& 
 // Writes to `path` the glossy file of every part of one split, in shard order (checked to belong
 // together by the caller), with `scene` and `inputs` from shard 0: byte for byte
 // bake_glossy_transfer_to_file(the scene, options, path). Returns its statistics (no matrices).
+// The pages of a part read from a file are released once its rows are copied (above).
 // Throws BakeError when the parts do not fit the scene or each other; `path` is then untouched.
 GlossyBakeResult merge_glossy_parts_to_file(const scene::Scene& scene, const GlossyInputs& inputs,
                                             const GlossyBakeOptions& options,

@@ -35,7 +35,42 @@ struct HaarPart {
   std::vector<float> gather_weights;
   uint64_t rays = 0;
   HaarBakeStatistics stats;  // of the shard's run (not part of the file)
+
+  // A part read from a file (bake/transfer_part_file.h): the large arrays stay in the file's
+  // mapping (these views; their vectors above empty), which the decoded part holds; the lengths
+  // are copied. The merge copies each part's rows and then releases its pages
+  // (prt::release_part_pages), so that it does not hold every part besides its own arrays.
+  struct Mapped {
+    const uint32_t* sparse_index = nullptr;
+    const float* sparse_values = nullptr;
+    const float* wavelets = nullptr;
+    const uint32_t* gather_columns = nullptr;
+    const float* gather_weights = nullptr;
+    uint64_t entries = 0;   // sparse indices (sparse values: entries · channels)
+    uint64_t texels = 0;    // wavelet values: rows · 6N² · channels
+    uint64_t gathered = 0;  // gather columns and weights
+  };
+  bool mapped = false;
+  Mapped view;
+
+  // The arrays, wherever they are (the vectors, or the views of a read part).
+  const uint32_t* index_data() const { return mapped ? view.sparse_index : sparse_index.data(); }
+  uint64_t index_size() const { return mapped ? view.entries : sparse_index.size(); }
+  const float* values_data() const { return mapped ? view.sparse_values : sparse_values.data(); }
+  uint64_t values_size() const { return mapped ? view.entries * channels : sparse_values.size(); }
+  const float* wavelet_data() const { return mapped ? view.wavelets : wavelets.data(); }
+  uint64_t wavelet_size() const { return mapped ? view.texels : wavelets.size(); }
+  const uint32_t* column_data() const {
+    return mapped ? view.gather_columns : gather_columns.data();
+  }
+  const float* weight_data() const { return mapped ? view.gather_weights : gather_weights.data(); }
+  uint64_t column_size() const { return mapped ? view.gathered : gather_columns.size(); }
+  uint64_t weight_size() const { return mapped ? view.gathered : gather_weights.size(); }
 };
+
+// Releases the pages of a read part's views (prt::release_part_pages); nothing for a part in
+// memory. Its values stay readable (read again from the file).
+void release_haar_part_pages(const HaarPart& part);
 
 // Throws BakeError when the Haar bake cannot be sharded (a textured scene).
 void check_haar_shardable(const scene::Scene& scene, const HaarBakeOptions& options);
@@ -44,7 +79,8 @@ HaarPart bake_haar_part(const scene::Scene& scene, const HaarBakeOptions& option
                         ProgressSink* progress = nullptr);
 
 // The single Haar bake's result from every part of one split, in shard order (checked as
-// merge_transfer_parts checks its parts). Throws BakeError when they do not fit.
+// merge_transfer_parts checks its parts). Throws BakeError when they do not fit. The pages of a
+// part read from a file are released once its rows are checked and again once copied.
 HaarBakeResult merge_haar_parts(const scene::Scene& scene, const HaarBakeOptions& options,
                                 const std::vector<const HaarPart*>& parts,
                                 ProgressSink* progress = nullptr);

@@ -64,7 +64,7 @@ struct TransferPartFile {
   std::optional<SubsurfaceBakeOptions> subsurface;
   std::optional<scene::Scene> scene;    // shard 0
   TransferPart part;                    // SH parts; for Haar parts only shard, vertices and rows
-  std::shared_ptr<const void> mapping;  // the file's mapping, which `part`'s views point into
+  std::shared_ptr<const void> mapping;  // the mapping the parts' views point into
   bool haar = false;                    // a Haar part: the two fields below
   HaarBakeOptions haar_options;
   HaarPart haar_part;

@@ -92,6 +92,12 @@ struct SceneSolveRequest {
   // SceneSolution::cache_notice. With the hierarchical solver a link cache (link_cache.h) of the
   // same path, by the same rules on its revision and its geometry and settings keys; other
   // emission or albedo re-check its links. Not with `moves`.
+  // When the dense cache's save fails (a folder that cannot be written, a full disk), its role
+  // decides. An absent cache is an output the caller asked for: the failure is thrown, as for
+  // any output (the CLI refuses a folder it cannot write before any work). A stale cache is an
+  // input the caller gave to be reused, whose refresh is a side effect: the run goes on with
+  // the factors just computed, the old file is left as it was, cache stays None and
+  // cache_notice says (one line) that it was recomputed and could not be updated, and why.
   std::string form_factor_cache;
   std::vector<ObjectMove> moves;  // form factors updated partially when a cache is loaded
   // Optional: per-emitter responses (emitter_solve.h), one more solve per emitter on the same
@@ -121,7 +127,7 @@ struct SceneSolution {
   double gather_seconds = 0;  // K from F (part of solve_seconds)
   enum class Cache { None, Loaded, Saved } cache = Cache::None;
   std::string cache_message;  // hierarchical solver: what the link cache did (one line)
-  std::string cache_notice;   // a cache of earlier algorithms recomputed and saved over (one line)
+  std::string cache_notice;   // a cache of earlier algorithms recomputed, saved or not (one line)
   FormFactorUpdate update;    // counts of the partial update
   double escape_probe = -1;   // escape fraction measured for albedo-1 scenes (else −1)
   std::vector<RefinementPass> refinement_passes;    // with `refinement`: one per solve
