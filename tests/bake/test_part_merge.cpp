@@ -68,7 +68,7 @@ TEST_CASE("glossy merge: parts that do not tile the rows in shard order are refu
   o.threads = 1;
   const GlossyInputs inputs = glossy_inputs(scene);
   std::vector<GlossyPart> parts;
-  for (uint32_t i = 0; i < kShards; ++i) parts.push_back(bake_glossy_part(scene, o, {i, kShards});
+  for (uint32_t i = 0; i < kShards; ++i) parts.push_back(bake_glossy_part(scene, o, {i, kShards}));
   const fs::path dir = fs::temp_directory_path() / "prt_test_part_merge";
   fs::create_directories(dir);
   const std::string merged = (dir / "merged.prtg").string();
@@ -77,34 +77,35 @@ TEST_CASE("glossy merge: parts that do not tile the rows in shard order are refu
   // Refused in one line, and the output not written.
   const auto refused = [&](const std::vector<const GlossyPart*>& given,
                            const GlossyBakeOptions& options) {
-      check_refused(
-          [&] { (void)merge_glossy_parts_to_file(scene, inputs, options, given, merged); });
-      CHECK(!fs::exists(merged));
+    check_refused([&] { (void)merge_glossy_parts_to_file(scene, inputs, options, given, merged); });
+    CHECK(!fs::exists(merged));
   };
 
   SECTION("the valid set merges to the single bake's file") {
-      (void)merge_glossy_parts_to_file(scene, inputs, o, {&parts[0], &parts[1], &parts[2]}, merged);
-      (void)bake_glossy_transfer_to_file(scene, o, single);
-      CHECK(read_bytes(merged) == read_bytes(single));
+    (void)merge_glossy_parts_to_file(scene, inputs, o, {&parts[0], &parts[1], &parts[2]}, merged);
+    (void)bake_glossy_transfer_to_file(scene, o, single);
+    CHECK(read_bytes(merged) == read_bytes(single));
   }
   SECTION("a shard missing (was: merged, its vertices' matrices left zero)") {
-      refused({&parts[0], &parts[2]}, o);
+    refused({&parts[0], &parts[2]}, o);
   }
   SECTION("a shard given twice (was: merged; with other hit counts, copies past the hits)") {
-      refused({&parts[0], &parts[1], &parts[1], &parts[2]}, o);
+    refused({&parts[0], &parts[1], &parts[1], &parts[2]}, o);
   }
   SECTION("shards out of order") {
-      refused({&parts[1], &parts[0], &parts[2]}, o); }
-  SECTION("rows [2^63, end) of a shadowed part: 16 (end - 2^63) wraps to the size of its "
-          "matrices (was: read past the Morton order)") {
-      GlossyBakeOptions shadowed = o;
-      shadowed.bounces = 0;  // no hit counts, whose length would not match the wrapped rows
-      std::vector<GlossyPart> s;
-      for (uint32_t i = 0; i < kShards; ++i)
-        s.push_back(bake_glossy_part(scene, shadowed, {i, kShards}));
-      REQUIRE(s[0].rows.first == 0);
-      s[0].rows.first = uint64_t{1} << 63;
-      refused({&s[0], &s[1], &s[2]}, shadowed);
+    refused({&parts[1], &parts[0], &parts[2]}, o);
+  }
+  SECTION(
+      "rows [2^63, end) of a shadowed part: 16 (end - 2^63) wraps to the size of its "
+      "matrices (was: read past the Morton order)") {
+    GlossyBakeOptions shadowed = o;
+    shadowed.bounces = 0;  // no hit counts, whose length would not match the wrapped rows
+    std::vector<GlossyPart> s;
+    for (uint32_t i = 0; i < kShards; ++i)
+      s.push_back(bake_glossy_part(scene, shadowed, {i, kShards}));
+    REQUIRE(s[0].rows.first == 0);
+    s[0].rows.first = uint64_t{1} << 63;
+    refused({&s[0], &s[1], &s[2]}, shadowed);
   }
   fs::remove_all(dir);
 }
@@ -119,7 +120,8 @@ TEST_CASE("SH merge: a gather hit that names no triangle of the scene is refused
   o.seed = 7;
   o.threads = 1;
   std::vector<TransferPart> parts;
-  for (uint32_t i = 0; i < kShards; ++i) parts.push_back(bake_transfer_part(scene, o, {i, kShards});
+  for (uint32_t i = 0; i < kShards; ++i)
+    parts.push_back(bake_transfer_part(scene, o, {i, kShards}));
   const std::vector<const TransferPart*> given = {&parts[0], &parts[1], &parts[2]};
   // The valid set merges to the single bake (the check below refuses no hit of a real bake).
   CHECK(merge_transfer_parts(scene, o, given).data.coefficients ==
@@ -128,6 +130,5 @@ TEST_CASE("SH merge: a gather hit that names no triangle of the scene is refused
   REQUIRE(!p.gather_blocks.empty());
   REQUIRE(!p.gather_blocks.back().hits.empty());
   p.gather_blocks.back().hits.back().triangle = static_cast<uint32_t>(scene.triangles.size());
-  check_refused([&] {
-      (void)merge_transfer_parts(scene, o, given); });
+  check_refused([&] { (void)merge_transfer_parts(scene, o, given); });
 }
