@@ -2,6 +2,7 @@
 #include "bake/glossy_part.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "bake/sampling.h"
 #include "glossy_bake_stages.h"
@@ -96,9 +97,10 @@ detail::GlossySampled gather_parts(const scene::Scene& scene, const GlossyBakeOp
       for (uint32_t k = 0; k < p->hit_counts[r]; ++k, ++next) {
         const GlossyHitRecord& h = p->hits[next];
         if (h.triangle >= scene.triangles.size() || h.sample >= N ||
-            (k > 0 && h.sample <= p->hits[next - 1].sample))
+            (k > 0 && h.sample <= p->hits[next - 1].sample) || std::isnan(h.u) || std::isnan(h.v))
           throw BakeError(name + ": glossy part " + std::to_string(p->shard.index) +
-                          ": a hit names no triangle or sample, or repeats one");
+                          ": a hit names no triangle or sample, repeats one, or has NaN "
+                          "barycentrics");
       }
     all.rays += p->rays;
     all.back_face_hits += p->back_face_hits;

@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -91,6 +92,12 @@ TEST_CASE("glossy merge: parts that do not tile the rows in shard order are refu
   }
   SECTION("a shard given twice (was: merged; with other hit counts, copies past the hits)") {
     refused({&parts[0], &parts[1], &parts[1], &parts[2]}, o);
+  }
+  SECTION("a hit with NaN barycentrics (was: merged; quantise_hit's lround(NaN) overflowed)") {
+    GlossyPart hostile = parts[1];
+    REQUIRE(!hostile.hits.empty());
+    hostile.hits.back().v = std::numeric_limits<float>::quiet_NaN();
+    refused({&parts[0], &hostile, &parts[2]}, o);
   }
   SECTION("shards out of order") {
     refused({&parts[1], &parts[0], &parts[2]}, o);
