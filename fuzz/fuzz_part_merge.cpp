@@ -566,6 +566,10 @@ bool merge(const MergeFixture& fx, const std::vector<bake::TransferPartFile>& pa
       merge_into(fx.kind, fx.scene, given, fx.inputs, output);
       return true;
     }
+    // check_parts_fit takes decoded parts: decode_transfer_part (read_part_file) promises a
+    // shard index below a count of one at least, which the field operations may have broken.
+    for (const bake::TransferPartFile& f : parts)
+      if (f.part.shard.count == 0 || f.part.shard.index >= f.part.shard.count) return false;
     const std::vector<const bake::TransferPartFile*> ordered = bake::check_parts_fit(parts);
     const bake::TransferPartFile& first = *ordered[0];
     if (first.form_factors || first.subsurface || !first.scene) return false;

@@ -61,16 +61,6 @@ detail::GlossySampled gather_parts(const scene::Scene& scene, const GlossyBakeOp
   const uint64_t V = scene.vertex_count(), KK = uint64_t(o.order) * o.order * o.order * o.order;
   const uint64_t N = static_cast<uint64_t>(round_up_to_packet(o.samples));
   const bool interreflect = o.bounces != 0;
-  // The parts tile the rows in shard order, as the SH and Haar merges check: each part's row
-  // count below is then its own (not a wrapped end - first) and every vertex is filled once.
-  for (std::size_t i = 0; i < parts.size(); ++i) {
-    const RowRange want =
-        shard_rows(V, {static_cast<uint32_t>(i), static_cast<uint32_t>(parts.size())});
-    if (parts[i]->rows.first != want.first || parts[i]->rows.end != want.end)
-      throw BakeError(name + ": glossy part " + std::to_string(i) + " of " +
-                      std::to_string(parts.size()) + " does not fit the split");
-  }
-  if (parts.empty()) throw BakeError(name + ": no glossy parts to merge");
   const std::vector<uint32_t> order = make_morton_order(scene.positions);
   detail::GlossySampled all;
   all.direct.resize(V * KK);
@@ -131,6 +121,17 @@ GlossyBakeResult merge_glossy_parts_to_file(const scene::Scene& scene, const Glo
     throw BakeError(name + ": the glossy inputs do not fit the scene");
   for (uint32_t m : inputs.material_of_vertex)
     if (m >= inputs.materials.size()) throw BakeError(name + ": a vertex names no material");
+  // The parts tile the rows in shard order, as the SH and Haar merges check: each part's row
+  // count in gather_parts is then its own (not a wrapped end - first) and every vertex is filled
+  // once.
+  for (std::size_t i = 0; i < parts.size(); ++i) {
+    const RowRange want =
+        shard_rows(V, {static_cast<uint32_t>(i), static_cast<uint32_t>(parts.size())});
+    if (parts[i]->rows.first != want.first || parts[i]->rows.end != want.end)
+      throw BakeError(name + ": glossy part " + std::to_string(i) + " of " +
+                      std::to_string(parts.size()) + " does not fit the split");
+  }
+  if (parts.empty()) throw BakeError(name + ": no glossy parts to merge");
   detail::GlossySampled all = gather_parts(scene, options, parts);
   return detail::finish_glossy_bake_to_file(scene, options, inputs, all, path, progress);
 }
