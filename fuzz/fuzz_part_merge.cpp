@@ -22,6 +22,8 @@
 // missing; never a crash, sanitizer report, hang or unbounded allocation. When the set is the
 // unmodified valid parts (in any order through check_parts_fit, in shard order when called
 // directly), the merge must succeed and write the single-process bake's file, byte for byte.
+// check_parts_fit is given only parts that keep read_part_file's promise (a shard index below a
+// count of one at least); the merges called directly get any field.
 #include <algorithm>
 #include <cmath>
 #include <cstddef>

@@ -132,6 +132,10 @@ GlossyBakeResult merge_glossy_parts_to_file(const scene::Scene& scene, const Glo
                       std::to_string(parts.size()) + " does not fit the split");
   }
   if (parts.empty()) throw BakeError(name + ": no glossy parts to merge");
+  // Before gather_parts allocates V order⁴ floats (the bake checks its options only after).
+  if (options.order < 1 || options.order > kMaxGlossyBakeOrder)
+    throw BakeError(name + ": glossy SH order " + std::to_string(options.order) +
+                    " is outside [1, " + std::to_string(kMaxGlossyBakeOrder) + "]");
   detail::GlossySampled all = gather_parts(scene, options, parts);
   return detail::finish_glossy_bake_to_file(scene, options, inputs, all, path, progress);
 }

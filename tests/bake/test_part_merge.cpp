@@ -99,6 +99,11 @@ TEST_CASE("glossy merge: parts that do not tile the rows in shard order are refu
     hostile.hits.back().v = std::numeric_limits<float>::quiet_NaN();
     refused({&parts[0], &hostile, &parts[2]}, o);
   }
+  SECTION("options of SH order 1000 (was: allocated V 1000^4 floats before checking them)") {
+    GlossyBakeOptions huge = o;
+    huge.order = 1000;
+    refused({&parts[0], &parts[1], &parts[2]}, huge);
+  }
   SECTION("shards out of order") {
     refused({&parts[1], &parts[0], &parts[2]}, o);
   }
