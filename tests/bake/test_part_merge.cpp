@@ -17,6 +17,7 @@
 
 #include "bake/glossy_part.h"
 #include "bake/transfer_part.h"
+#include "bake/transfer_part_file.h"
 #include "prt/formats/transfer_file.h"
 #include "scene/procedural_mesh.h"
 
@@ -143,4 +144,25 @@ TEST_CASE("SH merge: a gather hit that names no triangle of the scene is refused
   REQUIRE(!p.gather_blocks.back().hits.empty());
   p.gather_blocks.back().hits.back().triangle = static_cast<uint32_t>(scene.triangles.size());
   check_refused([&] { (void)merge_transfer_parts(scene, o, given); });
+}
+
+TEST_CASE("part checks: a shard count of 2^32 - 1 is a missing shard, not 2^32 slots",
+          "[bake][farm][part-file]") {
+  // One part that says it is shard 0 of 4294967295 (read_part_file accepts any index below the
+  // count): check_parts_fit sized a table of one pointer per shard (32 GB) before finding shard
+  // 1 missing (fuzz_part_merge: out of memory).
+  std::vector<TransferPartFile> parts(1);
+  parts[0].name = "hostile.prtpart";
+  parts[0].part.shard = {0, 0xFFFFFFFFu};
+  parts[0].part.vertices = 40;
+  parts[0].part.rows = shard_rows(40, parts[0].part.shard);
+  try {
+    (void)check_parts_fit(parts);
+    FAIL("a split of 2^32 - 1 shards with one part fit");
+  } catch (const BakeError& e) {
+    const std::string message = e.what();
+    INFO(message);
+    CHECK(message.rfind("shard 1/4294967295 is missing", 0) == 0);
+    CHECK(message.find('\n') == std::string::npos);
+  }
 }
