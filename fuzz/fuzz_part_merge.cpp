@@ -311,7 +311,7 @@ void options_operation(Input& in, bake::TransferPartFile& f) {
       f.glossy_options.order = f.glossy_part.order = small;
       return;
     default:
-      f.glossy_options.bounces = small;
+      f.glossy_options.bounces = small % 5 - 1;  // −1..3: a billion bounces is slow, not wrong
       return;
   }
 }
