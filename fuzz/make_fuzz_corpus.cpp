@@ -8,7 +8,10 @@
 //   corpus/fuzz_env_map_exr/    selector byte + small .exr maps of each layout (its regression_*
 //                               files are kept findings of the target, not written here);
 //   corpus/fuzz_glossy_file/ … fuzz_texture/, fuzz_link_cache/, fuzz_part_file/: the binary
-//                               formats, textures, link caches and farm parts (format_seeds.h).
+//                               formats, textures, link caches and farm parts (format_seeds.h);
+//   corpus/fuzz_part_merge/     operations on fixed parts (fuzz_part_merge.cpp): each bake's
+//                               valid set, through check_parts_fit and called directly, reordered,
+//                               a shard dropped, one duplicated, a row range changed.
 // Usage: make_fuzz_corpus OUT_DIR   (scripts/fuzz.sh runs it when a corpus folder is empty).
 #include <cstdio>
 #include <cstring>
@@ -183,6 +186,22 @@ void write_env_seeds(const fs::path& dir, const fs::path& exr_dir) {
   seed(0, 1, header + "+X 2 -Y 1\n" + two_pixels);
 }
 
+// corpus/fuzz_part_merge/: byte 0 the bake, byte 1 the plan (bit 0 direct, bits 1–3 file
+// operations, bits 4–7 field operations), then the operations (fuzz_part_merge.cpp).
+void write_part_merge_seeds(const fs::path& dir) {
+  const std::string u32_0("\0\0\0\0", 4), u32_1("\1\0\0\0", 4), u32_2("\2\0\0\0", 4);
+  for (char kind = 0; kind < 6; ++kind) {
+    const std::string k(1, kind), name = "kind" + std::to_string(int(kind));
+    write_bytes(dir / (name + "_valid"), k);
+    write_bytes(dir / (name + "_valid_direct"), k + '\1');
+    write_bytes(dir / (name + "_swapped"), k + '\2' + '\2' + u32_0 + u32_2);  // swap 0 and 2
+    write_bytes(dir / (name + "_dropped"), k + '\2' + '\0' + u32_1);          // drop shard 1
+    write_bytes(dir / (name + "_duplicated"), k + '\2' + '\1' + u32_1);       // shard 1 twice
+    // Field operation 2 (rows.first) on part 1 in both views, to its neighbour's value + 1.
+    write_bytes(dir / (name + "_rows_direct"), k + '\x11' + u32_1 + '\2' + '\2' + '\3');
+  }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -193,13 +212,14 @@ int main(int argc, char** argv) {
   try {
     const fs::path out = argv[1];
     const fs::path dirs[] = {out / "fuzz_transfer_file", out / "fuzz_scene_obj",
-                             out / "fuzz_scene_gltf", out / "fuzz_env_map",
-                             out / "fuzz_env_map_exr"};
+                             out / "fuzz_scene_gltf",    out / "fuzz_env_map",
+                             out / "fuzz_env_map_exr",   out / "fuzz_part_merge"};
     for (const fs::path& d : dirs) fs::create_directories(d);
     write_transfer_seeds(dirs[0]);
     write_obj_seeds(dirs[1]);
     write_gltf_seeds(dirs[2]);
     write_env_seeds(dirs[3], dirs[4]);
+    write_part_merge_seeds(dirs[5]);
     prt::fuzz::write_format_seeds(out);
   } catch (const std::exception& e) {
     std::cerr << e.what() << "\n";

@@ -9,11 +9,16 @@
 
 namespace prt::fuzz {
 
+// Whether `message` follows the rule for `name`.
+inline bool is_one_line_error(const std::string& message, const std::string& name) {
+  return message.compare(0, name.size(), name) == 0 && message.size() > name.size() + 2 &&
+         (message.compare(name.size(), 2, ": ") == 0 ||
+          message.compare(name.size(), 2, " (") == 0) &&
+         message.find('\n') == std::string::npos && message.find('\r') == std::string::npos;
+}
+
 inline void check_one_line_error(const std::string& message, const std::string& name) {
-  if (message.compare(0, name.size(), name) != 0 || message.size() <= name.size() + 2 ||
-      (message.compare(name.size(), 2, ": ") != 0 && message.compare(name.size(), 2, " (") != 0) ||
-      message.find('\n') != std::string::npos || message.find('\r') != std::string::npos)
-    std::abort();
+  if (!is_one_line_error(message, name)) std::abort();
 }
 
 }  // namespace prt::fuzz

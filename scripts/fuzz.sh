@@ -12,7 +12,7 @@
 #   -l BYTES    largest input (libFuzzer -max_len), default per target (max_len_of below)
 #   TARGET      fuzz_transfer_file fuzz_glossy_file fuzz_cpca_file fuzz_emitter_responses
 #               fuzz_haar_file fuzz_form_factor_cache fuzz_link_cache fuzz_part_file
-#               fuzz_merl_brdf fuzz_texture fuzz_scene_obj fuzz_scene_gltf fuzz_env_map
+#               fuzz_part_merge fuzz_merl_brdf fuzz_texture fuzz_scene_obj fuzz_scene_gltf fuzz_env_map
 #               fuzz_env_map_exr (default: all)
 # Environment: BUILD_DIR (default <repo>/build-fuzz), REGENERATE_CORPUS=1 rewrites the seeds,
 # PRT_FUZZ_NO_INSTALL=1 fails instead of installing clang when it is missing (the ctest smoke run,
@@ -37,8 +37,8 @@ while getopts "n:t:j:l:" opt; do
 done
 shift $((OPTIND - 1))
 ALL_TARGETS=(fuzz_transfer_file fuzz_glossy_file fuzz_cpca_file fuzz_emitter_responses
-  fuzz_haar_file fuzz_form_factor_cache fuzz_link_cache fuzz_part_file fuzz_merl_brdf
-  fuzz_texture fuzz_scene_obj fuzz_scene_gltf fuzz_env_map fuzz_env_map_exr)
+  fuzz_haar_file fuzz_form_factor_cache fuzz_link_cache fuzz_part_file fuzz_part_merge
+  fuzz_merl_brdf fuzz_texture fuzz_scene_obj fuzz_scene_gltf fuzz_env_map fuzz_env_map_exr)
 TARGETS=("$@")
 if [ ${#TARGETS[@]} -eq 0 ]; then TARGETS=("${ALL_TARGETS[@]}"); fi
 
@@ -49,6 +49,7 @@ max_len_of() {
   case "$1" in
     fuzz_scene_* | fuzz_env_map*) echo 65536 ;;
     fuzz_texture) echo 16384 ;;
+    fuzz_part_merge) echo 512 ;;  # operations on fixed parts: a few dozen bytes say a lot
     *) echo 8192 ;;
   esac
 }

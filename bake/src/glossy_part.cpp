@@ -2,6 +2,7 @@
 #include "bake/glossy_part.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "bake/sampling.h"
 #include "glossy_bake_stages.h"
@@ -96,9 +97,10 @@ detail::GlossySampled gather_parts(const scene::Scene& scene, const GlossyBakeOp
       for (uint32_t k = 0; k < p->hit_counts[r]; ++k, ++next) {
         const GlossyHitRecord& h = part_hits[next];
         if (h.triangle >= scene.triangles.size() || h.sample >= N ||
-            (k > 0 && h.sample <= part_hits[next - 1].sample))
+            (k > 0 && h.sample <= part_hits[next - 1].sample) || std::isnan(h.u) || std::isnan(h.v))
           throw BakeError(name + ": glossy part " + std::to_string(p->shard.index) +
-                          ": a hit names no triangle or sample, or repeats one");
+                          ": a hit names no triangle or sample, repeats one, or has NaN "
+                          "barycentrics");
       }
     all.rays += p->rays;
     all.back_face_hits += p->back_face_hits;
@@ -132,6 +134,21 @@ GlossyBakeResult merge_glossy_parts_to_file(const scene::Scene& scene, const Glo
     throw BakeError(name + ": the glossy inputs do not fit the scene");
   for (uint32_t m : inputs.material_of_vertex)
     if (m >= inputs.materials.size()) throw BakeError(name + ": a vertex names no material");
+  // The parts tile the rows in shard order, as the SH and Haar merges check: each part's row
+  // count in gather_parts is then its own (not a wrapped end - first) and every vertex is filled
+  // once.
+  for (std::size_t i = 0; i < parts.size(); ++i) {
+    const RowRange want =
+        shard_rows(V, {static_cast<uint32_t>(i), static_cast<uint32_t>(parts.size())});
+    if (parts[i]->rows.first != want.first || parts[i]->rows.end != want.end)
+      throw BakeError(name + ": glossy part " + std::to_string(i) + " of " +
+                      std::to_string(parts.size()) + " does not fit the split");
+  }
+  if (parts.empty()) throw BakeError(name + ": no glossy parts to merge");
+  // Before gather_parts allocates V order⁴ floats (the bake checks its options only after).
+  if (options.order < 1 || options.order > kMaxGlossyBakeOrder)
+    throw BakeError(name + ": glossy SH order " + std::to_string(options.order) +
+                    " is outside [1, " + std::to_string(kMaxGlossyBakeOrder) + "]");
   detail::GlossySampled all = gather_parts(scene, options, parts);
   return detail::finish_glossy_bake_to_file(scene, options, inputs, all, path, progress);
 }

@@ -383,8 +383,14 @@ void fill_from_parts(BakeJob& job, const std::vector<const TransferPart*>& parts
       if (len > 0 && (run == runs.size() || runs[run].size - hit < len))
         throw BakeError(scene::scene_label(job.scene) +
                         ": a part's gather rows and hits do not agree");
-      if (len > 0)
-        block.hits.insert(block.hits.end(), runs[run].data + hit, runs[run].data + hit + len);
+      if (len > 0) {
+        const CompactHit* const first = runs[run].data + hit;
+        for (uint32_t k = 0; k < len; ++k)  // as the glossy and Haar merges check their hits
+          if (first[k].triangle >= job.scene.triangles.size())
+            throw BakeError(scene::scene_label(job.scene) +
+                            ": a part's gather hit names no triangle of the scene");
+        block.hits.insert(block.hits.end(), first, first + len);
+      }
       hit += len;
       if (block.lengths.size() == detail::kVertexBlock || r + 1 == job.V) store_block();
     }

@@ -727,6 +727,17 @@ std::vector<const TransferPartFile*> check_parts_fit(const std::vector<TransferP
     if (!why.empty()) throw BakeError(why);
   }
   const uint32_t N = r.part.shard.count;
+  if (N > parts.size()) {  // a shard is missing: name the first without N slots (N is a header's)
+    std::vector<uint32_t> given;
+    for (const TransferPartFile& p : parts) given.push_back(p.part.shard.index);
+    std::sort(given.begin(), given.end());
+    uint32_t i = 0;
+    for (std::size_t k = 0; k < given.size() && given[k] <= i; ++k) i += given[k] == i;
+    const RowRange rows = shard_rows(r.part.vertices, {i, N});
+    throw BakeError("shard " + shard_name(i, N) + " is missing (rows " +
+                    std::to_string(rows.first) + ".." + std::to_string(rows.end) + " of " +
+                    std::to_string(r.part.vertices) + "): no part given holds it");
+  }
   std::vector<const TransferPartFile*> ordered(N, nullptr);
   for (const TransferPartFile& p : parts) {
     const TransferPart& t = p.part;
