@@ -20,6 +20,7 @@ def functions(path):
     for i, line in enumerate(lines):
         code = re.sub(r"//.*", "", line)
         code = re.sub(r'"([^"\\]|\\.)*"', '""', code)
+        code = re.sub(r"'([^'\\]|\\.)'", "''", code)  # '{' and '}' open and close nothing
         opens, closes = code.count("{"), code.count("}")
         if start is None and opens and not re.match(r"\s*(namespace|struct|class|enum|union|extern)\b", code):
             head = " ".join(lines[max(0, i - 3): i + 1])
